@@ -1,0 +1,69 @@
+"""Typed outcomes: how a run ended, with a readable message, instead of an exception."""
+
+from __future__ import annotations
+
+from enum import Enum
+
+__all__ = ["Status"]
+
+
+class Status(str, Enum):
+    """How a run ended."""
+
+    COMPLETED = "completed"
+    """The requested number of cycles, or the requested end time, was reached."""
+
+    STOPPED = "stopped"
+    """The escapement stopped: the free swing never reaches the next impact
+    position (its turning point lies short of it, or exactly on it), so no further
+    impact and no further impulse occur; the mass oscillates freely from then on."""
+
+    TURNED_BACK_IN_ZONE = "turned_back_in_zone"
+    """The velocity vanished inside an impulse zone before its end (a2 or a4) was
+    reached, which the escapement model does not cover."""
+
+    CHATTERING = "chattering"
+    """An impact reversed the velocity (b > 1): the mass rebounds from the impact
+    position; where the spring pushes it back, the impacts accumulate in finite
+    time (a Zeno point), past which the impulsive model has no solution."""
+
+    EVENT_LIMIT = "event_limit"
+    """The bound on the number of events was reached before the run ended."""
+
+    @property
+    def in_regime(self) -> bool:
+        """True when the motion stayed in the escapement regime to the end of the run."""
+        return self in (Status.COMPLETED, Status.EVENT_LIMIT)
+
+
+def stopped_message(t: float, radius: float, a1: float, a3: float) -> str:
+    return (
+        f"the escapement stopped at t = {t:.12g} s: the free swing turns at x = {-radius:.12g} m and "
+        f"x = {radius:.12g} m and never passes the impact positions a1 = {a1:.12g} m (moving right) "
+        f"or a3 = {a3:.12g} m (moving left); from then on the mass oscillates freely"
+    )
+
+
+def turned_back_message(t: float, zone: str, turning_point: float, centre: float, end: float) -> str:
+    return (
+        f"the mass turned back inside the impulse zone {zone} at t = {t:.12g} s: about the zone's centre "
+        f"x = {centre:.12g} m (F/K) the motion turns at x = {turning_point:.12g} m, short of the zone's end "
+        f"at {end:.12g} m; the escapement model does not cover this"
+    )
+
+
+def chattering_message(t: float, position: str, b: float, t_accumulation: float | None) -> str:
+    head = (
+        f"the impact at {position} at t = {t:.12g} s reversed the velocity (b = {b:.12g} > 1, "
+        f"v+ = {1 - b:.12g} v-): the mass rebounds instead of entering the impulse zone"
+    )
+    if t_accumulation is None:
+        return head + "; the rebounds do not accumulate in finite time, and the escapement regime has ended"
+    return (
+        head + f"; the spring drives it back to {position} and the impacts accumulate at t = "
+        f"{t_accumulation:.12g} s (a Zeno point), past which the impulsive model has no solution"
+    )
+
+
+def event_limit_message(t: float, max_events: int) -> str:
+    return f"ended after max_events = {max_events} events at t = {t:.12g} s; raise max_events to go on"
