@@ -7,9 +7,10 @@ level of floating-point rounding.
 
 Modes (a hybrid automaton):
 
-* ``FREE``: centre 0; the next event is the first of "x reaches a1 moving right"
-  and "x reaches a3 moving left".  If neither is ever reached the escapement has
-  stopped.
+* ``FREE``: centre 0; the next event is the impact the escapement expects: at a3
+  moving left after the impulse (a1, a2), at a1 moving right after the impulse
+  (a4, a3), and at first whichever of the two comes first.  If the expected
+  impact position is never reached the escapement has stopped (it stays locked).
 * ``ZONE_RIGHT``: entered by the impact at a1; centre ``+F/K``; ends at a2 moving
   right.
 * ``ZONE_LEFT``: entered by the impact at a3; centre ``-F/K``; ends at a4 moving
@@ -78,6 +79,7 @@ def solve_exact(
     impacts_a1 = 0
     t = 0.0
     mode = FREE
+    expect = 0  # the impact the escapement waits for: 0 (either, at the start), _A1 or _A3
     status = Status.EVENT_LIMIT
     message = ""
     detail: dict[str, float] = {}
@@ -86,15 +88,16 @@ def solve_exact(
     for _ in range(limits.max_events):
         if mode == FREE:
             centre = 0.0
-            hit_a1 = crossing(0.0, x, v, omega, a1, 1)
-            hit_a3 = crossing(0.0, x, v, omega, a3, -1)
+            hit_a1 = crossing(0.0, x, v, omega, a1, 1) if expect != _A3 else None
+            hit_a3 = crossing(0.0, x, v, omega, a3, -1) if expect != _A1 else None
             if hit_a1 is None and hit_a3 is None:
                 radius = math.hypot(x, v / omega)
                 if record_trajectory:
                     arc_t.append(t), arc_c.append(centre), arc_x.append(x), arc_v.append(v)
                 status, t_final = Status.STOPPED, math.inf
-                message = outcome.stopped_message(t, radius, a1, a3)
-                detail = {"turning_point": radius, "margin": min(abs(a1), abs(a3)) - radius}
+                missed = {_A1: {"a1": a1}, _A3: {"a3": a3}}.get(expect, {"a1": a1, "a3": a3})
+                message = outcome.stopped_message(t, radius, missed)
+                detail = {"turning_point": radius, "margin": min(abs(m) for m in missed.values()) - radius}
                 break
             if hit_a3 is None or (hit_a1 is not None and hit_a1[0] <= hit_a3[0]):
                 hit, target, kind = hit_a1, a1, _A1
@@ -150,6 +153,7 @@ def solve_exact(
             mode = ZONE_RIGHT if kind == _A1 else ZONE_LEFT
         else:
             mode = FREE
+            expect = _A3 if kind == _A2 else _A1
         v = v_after
     else:
         message = outcome.event_limit_message(t, limits.max_events)

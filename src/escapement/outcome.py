@@ -36,11 +36,14 @@ class Status(str, Enum):
         return self in (Status.COMPLETED, Status.EVENT_LIMIT)
 
 
-def stopped_message(t: float, radius: float, a1: float, a3: float) -> str:
+def stopped_message(t: float, radius: float, missed: dict[str, float]) -> str:
+    """``missed`` maps the name of each impact position the swing cannot reach to its value."""
+    direction = {"a1": "moving right", "a3": "moving left"}
+    names = " or ".join(f"{name} = {value:.12g} m ({direction[name]})" for name, value in missed.items())
     return (
         f"the escapement stopped at t = {t:.12g} s: the free swing turns at x = {-radius:.12g} m and "
-        f"x = {radius:.12g} m and never passes the impact positions a1 = {a1:.12g} m (moving right) "
-        f"or a3 = {a3:.12g} m (moving left); from then on the mass oscillates freely"
+        f"x = {radius:.12g} m and never passes the next impact position, {names}; "
+        "from then on the mass oscillates freely"
     )
 
 

@@ -83,7 +83,7 @@ class Parameters:
         if not math.isfinite(checked["F"] / checked["M"]):
             raise ParameterError("F", self.F, "such that F/M is finite")
         for name in ("a1", "a2", "a3", "a4"):
-            if not math.isfinite(checked[name] ** 2 * checked["K"]):
+            if not math.isfinite(checked[name] * checked[name] * checked["K"]):
                 raise ParameterError(name, checked[name], "small enough that K * " + name + "**2 is finite")
 
     @property

@@ -1,0 +1,144 @@
+"""Closed forms derived for this replication: the corrected counterparts of the
+paper's equations, each from the energy balance and the phase-plane geometry.
+
+Phase-plane facts used throughout: about a centre ``c`` the state ``(x - c, v/w)``
+turns clockwise at rate ``w``; the speed at a position follows from energy.  The
+sine phase ``phi = atan2(x, v/w)`` of the free motion (centre 0) advances at
+exactly ``w`` in free flight, so over one cycle
+
+``T = 2 pi / w + (phase jumps at the two impacts) + (zone time - phase advance)
+over the two zones``,
+
+which is the decomposition the paper's Eqs. (24)-(25) aim at.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .parameters import Parameters
+
+__all__ = [
+    "cycle_velocities",
+    "map_constant",
+    "fixed_point",
+    "fixed_point_energy_sequence",
+    "period",
+    "impact_phase_jump",
+    "impact_phase_jump_closed",
+    "zone_period_change",
+    "period_from_perturbations",
+]
+
+
+def _sqrt(value: float) -> float:
+    return math.sqrt(value) if value >= 0.0 else math.nan
+
+
+def cycle_velocities(v1: float, p: Parameters) -> dict[str, float]:
+    """Velocities of one cycle from ``v1`` (before the impact at a1), by energy.
+
+    Same as the paper's (10)-(15) except (14): the force ``-f`` acting on the
+    leftward motion from a3 to a4 does positive work ``f (a3 - a4)``, so
+    ``v5 = -sqrt(v4p**2 + (a3**2 - a4**2) w**2 + 2 (a3 - a4) f)``.
+    """
+    w2, f, b = p.omega2, p.f, p.b
+    v1p = (1 - b) * v1
+    v2 = _sqrt(v1p**2 + w2 * (p.a1 - p.a2) * (p.a1 + p.a2) + 2 * (p.a2 - p.a1) * f)
+    v4 = -_sqrt(v2**2 + w2 * (p.a2 - p.a3) * (p.a2 + p.a3))
+    v4p = (1 - b) * v4
+    v5 = -_sqrt(v4p**2 + w2 * (p.a3 - p.a4) * (p.a3 + p.a4) + 2 * (p.a3 - p.a4) * f)
+    v1_next = _sqrt(v5**2 + w2 * (p.a4 - p.a1) * (p.a4 + p.a1))
+    return {"v1p": v1p, "v2": v2, "v4": v4, "v4p": v4p, "v5": v5, "v1_next": v1_next}
+
+
+def map_constant(p: Parameters) -> float:
+    """``C`` in the map ``v1(k+1)**2 = (1 - b)**4 v1(k)**2 + C`` (Eq. (16) is right)."""
+    b, f = p.b, p.f
+    return (
+        (b**2 - 2 * b) * p.omega2 * (p.a1**2 - p.a3**2)
+        - 2 * (1 - b) ** 2 * (p.a1 - p.a2) * f
+        + 2 * (p.a3 - p.a4) * f
+    )
+
+
+def fixed_point(p: Parameters) -> float:
+    """Fixed point of the general map (16): ``sqrt(C / (1 - (1 - b)**4))`` (NaN if none)."""
+    return _sqrt(map_constant(p) / (1 - (1 - p.b) ** 4))
+
+
+def fixed_point_energy_sequence(v1: float, p: Parameters, n: int) -> list[float]:
+    """``v1(k)**2`` for k = 1 .. n: the map is linear in ``v**2``, so
+    ``v1(k)**2 - v*^2 = (1 - b)**(4(k-1)) (v1(1)**2 - v*^2)``."""
+    star = fixed_point(p) ** 2
+    mu = (1 - p.b) ** 4
+    return [star + mu ** (k - 1) * (v1**2 - star) for k in range(1, n + 1)]
+
+
+def _zone_time(centre: float, x_from: float, x_to: float, v_from: float, w: float) -> float:
+    """Time to run through an impulse zone, arccos form (centre outside the zone's start)."""
+    radius = math.hypot(x_from - centre, v_from / w)
+    return abs(math.acos((x_to - centre) / radius) - math.acos((x_from - centre) / radius)) / w
+
+
+def period(v1: float, p: Parameters) -> float:
+    """Corrected Eq. (23): the period of the cycle that starts with ``v1`` at a1.
+
+    The eight arccos terms of the paper, with the last two read as
+    ``acos(-a4/h5) + acos(-a1/h5)``: from a4 the mass swings through the left
+    turning point ``-h5`` and back to a1, a phase of ``2 pi - acos(a4/h5) - acos(a1/h5)``.
+    """
+    w = p.omega
+    c = p.zone_offset
+    vel = cycle_velocities(v1, p)
+    h2 = math.hypot(p.a2, vel["v2"] / w)
+    h5 = math.hypot(p.a4, vel["v5"] / w)
+    return (
+        _zone_time(c, p.a1, p.a2, vel["v1p"], w)
+        + (math.acos(p.a2 / h2) + math.acos(p.a3 / h2)) / w
+        + _zone_time(-c, p.a3, p.a4, vel["v4p"], w)
+        + (math.acos(-p.a4 / h5) + math.acos(-p.a1 / h5)) / w
+    )
+
+
+def impact_phase_jump(position: float, v_before: float, p: Parameters) -> float:
+    """Delay caused by an impact at ``position``: the jump of the sine phase over ``w``.
+
+    Equals the paper's (24) first form at a1.
+    """
+    w = p.omega
+    v_after = (1 - p.b) * v_before
+    return (math.atan2(position, v_before / w) - math.atan2(position, v_after / w)) / w * (1 if v_before > 0 else -1)
+
+
+def impact_phase_jump_closed(position: float, v_before: float, p: Parameters) -> float:
+    """Corrected (24) second form: ``-(1/w) atan(a w b v / (a^2 w^2 + (1 - b) v^2))``
+    with ``v`` the velocity before the impact (the paper prints the one after)."""
+    w, b = p.omega, p.b
+    return -math.atan(position * w * b * v_before / (position**2 * w**2 + (1 - b) * v_before**2)) / w
+
+
+def zone_period_change(v1: float, p: Parameters) -> float:
+    """Corrected (25): time through the zone (a1, a2) less the sine-phase advance over ``w``:
+    ``dT2 = t_zone - (1/w)[atan(a2 / (v2/w)) - atan(a1 / (v1p/w))]``."""
+    w = p.omega
+    vel = cycle_velocities(v1, p)
+    zone = _zone_time(p.zone_offset, p.a1, p.a2, vel["v1p"], w)
+    return zone - (math.atan2(p.a2, vel["v2"] / w) - math.atan2(p.a1, vel["v1p"] / w)) / w
+
+
+def period_from_perturbations(v1: float, p: Parameters) -> float:
+    """``2 pi / w`` plus the four perturbations of one cycle (both impacts, both zones),
+    plus the sine-phase difference between the cycle's end and start states at a1
+    over ``w``, which vanishes on the limit cycle (the case the paper treats).
+
+    The left half is the mirror image of a right half: reflect ``x -> -x``, which
+    maps a3 to -a3, a4 to -a4 and the speed at a3 to a rightward speed.
+    """
+    w = p.omega
+    vel = cycle_velocities(v1, p)
+    mirror = Parameters(M=p.M, K=p.K, F=p.F, b=p.b, a1=-p.a3, a2=-p.a4, a3=-p.a1, a4=-p.a2)
+    right = impact_phase_jump(p.a1, v1, p) + zone_period_change(v1, p)
+    left = impact_phase_jump(mirror.a1, -vel["v4"], mirror) + zone_period_change(-vel["v4"], mirror)
+    drift = (math.atan2(p.a1, vel["v1_next"] / w) - math.atan2(p.a1, v1 / w)) / w
+    return p.natural_period + right + left + drift

@@ -1,0 +1,175 @@
+"""The paper's closed forms, as printed (Mao, Fu & Li 2013, Sec. 3.3-3.4).
+
+Each function reproduces one equation as it reads in the paper, with the signs of
+``a1 .. a4`` taken as signed positions (``a1 < 0 < a3``).  Where the text is
+garbled, the docstring states the reading.  Whether each equation holds is
+decided by the tests against the exact solver and recorded in REPLICATION.md;
+the corrected forms live in :mod:`escapement.derived`.
+
+Notation: ``v1`` is the velocity just before the impact at a1 (``xdot_1(k)``),
+``v1p = (1 - b) v1`` just after it; ``v2`` the velocity at a2; ``v4`` before the
+impact at a3, ``v4p`` after it; ``v5`` the velocity at a4.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .parameters import Parameters
+
+__all__ = [
+    "step_velocities",
+    "poincare_map_16",
+    "poincare_map_17",
+    "fixed_point_19",
+    "map_derivative_20",
+    "multiplier_21",
+    "step_times_22",
+    "period_23",
+    "period_perturbation_24",
+    "period_perturbation_24_closed",
+    "period_perturbation_25",
+]
+
+
+def _sqrt(value: float) -> float:
+    return math.sqrt(value) if value >= 0.0 else math.nan
+
+
+def step_velocities(v1: float, p: Parameters) -> dict[str, float]:
+    """Eqs. (10)-(15) as printed: the velocities of one cycle from ``v1``.
+
+    Eq. (14) is printed ``v5 = -sqrt(v4p**2 + (a3**2 - a4**2) w**2 - 2 (a3 - a4) f)``.
+    """
+    w2, f, b = p.omega2, p.f, p.b
+    v1p = (1 - b) * v1  # (10)
+    v2 = _sqrt(v1p**2 + (p.a1**2 - p.a2**2) * w2 - 2 * (p.a1 - p.a2) * f)  # (11)
+    v4 = -_sqrt(v2**2 + (p.a2**2 - p.a3**2) * w2)  # (12)
+    v4p = (1 - b) * v4  # (13)
+    v5 = -_sqrt(v4p**2 + (p.a3**2 - p.a4**2) * w2 - 2 * (p.a3 - p.a4) * f)  # (14) as printed
+    v1_next = _sqrt(v5**2 + (p.a4**2 - p.a1**2) * w2)  # (15)
+    return {"v1p": v1p, "v2": v2, "v4": v4, "v4p": v4p, "v5": v5, "v1_next": v1_next}
+
+
+def poincare_map_16(v1: float, p: Parameters) -> float:
+    """Eq. (16): the Poincare map for a general geometry."""
+    b, f = p.b, p.f
+    return _sqrt(
+        (1 - b) ** 4 * v1**2
+        + (b**2 - 2 * b) * p.omega2 * (p.a1**2 - p.a3**2)
+        - 2 * (1 - b) ** 2 * (p.a1 - p.a2) * f
+        + 2 * (p.a3 - p.a4) * f
+    )
+
+
+def poincare_map_17(v1: float, p: Parameters) -> float:
+    """Eq. (17): the map for the symmetric geometry a1 = -a3, a2 = -a4."""
+    b = p.b
+    return _sqrt((1 - b) ** 4 * v1**2 + 2 * (b**2 - 2 * b + 2) * (p.a2 - p.a1) * p.f)
+
+
+def fixed_point_19(p: Parameters) -> float:
+    """Eq. (19): the fixed point of Eq. (17)."""
+    return _sqrt(2 * (p.a2 - p.a1) * p.f / (2 * p.b - p.b**2))
+
+
+def map_derivative_20(v1: float, p: Parameters) -> float:
+    """Eq. (20): the derivative of Eq. (17)."""
+    b = p.b
+    return (1 - b) ** 4 * v1 / poincare_map_17(v1, p)
+
+
+def multiplier_21(p: Parameters) -> float:
+    """Eq. (21): the non-trivial multiplier mu_2 = (1 - b)**4."""
+    return (1 - p.b) ** 4
+
+
+def step_times_22(v1: float, p: Parameters, left_amplitude: float) -> dict[str, float]:
+    """Eqs. (22a)-(22e) as printed: the durations of steps 1-7 of one cycle.
+
+    ``left_amplitude`` is ``h0``, the left turning point's distance from 0
+    (step 1 starts there).  Velocities come from the energy balance (the correct
+    (10)-(15)), so that only the time expressions are under test.  Reading of the
+    garbled text:
+
+    * (22a) ``t1 - t0 = acos(-a1 / h0) / w``
+    * (22b) ``t2 - t1 = [atan(v1p / (w (a1 - f/w^2))) + acos((f/w^2 - a2) / R1)] / w``
+    * (22c) ``t3 - t2 = atan(v2 / (w a2)) / w``
+    * (22d) ``t4 - t3 = acos(a3 / sqrt(a2^2 + (v2/w)^2)) / w``
+    * (22e) ``t5 - t4 = [atan(v4p / (w (a3 + f/w^2))) - acos((a4 + f/w^2) / h3)] / w``
+
+    with ``R1 = sqrt((v1p/w)^2 + (a1 - f/w^2)^2)``, ``h3 = sqrt((a3 + f/w^2)^2 + (v4p/w)^2)``.
+    """
+    from .derived import cycle_velocities
+
+    w = p.omega
+    c = p.zone_offset
+    vel = cycle_velocities(v1, p)
+    v1p, v2, v4p = vel["v1p"], vel["v2"], vel["v4p"]
+    r1 = math.hypot(v1p / w, p.a1 - c)
+    h3 = math.hypot(p.a3 + c, v4p / w)
+    return {
+        "22a": math.acos(-p.a1 / left_amplitude) / w,
+        "22b": (math.atan(v1p / (w * (p.a1 - c))) + math.acos((c - p.a2) / r1)) / w,
+        "22c": math.atan(v2 / (w * p.a2)) / w,
+        "22d": math.acos(p.a3 / math.hypot(p.a2, v2 / w)) / w,
+        "22e": (math.atan(v4p / (w * (p.a3 + c))) - math.acos((p.a4 + c) / h3)) / w,
+    }
+
+
+def period_23(v1: float, p: Parameters) -> float:
+    """Eq. (23) as printed: the period of the cycle that starts with ``v1`` at a1.
+
+    ``T = (1/w) [acos((c - a2)/R1) - acos((c - a1)/R1) + acos(a2/h2) + acos(a3/h2)
+    + acos((c + a4)/R3) - acos((c + a3)/R3) + acos(a4/h5) + acos(a1/h5)]``, ``c = f/w^2``,
+    ``R1 = |(a1 - c, v1p/w)|``, ``h2 = |(a2, v2/w)|``, ``R3 = |(a3 + c, v4p/w)|``,
+    ``h5 = |(a4, v5/w)|``; velocities from the energy balance.
+    """
+    from .derived import cycle_velocities
+
+    w = p.omega
+    c = p.zone_offset
+    vel = cycle_velocities(v1, p)
+    r1 = math.hypot(p.a1 - c, vel["v1p"] / w)
+    h2 = math.hypot(p.a2, vel["v2"] / w)
+    r3 = math.hypot(p.a3 + c, vel["v4p"] / w)
+    h5 = math.hypot(p.a4, vel["v5"] / w)
+    return (
+        math.acos((c - p.a2) / r1)
+        - math.acos((c - p.a1) / r1)
+        + math.acos(p.a2 / h2)
+        + math.acos(p.a3 / h2)
+        + math.acos((c + p.a4) / r3)
+        - math.acos((c + p.a3) / r3)
+        + math.acos(p.a4 / h5)
+        + math.acos(p.a1 / h5)
+    ) / w
+
+
+def period_perturbation_24(v1: float, p: Parameters) -> float:
+    """Eq. (24), first form: ``dT1 = [atan(v1p / (a1 w)) - atan(v1 / (a1 w))] / w``."""
+    w = p.omega
+    v1p = (1 - p.b) * v1
+    return (math.atan(v1p / (p.a1 * w)) - math.atan(v1 / (p.a1 * w))) / w
+
+
+def period_perturbation_24_closed(v1: float, p: Parameters) -> float:
+    """Eq. (24), second form as printed: ``-(1/w) atan(a1 w b v1p / (a1^2 w^2 + (1 - b) v1p^2))``."""
+    w, b = p.omega, p.b
+    v1p = (1 - b) * v1
+    return -math.atan(p.a1 * w * b * v1p / (p.a1**2 * w**2 + (1 - b) * v1p**2)) / w
+
+
+def period_perturbation_25(v1: float, p: Parameters) -> float:
+    """Eq. (25) as printed: the period change caused by the force between a1 and a2.
+
+    ``dT2 = (1/w)[acos((c - a2)/R1) - acos((c - a1)/R1)]
+    - (1/w)[atan(sqrt((v1p/w)^2 + a1^2 - a2^2 - 2 (a1 - a2) f / w^2) / a2) - atan(v1p / (a1 w))]``.
+    """
+    w = p.omega
+    c = p.zone_offset
+    v1p = (1 - p.b) * v1
+    r1 = math.hypot(p.a1 - c, v1p / w)
+    zone_time = (math.acos((c - p.a2) / r1) - math.acos((c - p.a1) / r1)) / w
+    w2_exit = _sqrt((v1p / w) ** 2 + p.a1**2 - p.a2**2 - 2 * (p.a1 - p.a2) * p.f / w**2)
+    return zone_time - (math.atan(w2_exit / p.a2) - math.atan(v1p / (p.a1 * w))) / w
