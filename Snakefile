@@ -1,0 +1,22 @@
+# Replication of Mao, Fu & Li (2013), "Dynamics of periodic impulsive collision in escapement
+# mechanism", Shock and Vibration 20, 1001-1010, doi:10.3233/SAV-130800.
+from snakemake.utils import min_version
+
+min_version("8.0")
+
+
+configfile: "config/config.yaml"
+
+
+report: "workflow/report/workflow.rst"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/simulate.smk"
+include: "workflow/rules/plot.smk"
+
+
+rule all:
+    default_target: True
+    input:
+        all_outputs(),

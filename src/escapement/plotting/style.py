@@ -1,0 +1,53 @@
+"""The project's style sheet and deterministic saving."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from importlib.resources import as_file, files
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+__all__ = ["style", "save_figure", "INK", "ACCENT", "MUTED", "GUIDE"]
+
+#: colours of the figures, named by role
+INK = "#1f4e79"
+ACCENT = "#c0392b"
+MUTED = "#b8b8b8"
+GUIDE = "#666666"
+
+
+@contextlib.contextmanager
+def style():
+    """Apply the project's style sheet inside the ``with`` block."""
+    with as_file(files(__package__) / "escapement.mplstyle") as sheet, plt.style.context(str(sheet)):
+        yield
+
+
+def _atomic_savefig(fig, path: Path, **kwargs) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, **kwargs)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def save_figure(fig, png: str | os.PathLike, pdf: str | os.PathLike) -> None:
+    """Save as PNG and PDF with no software stamp or creation date, so that the same
+    figure gives the same bytes on every run."""
+    with style():
+        _atomic_savefig(fig, Path(png), format="png", metadata={"Software": None})
+        _atomic_savefig(fig, Path(pdf), format="pdf", metadata={"Creator": None, "Producer": None, "CreationDate": None})
+    plt.close(fig)

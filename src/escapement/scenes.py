@@ -1,0 +1,95 @@
+"""What each of the paper's figures needs, and only that.
+
+* Fig. 3 (Poincare map): events only; no trajectory is kept or sampled.
+* Fig. 4 (shock detail): one run up to the end of its window, sampled only inside it.
+* Fig. 5 (phase diagrams): one run of ``n_cycles``, sampled at a rate set by the plot.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from .dataset import cycle_variables, dataset, event_variables, impact_variables, sample_variables
+from .paper_equations import fixed_point_19
+from .exact import solve_exact
+from .parameters import ParameterError, Parameters
+
+__all__ = ["poincare_scene", "shock_scene", "phase_scene"]
+
+
+def _window(name: str, window) -> tuple[float, float]:
+    try:
+        lo, hi = (float(w) for w in window)
+    except (TypeError, ValueError) as err:
+        raise ParameterError(name, window, "a pair [start, end] of times in s") from err
+    if not (0 <= lo < hi < np.inf):
+        raise ParameterError(name, window, "a pair [start, end] with 0 <= start < end (s)")
+    return lo, hi
+
+
+def _positive_int(name: str, value) -> int:
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
+        raise ParameterError(name, value, "a positive integer")
+    return int(value)
+
+
+def poincare_scene(params: Parameters, x0: float, n_cycles: int) -> xr.Dataset:
+    """Fig. 3: velocity before impact, period and amplitude for cycles 1 .. n_cycles."""
+    run = solve_exact(params, x0, n_cycles=_positive_int("n_cycles", n_cycles), record_trajectory=False)
+    return dataset(
+        run,
+        cycle_variables(run),
+        title="Poincare map of the escapement model (Mao, Fu & Li 2013, Fig. 3)",
+        scene="fig3",
+        n_cycles=int(n_cycles),
+        fixed_point_19=fixed_point_19(params),
+    )
+
+
+def shock_scene(
+    params: Parameters,
+    x0: float,
+    velocity_window: tuple[float, float],
+    acceleration_window: tuple[float, float],
+    samples_per_second: int,
+) -> xr.Dataset:
+    """Fig. 4: motion sampled only over the union of both windows, and the impacts inside it."""
+    v_lo, v_hi = _window("velocity_window", velocity_window)
+    a_lo, a_hi = _window("acceleration_window", acceleration_window)
+    rate = _positive_int("samples_per_second", samples_per_second)
+    lo, hi = min(v_lo, a_lo), max(v_hi, a_hi)
+    run = solve_exact(params, x0, t_end=hi)
+    t = np.linspace(lo, hi, int(round((hi - lo) * rate)) + 1)
+    variables = sample_variables(run, t, acceleration=True)
+    variables.update(impact_variables(run, window=(lo, hi)))
+    variables.update(event_variables(run, window=(lo, hi)))
+    return dataset(
+        run,
+        variables,
+        title="Shock detail of the escapement model (Mao, Fu & Li 2013, Fig. 4)",
+        scene="fig4",
+        velocity_window=np.array([v_lo, v_hi]),
+        acceleration_window=np.array([a_lo, a_hi]),
+        samples_per_second=rate,
+    )
+
+
+def phase_scene(params: Parameters, x0: float, n_cycles: int, samples_per_period: int) -> xr.Dataset:
+    """Fig. 5: the phase trajectory from release to the end of cycle ``n_cycles``, and its impacts."""
+    per_period = _positive_int("samples_per_period", samples_per_period)
+    run = solve_exact(params, x0, n_cycles=_positive_int("n_cycles", n_cycles))
+    end = run.t_final if np.isfinite(run.t_final) else (n_cycles + 1) * params.natural_period
+    n = int(np.ceil(end / params.natural_period * per_period)) + 1
+    t = np.linspace(0.0, end, n)
+    variables = sample_variables(run, t)
+    variables.update(cycle_variables(run))
+    variables.update(impact_variables(run))
+    return dataset(
+        run,
+        variables,
+        title="Phase diagram of the escapement model (Mao, Fu & Li 2013, Fig. 5)",
+        scene="fig5",
+        n_cycles=int(n_cycles),
+        samples_per_period=per_period,
+    )

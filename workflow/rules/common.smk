@@ -1,0 +1,78 @@
+from snakemake.exceptions import WorkflowError
+from snakemake.utils import validate
+
+from escapement.parameters import ParameterError
+from escapement.scene_config import MODEL_KEYS, initial_state_from, parameters_from
+
+validate(config, "../schemas/config.schema.yaml")
+
+
+def _merged(*blocks):
+    """The model block overridden by a scene's model keys and then by its own keys."""
+    merged = {}
+    for block in blocks:
+        merged.update({k: v for k, v in block.items() if not isinstance(v, dict)})
+    return merged
+
+
+def fig3_scene(case):
+    scene = config["fig3"]
+    return {
+        **_merged(config["model"], scene["cases"][case]),
+        "n_cycles": scene["n_cycles"],
+    }
+
+
+def fig4_scene():
+    return _merged(config["model"], config["fig4"])
+
+
+def fig5_labels():
+    """File labels of the Fig. 5 panels, one per spring constant: K_0.1, K_1, K_10."""
+    return [f"{k:g}" for k in config["fig5"]["K"]]
+
+
+def fig5_scene(label):
+    scene = {k: v for k, v in config["fig5"].items() if k != "K"}
+    stiffness = dict(zip(fig5_labels(), config["fig5"]["K"]))[label]
+    return {**_merged(config["model"], scene), "K": stiffness}
+
+
+def _check_scenes():
+    """Every scene's parameters must make a valid model before any job runs."""
+    scenes = {f"fig3.cases.{c}": fig3_scene(c) for c in config["fig3"]["cases"]}
+    scenes["fig4"] = fig4_scene()
+    scenes.update({f"fig5 (K = {label})": fig5_scene(label) for label in fig5_labels()})
+    for where, scene in scenes.items():
+        try:
+            parameters_from(scene)
+            initial_state_from(scene)
+        except ParameterError as err:
+            raise WorkflowError(f"invalid configuration in {where}: {err}") from None
+    v_window, a_window = (
+        config["fig4"]["velocity_window"],
+        config["fig4"]["acceleration_window"],
+    )
+    for name, (lo, hi) in (
+        ("velocity_window", v_window),
+        ("acceleration_window", a_window),
+    ):
+        if not lo < hi:
+            raise WorkflowError(
+                f"invalid configuration in fig4: {name} = {[lo, hi]} is invalid: "
+                f"{name} must be [start, end] with start < end (s)"
+            )
+
+
+_check_scenes()
+
+
+def all_outputs():
+    return [
+        *expand("results/fig3/case_{case}.nc", case=config["fig3"]["cases"]),
+        "results/fig4/shock.nc",
+        *expand("results/fig5/K_{K}.nc", K=fig5_labels()),
+        *expand(
+            "figures/{fig}.{ext}", fig=["fig3", "fig4", "fig5"], ext=["png", "pdf"]
+        ),
+    ]

@@ -1,0 +1,61 @@
+rule plot_fig3:
+    input:
+        unpack(
+            lambda wildcards: {
+                c: f"results/fig3/case_{c}.nc" for c in config["fig3"]["cases"]
+            }
+        ),
+    output:
+        png=report(
+            "figures/fig3.png",
+            caption="../report/fig3.rst",
+            category="Figures",
+            labels={"figure": "Fig. 3", "content": "Poincare map"},
+        ),
+        pdf="figures/fig3.pdf",
+    log:
+        "results/logs/plot_fig3.log",
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/plot_fig3.py"
+
+
+rule plot_fig4:
+    input:
+        nc="results/fig4/shock.nc",
+    output:
+        png=report(
+            "figures/fig4.png",
+            caption="../report/fig4.rst",
+            category="Figures",
+            labels={"figure": "Fig. 4", "content": "shock detail"},
+        ),
+        pdf="figures/fig4.pdf",
+    log:
+        "results/logs/plot_fig4.log",
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/plot_fig4.py"
+
+
+rule plot_fig5:
+    input:
+        nc=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
+    output:
+        png=report(
+            "figures/fig5.png",
+            caption="../report/fig5.rst",
+            category="Figures",
+            labels={"figure": "Fig. 5", "content": "phase diagrams"},
+        ),
+        pdf="figures/fig5.pdf",
+    log:
+        "results/logs/plot_fig5.log",
+    conda:
+        "../../environment/environment.yml"
+    params:
+        labels=fig5_labels(),
+    script:
+        "../scripts/plot_fig5.py"

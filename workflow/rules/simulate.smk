@@ -1,0 +1,47 @@
+rule simulate_fig3:
+    output:
+        nc="results/fig3/case_{case}.nc",
+    log:
+        "results/logs/simulate_fig3_{case}.log",
+    benchmark:
+        "results/benchmarks/simulate_fig3_{case}.tsv"
+    wildcard_constraints:
+        case="[a-z]",
+    conda:
+        "../../environment/environment.yml"
+    params:
+        scene=lambda wildcards: fig3_scene(wildcards.case),
+    script:
+        "../scripts/simulate_fig3.py"
+
+
+rule simulate_fig4:
+    output:
+        nc="results/fig4/shock.nc",
+    log:
+        "results/logs/simulate_fig4.log",
+    benchmark:
+        "results/benchmarks/simulate_fig4.tsv"
+    conda:
+        "../../environment/environment.yml"
+    params:
+        scene=fig4_scene(),
+    script:
+        "../scripts/simulate_fig4.py"
+
+
+rule simulate_fig5:
+    output:
+        nc="results/fig5/K_{K}.nc",
+    log:
+        "results/logs/simulate_fig5_K_{K}.log",
+    benchmark:
+        "results/benchmarks/simulate_fig5_K_{K}.tsv"
+    wildcard_constraints:
+        K="[0-9.e+-]+",
+    conda:
+        "../../environment/environment.yml"
+    params:
+        scene=lambda wildcards: fig5_scene(wildcards.K),
+    script:
+        "../scripts/simulate_fig5.py"
