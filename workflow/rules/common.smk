@@ -7,24 +7,22 @@ from escapement.scene_config import MODEL_KEYS, initial_state_from, parameters_f
 validate(config, "../schemas/config.schema.yaml")
 
 
-def _merged(*blocks):
-    """The model block overridden by a scene's model keys and then by its own keys."""
+def _scene(*blocks):
+    """Merge the model block with a scene's keys (later blocks win), sorted by key so that
+    reordering the configuration file does not make Snakemake see changed params."""
     merged = {}
     for block in blocks:
         merged.update({k: v for k, v in block.items() if not isinstance(v, dict)})
-    return merged
+    return dict(sorted(merged.items()))
 
 
 def fig3_scene(case):
     scene = config["fig3"]
-    return {
-        **_merged(config["model"], scene["cases"][case]),
-        "n_cycles": scene["n_cycles"],
-    }
+    return _scene(config["model"], scene["cases"][case], {"n_cycles": scene["n_cycles"]})
 
 
 def fig4_scene():
-    return _merged(config["model"], config["fig4"])
+    return _scene(config["model"], config["fig4"])
 
 
 def fig5_labels():
@@ -35,7 +33,7 @@ def fig5_labels():
 def fig5_scene(label):
     scene = {k: v for k, v in config["fig5"].items() if k != "K"}
     stiffness = dict(zip(fig5_labels(), config["fig5"]["K"]))[label]
-    return {**_merged(config["model"], scene), "K": stiffness}
+    return _scene(config["model"], scene, {"K": stiffness})
 
 
 def _check_scenes():

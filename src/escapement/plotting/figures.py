@@ -93,7 +93,7 @@ def fig4(ds: xr.Dataset):
         ax_a.set_xlim(a_lo, a_hi)
         ax_a.set_xlabel("Time (s)")
         ax_a.set_ylabel("Acceleration (m/s\u00b2)")
-        ax_a.legend(loc="lower left")
+        ax_a.legend(loc="upper left")
         fig.suptitle(_case_title(ds, "b").replace("(b) ", "") + f", K = {ds.attrs['K']:g} N/m", fontsize=9)
         _outcome_note(ax_v, ds)
         fig.tight_layout()

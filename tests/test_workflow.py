@@ -1,0 +1,181 @@
+"""End-to-end: the workflow on a copy of the repository in a temporary directory."""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+from escapement.netcdf_io import read_netcdf
+
+REPO = Path(__file__).resolve().parents[1]
+PARTS = ["Snakefile", "config", "workflow", "environment"]
+
+
+def copy_repository(dest: Path) -> Path:
+    for part in PARTS:
+        src = REPO / part
+        if src.is_dir():
+            shutil.copytree(src, dest / part)
+        else:
+            shutil.copy2(src, dest / part)
+    return dest
+
+
+def snakemake(where: Path, *args: str, check: bool = True) -> subprocess.CompletedProcess:
+    result = subprocess.run(
+        [sys.executable, "-m", "snakemake", *args], cwd=where, capture_output=True, text=True, timeout=600
+    )
+    if check and result.returncode != 0:
+        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{result.stdout}\n{result.stderr}")
+    return result
+
+
+def planned_jobs(where: Path) -> dict[str, int]:
+    """Rules a dry run would execute, with their job counts (from the job stats table)."""
+    out = snakemake(where, "--dry-run", "--cores", "2").stdout
+    if "Nothing to be done" in out:
+        return {}
+    table = out.split("Job stats:")[1].split("total")[0]
+    return {m[0]: int(m[1]) for m in re.findall(r"^(\w+)\s+(\d+)\s*$", table, re.M) if m[0] != "job"}
+
+
+@pytest.fixture(scope="module")
+def workflow_run(tmp_path_factory):
+    where = copy_repository(tmp_path_factory.mktemp("workflow"))
+    snakemake(where, "--cores", "2")
+    return where
+
+
+OUTPUTS = {
+    "results/fig3/case_a.nc": ("cycle", ["impact_time", "velocity_before_impact", "period", "amplitude"]),
+    "results/fig3/case_b.nc": ("cycle", ["impact_time", "velocity_before_impact", "period", "amplitude"]),
+    "results/fig4/shock.nc": (
+        "t",
+        ["displacement", "velocity", "acceleration", "impact_time", "velocity_before", "velocity_after", "impulse",
+         "energy_dissipated"],
+    ),
+    "results/fig5/K_0.1.nc": ("t", ["displacement", "velocity", "velocity_before_impact", "period", "amplitude"]),
+    "results/fig5/K_1.nc": ("t", ["displacement", "velocity", "velocity_before_impact", "period", "amplitude"]),
+    "results/fig5/K_10.nc": ("t", ["displacement", "velocity", "velocity_before_impact", "period", "amplitude"]),
+}
+
+
+@pytest.mark.parametrize("path", list(OUTPUTS))
+def test_every_netcdf_output_holds_its_variables(workflow_run, path):
+    coord, names = OUTPUTS[path]
+    ds = read_netcdf(workflow_run / path, required=(coord, *names))
+    assert ds[coord].attrs["units"] in ("s", "1")
+    for name in names:
+        assert "units" in ds[name].attrs and "long_name" in ds[name].attrs
+    assert ds.attrs["Conventions"] == "CF-1.11"
+    assert ds.attrs["outcome"] == "completed"
+
+
+def test_fig3_has_the_configured_number_of_cycles(workflow_run):
+    ds = read_netcdf(workflow_run / "results/fig3/case_a.nc")
+    assert ds.sizes["cycle"] == 50 and ds.attrs["F"] == 1.0 and ds.attrs["x0"] == 1.0
+    assert "t" not in ds.dims
+
+
+def test_fig4_window_and_fig5_spring_constants(workflow_run):
+    ds = read_netcdf(workflow_run / "results/fig4/shock.nc")
+    assert (ds["t"].values[0], ds["t"].values[-1]) == (80.0, 87.0)
+    for label, k in (("0.1", 0.1), ("1", 1.0), ("10", 10.0)):
+        assert read_netcdf(workflow_run / f"results/fig5/K_{label}.nc").attrs["K"] == k
+
+
+@pytest.mark.parametrize("name", ["fig3", "fig4", "fig5"])
+def test_figures_exist_as_png_and_pdf(workflow_run, name):
+    assert (workflow_run / f"figures/{name}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert (workflow_run / f"figures/{name}.pdf").read_bytes()[:5] == b"%PDF-"
+
+
+def test_logs_and_benchmarks_are_written(workflow_run):
+    assert (workflow_run / "results/logs/simulate_fig3_a.log").read_text().count("done in") == 1
+    assert (workflow_run / "results/benchmarks/simulate_fig4.tsv").exists()
+
+
+def test_a_second_run_does_nothing(workflow_run):
+    assert planned_jobs(workflow_run) == {}
+
+
+def _edit_config(where: Path, edit) -> str:
+    path = where / "config/config.yaml"
+    original = path.read_text()
+    config = yaml.safe_load(original)
+    edit(config)
+    path.write_text(yaml.safe_dump(config))
+    return original
+
+
+@pytest.mark.parametrize(
+    "edit, expected",
+    [
+        (lambda c: c["fig4"].update(samples_per_second=500), {"simulate_fig4": 1, "plot_fig4": 1, "all": 1}),
+        (lambda c: c["fig3"]["cases"]["b"].update(F=0.6), {"simulate_fig3": 1, "plot_fig3": 1, "all": 1}),
+        (lambda c: c["fig5"].update(n_cycles=61), {"simulate_fig5": 3, "plot_fig5": 1, "all": 1}),
+    ],
+)
+def test_editing_one_scene_reruns_that_scene_only(workflow_run, edit, expected):
+    original = _edit_config(workflow_run, edit)
+    try:
+        assert planned_jobs(workflow_run) == expected
+    finally:
+        (workflow_run / "config/config.yaml").write_text(original)
+
+
+@pytest.mark.parametrize(
+    "edit, words",
+    [
+        (lambda c: c["model"].update(M=0.0), ["M", "0"]),
+        (lambda c: c["model"].update(b=2.0), ["b", "2"]),
+        (lambda c: c["model"].update(a2=-0.2), ["a2", "> a1"]),
+        (lambda c: c["model"].update(K="stiff"), ["K", "stiff"]),
+        (lambda c: c["model"].pop("a1"), ["a1", "required"]),
+        (lambda c: c["fig4"].update(colour="red"), ["colour"]),
+        (lambda c: c["fig3"]["cases"]["a"].update(x0=float("nan")), ["x0", "nan", "finite"]),
+        (lambda c: c["fig4"].update(velocity_window=[87.0, 80.0]), ["velocity_window", "start < end"]),
+    ],
+)
+def test_an_invalid_configuration_stops_before_any_job(tmp_path, edit, words):
+    where = copy_repository(tmp_path)
+    _edit_config(where, edit)
+    result = snakemake(where, "--cores", "2", check=False)
+    assert result.returncode != 0
+    message = result.stdout + result.stderr
+    for word in words:
+        assert word in message
+    assert not (where / "results").exists()
+    assert not list((where / "figures").glob("*")) if (where / "figures").exists() else True
+
+
+def test_the_slurm_profile_plans_every_job(tmp_path):
+    where = copy_repository(tmp_path)
+    result = snakemake(where, "--profile", "workflow/profiles/slurm", "--dry-run")
+    assert "simulate_fig3" in result.stdout and "plot_fig5" in result.stdout
+
+
+def test_the_report_shows_every_figure(workflow_run):
+    snakemake(workflow_run, "--report", "results/report.html")
+    html = (workflow_run / "results/report.html").read_text(errors="replace")
+    for name in ("fig3.png", "fig4.png", "fig5.png"):
+        assert name in html
+
+
+def test_compliance_checker_passes_cf_1_11(workflow_run):
+    checker = shutil.which("compliance-checker", path=str(Path(sys.executable).parent))
+    if checker is None:
+        pytest.skip("compliance-checker is not installed")
+    for path in sorted((workflow_run / "results").glob("fig*/*.nc")):
+        result = subprocess.run([checker, "--test=cf:1.11", "--criteria=strict", str(path)], capture_output=True,
+                                text=True, timeout=120)
+        assert result.returncode == 0, result.stdout[-3000:]
+        assert "All tests passed" in result.stdout
+    assert np.isfinite(1.0)
