@@ -15,14 +15,14 @@ import yaml
 from escapement.netcdf_io import read_netcdf
 
 REPO = Path(__file__).resolve().parents[1]
-PARTS = ["Snakefile", "config", "workflow", "environment"]
+PARTS = ["Snakefile", "config", "workflow", "environment", "src"]
 
 
 def copy_repository(dest: Path) -> Path:
     for part in PARTS:
         src = REPO / part
         if src.is_dir():
-            shutil.copytree(src, dest / part)
+            shutil.copytree(src, dest / part, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
         else:
             shutil.copy2(src, dest / part)
     return dest
@@ -179,3 +179,20 @@ def test_compliance_checker_passes_cf_1_11(workflow_run):
         assert result.returncode == 0, result.stdout[-3000:]
         assert "All tests passed" in result.stdout
     assert np.isfinite(1.0)
+
+
+def test_a_change_of_the_package_code_reruns_the_jobs(workflow_run):
+    module = workflow_run / "src/escapement/plotting/figures.py"
+    stat = module.stat()
+    module.touch()
+    try:
+        planned = planned_jobs(workflow_run)
+    finally:
+        import os
+
+        os.utime(module, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+    assert planned == {
+        "simulate_fig3": 2, "simulate_fig4": 1, "simulate_fig5": 3, "plot_fig3": 1, "plot_fig4": 1, "plot_fig5": 1,
+        "all": 1,
+    }
+    assert planned_jobs(workflow_run) == {}

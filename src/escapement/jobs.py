@@ -80,11 +80,11 @@ SHOCK_VARIABLES = ("t", "velocity", "acceleration", "impact_time", "impulse", "e
 PHASE_VARIABLES = ("t", "displacement", "velocity", "impact_time", "impact_position", "velocity_after")
 
 
-def plot_fig3(inputs: Mapping[str, str], png: str, pdf: str, log: str) -> None:
+def plot_fig3(labels: Sequence[str], paths: Sequence[str], png: str, pdf: str, log: str) -> None:
     from .plotting import fig3, save_figure
 
     with logged(log, "plot_fig3"):
-        cases = {label: read_netcdf(path, CYCLE_VARIABLES) for label, path in inputs.items()}
+        cases = {label: read_netcdf(path, CYCLE_VARIABLES) for label, path in zip(labels, paths)}
         save_figure(fig3(cases), png, pdf)
 
 

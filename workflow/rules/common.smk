@@ -1,3 +1,5 @@
+from pathlib import Path
+
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
@@ -18,7 +20,9 @@ def _scene(*blocks):
 
 def fig3_scene(case):
     scene = config["fig3"]
-    return _scene(config["model"], scene["cases"][case], {"n_cycles": scene["n_cycles"]})
+    return _scene(
+        config["model"], scene["cases"][case], {"n_cycles": scene["n_cycles"]}
+    )
 
 
 def fig4_scene():
@@ -63,6 +67,13 @@ def _check_scenes():
 
 
 _check_scenes()
+
+
+def package_code():
+    """The package's source files: every job depends on them, so that a change of the
+    code reruns what it affects (Snakemake tracks only the rule's own script)."""
+    src = Path(workflow.basedir) / "src" / "escapement"
+    return sorted(str(p) for p in src.rglob("*") if p.suffix in (".py", ".mplstyle"))
 
 
 def all_outputs():

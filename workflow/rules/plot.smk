@@ -1,10 +1,7 @@
 rule plot_fig3:
     input:
-        unpack(
-            lambda wildcards: {
-                c: f"results/fig3/case_{c}.nc" for c in config["fig3"]["cases"]
-            }
-        ),
+        nc=expand("results/fig3/case_{case}.nc", case=config["fig3"]["cases"]),
+        code=package_code(),
     output:
         png=report(
             "figures/fig3.png",
@@ -17,6 +14,8 @@ rule plot_fig3:
         "results/logs/plot_fig3.log",
     conda:
         "../../environment/environment.yml"
+    params:
+        labels=list(config["fig3"]["cases"]),
     script:
         "../scripts/plot_fig3.py"
 
@@ -24,6 +23,7 @@ rule plot_fig3:
 rule plot_fig4:
     input:
         nc="results/fig4/shock.nc",
+        code=package_code(),
     output:
         png=report(
             "figures/fig4.png",
@@ -43,6 +43,7 @@ rule plot_fig4:
 rule plot_fig5:
     input:
         nc=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
+        code=package_code(),
     output:
         png=report(
             "figures/fig5.png",

@@ -1,4 +1,6 @@
 rule simulate_fig3:
+    input:
+        code=package_code(),
     output:
         nc="results/fig3/case_{case}.nc",
     log:
@@ -16,6 +18,8 @@ rule simulate_fig3:
 
 
 rule simulate_fig4:
+    input:
+        code=package_code(),
     output:
         nc="results/fig4/shock.nc",
     log:
@@ -31,6 +35,8 @@ rule simulate_fig4:
 
 
 rule simulate_fig5:
+    input:
+        code=package_code(),
     output:
         nc="results/fig5/K_{K}.nc",
     log:

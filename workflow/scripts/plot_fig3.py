@@ -2,4 +2,6 @@
 
 from escapement.jobs import plot_fig3
 
-plot_fig3(dict(snakemake.input.items()), snakemake.output.png, snakemake.output.pdf, snakemake.log[0])  # noqa: F821
+plot_fig3(  # noqa: F821
+    snakemake.params.labels, list(snakemake.input.nc), snakemake.output.png, snakemake.output.pdf, snakemake.log[0]
+)
