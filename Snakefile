@@ -14,6 +14,7 @@ report: "workflow/report/workflow.rst"
 include: "workflow/rules/common.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/plot.smk"
+include: "workflow/rules/verdict.smk"
 
 
 rule all:

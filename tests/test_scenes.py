@@ -7,7 +7,7 @@ from escapement.scenes import phase_scene, poincare_scene, shock_scene
 
 def test_poincare_scene_keeps_no_trajectory(case_a):
     ds = poincare_scene(case_a, 1.0, 50)
-    assert set(ds.dims) == {"cycle"}
+    assert set(ds.dims) == {"cycle", "event"}
     assert ds.sizes["cycle"] == 50
     assert ds["cycle"].values[0] == 1
 

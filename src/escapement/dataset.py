@@ -9,7 +9,15 @@ from .events import EventKind
 from .provenance import REFERENCE, history_line, source_string
 from .solution import Solution
 
-__all__ = ["cycle_variables", "sample_variables", "impact_variables", "event_variables", "dataset"]
+__all__ = [
+    "cycle_variables",
+    "sample_variables",
+    "impact_variables",
+    "event_variables",
+    "global_attributes",
+    "dataset",
+    "table_dataset",
+]
 
 CYCLE_VARIABLES = {
     "impact_time": ("s", "time of impact k at a1 (start of cycle k)"),
@@ -96,11 +104,20 @@ def event_variables(solution: Solution, window: tuple[float, float] | None = Non
                 "flag_meanings": "impact_at_a1 end_of_impulse_at_a2 impact_at_a3 end_of_impulse_at_a4",
             },
         ),
+        "event_position": xr.DataArray(
+            ev.x[keep], dims="event", attrs={"units": "m", "long_name": "position of the event"}
+        ),
+        "event_velocity_before": xr.DataArray(
+            ev.v_before[keep], dims="event", attrs={"units": "m s-1", "long_name": "velocity just before the event"}
+        ),
+        "event_velocity_after": xr.DataArray(
+            ev.v_after[keep], dims="event", attrs={"units": "m s-1", "long_name": "velocity just after the event"}
+        ),
     }
 
 
-def dataset(solution: Solution, variables: dict[str, xr.DataArray], title: str, scene: str, **extra) -> xr.Dataset:
-    """Assemble a CF-1.11 dataset with the run's parameters, outcome and provenance as attributes."""
+def global_attributes(title: str, scene: str, **extra) -> dict:
+    """CF-1.11 global attributes with provenance; ``extra`` adds numeric or text attributes."""
     attrs = {
         "Conventions": "CF-1.11",
         "title": title,
@@ -110,12 +127,35 @@ def dataset(solution: Solution, variables: dict[str, xr.DataArray], title: str, 
         "references": REFERENCE,
         "comment": "replication with new code: exact event-driven solution of the piecewise-linear model",
         "scene": scene,
-        "solver": solution.method,
-        "outcome": solution.status.value,
-        "outcome_message": solution.message,
-        "x0": solution.x0,
-        "v0": solution.v0,
     }
-    attrs.update(solution.params.as_dict())
+    attrs.update(extra)
+    return attrs
+
+
+def dataset(solution: Solution, variables: dict[str, xr.DataArray], title: str, scene: str, **extra) -> xr.Dataset:
+    """Assemble a dataset with the run's parameters, outcome and provenance as attributes."""
+    attrs = global_attributes(
+        title,
+        scene,
+        solver=solution.method,
+        outcome=solution.status.value,
+        outcome_message=solution.message,
+        x0=solution.x0,
+        v0=solution.v0,
+        **solution.params.as_dict(),
+    )
     attrs.update(extra)
     return xr.Dataset(variables, attrs=attrs)
+
+
+def table_dataset(columns: dict[str, tuple], title: str, scene: str, **extra) -> xr.Dataset:
+    """A table with one row per case: ``columns`` maps a name to ``(values, units, long_name)``;
+    ``units`` None marks a text column."""
+    n = len(next(iter(columns.values()))[0])
+    variables = {}
+    for name, (values, units, long_name) in columns.items():
+        attrs = {"long_name": long_name} if units is None else {"units": units, "long_name": long_name}
+        dtype = object if units is None else None
+        variables[name] = xr.DataArray(np.array(values, dtype=dtype), dims="case", attrs=attrs)
+    coords = {"case": ("case", np.arange(n, dtype=np.int32), {"long_name": "case number", "units": "1"})}
+    return xr.Dataset(variables, coords=coords, attrs=global_attributes(title, scene, **extra))

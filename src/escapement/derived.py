@@ -28,6 +28,7 @@ __all__ = [
     "impact_phase_jump_closed",
     "zone_period_change",
     "period_from_perturbations",
+    "velocity_recovery",
 ]
 
 
@@ -142,3 +143,27 @@ def period_from_perturbations(v1: float, p: Parameters) -> float:
     left = impact_phase_jump(mirror.a1, -vel["v4"], mirror) + zone_period_change(-vel["v4"], mirror)
     drift = (math.atan2(p.a1, vel["v1_next"] / w) - math.atan2(p.a1, v1 / w)) / w
     return p.natural_period + right + left + drift
+
+
+def velocity_recovery(v1: float, p: Parameters) -> tuple[float, float]:
+    """Where and when the velocity regains its value before the impact at a1.
+
+    In the zone (a1, a2), ``v(x)**2 = v1p**2 + w**2 (a1**2 - x**2) + 2 f (x - a1)``; it equals
+    ``v1**2`` where ``w**2 x**2 - 2 f x + q = 0`` with ``q = (2b - b**2) v1**2 - w**2 a1**2 + 2 f a1``.
+    Returns ``(x, t)``: the first such position in the zone and the time after the impact,
+    or ``(nan, nan)`` if the velocity does not recover inside the zone (after a2 the free
+    motion, moving away from 0, only slows down).
+    """
+    w2, f, b = p.omega2, p.f, p.b
+    v1p = (1 - b) * v1
+    q = (2 * b - b * b) * v1 * v1 - w2 * p.a1**2 + 2 * f * p.a1
+    disc = f * f - w2 * q
+    if disc < 0:
+        return math.nan, math.nan
+    root = math.sqrt(disc)
+    # The two roots, computed without cancellation: x = (f -/+ root) / w2 = q / (f +/- root).
+    candidates = sorted(x for x in ((f + root) / w2, q / (f + root) if f + root != 0 else math.inf))
+    for x in candidates:
+        if p.a1 < x <= p.a2:
+            return x, _zone_time(p.zone_offset, p.a1, x, v1p, p.omega)
+    return math.nan, math.nan

@@ -15,9 +15,19 @@ from pathlib import Path
 
 from .netcdf_io import read_netcdf, write_netcdf
 from .scene_config import initial_state_from, parameters_from
-from .scenes import phase_scene, poincare_scene, shock_scene
+from .scenes import checks_scene, phase_scene, poincare_scene, shock_scene
 
-__all__ = ["simulate_poincare", "simulate_shock", "simulate_phase", "plot_fig3", "plot_fig4", "plot_fig5"]
+__all__ = [
+    "check_claims",
+    "render_docs",
+    "simulate_poincare",
+    "simulate_shock",
+    "simulate_phase",
+    "simulate_checks",
+    "plot_fig3",
+    "plot_fig4",
+    "plot_fig5",
+]
 
 
 @contextlib.contextmanager
@@ -75,6 +85,14 @@ def simulate_phase(scene: Mapping, output: str, log: str) -> None:
         write_netcdf(ds, output)
 
 
+def simulate_checks(cases: Sequence[Mapping], n_cycles: int, output: str, log: str) -> None:
+    with logged(log, "simulate_checks") as logger:
+        ds = checks_scene([dict(c) for c in cases], n_cycles)
+        for label, outcome, mu in zip(ds["label"].values, ds["outcome"].values, ds["multiplier"].values):
+            logger.info("%s: %s, measured multiplier %.12g", label, outcome, mu)
+        write_netcdf(ds, output)
+
+
 CYCLE_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude")
 SHOCK_VARIABLES = ("t", "velocity", "acceleration", "impact_time", "impulse", "energy_dissipated", "event_time")
 PHASE_VARIABLES = ("t", "displacement", "velocity", "impact_time", "impact_position", "velocity_after")
@@ -101,3 +119,31 @@ def plot_fig5(labels: Sequence[str], paths: Sequence[str], png: str, pdf: str, l
     with logged(log, "plot_fig5"):
         panels = {label: read_netcdf(path, PHASE_VARIABLES) for label, path in zip(labels, paths)}
         save_figure(fig5(panels), png, pdf)
+
+
+def check_claims(
+    register: str, fig3: Mapping[str, str], fig4: str, fig5: Mapping[str, str], checks: str, output: str, log: str
+) -> None:
+    from .claims import Evidence, evaluate, load_claims, write_claims_csv
+
+    with logged(log, "check_claims") as logger:
+        evidence = Evidence(
+            fig3={label: read_netcdf(path, CYCLE_VARIABLES + ("event_time", "event_kind")) for label, path in fig3.items()},
+            fig4=read_netcdf(fig4, SHOCK_VARIABLES),
+            fig5={label: read_netcdf(path, PHASE_VARIABLES) for label, path in fig5.items()},
+            checks=read_netcdf(checks, ("label", "group", "multiplier", "period")),
+        )
+        rows = evaluate(load_claims(register), evidence)
+        for row in rows:
+            logger.info("%s: %s: %s", row["claim_id"], row["status"], row["replicated_value"])
+        write_claims_csv(rows, output)
+
+
+def render_docs(claims: str, templates: Sequence[str], outputs: Sequence[str], log: str) -> None:
+    from .claims import read_claims_csv
+    from .docs import render, write_text
+
+    with logged(log, "render_docs"):
+        rows = read_claims_csv(claims)
+        for template, output in zip(templates, outputs):
+            write_text(render(Path(template).read_text(), rows, template), output)

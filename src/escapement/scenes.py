@@ -1,8 +1,9 @@
 """What each of the paper's figures needs, and only that.
 
-* Fig. 3 (Poincare map): events only; no trajectory is kept or sampled.
+* Fig. 3 (Poincare map): events only (per cycle, and the event log); no trajectory is kept or sampled.
 * Fig. 4 (shock detail): one run up to the end of its window, sampled only inside it.
 * Fig. 5 (phase diagrams): one run of ``n_cycles``, sampled at a rate set by the plot.
+* Checks for the claims register: per case, the measured fixed point, period and multiplier.
 """
 
 from __future__ import annotations
@@ -10,12 +11,15 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .dataset import cycle_variables, dataset, event_variables, impact_variables, sample_variables
-from .paper_equations import fixed_point_19
+from .dataset import cycle_variables, dataset, event_variables, impact_variables, sample_variables, table_dataset
+from .derived import fixed_point
 from .exact import solve_exact
+from .paper_equations import fixed_point_19
 from .parameters import ParameterError, Parameters
+from .scene_config import MODEL_KEYS, initial_state_from, parameters_from
+from .stability import measure_cycle
 
-__all__ = ["poincare_scene", "shock_scene", "phase_scene"]
+__all__ = ["poincare_scene", "shock_scene", "phase_scene", "checks_scene"]
 
 
 def _window(name: str, window) -> tuple[float, float]:
@@ -39,7 +43,7 @@ def poincare_scene(params: Parameters, x0: float, n_cycles: int) -> xr.Dataset:
     run = solve_exact(params, x0, n_cycles=_positive_int("n_cycles", n_cycles), record_trajectory=False)
     return dataset(
         run,
-        cycle_variables(run),
+        {**cycle_variables(run), **event_variables(run)},
         title="Poincare map of the escapement model (Mao, Fu & Li 2013, Fig. 3)",
         scene="fig3",
         n_cycles=int(n_cycles),
@@ -92,4 +96,39 @@ def phase_scene(params: Parameters, x0: float, n_cycles: int, samples_per_period
         scene="fig5",
         n_cycles=int(n_cycles),
         samples_per_period=per_period,
+    )
+
+
+UNITS = {"M": "kg", "K": "N m-1", "F": "N", "b": "1", "a1": "m", "a2": "m", "a3": "m", "a4": "m"}
+
+
+def checks_scene(cases: list[dict], n_cycles: int) -> xr.Dataset:
+    """Measure every case (a mapping with ``group``, ``label``, the model keys and ``x0``)."""
+    n_cycles = _positive_int("n_cycles", n_cycles)
+    runs = []
+    for case in cases:
+        params = parameters_from(case)
+        x0, _ = initial_state_from(case)
+        runs.append((case, params, x0, measure_cycle(params, x0, n_cycles)))
+    columns = {
+        "label": ([c["label"] for c, *_ in runs], None, "name of the case"),
+        "group": ([c["group"] for c, *_ in runs], None, "claim the case serves"),
+        "outcome": ([m.outcome for *_, m in runs], None, "how the run ended"),
+        "outcome_message": ([m.message for *_, m in runs], None, "how the run ended, in words"),
+        "x0": ([x0 for _, _, x0, _ in runs], "m", "initial displacement (released from rest)"),
+        "velocity": ([m.velocity for *_, m in runs], "m s-1", "velocity before impact at the last cycle"),
+        "period": ([m.period for *_, m in runs], "s", "period of the last cycle"),
+        "amplitude": ([m.amplitude for *_, m in runs], "m", "amplitude of the last cycle"),
+        "multiplier": ([m.multiplier for *_, m in runs], "1", "multiplier mu_2 measured from the return map"),
+        "multiplier_eq21": ([(1 - p.b) ** 4 for _, p, _, _ in runs], "1", "multiplier (1 - b)**4 of Eq. (21)"),
+        "fixed_point_eq16": ([fixed_point(p) for _, p, _, _ in runs], "m s-1", "fixed point of the map (16)"),
+        "cycles_to_converge": (
+            np.array([m.cycles_to_converge for *_, m in runs], dtype=np.int32), "1",
+            "first cycle within 1e-9 (relative) of the last velocity; -1 if none",
+        ),
+    }
+    for key in MODEL_KEYS:
+        columns[key] = ([getattr(p, key) for _, p, _, _ in runs], UNITS[key], f"model parameter {key}")
+    return table_dataset(
+        columns, "Measured Poincare maps for the claims register", "checks", solver="exact", n_cycles=n_cycles
     )

@@ -40,11 +40,46 @@ def fig5_scene(label):
     return _scene(config["model"], scene, {"K": stiffness})
 
 
+def check_cases():
+    """The runs of the claims register (config: checks), each labelled with its group."""
+    checks = config["checks"]
+    base = _scene(config["model"], {"F": checks["F"], "x0": checks["x0"]})
+    cases = [
+        _scene(base, {"group": "paper", "label": f"fig3{c}"}, fig3_scene(c))
+        for c in config["fig3"]["cases"]
+    ]
+    for i, ic in enumerate(checks["initial_conditions"]):
+        cases.append(
+            _scene(
+                base,
+                ic,
+                {
+                    "group": "initial_condition",
+                    "label": f"F={ic['F']:g},x0={ic['x0']:g}",
+                },
+            )
+        )
+    for b in checks["b"]:
+        cases.append(_scene(base, {"b": b, "group": "b", "label": f"b={b:g}"}))
+    for group in ("symmetric", "asymmetric"):
+        for force in checks[group]["F"]:
+            for positions in checks[group]["positions"]:
+                keys = dict(zip(("a1", "a2", "a3", "a4"), positions))
+                label = f"F={force:g}," + ",".join(
+                    f"{k}={v:g}" for k, v in keys.items()
+                )
+                cases.append(
+                    _scene(base, keys, {"F": force, "group": group, "label": label})
+                )
+    return [{k: v for k, v in case.items() if k != "n_cycles"} for case in cases]
+
+
 def _check_scenes():
     """Every scene's parameters must make a valid model before any job runs."""
     scenes = {f"fig3.cases.{c}": fig3_scene(c) for c in config["fig3"]["cases"]}
     scenes["fig4"] = fig4_scene()
     scenes.update({f"fig5 (K = {label})": fig5_scene(label) for label in fig5_labels()})
+    scenes.update({f"checks ({case['label']})": case for case in check_cases()})
     for where, scene in scenes.items():
         try:
             parameters_from(scene)
@@ -81,7 +116,11 @@ def all_outputs():
         *expand("results/fig3/case_{case}.nc", case=config["fig3"]["cases"]),
         "results/fig4/shock.nc",
         *expand("results/fig5/K_{K}.nc", K=fig5_labels()),
+        "results/claims/checks.nc",
         *expand(
             "figures/{fig}.{ext}", fig=["fig3", "fig4", "fig5"], ext=["png", "pdf"]
         ),
+        "results/claims.csv",
+        "README.md",
+        "REPLICATION.md",
     ]

@@ -51,3 +51,21 @@ rule simulate_fig5:
         scene=lambda wildcards: fig5_scene(wildcards.K),
     script:
         "../scripts/simulate_fig5.py"
+
+
+rule simulate_checks:
+    input:
+        code=package_code(),
+    output:
+        nc="results/claims/checks.nc",
+    log:
+        "results/logs/simulate_checks.log",
+    benchmark:
+        "results/benchmarks/simulate_checks.tsv"
+    conda:
+        "../../environment/environment.yml"
+    params:
+        cases=check_cases(),
+        n_cycles=config["checks"]["n_cycles"],
+    script:
+        "../scripts/simulate_checks.py"

@@ -1,0 +1,65 @@
+"""Measuring the Poincare map of the simulated motion: fixed point, period, multiplier.
+
+The multiplier is measured, not taken from Eq. (21): the exact solver is released
+from rest at the left turning point of the free swing that meets a1 with a given
+velocity v, so that its first impact is at (a1, v); one cycle later it returns
+P(v).  A central difference of P at the measured fixed point gives mu_2.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .exact import solve_exact
+from .outcome import Status
+from .parameters import Parameters
+
+__all__ = ["CycleMeasurement", "return_map", "measure_cycle"]
+
+#: relative step of the central difference: truncation ~ h**2, rounding ~ 1e-16 / h
+RELATIVE_STEP = 1e-5
+
+
+def return_map(params: Parameters, v: float) -> tuple[float, float]:
+    """``(v_in, P(v_in))``: the velocity of the first impact at a1 (v up to rounding) and of the next."""
+    release = -math.hypot(params.a1, v / params.omega)
+    run = solve_exact(params, release, 0.0, n_cycles=2, record_trajectory=False)
+    if run.status != Status.COMPLETED or len(run.cycles) < 2:
+        raise ValueError(f"no return to the section from v = {v!r}: {run.message}")
+    return float(run.cycles.velocity_before_impact[0]), float(run.cycles.velocity_before_impact[1])
+
+
+@dataclass(frozen=True)
+class CycleMeasurement:
+    outcome: str
+    message: str
+    velocity: float  #: velocity before impact after n_cycles (the measured fixed point)
+    period: float
+    amplitude: float
+    multiplier: float  #: dP/dv at the measured fixed point, by a central difference
+    cycles_to_converge: int  #: first cycle whose velocity is within 1e-9 (relative) of the last
+
+
+def measure_cycle(params: Parameters, x0: float, n_cycles: int = 300) -> CycleMeasurement:
+    """Run ``n_cycles`` from release at ``x0`` and measure the map at where it ends."""
+    run = solve_exact(params, x0, n_cycles=n_cycles, record_trajectory=False)
+    nan = math.nan
+    if run.status != Status.COMPLETED:
+        return CycleMeasurement(run.status.value, run.message, nan, nan, nan, nan, -1)
+    v = run.cycles.velocity_before_impact
+    star = float(v[-1])
+    lo_in, lo_out = return_map(params, star * (1 - RELATIVE_STEP))
+    hi_in, hi_out = return_map(params, star * (1 + RELATIVE_STEP))
+    close = abs(v - star) <= 1e-9 * abs(star)
+    first = int(close.argmax()) + 1 if close.any() else -1
+    return CycleMeasurement(
+        outcome=run.status.value,
+        message=run.message,
+        velocity=star,
+        period=float(run.cycles.period[-1]),
+        amplitude=float(run.cycles.amplitude[-1]),
+        multiplier=(hi_out - lo_out) / (hi_in - lo_in),
+        cycles_to_converge=first,
+    )
+

@@ -1,0 +1,40 @@
+rule check_claims:
+    input:
+        register="workflow/claims.yaml",
+        fig3=expand("results/fig3/case_{case}.nc", case=config["fig3"]["cases"]),
+        fig4="results/fig4/shock.nc",
+        fig5=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
+        checks="results/claims/checks.nc",
+        code=package_code(),
+    output:
+        csv=report(
+            "results/claims.csv",
+            caption="../report/claims.rst",
+            category="Verdict",
+            labels={"table": "claims register"},
+        ),
+    log:
+        "results/logs/check_claims.log",
+    conda:
+        "../../environment/environment.yml"
+    params:
+        fig3_labels=list(config["fig3"]["cases"]),
+        fig5_labels=fig5_labels(),
+    script:
+        "../scripts/check_claims.py"
+
+
+rule render_docs:
+    input:
+        claims="results/claims.csv",
+        templates=["workflow/templates/README.md", "workflow/templates/REPLICATION.md"],
+        code=package_code(),
+    output:
+        readme="README.md",
+        replication="REPLICATION.md",
+    log:
+        "results/logs/render_docs.log",
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/render_docs.py"

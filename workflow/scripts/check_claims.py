@@ -1,0 +1,13 @@
+"""Glue: rule check_claims -> escapement.jobs.check_claims."""
+
+from escapement.jobs import check_claims
+
+check_claims(  # noqa: F821
+    snakemake.input.register,
+    dict(zip(snakemake.params.fig3_labels, snakemake.input.fig3)),
+    snakemake.input.fig4,
+    dict(zip(snakemake.params.fig5_labels, snakemake.input.fig5)),
+    snakemake.input.checks,
+    snakemake.output.csv,
+    snakemake.log[0],
+)
