@@ -1,6 +1,7 @@
 """Reference solver: numerical integration with scipy's ``solve_ivp`` and terminal events.
 
-It exists to check the exact solver independently: it shares the model and the
+It exists to check the exact solver independently, and to measure what a general-purpose
+integrator costs (the benchmark runs it with SciPy's methods and with SUNDIALS CVODE): it shares the model and the
 mode logic but none of the closed forms.  The motion is integrated segment by
 segment, and a segment ends at every event and at every turning point, so that
 ``x`` is monotone inside each segment and a surface can be crossed at most once
@@ -39,29 +40,90 @@ REST = "rest"
 HALF_SWINGS_TO_STOP = 3
 
 
-def _surface(position: float, direction: int):
-    """Event "x reaches ``position``" in a segment that moves in ``direction``."""
+@dataclass(frozen=True)
+class Watch:
+    """An event a segment watches: ``x`` reaching ``position`` while moving in ``direction``
+    (``position`` None: the velocity vanishing while moving in ``direction``)."""
 
-    def event(t, y):
-        return y[0] - position
+    position: float | None
+    direction: int
 
-    event.terminal = True
-    event.direction = direction
-    return event
+    def value(self, y) -> float:
+        return y[1] if self.position is None else y[0] - self.position
 
-
-def _rest(direction: int):
-    """Event "the velocity, moving in ``direction``, vanishes" (a turning point)."""
-
-    def event(t, y):
-        return y[1]
-
-    event.terminal = True
-    event.direction = -direction
-    return event
+    @property
+    def crossing(self) -> int:
+        """Sign of the slope of ``value`` at the event."""
+        return -self.direction if self.position is None else self.direction
 
 
-_REST = {1: _rest(1), -1: _rest(-1)}
+@dataclass(frozen=True)
+class Hit:
+    t: float
+    index: int
+    y: tuple[float, float]
+
+
+class SciPyIntegrator:
+    """One segment with ``scipy.integrate.solve_ivp``."""
+
+    def __init__(self, method: str, rtol: float, atol: np.ndarray, dense: bool) -> None:
+        self.method, self.rtol, self.atol, self.dense = method, rtol, atol, dense
+        self.name = f"solve_ivp {method} rtol={rtol:g}"
+
+    def segment(self, omega2: float, centre: float, t0: float, y0, t1: float, watches: list[Watch]):
+        def rhs(_t, y):
+            return [y[1], -omega2 * (y[0] - centre)]
+
+        functions = []
+        for w in watches:
+            def event(t, y, w=w):
+                return w.value(y)
+
+            event.terminal, event.direction = True, w.crossing
+            functions.append(event)
+        implicit = {"jac": [[0.0, 1.0], [-omega2, 0.0]]} if self.method in ("Radau", "BDF", "LSODA") else {}
+        sol = solve_ivp(rhs, (t0, t1), list(y0), method=self.method, rtol=self.rtol, atol=self.atol,
+                        events=functions or None, dense_output=self.dense, **implicit)
+        if sol.status == -1:
+            raise RuntimeError(f"solve_ivp failed at t = {t0:.12g} s: {sol.message}")
+        hits = [(te[0], i, ye[0]) for i, (te, ye) in enumerate(zip(sol.t_events or [], sol.y_events or [])) if len(te)]
+        first = min(hits, key=lambda h: h[0]) if hits else None
+        hit = None if first is None else Hit(float(first[0]), first[1], (float(first[2][0]), float(first[2][1])))
+        return hit, (sol.sol if self.dense else None)
+
+
+class CvodeIntegrator:
+    """One segment with SUNDIALS CVODE (scikit-sundae), Adams or BDF, with its root finding."""
+
+    def __init__(self, method: str, rtol: float, atol: np.ndarray) -> None:
+        from sksundae.cvode import CVODE  # optional: only the benchmark needs it
+
+        self._cvode = CVODE
+        self.method, self.rtol, self.atol = method, rtol, atol
+        self.name = f"CVODE {method} rtol={rtol:g}"
+
+    def segment(self, omega2: float, centre: float, t0: float, y0, t1: float, watches: list[Watch]):
+        def rhs(_t, y, yp):
+            yp[0] = y[1]
+            yp[1] = -omega2 * (y[0] - centre)
+
+        def events(_t, y, out):
+            for i, w in enumerate(watches):
+                out[i] = w.value(y)
+
+        events.terminal = [True] * len(watches)
+        events.direction = [w.crossing for w in watches]
+        solver = self._cvode(rhs, method=self.method, rtol=self.rtol, atol=self.atol, eventsfn=events,
+                             num_events=len(watches), max_num_steps=1_000_000)
+        result = solver.solve([t0, t1], np.array(y0, dtype=float))
+        if not result.success:
+            raise RuntimeError(f"CVODE failed at t = {t0:.12g} s: {result.message}")
+        if result.t_events is None or len(result.t_events) == 0:
+            return None, None
+        index = int(np.flatnonzero(result.i_events[0])[0])
+        y = result.y_events[0]
+        return Hit(float(result.t_events[0]), index, (float(y[0]), float(y[1]))), None
 
 
 @dataclass(frozen=True)
@@ -102,11 +164,13 @@ def solve_reference(
     atol: float | None = None,
     record_trajectory: bool = True,
 ) -> Solution:
-    """Integrate the escapement model numerically with ``solve_ivp``.
+    """Integrate the escapement model numerically, segment by segment.
 
-    ``atol`` defaults to ``rtol`` times a length scale (the largest of |x0|,
-    |a_i|, F/K and |v0|/omega) for x, and omega times that for v.  Same limits
-    and outcomes as :func:`escapement.exact.solve_exact`.
+    ``method`` is a ``solve_ivp`` method ("RK45", "DOP853", "LSODA", "Radau", ...) or
+    "CVODE-Adams" / "CVODE-BDF" (SUNDIALS through scikit-sundae, no dense output).
+    ``atol`` defaults to ``rtol`` times a length scale (the largest of |x0|, |a_i|, F/K
+    and |v0|/omega) for x, and omega times that for v.  Same limits and outcomes as
+    :func:`escapement.exact.solve_exact`.
     """
     if not isinstance(params, Parameters):
         raise TypeError("params must be an escapement.Parameters")
@@ -125,13 +189,15 @@ def solve_reference(
     length = max(abs(x), abs(a1), abs(a2), abs(a3), abs(a4), offset, abs(v) / omega)
     atol_x = rtol * length if atol is None else atol
     atol_vec = np.array([atol_x, atol_x * omega])
+    if method.startswith("CVODE-"):
+        if record_trajectory:
+            raise ValueError(f"method = {method!r} keeps no trajectory: pass record_trajectory=False")
+        integrator = CvodeIntegrator(method.removeprefix("CVODE-"), rtol, atol_vec)
+    else:
+        integrator = SciPyIntegrator(method, rtol, atol_vec, record_trajectory)
     position_of = {EventKind.IMPACT_A1: a1, EventKind.IMPACT_A3: a3, EventKind.ZONE_END_A2: a2, EventKind.ZONE_END_A4: a4}
-    surfaces = {
-        EventKind.IMPACT_A1: _surface(a1, 1),
-        EventKind.IMPACT_A3: _surface(a3, -1),
-        EventKind.ZONE_END_A2: _surface(a2, 1),
-        EventKind.ZONE_END_A4: _surface(a4, -1),
-    }
+    surfaces = {kind: Watch(position_of[kind], 1 if kind in (EventKind.IMPACT_A1, EventKind.ZONE_END_A2) else -1)
+                for kind in EventKind}
 
     ev_t, ev_kind, ev_x, ev_vb, ev_va = [], [], [], [], []
     seg_t, seg_sol, seg_c = [], [], []
@@ -164,22 +230,13 @@ def solve_reference(
             wanted = {1: EventKind.IMPACT_A1, -1: EventKind.IMPACT_A3}[heading]
             watch = [wanted] if expect in (None, wanted) else []
 
-        def rhs(_t, y, c=centre):
-            return [y[1], -omega2 * (y[0] - c)]
-
         horizon = min(t + 0.75 * period, t_stop)
-        functions = [surfaces[k] for k in watch] + ([_REST[heading]] if heading else [])
-        sol = solve_ivp(
-            rhs, (t, horizon), [x, v], method=method, rtol=rtol, atol=atol_vec,
-            events=functions or None, dense_output=record_trajectory,
-        )
-        if sol.status == -1:
-            raise RuntimeError(f"solve_ivp failed at t = {t:.12g} s: {sol.message}")
-        if record_trajectory:
-            seg_t.append(t), seg_sol.append(sol.sol), seg_c.append(centre)
         labels = watch + ([REST] if heading else [])
-        hits = [(te[0], i) for i, te in enumerate(sol.t_events or []) if len(te)]
-        if not hits:
+        watches = [surfaces[k] for k in watch] + ([Watch(None, heading)] if heading else [])
+        hit, dense = integrator.segment(omega2, centre, t, (x, v), horizon, watches)
+        if record_trajectory:
+            seg_t.append(t), seg_sol.append(dense), seg_c.append(centre)
+        if hit is None:
             if horizon >= t_stop:
                 status, t_final = Status.COMPLETED, t_stop
                 message = f"reached t_end = {t_stop:.12g} s after {impacts_a1} impacts at a1"
@@ -193,9 +250,7 @@ def solve_reference(
                 message = outcome.turned_back_message(t, zone, x, centre, end)
                 detail = {"turning_point": x, "margin": abs(end - x)}
             break
-        t_hit, which = min(hits)
-        y_hit = sol.y_events[which][0]
-        label = labels[which]
+        t_hit, y_hit, label = hit.t, hit.y, labels[hit.index]
         t = float(t_hit)
         if label == REST:
             x, v = float(y_hit[0]), 0.0
@@ -259,7 +314,7 @@ def solve_reference(
         trajectory = DenseSegments(np.array(seg_t), tuple(seg_sol), np.array(seg_c), omega, t_final)
     detail["t_final"] = t_final
     return Solution(
-        params=params, x0=float(x0), v0=float(v0), method=f"solve_ivp {method} rtol={rtol:g}",
+        params=params, x0=float(x0), v0=float(v0), method=integrator.name,
         status=status, message=message, events=events,
         cycles=cycle_table(events, np.array(maxima, dtype=float)), trajectory=trajectory, detail=detail,
     )
