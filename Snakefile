@@ -15,6 +15,7 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/plot.smk"
 include: "workflow/rules/verdict.smk"
+include: "workflow/rules/benchmark.smk"
 
 
 rule all:

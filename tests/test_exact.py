@@ -202,3 +202,10 @@ def test_invalid_initial_state_is_rejected(case_a):
 def test_params_must_be_parameters():
     with pytest.raises(TypeError, match="Parameters"):
         solve_exact({"M": 1}, 1.0, n_cycles=1)
+
+
+def test_a_release_on_an_impact_surface_is_the_state_after_any_jump(case_a):
+    """Eq. (2) gives the initial state at t0+: a release at a3 moving left is not an impact at t = 0."""
+    s = solve_exact(case_a, 0.1, -1.0, n_cycles=2)
+    assert s.events.t[0] > 0
+    assert s.events.kind[0] == EventKind.IMPACT_A1

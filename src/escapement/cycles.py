@@ -32,17 +32,24 @@ class CycleTable:
         return np.arange(1, len(self) + 1)
 
 
-def cycle_table(events: EventLog, cycle_maxima: np.ndarray) -> CycleTable:
-    """Build the table from the event log and the largest x of each complete cycle."""
+def cycle_table(events: EventLog, cycle_maxima: np.ndarray, periods: np.ndarray | None = None) -> CycleTable:
+    """Build the table from the event log and the largest x of each complete cycle.
+
+    ``periods``, when given, are the durations summed inside each cycle; otherwise they are
+    differences of the impact times, which lose digits once the times grow large.
+    """
     impacts = events.of_kind(EventKind.IMPACT_A1)
     n = max(len(impacts) - 1, 0)
     maxima = np.asarray(cycle_maxima, dtype=float)
     if len(maxima) != n:
         raise ValueError(f"cycle_maxima has {len(maxima)} entries for {n} complete cycles")
     times = events.t[impacts]
+    period = np.diff(times) if periods is None else np.asarray(periods, dtype=float)
+    if len(period) != n:
+        raise ValueError(f"periods has {len(period)} entries for {n} complete cycles")
     return CycleTable(
         impact_time=times[:n],
         velocity_before_impact=events.v_before[impacts][:n],
-        period=np.diff(times),
+        period=period,
         amplitude=maxima,
     )

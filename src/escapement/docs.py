@@ -4,7 +4,9 @@ A template is Markdown with placeholders:
 
 * ``{{ claims_table }}``: the verdict table;
 * ``{{ claims_count:<status> }}`` and ``{{ claims_count:total }}``;
-* ``{{ claim:<claim_id>:<column> }}``: one cell of ``results/claims.csv``.
+* ``{{ claim:<claim_id>:<column> }}``: one cell of ``results/claims.csv``;
+* ``{{ fact:<name> }}``: a number from :func:`escapement.facts.collect_facts` (measured ones are
+  wrapped in ``<!--m-->...<!--/m-->``).
 
 An unknown placeholder, claim or column is an error, so that no stale or typed number survives.
 """
@@ -48,8 +50,9 @@ def claims_table(rows: list[dict[str, str]]) -> str:
     return "\n".join(lines)
 
 
-def render(template: str, rows: list[dict[str, str]], template_name: str = "the template") -> str:
+def render(template: str, rows: list[dict[str, str]], template_name: str = "the template", facts=None) -> str:
     by_id = {row["claim_id"]: row for row in rows}
+    facts = facts or {}
 
     def substitute(match: re.Match) -> str:
         kind, key, column = match.groups()
@@ -59,6 +62,8 @@ def render(template: str, rows: list[dict[str, str]], template_name: str = "the 
             return str(len(rows) if key == "total" else sum(r["status"] == key for r in rows))
         if kind == "claim" and key in by_id and column in COLUMNS:
             return _cell(by_id[key][column])
+        if kind == "fact" and key in facts and column is None:
+            return facts[key].render()
         raise ValueError(f"{template_name}: unknown placeholder {match.group(0)}")
 
     return GENERATED.format(template=template_name) + PLACEHOLDER.sub(substitute, template)

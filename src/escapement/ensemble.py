@@ -82,7 +82,10 @@ def solve_ensemble(
     omega, offset, keep = np.sqrt(K / M), F / K, 1.0 - b
     bound = EVENTS_PER_CYCLE * (n_cycles + 2) + 8 if max_events is None else max_events
 
-    t = np.zeros(n)
+    t = np.zeros(n)  # compensated (Neumaier) sum of the durations: t + t_err
+    t_err = np.zeros(n)
+    elapsed = np.zeros(n)  # time since the last impact at a1
+    periods = np.full((n, n_cycles), np.nan)
     mode = np.full(n, FREE)
     expect = np.full(n, EITHER)
     status = np.full(n, _RUNNING)
@@ -130,17 +133,24 @@ def solve_ensemble(
                 if amplitude:
                     c = centre if np.isscalar(centre) else centre[go]
                     cycle_max[jj] = np.maximum(cycle_max[jj], _arc_maximum(c, xs[go], vs[go], om[go], angle[go], target[go]))
-                t[jj] += dt[go]
+                d, before = dt[go], t[jj]
+                total = before + d
+                t_err[jj] += np.where(np.abs(before) >= d, (before - total) + d, (d - total) + before)
+                t[jj] = total
+                elapsed[jj] += d
                 x[jj] = target[go]
                 kind, v_new = kind[go], v_new[go]
                 if group == FREE:
                     hit1 = kind == 1
                     i1 = jj[hit1]
                     k = count[i1]
-                    times[i1, k] = t[i1]
+                    times[i1, k] = t[i1] + t_err[i1]
                     speeds[i1, k] = v_new[hit1]
                     later = k > 0
-                    maxima[i1[later], k[later] - 1] = cycle_max[i1[later]]
+                    if amplitude:
+                        maxima[i1[later], k[later] - 1] = cycle_max[i1[later]]
+                    periods[i1[later], k[later] - 1] = elapsed[i1[later]]
+                    elapsed[i1] = 0.0
                     cycle_max[i1] = x[i1]
                     count[i1] += 1
                     done = np.zeros(len(jj), dtype=bool)
@@ -157,10 +167,15 @@ def solve_ensemble(
                     expect[jj] = A3 if group == ZONE_RIGHT else A1
         status[status == _RUNNING] = STATUS_CODES[Status.EVENT_LIMIT]
 
+    # Like the scalar table: only complete cycles (an impact that starts an unfinished cycle is dropped).
+    incomplete = np.arange(n_cycles)[None, :] >= (count - 1)[:, None]
+    times, speeds = times[:, :n_cycles], speeds[:, :n_cycles]
+    times[incomplete] = np.nan
+    speeds[incomplete] = np.nan
     return EnsembleCycles(
-        impact_time=times[:, :n_cycles],
-        velocity_before_impact=speeds[:, :n_cycles],
-        period=np.diff(times, axis=1),
+        impact_time=times,
+        velocity_before_impact=speeds,
+        period=periods,
         amplitude=maxima,
         status=status.astype(np.int8),
     )

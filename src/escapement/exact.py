@@ -75,9 +75,12 @@ def solve_exact(
     ev_t, ev_kind, ev_x, ev_vb, ev_va = array("d"), array("b"), array("d"), array("d"), array("d")
     arc_t, arc_c, arc_x, arc_v = array("d"), array("d"), array("d"), array("d")
     maxima = array("d")
+    periods = array("d")
     cycle_max = -math.inf
     impacts_a1 = 0
-    t = 0.0
+    t = 0.0  # time of the last event: t_sum + t_err, a compensated (Neumaier) sum of the durations
+    t_sum = t_err = 0.0
+    elapsed = 0.0  # time since the last impact at a1, summed inside the cycle for an exact period
     mode = FREE
     expect = 0  # the impact the escapement waits for: 0 (either, at the start), _A1 or _A3
     status = Status.EVENT_LIMIT
@@ -125,7 +128,11 @@ def solve_exact(
             message = f"reached t_end = {t_stop:.12g} s after {impacts_a1} impacts at a1"
             break
         cycle_max = max(cycle_max, arc_maximum(centre, x, v, omega, angle, target))
-        t += dt
+        total = t_sum + dt
+        t_err += (t_sum - total) + dt if abs(t_sum) >= dt else (dt - total) + t_sum
+        t_sum = total
+        t = t_sum + t_err
+        elapsed += dt
         x = target
         v_after = keep * v_new if kind in (_A1, _A3) else v_new
         ev_t.append(t), ev_kind.append(kind), ev_x.append(x), ev_vb.append(v_new), ev_va.append(v_after)
@@ -134,7 +141,9 @@ def solve_exact(
             impacts_a1 += 1
             if impacts_a1 > 1:
                 maxima.append(cycle_max)
+                periods.append(elapsed)
             cycle_max = x
+            elapsed = 0.0
             if target_impacts is not None and impacts_a1 >= target_impacts:
                 status = Status.COMPLETED
                 message = f"completed {impacts_a1 - 1} cycles"
@@ -184,7 +193,9 @@ def solve_exact(
         status=status,
         message=message,
         events=events,
-        cycles=cycle_table(events, np.frombuffer(maxima, dtype=float).copy()),
+        cycles=cycle_table(
+            events, np.frombuffer(maxima, dtype=float).copy(), np.frombuffer(periods, dtype=float).copy()
+        ),
         trajectory=trajectory,
         detail=detail,
     )

@@ -18,6 +18,13 @@ from .scene_config import initial_state_from, parameters_from
 from .scenes import checks_scene, phase_scene, poincare_scene, shock_scene
 
 __all__ = [
+    "merge_stability",
+    "plot_long_run",
+    "plot_stability_map",
+    "plot_work_precision",
+    "run_work_precision",
+    "simulate_long_run",
+    "simulate_stability_chunk",
     "check_claims",
     "render_docs",
     "simulate_poincare",
@@ -139,11 +146,122 @@ def check_claims(
         write_claims_csv(rows, output)
 
 
-def render_docs(claims: str, templates: Sequence[str], outputs: Sequence[str], log: str) -> None:
+def render_docs(
+    claims: str, benchmark: str, long_run: str, stability: str, templates: Sequence[str], outputs: Sequence[str],
+    log: str,
+) -> None:
     from .claims import read_claims_csv
     from .docs import render, write_text
+    from .facts import collect_facts
 
     with logged(log, "render_docs"):
         rows = read_claims_csv(claims)
+        facts = collect_facts(
+            read_work_precision(benchmark),
+            read_netcdf(long_run, ("cycle", "drift_exact", "drift_ivp", "error_time_exact", "error_time_ivp")),
+            read_netcdf(stability, ("b", "F", "multiplier", "multiplier_eq21", "outcome")),
+        )
         for template, output in zip(templates, outputs):
-            write_text(render(Path(template).read_text(), rows, template), output)
+            write_text(render(Path(template).read_text(), rows, template, facts), output)
+
+
+def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str, log: str) -> None:
+    import csv
+    import os
+    import tempfile
+
+    from .benchmark import work_precision
+
+    with logged(log, "run_work_precision") as logger:
+        rows = work_precision(
+            parameters_from(scene), initial_state_from(scene)[0], scene["n_cycles"],
+            {k: list(v) for k, v in settings.items()}, scene["repeats"], log=logger.info,
+        )
+        Path(output).parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=".work_precision.", suffix=".tmp", dir=Path(output).parent)
+        with os.fdopen(fd, "w", newline="") as handle:
+            writer = csv.DictWriter(handle, fieldnames=list(rows[0]), lineterminator="\n")
+            writer.writeheader()
+            for row in rows:
+                writer.writerow({k: (f"{v:.6e}" if isinstance(v, float) else v) for k, v in row.items()})
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, output)
+
+
+def read_work_precision(path: str) -> list[dict]:
+    import csv
+
+    from .netcdf_io import DatasetError
+
+    try:
+        with open(path, newline="") as handle:
+            rows = list(csv.DictReader(handle))
+    except OSError as err:
+        raise DatasetError(f"{path}: cannot be read ({err})") from err
+    expected = ["method", "setting", "wall_s", "error_velocity", "error_time"]
+    if not rows or list(rows[0]) != expected:
+        raise DatasetError(f"{path}: not a work-precision table with the columns {', '.join(expected)}")
+    return rows
+
+
+def plot_work_precision(table: str, png: str, pdf: str, log: str) -> None:
+    from .plotting import save_figure, work_precision
+
+    with logged(log, "plot_work_precision"):
+        save_figure(work_precision(read_work_precision(table)), png, pdf)
+
+
+def simulate_long_run(scene: Mapping, output: str, log: str) -> None:
+    from .scenes import long_run_scene
+
+    with logged(log, "simulate_long_run") as logger:
+        ds = long_run_scene(
+            parameters_from(scene), initial_state_from(scene)[0], scene["n_cycles"], scene["ivp_method"],
+            scene["ivp_rtol"], scene["ivp_cycles"],
+        )
+        for key in ("max_velocity_deviation", "max_period_deviation", "exact_wall_s", "ivp_wall_s"):
+            logger.info("%s: %.3e", key, ds.attrs[key])
+        write_netcdf(ds, output)
+
+
+def plot_long_run(path: str, png: str, pdf: str, log: str) -> None:
+    from .plotting import long_run, save_figure
+
+    with logged(log, "plot_long_run"):
+        save_figure(long_run(read_netcdf(path, ("cycle", "drift_exact", "drift_ivp"))), png, pdf)
+
+
+def simulate_stability_chunk(model: Mapping, b_values: Sequence[float], F_values: Sequence[float], output: str,
+                             log: str) -> None:
+    from .scenes import stability_chunk_scene
+
+    with logged(log, "simulate_stability_chunk") as logger:
+        ds = stability_chunk_scene(dict(model), b_values, F_values)
+        logger.info("per trajectory: ensemble %.3e s, scalar %.3e s", ds.attrs["ensemble_seconds_per_trajectory"],
+                    ds.attrs["scalar_seconds_per_trajectory"])
+        write_netcdf(ds, output)
+
+
+def merge_stability(paths: Sequence[str], output: str, log: str) -> None:
+    import numpy as np
+    import xarray as xr
+
+    with logged(log, "merge_stability") as logger:
+        chunks = [read_netcdf(p, ("b", "F", "multiplier", "outcome")) for p in paths]
+        merged = xr.concat(chunks, dim="b", combine_attrs="drop_conflicts")
+        ratios = [c.attrs["scalar_seconds_per_trajectory"] / c.attrs["ensemble_seconds_per_trajectory"] for c in chunks]
+        merged.attrs.update(
+            ensemble_speedup_per_trajectory=float(np.median(ratios)),
+            ensemble_seconds_per_trajectory=float(np.median([c.attrs["ensemble_seconds_per_trajectory"] for c in chunks])),
+            scalar_seconds_per_trajectory=float(np.median([c.attrs["scalar_seconds_per_trajectory"] for c in chunks])),
+            chunks=len(chunks),
+        )
+        logger.info("ensemble speed-up per trajectory (median over chunks): %.1f", merged.attrs["ensemble_speedup_per_trajectory"])
+        write_netcdf(merged, output)
+
+
+def plot_stability_map(path: str, png: str, pdf: str, log: str) -> None:
+    from .plotting import save_figure, stability_map
+
+    with logged(log, "plot_stability_map"):
+        save_figure(stability_map(read_netcdf(path, ("b", "F", "multiplier", "multiplier_eq21", "outcome"))), png, pdf)

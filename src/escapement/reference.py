@@ -230,6 +230,10 @@ def solve_reference(
             wanted = {1: EventKind.IMPACT_A1, -1: EventKind.IMPACT_A3}[heading]
             watch = [wanted] if expect in (None, wanted) else []
 
+        # x is monotone inside a segment, so a surface it starts on cannot be crossed in it; watching
+        # it would only give scipy's spurious event at the start (and the paper's initial condition is
+        # the state at t0+, after any jump: no impact at t = 0).
+        watch = [k for k in watch if surfaces[k].value((x, v)) != 0.0]
         horizon = min(t + 0.75 * period, t_stop)
         labels = watch + ([REST] if heading else [])
         watches = [surfaces[k] for k in watch] + ([Watch(None, heading)] if heading else [])

@@ -132,3 +132,104 @@ def checks_scene(cases: list[dict], n_cycles: int) -> xr.Dataset:
     return table_dataset(
         columns, "Measured Poincare maps for the claims register", "checks", solver="exact", n_cycles=n_cycles
     )
+
+
+def long_run_scene(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_rtol: float, ivp_cycles: int):
+    """Errors of the exact solver over ``n_cycles`` and of ``solve_ivp`` over ``ivp_cycles``, against 50 digits."""
+    from .dataset import global_attributes
+    from .longrun import long_run
+
+    r = long_run(params, x0, _positive_int("n_cycles", n_cycles), ivp_method, ivp_rtol, _positive_int("ivp_cycles", ivp_cycles))
+    coords = {"cycle": ("cycle", r["cycles"].astype(np.int32), {"long_name": "cycle number", "units": "1"})}
+    names = {
+        "error_time": ("1", "relative error of the impact time at a1"),
+        "error_velocity": ("1", "relative error of the velocity before impact"),
+        "drift": ("s", "impact time minus the 50-digit reference"),
+    }
+    variables = {}
+    for solver, label in (("exact", "exact solver"), ("ivp", f"solve_ivp {ivp_method} rtol={ivp_rtol:g}")):
+        for (name, (units, long_name)), values in zip(names.items(), r[solver]):
+            variables[f"{name}_{solver}"] = xr.DataArray(
+                values, dims="cycle", coords=coords, attrs={"units": units, "long_name": f"{long_name}, {label}"}
+            )
+    attrs = global_attributes(
+        "Long run of the escapement model: error against the number of cycles",
+        "long_run",
+        solver="exact; " + f"solve_ivp {ivp_method} rtol={ivp_rtol:g}",
+        x0=float(x0),
+        n_cycles=int(n_cycles),
+        ivp_cycles=int(ivp_cycles),
+        converged_after=int(r["converged_after"]),
+        max_velocity_deviation=r["max_velocity_deviation"],
+        max_period_deviation=r["max_period_deviation"],
+        fixed_point_velocity=r["fixed_point_velocity"],
+        fixed_point_period=r["fixed_point_period"],
+        exact_wall_s=r["exact_wall_s"],
+        ivp_wall_s=r["ivp_wall_s"],
+        any_nan=int(r["any_nan"]),
+        **params.as_dict(),
+    )
+    return xr.Dataset(variables, attrs=attrs)
+
+
+def stability_chunk_scene(model: dict, b_values, F_values, speed_sample: int = 100) -> xr.Dataset:
+    """Fixed point and measured multiplier over the grid ``b_values x F_values`` (ensemble solver),
+    and the cost per trajectory of the ensemble against looping the scalar solver on a sample."""
+    import time
+
+    from .dataset import global_attributes
+    from .ensemble import STATUS_CODES
+    from .stability import ensemble_return_map, return_map, stability_grid
+
+    b_values = np.asarray(b_values, dtype=float)
+    F_values = np.asarray(F_values, dtype=float)
+    bb, ff = np.meshgrid(b_values, F_values, indexing="ij")
+    grid = stability_grid(model, bb.ravel(), ff.ravel())
+
+    # The cost of one return-map evaluation per trajectory: the ensemble over the whole chunk, and
+    # the scalar solver looped over an even sample of it, both at the fixed points, in this one run.
+    v = np.where(np.isfinite(grid["fixed_point"]), grid["fixed_point"], 1.0)
+    start = time.perf_counter()
+    ensemble_return_map(model, bb.ravel(), ff.ravel(), v)
+    ensemble_per_trajectory = (time.perf_counter() - start) / bb.size
+    pick = np.linspace(0, bb.size - 1, min(speed_sample, bb.size)).astype(int)
+    start = time.perf_counter()
+    for i in pick:
+        try:
+            return_map(Parameters(**{**model, "F": ff.ravel()[i], "b": bb.ravel()[i]}), v[i])
+        except ValueError:  # the motion leaves the regime (b > 1): that is part of the work too
+            pass
+    scalar_per_trajectory = (time.perf_counter() - start) / len(pick)
+    shape = bb.shape
+    dims = ("b", "F")
+    coords = {
+        "b": ("b", b_values, {"long_name": "impact coefficient b (v+ = (1 - b) v-)", "units": "1"}),
+        "F": ("F", F_values, {"long_name": "force F", "units": "N"}),
+    }
+
+    def grid_var(values, units, long_name, **attrs):
+        return xr.DataArray(np.asarray(values).reshape(shape), dims=dims, coords=coords,
+                            attrs={"units": units, "long_name": long_name, **attrs})
+
+    codes = list(STATUS_CODES.values())
+    variables = {
+        "multiplier": grid_var(grid["multiplier"], "1", "multiplier mu_2 measured from the simulated return map"),
+        "multiplier_eq21": grid_var((1 - bb) ** 4, "1", "multiplier (1 - b)**4 of Eq. (21)"),
+        "fixed_point": grid_var(grid["fixed_point"], "m s-1", "fixed point of the simulated return map"),
+        "period": grid_var(grid["period"], "s", "period of the cycle at the fixed point"),
+        "outcome": xr.DataArray(
+            np.asarray(grid["status"], dtype=np.int8).reshape(shape), dims=dims, coords=coords,
+            attrs={"long_name": "how the cycle from the fixed point ended",
+                   "flag_values": np.array(codes, dtype=np.int8),
+                   "flag_meanings": " ".join(s.value for s in STATUS_CODES)},
+        ),
+    }
+    attrs = global_attributes(
+        "Stability and existence map of the escapement model over (b, F)",
+        "stability_map",
+        solver="exact, vectorised ensemble",
+        ensemble_seconds_per_trajectory=ensemble_per_trajectory,
+        scalar_seconds_per_trajectory=scalar_per_trajectory,
+        **{k: float(v) for k, v in model.items() if v is not None},
+    )
+    return xr.Dataset(variables, attrs=attrs)

@@ -63,3 +63,60 @@ def measure_cycle(params: Parameters, x0: float, n_cycles: int = 300) -> CycleMe
         cycles_to_converge=first,
     )
 
+
+
+def ensemble_return_map(model: dict, b, F, v):
+    """:func:`return_map` for arrays: ``(v_in, P(v_in), period, status codes)`` at every ``(b, F, v)``."""
+    import numpy as np
+
+    from .ensemble import solve_ensemble
+
+    omega = math.sqrt(model["K"] / model["M"])
+    out = solve_ensemble(
+        model["M"], model["K"], F, b, model["a1"], model["a2"], model.get("a3"), model.get("a4"),
+        x0=-np.hypot(model["a1"], np.asarray(v) / omega), n_cycles=2, amplitude=False,
+    )
+    return out.velocity_before_impact[:, 0], out.velocity_before_impact[:, 1], out.period[:, 0], out.status
+
+
+def stability_grid(model: dict, b, F, iterations: int = 40):
+    """Fixed point and multiplier of the simulated return map at every ``(b, F)``.
+
+    Newton's method on ``P(v) - v`` with the slope from central differences of the
+    simulated map (``P`` is convex, so the iteration converges from any positive start).
+    Returns a dict of arrays: ``fixed_point``, ``multiplier``, ``period``, ``status``,
+    ``newton_converged``.
+    """
+    import numpy as np
+
+    from .ensemble import STATUS_CODES
+
+    b = np.asarray(b, dtype=float)
+    F = np.asarray(F, dtype=float)
+    omega = math.sqrt(model["K"] / model["M"])
+
+    def slope_at(v):
+        lo_in, lo_out, _, _ = ensemble_return_map(model, b, F, v * (1 - RELATIVE_STEP))
+        hi_in, hi_out, _, _ = ensemble_return_map(model, b, F, v * (1 + RELATIVE_STEP))
+        return (hi_out - lo_out) / (hi_in - lo_in)
+
+    v = np.full(b.shape, omega * abs(model["a1"])) + np.sqrt(2 * F / model["M"] * (model["a2"] - model["a1"]))
+    converged = np.zeros(b.shape, dtype=bool)
+    for _ in range(iterations):
+        v_in, v_out, _, status = ensemble_return_map(model, b, F, v)
+        step = (v_out - v_in) / (1.0 - slope_at(v))
+        ok = np.isfinite(step) & (status == STATUS_CODES[Status.COMPLETED])
+        v = np.where(ok, v_in + step, v)
+        # 1 / (1 - slope) magnifies rounding as b -> 0, hence a tolerance above 1e-16
+        converged = ok & (np.abs(step) <= 1e-12 * np.abs(v))
+        if not (ok & ~converged).any():
+            break
+    v_in, _, period, status = ensemble_return_map(model, b, F, v)
+    good = status == STATUS_CODES[Status.COMPLETED]
+    return {
+        "fixed_point": np.where(good, v_in, np.nan),
+        "multiplier": np.where(good, slope_at(v), np.nan),
+        "period": np.where(good, period, np.nan),
+        "status": status,
+        "newton_converged": converged,
+    }

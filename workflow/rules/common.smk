@@ -74,12 +74,74 @@ def check_cases():
     return [{k: v for k, v in case.items() if k != "n_cycles"} for case in cases]
 
 
+def benchmark_scene():
+    scene = {k: v for k, v in config["benchmark"].items() if "settings" not in k}
+    return _scene(config["model"], scene)
+
+
+def benchmark_settings(slow=False):
+    """Settings per method: the default ones, and with ``slow`` the slow ones too."""
+    settings = {k: list(v) for k, v in config["benchmark"]["settings"].items()}
+    if slow:
+        for method, values in config["benchmark"]["slow_settings"].items():
+            settings[method] = sorted(
+                set(settings.get(method, [])) | set(values), reverse=True
+            )
+    return dict(sorted(settings.items()))
+
+
+def long_run_scene():
+    return _scene(config["model"], config["long_run"])
+
+
+def stability_axes():
+    """Values of b (cell centres of (start, stop)) and of F (start to stop)."""
+    b, f = config["stability_map"]["b"], config["stability_map"]["F"]
+    step = (b["stop"] - b["start"]) / b["n"]
+    b_values = [b["start"] + (i + 0.5) * step for i in range(b["n"])]
+    f_values = [
+        f["start"] + (f["stop"] - f["start"]) * j / max(f["n"] - 1, 1)
+        for j in range(f["n"])
+    ]
+    return b_values, f_values
+
+
+def stability_chunks():
+    return [str(i) for i in range(config["stability_map"]["chunks"])]
+
+
+def stability_chunk(chunk):
+    """The b values of one chunk, and all F values."""
+    b_values, f_values = stability_axes()
+    n = config["stability_map"]["chunks"]
+    i = int(chunk)
+    size = -(-len(b_values) // n)
+    return b_values[i * size : (i + 1) * size], f_values
+
+
+def stability_model():
+    return _scene(config["model"], {"F": 0.0})
+
+
 def _check_scenes():
     """Every scene's parameters must make a valid model before any job runs."""
     scenes = {f"fig3.cases.{c}": fig3_scene(c) for c in config["fig3"]["cases"]}
     scenes["fig4"] = fig4_scene()
     scenes.update({f"fig5 (K = {label})": fig5_scene(label) for label in fig5_labels()})
     scenes.update({f"checks ({case['label']})": case for case in check_cases()})
+    scenes["benchmark"] = benchmark_scene()
+    scenes["long_run"] = long_run_scene()
+    b_values, f_values = stability_axes()
+    for b in (b_values[0], b_values[-1]):
+        for force in (f_values[0], f_values[-1]):
+            scenes[f"stability_map (b = {b:g}, F = {force:g})"] = _scene(
+                stability_model(), {"b": b, "F": force, "x0": 1.0}
+            )
+    if config["stability_map"]["chunks"] > len(b_values):
+        raise WorkflowError(
+            f"invalid configuration in stability_map: chunks = {config['stability_map']['chunks']} "
+            f"is invalid: chunks must be <= b.n = {len(b_values)}"
+        )
     for where, scene in scenes.items():
         try:
             parameters_from(scene)
@@ -121,6 +183,14 @@ def all_outputs():
             "figures/{fig}.{ext}", fig=["fig3", "fig4", "fig5"], ext=["png", "pdf"]
         ),
         "results/claims.csv",
+        "results/benchmark/work_precision.csv",
+        "results/benchmark/long_run.nc",
+        "results/stability/map.nc",
+        *expand(
+            "figures/{fig}.{ext}",
+            fig=["work_precision", "long_run", "stability_map"],
+            ext=["png", "pdf"],
+        ),
         "README.md",
         "REPLICATION.md",
     ]

@@ -27,6 +27,9 @@ rule check_claims:
 rule render_docs:
     input:
         claims="results/claims.csv",
+        benchmark="results/benchmark/work_precision.csv",
+        long_run="results/benchmark/long_run.nc",
+        stability="results/stability/map.nc",
         templates=["workflow/templates/README.md", "workflow/templates/REPLICATION.md"],
         code=package_code(),
     output:

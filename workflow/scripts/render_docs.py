@@ -4,6 +4,9 @@ from escapement.jobs import render_docs
 
 render_docs(  # noqa: F821
     snakemake.input.claims,
+    snakemake.input.benchmark,
+    snakemake.input.long_run,
+    snakemake.input.stability,
     list(snakemake.input.templates),
     [snakemake.output.readme, snakemake.output.replication],
     snakemake.log[0],

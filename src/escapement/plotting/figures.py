@@ -11,7 +11,7 @@ import xarray as xr
 
 from .style import ACCENT, GUIDE, INK, MUTED, style
 
-__all__ = ["fig3", "fig4", "fig5"]
+__all__ = ["fig3", "fig4", "fig5", "long_run", "stability_map", "work_precision"]
 
 
 def _broken(t: np.ndarray, y: np.ndarray, breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -122,5 +122,95 @@ def fig5(panels: dict[str, xr.Dataset]):
             ax.set_title(f"({letter}) K = {label} N/m")
             _outcome_note(ax, ds)
         axes[0, 0].legend(loc="upper left")
+        fig.tight_layout()
+    return fig
+
+
+#: errors below this are drawn at it on log axes (an exact zero has no logarithm)
+ERROR_FLOOR = 1e-17
+MARKERS = {"exact": "*", "map16": "P", "naive-RK4": "x", "RK45": "o", "DOP853": "s", "LSODA": "^", "Radau": "v",
+           "CVODE-Adams": "D", "CVODE-BDF": "d"}
+
+
+def work_precision(rows: list[dict]):
+    """Relative error against wall time, one curve per method, for the velocity and the impact time."""
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    with style():
+        fig, axes = plt.subplots(1, 2, figsize=(8.4, 3.6), sharex=True)
+        colours = plt.get_cmap("tab10")
+        for i, method in enumerate(methods):
+            mine = [r for r in rows if r["method"] == method]
+            wall = [float(r["wall_s"]) for r in mine]
+            for ax, key in zip(axes, ("error_velocity", "error_time")):
+                err = [max(float(r[key]), ERROR_FLOOR) for r in mine]
+                ax.loglog(wall, err, marker=MARKERS.get(method, "o"), color=colours(i % 10), lw=1.0, ms=5,
+                          label=method)
+        for ax, title in zip(axes, ("velocity before impact, cycle 50", "impact time, cycle 50")):
+            ax.set_xlabel("Wall time per run (s), median of repeats")
+            ax.set_ylabel("Relative error")
+            ax.set_title(title)
+            ax.axhline(ERROR_FLOOR, color=GUIDE, lw=0.6, ls=":")
+        axes[1].legend(loc="upper right", ncol=2, fontsize=6.5)
+        fig.suptitle("Work-precision, Fig. 3 case (a): errors against 50 digits (exact zero drawn at 1e-17)",
+                     fontsize=8.5)
+        fig.tight_layout()
+    return fig
+
+
+def long_run(ds: xr.Dataset):
+    """Phase error (impact time minus the 50-digit reference) and velocity error against the number of cycles."""
+    cycle = ds["cycle"].values
+    ivp_label = ds.attrs["solver"].split("; ")[1]
+    series = (("exact", INK, "exact solver"), ("ivp", ACCENT, ivp_label))
+    with style():
+        fig, (ax_t, ax_v) = plt.subplots(1, 2, figsize=(8.4, 3.4), sharex=True)
+        for solver, colour, label in series:
+            drift = np.maximum(np.abs(ds[f"drift_{solver}"].values), 1e-17)
+            ax_t.loglog(cycle, drift, color=colour, lw=1.2, marker=".", ms=3, label=label)
+            error = np.maximum(ds[f"error_velocity_{solver}"].values, ERROR_FLOOR)
+            ax_v.loglog(cycle, error, color=colour, lw=1.2, marker=".", ms=3, label=label)
+        ulp = np.spacing(ds.attrs["fixed_point_period"] * cycle.astype(float))
+        ax_t.loglog(cycle, ulp, color=GUIDE, lw=0.8, ls=":", label="spacing of float64 at t")
+        ax_t.set_ylabel("|impact time − reference| (s)")
+        ax_t.set_title("phase error of the impact at a1")
+        ax_v.set_ylabel("Relative error")
+        ax_v.set_title("velocity before impact")
+        for ax in (ax_t, ax_v):
+            ax.set_xlabel("Number of cycles")
+        ax_t.legend(loc="upper left")
+        fig.suptitle("Long run, Fig. 3 case (a): errors against the 50-digit reference", fontsize=8.5)
+        fig.tight_layout()
+    return fig
+
+
+def stability_map(ds: xr.Dataset):
+    """Measured multiplier over (b, F), its distance from (1 - b)**4, and where the regime ends."""
+    from matplotlib.colors import LogNorm
+
+    b, F = ds["b"].values, ds["F"].values
+    mu = ds["multiplier"].values.T
+    deviation = np.abs(ds["multiplier"].values - ds["multiplier_eq21"].values).T
+    outcome = ds["outcome"].values.T
+    meanings = ds["outcome"].attrs["flag_meanings"].split()
+    completed = meanings.index("completed")
+    with style():
+        fig, axes = plt.subplots(1, 2, figsize=(8.4, 3.5), sharey=True)
+        mesh = axes[0].pcolormesh(b, F, mu, shading="nearest", cmap="viridis", vmin=0, vmax=1)
+        fig.colorbar(mesh, ax=axes[0], label="measured multiplier \u03bc\u2082")
+        dev = np.where(deviation > 0, deviation, ERROR_FLOOR)
+        mesh = axes[1].pcolormesh(b, F, dev, shading="nearest", cmap="magma", norm=LogNorm(vmin=1e-16, vmax=1e-8))
+        fig.colorbar(mesh, ax=axes[1], label="|\u03bc\u2082 measured \u2212 (1 \u2212 b)\u2074|")
+        for ax in axes:
+            left = outcome != completed
+            if left.any():
+                ax.contourf(b, F, left.astype(float), levels=[0.5, 1.5], colors="none", hatches=["////"])
+                names = sorted({meanings[c] for c in np.unique(outcome[left])})
+                ax.text(0.98, 0.5, "\n".join(names).replace("_", " ") + "\n(Zeno: no cycle)", transform=ax.transAxes,
+                        ha="right", va="center", fontsize=7, color=ACCENT,
+                        bbox={"facecolor": "white", "edgecolor": ACCENT, "linewidth": 0.6})
+            ax.set_xlabel("Impact coefficient b")
+        axes[0].set_ylabel("Force F (N)")
+        axes[0].set_title("Multiplier measured from the simulated return map")
+        axes[1].set_title("Distance from Eq. (21)")
         fig.tight_layout()
     return fig

@@ -1,0 +1,161 @@
+rule run_work_precision:
+    input:
+        code=package_code(),
+    output:
+        csv="results/benchmark/work_precision.csv",
+    log:
+        "results/logs/run_work_precision.log",
+    benchmark:
+        "results/benchmarks/run_work_precision.tsv"
+    conda:
+        "../../environment/environment.yml"
+    threads: 2  # the machine to itself while it times
+    params:
+        scene=benchmark_scene(),
+        settings=benchmark_settings(),
+    script:
+        "../scripts/run_work_precision.py"
+
+
+use rule run_work_precision as run_work_precision_full with:
+    output:
+        csv="results/benchmark/work_precision_full.csv",
+    log:
+        "results/logs/run_work_precision_full.log",
+    benchmark:
+        "results/benchmarks/run_work_precision_full.tsv"
+    params:
+        scene=benchmark_scene(),
+        settings=benchmark_settings(slow=True),
+
+
+rule plot_work_precision:
+    input:
+        csv="results/benchmark/work_precision.csv",
+        code=package_code(),
+    output:
+        png=report(
+            "figures/work_precision.png",
+            caption="../report/work_precision.rst",
+            category="Speed and accuracy",
+            labels={"figure": "work-precision"},
+        ),
+        pdf="figures/work_precision.pdf",
+    log:
+        "results/logs/plot_work_precision.log",
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/plot_work_precision.py"
+
+
+use rule plot_work_precision as plot_work_precision_full with:
+    input:
+        csv="results/benchmark/work_precision_full.csv",
+        code=package_code(),
+    output:
+        png="results/benchmark/work_precision_full.png",
+        pdf="results/benchmark/work_precision_full.pdf",
+    log:
+        "results/logs/plot_work_precision_full.log",
+
+
+rule simulate_long_run:
+    input:
+        code=package_code(),
+    output:
+        nc="results/benchmark/long_run.nc",
+    log:
+        "results/logs/simulate_long_run.log",
+    benchmark:
+        "results/benchmarks/simulate_long_run.tsv"
+    conda:
+        "../../environment/environment.yml"
+    params:
+        scene=long_run_scene(),
+    script:
+        "../scripts/simulate_long_run.py"
+
+
+rule plot_long_run:
+    input:
+        nc="results/benchmark/long_run.nc",
+        code=package_code(),
+    output:
+        png=report(
+            "figures/long_run.png",
+            caption="../report/long_run.rst",
+            category="Speed and accuracy",
+            labels={"figure": "long run"},
+        ),
+        pdf="figures/long_run.pdf",
+    log:
+        "results/logs/plot_long_run.log",
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/plot_long_run.py"
+
+
+rule simulate_stability_chunk:
+    input:
+        code=package_code(),
+    output:
+        nc="results/stability/chunk_{chunk}.nc",
+    log:
+        "results/logs/simulate_stability_chunk_{chunk}.log",
+    benchmark:
+        "results/benchmarks/simulate_stability_chunk_{chunk}.tsv"
+    wildcard_constraints:
+        chunk="[0-9]+",
+    conda:
+        "../../environment/environment.yml"
+    params:
+        model=stability_model(),
+        axes=lambda wildcards: stability_chunk(wildcards.chunk),
+    script:
+        "../scripts/simulate_stability_chunk.py"
+
+
+rule merge_stability:
+    input:
+        chunks=expand("results/stability/chunk_{chunk}.nc", chunk=stability_chunks()),
+        code=package_code(),
+    output:
+        nc="results/stability/map.nc",
+    log:
+        "results/logs/merge_stability.log",
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/merge_stability.py"
+
+
+rule plot_stability_map:
+    input:
+        nc="results/stability/map.nc",
+        code=package_code(),
+    output:
+        png=report(
+            "figures/stability_map.png",
+            caption="../report/stability_map.rst",
+            category="Speed and accuracy",
+            labels={"figure": "stability map"},
+        ),
+        pdf="figures/stability_map.pdf",
+    log:
+        "results/logs/plot_stability_map.log",
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/plot_stability_map.py"
+
+
+rule benchmark:
+    input:
+        "results/benchmark/work_precision_full.csv",
+        "results/benchmark/work_precision_full.png",
+        "results/benchmark/work_precision.csv",
+        "figures/work_precision.png",
+        "figures/long_run.png",
+        "figures/stability_map.png",
