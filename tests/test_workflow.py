@@ -129,7 +129,10 @@ DOCS = {"render_docs": 1, "all": 1}
         (lambda c: c["fig4"].update(samples_per_second=500), {"simulate_fig4": 1, "plot_fig4": 1, **VERDICT}),
         (lambda c: c["fig5"].update(n_cycles=61), {"simulate_fig5": 3, "plot_fig5": 1, **VERDICT}),
         (lambda c: c["checks"].update(n_cycles=301), {"simulate_checks": 1, **VERDICT}),
-        (lambda c: c["long_run"].update(ivp_cycles=900), {"simulate_long_run": 1, "plot_long_run": 1, **DOCS}),
+        (
+            lambda c: c["long_run"].update(ivp_cycles=900),
+            {"simulate_long_run": 1, "plot_long_run": 1, "run_stress": 1, **DOCS},
+        ),
         (
             lambda c: c["stability_map"].update(chunks=5),
             {"simulate_stability_chunk": 5, "merge_stability": 1, "plot_stability_map": 1, **DOCS},
@@ -151,12 +154,14 @@ def test_editing_one_scene_reruns_that_scene_only(workflow_run, edit, expected):
 @pytest.mark.parametrize(
     "edit, words",
     [
-        (lambda c: c["model"].update(M=0.0), ["M", "0"]),
-        (lambda c: c["model"].update(b=2.0), ["b", "2"]),
-        (lambda c: c["model"].update(a2=-0.2), ["a2", "> a1"]),
-        (lambda c: c["model"].update(K="stiff"), ["K", "stiff"]),
-        (lambda c: c["model"].pop("a1"), ["a1", "required"]),
-        (lambda c: c["fig4"].update(colour="red"), ["colour"]),
+        (lambda c: c["model"].update(M=0.0), ["model.M = 0.0 is invalid: M must be a number > 0 (mass, kg)"]),
+        (lambda c: c["model"].update(b=2.0), ["model.b = 2.0 is invalid: b must be a number in the open interval"]),
+        (lambda c: c["model"].update(a2=-0.2), ["a2 = -0.2 is invalid: a2 must be > a1 = -0.1 (m)"]),
+        (lambda c: c["model"].update(K="stiff"), ["model.K = 'stiff' is invalid: K must be a number > 0"]),
+        (lambda c: c["model"].update(K=float("inf")), ["K = inf is invalid: K must be finite"]),
+        (lambda c: c["model"].update(a4=0.2), ["a4 = 0.2 is invalid: a4 must be < a3 = 0.1 (m)"]),
+        (lambda c: c["model"].pop("a1"), ["model: the key 'a1' is missing: it must be given"]),
+        (lambda c: c["fig4"].update(colour="red"), ["fig4: unknown key 'colour'"]),
         (lambda c: c["fig3"]["cases"]["a"].update(x0=float("nan")), ["x0", "nan", "finite"]),
         (lambda c: c["fig4"].update(velocity_window=[87.0, 80.0]), ["velocity_window", "start < end"]),
     ],
@@ -213,7 +218,8 @@ def test_a_change_of_the_package_code_reruns_the_jobs(workflow_run):
     assert planned == {
         "simulate_fig3": 2, "simulate_fig4": 1, "simulate_fig5": 3, "simulate_checks": 1, "plot_fig3": 1,
         "plot_fig4": 1, "plot_fig5": 1, "run_work_precision": 1, "plot_work_precision": 1, "simulate_long_run": 1,
-        "plot_long_run": 1, "simulate_stability_chunk": 4, "merge_stability": 1, "plot_stability_map": 1, **VERDICT,
+        "plot_long_run": 1, "simulate_stability_chunk": 4, "merge_stability": 1, "plot_stability_map": 1,
+        "run_stress": 1, **VERDICT,
     }
     assert planned_jobs(workflow_run) == {}
 
@@ -282,3 +288,49 @@ def test_the_work_precision_table_and_its_targets(workflow_run):
     assert methods == {"exact", "map16", "RK45", "DOP853", "LSODA", "Radau", "CVODE-Adams", "CVODE-BDF", "naive-RK4"}
     exact = next(r for r in rows if r["method"] == "exact")
     assert float(exact["error_velocity"]) <= 1e-14 and float(exact["error_time"]) <= 1e-14
+
+
+
+@pytest.mark.parametrize(
+    "damaged, target, rule",
+    [("results/fig4/shock.nc", "figures/fig4.png", "plot_fig4"),
+     ("results/claims/checks.nc", "results/claims.csv", "check_claims")],
+)
+def test_a_damaged_netcdf_fails_its_rule_naming_the_file(workflow_run, damaged, target, rule):
+    path = workflow_run / damaged
+    original, stat = path.read_bytes(), path.stat()
+    path.write_bytes(original[: len(original) // 3])
+    os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+    try:
+        result = snakemake(workflow_run, "--cores", "1", "--forcerun", rule, target, check=False)
+        assert result.returncode != 0
+        assert f"{path.name}: not a readable netCDF file" in result.stdout + result.stderr
+        assert not (workflow_run / target).exists()  # no partial output left behind
+    finally:
+        path.write_bytes(original)
+        os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+        snakemake(workflow_run, "--cores", "2")
+    assert planned_jobs(workflow_run) == {}
+
+
+def test_a_motion_that_leaves_the_regime_is_recorded(tmp_path):
+    where = copy_repository(tmp_path)
+    _edit_config(where, lambda c: c["fig3"]["cases"]["a"].update(x0=0.05))
+    snakemake(where, "--cores", "2", "results/fig3/case_a.nc", "figures/fig3.png", "results/claims.csv")
+    ds = read_netcdf(where / "results/fig3/case_a.nc")
+    assert ds.attrs["outcome"] == "stopped" and ds.sizes["cycle"] == 0
+    assert "never passes the next impact position" in ds.attrs["outcome_message"]
+    from escapement.claims import read_claims_csv
+
+    rows = {r["claim_id"]: r for r in read_claims_csv(where / "results/claims.csv")}
+    assert rows["eq19_fixed_point_case_a"]["status"] == "not_reproduced"
+    assert rows["eq19_fixed_point_case_a"]["replicated_value"] == "could not be evaluated"
+    assert (where / "figures/fig3.png").exists()
+
+
+def test_the_stress_summary_passes(workflow_run):
+    import csv
+
+    rows = list(csv.DictReader(open(workflow_run / "results/stress/summary.csv")))
+    assert len(rows) >= 15
+    assert all(r["passed"] == "yes" for r in rows), [r for r in rows if r["passed"] != "yes"]

@@ -524,7 +524,11 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
     """One row per claim, with exactly the columns of ``COLUMNS``."""
     rows = []
     for claim in claims:
-        verdict = CHECKS[claim["check"]](claim, evidence)
+        try:
+            verdict = CHECKS[claim["check"]](claim, evidence)
+        except (IndexError, KeyError, ValueError, ZeroDivisionError) as err:
+            # the data cannot answer the claim (for example a scene that left the escapement regime)
+            verdict = Verdict("could not be evaluated", NOT, note=f"{type(err).__name__}: {err}; see the scene's outcome")
         if verdict.status not in STATUSES:
             raise ValueError(f"check {claim['check']} returned an unknown status {verdict.status!r}")
         paper = claim["paper_value"]

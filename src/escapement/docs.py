@@ -6,7 +6,8 @@ A template is Markdown with placeholders:
 * ``{{ claims_count:<status> }}`` and ``{{ claims_count:total }}``;
 * ``{{ claim:<claim_id>:<column> }}``: one cell of ``results/claims.csv``;
 * ``{{ fact:<name> }}``: a number from :func:`escapement.facts.collect_facts` (measured ones are
-  wrapped in ``<!--m-->...<!--/m-->``).
+  wrapped in ``<!--m-->...<!--/m-->``);
+* ``{{ table:<name> }}``: a Markdown table made by the caller (for example ``stress``).
 
 An unknown placeholder, claim or column is an error, so that no stale or typed number survives.
 """
@@ -20,7 +21,7 @@ from pathlib import Path
 
 from .claims import COLUMNS, STATUSES
 
-__all__ = ["render", "write_text"]
+__all__ = ["claims_table", "markdown_table", "render", "write_text"]
 
 PLACEHOLDER = re.compile(r"\{\{\s*([a-z_]+)(?::([A-Za-z0-9_]+))?(?::([a-z_]+))?\s*\}\}")
 STATUS_LABEL = {"reproduced": "reproduced", "partially_reproduced": "partially", "not_reproduced": "**not reproduced**"}
@@ -50,9 +51,18 @@ def claims_table(rows: list[dict[str, str]]) -> str:
     return "\n".join(lines)
 
 
-def render(template: str, rows: list[dict[str, str]], template_name: str = "the template", facts=None) -> str:
+def markdown_table(rows: list[dict[str, str]], columns: list[str]) -> str:
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    lines += ["| " + " | ".join(_cell(row[c]) for c in columns) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def render(
+    template: str, rows: list[dict[str, str]], template_name: str = "the template", facts=None, tables=None
+) -> str:
     by_id = {row["claim_id"]: row for row in rows}
     facts = facts or {}
+    tables = tables or {}
 
     def substitute(match: re.Match) -> str:
         kind, key, column = match.groups()
@@ -64,6 +74,8 @@ def render(template: str, rows: list[dict[str, str]], template_name: str = "the 
             return _cell(by_id[key][column])
         if kind == "fact" and key in facts and column is None:
             return facts[key].render()
+        if kind == "table" and key in tables and column is None:
+            return tables[key]
         raise ValueError(f"{template_name}: unknown placeholder {match.group(0)}")
 
     return GENERATED.format(template=template_name) + PLACEHOLDER.sub(substitute, template)

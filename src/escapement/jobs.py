@@ -18,6 +18,7 @@ from .scene_config import initial_state_from, parameters_from
 from .scenes import checks_scene, phase_scene, poincare_scene, shock_scene
 
 __all__ = [
+    "run_stress",
     "merge_stability",
     "plot_long_run",
     "plot_stability_map",
@@ -147,11 +148,13 @@ def check_claims(
 
 
 def render_docs(
-    claims: str, benchmark: str, long_run: str, stability: str, templates: Sequence[str], outputs: Sequence[str],
-    log: str,
+    claims: str, benchmark: str, long_run: str, stability: str, stress: str, templates: Sequence[str],
+    outputs: Sequence[str], log: str,
 ) -> None:
+    import csv
+
     from .claims import read_claims_csv
-    from .docs import render, write_text
+    from .docs import markdown_table, render, write_text
     from .facts import collect_facts
 
     with logged(log, "render_docs"):
@@ -161,8 +164,13 @@ def render_docs(
             read_netcdf(long_run, ("cycle", "drift_exact", "drift_ivp", "error_time_exact", "error_time_ivp")),
             read_netcdf(stability, ("b", "F", "multiplier", "multiplier_eq21", "outcome")),
         )
+        with open(stress, newline="") as handle:
+            stress_rows = list(csv.DictReader(handle))
+        if not stress_rows or list(stress_rows[0]) != STRESS_COLUMNS:
+            raise ValueError(f"{stress}: not a stress summary with the columns {', '.join(STRESS_COLUMNS)}")
+        tables = {"stress": markdown_table(stress_rows, ["regime", "outcome", "check", "passed", "detail"])}
         for template, output in zip(templates, outputs):
-            write_text(render(Path(template).read_text(), rows, template, facts), output)
+            write_text(render(Path(template).read_text(), rows, template, facts, tables), output)
 
 
 def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str, log: str) -> None:
@@ -265,3 +273,41 @@ def plot_stability_map(path: str, png: str, pdf: str, log: str) -> None:
 
     with logged(log, "plot_stability_map"):
         save_figure(stability_map(read_netcdf(path, ("b", "F", "multiplier", "multiplier_eq21", "outcome"))), png, pdf)
+
+
+STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
+
+
+def run_stress(long_run: str, output: str, log: str) -> None:
+    """Every stress case, and the very long run's bounds, as one CSV row each."""
+    import csv
+    import os
+    import tempfile
+
+    from .stress import run_all
+
+    with logged(log, "run_stress") as logger:
+        rows = run_all()
+        lr = read_netcdf(long_run, ("cycle", "error_time_exact"))
+        bounded = (lr.attrs["max_velocity_deviation"] <= 1e-12 and lr.attrs["max_period_deviation"] <= 1e-12
+                   and not lr.attrs["any_nan"] and float(lr["error_time_exact"].max()) <= 1e-14)
+        rows.append({
+            "case": "very_long_run",
+            "regime": f"very long runs: {int(lr.attrs['n_cycles'])} cycles, {4 * int(lr.attrs['n_cycles'])} events",
+            "outcome": "completed",
+            "check": "no NaN; velocity and period within 1e-12 of the fixed point once converged; impact time within "
+                     "1e-14 of 50 digits",
+            "passed": "yes" if bounded else "no",
+            "detail": f"velocity {lr.attrs['max_velocity_deviation']:.1e}, period {lr.attrs['max_period_deviation']:.1e}, "
+                      f"impact time {float(lr['error_time_exact'].max()):.1e}",
+        })
+        for row in rows:
+            logger.info("%s: %s (%s)", row["case"], row["passed"], row["detail"])
+        Path(output).parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=".summary.", suffix=".tmp", dir=Path(output).parent)
+        with os.fdopen(fd, "w", newline="") as handle:
+            writer = csv.DictWriter(handle, fieldnames=STRESS_COLUMNS, lineterminator="\n")
+            writer.writeheader()
+            writer.writerows(rows)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, output)

@@ -151,6 +151,27 @@ rule plot_stability_map:
         "../scripts/plot_stability_map.py"
 
 
+rule run_stress:
+    input:
+        long_run="results/benchmark/long_run.nc",
+        code=package_code(),
+    output:
+        csv=report(
+            "results/stress/summary.csv",
+            caption="../report/stress.rst",
+            category="Speed and accuracy",
+            labels={"table": "stress cases"},
+        ),
+    log:
+        "results/logs/run_stress.log",
+    benchmark:
+        "results/benchmarks/run_stress.tsv"
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/run_stress.py"
+
+
 rule benchmark:
     input:
         "results/benchmark/work_precision_full.csv",

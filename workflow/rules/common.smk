@@ -3,9 +3,15 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
+from escapement.config_check import config_error
 from escapement.parameters import ParameterError
 from escapement.scene_config import MODEL_KEYS, initial_state_from, parameters_from
 
+_problem = config_error(
+    config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
+)
+if _problem:
+    raise WorkflowError(f"invalid configuration: {_problem}")
 validate(config, "../schemas/config.schema.yaml")
 
 
@@ -186,6 +192,7 @@ def all_outputs():
         "results/benchmark/work_precision.csv",
         "results/benchmark/long_run.nc",
         "results/stability/map.nc",
+        "results/stress/summary.csv",
         *expand(
             "figures/{fig}.{ext}",
             fig=["work_precision", "long_run", "stability_map"],

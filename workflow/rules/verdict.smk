@@ -30,6 +30,7 @@ rule render_docs:
         benchmark="results/benchmark/work_precision.csv",
         long_run="results/benchmark/long_run.nc",
         stability="results/stability/map.nc",
+        stress="results/stress/summary.csv",
         templates=["workflow/templates/README.md", "workflow/templates/REPLICATION.md"],
         code=package_code(),
     output:

@@ -7,6 +7,7 @@ render_docs(  # noqa: F821
     snakemake.input.benchmark,
     snakemake.input.long_run,
     snakemake.input.stability,
+    snakemake.input.stress,
     list(snakemake.input.templates),
     [snakemake.output.readme, snakemake.output.replication],
     snakemake.log[0],

@@ -1,0 +1,282 @@
+"""Stress cases: the solver at the edges of its regime, each against an independent answer.
+
+Every case runs the exact solver far from the paper's parameters and checks the outcome
+against a closed form derived on paper, the 50-digit reference, or the reference solver
+at tight tolerance. :func:`run_all` gives one row per case for ``results/stress/summary.csv``;
+the tests run the same cases.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import mpmath
+import numpy as np
+
+from . import derived
+from .exact import solve_exact
+from .highprecision import solve_high_precision
+from .outcome import Status
+from .parameters import Parameters
+from .reference import solve_reference
+from .stability import stability_grid
+
+__all__ = ["CASES", "StressCase", "StressResult", "run_all", "run_case"]
+
+
+@dataclass(frozen=True)
+class StressResult:
+    outcome: str
+    check: str
+    passed: bool
+    detail: str
+
+
+@dataclass(frozen=True)
+class StressCase:
+    name: str
+    regime: str
+    run: Callable[[], StressResult]
+
+
+def _paper(**changes) -> Parameters:
+    base = dict(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    return Parameters(**{**base, **changes})
+
+
+def _rel(a: float, b: float) -> float:
+    return abs(a - b) / abs(b) if b != 0 else abs(a)
+
+
+# --- the escapement stops ----------------------------------------------------------------------
+
+
+def stop_below_a1() -> StressResult:
+    s = solve_exact(_paper(), 0.05, n_cycles=10)
+    x = s.sample(np.array([100.0]))[0][0]
+    ok = s.status == Status.STOPPED and len(s.events) == 0 and abs(x - 0.05 * math.cos(100.0)) < 1e-15
+    return StressResult(s.status.value, "no event; free motion x = x0 cos(w t) at t = 100 s (closed form)", ok,
+                        f"x(100) - 0.05 cos 100 = {x - 0.05 * math.cos(100.0):.1e}")
+
+
+def stop_energy_runs_out() -> StressResult:
+    p = _paper(F=0.0, a3=0.3, a4=0.0)
+    s = solve_exact(p, 1.0, n_cycles=100)
+    radius = math.hypot(s.events.x[-1], s.events.v_after[-1] / p.omega)
+    energy = 0.5 * p.M * s.events.v_before**2 + 0.5 * p.K * s.events.x**2
+    ok = (s.status == Status.STOPPED and radius < p.a3 and abs(s.detail["turning_point"] - radius) < 1e-15
+          and np.all(np.diff(energy[s.events.kind % 2 == 1]) < 0))
+    return StressResult(s.status.value, "last swing short of a3 = 0.3 m; energy falls at every impact (F = 0)", ok,
+                        f"last swing {radius:.6f} m after {len(s.events)} events")
+
+
+# --- turning back inside a zone ------------------------------------------------------------------
+
+
+def turned_back_short_zone_start() -> StressResult:
+    p = Parameters(M=1, K=100, F=0.01, b=0.1, a1=-0.02, a2=0.1)
+    s = solve_exact(p, 0.021, n_cycles=3)
+    ref = solve_reference(p, 0.021, n_cycles=3, rtol=1e-12)
+    # closed form: from the impact at a3 the zone motion about -F/K turns at -F/K - R
+    v4p = s.events.v_after[0]
+    turning = -p.zone_offset - math.hypot(p.a3 + p.zone_offset, v4p / p.omega)
+    ok = (s.status == ref.status == Status.TURNED_BACK_IN_ZONE and abs(s.detail["turning_point"] - turning) < 1e-15
+          and abs(s.t_final - ref.t_final) < 1e-8)
+    return StressResult(s.status.value, "turning point -F/K - R (closed form); time against solve_ivp rtol 1e-12",
+                        ok, f"turns at {turning:.9f} m, |t - t_ref| = {abs(s.t_final - ref.t_final):.1e} s")
+
+
+def stiff_spring_paper_geometry() -> StressResult:
+    p = _paper(K=1000.0, F=0.5)
+    s = solve_exact(p, 1.0, n_cycles=50)
+    v = s.cycles.velocity_before_impact
+    map_error = max(_rel(b, math.sqrt((1 - p.b) ** 4 * a * a + derived.map_constant(p))) for a, b in zip(v, v[1:]))
+    bound = 2 * p.zone_offset - p.a1  # the zone motion about F/K from a1 turns at or beyond 2 F/K - a1
+    ok = s.status == Status.COMPLETED and bound > p.a2 and map_error < 1e-12
+    return StressResult(
+        s.status.value, "K >> F/|a2| with a1 = -0.1, a2 = 0.05: the turning point 2F/K - a1 > a2, so no turning "
+        "back; Eq. (16) per cycle", ok, f"2F/K - a1 = {bound:.4f} m > a2; map error {map_error:.1e}",
+    )
+
+
+# --- the impact coefficient at its limits -----------------------------------------------------------
+
+
+def b_small() -> StressResult:
+    b = 1e-4
+    g = stability_grid(dict(M=1.0, K=1.0, a1=-0.1, a2=0.05), np.array([b]), np.array([1.0]))
+    mu = float(g["multiplier"][0])
+    fixed = math.sqrt(2 * 0.15 / (2 * b - b * b))
+    ok = abs(mu - (1 - b) ** 4) < 1e-8 and _rel(float(g["fixed_point"][0]), fixed) < 1e-9
+    return StressResult("completed", "measured multiplier against (1-b)^4 and fixed point against Eq. (19)", ok,
+                        f"mu2 = {mu:.12f}, 1 - mu2 = {1 - mu:.3e}")
+
+
+def b_one() -> StressResult:
+    s = solve_exact(_paper(b=1.0), 1.0, n_cycles=5)
+    impacts = (s.events.kind == 1) | (s.events.kind == 3)
+    ok = (s.status == Status.COMPLETED and np.all(s.events.v_after[impacts] == 0.0)
+          and np.allclose(s.cycles.velocity_before_impact[1:], math.sqrt(2 * 0.15), rtol=1e-14))
+    return StressResult(s.status.value, "v+ = 0 at every impact; from rest at a1, v^2 = 2 f (a2 - a1) next cycle",
+                        ok, f"velocity before impact {s.cycles.velocity_before_impact[-1]:.15f} m/s")
+
+
+def _zeno_reference(speed: float, distance: float, omega: float, ratio: float) -> float:
+    with mpmath.workdps(30):
+        x = mpmath.mpf(speed) / (mpmath.mpf(omega) * mpmath.mpf(distance))
+        total, term = mpmath.mpf(0), x
+        while term > mpmath.mpf("1e-20"):
+            total += mpmath.atan(term)
+            term *= mpmath.mpf(ratio)
+        total += term / (1 - mpmath.mpf(ratio))
+        return float(2 * total / mpmath.mpf(omega))
+
+
+def _chattering(b: float) -> StressResult:
+    p = _paper(b=b)
+    start = time.perf_counter()
+    s = solve_exact(p, 1.0, n_cycles=5)
+    wall = time.perf_counter() - start
+    t_hit = s.events.t[-1]
+    expected = t_hit + _zeno_reference(abs(s.events.v_after[-1]), abs(p.a1) if s.events.kind[-1] == 1 else p.a3,
+                                       p.omega, abs(1 - b))
+    ok = s.status == Status.CHATTERING and _rel(s.detail["t_accumulation"], expected) < 1e-12 and wall < 5
+    return StressResult(s.status.value, "accumulation time of the rebounds against a 30-digit sum", ok,
+                        f"impacts accumulate {s.detail['t_accumulation'] - t_hit:.6f} s after the first rebound")
+
+
+def b_between_one_and_two() -> StressResult:
+    return _chattering(1.5)
+
+
+def b_near_two() -> StressResult:
+    return _chattering(1.999)
+
+
+# --- grazing -----------------------------------------------------------------------------------
+
+
+def graze_on_impact_position() -> StressResult:
+    s = solve_exact(_paper(), 0.1, n_cycles=5)
+    ok = s.status == Status.STOPPED and s.detail["margin"] == 0.0
+    return StressResult(s.status.value, "turning point exactly at a3: not passed, no impact", ok,
+                        "released at rest at x0 = a3")
+
+
+def graze_just_inside() -> StressResult:
+    x0 = math.nextafter(0.1, 0.0)
+    s = solve_exact(_paper(), x0, n_cycles=5)
+    ok = s.status == Status.STOPPED and 0 < s.detail["margin"] < 1e-16
+    return StressResult(s.status.value, "turning point one float below a3: stopped", ok,
+                        f"margin {s.detail['margin']:.1e} m")
+
+
+def graze_just_beyond() -> StressResult:
+    p = _paper()
+    x0 = math.nextafter(0.1, 1.0)
+    s = solve_exact(p, x0, n_cycles=5)
+    # limit x0 -> a3+: the impact at a3 has no speed; from rest at a3 the zone and the free swing give
+    v_a4_sq = p.omega2 * (p.a3**2 - p.a4**2) + 2 * p.f * (p.a3 - p.a4)
+    v_limit = math.sqrt(v_a4_sq + p.omega2 * (p.a4**2 - p.a1**2))
+    first_speed = abs(s.events.v_before[0])
+    ok = (s.status == Status.COMPLETED and first_speed < 1e-7
+          and _rel(s.cycles.velocity_before_impact[0], v_limit) < 1e-12)
+    return StressResult(s.status.value, "turning point one float beyond a3: impact at ~0 m/s, then the motion of the "
+                        "limit from rest at a3 (closed form)", ok, f"first impact at {first_speed:.1e} m/s")
+
+
+def graze_zone_end() -> StressResult:
+    p = Parameters(M=1, K=100, F=0.01, b=0.1, a1=-0.02, a2=0.1)
+    # release x0 such that the zone motion after the impact at a3 turns exactly at a4 (50 digits)
+    with mpmath.workdps(50):
+        c = mpmath.mpf(p.F) / mpmath.mpf(p.K)
+        radius = -mpmath.mpf(p.a4) - c
+        x0 = float(mpmath.sqrt((radius**2 - (mpmath.mpf(p.a3) + c) ** 2) / mpmath.mpf(0.81) + mpmath.mpf(p.a3) ** 2))
+    s = solve_exact(p, x0, n_cycles=3)
+    if len(s.events) >= 2 and s.events.kind[1] == 4:  # it passed a4, at the speed of the grazing limit
+        ok = abs(s.events.v_before[1]) < 1e-6
+        detail = f"passed a4 at {abs(s.events.v_before[1]):.1e} m/s, then {s.status.value}"
+    else:  # it turned back in the zone, at the grazing point
+        ok = s.status == Status.TURNED_BACK_IN_ZONE and abs(s.detail["turning_point"] - p.a4) < 1e-15
+        detail = f"turned back {s.detail['turning_point'] - p.a4:.1e} m from a4"
+    ok = ok and not np.isnan(s.events.t).any()
+    return StressResult(s.status.value, "zone turning point within 1e-15 of a4: either outcome, consistent with the "
+                        "grazing limit", ok, detail)
+
+
+# --- scales ----------------------------------------------------------------------------------------
+
+
+def scales() -> StressResult:
+    worst, outcomes, count = 0.0, {}, 0
+    for K in (1e-3, 1.0, 1e3):
+        for M in (1e-3, 1.0, 1e3):
+            for F in (0.0, 1.0, 1e3):
+                p = Parameters(M=M, K=K, F=F, b=0.1, a1=-0.1, a2=0.05)
+                s = solve_exact(p, 1.0, n_cycles=20, record_trajectory=False)
+                outcomes[s.status.value] = outcomes.get(s.status.value, 0) + 1
+                count += 1
+                if s.status != Status.COMPLETED:
+                    continue
+                hp = solve_high_precision(p, 1.0, n_cycles=20)
+                for name in ("impact_time", "velocity_before_impact"):
+                    ref = np.array([float(v) for v in getattr(hp, name)])
+                    worst = max(worst, float(np.max(np.abs(getattr(s.cycles, name) - ref) / np.abs(ref))))
+    ok = worst < 1e-13 and outcomes.get("completed", 0) == count
+    return StressResult("completed" if ok else str(outcomes), "K, M in 1e-3..1e3 N/m, kg; F in 0..1e3 N: 20 cycles "
+                        "against 50 digits", ok, f"{count} runs, largest relative error {worst:.1e}")
+
+
+def near_origin() -> StressResult:
+    p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-1e-9, a2=1e-9)
+    s = solve_exact(p, 1.0, n_cycles=20, record_trajectory=False)
+    hp = solve_high_precision(p, 1.0, n_cycles=20)
+    worst = max(
+        float(np.max(np.abs(getattr(s.cycles, n) - np.array([float(v) for v in getattr(hp, n)]))
+                     / np.abs(np.array([float(v) for v in getattr(hp, n)]))))
+        for n in ("impact_time", "velocity_before_impact")
+    )
+    ok = s.status == Status.COMPLETED and worst < 1e-13
+    return StressResult(s.status.value, "a1 = -1e-9 m, a2 = 1e-9 m: 20 cycles against 50 digits", ok,
+                        f"largest relative error {worst:.1e}")
+
+
+CASES = [
+    StressCase("stop_below_a1", "the escapement stops: x0 below |a1|", stop_below_a1),
+    StressCase("stop_energy_runs_out", "the escapement stops: too little energy for the next impact",
+               stop_energy_runs_out),
+    StressCase("turned_back_in_zone", "the mass turns back inside an impulse zone", turned_back_short_zone_start),
+    StressCase("stiff_spring_paper_geometry", "stiff spring, K >> F/|a2|", stiff_spring_paper_geometry),
+    StressCase("b_small", "b -> 0 (b = 1e-4)", b_small),
+    StressCase("b_one", "b = 1: the mass stops at the impact position", b_one),
+    StressCase("b_between_one_and_two", "1 < b < 2 (b = 1.5): the impact reverses the velocity",
+               b_between_one_and_two),
+    StressCase("b_near_two", "b -> 2 (b = 1.999)", b_near_two),
+    StressCase("graze_on_impact_position", "grazing: turning point exactly at an impact position",
+               graze_on_impact_position),
+    StressCase("graze_just_inside", "grazing: turning point 1e-17 m short of an impact position", graze_just_inside),
+    StressCase("graze_just_beyond", "grazing: turning point 1e-17 m beyond an impact position", graze_just_beyond),
+    StressCase("graze_zone_end", "grazing: zone turning point within 1e-15 of its end", graze_zone_end),
+    StressCase("scales", "K and M from 1e-3 to 1e3, F from 0 to 1e3", scales),
+    StressCase("near_origin", "positions near the origin", near_origin),
+]
+
+
+def run_case(case: StressCase) -> StressResult:
+    """Run one case; an exception is a failed case, with its message, not a crash."""
+    try:
+        return case.run()
+    except Exception as err:  # a stress case must report, never crash the report
+        return StressResult("error", "ran without raising", False, f"{type(err).__name__}: {err}")
+
+
+def run_all() -> list[dict]:
+    rows = []
+    for case in CASES:
+        result = run_case(case)
+        rows.append({"case": case.name, "regime": case.regime, "outcome": result.outcome, "check": result.check,
+                     "passed": "yes" if result.passed else "no", "detail": result.detail})
+    return rows
