@@ -11,7 +11,6 @@ from __future__ import annotations
 import csv
 import math
 import os
-import tempfile
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -21,6 +20,7 @@ import xarray as xr
 import yaml
 
 from . import derived
+from .atomic import write_csv
 from . import paper_equations as pe
 from .events import EventKind
 from .parameters import Parameters
@@ -553,19 +553,7 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
 
 def write_claims_csv(rows: list[dict[str, str]], path: str | os.PathLike) -> None:
     """Write the table atomically."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", newline="") as handle:
-            writer = csv.DictWriter(handle, fieldnames=COLUMNS, lineterminator="\n")
-            writer.writeheader()
-            writer.writerows(rows)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    write_csv(rows, COLUMNS, path)
 
 
 def read_claims_csv(path: str | os.PathLike) -> list[dict[str, str]]:

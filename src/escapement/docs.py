@@ -16,9 +16,8 @@ from __future__ import annotations
 
 import os
 import re
-import tempfile
-from pathlib import Path
 
+from .atomic import atomic_path
 from .claims import COLUMNS, STATUSES
 
 __all__ = ["claims_table", "markdown_table", "render", "write_text"]
@@ -83,13 +82,5 @@ def render(
 
 def write_text(text: str, path: str | os.PathLike) -> None:
     """Write atomically."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w") as handle:
-            handle.write(text)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with atomic_path(path) as tmp:
+        tmp.write_text(text)

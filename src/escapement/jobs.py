@@ -13,6 +13,7 @@ import time
 from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 
+from .atomic import write_csv
 from .netcdf_io import read_netcdf, write_netcdf
 from .scene_config import initial_state_from, parameters_from
 from .scenes import checks_scene, phase_scene, poincare_scene, shock_scene
@@ -174,10 +175,6 @@ def render_docs(
 
 
 def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str, log: str) -> None:
-    import csv
-    import os
-    import tempfile
-
     from .benchmark import work_precision
 
     with logged(log, "run_work_precision") as logger:
@@ -185,15 +182,8 @@ def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str
             parameters_from(scene), initial_state_from(scene)[0], scene["n_cycles"],
             {k: list(v) for k, v in settings.items()}, scene["repeats"], log=logger.info,
         )
-        Path(output).parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=".work_precision.", suffix=".tmp", dir=Path(output).parent)
-        with os.fdopen(fd, "w", newline="") as handle:
-            writer = csv.DictWriter(handle, fieldnames=list(rows[0]), lineterminator="\n")
-            writer.writeheader()
-            for row in rows:
-                writer.writerow({k: (f"{v:.6e}" if isinstance(v, float) else v) for k, v in row.items()})
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, output)
+        formatted = [{k: (f"{v:.6e}" if isinstance(v, float) else v) for k, v in row.items()} for row in rows]
+        write_csv(formatted, list(rows[0]), output)
 
 
 def read_work_precision(path: str) -> list[dict]:
@@ -280,10 +270,6 @@ STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
 
 def run_stress(long_run: str, output: str, log: str) -> None:
     """Every stress case, and the very long run's bounds, as one CSV row each."""
-    import csv
-    import os
-    import tempfile
-
     from .stress import run_all
 
     with logged(log, "run_stress") as logger:
@@ -303,11 +289,4 @@ def run_stress(long_run: str, output: str, log: str) -> None:
         })
         for row in rows:
             logger.info("%s: %s (%s)", row["case"], row["passed"], row["detail"])
-        Path(output).parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=".summary.", suffix=".tmp", dir=Path(output).parent)
-        with os.fdopen(fd, "w", newline="") as handle:
-            writer = csv.DictWriter(handle, fieldnames=STRESS_COLUMNS, lineterminator="\n")
-            writer.writeheader()
-            writer.writerows(rows)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, output)
+        write_csv(rows, STRESS_COLUMNS, output)

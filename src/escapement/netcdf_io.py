@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 
 import xarray as xr
+
+from .atomic import atomic_path
 
 __all__ = ["DatasetError", "write_netcdf", "read_netcdf"]
 
@@ -20,22 +21,11 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
 
     Data variables are compressed (zlib level 4); coordinates get no ``_FillValue``.
     """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     encoding = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
     encoding.update({name: {"_FillValue": None} for name in ds.coords})
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
+    with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    return Path(path)
 
 
 def read_netcdf(path: str | os.PathLike, required: tuple[str, ...] = ()) -> xr.Dataset:
