@@ -244,9 +244,14 @@ def merge_stability(paths: Sequence[str], output: str, log: str) -> None:
     import numpy as np
     import xarray as xr
 
+    from .provenance import history_line, source_string
+
     with logged(log, "merge_stability") as logger:
         chunks = [read_netcdf(p, ("b", "F", "multiplier", "outcome")) for p in paths]
-        merged = xr.concat(chunks, dim="b", combine_attrs="drop_conflicts")
+        merged = xr.concat(chunks, dim="b", combine_attrs="override")  # the first chunk's attributes...
+        merged.attrs.update(  # ...with the provenance of this merge
+            source=source_string(), history=history_line(f"merged from {len(chunks)} chunks by escapement")
+        )
         ratios = [c.attrs["scalar_seconds_per_trajectory"] / c.attrs["ensemble_seconds_per_trajectory"] for c in chunks]
         merged.attrs.update(
             ensemble_speedup_per_trajectory=float(np.median(ratios)),
