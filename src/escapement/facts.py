@@ -62,7 +62,7 @@ def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: x
     facts["long_converged_after"] = Fact(str(int(a["converged_after"])))
     facts["long_exact_wall"] = Fact(fmt(a["exact_wall_s"], 3), measured=True)
     facts["long_ivp_wall"] = Fact(fmt(a["ivp_wall_s"], 3), measured=True)
-    facts["long_any_nan"] = Fact("no" if not a["any_nan"] else "yes")
+    facts["long_nan"] = Fact("none" if not a["any_nan"] else "some")
     for solver in ("exact", "ivp"):
         drift = long_run[f"drift_{solver}"].dropna("cycle")
         facts[f"long_{solver}_last_cycle"] = Fact(str(int(drift["cycle"].values[-1])))
