@@ -6,7 +6,6 @@ paper's form is kept as a strict xfail that says why.
 
 import math
 
-import numpy as np
 import pytest
 
 from escapement import EventKind, Parameters, solve_exact

@@ -30,11 +30,6 @@ class Status(str, Enum):
     EVENT_LIMIT = "event_limit"
     """The bound on the number of events was reached before the run ended."""
 
-    @property
-    def in_regime(self) -> bool:
-        """True when the motion stayed in the escapement regime to the end of the run."""
-        return self in (Status.COMPLETED, Status.EVENT_LIMIT)
-
 
 def stopped_message(t: float, radius: float, missed: dict[str, float]) -> str:
     """``missed`` maps the name of each impact position the swing cannot reach to its value."""

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 
+from .derived import cycle_velocities
 from .parameters import Parameters
 
 __all__ = [
@@ -100,8 +101,6 @@ def step_times_22(v1: float, p: Parameters, left_amplitude: float) -> dict[str, 
 
     with ``R1 = sqrt((v1p/w)^2 + (a1 - f/w^2)^2)``, ``h3 = sqrt((a3 + f/w^2)^2 + (v4p/w)^2)``.
     """
-    from .derived import cycle_velocities
-
     w = p.omega
     c = p.zone_offset
     vel = cycle_velocities(v1, p)
@@ -125,8 +124,6 @@ def period_23(v1: float, p: Parameters) -> float:
     ``R1 = |(a1 - c, v1p/w)|``, ``h2 = |(a2, v2/w)|``, ``R3 = |(a3 + c, v4p/w)|``,
     ``h5 = |(a4, v5/w)|``; velocities from the energy balance.
     """
-    from .derived import cycle_velocities
-
     w = p.omega
     c = p.zone_offset
     vel = cycle_velocities(v1, p)
