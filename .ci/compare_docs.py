@@ -4,7 +4,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from escapement.facts import mask_measured
+from escapement.pipeline.facts import mask_measured
 
 stale = []
 for name in ("README.md", "REPLICATION.md"):

@@ -3,9 +3,9 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
-from escapement.config_check import config_error
-from escapement.parameters import ParameterError
-from escapement.scene_config import MODEL_KEYS, initial_state_from, parameters_from
+from escapement.pipeline.config import config_error
+from escapement.model.parameters import ParameterError
+from escapement.pipeline.scene_config import MODEL_KEYS, initial_state_from, parameters_from
 
 _problem = config_error(
     config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"

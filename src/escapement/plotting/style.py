@@ -12,7 +12,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from ..atomic import atomic_path  # noqa: E402
+from ..io.atomic import atomic_path  # noqa: E402
 
 __all__ = ["style", "save_figure", "INK", "ACCENT", "MUTED", "GUIDE"]
 

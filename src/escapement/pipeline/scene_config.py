@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from .parameters import ParameterError, Parameters, check_initial_state
+from ..model.parameters import ParameterError, Parameters, check_initial_state
 
 __all__ = ["MODEL_KEYS", "parameters_from", "initial_state_from"]
 

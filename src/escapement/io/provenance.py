@@ -16,7 +16,7 @@ REFERENCE = (
 
 
 def package_version() -> str:
-    from . import __version__
+    from .. import __version__
 
     return __version__
 

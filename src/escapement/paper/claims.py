@@ -19,12 +19,12 @@ import numpy as np
 import xarray as xr
 import yaml
 
-from . import derived
-from .atomic import write_csv
-from . import paper_equations as pe
-from .events import EventKind
-from .parameters import Parameters
-from .scene_config import MODEL_KEYS
+from ..io.atomic import write_csv
+from ..model.events import EventKind
+from ..model.parameters import Parameters
+from ..model.quantities import MODEL_KEYS
+from . import corrected as derived
+from . import printed as pe
 
 __all__ = ["COLUMNS", "STATUSES", "Evidence", "Verdict", "load_claims", "evaluate", "write_claims_csv", "read_claims_csv"]
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .events import EventKind
+from ..model.events import EventKind
+from ..solvers.result import Solution
 from .provenance import REFERENCE, history_line, source_string
-from .solution import Solution
 
 __all__ = [
     "cycle_variables",

@@ -11,9 +11,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .exact import solve_exact
-from .outcome import Status
-from .parameters import Parameters
+import numpy as np
+
+from ..model.parameters import Parameters
+from ..model.status import Status
+from ..solvers.ensemble import solve_ensemble
+from ..solvers.exact import solve_exact
 
 __all__ = ["CycleMeasurement", "return_map", "measure_cycle"]
 
@@ -21,12 +24,23 @@ __all__ = ["CycleMeasurement", "return_map", "measure_cycle"]
 RELATIVE_STEP = 1e-5
 
 
-def return_map(params: Parameters, v: float) -> tuple[float, float]:
-    """``(v_in, P(v_in))``: the velocity of the first impact at a1 (v up to rounding) and of the next."""
+class NoReturn(ValueError):
+    """The motion from the section leaves the regime before it returns to the section."""
+
+
+def return_map(params: Parameters, v: float, strict: bool = True) -> tuple[float, float]:
+    """``(v_in, P(v_in))``: the velocity of the first impact at a1 (v up to rounding) and of the next.
+
+    When the motion leaves the regime first, raise :class:`NoReturn` (``strict``) or return NaN
+    for ``P(v_in)``.
+    """
     release = -math.hypot(params.a1, v / params.omega)
     run = solve_exact(params, release, 0.0, n_cycles=2, record_trajectory=False)
     if run.status != Status.COMPLETED or len(run.cycles) < 2:
-        raise ValueError(f"no return to the section from v = {v!r}: {run.message}")
+        if not strict:
+            first = run.cycles.velocity_before_impact
+            return (float(first[0]) if len(first) else math.nan), math.nan
+        raise NoReturn(f"no return to the section from v = {v!r}: {run.message}")
     return float(run.cycles.velocity_before_impact[0]), float(run.cycles.velocity_before_impact[1])
 
 
@@ -67,16 +81,13 @@ def measure_cycle(params: Parameters, x0: float, n_cycles: int = 300) -> CycleMe
 
 def ensemble_return_map(model: dict, b, F, v):
     """:func:`return_map` for arrays: ``(v_in, P(v_in), period, status codes)`` at every ``(b, F, v)``."""
-    import numpy as np
-
-    from .ensemble import solve_ensemble
-
     omega = math.sqrt(model["K"] / model["M"])
     out = solve_ensemble(
         model["M"], model["K"], F, b, model["a1"], model["a2"], model.get("a3"), model.get("a4"),
         x0=-np.hypot(model["a1"], np.asarray(v) / omega), n_cycles=2, amplitude=False,
     )
-    return out.velocity_before_impact[:, 0], out.velocity_before_impact[:, 1], out.period[:, 0], out.status
+    c = out.cycles
+    return c.velocity_before_impact[:, 0], c.velocity_before_impact[:, 1], c.period[:, 0], out.status
 
 
 def stability_grid(model: dict, b, F, iterations: int = 40):
@@ -87,10 +98,6 @@ def stability_grid(model: dict, b, F, iterations: int = 40):
     Returns a dict of arrays: ``fixed_point``, ``multiplier``, ``period``, ``status``,
     ``newton_converged``.
     """
-    import numpy as np
-
-    from .ensemble import STATUS_CODES
-
     b = np.asarray(b, dtype=float)
     F = np.asarray(F, dtype=float)
     omega = math.sqrt(model["K"] / model["M"])
@@ -105,14 +112,14 @@ def stability_grid(model: dict, b, F, iterations: int = 40):
     for _ in range(iterations):
         v_in, v_out, _, status = ensemble_return_map(model, b, F, v)
         step = (v_out - v_in) / (1.0 - slope_at(v))
-        ok = np.isfinite(step) & (status == STATUS_CODES[Status.COMPLETED])
+        ok = np.isfinite(step) & (status == Status.COMPLETED.code)
         v = np.where(ok, v_in + step, v)
         # 1 / (1 - slope) magnifies rounding as b -> 0, hence a tolerance above 1e-16
         converged = ok & (np.abs(step) <= 1e-12 * np.abs(v))
         if not (ok & ~converged).any():
             break
     v_in, _, period, status = ensemble_return_map(model, b, F, v)
-    good = status == STATUS_CODES[Status.COMPLETED]
+    good = status == Status.COMPLETED.code
     return {
         "fixed_point": np.where(good, v_in, np.nan),
         "multiplier": np.where(good, slope_at(v), np.nan),

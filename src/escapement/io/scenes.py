@@ -8,16 +8,28 @@
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 import xarray as xr
 
-from .dataset import cycle_variables, dataset, event_variables, impact_variables, sample_variables, table_dataset
-from .derived import fixed_point
-from .exact import solve_exact
-from .paper_equations import fixed_point_19
-from .parameters import ParameterError, Parameters
-from .scene_config import MODEL_KEYS, initial_state_from, parameters_from
-from .stability import measure_cycle
+from ..model.parameters import ParameterError, Parameters, check_initial_state
+from ..model.quantities import MODEL_KEYS, PARAMETERS
+from ..model.status import Status, flag_attributes
+from ..paper.corrected import fixed_point
+from ..paper.poincare import ensemble_return_map, measure_cycle, return_map, stability_grid
+from ..paper.printed import fixed_point_19
+from ..solvers.exact import solve_exact
+from ..studies.long_run import long_run
+from .dataset import (
+    cycle_variables,
+    dataset,
+    event_variables,
+    global_attributes,
+    impact_variables,
+    sample_variables,
+    table_dataset,
+)
 
 __all__ = ["poincare_scene", "shock_scene", "phase_scene", "checks_scene"]
 
@@ -99,16 +111,13 @@ def phase_scene(params: Parameters, x0: float, n_cycles: int, samples_per_period
     )
 
 
-UNITS = {"M": "kg", "K": "N m-1", "F": "N", "b": "1", "a1": "m", "a2": "m", "a3": "m", "a4": "m"}
-
-
 def checks_scene(cases: list[dict], n_cycles: int) -> xr.Dataset:
     """Measure every case (a mapping with ``group``, ``label``, the model keys and ``x0``)."""
     n_cycles = _positive_int("n_cycles", n_cycles)
     runs = []
     for case in cases:
-        params = parameters_from(case)
-        x0, _ = initial_state_from(case)
+        params = Parameters.from_mapping(case)
+        x0, _ = check_initial_state(case["x0"], case.get("v0", 0.0))
         runs.append((case, params, x0, measure_cycle(params, x0, n_cycles)))
     columns = {
         "label": ([c["label"] for c, *_ in runs], None, "name of the case"),
@@ -128,7 +137,8 @@ def checks_scene(cases: list[dict], n_cycles: int) -> xr.Dataset:
         ),
     }
     for key in MODEL_KEYS:
-        columns[key] = ([getattr(p, key) for _, p, _, _ in runs], UNITS[key], f"model parameter {key}")
+        q = PARAMETERS[key]
+        columns[key] = ([getattr(p, key) for _, p, _, _ in runs], q.units, q.long_name)
     return table_dataset(
         columns, "Measured Poincare maps for the claims register", "checks", solver="exact", n_cycles=n_cycles
     )
@@ -136,9 +146,6 @@ def checks_scene(cases: list[dict], n_cycles: int) -> xr.Dataset:
 
 def long_run_scene(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_rtol: float, ivp_cycles: int):
     """Errors of the exact solver over ``n_cycles`` and of ``solve_ivp`` over ``ivp_cycles``, against 50 digits."""
-    from .dataset import global_attributes
-    from .longrun import long_run
-
     r = long_run(params, x0, _positive_int("n_cycles", n_cycles), ivp_method, ivp_rtol, _positive_int("ivp_cycles", ivp_cycles))
     coords = {"cycle": ("cycle", r["cycles"].astype(np.int32), {"long_name": "cycle number", "units": "1"})}
     names = {
@@ -175,12 +182,6 @@ def long_run_scene(params: Parameters, x0: float, n_cycles: int, ivp_method: str
 def stability_chunk_scene(model: dict, b_values, F_values, speed_sample: int = 100) -> xr.Dataset:
     """Fixed point and measured multiplier over the grid ``b_values x F_values`` (ensemble solver),
     and the cost per trajectory of the ensemble against looping the scalar solver on a sample."""
-    import time
-
-    from .dataset import global_attributes
-    from .ensemble import STATUS_CODES
-    from .stability import ensemble_return_map, return_map, stability_grid
-
     b_values = np.asarray(b_values, dtype=float)
     F_values = np.asarray(F_values, dtype=float)
     bb, ff = np.meshgrid(b_values, F_values, indexing="ij")
@@ -195,10 +196,7 @@ def stability_chunk_scene(model: dict, b_values, F_values, speed_sample: int = 1
     pick = np.linspace(0, bb.size - 1, min(speed_sample, bb.size)).astype(int)
     start = time.perf_counter()
     for i in pick:
-        try:
-            return_map(Parameters(**{**model, "F": ff.ravel()[i], "b": bb.ravel()[i]}), v[i])
-        except ValueError:  # the motion leaves the regime (b > 1): that is part of the work too
-            pass
+        return_map(Parameters(**{**model, "F": ff.ravel()[i], "b": bb.ravel()[i]}), v[i], strict=False)
     scalar_per_trajectory = (time.perf_counter() - start) / len(pick)
     shape = bb.shape
     dims = ("b", "F")
@@ -211,7 +209,6 @@ def stability_chunk_scene(model: dict, b_values, F_values, speed_sample: int = 1
         return xr.DataArray(np.asarray(values).reshape(shape), dims=dims, coords=coords,
                             attrs={"units": units, "long_name": long_name, **attrs})
 
-    codes = list(STATUS_CODES.values())
     variables = {
         "multiplier": grid_var(grid["multiplier"], "1", "multiplier mu_2 measured from the simulated return map"),
         "multiplier_eq21": grid_var((1 - bb) ** 4, "1", "multiplier (1 - b)**4 of Eq. (21)"),
@@ -219,9 +216,7 @@ def stability_chunk_scene(model: dict, b_values, F_values, speed_sample: int = 1
         "period": grid_var(grid["period"], "s", "period of the cycle at the fixed point"),
         "outcome": xr.DataArray(
             np.asarray(grid["status"], dtype=np.int8).reshape(shape), dims=dims, coords=coords,
-            attrs={"long_name": "how the cycle from the fixed point ended",
-                   "flag_values": np.array(codes, dtype=np.int8),
-                   "flag_meanings": " ".join(s.value for s in STATUS_CODES)},
+            attrs={"long_name": "how the cycle from the fixed point ended", **flag_attributes()},
         ),
     }
     attrs = global_attributes(

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 
-from .parameters import Parameters
+from ..model.parameters import Parameters
 
 __all__ = [
     "cycle_velocities",

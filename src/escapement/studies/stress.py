@@ -16,13 +16,13 @@ from dataclasses import dataclass
 import mpmath
 import numpy as np
 
-from . import derived
-from .exact import solve_exact
-from .highprecision import solve_high_precision
-from .outcome import Status
-from .parameters import Parameters
-from .reference import solve_reference
-from .stability import stability_grid
+from ..model.parameters import Parameters
+from ..model.status import Status
+from ..paper import corrected as derived
+from ..paper.poincare import stability_grid
+from ..solvers.exact import solve_exact
+from ..solvers.high_precision import solve_high_precision
+from ..solvers.reference import solve_reference
 
 __all__ = ["CASES", "StressCase", "StressResult", "run_all", "run_case"]
 
@@ -67,7 +67,7 @@ def stop_energy_runs_out() -> StressResult:
     s = solve_exact(p, 1.0, n_cycles=100)
     radius = math.hypot(s.events.x[-1], s.events.v_after[-1] / p.omega)
     energy = 0.5 * p.M * s.events.v_before**2 + 0.5 * p.K * s.events.x**2
-    ok = (s.status == Status.STOPPED and radius < p.a3 and abs(s.detail["turning_point"] - radius) < 1e-15
+    ok = (s.status == Status.STOPPED and radius < p.a3 and abs(s.exit.turning_point - radius) < 1e-15
           and np.all(np.diff(energy[s.events.kind % 2 == 1]) < 0))
     return StressResult(s.status.value, "last swing short of a3 = 0.3 m; energy falls at every impact (F = 0)", ok,
                         f"last swing {radius:.6f} m after {len(s.events)} events")
@@ -83,7 +83,7 @@ def turned_back_short_zone_start() -> StressResult:
     # closed form: from the impact at a3 the zone motion about -F/K turns at -F/K - R
     v4p = s.events.v_after[0]
     turning = -p.zone_offset - math.hypot(p.a3 + p.zone_offset, v4p / p.omega)
-    ok = (s.status == ref.status == Status.TURNED_BACK_IN_ZONE and abs(s.detail["turning_point"] - turning) < 1e-15
+    ok = (s.status == ref.status == Status.TURNED_BACK_IN_ZONE and abs(s.exit.turning_point - turning) < 1e-15
           and abs(s.t_final - ref.t_final) < 1e-8)
     return StressResult(s.status.value, "turning point -F/K - R (closed form); time against solve_ivp rtol 1e-12",
                         ok, f"turns at {turning:.9f} m, |t - t_ref| = {abs(s.t_final - ref.t_final):.1e} s")
@@ -143,9 +143,9 @@ def _chattering(b: float) -> StressResult:
     t_hit = s.events.t[-1]
     expected = t_hit + _zeno_reference(abs(s.events.v_after[-1]), abs(p.a1) if s.events.kind[-1] == 1 else p.a3,
                                        p.omega, abs(1 - b))
-    ok = s.status == Status.CHATTERING and _rel(s.detail["t_accumulation"], expected) < 1e-12 and wall < 5
+    ok = s.status == Status.CHATTERING and _rel(s.exit.t_accumulation, expected) < 1e-12 and wall < 5
     return StressResult(s.status.value, "accumulation time of the rebounds against a 30-digit sum", ok,
-                        f"impacts accumulate {s.detail['t_accumulation'] - t_hit:.6f} s after the first rebound")
+                        f"impacts accumulate {s.exit.t_accumulation - t_hit:.6f} s after the first rebound")
 
 
 def b_between_one_and_two() -> StressResult:
@@ -161,7 +161,7 @@ def b_near_two() -> StressResult:
 
 def graze_on_impact_position() -> StressResult:
     s = solve_exact(_paper(), 0.1, n_cycles=5)
-    ok = s.status == Status.STOPPED and s.detail["margin"] == 0.0
+    ok = s.status == Status.STOPPED and s.exit.margin == 0.0
     return StressResult(s.status.value, "turning point exactly at a3: not passed, no impact", ok,
                         "released at rest at x0 = a3")
 
@@ -169,9 +169,9 @@ def graze_on_impact_position() -> StressResult:
 def graze_just_inside() -> StressResult:
     x0 = math.nextafter(0.1, 0.0)
     s = solve_exact(_paper(), x0, n_cycles=5)
-    ok = s.status == Status.STOPPED and 0 < s.detail["margin"] < 1e-16
+    ok = s.status == Status.STOPPED and 0 < s.exit.margin < 1e-16
     return StressResult(s.status.value, "turning point one float below a3: stopped", ok,
-                        f"margin {s.detail['margin']:.1e} m")
+                        f"margin {s.exit.margin:.1e} m")
 
 
 def graze_just_beyond() -> StressResult:
@@ -200,8 +200,8 @@ def graze_zone_end() -> StressResult:
         ok = abs(s.events.v_before[1]) < 1e-6
         detail = f"passed a4 at {abs(s.events.v_before[1]):.1e} m/s, then {s.status.value}"
     else:  # it turned back in the zone, at the grazing point
-        ok = s.status == Status.TURNED_BACK_IN_ZONE and abs(s.detail["turning_point"] - p.a4) < 1e-15
-        detail = f"turned back {s.detail['turning_point'] - p.a4:.1e} m from a4"
+        ok = s.status == Status.TURNED_BACK_IN_ZONE and abs(s.exit.turning_point - p.a4) < 1e-15
+        detail = f"turned back {s.exit.turning_point - p.a4:.1e} m from a4"
     ok = ok and not np.isnan(s.events.t).any()
     return StressResult(s.status.value, "zone turning point within 1e-15 of a4: either outcome, consistent with the "
                         "grazing limit", ok, detail)
@@ -221,7 +221,7 @@ def scales() -> StressResult:
                 count += 1
                 if s.status != Status.COMPLETED:
                     continue
-                hp = solve_high_precision(p, 1.0, n_cycles=20)
+                hp = solve_high_precision(p, 1.0, n_cycles=20).cycles
                 for name in ("impact_time", "velocity_before_impact"):
                     ref = np.array([float(v) for v in getattr(hp, name)])
                     worst = max(worst, float(np.max(np.abs(getattr(s.cycles, name) - ref) / np.abs(ref))))
@@ -233,7 +233,7 @@ def scales() -> StressResult:
 def near_origin() -> StressResult:
     p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-1e-9, a2=1e-9)
     s = solve_exact(p, 1.0, n_cycles=20, record_trajectory=False)
-    hp = solve_high_precision(p, 1.0, n_cycles=20)
+    hp = solve_high_precision(p, 1.0, n_cycles=20).cycles
     worst = max(
         float(np.max(np.abs(getattr(s.cycles, n) - np.array([float(v) for v in getattr(hp, n)]))
                      / np.abs(np.array([float(v) for v in getattr(hp, n)]))))

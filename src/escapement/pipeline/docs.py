@@ -5,7 +5,7 @@ A template is Markdown with placeholders:
 * ``{{ claims_table }}``: the verdict table;
 * ``{{ claims_count:<status> }}`` and ``{{ claims_count:total }}``;
 * ``{{ claim:<claim_id>:<column> }}``: one cell of ``results/claims.csv``;
-* ``{{ fact:<name> }}``: a number from :func:`escapement.facts.collect_facts` (measured ones are
+* ``{{ fact:<name> }}``: a number from :func:`escapement.pipeline.facts.collect_facts` (measured ones are
   wrapped in ``<!--m-->...<!--/m-->``);
 * ``{{ table:<name> }}``: a Markdown table made by the caller (for example ``stress``).
 
@@ -17,8 +17,8 @@ from __future__ import annotations
 import os
 import re
 
-from .atomic import atomic_path
-from .claims import COLUMNS, STATUSES
+from ..io.atomic import atomic_path
+from ..paper.claims import COLUMNS, STATUSES
 
 __all__ = ["claims_table", "markdown_table", "render", "write_text"]
 

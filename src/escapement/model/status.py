@@ -1,14 +1,21 @@
-"""Typed outcomes: how a run ended, with a readable message, instead of an exception."""
+"""Typed outcomes: how a run ended, with a readable message, instead of an exception.
+
+Each outcome has a stable integer code (:attr:`Status.code`), the one written to netCDF files
+with CF ``flag_values`` and ``flag_meanings`` (:func:`flag_attributes`); the codes are fixed
+here, not taken from the order of the members.
+"""
 
 from __future__ import annotations
 
 from enum import Enum
 
-__all__ = ["Status"]
+import numpy as np
+
+__all__ = ["Status", "flag_attributes"]
 
 
 class Status(str, Enum):
-    """How a run ended."""
+    """How a run ended. ``value`` is the name written in text; :attr:`code` the stored integer."""
 
     COMPLETED = "completed"
     """The requested number of cycles, or the requested end time, was reached."""
@@ -29,6 +36,43 @@ class Status(str, Enum):
 
     EVENT_LIMIT = "event_limit"
     """The bound on the number of events was reached before the run ended."""
+
+    @property
+    def code(self) -> int:
+        """The stable integer code of this outcome (stored in netCDF files)."""
+        return CODES[self]
+
+    @property
+    def success(self) -> bool:
+        """True when the requested cycles or end time were reached."""
+        return self is Status.COMPLETED
+
+    @classmethod
+    def from_code(cls, code: int) -> Status:
+        """The outcome whose :attr:`code` is ``code``."""
+        for status, value in CODES.items():
+            if value == int(code):
+                return status
+        raise ValueError(f"code = {code!r} is invalid: code must be one of {sorted(CODES.values())}")
+
+
+#: The stored codes. Never renumber: files written before would change meaning.
+CODES = {
+    Status.COMPLETED: 0,
+    Status.STOPPED: 1,
+    Status.TURNED_BACK_IN_ZONE: 2,
+    Status.CHATTERING: 3,
+    Status.EVENT_LIMIT: 4,
+}
+
+
+def flag_attributes() -> dict:
+    """CF attributes of a variable holding :attr:`Status.code` values."""
+    ordered = sorted(CODES.items(), key=lambda item: item[1])
+    return {
+        "flag_values": np.array([code for _, code in ordered], dtype=np.int8),
+        "flag_meanings": " ".join(status.value for status, _ in ordered),
+    }
 
 
 def stopped_message(t: float, radius: float, missed: dict[str, float]) -> str:

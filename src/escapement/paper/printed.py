@@ -4,7 +4,7 @@ Each function reproduces one equation as it reads in the paper, with the signs o
 ``a1 .. a4`` taken as signed positions (``a1 < 0 < a3``).  Where the text is
 garbled, the docstring states the reading.  Whether each equation holds is
 decided by the tests against the exact solver and recorded in REPLICATION.md;
-the corrected forms live in :mod:`escapement.derived`.
+the corrected forms live in :mod:`escapement.paper.corrected`.
 
 Notation: ``v1`` is the velocity just before the impact at a1 (``xdot_1(k)``),
 ``v1p = (1 - b) v1`` just after it; ``v2`` the velocity at a2; ``v4`` before the
@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import math
 
-from .derived import cycle_velocities
-from .parameters import Parameters
+from ..model.parameters import Parameters
+from .corrected import cycle_velocities
 
 __all__ = [
     "step_velocities",

@@ -2,7 +2,7 @@
 
 Workload: ``n_cycles`` cycles from release at rest (the paper's Fig. 3 case (a) by default).
 Errors are relative, at the last cycle, for the velocity before impact and the impact time,
-against the 50-digit reference of :mod:`escapement.highprecision`.
+against the 50-digit reference of :mod:`escapement.solvers.high_precision`.
 """
 
 from __future__ import annotations
@@ -12,12 +12,12 @@ import statistics
 import time
 from collections.abc import Callable
 
-from . import derived
-from .exact import solve_exact
-from .highprecision import solve_high_precision
-from .naive import solve_naive
-from .parameters import Parameters
-from .reference import solve_reference
+from ..model.parameters import Parameters
+from ..paper import corrected as derived
+from ..solvers.exact import solve_exact
+from ..solvers.high_precision import solve_high_precision
+from ..solvers.naive import solve_naive
+from ..solvers.reference import solve_reference
 
 __all__ = ["METHODS", "closed_form_map", "run_method", "work_precision"]
 
@@ -66,8 +66,10 @@ def run_method(method: str, setting: float | None, params: Parameters, x0: float
             raise RuntimeError(f"{method} at rtol {setting:g} ended early: {run.message}")
         return float(run.cycles.velocity_before_impact[-1]), float(run.cycles.impact_time[-1])
     if method == "naive-RK4":
-        times, speeds = solve_naive(params, x0, 0.0, n_cycles, setting)
-        return speeds[n_cycles - 1], times[n_cycles - 1]
+        run = solve_naive(params, x0, n_cycles=n_cycles, step=setting)
+        if len(run.cycles) < n_cycles:
+            raise RuntimeError(f"naive-RK4 at step {setting:g} ended early: {run.message}")
+        return float(run.cycles.velocity_before_impact[-1]), float(run.cycles.impact_time[-1])
     raise ValueError(f"method = {method!r} is invalid: method must be one of {', '.join(METHODS)}")
 
 
@@ -90,7 +92,7 @@ def work_precision(
     for method in settings:
         if method not in METHODS:
             raise ValueError(f"method = {method!r} is invalid: method must be one of {', '.join(METHODS)}")
-    ref = solve_high_precision(params, x0, n_cycles=n_cycles)
+    ref = solve_high_precision(params, x0, n_cycles=n_cycles).cycles
     v_ref, t_ref = float(ref.velocity_before_impact[-1]), float(ref.impact_time[-1])
     rows = []
     for method, values in settings.items():

@@ -1,7 +1,7 @@
 """The work behind each workflow rule, so that the workflow's scripts stay thin.
 
 Every job logs what it did to its log file, writes its outputs atomically and
-reads its inputs through :func:`escapement.netcdf_io.read_netcdf`, which names a
+reads its inputs through :func:`escapement.io.netcdf.read_netcdf`, which names a
 damaged file.
 """
 
@@ -13,10 +13,25 @@ import time
 from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 
-from .atomic import write_csv
-from .netcdf_io import read_netcdf, write_netcdf
-from .scene_config import initial_state_from, parameters_from
-from .scenes import checks_scene, phase_scene, poincare_scene, shock_scene
+from ..io.atomic import write_csv
+from ..io.netcdf import DatasetError, read_netcdf, write_netcdf
+from ..io.provenance import history_line, source_string
+from ..io.scenes import (
+    checks_scene,
+    long_run_scene,
+    phase_scene,
+    poincare_scene,
+    shock_scene,
+    stability_chunk_scene,
+)
+from ..model.parameters import Parameters, check_initial_state
+from ..paper.claims import Evidence, evaluate, load_claims, read_claims_csv, write_claims_csv
+from ..plotting import fig3, fig4, fig5, long_run, save_figure, stability_map, work_precision
+from ..studies.benchmark import work_precision as run_benchmark
+from ..studies.stress import run_all
+from .docs import markdown_table, render, write_text
+from .facts import collect_facts
+
 
 __all__ = [
     "run_stress",
@@ -42,7 +57,7 @@ __all__ = [
 @contextlib.contextmanager
 def logged(log: str | Path, what: str) -> Iterator[logging.Logger]:
     """Log to ``log`` (replacing it) for the duration of one job."""
-    logger = logging.getLogger(f"escapement.jobs.{what}")
+    logger = logging.getLogger(f"escapement.pipeline.{what}")
     logger.setLevel(logging.INFO)
     Path(log).parent.mkdir(parents=True, exist_ok=True)
     handler = logging.FileHandler(log, mode="w")
@@ -60,6 +75,10 @@ def logged(log: str | Path, what: str) -> Iterator[logging.Logger]:
         handler.close()
 
 
+def _x0(scene: Mapping) -> float:
+    return check_initial_state(scene["x0"], scene.get("v0", 0.0))[0]
+
+
 def _report(logger: logging.Logger, scene: Mapping, ds) -> None:
     logger.info("parameters: %s", dict(scene))
     logger.info("outcome: %s: %s", ds.attrs["outcome"], ds.attrs["outcome_message"])
@@ -67,7 +86,7 @@ def _report(logger: logging.Logger, scene: Mapping, ds) -> None:
 
 def simulate_poincare(scene: Mapping, output: str, log: str) -> None:
     with logged(log, "simulate_poincare") as logger:
-        ds = poincare_scene(parameters_from(scene), initial_state_from(scene)[0], scene["n_cycles"])
+        ds = poincare_scene(Parameters.from_mapping(scene), _x0(scene), scene["n_cycles"])
         _report(logger, scene, ds)
         write_netcdf(ds, output)
 
@@ -75,8 +94,8 @@ def simulate_poincare(scene: Mapping, output: str, log: str) -> None:
 def simulate_shock(scene: Mapping, output: str, log: str) -> None:
     with logged(log, "simulate_shock") as logger:
         ds = shock_scene(
-            parameters_from(scene),
-            initial_state_from(scene)[0],
+            Parameters.from_mapping(scene),
+            _x0(scene),
             scene["velocity_window"],
             scene["acceleration_window"],
             scene["samples_per_second"],
@@ -88,7 +107,7 @@ def simulate_shock(scene: Mapping, output: str, log: str) -> None:
 def simulate_phase(scene: Mapping, output: str, log: str) -> None:
     with logged(log, "simulate_phase") as logger:
         ds = phase_scene(
-            parameters_from(scene), initial_state_from(scene)[0], scene["n_cycles"], scene["samples_per_period"]
+            Parameters.from_mapping(scene), _x0(scene), scene["n_cycles"], scene["samples_per_period"]
         )
         _report(logger, scene, ds)
         write_netcdf(ds, output)
@@ -108,23 +127,17 @@ PHASE_VARIABLES = ("t", "displacement", "velocity", "impact_time", "impact_posit
 
 
 def plot_fig3(labels: Sequence[str], paths: Sequence[str], png: str, pdf: str, log: str) -> None:
-    from .plotting import fig3, save_figure
-
     with logged(log, "plot_fig3"):
         cases = {label: read_netcdf(path, CYCLE_VARIABLES) for label, path in zip(labels, paths)}
         save_figure(fig3(cases), png, pdf)
 
 
 def plot_fig4(path: str, png: str, pdf: str, log: str) -> None:
-    from .plotting import fig4, save_figure
-
     with logged(log, "plot_fig4"):
         save_figure(fig4(read_netcdf(path, SHOCK_VARIABLES)), png, pdf)
 
 
 def plot_fig5(labels: Sequence[str], paths: Sequence[str], png: str, pdf: str, log: str) -> None:
-    from .plotting import fig5, save_figure
-
     with logged(log, "plot_fig5"):
         panels = {label: read_netcdf(path, PHASE_VARIABLES) for label, path in zip(labels, paths)}
         save_figure(fig5(panels), png, pdf)
@@ -133,8 +146,6 @@ def plot_fig5(labels: Sequence[str], paths: Sequence[str], png: str, pdf: str, l
 def check_claims(
     register: str, fig3: Mapping[str, str], fig4: str, fig5: Mapping[str, str], checks: str, output: str, log: str
 ) -> None:
-    from .claims import Evidence, evaluate, load_claims, write_claims_csv
-
     with logged(log, "check_claims") as logger:
         evidence = Evidence(
             fig3={label: read_netcdf(path, CYCLE_VARIABLES + ("event_time", "event_kind")) for label, path in fig3.items()},
@@ -154,10 +165,6 @@ def render_docs(
 ) -> None:
     import csv
 
-    from .claims import read_claims_csv
-    from .docs import markdown_table, render, write_text
-    from .facts import collect_facts
-
     with logged(log, "render_docs"):
         rows = read_claims_csv(claims)
         facts = collect_facts(
@@ -175,11 +182,9 @@ def render_docs(
 
 
 def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str, log: str) -> None:
-    from .benchmark import work_precision
-
     with logged(log, "run_work_precision") as logger:
-        rows = work_precision(
-            parameters_from(scene), initial_state_from(scene)[0], scene["n_cycles"],
+        rows = run_benchmark(
+            Parameters.from_mapping(scene), _x0(scene), scene["n_cycles"],
             {k: list(v) for k, v in settings.items()}, scene["repeats"], log=logger.info,
         )
         formatted = [{k: (f"{v:.6e}" if isinstance(v, float) else v) for k, v in row.items()} for row in rows]
@@ -188,8 +193,6 @@ def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str
 
 def read_work_precision(path: str) -> list[dict]:
     import csv
-
-    from .netcdf_io import DatasetError
 
     try:
         with open(path, newline="") as handle:
@@ -203,18 +206,14 @@ def read_work_precision(path: str) -> list[dict]:
 
 
 def plot_work_precision(table: str, png: str, pdf: str, log: str) -> None:
-    from .plotting import save_figure, work_precision
-
     with logged(log, "plot_work_precision"):
         save_figure(work_precision(read_work_precision(table)), png, pdf)
 
 
 def simulate_long_run(scene: Mapping, output: str, log: str) -> None:
-    from .scenes import long_run_scene
-
     with logged(log, "simulate_long_run") as logger:
         ds = long_run_scene(
-            parameters_from(scene), initial_state_from(scene)[0], scene["n_cycles"], scene["ivp_method"],
+            Parameters.from_mapping(scene), _x0(scene), scene["n_cycles"], scene["ivp_method"],
             scene["ivp_rtol"], scene["ivp_cycles"],
         )
         for key in ("max_velocity_deviation", "max_period_deviation", "exact_wall_s", "ivp_wall_s"):
@@ -223,16 +222,12 @@ def simulate_long_run(scene: Mapping, output: str, log: str) -> None:
 
 
 def plot_long_run(path: str, png: str, pdf: str, log: str) -> None:
-    from .plotting import long_run, save_figure
-
     with logged(log, "plot_long_run"):
         save_figure(long_run(read_netcdf(path, ("cycle", "drift_exact", "drift_ivp"))), png, pdf)
 
 
 def simulate_stability_chunk(model: Mapping, b_values: Sequence[float], F_values: Sequence[float], output: str,
                              log: str) -> None:
-    from .scenes import stability_chunk_scene
-
     with logged(log, "simulate_stability_chunk") as logger:
         ds = stability_chunk_scene(dict(model), b_values, F_values)
         logger.info("per trajectory: ensemble %.3e s, scalar %.3e s", ds.attrs["ensemble_seconds_per_trajectory"],
@@ -243,8 +238,6 @@ def simulate_stability_chunk(model: Mapping, b_values: Sequence[float], F_values
 def merge_stability(paths: Sequence[str], output: str, log: str) -> None:
     import numpy as np
     import xarray as xr
-
-    from .provenance import history_line, source_string
 
     with logged(log, "merge_stability") as logger:
         chunks = [read_netcdf(p, ("b", "F", "multiplier", "outcome")) for p in paths]
@@ -264,8 +257,6 @@ def merge_stability(paths: Sequence[str], output: str, log: str) -> None:
 
 
 def plot_stability_map(path: str, png: str, pdf: str, log: str) -> None:
-    from .plotting import save_figure, stability_map
-
     with logged(log, "plot_stability_map"):
         save_figure(stability_map(read_netcdf(path, ("b", "F", "multiplier", "multiplier_eq21", "outcome"))), png, pdf)
 
@@ -275,8 +266,6 @@ STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
 
 def run_stress(long_run: str, output: str, log: str) -> None:
     """Every stress case, and the very long run's bounds, as one CSV row each."""
-    from .stress import run_all
-
     with logged(log, "run_stress") as logger:
         rows = run_all()
         lr = read_netcdf(long_run, ("cycle", "error_time_exact"))

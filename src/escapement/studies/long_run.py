@@ -1,6 +1,6 @@
 """Long runs: how the error of the impact time grows with the number of cycles.
 
-The reference is the 50-digit solution of :mod:`escapement.highprecision` until the
+The reference is the 50-digit solution of :mod:`escapement.solvers.high_precision` until the
 transient has decayed below 1e-45 (in v^2 it decays by (1-b)^4 per cycle), and from there
 on exactly periodic: t_ref(n) = t_ref(n0) + (n - n0) T*, computed in 50 digits.
 """
@@ -13,10 +13,10 @@ import time
 import mpmath
 import numpy as np
 
-from .exact import solve_exact
-from .highprecision import solve_high_precision
-from .parameters import Parameters
-from .reference import solve_reference
+from ..model.parameters import Parameters
+from ..solvers.exact import solve_exact
+from ..solvers.high_precision import solve_high_precision
+from ..solvers.reference import solve_reference
 
 __all__ = ["converged_after", "sample_cycles", "long_run"]
 
@@ -38,7 +38,7 @@ def sample_cycles(n_cycles: int, per_decade: int = 40) -> np.ndarray:
 def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_rtol: float, ivp_cycles: int) -> dict:
     """Errors of the exact solver over ``n_cycles`` and of ``solve_ivp`` over ``ivp_cycles``."""
     n0 = converged_after(params)
-    hp = solve_high_precision(params, x0, n_cycles=n0 + 1, dps=50)
+    hp = solve_high_precision(params, x0, n_cycles=n0 + 1, dps=50).cycles
     cycles = sample_cycles(n_cycles)
     with mpmath.workdps(60):
         t_star, v_star = hp.period[-1], hp.velocity_before_impact[-1]

@@ -12,18 +12,22 @@ given direction of motion, so
   which loses accuracy near a turning point).
 
 No step size and no root finding: each event costs a square root and an ``atan2``.
+Each formula is written once for floats and NumPy arrays alike (the argument ``lib``).
 """
 
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 
 __all__ = [
+    "SCALAR",
+    "VECTOR",
     "crossing",
-    "state_after",
     "arc_maximum",
+    "compensated_add",
     "time_to_rest",
     "rebound_accumulation_time",
     "sample_arcs",
@@ -32,47 +36,54 @@ __all__ = [
 TWO_PI = 2.0 * math.pi
 
 
-def crossing(
-    centre: float, x0: float, v0: float, omega: float, target: float, direction: int
-) -> tuple[float, float, float] | None:
+def _pick(condition, yes, no):
+    return yes if condition else no
+
+
+#: the functions the closed forms need, for one float at a time and for NumPy arrays
+SCALAR = SimpleNamespace(sqrt=math.sqrt, atan2=math.atan2, hypot=math.hypot, where=_pick, maximum=max)
+VECTOR = SimpleNamespace(sqrt=np.sqrt, atan2=np.arctan2, hypot=np.hypot, where=np.where, maximum=np.maximum)
+
+
+def crossing(centre, x0, v0, omega, target, direction, lib=SCALAR):
     """First arrival at ``x = target`` moving in ``direction`` (+1 right, -1 left).
 
-    Returns ``(tau, v, angle)``: the time after the start, the velocity on
-    arrival and the phase angle swept (``angle = omega * tau``).  Returns
-    ``None`` when the arc never passes the target strictly, that is when its
-    turning point lies short of the target or exactly on it (grazing).
+    Returns ``(reached, tau, v, angle)``: whether the arc passes the target strictly, the time
+    after the start, the velocity on arrival and the phase angle swept (``angle = omega * tau``).
+    Where ``reached`` is false (the turning point lies short of the target or exactly on it:
+    grazing) the other values are meaningless. ``lib`` is :data:`SCALAR` or :data:`VECTOR`.
     """
     v_sq = v0 * v0 + (omega * omega) * ((x0 - target) * (x0 + target - 2.0 * centre))
-    if not v_sq > 0.0:
-        return None
-    v1 = math.copysign(math.sqrt(v_sq), direction)
+    reached = v_sq > 0.0
+    v1 = direction * lib.sqrt(lib.where(reached, v_sq, 0.0))
     u0 = x0 - centre
     q = target - centre
     w0 = v0 / omega
     w1 = v1 / omega
     # Clockwise angle from (u0, w0) to (q, w1), in (0, 2 pi].
-    angle = math.atan2(w0 * q - u0 * w1, u0 * q + w0 * w1)
-    if angle <= 0.0:
-        angle += TWO_PI
-    return angle / omega, v1, angle
+    angle = lib.atan2(w0 * q - u0 * w1, u0 * q + w0 * w1)
+    angle = lib.where(angle <= 0.0, angle + TWO_PI, angle)
+    return reached, angle / omega, v1, angle
 
 
-def state_after(centre: float, x0: float, v0: float, omega: float, tau: float) -> tuple[float, float]:
-    """State ``(x, v)`` a time ``tau`` after ``(x0, v0)`` on the arc about ``centre``."""
-    s, c = math.sin(omega * tau), math.cos(omega * tau)
-    u0 = x0 - centre
-    return centre + u0 * c + (v0 / omega) * s, v0 * c - omega * u0 * s
-
-
-def arc_maximum(centre: float, x0: float, v0: float, omega: float, angle: float, x1: float) -> float:
+def arc_maximum(centre, x0, v0, omega, angle, x1, lib=SCALAR):
     """Largest ``x`` on the arc that starts at ``(x0, v0)``, sweeps ``angle`` and ends at ``x1``."""
     u0 = x0 - centre
     w0 = v0 / omega
-    start = math.atan2(w0, u0)  # the top of the circle (x = centre + R) is at phase 0
-    to_top = start if start >= 0.0 else start + TWO_PI
-    if to_top <= angle:
-        return centre + math.hypot(u0, w0)
-    return max(x0, x1)
+    start = lib.atan2(w0, u0)  # the top of the circle (x = centre + R) is at phase 0
+    to_top = lib.where(start >= 0.0, start, start + TWO_PI)
+    return lib.where(to_top <= angle, centre + lib.hypot(u0, w0), lib.maximum(x0, x1))
+
+
+def compensated_add(total, error, term, lib=SCALAR):
+    """Neumaier's compensated sum: add ``term`` to ``total + error``; returns the new pair.
+
+    The time of an event is the sum of every duration before it; summed this way it stays
+    within an ulp or so of the exact sum however many events there are.
+    """
+    new = total + term
+    error = error + lib.where(abs(total) >= abs(term), (total - new) + term, (term - new) + total)
+    return new, error
 
 
 def time_to_rest(centre: float, x0: float, v0: float, omega: float) -> tuple[float, float]:

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from .claims import fmt
+from ..paper.claims import fmt
 
 __all__ = ["Fact", "MEASURED", "mask_measured", "collect_facts"]
 

@@ -1,0 +1,24 @@
+"""The model layer: parameters, the hybrid automaton, closed-form kinematics, events, outcomes."""
+
+from .automaton import Awaited, Mode, Surface
+from .events import EventKind, EventLog
+from .limits import RunLimits
+from .parameters import ParameterError, Parameters, check_initial_state
+from .quantities import INITIAL_STATE, PARAMETERS, Quantity
+from .status import Status
+
+__all__ = [
+    "Awaited",
+    "EventKind",
+    "EventLog",
+    "INITIAL_STATE",
+    "Mode",
+    "PARAMETERS",
+    "ParameterError",
+    "Parameters",
+    "Quantity",
+    "RunLimits",
+    "Status",
+    "Surface",
+    "check_initial_state",
+]

@@ -1,0 +1,21 @@
+"""The solvers: one loop over the model's automaton, several integrators, one result type."""
+
+from .ensemble import solve_ensemble
+from .exact import solve_exact
+from .high_precision import solve_high_precision
+from .naive import solve_naive
+from .reference import solve_reference
+from .result import ArcTable, CycleTable, EnsembleSolution, Exit, Solution
+
+__all__ = [
+    "ArcTable",
+    "CycleTable",
+    "EnsembleSolution",
+    "Exit",
+    "Solution",
+    "solve_ensemble",
+    "solve_exact",
+    "solve_high_precision",
+    "solve_naive",
+    "solve_reference",
+]

@@ -1,0 +1,81 @@
+"""A high-precision reference in mpmath (50 significant digits by default).
+
+It drives the same automaton as the float solvers (:func:`escapement.solvers.driver.drive`)
+but computes each arc its own way, for independence from
+:func:`escapement.model.kinematics.crossing`: the speed at a surface from energy, and the time
+from the phase angles ``atan2(w, u)`` of the start and end points taken separately (the float
+solver uses the angle between them), all in ``dps``-digit arithmetic. Its per-cycle arrays
+hold mpmath numbers (object arrays); ``float`` gives their nearest doubles.
+"""
+
+from __future__ import annotations
+
+import mpmath
+
+from ..model import automaton
+from ..model.limits import RunLimits
+from ..model.parameters import Parameters, check_initial_state
+from .driver import NO_EVENT, Step, drive
+from .result import Solution
+
+__all__ = ["MpmathStepper", "solve_high_precision"]
+
+
+class MpmathStepper:
+    """Each arc in ``dps``-digit arithmetic, from the phase angles of its ends."""
+
+    def __init__(self, params: Parameters, dps: int) -> None:
+        mpf = mpmath.mpf
+        self.name = f"mpmath {dps} digits"
+        self.w = mpmath.sqrt(mpf(params.K) / mpf(params.M))
+        self.offset = mpf(params.F) / mpf(params.K)
+        self.targets = {kind: (mpf(automaton.position(kind, params)), s.direction)
+                        for kind, s in automaton.SURFACES.items()}
+        self.two_pi = 2 * mpmath.pi
+
+    def next_event(self, mode, centre, t, x, v, watched, t_stop) -> Step:
+        w, c = self.w, automaton.CENTRE_SIGN[int(mode)] * self.offset
+        x = mpmath.mpf(x)
+        start = mpmath.atan2(v / w, x - c)
+        radius = mpmath.sqrt((x - c) ** 2 + (v / w) ** 2)
+        best = None
+        for kind in watched:
+            target, direction = self.targets[kind]
+            v_sq = v**2 + w**2 * ((x - c) ** 2 - (target - c) ** 2)
+            if v_sq <= 0:
+                continue
+            v_end = direction * mpmath.sqrt(v_sq)
+            end = mpmath.atan2(v_end / w, target - c)
+            angle = (start - end) % self.two_pi  # the phase point turns clockwise
+            if angle == 0:
+                angle = self.two_pi
+            if best is None or angle < best[3]:
+                best = (kind, angle / w, v_end, angle, target)
+        if best is None:
+            if mode == automaton.Mode.FREE:
+                return Step(NO_EVENT, mpmath.inf, 0, radius)
+            if v == 0:
+                return Step(NO_EVENT, mpmath.mpf(0), 0, x)
+            # the next rest: the top of the circle (phase 0) moving right, the bottom (-pi) moving left
+            to_rest = start if v > 0 else start + mpmath.pi
+            return Step(NO_EVENT, to_rest / w, 0, c + radius if v > 0 else c - radius)
+        kind, dt, v_end, angle, target = best
+        to_top = start % self.two_pi
+        x_max = c + radius if to_top <= angle else max(x, target)
+        return Step(kind, dt, v_end, x_max)
+
+    def trajectory(self, t_final: float) -> None:
+        return None
+
+
+def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = 50,
+                         t_end: float | None = None, max_events: int | None = None, dps: int = 50) -> Solution:
+    """Run the model in ``dps``-digit arithmetic from ``(x0, v0)`` at ``t = 0+``; the limits and
+    outcomes are those of :func:`escapement.solvers.exact.solve_exact`."""
+    if not isinstance(params, Parameters):
+        raise TypeError("params must be an escapement.Parameters")
+    x, v = check_initial_state(x0, v0)
+    limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events)
+    with mpmath.workdps(dps + 10):
+        return drive(params, mpmath.mpf(x), mpmath.mpf(v), limits, MpmathStepper(params, dps), x0=x, v0=v,
+                     floats=False)

@@ -1,0 +1,76 @@
+"""A naive fixed-step integrator, to show what not locating events costs.
+
+Classical RK4 with a fixed step ``h``; an event is noticed when ``x`` has passed its surface
+at the end of a step, and applied there, without locating it. The escapement's rules are the
+automaton's, through the solver loop of :mod:`escapement.solvers.driver`. Errors are O(h): the
+impact is applied up to one step late, at a state up to one step past the surface.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..model import automaton
+from ..model.automaton import Mode
+from ..model.limits import RunLimits
+from ..model.parameters import ParameterError, Parameters, check_initial_state
+from .driver import NO_EVENT, Step, drive
+from .result import Solution
+
+__all__ = ["NaiveStepper", "solve_naive"]
+
+#: free flight of this many natural periods without an event: the escapement has stopped
+PERIODS_TO_STOP = 2.0
+
+
+class NaiveStepper:
+    """RK4 steps of ``h`` until a watched surface lies behind the state."""
+
+    def __init__(self, params: Parameters, step: float) -> None:
+        self.name = f"naive RK4 h={step:g}"
+        self.w2 = params.omega2
+        self.h = step
+        self.surfaces = {kind: (automaton.position(kind, params), s.direction) for kind, s in automaton.SURFACES.items()}
+        self.max_steps = int(math.ceil(PERIODS_TO_STOP * params.natural_period / step)) + 1
+        self.t = 0.0
+
+    def next_event(self, mode, centre, t, x, v, watched, t_stop) -> Step:
+        w2, h = self.w2, self.h
+        h2, h6 = h / 2.0, h / 6.0
+        t_start, largest = self.t, x
+        for _ in range(self.max_steps):
+            k1x, k1v = v, -w2 * (x - centre)
+            k2x, k2v = v + h2 * k1v, -w2 * (x + h2 * k1x - centre)
+            k3x, k3v = v + h2 * k2v, -w2 * (x + h2 * k2x - centre)
+            k4x, k4v = v + h * k3v, -w2 * (x + h * k3x - centre)
+            x_new = x + h6 * (k1x + 2 * k2x + 2 * k3x + k4x)
+            v_new = v + h6 * (k1v + 2 * k2v + 2 * k3v + k4v)
+            self.t += h
+            for kind in watched:
+                target, direction = self.surfaces[kind]
+                passed = x < target <= x_new if direction > 0 else x > target >= x_new
+                if mode == Mode.FREE:
+                    passed = passed and v_new * direction > 0
+                else:
+                    passed = x_new * direction >= target * direction
+                if passed:
+                    return Step(kind, self.t - t_start, v_new, max(largest, x_new), t_abs=self.t, x_at=x_new)
+            if mode != Mode.FREE and v_new * automaton.SURFACES[watched[0]].direction <= 0:
+                return Step(NO_EVENT, self.t - t_start, 0.0, x_new)  # turned back inside the zone
+            x, v = x_new, v_new
+            largest = max(largest, x)
+        return Step(NO_EVENT, math.inf, 0.0, math.hypot(x, v / math.sqrt(w2)))
+
+    def trajectory(self, t_final: float) -> None:
+        return None
+
+
+def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int, step: float) -> Solution:
+    """Run ``n_cycles`` cycles with fixed RK4 steps of ``step`` seconds."""
+    if not isinstance(params, Parameters):
+        raise TypeError("params must be an escapement.Parameters")
+    if isinstance(step, bool) or not isinstance(step, float | int) or not (step > 0 and math.isfinite(step)):
+        raise ParameterError("step", step, "finite and > 0 (s)")
+    x, v = check_initial_state(x0, v0)
+    limits = RunLimits(n_cycles=n_cycles)
+    return drive(params, x, v, limits, NaiveStepper(params, float(step)), x0=x, v0=v)

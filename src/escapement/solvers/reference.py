@@ -1,0 +1,245 @@
+"""Reference solver: numerical integration with scipy's ``solve_ivp`` and terminal events.
+
+It exists to check the exact solver independently, and to measure what a general-purpose
+integrator costs (the benchmark runs it with SciPy's methods and with SUNDIALS CVODE): it shares the model and the
+automaton (:mod:`escapement.model.automaton`, through the solver loop of
+:mod:`escapement.solvers.driver`) but none of the closed forms.  The motion is integrated segment by
+segment, and a segment ends at every event and at every turning point, so that
+``x`` is monotone inside each segment and a surface can be crossed at most once
+in it: scipy locates an event only where the event function has opposite signs
+at the two ends of a step, and would miss a surface crossed and re-crossed
+inside one step near a turning point.  Each segment watches the surfaces the
+automaton watches that lie ahead in the direction of motion, and rest; after each event the state is put exactly on the surface, since scipy
+reports a spurious event when a segment starts on a surface it watches.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..model import automaton
+from ..model.automaton import Mode
+from ..model.events import EventKind
+from ..model.limits import RunLimits
+from ..model.parameters import Parameters, check_initial_state
+from .driver import HORIZON, NO_EVENT, Step, drive
+from .result import Solution
+
+__all__ = ["DenseSegments", "IvpStepper", "solve_reference"]
+
+#: free half-swings in a row without an event after which the escapement has stopped
+#: (three turning points cover more than one whole revolution from any start)
+HALF_SWINGS_TO_STOP = 3
+
+
+@dataclass(frozen=True)
+class Watch:
+    """An event a segment watches: ``x`` reaching ``position`` while moving in ``direction``
+    (``position`` None: the velocity vanishing while moving in ``direction``)."""
+
+    position: float | None
+    direction: int
+
+    def value(self, y) -> float:
+        return y[1] if self.position is None else y[0] - self.position
+
+    @property
+    def crossing(self) -> int:
+        """Sign of the slope of ``value`` at the event."""
+        return -self.direction if self.position is None else self.direction
+
+
+@dataclass(frozen=True)
+class Hit:
+    t: float
+    index: int
+    y: tuple[float, float]
+
+
+class SciPyIntegrator:
+    """One segment with ``scipy.integrate.solve_ivp``."""
+
+    def __init__(self, method: str, rtol: float, atol: np.ndarray, dense: bool) -> None:
+        self.method, self.rtol, self.atol, self.dense = method, rtol, atol, dense
+        self.name = f"solve_ivp {method} rtol={rtol:g}"
+
+    def segment(self, omega2: float, centre: float, t0: float, y0, t1: float, watches: list[Watch]):
+        def rhs(_t, y):
+            return [y[1], -omega2 * (y[0] - centre)]
+
+        functions = []
+        for w in watches:
+            def event(t, y, w=w):
+                return w.value(y)
+
+            event.terminal, event.direction = True, w.crossing
+            functions.append(event)
+        implicit = {"jac": [[0.0, 1.0], [-omega2, 0.0]]} if self.method in ("Radau", "BDF", "LSODA") else {}
+        sol = solve_ivp(rhs, (t0, t1), list(y0), method=self.method, rtol=self.rtol, atol=self.atol,
+                        events=functions or None, dense_output=self.dense, **implicit)
+        if sol.status == -1:
+            raise RuntimeError(f"solve_ivp failed at t = {t0:.12g} s: {sol.message}")
+        hits = [(te[0], i, ye[0]) for i, (te, ye) in enumerate(zip(sol.t_events or [], sol.y_events or [])) if len(te)]
+        first = min(hits, key=lambda h: h[0]) if hits else None
+        hit = None if first is None else Hit(float(first[0]), first[1], (float(first[2][0]), float(first[2][1])))
+        return hit, (sol.sol if self.dense else None)
+
+
+class CvodeIntegrator:
+    """One segment with SUNDIALS CVODE (scikit-sundae), Adams or BDF, with its root finding."""
+
+    def __init__(self, method: str, rtol: float, atol: np.ndarray) -> None:
+        from sksundae.cvode import CVODE  # optional: only the benchmark needs it
+
+        self._cvode = CVODE
+        self.method, self.rtol, self.atol = method, rtol, atol
+        self.name = f"CVODE {method} rtol={rtol:g}"
+
+    def segment(self, omega2: float, centre: float, t0: float, y0, t1: float, watches: list[Watch]):
+        def rhs(_t, y, yp):
+            yp[0] = y[1]
+            yp[1] = -omega2 * (y[0] - centre)
+
+        def events(_t, y, out):
+            for i, w in enumerate(watches):
+                out[i] = w.value(y)
+
+        events.terminal = [True] * len(watches)
+        events.direction = [w.crossing for w in watches]
+        solver = self._cvode(rhs, method=self.method, rtol=self.rtol, atol=self.atol, eventsfn=events,
+                             num_events=len(watches), max_num_steps=1_000_000)
+        result = solver.solve([t0, t1], np.array(y0, dtype=float))
+        if not result.success:
+            raise RuntimeError(f"CVODE failed at t = {t0:.12g} s: {result.message}")
+        if result.t_events is None or len(result.t_events) == 0:
+            return None, None
+        index = int(np.flatnonzero(result.i_events[0])[0])
+        y = result.y_events[0]
+        return Hit(float(result.t_events[0]), index, (float(y[0]), float(y[1]))), None
+
+
+@dataclass(frozen=True)
+class DenseSegments:
+    """The motion as solve_ivp's dense output, one interpolant per segment."""
+
+    t_start: np.ndarray
+    interpolants: tuple
+    centre: np.ndarray
+    omega: float
+    t_final: float
+
+    def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        t = np.asarray(t, dtype=float)
+        x = np.full(t.shape, np.nan)
+        v = np.full(t.shape, np.nan)
+        a = np.full(t.shape, np.nan)
+        idx = np.searchsorted(self.t_start, t, side="right") - 1
+        valid = (idx >= 0) & (t >= 0.0) & (t <= self.t_final)
+        for i in np.unique(idx[valid]):
+            sel = valid & (idx == i)
+            y = self.interpolants[i](t[sel])
+            x[sel], v[sel] = y[0], y[1]
+            a[sel] = -(self.omega**2) * (y[0] - self.centre[i])
+        return x, v, a
+
+
+class IvpStepper:
+    """The next event by numerical integration, segment by segment (turning points end segments)."""
+
+    def __init__(self, params: Parameters, integrator, record_trajectory: bool) -> None:
+        self.omega, self.omega2 = params.omega, params.omega2
+        self.period = params.natural_period
+        self.name = integrator.name
+        self.integrator = integrator
+        self.surfaces = {kind: Watch(automaton.position(kind, params), s.direction)
+                         for kind, s in automaton.SURFACES.items()}
+        self.record = record_trajectory
+        self.seg_t: list[float] = []
+        self.seg_sol: list = []
+        self.seg_c: list[float] = []
+
+    def next_event(self, mode, centre, t, x, v, watched, t_stop) -> Step:
+        t_start = t
+        largest = x
+        rests = 0
+        while rests < HALF_SWINGS_TO_STOP:  # each pass ends in a return or a turning point
+            heading = 1 if v > 0 else -1 if v < 0 else (1 if centre > x else -1 if centre < x else 0)
+            # x is monotone inside a segment, so only the surfaces ahead can be crossed; one it
+            # starts on cannot, and watching it would only give scipy's spurious event at the
+            # start (the paper's initial condition is the state at t0+, after any jump).
+            kinds = [k for k in watched if self.surfaces[k].direction == heading]
+            kinds = [k for k in kinds if self.surfaces[k].value((x, v)) != 0.0]
+            horizon = min(t + 0.75 * self.period, t_stop)
+            watches = [self.surfaces[k] for k in kinds] + ([Watch(None, heading)] if heading else [])
+            hit, dense = self.integrator.segment(self.omega2, centre, t, (x, v), horizon, watches)
+            if self.record:
+                self.seg_t.append(t), self.seg_sol.append(dense), self.seg_c.append(centre)
+            if hit is None:
+                if horizon >= t_stop:
+                    return Step(HORIZON, math.inf, 0.0, largest)
+                # at rest at the centre (an equilibrium): no surface is ever reached
+                if mode == Mode.FREE:
+                    return Step(NO_EVENT, math.inf, 0.0, abs(x))
+                return Step(NO_EVENT, t - t_start, 0.0, x)
+            t = float(hit.t)
+            if hit.index == len(kinds):  # the velocity vanished: a turning point
+                x, v = float(hit.y[0]), 0.0
+                if mode != Mode.FREE:
+                    return Step(NO_EVENT, t - t_start, 0.0, x)
+                largest = max(largest, x)
+                rests += 1
+                continue
+            kind = kinds[hit.index]
+            return Step(kind, t - t_start, float(hit.y[1]), max(largest, self.surfaces[kind].position), t_abs=t)
+        # free half-swings in a row without an event: the escapement has stopped
+        return Step(NO_EVENT, math.inf, 0.0, abs(x))
+
+    def trajectory(self, t_final: float):
+        if not self.record:
+            return None
+        return DenseSegments(np.array(self.seg_t), tuple(self.seg_sol), np.array(self.seg_c), self.omega, t_final)
+
+
+def solve_reference(
+    params: Parameters,
+    x0: float,
+    v0: float = 0.0,
+    *,
+    n_cycles: int | None = None,
+    t_end: float | None = None,
+    max_events: int | None = None,
+    method: str = "DOP853",
+    rtol: float = 1e-12,
+    atol: float | None = None,
+    record_trajectory: bool = True,
+) -> Solution:
+    """Integrate the escapement model numerically, segment by segment.
+
+    ``method`` is a ``solve_ivp`` method ("RK45", "DOP853", "LSODA", "Radau", ...) or
+    "CVODE-Adams" / "CVODE-BDF" (SUNDIALS through scikit-sundae, no dense output).
+    ``atol`` defaults to ``rtol`` times a length scale (the largest of |x0|, |a_i|, F/K
+    and |v0|/omega) for x, and omega times that for v.  Same limits and outcomes as
+    :func:`escapement.solvers.exact.solve_exact`.
+    """
+    if not isinstance(params, Parameters):
+        raise TypeError("params must be an escapement.Parameters")
+    x, v = check_initial_state(x0, v0)
+    limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events)
+    if isinstance(rtol, bool) or not isinstance(rtol, float | int) or not 0 < rtol < 1:
+        raise ValueError(f"rtol = {rtol!r} is invalid: rtol must be in (0, 1)")
+    omega = params.omega
+    length = max(abs(x), abs(params.a1), abs(params.a2), abs(params.a3), abs(params.a4), params.zone_offset,
+                 abs(v) / omega)
+    atol_x = rtol * length if atol is None else atol
+    atol_vec = np.array([atol_x, atol_x * omega])
+    if method.startswith("CVODE-"):
+        if record_trajectory:
+            raise ValueError(f"method = {method!r} keeps no trajectory: pass record_trajectory=False")
+        integrator = CvodeIntegrator(method.removeprefix("CVODE-"), rtol, atol_vec)
+    else:
+        integrator = SciPyIntegrator(method, rtol, atol_vec, record_trajectory)
+    return drive(params, x, v, limits, IvpStepper(params, integrator, record_trajectory), x0=x, v0=v)
