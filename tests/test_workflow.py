@@ -12,10 +12,10 @@ from pathlib import Path
 import pytest
 import yaml
 
-from escapement.netcdf_io import read_netcdf
+from escapement.io.netcdf import read_netcdf
 
 REPO = Path(__file__).resolve().parents[1]
-PARTS = ["Snakefile", "config", "workflow", "environment", "src", "README.md", "REPLICATION.md"]
+PARTS = ["Snakefile", "config", "profiles", "workflow", "environment", "src", "README.md", "REPLICATION.md"]
 
 
 def copy_repository(dest: Path) -> Path:
@@ -153,16 +153,17 @@ def test_editing_one_scene_reruns_that_scene_only(workflow_run, edit, expected):
 @pytest.mark.parametrize(
     "edit, words",
     [
-        (lambda c: c["model"].update(M=0.0), ["model.M = 0.0 is invalid: M must be a number > 0 (mass, kg)"]),
+        (lambda c: c["model"].update(M=0.0), ["model.M = 0.0 is invalid: M must be a number > 0 (kg)"]),
         (lambda c: c["model"].update(b=2.0), ["model.b = 2.0 is invalid: b must be a number in the open interval"]),
         (lambda c: c["model"].update(a2=-0.2), ["a2 = -0.2 is invalid: a2 must be > a1 = -0.1 (m)"]),
-        (lambda c: c["model"].update(K="stiff"), ["model.K = 'stiff' is invalid: K must be a number > 0"]),
+        (lambda c: c["model"].update(K="stiff"), ["model.K = 'stiff' is invalid: K must be a number > 0 (N/m)"]),
         (lambda c: c["model"].update(K=float("inf")), ["K = inf is invalid: K must be finite"]),
         (lambda c: c["model"].update(a4=0.2), ["a4 = 0.2 is invalid: a4 must be < a3 = 0.1 (m)"]),
         (lambda c: c["model"].pop("a1"), ["model: the key 'a1' is missing: it must be given"]),
         (lambda c: c["fig4"].update(colour="red"), ["fig4: unknown key 'colour'"]),
         (lambda c: c["fig3"]["cases"]["a"].update(x0=float("nan")), ["x0", "nan", "finite"]),
         (lambda c: c["fig4"].update(velocity_window=[87.0, 80.0]), ["velocity_window", "start < end"]),
+        (lambda c: c["fig5"].update(K=[1.0, 1.0000001, 10.0]), ["would both write K_1.nc"]),
     ],
 )
 def test_an_invalid_configuration_stops_before_any_job(tmp_path, edit, words):
@@ -177,9 +178,17 @@ def test_an_invalid_configuration_stops_before_any_job(tmp_path, edit, words):
     assert not list((where / "figures").glob("*")) if (where / "figures").exists() else True
 
 
+def test_the_default_profile_is_used(tmp_path):
+    where = copy_repository(tmp_path)
+    result = snakemake(where, "--dry-run")
+    assert "Using workflow specific profile profiles/default" in result.stdout + result.stderr
+    assert "rerun-incomplete" in (where / "profiles/default/config.yaml").read_text()
+
+
 def test_the_slurm_profile_plans_every_job(tmp_path):
     where = copy_repository(tmp_path)
-    result = snakemake(where, "--profile", "workflow/profiles/slurm", "--dry-run")
+    result = snakemake(where, "--workflow-profile", "profiles/slurm", "--dry-run")
+    assert "Using workflow specific profile profiles/slurm" in result.stdout + result.stderr
     assert "simulate_fig3" in result.stdout and "plot_fig5" in result.stdout
 
 
@@ -203,25 +212,75 @@ def test_compliance_checker_passes_cf_1_11(workflow_run):
         assert "All tests passed" in result.stdout, path
 
 
-def test_a_change_of_the_package_code_reruns_the_jobs(workflow_run):
-    """Snakemake keeps checksums of small inputs: an edit counts, a bare touch does not."""
-    module = workflow_run / "src/escapement/plotting/figures.py"
-    original, stat = module.read_bytes(), module.stat()
-    module.touch()
-    assert planned_jobs(workflow_run) == {}
-    module.write_bytes(original + b"\n# an edit\n")
+@pytest.fixture(scope="module")
+def touched_run(tmp_path_factory):
+    """A copy whose outputs exist, empty, and are marked up to date without running any job
+    (``--touch``): enough for dry runs, in seconds."""
+    where = copy_repository(tmp_path_factory.mktemp("touched"))
+    summary = snakemake(where, "--summary").stdout
+    for line in summary.splitlines()[1:]:
+        path = where / line.split("\t")[0]
+        if line.strip() and not path.exists():
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.touch()
+    snakemake(where, "--touch", "--cores", "1")
+    assert planned_jobs(where) == {}
+    return where
+
+
+SIMULATIONS = {"simulate_fig3": 2, "simulate_fig4": 1, "simulate_fig5": 3, "simulate_checks": 1,
+               "simulate_long_run": 1, "simulate_stability_chunk": 4}
+PLOTS = {"plot_fig3": 1, "plot_fig4": 1, "plot_fig5": 1, "plot_work_precision": 1, "plot_long_run": 1,
+         "plot_stability_map": 1}
+
+
+def _planned_after_an_edit(where: Path, module: str) -> dict[str, int]:
+    """The jobs a dry run plans once a comment is appended to ``module``; the file is restored."""
+    path = where / "src/escapement" / module
+    original, stat = path.read_bytes(), path.stat()
+    path.write_bytes(original + b"\n# an edit\n")
     try:
-        planned = planned_jobs(workflow_run)
+        return planned_jobs(where)
     finally:
-        module.write_bytes(original)
-        os.utime(module, ns=(stat.st_atime_ns, stat.st_mtime_ns))
-    assert planned == {
-        "simulate_fig3": 2, "simulate_fig4": 1, "simulate_fig5": 3, "simulate_checks": 1, "plot_fig3": 1,
-        "plot_fig4": 1, "plot_fig5": 1, "run_work_precision": 1, "plot_work_precision": 1, "simulate_long_run": 1,
-        "plot_long_run": 1, "simulate_stability_chunk": 4, "merge_stability": 1, "plot_stability_map": 1,
-        "run_stress": 1, **VERDICT,
-    }
-    assert planned_jobs(workflow_run) == {}
+        path.write_bytes(original)
+        os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+
+
+def test_a_plotting_edit_replans_the_plots_and_documents_only(touched_run):
+    planned = _planned_after_an_edit(touched_run, "plotting/paper_figures.py")
+    assert {rule: planned.get(rule) for rule in PLOTS} == PLOTS
+    assert planned["render_docs"] == 1
+    for rule in (*SIMULATIONS, "run_work_precision", "run_stress", "merge_stability"):
+        assert rule not in planned, planned
+    assert planned_jobs(touched_run) == {}
+
+
+def test_a_solver_edit_replans_the_simulations(touched_run):
+    planned = _planned_after_an_edit(touched_run, "solvers/exact.py")
+    assert {rule: planned.get(rule) for rule in SIMULATIONS} == SIMULATIONS
+    assert planned["run_work_precision"] == 1 and planned["run_stress"] == 1
+    assert planned_jobs(touched_run) == {}
+
+
+def test_a_pipeline_plot_edit_replans_no_simulation(touched_run):
+    planned = _planned_after_an_edit(touched_run, "pipeline/plot.py")
+    assert {rule: planned.get(rule) for rule in PLOTS} == PLOTS
+    assert not set(planned) & {*SIMULATIONS, "run_work_precision", "run_stress", "merge_stability"}, planned
+
+
+@pytest.mark.parametrize(
+    "modules, absent",
+    [
+        (["plot", "tables"], ["escapement.io.scenes", "escapement.io.dataset", "escapement.paper", "escapement.studies"]),
+        (["simulate", "studies"], ["escapement.plotting", "matplotlib"]),
+    ],
+)
+def test_each_kind_of_job_imports_only_what_its_rules_depend_on(modules, absent):
+    """What the rules' code inputs assume, checked in a fresh interpreter."""
+    code = "import sys\n" + "".join(f"import escapement.pipeline.{m}\n" for m in modules)
+    code += f"print(sorted(set({absent!r}) & set(sys.modules)))"
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert result.stdout.strip() == "[]"
 
 
 EXPECTED_VERDICT = {
@@ -264,7 +323,7 @@ EXPECTED_VERDICT = {
 
 def test_the_pipeline_verdict_is_the_expected_one(workflow_run):
     """A change of verdict must be deliberate: update this table and REPLICATION.md's template."""
-    from escapement.claims import read_claims_csv
+    from escapement.pipeline.verdict import read_claims_csv
 
     rows = read_claims_csv(workflow_run / "results/claims.csv")
     assert {r["claim_id"]: r["status"] for r in rows} == EXPECTED_VERDICT
@@ -272,7 +331,7 @@ def test_the_pipeline_verdict_is_the_expected_one(workflow_run):
 
 def test_generated_docs_match_the_committed_ones(workflow_run):
     """README.md and REPLICATION.md are regenerated by the workflow; the committed copies are current."""
-    from escapement.facts import mask_measured
+    from escapement.pipeline.facts import mask_measured
 
     for name in ("README.md", "REPLICATION.md"):
         fresh, committed = (mask_measured((where / name).read_text()) for where in (workflow_run, REPO))
@@ -320,11 +379,11 @@ def test_a_motion_that_leaves_the_regime_is_recorded(tmp_path):
     ds = read_netcdf(where / "results/fig3/case_a.nc")
     assert ds.attrs["outcome"] == "stopped" and ds.sizes["cycle"] == 0
     assert "never passes the next impact position" in ds.attrs["outcome_message"]
-    from escapement.claims import read_claims_csv
+    from escapement.pipeline.verdict import read_claims_csv
 
     rows = {r["claim_id"]: r for r in read_claims_csv(where / "results/claims.csv")}
     assert rows["eq19_fixed_point_case_a"]["status"] == "not_reproduced"
-    assert rows["eq19_fixed_point_case_a"]["replicated_value"] == "could not be evaluated"
+    assert "left the escapement regime" in rows["eq19_fixed_point_case_a"]["replicated_value"]
     assert (where / "figures/fig3.png").exists()
 
 

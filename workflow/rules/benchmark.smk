@@ -1,6 +1,6 @@
 rule run_work_precision:
     input:
-        code=package_code(),
+        code=STUDIES_CODE,
     output:
         csv="results/benchmark/work_precision.csv",
     log:
@@ -11,8 +11,8 @@ rule run_work_precision:
         "../../environment/environment.yml"
     threads: 2  # the machine to itself while it times
     params:
-        scene=benchmark_scene(),
-        settings=benchmark_settings(),
+        scene=scenes.benchmark_scene(config),
+        settings=scenes.benchmark_settings(config),
     script:
         "../scripts/run_work_precision.py"
 
@@ -25,14 +25,14 @@ use rule run_work_precision as run_work_precision_full with:
     benchmark:
         "results/benchmarks/run_work_precision_full.tsv"
     params:
-        scene=benchmark_scene(),
-        settings=benchmark_settings(slow=True),
+        scene=scenes.benchmark_scene(config),
+        settings=scenes.benchmark_settings(config, slow=True),
 
 
 rule plot_work_precision:
     input:
         csv="results/benchmark/work_precision.csv",
-        code=package_code(),
+        code=PLOT_CODE,
     output:
         png=report(
             "figures/work_precision.png",
@@ -52,7 +52,7 @@ rule plot_work_precision:
 use rule plot_work_precision as plot_work_precision_full with:
     input:
         csv="results/benchmark/work_precision_full.csv",
-        code=package_code(),
+        code=PLOT_CODE,
     output:
         png="results/benchmark/work_precision_full.png",
         pdf="results/benchmark/work_precision_full.pdf",
@@ -62,7 +62,7 @@ use rule plot_work_precision as plot_work_precision_full with:
 
 rule simulate_long_run:
     input:
-        code=package_code(),
+        code=SIMULATE_CODE,
     output:
         nc="results/benchmark/long_run.nc",
     log:
@@ -72,7 +72,7 @@ rule simulate_long_run:
     conda:
         "../../environment/environment.yml"
     params:
-        scene=long_run_scene(),
+        scene=scenes.long_run_scene(config),
     script:
         "../scripts/simulate_long_run.py"
 
@@ -80,7 +80,7 @@ rule simulate_long_run:
 rule plot_long_run:
     input:
         nc="results/benchmark/long_run.nc",
-        code=package_code(),
+        code=PLOT_CODE,
     output:
         png=report(
             "figures/long_run.png",
@@ -99,7 +99,7 @@ rule plot_long_run:
 
 rule simulate_stability_chunk:
     input:
-        code=package_code(),
+        code=SIMULATE_CODE,
     output:
         nc="results/stability/chunk_{chunk}.nc",
     log:
@@ -111,7 +111,7 @@ rule simulate_stability_chunk:
     conda:
         "../../environment/environment.yml"
     params:
-        model=stability_model(),
+        model=scenes.stability_model(config),
         axes=lambda wildcards: stability_chunk(wildcards.chunk),
     script:
         "../scripts/simulate_stability_chunk.py"
@@ -119,8 +119,10 @@ rule simulate_stability_chunk:
 
 rule merge_stability:
     input:
-        chunks=expand("results/stability/chunk_{chunk}.nc", chunk=stability_chunks()),
-        code=package_code(),
+        chunks=expand(
+            "results/stability/chunk_{chunk}.nc", chunk=scenes.stability_chunks(config)
+        ),
+        code=MERGE_CODE,
     output:
         nc="results/stability/map.nc",
     log:
@@ -134,7 +136,7 @@ rule merge_stability:
 rule plot_stability_map:
     input:
         nc="results/stability/map.nc",
-        code=package_code(),
+        code=PLOT_CODE,
     output:
         png=report(
             "figures/stability_map.png",
@@ -154,7 +156,7 @@ rule plot_stability_map:
 rule run_stress:
     input:
         long_run="results/benchmark/long_run.nc",
-        code=package_code(),
+        code=STUDIES_CODE,
     output:
         csv=report(
             "results/stress/summary.csv",

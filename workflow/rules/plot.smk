@@ -1,7 +1,7 @@
 rule plot_fig3:
     input:
         nc=expand("results/fig3/case_{case}.nc", case=config["fig3"]["cases"]),
-        code=package_code(),
+        code=PLOT_CODE,
     output:
         png=report(
             "figures/fig3.png",
@@ -23,7 +23,7 @@ rule plot_fig3:
 rule plot_fig4:
     input:
         nc="results/fig4/shock.nc",
-        code=package_code(),
+        code=PLOT_CODE,
     output:
         png=report(
             "figures/fig4.png",
@@ -43,7 +43,7 @@ rule plot_fig4:
 rule plot_fig5:
     input:
         nc=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
-        code=package_code(),
+        code=PLOT_CODE,
     output:
         png=report(
             "figures/fig5.png",

@@ -1,6 +1,6 @@
 rule simulate_fig3:
     input:
-        code=package_code(),
+        code=SIMULATE_CODE,
     output:
         nc="results/fig3/case_{case}.nc",
     log:
@@ -19,7 +19,7 @@ rule simulate_fig3:
 
 rule simulate_fig4:
     input:
-        code=package_code(),
+        code=SIMULATE_CODE,
     output:
         nc="results/fig4/shock.nc",
     log:
@@ -29,14 +29,14 @@ rule simulate_fig4:
     conda:
         "../../environment/environment.yml"
     params:
-        scene=fig4_scene(),
+        scene=scenes.fig4_scene(config),
     script:
         "../scripts/simulate_fig4.py"
 
 
 rule simulate_fig5:
     input:
-        code=package_code(),
+        code=SIMULATE_CODE,
     output:
         nc="results/fig5/K_{K}.nc",
     log:
@@ -55,7 +55,7 @@ rule simulate_fig5:
 
 rule simulate_checks:
     input:
-        code=package_code(),
+        code=SIMULATE_CODE,
     output:
         nc="results/claims/checks.nc",
     log:
@@ -65,7 +65,7 @@ rule simulate_checks:
     conda:
         "../../environment/environment.yml"
     params:
-        cases=check_cases(),
+        cases=scenes.check_cases(config),
         n_cycles=config["checks"]["n_cycles"],
     script:
         "../scripts/simulate_checks.py"

@@ -5,7 +5,7 @@ rule check_claims:
         fig4="results/fig4/shock.nc",
         fig5=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
         checks="results/claims/checks.nc",
-        code=package_code(),
+        code=package_code("model", "solvers", "paper", *IO, *PIPELINE, "pipeline/verdict.py"),
     output:
         csv=report(
             "results/claims.csv",
@@ -32,7 +32,19 @@ rule render_docs:
         stability="results/stability/map.nc",
         stress="results/stress/summary.csv",
         templates=["workflow/templates/README.md", "workflow/templates/REPLICATION.md"],
-        code=package_code(),
+        # the documents show the figures: rendered after them, they are never older
+        figures=expand(
+            "figures/{fig}.png",
+            fig=[
+                "fig3",
+                "fig4",
+                "fig5",
+                "work_precision",
+                "long_run",
+                "stability_map",
+            ],
+        ),
+        code=RENDER_CODE,
     output:
         readme="README.md",
         replication="REPLICATION.md",

@@ -1,6 +1,6 @@
-"""Glue: rule check_claims -> escapement.pipeline.jobs.check_claims."""
+"""Glue: rule check_claims -> escapement.pipeline.verdict.check_claims."""
 
-from escapement.pipeline.jobs import check_claims
+from escapement.pipeline.verdict import check_claims
 
 check_claims(  # noqa: F821
     snakemake.input.register,

@@ -1,6 +1,6 @@
-"""Glue: rule render_docs -> escapement.pipeline.jobs.render_docs."""
+"""Glue: rule render_docs -> escapement.pipeline.render.render_docs."""
 
-from escapement.pipeline.jobs import render_docs
+from escapement.pipeline.render import render_docs
 
 render_docs(  # noqa: F821
     snakemake.input.claims,

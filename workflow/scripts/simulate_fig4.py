@@ -1,5 +1,5 @@
-"""Glue: rule simulate_fig4 -> escapement.pipeline.jobs.simulate_shock."""
+"""Glue: rule simulate_fig4 -> escapement.pipeline.simulate.simulate_shock."""
 
-from escapement.pipeline.jobs import simulate_shock
+from escapement.pipeline.simulate import simulate_shock
 
 simulate_shock(snakemake.params.scene, snakemake.output.nc, snakemake.log[0])  # noqa: F821

@@ -154,7 +154,8 @@ def long_run_scene(params: Parameters, x0: float, n_cycles: int, ivp_method: str
         "drift": ("s", "impact time minus the 50-digit reference"),
     }
     variables = {}
-    for solver, label in (("exact", "exact solver"), ("ivp", f"solve_ivp {ivp_method} rtol={ivp_rtol:g}")):
+    ivp_label = f"solve_ivp {ivp_method} rtol={ivp_rtol:g}"
+    for solver, label in (("exact", "exact solver"), ("ivp", ivp_label)):
         for (name, (units, long_name)), values in zip(names.items(), r[solver]):
             variables[f"{name}_{solver}"] = xr.DataArray(
                 values, dims="cycle", coords=coords, attrs={"units": units, "long_name": f"{long_name}, {label}"}
@@ -162,7 +163,8 @@ def long_run_scene(params: Parameters, x0: float, n_cycles: int, ivp_method: str
     attrs = global_attributes(
         "Long run of the escapement model: error against the number of cycles",
         "long_run",
-        solver="exact; " + f"solve_ivp {ivp_method} rtol={ivp_rtol:g}",
+        solver="exact; " + ivp_label,
+        ivp_label=ivp_label,
         x0=float(x0),
         n_cycles=int(n_cycles),
         ivp_cycles=int(ivp_cycles),

@@ -82,15 +82,21 @@ def real_array(name: str, value: object) -> np.ndarray:
     return array
 
 
-def validate_arrays(values: Mapping[str, object]) -> dict[str, np.ndarray]:
+def validate_arrays(values: Mapping[str, object], single: bool = False) -> dict[str, np.ndarray]:
     """Check every model key (``a3``, ``a4`` None: the symmetric default) and return float64
     arrays broadcast to one shape; the first violation raises, naming the row for arrays."""
     for key in ("M", "K", "F", "b", "a1", "a2"):
         if values.get(key) is None:
             raise ParameterError(key, None, "given")
     checked = {name: real_array(name, values[name]) for name in ("M", "K", "F", "b", "a1", "a2")}
-    checked["a3"] = -checked["a1"] if values.get("a3") is None else real_array("a3", values["a3"])
-    checked["a4"] = -checked["a2"] if values.get("a4") is None else real_array("a4", values["a4"])
+    if single:
+        for name, array in checked.items():
+            if array.ndim:
+                raise ParameterError(name, values[name], "a single real number (use the ensemble for arrays)")
+    for name, mirror in (("a3", "a1"), ("a4", "a2")):
+        checked[name] = -checked[mirror] if values.get(name) is None else real_array(name, values[name])
+        if single and checked[name].ndim:
+            raise ParameterError(name, values[name], "a single real number (use the ensemble for arrays)")
     shaped = dict(zip(MODEL_KEYS, np.broadcast_arrays(*(checked[k] for k in MODEL_KEYS))))
     scalar = all(a.ndim == 0 for a in shaped.values())
     for name, holds, requirement in rules(shaped):
@@ -119,10 +125,8 @@ class Parameters:
     a4: float | None = None
 
     def __post_init__(self) -> None:
-        checked = validate_arrays({name: getattr(self, name) for name in MODEL_KEYS})
+        checked = validate_arrays({name: getattr(self, name) for name in MODEL_KEYS}, single=True)
         for name, value in checked.items():
-            if value.ndim:
-                raise ParameterError(name, getattr(self, name), "a single real number (use the ensemble for arrays)")
             object.__setattr__(self, name, float(value))
 
     @classmethod

@@ -94,10 +94,11 @@ def turned_back_message(t: float, zone: str, turning_point: float, centre: float
     )
 
 
-def chattering_message(t: float, position: str, b: float, t_accumulation: float | None) -> str:
+def chattering_message(t: float, position: str, b: float, ratio: float, t_accumulation: float | None) -> str:
+    """``ratio`` is v+/v- of the impact that reversed the velocity."""
     head = (
         f"the impact at {position} at t = {t:.12g} s reversed the velocity (b = {b:.12g} > 1, "
-        f"v+ = {1 - b:.12g} v-): the mass rebounds instead of entering the impulse zone"
+        f"v+ = {ratio:.12g} v-): the mass rebounds instead of entering the impulse zone"
     )
     if t_accumulation is None:
         return head + "; the rebounds do not accumulate in finite time, and the escapement regime has ended"

@@ -13,12 +13,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..model.status import Status
 from ..solvers.ensemble import solve_ensemble
 from ..solvers.exact import solve_exact
 
-__all__ = ["CycleMeasurement", "return_map", "measure_cycle"]
+__all__ = ["CycleMeasurement", "NoReturn", "ensemble_return_map", "measure_cycle", "return_map", "stability_grid"]
 
 #: relative step of the central difference: truncation ~ h**2, rounding ~ 1e-16 / h
 RELATIVE_STEP = 1e-5
@@ -38,8 +39,8 @@ def return_map(params: Parameters, v: float, strict: bool = True) -> tuple[float
     run = solve_exact(params, release, 0.0, n_cycles=2, record_trajectory=False)
     if run.status != Status.COMPLETED or len(run.cycles) < 2:
         if not strict:
-            first = run.cycles.velocity_before_impact
-            return (float(first[0]) if len(first) else math.nan), math.nan
+            first = run.events.of_kind(EventKind.IMPACT_A1)
+            return (float(run.events.v_before[first[0]]) if len(first) else math.nan), math.nan
         raise NoReturn(f"no return to the section from v = {v!r}: {run.message}")
     return float(run.cycles.velocity_before_impact[0]), float(run.cycles.velocity_before_impact[1])
 

@@ -1,8 +1,13 @@
-"""One clear line for the first problem in the workflow's configuration.
+"""The workflow's configuration: checked in one place, and each scene built from it.
 
-The JSON schema (draft 2020-12) describes every value; its ``description`` says what a value
-must be. This turns the most relevant schema error into
+:func:`config_error` (and :func:`check_config`, which raises it) gives one clear line for the
+first problem: a violation of the JSON schema (draft 2020-12, whose ``description`` says what a
+value must be), a cross-field rule, or a scene whose parameters do not make a valid model, e.g.
 ``model.M = 0.0 is invalid: M must be a number > 0 (kg)``.
+
+The other functions build what each rule runs from the configuration, as plain sorted dicts
+(so that reordering the file does not make Snakemake see changed params): the common ``model``
+block merged with the scene's own keys, later keys winning.
 """
 
 from __future__ import annotations
@@ -14,31 +19,234 @@ import yaml
 from jsonschema import Draft202012Validator
 from jsonschema.exceptions import best_match
 
-__all__ = ["config_error"]
+from ..model.parameters import ParameterError, Parameters, check_initial_state
+
+__all__ = [
+    "ConfigError",
+    "benchmark_scene",
+    "benchmark_settings",
+    "check_cases",
+    "check_config",
+    "config_error",
+    "fig3_scene",
+    "fig4_scene",
+    "fig5_labels",
+    "fig5_scene",
+    "long_run_scene",
+    "scenes",
+    "stability_axes",
+    "stability_chunk",
+    "stability_chunks",
+    "stability_model",
+]
 
 
-def _path(parts) -> str:
+class ConfigError(ValueError):
+    """The configuration is invalid; the message is one line that names the key."""
+
+
+# ---------------------------------------------------------------------------------------------
+# Scenes
+
+
+def _scene(*blocks: Mapping) -> dict:
+    """Merge blocks (later ones win), leaving out nested blocks, sorted by key."""
+    merged: dict = {}
+    for block in blocks:
+        merged.update({k: v for k, v in block.items() if not isinstance(v, dict)})
+    return dict(sorted(merged.items()))
+
+
+def fig3_scene(config: Mapping, case: str) -> dict:
+    """Fig. 3, one case: the model block, the case's keys and ``n_cycles``."""
+    scene = config["fig3"]
+    return _scene(config["model"], scene["cases"][case], {"n_cycles": scene["n_cycles"]})
+
+
+def fig4_scene(config: Mapping) -> dict:
+    return _scene(config["model"], config["fig4"])
+
+
+def fig5_labels(config: Mapping) -> list[str]:
+    """File labels of the Fig. 5 panels, one per spring constant: ``0.1``, ``1``, ``10``."""
+    return [f"{k:g}" for k in config["fig5"]["K"]]
+
+
+def fig5_scene(config: Mapping, label: str) -> dict:
+    """Fig. 5, the panel of the spring constant labelled ``label``."""
+    scene = {k: v for k, v in config["fig5"].items() if k != "K"}
+    stiffness = dict(zip(fig5_labels(config), config["fig5"]["K"]))[label]
+    return _scene(config["model"], scene, {"K": stiffness})
+
+
+def check_cases(config: Mapping) -> list[dict]:
+    """The runs of the claims register (config: checks), each labelled with its group."""
+    checks = config["checks"]
+    base = _scene(config["model"], {"F": checks["F"], "x0": checks["x0"]})
+    cases = [
+        _scene(base, {"group": "paper", "label": f"fig3{c}"}, fig3_scene(config, c)) for c in config["fig3"]["cases"]
+    ]
+    for ic in checks["initial_conditions"]:
+        cases.append(_scene(base, ic, {"group": "initial_condition", "label": f"F={ic['F']:g},x0={ic['x0']:g}"}))
+    for b in checks["b"]:
+        cases.append(_scene(base, {"b": b, "group": "b", "label": f"b={b:g}"}))
+    for group in ("symmetric", "asymmetric"):
+        for force in checks[group]["F"]:
+            for positions in checks[group]["positions"]:
+                keys = dict(zip(("a1", "a2", "a3", "a4"), positions))
+                label = f"F={force:g}," + ",".join(f"{k}={v:g}" for k, v in keys.items())
+                cases.append(_scene(base, keys, {"F": force, "group": group, "label": label}))
+    return [{k: v for k, v in case.items() if k != "n_cycles"} for case in cases]
+
+
+def benchmark_scene(config: Mapping) -> dict:
+    scene = {k: v for k, v in config["benchmark"].items() if "settings" not in k}
+    return _scene(config["model"], scene)
+
+
+def benchmark_settings(config: Mapping, slow: bool = False) -> dict[str, list]:
+    """Settings per method: the default ones, and with ``slow`` the slow ones too (merged,
+    largest first)."""
+    settings = {k: list(v) for k, v in config["benchmark"]["settings"].items()}
+    if slow:
+        for method, values in config["benchmark"]["slow_settings"].items():
+            settings[method] = sorted(set(settings.get(method, [])) | set(values), reverse=True)
+    return dict(sorted(settings.items()))
+
+
+def long_run_scene(config: Mapping) -> dict:
+    return _scene(config["model"], config["long_run"])
+
+
+def stability_axes(config: Mapping) -> tuple[list[float], list[float]]:
+    """Values of b (the cell centres of (start, stop)) and of F (start to stop, ends included)."""
+    b, f = config["stability_map"]["b"], config["stability_map"]["F"]
+    step = (b["stop"] - b["start"]) / b["n"]
+    b_values = [b["start"] + (i + 0.5) * step for i in range(b["n"])]
+    f_values = [f["start"] + (f["stop"] - f["start"]) * j / max(f["n"] - 1, 1) for j in range(f["n"])]
+    return b_values, f_values
+
+
+def stability_chunks(config: Mapping) -> list[str]:
+    return [str(i) for i in range(config["stability_map"]["chunks"])]
+
+
+def stability_chunk(config: Mapping, chunk: str) -> tuple[list[float], list[float]]:
+    """The b values of one chunk (of equal size, the last one shorter), and all F values."""
+    b_values, f_values = stability_axes(config)
+    size = -(-len(b_values) // config["stability_map"]["chunks"])
+    i = int(chunk)
+    return b_values[i * size : (i + 1) * size], f_values
+
+
+def stability_model(config: Mapping) -> dict:
+    """The model block for the map (F is set per point)."""
+    return _scene(config["model"], {"F": 0.0})
+
+
+def scenes(config: Mapping) -> dict[str, dict]:
+    """Every scene that a job runs, by where it comes from in the configuration; for the map,
+    its four corners."""
+    found = {f"fig3.cases.{c}": fig3_scene(config, c) for c in config["fig3"]["cases"]}
+    found["fig4"] = fig4_scene(config)
+    found.update({f"fig5 (K = {label})": fig5_scene(config, label) for label in fig5_labels(config)})
+    found.update({f"checks ({case['label']})": case for case in check_cases(config)})
+    found["benchmark"] = benchmark_scene(config)
+    found["long_run"] = long_run_scene(config)
+    b_values, f_values = stability_axes(config)
+    for b in (b_values[0], b_values[-1]):
+        for force in (f_values[0], f_values[-1]):
+            found[f"stability_map (b = {b:g}, F = {force:g})"] = _scene(
+                stability_model(config), {"b": b, "F": force, "x0": 1.0}
+            )
+    return found
+
+
+# ---------------------------------------------------------------------------------------------
+# Checks
+
+
+def _where(parts) -> str:
     return ".".join(str(p) for p in parts) or "the configuration"
 
 
-def config_error(config: Mapping, schema_path: str | Path) -> str | None:
-    """The message for the most relevant violation of the schema, or None if there is none."""
-    schema = yaml.safe_load(Path(schema_path).read_text())
-    validator = Draft202012Validator(schema)
-    error = best_match(validator.iter_errors(dict(config)))
+def _allowed_keys(schema: Mapping, root: Mapping) -> list[str]:
+    """The property names a schema allows, following a local ``$ref`` (``#/...``)."""
+    keys = set(schema.get("properties", {}))
+    ref = schema.get("$ref")
+    if ref and ref.startswith("#/"):
+        target = root
+        for part in ref[2:].split("/"):
+            target = target[part]
+        keys |= set(target.get("properties", {}))
+    return sorted(keys)
+
+
+def schema_error(config: Mapping, schema: Mapping) -> str | None:
+    """The message for the most relevant violation of ``schema``, or None if there is none."""
+    error = best_match(Draft202012Validator(schema).iter_errors(dict(config)))
     if error is None:
         return None
-    where = _path(error.absolute_path)
-    name = str(error.absolute_path[-1]) if error.absolute_path else where
+    where = _where(error.absolute_path)
+    names = [p for p in error.absolute_path if isinstance(p, str)]
+    name = names[-1] if names else where
     if error.validator == "required":
         missing = [key for key in error.validator_value if key not in error.instance]
         return f"{where}: the key {missing[0]!r} is missing: it must be given"
-    if error.validator == "additionalProperties":
-        allowed = sorted(error.schema.get("properties", {}))
+    if error.validator in ("additionalProperties", "unevaluatedProperties"):
+        allowed = _allowed_keys(error.schema, schema)
         unknown = sorted(set(error.instance) - set(allowed))
         return f"{where}: unknown key {unknown[0]!r}; the keys allowed here are {', '.join(allowed)}"
-    requirement = error.schema.get("description")
-    if requirement is None:
-        resolved = error.schema.get("$ref")
-        requirement = error.message if resolved is None else error.message
+    requirement = error.schema.get("description", error.message)
     return f"{where} = {error.instance!r} is invalid: {name} must be {requirement}"
+
+
+def _cross_field_error(config: Mapping) -> str | None:
+    """Rules that the schema cannot state: distinct Fig. 5 files, windows, chunks."""
+    labels = fig5_labels(config)
+    for label in labels:
+        same = [k for k, other in zip(config["fig5"]["K"], labels) if other == label]
+        if len(same) > 1:
+            return (
+                f"fig5.K = {config['fig5']['K']!r} is invalid: K must be spring constants that differ "
+                f"in their file labels ({' and '.join(repr(k) for k in same)} would both write K_{label}.nc)"
+            )
+    for name in ("velocity_window", "acceleration_window"):
+        lo, hi = config["fig4"][name]
+        if not lo < hi:
+            return f"fig4.{name} = {[lo, hi]!r} is invalid: {name} must be [start, end] with start < end (s)"
+    chunks, n = config["stability_map"]["chunks"], config["stability_map"]["b"]["n"]
+    if chunks > n:
+        return f"stability_map.chunks = {chunks!r} is invalid: chunks must be <= b.n = {n}"
+    return None
+
+
+def _scene_error(config: Mapping) -> str | None:
+    """The first scene whose parameters or initial state do not make a valid model."""
+    for where, scene in scenes(config).items():
+        try:
+            Parameters.from_mapping(scene)
+            if "x0" not in scene:
+                raise ParameterError("x0", None, "given (it is missing)")
+            check_initial_state(scene["x0"], scene.get("v0", 0.0))
+        except ParameterError as err:
+            return f"{where}: {err}"
+    return None
+
+
+def _load(schema: Mapping | str | Path) -> Mapping:
+    return schema if isinstance(schema, Mapping) else yaml.safe_load(Path(schema).read_text())
+
+
+def config_error(config: Mapping, schema: Mapping | str | Path) -> str | None:
+    """One line for the first problem of ``config`` (the schema's first, then the cross-field
+    rules, then every scene's parameters), or None if it is valid. ``schema`` is the schema or
+    the path of its YAML file."""
+    return schema_error(config, _load(schema)) or _cross_field_error(config) or _scene_error(config)
+
+
+def check_config(config: Mapping, schema: Mapping | str | Path) -> None:
+    """Raise :class:`ConfigError` with :func:`config_error`'s line if ``config`` is invalid."""
+    problem = config_error(config, schema)
+    if problem is not None:
+        raise ConfigError(f"invalid configuration: {problem}")

@@ -9,6 +9,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
+from ..model.quantities import INITIAL_STATE, PARAMETERS
 from .style import ACCENT, GUIDE, INK, MUTED, style
 
 __all__ = ["fig3", "fig4", "fig5", "long_run", "stability_map", "work_precision"]
@@ -27,8 +28,19 @@ def _outcome_note(ax, ds: xr.Dataset) -> None:
                 bbox={"facecolor": "white", "edgecolor": ACCENT, "linewidth": 0.6})
 
 
+def _value(name: str, value: float) -> str:
+    """``F = 0.5 N``: the quantity's symbol, the value and its units, from the quantities table."""
+    q = PARAMETERS[name] if name in PARAMETERS else INITIAL_STATE[name]
+    return f"{q.symbol} = {value:g} {q.unit_label}"
+
+
 def _case_title(ds: xr.Dataset, label: str) -> str:
-    return f"({label}) F = {ds.attrs['F']:g} N, x(0) = {ds.attrs['x0']:g} m"
+    return f"({label}) {_value('F', ds.attrs['F'])}, {_value('x0', ds.attrs['x0'])}"
+
+
+def natural_period(ds: xr.Dataset) -> float:
+    """2 pi / omega with omega = sqrt(K/M), from the dataset's own K and M (s)."""
+    return 2 * math.pi / math.sqrt(ds.attrs["K"] / ds.attrs["M"])
 
 
 def fig3(cases: dict[str, xr.Dataset]):
@@ -41,14 +53,14 @@ def fig3(cases: dict[str, xr.Dataset]):
     with style():
         fig, axes = plt.subplots(3, len(cases), figsize=(3.4 * len(cases), 7.2), squeeze=False, sharex="col")
         for col, (label, ds) in enumerate(cases.items()):
-            omega = math.sqrt(ds.attrs["K"] / ds.attrs["M"])
+            period = natural_period(ds)
             for row, (name, ylabel) in enumerate(rows):
                 ax = axes[row, col]
                 ax.plot(ds["cycle"], ds[name], marker="o", markersize=2.5, color=INK, label="exact solution")
                 if name == "velocity_before_impact" and "fixed_point_19" in ds.attrs:
                     ax.axhline(ds.attrs["fixed_point_19"], ls="--", lw=0.8, color=GUIDE, label="fixed point, Eq. (19)")
                 if name == "period":
-                    ax.axhline(2 * math.pi / omega, ls=":", lw=0.9, color=GUIDE, label="2\u03c0/\u03c9 = 6.2832 s (paper)")
+                    ax.axhline(period, ls=":", lw=0.9, color=GUIDE, label=f"2\u03c0/\u03c9 = {period:.4f} s (paper)")
                 ax.set_ylabel(ylabel)
                 if row == 2:
                     ax.set_xlabel("Number of cycles")
@@ -94,7 +106,8 @@ def fig4(ds: xr.Dataset):
         ax_a.set_xlabel("Time (s)")
         ax_a.set_ylabel("Acceleration (m/s\u00b2)")
         ax_a.legend(loc="upper left")
-        fig.suptitle(_case_title(ds, "b").replace("(b) ", "") + f", K = {ds.attrs['K']:g} N/m", fontsize=9)
+        fig.suptitle(f"{_value('F', ds.attrs['F'])}, {_value('x0', ds.attrs['x0'])}, {_value('K', ds.attrs['K'])}",
+                     fontsize=9)
         _outcome_note(ax_v, ds)
         fig.tight_layout()
     return fig
@@ -119,7 +132,7 @@ def fig5(panels: dict[str, xr.Dataset]):
                       label="impacts")
             ax.set_xlabel("Displacement (m)")
             ax.set_ylabel("Velocity (m/s)")
-            ax.set_title(f"({letter}) K = {label} N/m")
+            ax.set_title(f"({letter}) {_value('K', ds.attrs['K'])}")
             _outcome_note(ax, ds)
         axes[0, 0].legend(loc="upper left")
         fig.tight_layout()
@@ -160,8 +173,7 @@ def work_precision(rows: list[dict]):
 def long_run(ds: xr.Dataset):
     """Phase error (impact time minus the 50-digit reference) and velocity error against the number of cycles."""
     cycle = ds["cycle"].values
-    ivp_label = ds.attrs["solver"].split("; ")[1]
-    series = (("exact", INK, "exact solver"), ("ivp", ACCENT, ivp_label))
+    series = (("exact", INK, "exact solver"), ("ivp", ACCENT, ds.attrs["ivp_label"]))
     with style():
         fig, (ax_t, ax_v) = plt.subplots(1, 2, figsize=(8.4, 3.4), sharex=True)
         for solver, colour, label in series:

@@ -155,12 +155,13 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
         if automaton.reverses(v_before, v_after):
             distance = automaton.rebound_distance(kind, positions[kind])
             t_acc = None
+            ratio = float(v_after / v_before)  # the impact law's v+/v-, negative: a rebound
             if distance > 0.0:
-                rest = rebound_accumulation_time(params.omega, distance, abs(float(v_after)), abs(1.0 - params.b))
+                rest = rebound_accumulation_time(params.omega, distance, abs(float(v_after)), abs(ratio))
                 t_acc = None if rest is None else float(t) + rest
             status = Status.CHATTERING
             position = automaton.SURFACES[EventKind(kind)].position
-            message = chattering_message(float(t), position, params.b, t_acc)
+            message = chattering_message(float(t), position, params.b, ratio, t_acc)
             exit_ = Exit(t_accumulation=math.nan if t_acc is None else t_acc)
             break
         mode, awaited = automaton.transition(kind)

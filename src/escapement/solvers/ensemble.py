@@ -135,8 +135,8 @@ def solve_ensemble(
             t_final[jj[done]] = t[jj[done]] + t_err[jj[done]]
             v_after = automaton.velocity_after(v_new, b[jj], _IMPACT[k])
             chatter = ~done & automaton.reverses(v_new, v_after)
-            for i, kk, va in zip(jj[chatter], k[chatter], v_after[chatter]):
-                _chattering(i, EventKind(int(kk)), va, t, t_err, b, omega, positions, status, t_final, t_acc)
+            for i, kk, va, vb in zip(jj[chatter], k[chatter], v_after[chatter], v_new[chatter]):
+                _chattering(i, EventKind(int(kk)), va, vb, t, t_err, omega, positions, status, t_final, t_acc)
             v[jj] = v_after
             mode[jj] = _NEXT_MODE[k]
             awaited[jj] = _NEXT_AWAITED[k]
@@ -189,12 +189,13 @@ def _exit(rows, mode, centre, x, v, omega, awaited, positions, t, t_err, status,
     margin[r] = np.abs(end - point)
 
 
-def _chattering(i, kind, v_after, t, t_err, b, omega, positions, status, t_final, t_acc):
+def _chattering(i, kind, v_after, v_before, t, t_err, omega, positions, status, t_final, t_acc):
     """A row whose impact reversed the velocity: the time at which the rebounds accumulate."""
     distance = automaton.rebound_distance(kind, positions[kind][i])
     now = t[i] + t_err[i]
     status[i] = Status.CHATTERING.code
     t_final[i] = now
     if distance > 0.0:
-        rest = rebound_accumulation_time(float(omega[i]), float(distance), abs(float(v_after)), abs(1.0 - float(b[i])))
+        rest = rebound_accumulation_time(float(omega[i]), float(distance), abs(float(v_after)),
+                                         abs(float(v_after / v_before)))
         t_acc[i] = math.nan if rest is None else now + rest

@@ -1,0 +1,399 @@
+"""The checks of the claims register on the paper's equations (Sec. 3), and what every check uses.
+
+A check, registered by name with :func:`check`, computes the replicated value of one kind of
+claim from the datasets (and the paper's closed forms where the claim is a formula) and decides
+the status: ``reproduced``, ``partially_reproduced`` or ``not_reproduced``.  Tolerances and the
+Fig. 3 case labels come from the register (the claim's ``tolerance`` and ``args``), never from
+here.  Each check declares the scenes it reads, so that a scene that left the escapement regime
+gets its defined verdict (:func:`escapement.paper.claims.evaluate`); the checks that read the
+runs of the checks dataset, one outcome per run, handle those outcomes themselves.  The checks
+on the figures (Sec. 4) are in :mod:`escapement.paper.claims`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from ..model.events import EventKind
+from ..model.parameters import Parameters
+from ..model.quantities import MODEL_KEYS
+from ..model.status import Status
+from . import corrected as derived
+from . import printed as pe
+
+__all__ = ["STATUSES", "CHECKS", "Check", "Evidence", "Verdict", "check", "fmt"]
+
+STATUSES = ("reproduced", "partially_reproduced", "not_reproduced")
+REPRODUCED, PARTIAL, NOT = STATUSES
+COMPLETED = Status.COMPLETED.value
+
+
+def fmt(x: float, digits: int = 10) -> str:
+    """A number as text, to ``digits`` significant digits (enough to compare, stable across runs)."""
+    if isinstance(x, str):
+        return x
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "nan"
+    return f"{float(x):.{digits}g}"
+
+
+@dataclass(frozen=True)
+class Evidence:
+    """The datasets the claims are checked against; ``fig3`` and ``fig5`` keyed by their configured labels."""
+
+    fig3: Mapping[str, xr.Dataset]
+    fig4: xr.Dataset
+    fig5: Mapping[str, xr.Dataset]
+    checks: xr.Dataset
+
+
+@dataclass(frozen=True)
+class Verdict:
+    replicated_value: str
+    status: str
+    note: str = ""
+    paper_value: str | None = None  #: filled when the paper gives a formula rather than a number
+
+
+Scenes = Callable[[Mapping, Evidence], dict[str, xr.Dataset]]
+
+
+@dataclass(frozen=True)
+class Check:
+    """A registered check: its function, the scenes it reads and the ``args`` it needs from the register."""
+
+    name: str
+    function: Callable[[Mapping, Evidence], Verdict]
+    scenes: Scenes
+    args: tuple[str, ...] = ()
+
+
+CHECKS: dict[str, Check] = {}
+
+
+def check(name: str, *, scenes: Scenes, args: tuple[str, ...] = ()) -> Callable:
+    """Register the decorated function as the check ``name`` of the register."""
+
+    def register(function: Callable) -> Callable:
+        if name in CHECKS:
+            raise ValueError(f"two checks are named '{name}'")
+        CHECKS[name] = Check(name, function, scenes, tuple(args))
+        return function
+
+    return register
+
+
+# --- the scenes a check reads ------------------------------------------------------------------
+
+
+def fig3_labelled(ev: Evidence, label: str) -> xr.Dataset:
+    if label not in ev.fig3:
+        raise ValueError(f"the register names Fig. 3 case '{label}'; the evidence holds {', '.join(ev.fig3)}")
+    return ev.fig3[label]
+
+
+def fig3_case(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
+    """The Fig. 3 case of ``args: {case: ...}``."""
+    label = str(claim["args"]["case"])
+    return {f"Fig. 3 case {label}": fig3_labelled(ev, label)}
+
+
+def fig3_all(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
+    return {f"Fig. 3 case {c}": ds for c, ds in ev.fig3.items()}
+
+
+def runs_only(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
+    """No scene dataset: the check reads the runs of the checks dataset, one outcome per run."""
+    return {}
+
+
+# --- helpers -----------------------------------------------------------------------------------
+
+
+def params_of(ds: xr.Dataset) -> Parameters:
+    return Parameters(**{k: float(ds.attrs[k]) for k in MODEL_KEYS})
+
+
+def events_of(ds: xr.Dataset, kind: EventKind) -> np.ndarray:
+    return np.flatnonzero(ds["event_kind"].values == int(kind))
+
+
+def cycle_durations(ds: xr.Dataset) -> dict[str, np.ndarray]:
+    """Simulated durations inside each complete cycle: a1 -> a2 -> a3 -> a4 -> a1."""
+    t = ds["event_time"].values
+    starts = events_of(ds, EventKind.IMPACT_A1)[:-1]
+    return {
+        "zone_right": t[starts + 1] - t[starts],
+        "a2_to_a3": t[starts + 2] - t[starts + 1],
+        "zone_left": t[starts + 3] - t[starts + 2],
+        "a4_to_a1": t[starts + 4] - t[starts + 3],
+    }
+
+
+def rel(a: float, b: float) -> float:
+    return abs(a - b) / abs(b)
+
+
+def within(value: float, tolerance: float) -> str:
+    return REPRODUCED if value <= tolerance else NOT
+
+
+def group_runs(ev: Evidence, group: str) -> xr.Dataset:
+    rows = np.flatnonzero(ev.checks["group"].values == group)
+    if not len(rows):
+        raise ValueError(f"the checks dataset holds no run of group '{group}'")
+    return ev.checks.isel(case=rows)
+
+
+def runs_left_regime(runs: xr.Dataset) -> Verdict | None:
+    """The verdict when a run of the checks dataset left the escapement regime, else None."""
+    left = np.flatnonzero(runs["outcome"].values != COMPLETED)
+    if not len(left):
+        return None
+    labels, outcomes = runs["label"].values[left], runs["outcome"].values[left]
+    messages = runs["outcome_message"].values[left]
+    return Verdict(
+        f"not evaluated: {len(left)} of {runs.sizes['case']} runs left the escapement regime",
+        NOT,
+        note="; ".join(f"{lab} ended with outcome '{o}': {m}" for lab, o, m in zip(labels, outcomes, messages)),
+    )
+
+
+# --- Sec. 3.3-3.4: the Poincare map and its fixed point ----------------------------------------
+
+
+@check("map_eq16", scenes=fig3_all)
+def map_eq16(claim, ev: Evidence) -> Verdict:
+    worst = 0.0
+    pairs = 0
+    for ds in ev.fig3.values():
+        p, v = params_of(ds), ds["velocity_before_impact"].values
+        predicted = np.array([pe.poincare_map_16(x, p) for x in v[:-1]])
+        worst = max(worst, float(np.max(np.abs(v[1:] - predicted) / predicted)))
+        pairs += len(predicted)
+    return Verdict(
+        f"max relative difference {fmt(worst, 3)} over {pairs} simulated cycle pairs (Fig. 3 {', '.join(ev.fig3)})",
+        within(worst, claim["tolerance"]),
+        paper_value="g of Eq. (16)",
+    )
+
+
+@check("eq14", scenes=fig3_case, args=("case",))
+def eq14(claim, ev: Evidence) -> Verdict:
+    case = claim["args"]["case"]
+    ds = ev.fig3[case]
+    p = params_of(ds)
+    i = events_of(ds, EventKind.IMPACT_A1)[-2]
+    v1, v5_sim = ds["event_velocity_before"].values[i], ds["event_velocity_before"].values[i + 3]
+    printed = pe.step_velocities(v1, p)["v5"]
+    corrected = derived.cycle_velocities(v1, p)["v5"]
+    return Verdict(
+        f"simulated velocity at a4 {fmt(v5_sim)} m/s",
+        within(rel(printed, v5_sim), claim["tolerance"]),
+        note=(
+            f"Eq. (14) as printed gives {fmt(printed)} m/s; with +2(a3 - a4) f (the work of the force -f on the "
+            f"leftward motion) it gives {fmt(corrected)} m/s (relative difference {fmt(rel(corrected, v5_sim), 2)}); "
+            "Eq. (16) already has the right sign"
+        ),
+        paper_value=f"{fmt(printed)} m/s (case {case}, last cycle)",
+    )
+
+
+@check("fixed_point", scenes=fig3_case, args=("case",))
+def fixed_point(claim, ev: Evidence) -> Verdict:
+    ds = ev.fig3[claim["args"]["case"]]
+    formula = pe.fixed_point_19(params_of(ds))
+    simulated = float(ds["velocity_before_impact"].values[-1])
+    n = ds.sizes["cycle"]
+    return Verdict(
+        f"{fmt(simulated)} m/s at cycle {n}",
+        within(rel(simulated, formula), claim["tolerance"]),
+        note=f"relative difference {fmt(rel(simulated, formula), 2)}, the transient left after {n} cycles",
+        paper_value=f"{fmt(formula)} m/s",
+    )
+
+
+@check("multiplier_paper_cases", scenes=runs_only)
+def multiplier_paper_cases(claim, ev: Evidence) -> Verdict:
+    paper = group_runs(ev, "paper")
+    if (left := runs_left_regime(paper)) is not None:
+        return left
+    mu = paper["multiplier"].values
+    worst = float(np.max(np.abs(mu - float(claim["paper_value"]))))
+    return Verdict(
+        ", ".join(f"{label}: {fmt(m)}" for label, m in zip(paper["label"].values, mu)),
+        within(worst, claim["tolerance"]),
+        note="central difference of the simulated return map at the measured fixed point",
+    )
+
+
+@check("stability_over_b", scenes=runs_only)
+def stability_over_b(claim, ev: Evidence) -> Verdict:
+    group = group_runs(ev, "b")
+    outcome = group["outcome"].values
+    # chattering (b > 1) is the finding of this claim; any other exit leaves the check without an answer
+    if (left := runs_left_regime(group.isel(case=np.flatnonzero(outcome != "chattering")))) is not None:
+        return left
+    b, mu, mu21 = group["b"].values, group["multiplier"].values, group["multiplier_eq21"].values
+    stable = outcome == COMPLETED
+    deviation = float(np.max(np.abs(mu[stable] - mu21[stable]))) if stable.any() else math.nan
+    replicated = (
+        f"converges with mu2 = (1-b)^4 (within {fmt(deviation, 2)}) for b = {', '.join(fmt(x, 3) for x in b[stable])}"
+    )
+    if (~stable).any():
+        chattering = ", ".join(fmt(x, 3) for x in b[~stable])
+        replicated += f"; for b = {chattering} the impact reverses the velocity and the impacts chatter (Zeno)"
+    if stable.all() and deviation <= claim["tolerance"]:
+        status = REPRODUCED
+    elif stable.any() and deviation <= claim["tolerance"] and (b[~stable] > 1).all():
+        status = PARTIAL
+    else:
+        status = NOT
+    return Verdict(
+        replicated,
+        status,
+        note=(
+            "for b > 1 the impact law v+ = (1-b) v- reverses the velocity; the map (16) squares the sign away, "
+            "so |mu2| < 1 there says nothing about the motion, whose impacts accumulate in finite time"
+        ),
+    )
+
+
+@check("multiplier_group", scenes=runs_only, args=("group",))
+def multipliergroup_runs(claim, ev: Evidence) -> Verdict:
+    group = group_runs(ev, claim["args"]["group"])
+    if (left := runs_left_regime(group)) is not None:
+        return left
+    mu, mu21 = group["multiplier"].values, group["multiplier_eq21"].values
+    worst = float(np.max(np.abs(mu - mu21)))
+    forces = sorted(set(group["F"].values.tolist()))
+    return Verdict(
+        f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over {len(mu)} runs (F = {', '.join(fmt(f, 3) for f in forces)} N "
+        f"and {len(mu) // len(forces)} geometries)",
+        within(worst, claim["tolerance"]),
+    )
+
+
+@check("asymmetric_dependence", scenes=runs_only)
+def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
+    group = group_runs(ev, "asymmetric")
+    if (left := runs_left_regime(group)) is not None:
+        return left
+    mu, mu21 = group["multiplier"].values, group["multiplier_eq21"].values
+    worst = float(np.max(np.abs(mu - mu21)))
+    v = group["velocity"].values
+    return Verdict(
+        f"mu2 = (1-b)^4 within {fmt(worst, 2)} in all {len(mu)} asymmetric runs; fixed points "
+        f"{fmt(np.min(v), 4)}-{fmt(np.max(v), 4)} m/s",
+        NOT if worst <= claim["tolerance"] else REPRODUCED,
+        note=(
+            "Eq. (16) is linear in x1^2: g' = (1-b)^4 x1/g(x1) = (1-b)^4 at any fixed point, with or without "
+            "symmetry; what depends on F and the positions is the fixed point and whether it exists "
+            "(C > 0 in x1^2 = (1-b)^4 x1^2 + C), not the rate of convergence"
+        ),
+    )
+
+
+# --- Sec. 3.4: the period formulas -------------------------------------------------------------
+
+
+@check("eq22_abcd", scenes=fig3_all)
+def eq22_abcd(claim, ev: Evidence) -> Verdict:
+    worst = 0.0
+    for ds in ev.fig3.values():
+        p = params_of(ds)
+        durations = cycle_durations(ds)
+        v = ds["velocity_before_impact"].values
+        for k in range(len(durations["zone_right"])):
+            h0 = math.hypot(p.a1, v[k] / p.omega)
+            times = pe.step_times_22(v[k], p, h0)
+            worst = max(worst, rel(times["22b"], durations["zone_right"][k]))
+            worst = max(worst, rel(times["22c"] + times["22d"], durations["a2_to_a3"][k]))
+            if k > 0:  # step 1 ends at the impact of cycle k, after the left swing of cycle k - 1
+                left = durations["a4_to_a1"][k - 1] - math.acos(-p.a4 / h0) / p.omega
+                worst = max(worst, rel(times["22a"], left))
+    return Verdict(
+        f"max relative difference {fmt(worst, 2)} against the simulated step durations (Fig. 3 {', '.join(ev.fig3)})",
+        within(worst, claim["tolerance"]),
+        note="(22a) is compared with the time from the left turning point to a1",
+        paper_value="Eqs. (22a)-(22d)",
+    )
+
+
+@check("eq22e", scenes=fig3_case, args=("case",))
+def eq22e(claim, ev: Evidence) -> Verdict:
+    case = claim["args"]["case"]
+    ds = ev.fig3[case]
+    v = float(ds["velocity_before_impact"].values[-1])
+    printed = pe.step_times_22(v, params_of(ds), 1.0)["22e"]
+    simulated = float(cycle_durations(ds)["zone_left"][-1])
+    return Verdict(
+        f"{fmt(simulated)} s (simulated, last cycle of case {case})",
+        within(rel(printed, simulated), claim["tolerance"]),
+        note="(22e) needs + acos((a4 + f/w^2)/h3) instead of -: as printed it is negative",
+        paper_value=f"{fmt(printed)} s",
+    )
+
+
+@check("eq23", scenes=fig3_case, args=("case",))
+def eq23(claim, ev: Evidence) -> Verdict:
+    ds = ev.fig3[claim["args"]["case"]]
+    p = params_of(ds)
+    v = float(ds["velocity_before_impact"].values[-1])
+    printed = pe.period_23(v, p)
+    simulated = float(ds["period"].values[-1])
+    corrected = derived.period(v, p)
+    return Verdict(
+        f"{fmt(simulated)} s (simulated)",
+        within(rel(printed, simulated), claim["tolerance"]),
+        note=(
+            f"with acos(-a4/h5) + acos(-a1/h5) for the last two terms (the left swing passes x = -h5) the formula "
+            f"gives {fmt(corrected)} s, relative difference {fmt(rel(corrected, simulated), 2)}"
+        ),
+        paper_value=f"{fmt(printed)} s (as printed, signed a1, a4)",
+    )
+
+
+@check("eq24", scenes=fig3_case, args=("case",))
+def eq24(claim, ev: Evidence) -> Verdict:
+    ds = ev.fig3[claim["args"]["case"]]
+    p = params_of(ds)
+    v = float(ds["velocity_before_impact"].values[-1])
+    first = pe.period_perturbation_24(v, p)
+    second = pe.period_perturbation_24_closed(v, p)
+    corrected = derived.impact_phase_jump_closed(p.a1, v, p)
+    return Verdict(
+        f"first form {fmt(first)} s; second form as printed {fmt(second)} s",
+        PARTIAL if rel(second, first) > claim["tolerance"] else REPRODUCED,
+        note=(
+            f"the first form is the phase delay of the impact (it enters the exact period decomposition, see "
+            f"eq25); the second equals it only with the velocity before the impact, x1, in place of x1+: "
+            f"{fmt(corrected)} s"
+        ),
+        paper_value="dT1, two equal forms",
+    )
+
+
+@check("eq25", scenes=fig3_case, args=("case",))
+def eq25(claim, ev: Evidence) -> Verdict:
+    ds = ev.fig3[claim["args"]["case"]]
+    p = params_of(ds)
+    v = pe.fixed_point_19(p)
+    printed = p.natural_period + 2 * (pe.period_perturbation_24(v, p) + pe.period_perturbation_25(v, p))
+    corrected = derived.period_from_perturbations(v, p)
+    simulated = float(ds["period"].values[-1])
+    return Verdict(
+        f"{fmt(simulated)} s (simulated)",
+        within(rel(printed, simulated), claim["tolerance"]),
+        note=(
+            f"with the phase taken as atan(position/velocity) in (25) (the sine phase, which advances at w in free "
+            f"flight), 2 pi/w + 2 (dT1 + dT2) = {fmt(corrected)} s, relative difference "
+            f"{fmt(rel(corrected, simulated), 2)}"
+        ),
+        paper_value=f"{fmt(printed)} s (as printed)",
+    )

@@ -1,0 +1,93 @@
+"""The simulation jobs: a scene's parameters in, one netCDF file out (never a figure)."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Mapping, Sequence
+
+from ..io.netcdf import write_netcdf
+from ..io.scenes import (
+    checks_scene,
+    long_run_scene,
+    phase_scene,
+    poincare_scene,
+    shock_scene,
+    stability_chunk_scene,
+)
+from ..model.parameters import Parameters, check_initial_state
+from .logs import logged
+
+__all__ = [
+    "simulate_checks",
+    "simulate_long_run",
+    "simulate_phase",
+    "simulate_poincare",
+    "simulate_shock",
+    "simulate_stability_chunk",
+]
+
+
+def _x0(scene: Mapping) -> float:
+    return check_initial_state(scene["x0"], scene.get("v0", 0.0))[0]
+
+
+def _report(logger: logging.Logger, scene: Mapping, ds) -> None:
+    logger.info("parameters: %s", dict(scene))
+    logger.info("outcome: %s: %s", ds.attrs["outcome"], ds.attrs["outcome_message"])
+
+
+def simulate_poincare(scene: Mapping, output: str, log: str) -> None:
+    with logged(log, "simulate_poincare") as logger:
+        ds = poincare_scene(Parameters.from_mapping(scene), _x0(scene), scene["n_cycles"])
+        _report(logger, scene, ds)
+        write_netcdf(ds, output)
+
+
+def simulate_shock(scene: Mapping, output: str, log: str) -> None:
+    with logged(log, "simulate_shock") as logger:
+        ds = shock_scene(
+            Parameters.from_mapping(scene),
+            _x0(scene),
+            scene["velocity_window"],
+            scene["acceleration_window"],
+            scene["samples_per_second"],
+        )
+        _report(logger, scene, ds)
+        write_netcdf(ds, output)
+
+
+def simulate_phase(scene: Mapping, output: str, log: str) -> None:
+    with logged(log, "simulate_phase") as logger:
+        ds = phase_scene(
+            Parameters.from_mapping(scene), _x0(scene), scene["n_cycles"], scene["samples_per_period"]
+        )
+        _report(logger, scene, ds)
+        write_netcdf(ds, output)
+
+
+def simulate_checks(cases: Sequence[Mapping], n_cycles: int, output: str, log: str) -> None:
+    with logged(log, "simulate_checks") as logger:
+        ds = checks_scene([dict(c) for c in cases], n_cycles)
+        for label, outcome, mu in zip(ds["label"].values, ds["outcome"].values, ds["multiplier"].values):
+            logger.info("%s: %s, measured multiplier %.12g", label, outcome, mu)
+        write_netcdf(ds, output)
+
+
+def simulate_long_run(scene: Mapping, output: str, log: str) -> None:
+    with logged(log, "simulate_long_run") as logger:
+        ds = long_run_scene(
+            Parameters.from_mapping(scene), _x0(scene), scene["n_cycles"], scene["ivp_method"],
+            scene["ivp_rtol"], scene["ivp_cycles"],
+        )
+        for key in ("max_velocity_deviation", "max_period_deviation", "exact_wall_s", "ivp_wall_s"):
+            logger.info("%s: %.3e", key, ds.attrs[key])
+        write_netcdf(ds, output)
+
+
+def simulate_stability_chunk(model: Mapping, b_values: Sequence[float], F_values: Sequence[float], output: str,
+                             log: str) -> None:
+    with logged(log, "simulate_stability_chunk") as logger:
+        ds = stability_chunk_scene(dict(model), b_values, F_values)
+        logger.info("per trajectory: ensemble %.3e s, scalar %.3e s", ds.attrs["ensemble_seconds_per_trajectory"],
+                    ds.attrs["scalar_seconds_per_trajectory"])
+        write_netcdf(ds, output)

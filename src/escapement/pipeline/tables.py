@@ -1,0 +1,68 @@
+"""The workflow's tables and merged files that no solver is needed for: the variables each
+figure reads, the work-precision and stress tables, and the merge of the stability chunks."""
+
+from __future__ import annotations
+
+import csv
+from collections.abc import Sequence
+
+from ..io.netcdf import DatasetError, read_netcdf, write_netcdf
+from ..io.provenance import history_line, source_string
+from .logs import logged
+
+__all__ = [
+    "CYCLE_VARIABLES",
+    "PHASE_VARIABLES",
+    "SHOCK_VARIABLES",
+    "STRESS_COLUMNS",
+    "WORK_PRECISION_COLUMNS",
+    "merge_stability",
+    "read_stress",
+    "read_work_precision",
+]
+
+CYCLE_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude")
+SHOCK_VARIABLES = ("t", "velocity", "acceleration", "impact_time", "impulse", "energy_dissipated", "event_time")
+PHASE_VARIABLES = ("t", "displacement", "velocity", "impact_time", "impact_position", "velocity_after")
+WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "error_velocity", "error_time"]
+STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
+
+
+def _read_csv(path: str, columns: list[str], what: str) -> list[dict]:
+    try:
+        with open(path, newline="") as handle:
+            rows = list(csv.DictReader(handle))
+    except OSError as err:
+        raise DatasetError(f"{path}: cannot be read ({err})") from err
+    if not rows or list(rows[0]) != columns:
+        raise DatasetError(f"{path}: not a {what} with the columns {', '.join(columns)}")
+    return rows
+
+
+def read_work_precision(path: str) -> list[dict]:
+    return _read_csv(path, WORK_PRECISION_COLUMNS, "work-precision table")
+
+
+def read_stress(path: str) -> list[dict]:
+    return _read_csv(path, STRESS_COLUMNS, "stress summary")
+
+
+def merge_stability(paths: Sequence[str], output: str, log: str) -> None:
+    import numpy as np
+    import xarray as xr
+
+    with logged(log, "merge_stability") as logger:
+        chunks = [read_netcdf(p, ("b", "F", "multiplier", "outcome")) for p in paths]
+        merged = xr.concat(chunks, dim="b", combine_attrs="override")  # the first chunk's attributes...
+        merged.attrs.update(  # ...with the provenance of this merge
+            source=source_string(), history=history_line(f"merged from {len(chunks)} chunks by escapement")
+        )
+        ratios = [c.attrs["scalar_seconds_per_trajectory"] / c.attrs["ensemble_seconds_per_trajectory"] for c in chunks]
+        merged.attrs.update(
+            ensemble_speedup_per_trajectory=float(np.median(ratios)),
+            ensemble_seconds_per_trajectory=float(np.median([c.attrs["ensemble_seconds_per_trajectory"] for c in chunks])),
+            scalar_seconds_per_trajectory=float(np.median([c.attrs["scalar_seconds_per_trajectory"] for c in chunks])),
+            chunks=len(chunks),
+        )
+        logger.info("ensemble speed-up per trajectory (median over chunks): %.1f", merged.attrs["ensemble_speedup_per_trajectory"])
+        write_netcdf(merged, output)

@@ -1,0 +1,60 @@
+"""The verdict: the claims register evaluated on the netCDF outputs, written as ``results/claims.csv``.
+
+:func:`check_claims` is the job of the workflow rule ``check_claims``; :func:`read_claims_csv`
+reads the table back for the documents.  A check that fails makes the job fail, naming the claim
+(:class:`escapement.paper.claims.ClaimError`); it never becomes a row of the table.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+from collections.abc import Mapping
+
+from ..io.atomic import write_csv
+from ..io.netcdf import read_netcdf
+from ..paper.claims import COLUMNS, Evidence, evaluate, load_claims
+from .logs import logged
+
+__all__ = ["FIG3_VARIABLES", "FIG4_VARIABLES", "FIG5_VARIABLES", "CHECKS_VARIABLES", "check_claims",
+           "write_claims_csv", "read_claims_csv"]
+
+#: The variables the checks read from each output; a file lacking one is named by read_netcdf.
+FIG3_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude", "event_time", "event_kind",
+                  "event_velocity_before")
+FIG4_VARIABLES = ("t", "velocity", "acceleration", "velocity_before", "impulse", "energy_dissipated")
+FIG5_VARIABLES = ("t", "velocity", "impact_time", "velocity_before_impact", "period", "amplitude")
+CHECKS_VARIABLES = ("label", "group", "outcome", "outcome_message", "F", "b", "x0", "velocity", "period",
+                    "multiplier", "multiplier_eq21")
+
+
+def write_claims_csv(rows: list[dict[str, str]], path: str | os.PathLike) -> None:
+    """Write the table atomically, with exactly the columns of ``COLUMNS``."""
+    write_csv(rows, COLUMNS, path)
+
+
+def read_claims_csv(path: str | os.PathLike) -> list[dict[str, str]]:
+    """Read the table back; a file with other columns is rejected, naming it."""
+    with open(path, newline="") as handle:
+        reader = csv.DictReader(handle)
+        if reader.fieldnames != COLUMNS:
+            raise ValueError(f"{path}: columns {reader.fieldnames} are not {COLUMNS}")
+        return list(reader)
+
+
+def check_claims(
+    register: str, fig3: Mapping[str, str], fig4: str, fig5: Mapping[str, str], checks: str, output: str, log: str
+) -> None:
+    """Evaluate the register on the outputs (``fig3`` and ``fig5`` keyed by their configured labels)
+    and write the table; raise, naming the claim, when a check fails."""
+    with logged(log, "check_claims") as logger:
+        evidence = Evidence(
+            fig3={label: read_netcdf(path, FIG3_VARIABLES) for label, path in fig3.items()},
+            fig4=read_netcdf(fig4, FIG4_VARIABLES),
+            fig5={label: read_netcdf(path, FIG5_VARIABLES) for label, path in fig5.items()},
+            checks=read_netcdf(checks, CHECKS_VARIABLES),
+        )
+        rows = evaluate(load_claims(register), evidence)
+        for row in rows:
+            logger.info("%s: %s: %s", row["claim_id"], row["status"], row["replicated_value"])
+        write_claims_csv(rows, output)

@@ -1,0 +1,169 @@
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+from escapement.model.kinematics import (
+    SCALAR,
+    VECTOR,
+    arc_maximum,
+    compensated_add,
+    crossing,
+    rebound_accumulation_time,
+    sample_arcs,
+    time_to_rest,
+)
+
+
+def test_crossing_of_a_free_swing_from_rest():
+    # x = cos t from (1, 0): x = 0.5 moving left at t = pi/3, with v = -sin(pi/3).
+    reached, tau, v, angle = crossing(0.0, 1.0, 0.0, 1.0, 0.5, -1)
+    assert reached
+    assert tau == pytest.approx(math.pi / 3, rel=1e-15)
+    assert v == pytest.approx(-math.sin(math.pi / 3), rel=1e-15)
+    assert angle == pytest.approx(math.pi / 3, rel=1e-15)
+
+
+def test_crossing_moving_right_needs_the_far_side_of_the_circle():
+    # From (1, 0) the first passage of x = 0.5 moving right is at t = 2 pi - pi/3.
+    reached, tau, v, _ = crossing(0.0, 1.0, 0.0, 1.0, 0.5, 1)
+    assert reached
+    assert tau == pytest.approx(5 * math.pi / 3, rel=1e-15)
+    assert v == pytest.approx(math.sin(math.pi / 3), rel=1e-15)
+
+
+def test_crossing_about_a_shifted_centre_with_frequency():
+    # x = c + u0 cos(w t) with c = 2, u0 = -1, w = 3: reaches x = 2 (the centre) moving right at w t = pi/2.
+    reached, tau, v, angle = crossing(2.0, 1.0, 0.0, 3.0, 2.0, 1)
+    assert reached
+    assert angle == pytest.approx(math.pi / 2, rel=1e-15)
+    assert tau == pytest.approx(math.pi / 6, rel=1e-15)
+    assert v == pytest.approx(3.0, rel=1e-15)
+
+
+@pytest.mark.parametrize("target", [1.0, 1.5, -1.0])
+def test_no_crossing_at_or_beyond_the_turning_point(target):
+    # x = cos t turns at +-1: a target at a turning point is grazed, not passed; beyond it is never reached.
+    reached, *_ = crossing(0.0, 1.0, 0.0, 1.0, target, -1 if target < 0 else 1)
+    assert reached is False or reached == np.False_
+
+
+def test_crossing_just_inside_the_turning_point_has_the_energy_speed():
+    target = 1.0 - 1e-12
+    eps = 1.0 - target  # exact in floating point
+    reached, tau, v, _ = crossing(0.0, 1.0, 0.0, 1.0, target, -1)
+    assert reached
+    assert v == pytest.approx(-math.sqrt(2 * eps - eps * eps), rel=1e-12)
+    assert tau == pytest.approx(math.acos(1 - eps), rel=1e-6)
+
+
+def test_crossing_on_arrays_is_the_scalar_crossing_elementwise():
+    # rows: a free swing from rest, a shifted centre, a target beyond the turning point, a start moving left
+    centre = np.array([0.0, 2.0, 0.0, 0.3])
+    x0 = np.array([1.0, 1.0, 1.0, -0.2])
+    v0 = np.array([0.0, 0.0, 0.0, -1.5])
+    omega = np.array([1.0, 3.0, 1.0, 2.0])
+    target = np.array([0.5, 2.0, 1.5, 0.1])
+    direction = np.array([-1.0, 1.0, 1.0, 1.0])
+    reached, tau, v, angle = crossing(centre, x0, v0, omega, target, direction, VECTOR)
+    assert reached.tolist() == [True, True, False, True]
+    for i in (0, 1, 3):
+        one = crossing(centre[i], x0[i], v0[i], omega[i], target[i], direction[i], SCALAR)
+        assert (tau[i], v[i], angle[i]) == pytest.approx(one[1:], rel=1e-15)
+    # row 3 by hand: u0 = -0.5, w0 = -0.75 about c = 0.3, radius sqrt(0.8125); it reaches x = 0.1 (u = -0.2)
+    # moving right after passing the bottom: clockwise from phase atan2(-0.75, -0.5) to atan2(+w1, -0.2)
+    radius = math.hypot(-0.5, -0.75)
+    w1 = math.sqrt(radius**2 - 0.04)
+    sweep = (math.atan2(-0.75, -0.5) - math.atan2(w1, -0.2)) % (2 * math.pi)
+    assert tau[3] == pytest.approx(sweep / 2.0, rel=1e-14)
+    assert v[3] == pytest.approx(2.0 * w1, rel=1e-15)
+
+
+def test_a_full_turn_is_2pi_not_0():
+    # From x = 0.5 moving right, the next arrival at x = 0.5 moving right is a full period later.
+    reached, tau, v, angle = crossing(0.0, 0.5, 1.0, 2.0, 0.5, 1)
+    assert reached and angle == pytest.approx(2 * math.pi, rel=1e-15) and tau == pytest.approx(math.pi, rel=1e-15)
+    assert v == pytest.approx(1.0, rel=1e-15)
+
+
+def test_arc_maximum_over_the_top_and_short_of_it():
+    # From (0, 1) about 0 with w = 1 the top x = 1 is reached after a quarter turn.
+    assert arc_maximum(0.0, 0.0, 1.0, 1.0, math.pi, 0.0) == pytest.approx(1.0, rel=1e-15)
+    assert arc_maximum(0.0, 0.0, 1.0, 1.0, 0.5, math.sin(0.5)) == math.sin(0.5)
+
+
+def test_arc_maximum_on_arrays():
+    got = arc_maximum(np.zeros(2), np.zeros(2), np.ones(2), np.ones(2), np.array([math.pi, 0.5]),
+                      np.array([0.0, math.sin(0.5)]), VECTOR)
+    assert got == pytest.approx([1.0, math.sin(0.5)], rel=1e-15)
+
+
+def test_arc_maximum_about_a_shifted_centre_from_below_the_top():
+    # about c = 0.2 from (x, v) = (0.2 - 0.3, -0.4 w), w = 2: radius 0.5; moving left, the top (0.7) comes
+    # after the bottom, i.e. after a phase of pi + atan2(0.4, 0.3) from the start.
+    start = math.atan2(-0.4, -0.3) + 2 * math.pi
+    assert arc_maximum(0.2, -0.1, -0.8, 2.0, start - 1e-9, 0.0) == 0.0  # ends just short of the top, at x1 = 0
+    assert arc_maximum(0.2, -0.1, -0.8, 2.0, start + 1e-9, 0.0) == pytest.approx(0.7, rel=1e-15)
+
+
+def test_compensated_sum_of_a_million_tenths_is_the_exactly_rounded_sum():
+    total = error = 0.0
+    for _ in range(1_000_000):
+        total, error = compensated_add(total, error, 0.1)
+    exact = math.fsum([0.1] * 1_000_000)  # correctly rounded sum of the floats
+    assert total + error == exact
+    plain = sum([0.1] * 1_000_000)
+    assert plain != exact  # the naive sum drifts: the compensation is needed
+
+
+def test_compensated_add_on_arrays():
+    total, error = np.array([1e16, 0.0]), np.zeros(2)
+    for term in (1.0, 1.0, -1e16):
+        total, error = compensated_add(total, error, np.array([term, term]), VECTOR)
+    assert (total + error).tolist() == [2.0, -1e16 + 2.0]
+
+
+def test_time_to_rest_moving_left_and_right():
+    tau, x = time_to_rest(0.0, 0.0, -1.0, 1.0)
+    assert (tau, x) == (pytest.approx(math.pi / 2, rel=1e-15), pytest.approx(-1.0, rel=1e-15))
+    tau, x = time_to_rest(1.0, 1.0, 2.0, 2.0)
+    assert (tau, x) == (pytest.approx(math.pi / 4, rel=1e-15), pytest.approx(2.0, rel=1e-15))
+    assert time_to_rest(0.0, 0.3, 0.0, 1.0) == (0.0, 0.3)
+
+
+@pytest.mark.parametrize("ratio, speed", [(0.5, 1.0), (0.9, 3.0), (0.2, 0.01), (0.0, 1.0), (0.99, 50.0)])
+def test_rebound_accumulation_time_against_a_30_digit_sum(ratio, speed):
+    # Direct sum of the flight times (2/w) atan(x r^n) until x r^n < 1e-20; the rest is
+    # sum of x r^n / (1 - r) up to a relative error of order 1e-40.
+    omega, distance = 1.3, 0.1
+    with mpmath.workdps(30):
+        x = mpmath.mpf(speed) / (mpmath.mpf(omega) * mpmath.mpf(distance))
+        r = mpmath.mpf(ratio)
+        total = mpmath.mpf(0)
+        term = x
+        while term > mpmath.mpf("1e-20"):
+            total += mpmath.atan(term)
+            term *= r
+        total += term / (1 - r)
+        expected = float(2 * total / mpmath.mpf(omega))
+    assert rebound_accumulation_time(omega, distance, speed, ratio) == pytest.approx(expected, rel=1e-13)
+
+
+def test_rebound_accumulation_time_gives_up_beyond_its_bound():
+    assert rebound_accumulation_time(1.0, 0.1, 10.0, 1 - 1e-9, max_terms=1000) is None
+
+
+def test_rebound_accumulation_time_rejects_invalid_input():
+    with pytest.raises(ValueError):
+        rebound_accumulation_time(1.0, 0.1, 1.0, 1.0)
+
+
+def test_sample_arcs_is_nan_outside_the_trajectory():
+    x, v, a = sample_arcs(
+        np.array([-1.0, 0.0, 1.0, 3.0]), np.array([0.0]), np.array([0.0]), np.array([1.0]), np.array([0.0]), 1.0, 2.0
+    )
+    assert np.isnan(x[0]) and np.isnan(x[3])
+    assert x[1:3] == pytest.approx([1.0, math.cos(1.0)], rel=1e-15)
+    assert v[2] == pytest.approx(-math.sin(1.0), rel=1e-15)
+    assert a[2] == pytest.approx(-math.cos(1.0), rel=1e-15)

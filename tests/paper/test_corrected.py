@@ -1,0 +1,49 @@
+"""The corrected closed forms against the exact solution and against each other."""
+
+import numpy as np
+import pytest
+
+from escapement.model.parameters import Parameters
+from escapement.paper import corrected as d
+from escapement.solvers.exact import solve_exact
+
+CASES = [
+    (Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0),
+    (Parameters(M=1, K=1, F=0.5, b=0.1, a1=-0.1, a2=0.05), 3.0),
+    (Parameters(M=1.3, K=2.1, F=0.7, b=0.2, a1=-0.12, a2=0.03, a3=0.08, a4=-0.07), 1.0),
+    (Parameters(M=1, K=10, F=0.5, b=0.1, a1=-0.1, a2=0.05), 1.0),
+]
+
+
+@pytest.mark.parametrize("p, x0", CASES)
+def test_corrected_eq23_gives_every_simulated_period(p, x0):
+    s = solve_exact(p, x0, n_cycles=60)
+    predicted = np.array([d.period(v, p) for v in s.cycles.velocity_before_impact])
+    assert predicted == pytest.approx(s.cycles.period, rel=1e-13)
+
+
+@pytest.mark.parametrize("p, x0", CASES)
+def test_period_is_2pi_over_omega_plus_the_perturbations(p, x0):
+    s = solve_exact(p, x0, n_cycles=60)
+    predicted = np.array([d.period_from_perturbations(v, p) for v in s.cycles.velocity_before_impact])
+    assert predicted == pytest.approx(s.cycles.period, rel=1e-13)
+
+
+@pytest.mark.parametrize("p, x0", CASES)
+def test_fixed_point_and_linear_energy_map(p, x0):
+    s = solve_exact(p, x0, n_cycles=80)
+    v = s.cycles.velocity_before_impact
+    assert v[-1] == pytest.approx(d.fixed_point(p), rel=1e-13)
+    energies = d.fixed_point_energy_sequence(v[0], p, len(v))
+    assert v**2 == pytest.approx(energies, rel=1e-12)
+
+
+@pytest.mark.parametrize("p, x0", CASES)
+def test_closed_phase_jump_equals_its_arctangent_difference(p, x0):
+    for v in (0.3, 1.0, 4.0):
+        assert d.impact_phase_jump_closed(p.a1, v, p) == pytest.approx(d.impact_phase_jump(p.a1, v, p), rel=1e-13)
+
+
+def test_map_constant_is_positive_and_symmetric_form_reduces():
+    p = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
+    assert d.map_constant(p) == pytest.approx(2 * (0.1**2 - 0.2 + 2) * 0.15 * 1.0, rel=1e-15)

@@ -1,0 +1,104 @@
+"""The check_claims job on tiny netCDF files, and the claims table's CSV round trip."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+from escapement.io.netcdf import write_netcdf
+from escapement.paper.claims import CHECKS, COLUMNS, ClaimError
+from escapement.pipeline.verdict import check_claims, read_claims_csv, write_claims_csv
+
+MODEL = {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05, "x0": 1.0,
+         "outcome": "completed", "outcome_message": "completed 2 cycles"}
+# x1^2 = 0.3 f / 0.19 for f = 1: the fixed point of the map x1(k+1)^2 = 0.6561 x1(k)^2 + 0.543 f
+FIXED_POINT = (0.3 / 0.19) ** 0.5
+
+
+def files(tmp_path) -> dict:
+    cycles = {"velocity_before_impact": FIXED_POINT, "period": 6.3, "amplitude": 1.2}
+    fig3 = xr.Dataset(
+        {**{k: ("cycle", np.full(2, v)) for k, v in cycles.items()},
+         "event_time": ("event", np.arange(9.0)), "event_kind": ("event", np.array([1, 2, 3, 4] * 2 + [1], np.int8)),
+         "event_velocity_before": ("event", np.zeros(9))},
+        coords={"cycle": [1, 2]}, attrs=MODEL,
+    )
+    fig4 = xr.Dataset(
+        {"velocity": ("t", np.zeros(3)), "acceleration": ("t", np.zeros(3)), "velocity_before": ("impact", [1.0]),
+         "impulse": ("impact", [-0.1]), "energy_dissipated": ("impact", [0.095])},
+        coords={"t": [80.0, 81.0, 82.0]}, attrs=MODEL,
+    )
+    fig5 = xr.Dataset(
+        {"velocity": ("t", np.zeros(3)), "impact_time": ("impact", [1.0]),
+         **{k: ("cycle", np.full(2, v)) for k, v in cycles.items()}},
+        coords={"t": [0.0, 1.0, 2.0]}, attrs=MODEL,
+    )
+    runs = xr.Dataset(
+        {"label": ("case", ["p"]), "group": ("case", ["paper"]), "outcome": ("case", ["completed"]),
+         "outcome_message": ("case", ["completed"]),
+         **{k: ("case", [v]) for k, v in {"F": 1.0, "b": 0.1, "x0": 1.0, "velocity": FIXED_POINT, "period": 6.3,
+                                            "multiplier": 0.6561, "multiplier_eq21": 0.6561}.items()}},
+    )
+    paths = {"fig3": tmp_path / "case_first.nc", "fig4": tmp_path / "shock.nc", "fig5": tmp_path / "K_1.nc",
+             "checks": tmp_path / "checks.nc"}
+    for ds, path in zip((fig3, fig4, fig5, runs), paths.values()):
+        write_netcdf(ds, path)
+    register = tmp_path / "claims.yaml"
+    claims = [
+        {"id": "fixed_point_first", "source": "Eq. (19)", "statement": "s", "paper_value": None, "tolerance": 1e-8,
+         "check": "fixed_point", "args": {"case": "first"}},
+        {"id": "multiplier", "source": "Eq. (21)", "statement": "s", "paper_value": 0.6561, "tolerance": 1e-8,
+         "check": "multiplier_paper_cases"},
+    ]
+    register.write_text(yaml.safe_dump({"version": 1, "claims": claims}))
+    return {"register": str(register), "fig3": {"first": str(paths["fig3"])}, "fig4": str(paths["fig4"]),
+            "fig5": {"1": str(paths["fig5"])}, "checks": str(paths["checks"])}
+
+
+def test_the_job_writes_one_row_per_claim_with_the_configured_label(tmp_path):
+    output = tmp_path / "claims.csv"
+    check_claims(**files(tmp_path), output=str(output), log=str(tmp_path / "log"))
+    rows = read_claims_csv(output)
+    assert [r["claim_id"] for r in rows] == ["fixed_point_first", "multiplier"]
+    assert [r["status"] for r in rows] == ["reproduced", "reproduced"]
+    assert rows[0]["replicated_value"] == "1.256561725 m/s at cycle 2"
+
+
+def test_the_job_fails_naming_the_claim_when_a_check_raises(tmp_path, monkeypatch):
+    def broken(claim, ev):
+        raise ZeroDivisionError("float division by zero")
+
+    monkeypatch.setitem(CHECKS, "multiplier_paper_cases",
+                        dataclasses.replace(CHECKS["multiplier_paper_cases"], function=broken))
+    output, log = tmp_path / "claims.csv", tmp_path / "log"
+    with pytest.raises(ClaimError, match="claim 'multiplier'.*ZeroDivisionError") as info:
+        check_claims(**files(tmp_path), output=str(output), log=str(log))
+    assert isinstance(info.value.__cause__, ZeroDivisionError)
+    assert not output.exists()
+    assert "claim 'multiplier'" in log.read_text()
+
+
+ROWS = [
+    {"claim_id": "x", "source": "Eq. (1)", "statement": 's, with "quotes"', "paper_value": "[0.5, 3]",
+     "replicated_value": "a: 1, b: 2", "tolerance": "", "status": "reproduced", "note": "line\nbreak"},
+    {"claim_id": "y", "source": "Fig. 2", "statement": "s", "paper_value": "6.2832", "replicated_value": "6.2957 s",
+     "tolerance": "5e-05", "status": "not_reproduced", "note": ""},
+]
+
+
+def test_csv_round_trip(tmp_path):
+    path = tmp_path / "claims.csv"
+    write_claims_csv(ROWS, path)
+    assert path.read_text().splitlines()[0] == ",".join(COLUMNS)
+    assert read_claims_csv(path) == ROWS
+
+
+def test_csv_with_other_columns_is_rejected(tmp_path):
+    path = tmp_path / "bad.csv"
+    path.write_text("a,b\n1,2\n")
+    with pytest.raises(ValueError, match="bad.csv: columns"):
+        read_claims_csv(path)

@@ -1,0 +1,96 @@
+import math
+
+import pytest
+
+from escapement.model.parameters import Parameters
+from escapement.solvers.high_precision import solve_high_precision
+from escapement.studies.benchmark import closed_form_map, run_method, work_precision
+
+P = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
+N = 5
+
+
+@pytest.fixture(scope="module")
+def reference():
+    """Velocity before impact and impact time at cycle N, in 50 digits (t is about 30 s, v about 1.2 m/s)."""
+    hp = solve_high_precision(P, 1.0, n_cycles=N).cycles
+    return float(hp.velocity_before_impact[-1]), float(hp.impact_time[-1])
+
+
+def test_closed_form_map_agrees_with_the_50_digit_reference():
+    v, t = closed_form_map(P, 1.0, 50)
+    hp = solve_high_precision(P, 1.0, n_cycles=50).cycles
+    assert v == pytest.approx(float(hp.velocity_before_impact[-1]), rel=1e-14)
+    assert t == pytest.approx(float(hp.impact_time[-1]), rel=1e-14)
+
+
+def test_closed_form_map_needs_release_beyond_a3():
+    with pytest.raises(ValueError, match="x0 > a3"):
+        closed_form_map(P, 0.05, 5)
+
+
+# Tolerances, from the error each method can make over the N = 5 cycles (about 20 events, 40 segments):
+# * exact and map16: rounding, some ulps per event: 1e-14;
+# * an integrator at rtol: each segment's local error is up to a few rtol and an event location moves the
+#   time by that over |v| >= 0.1 m/s: within 1e3 rtol;
+# * naive RK4 at step h: each event is applied up to one step late, so the time is off by at most 20 h
+#   over t = 30 s, and each event's velocity by up to w^2 |x| h <= h (|x| <= 1 m), a few events' worth: 5 h.
+@pytest.mark.parametrize(
+    "method, setting, tol_v, tol_t",
+    [
+        ("exact", None, 1e-14, 1e-14),
+        ("map16", None, 1e-14, 1e-14),
+        ("RK45", 1e-8, 1e-5, 1e-5),
+        ("DOP853", 1e-10, 1e-7, 1e-7),
+        ("LSODA", 1e-8, 1e-5, 1e-5),
+        ("Radau", 1e-8, 1e-5, 1e-5),
+        ("CVODE-Adams", 1e-9, 1e-6, 1e-6),
+        ("CVODE-BDF", 1e-9, 1e-6, 1e-6),
+        ("naive-RK4", 1e-3, 5e-3, 20 * 1e-3 / 30),
+    ],
+)
+def test_every_method_lands_near_the_50_digit_reference(reference, method, setting, tol_v, tol_t):
+    v_ref, t_ref = reference
+    v, t = run_method(method, setting, P, 1.0, N)
+    assert abs(v - v_ref) / v_ref < tol_v
+    assert abs(t - t_ref) / t_ref < tol_t
+
+
+def test_naive_error_is_first_order_in_the_step(reference):
+    """Ten times the step, about ten times the time error (events are late by up to a step)."""
+    _, t_ref = reference
+    coarse = abs(run_method("naive-RK4", 1e-2, P, 1.0, N)[1] - t_ref)
+    fine = abs(run_method("naive-RK4", 1e-3, P, 1.0, N)[1] - t_ref)
+    assert 3 < coarse / fine < 30
+
+
+@pytest.mark.parametrize("method", ["naive-RK4", "DOP853"])
+def test_a_run_that_leaves_the_regime_is_an_error(method):
+    # released inside |a1|: the escapement stops, no cycle is completed
+    with pytest.raises(RuntimeError, match="ended early"):
+        run_method(method, 0.01 if method == "naive-RK4" else 1e-8, P, 0.05, N)
+
+
+@pytest.mark.parametrize("method", ["magic", "rk45", "", "exact "])
+def test_invalid_methods_raise(method):
+    with pytest.raises(ValueError, match=f"method = {method!r} is invalid"):
+        run_method(method, None, P, 1.0, N)
+
+
+def test_rows_hold_the_errors_of_each_run_against_50_digits(reference):
+    v_ref, t_ref = reference
+    rows = work_precision(P, 1.0, N, {"exact": [], "naive-RK4": [0.1, 0.01]}, repeats=5)
+    assert [(r["method"], r["setting"]) for r in rows] == [("exact", ""), ("naive-RK4", "0.1"), ("naive-RK4", "0.01")]
+    for row, setting in zip(rows[1:], (0.1, 0.01)):
+        v, t = run_method("naive-RK4", setting, P, 1.0, N)  # deterministic: the same run again
+        assert row["error_velocity"] == pytest.approx(abs(v - v_ref) / v_ref, rel=1e-12)
+        assert row["error_time"] == pytest.approx(abs(t - t_ref) / t_ref, rel=1e-12)
+    assert rows[0]["error_velocity"] < 1e-14 and rows[0]["error_time"] < 1e-14
+    assert rows[2]["error_time"] < rows[1]["error_time"]  # a smaller step is more accurate
+    assert all(r["wall_s"] > 0 and math.isfinite(r["wall_s"]) for r in rows)
+
+
+@pytest.mark.parametrize("settings, repeats, message", [({"exact": []}, 4, "repeats"), ({"magic": []}, 5, "method")])
+def test_invalid_benchmark_settings(settings, repeats, message):
+    with pytest.raises(ValueError, match=message):
+        work_precision(P, 1.0, 5, settings, repeats)
