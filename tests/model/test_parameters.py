@@ -101,8 +101,6 @@ def test_parameters_refuse_arrays():
         Parameters(**{**VALID, "F": [1.0, 2.0]})
 
 
-@pytest.mark.xfail(strict=True, reason="Parameters checks ndim after broadcasting, so the first key (M) is named, "
-                   "not the array-valued one")
 def test_an_array_parameter_is_named():
     with pytest.raises(ParameterError) as err:
         Parameters(**{**VALID, "F": [1.0, 2.0]})

@@ -55,7 +55,7 @@ def test_messages_name_the_numbers():
     assert "a1 = -0.1 m (moving right) or a3 = 0.1 m (moving left)" in text
     text = turned_back_message(2.0, "(a4, a3)", -0.021, -0.0001, -0.1)
     assert "(a4, a3) at t = 2 s" in text and "turns at x = -0.021 m" in text and "at -0.1 m" in text
-    assert "v+ = -0.5 v-" in chattering_message(3.0, "a1", 1.5, 4.25)
-    assert "accumulate at t = 4.25 s" in chattering_message(3.0, "a1", 1.5, 4.25)
-    assert "do not accumulate" in chattering_message(3.0, "a3", 1.5, None)
+    assert "v+ = -0.5 v-" in chattering_message(3.0, "a1", 1.5, -0.5, 4.25)
+    assert "accumulate at t = 4.25 s" in chattering_message(3.0, "a1", 1.5, -0.5, 4.25)
+    assert "do not accumulate" in chattering_message(3.0, "a3", 1.5, -0.5, None)
     assert "max_events = 7" in event_limit_message(1.0, 7)

@@ -53,8 +53,6 @@ def test_return_map_without_a_return_raises_or_gives_nan():
     assert math.isnan(v_out)
 
 
-@pytest.mark.xfail(strict=True, reason="return_map(strict=False) reads v_in from the complete cycles only, so an "
-                   "exit in the first cycle gives NaN for v_in too, not the first impact's velocity")
 def test_return_map_keeps_v_in_when_the_first_cycle_does_not_close():
     v_in, _ = return_map(Parameters(**MODEL, F=1.0, b=1.5), 1.1, strict=False)
     assert v_in == pytest.approx(1.1, rel=1e-14)

@@ -210,8 +210,6 @@ def test_every_solver_applies_the_patched_law_at_each_impact(monkeypatch):
         assert ratio[~impacts] == pytest.approx(1.0, rel=1e-15), solve.__name__
 
 
-@pytest.mark.xfail(strict=True, reason="the Zeno accumulation time takes the rebound ratio as |1 - b| in "
-                   "solvers/driver.py and solvers/ensemble.py instead of from automaton.velocity_after")
 def test_the_zeno_time_follows_a_patched_reversing_law(monkeypatch):
     # v+ = (1 - 1.2 b) v-: for b = 1.5 the rebound keeps 0.8 of the speed (the paper's law keeps 0.5)
     monkeypatch.setattr(automaton, "velocity_after", lambda v, b, impact: (1.0 - 1.2 * b * impact) * v)

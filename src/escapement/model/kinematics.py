@@ -55,14 +55,14 @@ def crossing(centre, x0, v0, omega, target, direction, lib=SCALAR):
     """
     v_sq = v0 * v0 + (omega * omega) * ((x0 - target) * (x0 + target - 2.0 * centre))
     reached = v_sq > 0.0
-    v1 = direction * lib.sqrt(lib.where(reached, v_sq, 0.0))
+    v1 = direction * lib.sqrt(lib.maximum(v_sq, 0.0))
     u0 = x0 - centre
     q = target - centre
     w0 = v0 / omega
     w1 = v1 / omega
     # Clockwise angle from (u0, w0) to (q, w1), in (0, 2 pi].
     angle = lib.atan2(w0 * q - u0 * w1, u0 * q + w0 * w1)
-    angle = lib.where(angle <= 0.0, angle + TWO_PI, angle)
+    angle = angle + TWO_PI * (angle <= 0.0)  # arithmetic, not a branch: floats and arrays alike
     return reached, angle / omega, v1, angle
 
 
@@ -71,7 +71,7 @@ def arc_maximum(centre, x0, v0, omega, angle, x1, lib=SCALAR):
     u0 = x0 - centre
     w0 = v0 / omega
     start = lib.atan2(w0, u0)  # the top of the circle (x = centre + R) is at phase 0
-    to_top = lib.where(start >= 0.0, start, start + TWO_PI)
+    to_top = start + TWO_PI * (start < 0.0)
     return lib.where(to_top <= angle, centre + lib.hypot(u0, w0), lib.maximum(x0, x1))
 
 

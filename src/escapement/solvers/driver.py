@@ -48,6 +48,8 @@ _A1 = int(EventKind.IMPACT_A1)
 
 
 class Step(NamedTuple):
+    """What a stepper returns (a plain tuple of these six fields is accepted too)."""
+
     kind: int
     dt: float
     v: float
@@ -92,6 +94,11 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
     offset = params.zone_offset
     positions = {kind: automaton.position(kind, params) for kind in EventKind}
     impact = automaton.IMPACT_TABLE
+    # the automaton's tables, looked up once: centres by mode, watched surfaces by (mode, awaited),
+    # the next mode and awaited impact by event
+    centres = [automaton.centre(m, offset) for m in Mode]
+    watching = {(m, a): automaton.watched(m, a) for m in Mode for a in automaton.Awaited}
+    after = {kind: automaton.transition(kind) for kind in EventKind}
 
     ev = _Records(floats, ("t", "x", "v_before", "v_after"))
     kinds = array("b")
@@ -105,9 +112,9 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
     t_final = t
 
     for _ in range(limits.max_events):
-        c = automaton.centre(mode, offset)
-        step = stepper.next_event(mode, c, t, x, v, automaton.watched(mode, awaited), t_stop)
-        kind = step.kind
+        c = centres[mode]
+        step = stepper.next_event(mode, c, t, x, v, watching[(mode, awaited)], t_stop)
+        kind = step[0]
         if kind == NO_EVENT:
             status = automaton.EXIT_WITHOUT_EVENT[mode]
             turning = step.x_max
@@ -124,20 +131,19 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
                 message = turned_back_message(float(t_final), zone, float(turning), float(c), float(end))
                 exit_ = Exit(turning_point=float(turning), margin=float(abs(end - turning)))
             break
-        dt = step.dt
+        _, dt, v_before, x_max, t_abs, x_at = step
         if kind == HORIZON or t + dt > t_stop:
             status, t_final = Status.COMPLETED, t_stop
             message = f"reached t_end = {t_stop:.12g} s after {impacts_a1} impacts at a1"
             break
-        cycle_max = max(cycle_max, step.x_max)
-        if step.t_abs is None:
+        cycle_max = max(cycle_max, x_max)
+        if t_abs is None:
             t_sum, t_err = compensated_add(t_sum, t_err, dt)
             t = t_sum + t_err
         else:
-            t = t_sum = step.t_abs
+            t = t_sum = t_abs
         elapsed += dt
-        x = positions[kind] if step.x_at is None else step.x_at
-        v_before = step.v
+        x = positions[kind] if x_at is None else x_at
         v_after = automaton.velocity_after(v_before, b, impact[kind])
         ev["t"].append(t), kinds.append(kind), ev["x"].append(x), ev["v_before"].append(v_before)
         ev["v_after"].append(v_after)
@@ -164,7 +170,7 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
             message = chattering_message(float(t), position, params.b, ratio, t_acc)
             exit_ = Exit(t_accumulation=math.nan if t_acc is None else t_acc)
             break
-        mode, awaited = automaton.transition(kind)
+        mode, awaited = after[kind]
         v = v_after
     else:
         message = event_limit_message(float(t), limits.max_events)

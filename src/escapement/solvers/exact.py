@@ -52,7 +52,7 @@ class ClosedFormStepper:
             rest_dt, turning_point = time_to_rest(centre, x, v, omega)
             return Step(NO_EVENT, rest_dt, 0.0, turning_point)
         kind, dt, v_new, angle, target = best
-        return Step(kind, dt, v_new, arc_maximum(centre, x, v, omega, angle, target))
+        return kind, dt, v_new, arc_maximum(centre, x, v, omega, angle, target), None, None  # a Step
 
     def trajectory(self, t_final: float) -> ArcTable | None:
         if not self.record:
