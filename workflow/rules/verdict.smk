@@ -5,7 +5,9 @@ rule check_claims:
         fig4="results/fig4/shock.nc",
         fig5=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
         checks="results/claims/checks.nc",
-        code=package_code("model", "solvers", "paper", *IO, *PIPELINE, "pipeline/verdict.py"),
+        code=package_code(
+            "model", "solvers", "paper", *IO, *PIPELINE, "pipeline/verdict.py"
+        ),
     output:
         csv=report(
             "results/claims.csv",
