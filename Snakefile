@@ -1,8 +1,17 @@
 # Replication of Mao, Fu & Li (2013), "Dynamics of periodic impulsive collision in escapement
 # mechanism", Shock and Vibration 20, 1001-1010, doi:10.3233/SAV-130800.
+from snakemake.exceptions import WorkflowError
 from snakemake.utils import min_version
 
+from escapement.pipeline.config import ConfigError, check_config_file
+
 min_version("8.0")
+
+# Snakemake's loader names neither the line of a YAML error nor a key given twice.
+try:
+    check_config_file("config/config.yaml")
+except ConfigError as err:
+    raise WorkflowError(str(err)) from None
 
 
 configfile: "config/config.yaml"

@@ -1,4 +1,11 @@
-"""End-to-end: the workflow on a copy of the repository in a temporary directory."""
+"""End-to-end: the workflow on a copy of the repository in a temporary directory.
+
+The copies run a reduced configuration (:func:`reduce`: few cycles, a small map, a short
+benchmark), so that every rule and every file format is exercised in seconds. The full
+configuration runs in CI's Quick start, which also checks that the documents it regenerates
+are the committed ones; :func:`test_the_committed_verdict_is_the_expected_one` ties those
+documents to the expected verdict.
+"""
 
 from __future__ import annotations
 
@@ -46,9 +53,40 @@ def planned_jobs(where: Path) -> dict[str, int]:
     return {m[0]: int(m[1]) for m in re.findall(r"^(\w+)\s+(\d+)\s*$", table, re.M) if m[0] != "job"}
 
 
+def _edit_config(where: Path, edit) -> str:
+    path = where / "config/config.yaml"
+    original = path.read_text()
+    config = yaml.safe_load(original)
+    edit(config)
+    path.write_text(yaml.safe_dump(config))
+    return original
+
+
+REDUCED_FIG3_CYCLES = 12
+
+
+def reduce(config: dict) -> None:
+    """Shrink every scene to a few cycles and samples; the rules, formats and checks stay."""
+    config["fig3"]["n_cycles"] = REDUCED_FIG3_CYCLES
+    config["fig4"]["samples_per_second"] = 50
+    config["fig5"].update(n_cycles=12, samples_per_period=16)
+    config["checks"]["n_cycles"] = 40
+    config["benchmark"]["n_cycles"] = 5
+    config["long_run"].update(n_cycles=2000, ivp_cycles=10)
+    config["stability_map"].update(
+        b={"start": 0.0, "stop": 2.0, "n": 12}, F={"start": 0.01, "stop": 2.0, "n": 12}, chunks=2
+    )
+
+
+def reduced_copy(dest: Path) -> Path:
+    where = copy_repository(dest)
+    _edit_config(where, reduce)
+    return where
+
+
 @pytest.fixture(scope="module")
 def workflow_run(tmp_path_factory):
-    where = copy_repository(tmp_path_factory.mktemp("workflow"))
+    where = reduced_copy(tmp_path_factory.mktemp("workflow"))
     snakemake(where, "--cores", "2")
     return where
 
@@ -83,7 +121,7 @@ def test_every_netcdf_output_holds_its_variables(workflow_run, path):
 
 def test_fig3_has_the_configured_number_of_cycles(workflow_run):
     ds = read_netcdf(workflow_run / "results/fig3/case_a.nc")
-    assert ds.sizes["cycle"] == 50 and ds.attrs["F"] == 1.0 and ds.attrs["x0"] == 1.0
+    assert ds.sizes["cycle"] == REDUCED_FIG3_CYCLES and ds.attrs["F"] == 1.0 and ds.attrs["x0"] == 1.0
     assert "t" not in ds.dims
 
 
@@ -107,15 +145,6 @@ def test_logs_and_benchmarks_are_written(workflow_run):
 
 def test_a_second_run_does_nothing(workflow_run):
     assert planned_jobs(workflow_run) == {}
-
-
-def _edit_config(where: Path, edit) -> str:
-    path = where / "config/config.yaml"
-    original = path.read_text()
-    config = yaml.safe_load(original)
-    edit(config)
-    path.write_text(yaml.safe_dump(config))
-    return original
 
 
 VERDICT = {"check_claims": 1, "render_docs": 1, "all": 1}
@@ -150,19 +179,13 @@ def test_editing_one_scene_reruns_that_scene_only(workflow_run, edit, expected):
         (workflow_run / "config/config.yaml").write_text(original)
 
 
+# One problem of each kind the configuration check finds (a model rule, the schema, two scenes that
+# collide); tests/pipeline/test_config.py has every message, without starting Snakemake.
 @pytest.mark.parametrize(
     "edit, words",
     [
         (lambda c: c["model"].update(M=0.0), ["model.M = 0.0 is invalid: M must be a number > 0 (kg)"]),
-        (lambda c: c["model"].update(b=2.0), ["model.b = 2.0 is invalid: b must be a number in the open interval"]),
-        (lambda c: c["model"].update(a2=-0.2), ["a2 = -0.2 is invalid: a2 must be > a1 = -0.1 (m)"]),
-        (lambda c: c["model"].update(K="stiff"), ["model.K = 'stiff' is invalid: K must be a number > 0 (N/m)"]),
-        (lambda c: c["model"].update(K=float("inf")), ["K = inf is invalid: K must be finite"]),
-        (lambda c: c["model"].update(a4=0.2), ["a4 = 0.2 is invalid: a4 must be < a3 = 0.1 (m)"]),
-        (lambda c: c["model"].pop("a1"), ["model: the key 'a1' is missing: it must be given"]),
         (lambda c: c["fig4"].update(colour="red"), ["fig4: unknown key 'colour'"]),
-        (lambda c: c["fig3"]["cases"]["a"].update(x0=float("nan")), ["x0", "nan", "finite"]),
-        (lambda c: c["fig4"].update(velocity_window=[87.0, 80.0]), ["velocity_window", "start < end"]),
         (lambda c: c["fig5"].update(K=[1.0, 1.0000001, 10.0]), ["would both write K_1.nc"]),
     ],
 )
@@ -176,6 +199,19 @@ def test_an_invalid_configuration_stops_before_any_job(tmp_path, edit, words):
         assert word in message
     assert not (where / "results").exists()
     assert not list((where / "figures").glob("*")) if (where / "figures").exists() else True
+
+
+def test_a_yaml_error_in_the_configuration_is_named_with_its_line(tmp_path):
+    where = copy_repository(tmp_path)
+    path = where / "config/config.yaml"
+    lines = path.read_text().splitlines()
+    number = next(i for i, line in enumerate(lines) if line.startswith("fig4:")) + 1
+    lines.insert(number, "  F: [0.5")
+    path.write_text("\n".join(lines) + "\n")
+    result = snakemake(where, "--dry-run", check=False)
+    assert result.returncode != 0
+    assert f"config/config.yaml, line {number + 2}, column " in result.stdout + result.stderr
+    assert "not valid YAML" in result.stdout + result.stderr
 
 
 def test_the_default_profile_is_used(tmp_path):
@@ -204,12 +240,11 @@ def test_compliance_checker_passes_cf_1_11(workflow_run):
     if checker is None:
         pytest.skip("compliance-checker is not installed")
     paths = sorted((workflow_run / "results").glob("*/*.nc"))
-    assert len(paths) >= 13
-    for path in paths:
-        result = subprocess.run([checker, "--test=cf:1.11", "--criteria=strict", str(path)], capture_output=True,
-                                text=True, timeout=120)
-        assert result.returncode == 0, result.stdout[-3000:]
-        assert "All tests passed" in result.stdout, path
+    assert len(paths) >= 11
+    result = subprocess.run([checker, "--test=cf:1.11", "--criteria=strict", *map(str, paths)], capture_output=True,
+                            text=True, timeout=300)
+    assert result.returncode == 0, result.stdout[-3000:]
+    assert result.stdout.count("All tests passed") == len(paths), result.stdout[-3000:]
 
 
 @pytest.fixture(scope="module")
@@ -321,21 +356,28 @@ EXPECTED_VERDICT = {
 }
 
 
-def test_the_pipeline_verdict_is_the_expected_one(workflow_run):
-    """A change of verdict must be deliberate: update this table and REPLICATION.md's template."""
+def _verdict_table(markdown: str) -> dict[str, str]:
+    """Claim id to status, from the register table of REPLICATION.md (first column the id in backticks,
+    last column the status: "reproduced", "partially" or, in bold, "not reproduced")."""
+    rows = re.findall(r"^\| `(\w+)` \|.*\| ([^|]+?) \|$", markdown, re.M)
+    words = {"reproduced": "reproduced", "partially": "partially_reproduced", "**not reproduced**": "not_reproduced"}
+    return {claim: words[status] for claim, status in rows}
+
+
+def test_the_committed_verdict_is_the_expected_one():
+    """A change of verdict must be deliberate: update this table and REPLICATION.md's template.
+
+    The full workflow writes REPLICATION.md from ``results/claims.csv``; CI's Quick start checks
+    that the regenerated document is the committed one."""
+    assert _verdict_table((REPO / "REPLICATION.md").read_text()) == EXPECTED_VERDICT
+
+
+def test_the_reduced_run_judges_every_claim(workflow_run):
     from escapement.pipeline.verdict import read_claims_csv
 
     rows = read_claims_csv(workflow_run / "results/claims.csv")
-    assert {r["claim_id"]: r["status"] for r in rows} == EXPECTED_VERDICT
-
-
-def test_generated_docs_match_the_committed_ones(workflow_run):
-    """README.md and REPLICATION.md are regenerated by the workflow; the committed copies are current."""
-    from escapement.pipeline.facts import mask_measured
-
-    for name in ("README.md", "REPLICATION.md"):
-        fresh, committed = (mask_measured((where / name).read_text()) for where in (workflow_run, REPO))
-        assert fresh == committed, f"{name} is stale: rerun snakemake"
+    assert [r["claim_id"] for r in rows] == list(EXPECTED_VERDICT)
+    assert {r["status"] for r in rows} <= {"reproduced", "partially_reproduced", "not_reproduced"}
 
 
 def test_the_work_precision_table_and_its_targets(workflow_run):
@@ -373,7 +415,7 @@ def test_a_damaged_netcdf_fails_its_rule_naming_the_file(workflow_run, damaged, 
 
 
 def test_a_motion_that_leaves_the_regime_is_recorded(tmp_path):
-    where = copy_repository(tmp_path)
+    where = reduced_copy(tmp_path)
     _edit_config(where, lambda c: c["fig3"]["cases"]["a"].update(x0=0.05))
     snakemake(where, "--cores", "2", "results/fig3/case_a.nc", "figures/fig3.png", "results/claims.csv")
     ds = read_netcdf(where / "results/fig3/case_a.nc")

@@ -16,6 +16,7 @@ from escapement.pipeline.config import (
     benchmark_settings,
     check_cases,
     check_config,
+    check_config_file,
     config_error,
     fig3_scene,
     fig4_scene,
@@ -307,3 +308,32 @@ def test_every_scene_override_refers_to_the_one_model_block(where):
             assert _resolve(own["items"]) is model["K"]
         else:
             assert _resolve(own) is model[name]
+
+
+@pytest.mark.parametrize(
+    "text, where, words",
+    [
+        ("model:\n  M: 1.0\n  K: [1.0, 2.0\n", "line 4, column 1", ["expected ',' or ']'", "starts on line 3"]),
+        ("model:\n  M: 1.0\n\tK: 2.0\n", "line 3, column 1", ["'\\t' that cannot start any token"]),
+        ("model:\n  M: 1.0\n  K: 1.0\n  M: 2.0\n", "line 4, column 3", ["the key 'M' is given twice (first on line 2)"]),
+        ("fig3:\n  n_cycles: 5\nfig3:\n  n_cycles: 6\n", "line 3, column 1", ["the key 'fig3' is given twice"]),
+    ],
+)
+def test_a_configuration_file_that_is_not_yaml_is_named_with_its_line(tmp_path, text, where, words):
+    path = tmp_path / "config.yaml"
+    path.write_text(text)
+    with pytest.raises(ConfigError) as caught:
+        check_config_file(path)
+    message = str(caught.value)
+    assert message.startswith(f"{path}, {where}: not valid YAML: ")
+    for word in words:
+        assert word in message
+
+
+def test_the_shipped_configuration_file_reads_as_strict_yaml():
+    check_config_file(ROOT / "config/config.yaml")
+
+
+def test_a_missing_configuration_file_is_named(tmp_path):
+    with pytest.raises(ConfigError, match="missing.yaml: cannot read the configuration"):
+        check_config_file(tmp_path / "missing.yaml")

@@ -27,6 +27,7 @@ __all__ = [
     "benchmark_settings",
     "check_cases",
     "check_config",
+    "check_config_file",
     "config_error",
     "fig3_scene",
     "fig4_scene",
@@ -232,6 +233,41 @@ def _scene_error(config: Mapping) -> str | None:
         except ParameterError as err:
             return f"{where}: {err}"
     return None
+
+
+class _UniqueKeyLoader(yaml.SafeLoader):
+    """YAML's safe loader, refusing a key given twice in one mapping (PyYAML keeps the last
+    silently, which would drop a value the user wrote)."""
+
+    def construct_mapping(self, node, deep=False):
+        seen: dict = {}
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=deep)
+            if key in seen:
+                raise yaml.constructor.ConstructorError(
+                    None, None, f"the key {key!r} is given twice (first on line {seen[key] + 1})", key_node.start_mark
+                )
+            seen[key] = key_node.start_mark.line
+        return super().construct_mapping(node, deep=deep)
+
+
+def check_config_file(path: str | Path) -> None:
+    """Raise :class:`ConfigError` naming the file, line and column if ``path`` is not valid YAML
+    or gives a key twice in one mapping; Snakemake's own loader says neither."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as err:
+        raise ConfigError(f"{path}: cannot read the configuration ({err.strerror})") from None
+    try:
+        yaml.load(text, Loader=_UniqueKeyLoader)
+    except yaml.MarkedYAMLError as err:
+        mark = err.problem_mark or err.context_mark
+        where = "" if mark is None else f", line {mark.line + 1}, column {mark.column + 1}"
+        context = ""
+        if err.context and err.context_mark is not None and err.context_mark is not mark:
+            context = f" ({err.context} that starts on line {err.context_mark.line + 1})"
+        raise ConfigError(f"{path}{where}: not valid YAML: {err.problem}{context}") from None
 
 
 def _load(schema: Mapping | str | Path) -> Mapping:
