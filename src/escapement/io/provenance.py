@@ -21,16 +21,26 @@ def package_version() -> str:
     return __version__
 
 
+#: what makes the results: a difference from the commit in any of these marks a run ``+dirty``.
+#: The files the workflow itself writes (README.md, REPLICATION.md, figures/) are not among them.
+SOURCES = ("src", "workflow", "Snakefile", "config", "environment", "pyproject.toml")
+
+
+def _top(names: tuple[str, ...]) -> list[str]:
+    """Pathspecs from the top of the working tree, whatever folder git runs in."""
+    return [f":(top){name}" for name in names]
+
+
 def git_commit(start: Path | None = None) -> str:
     """The commit of the working tree that holds this package (``unknown`` outside git),
-    with ``+dirty`` when tracked files differ from it."""
+    with ``+dirty`` when a tracked source file (:data:`SOURCES`) differs from it."""
     where = str(start or Path(__file__).resolve().parent)
     try:
         commit = subprocess.run(
             ["git", "-C", where, "rev-parse", "HEAD"], capture_output=True, text=True, timeout=10, check=True
         ).stdout.strip()
         dirty = subprocess.run(
-            ["git", "-C", where, "status", "--porcelain", "--untracked-files=no"],
+            ["git", "-C", where, "status", "--porcelain", "--untracked-files=no", "--", *_top(SOURCES)],
             capture_output=True, text=True, timeout=10, check=True,
         ).stdout.strip()
     except (OSError, subprocess.SubprocessError):
