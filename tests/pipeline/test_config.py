@@ -206,7 +206,7 @@ def test_reordering_the_configuration_does_not_change_a_scene(config):
         ),
         (
             lambda c: c["model"].update(M=1e-320),
-            "K = 1.0 is invalid: K must be such that K/M is a positive finite number",
+            "fig3.cases.a: M = 1e-320 is invalid: M must be in [1e-50, 1e+50] (kg)",
         ),
     ],
 )

@@ -1,4 +1,11 @@
-"""How long a run goes on: a number of cycles, an end time, and a bound on events."""
+"""How long a run goes on: a number of cycles, an end time, and a bound on events.
+
+Every count a solver takes (``n_cycles``, ``max_events``, the digits of the high-precision
+solver) is checked by :func:`check_count`: a positive integer (not a bool), at most a stated
+maximum, or a :class:`~escapement.model.parameters.ParameterError` that names it. The scalar
+solvers and the ensemble take their limits through :class:`RunLimits`, so they refuse the same
+values with the same message.
+"""
 
 from __future__ import annotations
 
@@ -8,16 +15,36 @@ from numbers import Integral, Real
 
 from .parameters import ParameterError
 
-__all__ = ["RunLimits"]
+__all__ = ["EVENTS_PER_CYCLE", "MAX_CYCLES", "MAX_DIGITS", "MAX_EVENTS", "MIN_DIGITS", "RunLimits", "check_count"]
 
 EVENTS_PER_CYCLE = 4
 DEFAULT_MAX_EVENTS_FOR_TIME = 10_000_000
+#: the most cycles a run may ask for (the workflow's longest run is 10**6 cycles, its schema allows 10**8)
+MAX_CYCLES = 1_000_000_000
+#: the most events a run may take: room for the default bound of :data:`MAX_CYCLES` cycles
+MAX_EVENTS = 5_000_000_000
+#: the significant digits the high-precision solver may work with: more than float64's 16, at most 1000
+MIN_DIGITS, MAX_DIGITS = 17, 1000
+
+
+def check_count(name: str, value: object, maximum: int, minimum: int = 1) -> int:
+    """``value`` as an int if it is an integer in ``[minimum, maximum]`` (a bool is not), else
+    raise :class:`ParameterError` naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, Integral) or not minimum <= value <= maximum:
+        least = "a positive integer" if minimum == 1 else f"an integer >= {minimum:_}"
+        raise ParameterError(name, value, f"{least}, at most {maximum:_}")
+    return int(value)
 
 
 @dataclass(frozen=True)
 class RunLimits:
     """A run ends at the first of: ``n_cycles`` complete cycles (``n_cycles + 1``
-    impacts at a1), the time ``t_end``, or ``max_events`` events."""
+    impacts at a1), the time ``t_end``, or ``max_events`` events.
+
+    ``n_cycles`` is at most :data:`MAX_CYCLES` and ``max_events`` at most :data:`MAX_EVENTS`;
+    ``max_events`` defaults to the events of ``n_cycles`` cycles with a margin, or to
+    10**7 for a run to ``t_end`` alone.
+    """
 
     n_cycles: int | None = None
     t_end: float | None = None
@@ -27,8 +54,7 @@ class RunLimits:
         if self.n_cycles is None and self.t_end is None:
             raise ParameterError("n_cycles", None, "given (a positive integer) when t_end is not")
         if self.n_cycles is not None:
-            if isinstance(self.n_cycles, bool) or not isinstance(self.n_cycles, Integral) or self.n_cycles < 1:
-                raise ParameterError("n_cycles", self.n_cycles, "a positive integer")
+            object.__setattr__(self, "n_cycles", check_count("n_cycles", self.n_cycles, MAX_CYCLES))
         if self.t_end is not None:
             if isinstance(self.t_end, bool) or not isinstance(self.t_end, Real):
                 raise ParameterError("t_end", self.t_end, "a real number")
@@ -38,7 +64,7 @@ class RunLimits:
         if self.max_events is None:
             bound = DEFAULT_MAX_EVENTS_FOR_TIME
             if self.n_cycles is not None:
-                bound = EVENTS_PER_CYCLE * (int(self.n_cycles) + 2) + 8
+                bound = EVENTS_PER_CYCLE * (self.n_cycles + 2) + 8
             object.__setattr__(self, "max_events", bound)
-        elif isinstance(self.max_events, bool) or not isinstance(self.max_events, Integral) or self.max_events < 1:
-            raise ParameterError("max_events", self.max_events, "a positive integer")
+        else:
+            object.__setattr__(self, "max_events", check_count("max_events", self.max_events, MAX_EVENTS))

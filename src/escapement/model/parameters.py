@@ -7,21 +7,72 @@ zones that :mod:`escapement.model.automaton` defines.
 Signs: ``a1 < 0 < a3`` (the jump set ``x * xdot < 0``); the symmetric default is
 ``a3 = -a1`` and ``a4 = -a2``.
 
-The rules on the parameters are written once, in :func:`rules`, on NumPy arrays: the scalar
-:class:`Parameters` and the ensemble solver (one row per trajectory) apply the same ones.
+The rules on the parameters are written once, in :func:`rules`, and those on the initial state
+in :func:`state_rules`, on NumPy arrays: the scalar :class:`Parameters` and
+:func:`check_initial_state` and the ensemble solver (one row per trajectory) apply the same ones.
+
+Floating-point range
+--------------------
+The solvers compute, from the inputs: ``omega**2 = K/M`` and ``omega``, the zone centre
+``F/K``, the force per unit mass ``F/M``, the scaled velocity ``v/omega``, squared speeds
+``v**2 + omega**2 (x - c)**2`` (the energy relation of :func:`escapement.model.kinematics.crossing`),
+products of two phase-plane lengths (the ``atan2`` arguments), the work terms ``f (a2 - a1)``,
+the energies ``M v**2 / 2`` and ``K x**2 / 2``, and times ``angle / omega`` summed over the
+events. Every dimensional input (``M``, ``K``, ``F``, ``a1`` .. ``a4``, ``x0``, ``v0``) must
+therefore be 0 (where zero has a meaning: not ``M`` or ``K``) or of magnitude in
+``[SMALLEST, LARGEST] = [1e-50, 1e50]`` in SI units. Then:
+
+* ``omega``, ``F/K``, ``F/M`` and ``v0/omega`` lie within ``[1e-100, 1e100]``;
+* the largest squares at the start are ``omega**2 x**2 <= 1e200`` and ``F**2 / (K M) <= 1e200``;
+* an impact only takes energy away (``|1 - b| < 1``) and each passage through a zone adds
+  ``2 f (a2 - a1) <= 4e150`` to ``v**2``; with at most
+  :data:`escapement.model.limits.MAX_EVENTS` (5e9) events a run keeps ``v**2 <= ~1e200``,
+  ``(v / omega)**2 <= ~1e260`` and the energies ``<= ~1e250``;
+* the smallest non-zero products (``omega**2`` times a length squared, ``1e-200``) stay normal.
+
+So every quantity stays a normal float64 number (2.2e-308 to 1.8e308), with a margin of at least
+1e40 at both ends. The bounds are absolute, not relative to the geometry: what overflows is a
+product of absolute values (``0.5 K x0**2`` with ``x0 = 1e200 m`` overflows whatever the
+geometry), and an absolute bound on each factor bounds every product at once; a ratio bound
+would need a second, absolute one anyway. The paper's values (``M = 1 kg``, ``K`` from 0.1 to
+10 N/m, ``F`` up to 5 N, positions 0.01 to 0.3 m, ``x0`` up to 3 m) lie some 48 orders of
+magnitude inside. The impact coefficient is at least :data:`B_SMALLEST` (1e-12), so that the
+impact law's factor ``1 - b`` keeps ``b`` to 4 significant digits (for ``b`` below about 1e-16,
+``1 - b`` rounds to 1: the refused ``b = 0``).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from numbers import Real
 
 import numpy as np
 
 from .quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS
 
-__all__ = ["ParameterError", "Parameters", "check_initial_state", "real_array", "validate_arrays", "rules"]
+__all__ = [
+    "B_SMALLEST",
+    "LARGEST",
+    "SMALLEST",
+    "ParameterError",
+    "Parameters",
+    "check_initial_state",
+    "real_array",
+    "rules",
+    "state_rules",
+    "validate_arrays",
+]
+
+#: the smallest and largest magnitude of a non-zero dimensional input, in SI units (see above)
+SMALLEST = 1e-50
+LARGEST = 1e50
+#: the smallest impact coefficient: 1 - b keeps b to 4 significant digits
+B_SMALLEST = 1e-12
+
+_WHY = ("so that the squares and products the solvers form (omega**2 = K/M, F/K, v/omega, squared speeds, "
+        "energies) stay normal float64 numbers")
 
 
 class ParameterError(ValueError):
@@ -40,7 +91,19 @@ class ParameterError(ValueError):
 
 
 def _unit(name: str) -> str:
-    return PARAMETERS[name].unit_label
+    if name in PARAMETERS:
+        return PARAMETERS[name].unit_label
+    return INITIAL_STATE[name].unit_label
+
+
+def _magnitude(name: str, values: np.ndarray, zero: bool):
+    """The rule that a dimensional input's magnitude lies in [SMALLEST, LARGEST] (or is 0)."""
+    size = np.abs(values)
+    holds = (size >= SMALLEST) & (size <= LARGEST)
+    if zero:
+        holds = holds | (size == 0.0)
+    allowed = f"0 or of magnitude in [{SMALLEST:.0e}, {LARGEST:.0e}]" if zero else f"in [{SMALLEST:.0e}, {LARGEST:.0e}]"
+    return name, holds, f"{allowed} ({_unit(name)}), {_WHY}"
 
 
 def rules(v: Mapping[str, np.ndarray]):
@@ -52,29 +115,60 @@ def rules(v: Mapping[str, np.ndarray]):
     """
     with np.errstate(all="ignore"):
         yield "M", v["M"] > 0, f"> 0 ({_unit('M')})"
+        yield _magnitude("M", v["M"], zero=False)
         yield "K", v["K"] > 0, f"> 0 ({_unit('K')})"
+        yield _magnitude("K", v["K"], zero=False)
         yield "F", v["F"] >= 0, f">= 0 ({_unit('F')})"
+        yield _magnitude("F", v["F"], zero=True)
         yield "b", (v["b"] > 0) & (v["b"] < 2), "in the open interval (0, 2)"
+        yield "b", v["b"] >= B_SMALLEST, (f">= {B_SMALLEST:.0e} (and < 2), so that the impact law's factor 1 - b "
+                                          "keeps b to 4 significant digits")
+        for name in ("a1", "a2", "a3", "a4"):
+            yield _magnitude(name, v[name], zero=True)
         yield "a2", v["a1"] < v["a2"], "> a1 = {a1!r} (m)"
         yield "a4", v["a4"] < v["a3"], "< a3 = {a3!r} (m)"
-        ratio = v["K"] / v["M"]
-        yield "K", (ratio > 0) & np.isfinite(ratio), "such that K/M is a positive finite number"
-        yield "F", np.isfinite(v["F"] / v["M"]), "such that F/M is finite"
-        for name in ("a1", "a2", "a3", "a4"):
-            yield name, np.isfinite(v[name] * v[name] * v["K"]), f"small enough that K * {name}**2 is finite"
+
+
+def state_rules(s: Mapping[str, np.ndarray]):
+    """The rules on the initial state, like :func:`rules`: ``s`` maps ``x0`` and ``v0`` to float64
+    arrays of one shape."""
+    with np.errstate(all="ignore"):
+        for name in INITIAL_STATE:
+            yield _magnitude(name, s[name], zero=True)
+
+
+def _element(name: str, item: object, row: int | None) -> float:
+    """One element of an input as a float, or raise naming ``name`` (and the row)."""
+    if isinstance(item, bool | np.bool_) or not isinstance(item, Real):
+        raise ParameterError(name, item, "a real number", row=row)
+    try:
+        return float(item)
+    except OverflowError as err:
+        raise ParameterError(name, item, "a real number within the float64 range", row=row) from err
 
 
 def real_array(name: str, value: object) -> np.ndarray:
-    """``value`` (a real number or an array of them) as float64, or raise naming ``name``."""
-    if isinstance(value, bool | str | bytes):
+    """``value`` (a real number or an array of them) as float64, or raise naming ``name`` (and,
+    for an array, the first bad element's flat index as the row).
+
+    Booleans, strings and other non-real elements are refused one by one (NumPy would turn
+    ``[0.1, True]`` into ``[0.1, 1.0]`` silently).
+    """
+    if isinstance(value, bool | np.bool_ | str | bytes):
         raise ParameterError(name, value, "a real number")
-    try:
-        array = np.asarray(value)
-    except (TypeError, ValueError) as err:
-        raise ParameterError(name, value, "a real number") from err
-    if array.dtype.kind not in "iuf":
-        raise ParameterError(name, value, "a real number")
-    array = array.astype(np.float64)
+    if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
+        array = value.astype(np.float64)
+    elif isinstance(value, Real):
+        array = np.asarray(_element(name, value, None))
+    else:
+        try:
+            items = np.asarray(value, dtype=object)
+        except (TypeError, ValueError) as err:
+            raise ParameterError(name, value, "a real number or an array of them") from err
+        if items.ndim == 0:
+            return real_array(name, _element(name, items.item(), None))
+        flat = [_element(name, item, row) for row, item in enumerate(items.ravel())]  # one per element
+        array = np.asarray(flat, dtype=np.float64).reshape(items.shape)
     bad = ~np.isfinite(array)
     if bad.any():
         row = int(np.flatnonzero(bad.ravel())[0]) if array.ndim else None
@@ -82,29 +176,55 @@ def real_array(name: str, value: object) -> np.ndarray:
     return array
 
 
-def validate_arrays(values: Mapping[str, object], single: bool = False) -> dict[str, np.ndarray]:
-    """Check every model key (``a3``, ``a4`` None: the symmetric default) and return float64
-    arrays broadcast to one shape; the first violation raises, naming the row for arrays."""
-    for key in ("M", "K", "F", "b", "a1", "a2"):
-        if values.get(key) is None:
-            raise ParameterError(key, None, "given")
-    checked = {name: real_array(name, values[name]) for name in ("M", "K", "F", "b", "a1", "a2")}
-    if single:
-        for name, array in checked.items():
-            if array.ndim:
-                raise ParameterError(name, values[name], "a single real number (use the ensemble for arrays)")
-    for name, mirror in (("a3", "a1"), ("a4", "a2")):
-        checked[name] = -checked[mirror] if values.get(name) is None else real_array(name, values[name])
-        if single and checked[name].ndim:
-            raise ParameterError(name, values[name], "a single real number (use the ensemble for arrays)")
-    shaped = dict(zip(MODEL_KEYS, np.broadcast_arrays(*(checked[k] for k in MODEL_KEYS))))
+def _broadcast(checked: Mapping[str, np.ndarray], given: Mapping[str, object]) -> dict[str, np.ndarray]:
+    """The arrays broadcast to one shape; the first that does not fit the ones before it is named."""
+    shape: tuple[int, ...] = ()
+    for name, array in checked.items():
+        try:
+            shape = np.broadcast_shapes(shape, array.shape)
+        except ValueError as err:
+            requirement = f"an array broadcastable with the inputs before it, of shape {shape}"
+            raise ParameterError(name, given[name], requirement) from err
+    return {name: np.broadcast_to(array, shape) for name, array in checked.items()}
+
+
+def _check(checks: Iterable, shaped: Mapping[str, np.ndarray]) -> None:
+    """Raise for the first rule of ``checks`` that fails, naming the row for arrays."""
     scalar = all(a.ndim == 0 for a in shaped.values())
-    for name, holds, requirement in rules(shaped):
+    for name, holds, requirement in checks:
         if not np.all(holds):
             row = None if scalar else int(np.flatnonzero(~np.ravel(holds))[0])
             at = {k: float(np.ravel(a)[row or 0]) for k, a in shaped.items()}
             raise ParameterError(name, at[name], requirement.format(**at), row=row)
-    return shaped
+
+
+def validate_arrays(values: Mapping[str, object], single: bool = False, state: bool = False) -> dict[str, np.ndarray]:
+    """Check every model key (``a3``, ``a4`` None: the symmetric default) and, with ``state``, the
+    initial state ``x0`` and ``v0``, and return float64 arrays broadcast to one shape; the first
+    violation raises, naming the row for arrays.
+
+    One rule set (:func:`rules`, :func:`state_rules`) serves a single model (``single``: every value
+    a number) and an ensemble (one row per element of the broadcast shape).
+    """
+    names = ("M", "K", "F", "b", "a1", "a2") + (tuple(INITIAL_STATE) if state else ())
+    for key in names:
+        if values.get(key) is None:
+            raise ParameterError(key, None, "given")
+    checked = {name: real_array(name, values[name]) for name in ("M", "K", "F", "b", "a1", "a2")}
+    for name, mirror in (("a3", "a1"), ("a4", "a2")):
+        checked[name] = -checked[mirror] if values.get(name) is None else real_array(name, values[name])
+    checked = {k: checked[k] for k in MODEL_KEYS}
+    if state:
+        checked.update({name: real_array(name, values[name]) for name in INITIAL_STATE})
+    if single:
+        for name, array in checked.items():
+            if array.ndim:
+                raise ParameterError(name, values[name], "a single real number (use the ensemble for arrays)")
+    shaped = _broadcast(checked, {k: values.get(k) for k in checked})
+    _check(rules(shaped), shaped)
+    if state:
+        _check(state_rules(shaped), shaped)
+    return {name: np.array(array) for name, array in shaped.items()}
 
 
 @dataclass(frozen=True)
@@ -173,11 +293,12 @@ class Parameters:
 
 
 def check_initial_state(x0: object, v0: object) -> tuple[float, float]:
-    """Validate the initial displacement and velocity; return them as floats."""
-    values = []
+    """Validate the initial displacement and velocity (:func:`state_rules`); return them as floats."""
+    state = {}
     for name, value in zip(INITIAL_STATE, (x0, v0)):
         array = real_array(name, value)
         if array.ndim:
             raise ParameterError(name, value, "a single real number")
-        values.append(float(array))
-    return values[0], values[1]
+        state[name] = array
+    _check(state_rules(state), state)
+    return float(state["x0"]), float(state["v0"])

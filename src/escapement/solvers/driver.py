@@ -38,7 +38,7 @@ from ..model.status import (
     stopped_message,
     turned_back_message,
 )
-from .result import CycleTable, Exit, Solution
+from .result import ArcTable, CycleTable, Exit, Solution
 
 __all__ = ["HORIZON", "NO_EVENT", "Step", "Stepper", "drive"]
 
@@ -86,7 +86,10 @@ class _Records:
 
 def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: Stepper, *,
           x0: float, v0: float, floats: bool = True) -> Solution:
-    """Run the automaton from ``(x, v)`` at ``t = 0`` until ``limits`` or a regime exit."""
+    """Run the automaton from ``(x, v)`` at ``t = 0`` until ``limits`` or a regime exit.
+
+    A run that ends ``completed`` holds only finite numbers; one that does not raises
+    :class:`FloatingPointError` (the input validation let through what it must refuse)."""
     target_impacts = None if limits.n_cycles is None else limits.n_cycles + 1
     t_stop = math.inf if limits.t_end is None else limits.t_end
     zero = x * 0  # 0 in the arithmetic of the run (float or mpmath)
@@ -182,6 +185,10 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
         v_before=ev.numpy("v_before"),
         v_after=ev.numpy("v_after"),
     )
+    cycles = _cycle_table(events, cyc.numpy("maxima"), cyc.numpy("periods"))
+    trajectory = stepper.trajectory(float(t_final))
+    if status is Status.COMPLETED:
+        _check_finite(stepper.name, events, cycles, trajectory, float(t_final))
     return Solution(
         params=params,
         x0=float(x0),
@@ -190,8 +197,8 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
         status=status,
         message=message,
         events=events,
-        cycles=_cycle_table(events, cyc.numpy("maxima"), cyc.numpy("periods")),
-        trajectory=stepper.trajectory(float(t_final)),
+        cycles=cycles,
+        trajectory=trajectory,
         t_final=float(t_final),
         exit=exit_,
     )
@@ -207,3 +214,27 @@ def _cycle_table(events: EventLog, maxima: np.ndarray, periods: np.ndarray) -> C
         period=periods,
         amplitude=maxima,
     )
+
+
+def _check_finite(method: str, events: EventLog, cycles: CycleTable, trajectory, t_final: float) -> None:
+    """A completed run holds only finite numbers: its event log, its cycle table, its end time and
+    (for a table of arcs) its trajectory. Otherwise the input validation
+    (:mod:`escapement.model.parameters`) let through a value whose arithmetic leaves the float64
+    range: that is a bug, raised, not an outcome."""
+    columns = {f"events.{name}": getattr(events, name) for name in ("t", "x", "v_before", "v_after")}
+    columns.update({f"cycles.{name}": getattr(cycles, name)
+                    for name in ("impact_time", "velocity_before_impact", "period", "amplitude")})
+    if isinstance(trajectory, ArcTable):
+        columns.update({f"trajectory.{name}": getattr(trajectory, name)
+                        for name in ("t_start", "centre", "x_start", "v_start")})
+        columns["trajectory.omega"] = np.array([trajectory.omega])
+    columns["t_final"] = np.array([t_final])
+    for name, values in columns.items():
+        doubles = np.asarray(values, dtype=float)  # mpmath numbers as their nearest doubles
+        finite = np.isfinite(doubles)
+        if not finite.all():
+            index = int(np.flatnonzero(~finite)[0])
+            raise FloatingPointError(
+                f"{method}: a completed run holds a non-finite {name}[{index}] = {float(doubles[index])!r}; the "
+                "input validation (escapement.model.parameters) must refuse the inputs that lead to it"
+            )

@@ -19,7 +19,7 @@ from ..model.automaton import Awaited, Mode
 from ..model.events import EventKind
 from ..model.kinematics import VECTOR, arc_maximum, compensated_add, crossing, rebound_accumulation_time
 from ..model.limits import RunLimits
-from ..model.parameters import ParameterError, real_array, validate_arrays
+from ..model.parameters import ParameterError, validate_arrays
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 from .result import CycleTable, EnsembleSolution
@@ -27,6 +27,9 @@ from .result import CycleTable, EnsembleSolution
 __all__ = ["solve_ensemble"]
 
 _RUNNING = -1
+#: the most values one cycle table may hold, trajectories * (n_cycles + 1): the four tables of 8-byte
+#: floats take at most 1.6 GB
+MAX_CELLS = 50_000_000
 _A1, _A3 = int(EventKind.IMPACT_A1), int(EventKind.IMPACT_A3)
 _IMPACT = np.array(automaton.IMPACT_TABLE)
 _CENTRE_SIGN = np.array(automaton.CENTRE_SIGN)
@@ -47,19 +50,24 @@ def solve_ensemble(
 ) -> EnsembleSolution:
     """Integrate every trajectory for ``n_cycles`` complete cycles (or until it leaves the regime).
 
-    Inputs are validated by the rules of :class:`escapement.Parameters`; the first invalid row
-    is named in the error. With ``amplitude=False`` the per-cycle maxima are not computed.
+    Inputs are validated by the rules of :class:`escapement.Parameters` and
+    :func:`escapement.model.parameters.check_initial_state`, row by row, and the counts by
+    :class:`~escapement.model.limits.RunLimits`, before any work; the first invalid row is named
+    in the error. ``n_cycles + 1`` times the number of trajectories is at most :data:`MAX_CELLS`.
+    With ``amplitude=False`` the per-cycle maxima are not computed.
     """
     limits = RunLimits(n_cycles=n_cycles, max_events=max_events)
-    checked = validate_arrays(dict(zip(MODEL_KEYS, (M, K, F, b, a1, a2, a3, a4))))
-    state = {name: real_array(name, value) for name, value in (("x0", x0), ("v0", v0))}
-    try:
-        arrays = np.broadcast_arrays(*checked.values(), *state.values())
-    except ValueError as err:
-        raise ParameterError("x0", x0, f"broadcastable with the parameters ({err})") from err
-    M, K, F, b, a1, a2, a3, a4, x, v = (np.array(a, dtype=float).ravel() for a in arrays)
+    if not isinstance(amplitude, bool | np.bool_):
+        raise ParameterError("amplitude", amplitude, "True or False")
+    given = {**dict(zip(MODEL_KEYS, (M, K, F, b, a1, a2, a3, a4))), "x0": x0, "v0": v0}
+    checked = validate_arrays(given, state=True)
+    M, K, F, b, a1, a2, a3, a4, x, v = (checked[name].ravel() for name in (*MODEL_KEYS, "x0", "v0"))
     n = len(M)
     n_cycles = limits.n_cycles
+    if n * (n_cycles + 1) > MAX_CELLS:
+        requirement = (f"at most {MAX_CELLS // n - 1:_} for {n:_} trajectories (the cycle tables hold "
+                       f"trajectories * (n_cycles + 1) <= {MAX_CELLS:_} values)")
+        raise ParameterError("n_cycles", n_cycles, requirement)
     omega, offset = np.sqrt(K / M), F / K
     positions = {kind: {"a1": a1, "a2": a2, "a3": a3, "a4": a4}[s.position] for kind, s in automaton.SURFACES.items()}
 
@@ -149,6 +157,7 @@ def solve_ensemble(
     times, speeds = times[:, :n_cycles], speeds[:, :n_cycles]
     times[incomplete] = np.nan
     speeds[incomplete] = np.nan
+    _check_completed_rows(status, times, speeds, periods, maxima if amplitude else None, t_final)
     return EnsembleSolution(
         status=status.astype(np.int8),
         cycles=CycleTable(impact_time=times, velocity_before_impact=speeds, period=periods, amplitude=maxima),
@@ -157,6 +166,22 @@ def solve_ensemble(
         exit_margin=margin,
         exit_t_accumulation=t_acc,
     )
+
+
+def _check_completed_rows(status, times, speeds, periods, maxima, t_final) -> None:
+    """A completed row holds only finite numbers; otherwise the input validation let through a
+    value whose arithmetic leaves the float64 range: raise, naming the row (a bug, not an outcome)."""
+    done = status == Status.COMPLETED.code
+    columns = {"impact_time": times, "velocity_before_impact": speeds, "period": periods, "t_final": t_final[:, None]}
+    if maxima is not None:
+        columns["amplitude"] = maxima
+    for name, values in columns.items():
+        bad = done & ~np.isfinite(values).all(axis=1)
+        if bad.any():
+            raise FloatingPointError(
+                f"row {int(np.flatnonzero(bad)[0])}: a completed run holds a non-finite {name}; the input "
+                "validation (escapement.model.parameters) must refuse the inputs that lead to it"
+            )
 
 
 def _exit(rows, mode, centre, x, v, omega, awaited, positions, t, t_err, status, t_final, turning, margin):

@@ -13,7 +13,7 @@ from __future__ import annotations
 import mpmath
 
 from ..model import automaton
-from ..model.limits import RunLimits
+from ..model.limits import MAX_DIGITS, MIN_DIGITS, RunLimits, check_count
 from ..model.parameters import Parameters, check_initial_state
 from .driver import NO_EVENT, Step, drive
 from .result import Solution
@@ -70,12 +70,13 @@ class MpmathStepper:
 
 def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = 50,
                          t_end: float | None = None, max_events: int | None = None, dps: int = 50) -> Solution:
-    """Run the model in ``dps``-digit arithmetic from ``(x0, v0)`` at ``t = 0+``; the limits and
-    outcomes are those of :func:`escapement.solvers.exact.solve_exact`."""
+    """Run the model in ``dps``-digit arithmetic (17 to 1000 digits) from ``(x0, v0)`` at ``t = 0+``;
+    the limits and outcomes are those of :func:`escapement.solvers.exact.solve_exact`."""
     if not isinstance(params, Parameters):
         raise TypeError("params must be an escapement.Parameters")
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events)
+    dps = check_count("dps", dps, MAX_DIGITS, MIN_DIGITS)
     with mpmath.workdps(dps + 10):
         return drive(params, mpmath.mpf(x), mpmath.mpf(v), limits, MpmathStepper(params, dps), x0=x, v0=v,
                      floats=False)
