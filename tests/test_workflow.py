@@ -134,8 +134,48 @@ def test_fig4_window_and_fig5_spring_constants(workflow_run):
 
 @pytest.mark.parametrize("name", ["fig3", "fig4", "fig5", "work_precision", "long_run", "stability_map"])
 def test_figures_exist_as_png_and_pdf(workflow_run, name):
-    assert (workflow_run / f"figures/{name}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert (workflow_run / f"figures/{name}.pdf").read_bytes()[:5] == b"%PDF-"
+    assert (workflow_run / f"results/figures/{name}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert (workflow_run / f"results/figures/{name}.pdf").read_bytes()[:5] == b"%PDF-"
+
+
+TRACKED = [f"figures/{name}.{ext}" for name in ("fig3", "fig4", "fig5", "long_run", "stability_map")
+           for ext in ("png", "pdf")] + ["README.md", "REPLICATION.md"]
+
+
+def test_the_tracked_figures_and_documents_are_the_published_copies(workflow_run):
+    for path in TRACKED:
+        source = f"results/docs/{path}" if path.endswith(".md") else f"results/{path}"
+        assert (workflow_run / path).read_bytes() == (workflow_run / source).read_bytes(), path
+    assert not (workflow_run / "figures/work_precision.png").exists()  # drawn from wall times
+    for path in ("README.md", "REPLICATION.md"):
+        assert "<!--m-->" not in (workflow_run / path).read_text()
+
+
+def test_redrawing_leaves_every_tracked_file_byte_identical(workflow_run):
+    before = {path: (workflow_run / path).read_bytes() for path in TRACKED}
+    rules = ["plot_fig3", "plot_stability_map", "render_docs"]
+    snakemake(workflow_run, "--cores", "2", "--forcerun", *rules)
+    assert {path: (workflow_run / path).read_bytes() for path in TRACKED} == before
+    log = (workflow_run / "results/logs/publish.log").read_text()
+    assert log.count(": unchanged") == len(TRACKED) and ": updated" not in log
+    assert planned_jobs(workflow_run) == {}
+
+
+def test_a_failed_run_leaves_the_tracked_documents_in_place(workflow_run):
+    claims = workflow_run / "results/claims.csv"
+    original, stat = claims.read_bytes(), claims.stat()
+    before = {path: (workflow_run / path).read_bytes() for path in TRACKED}
+    claims.write_text("not,the,claims,table\n")
+    os.utime(claims, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+    try:
+        result = snakemake(workflow_run, "--cores", "1", "--forcerun", "render_docs", check=False)
+        assert result.returncode != 0
+        assert {path: (workflow_run / path).read_bytes() for path in TRACKED} == before
+    finally:
+        claims.write_bytes(original)
+        os.utime(claims, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+        snakemake(workflow_run, "--cores", "2")
+    assert planned_jobs(workflow_run) == {}
 
 
 def test_logs_and_benchmarks_are_written(workflow_run):
@@ -147,8 +187,8 @@ def test_a_second_run_does_nothing(workflow_run):
     assert planned_jobs(workflow_run) == {}
 
 
-VERDICT = {"check_claims": 1, "render_docs": 1, "all": 1}
-DOCS = {"render_docs": 1, "all": 1}
+VERDICT = {"check_claims": 1, "render_docs": 1, "publish": 1, "all": 1}
+DOCS = {"render_docs": 1, "publish": 1, "all": 1}
 
 
 @pytest.mark.parametrize(
@@ -284,7 +324,7 @@ def _planned_after_an_edit(where: Path, module: str) -> dict[str, int]:
 def test_a_plotting_edit_replans_the_plots_and_documents_only(touched_run):
     planned = _planned_after_an_edit(touched_run, "plotting/paper_figures.py")
     assert {rule: planned.get(rule) for rule in PLOTS} == PLOTS
-    assert planned["render_docs"] == 1
+    assert planned["publish"] == 1 and "render_docs" not in planned  # the documents do not show the drawing code
     for rule in (*SIMULATIONS, "run_work_precision", "run_stress", "merge_stability"):
         assert rule not in planned, planned
     assert planned_jobs(touched_run) == {}
@@ -394,7 +434,7 @@ def test_the_work_precision_table_and_its_targets(workflow_run):
 
 @pytest.mark.parametrize(
     "damaged, target, rule",
-    [("results/fig4/shock.nc", "figures/fig4.png", "plot_fig4"),
+    [("results/fig4/shock.nc", "results/figures/fig4.png", "plot_fig4"),
      ("results/claims/checks.nc", "results/claims.csv", "check_claims")],
 )
 def test_a_damaged_netcdf_fails_its_rule_naming_the_file(workflow_run, damaged, target, rule):
@@ -417,7 +457,7 @@ def test_a_damaged_netcdf_fails_its_rule_naming_the_file(workflow_run, damaged, 
 def test_a_motion_that_leaves_the_regime_is_recorded(tmp_path):
     where = reduced_copy(tmp_path)
     _edit_config(where, lambda c: c["fig3"]["cases"]["a"].update(x0=0.05))
-    snakemake(where, "--cores", "2", "results/fig3/case_a.nc", "figures/fig3.png", "results/claims.csv")
+    snakemake(where, "--cores", "2", "results/fig3/case_a.nc", "results/figures/fig3.png", "results/claims.csv")
     ds = read_netcdf(where / "results/fig3/case_a.nc")
     assert ds.attrs["outcome"] == "stopped" and ds.sizes["cycle"] == 0
     assert "never passes the next impact position" in ds.attrs["outcome_message"]
@@ -426,7 +466,7 @@ def test_a_motion_that_leaves_the_regime_is_recorded(tmp_path):
     rows = {r["claim_id"]: r for r in read_claims_csv(where / "results/claims.csv")}
     assert rows["eq19_fixed_point_case_a"]["status"] == "not_reproduced"
     assert "left the escapement regime" in rows["eq19_fixed_point_case_a"]["replicated_value"]
-    assert (where / "figures/fig3.png").exists()
+    assert (where / "results/figures/fig3.png").exists()
 
 
 def test_the_stress_summary_passes(workflow_run):

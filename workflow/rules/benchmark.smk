@@ -35,12 +35,12 @@ rule plot_work_precision:
         code=PLOT_CODE,
     output:
         png=report(
-            "figures/work_precision.png",
+            "results/figures/work_precision.png",
             caption="../report/work_precision.rst",
             category="Speed and accuracy",
             labels={"figure": "work-precision"},
         ),
-        pdf="figures/work_precision.pdf",
+        pdf="results/figures/work_precision.pdf",
     log:
         "results/logs/plot_work_precision.log",
     conda:
@@ -65,6 +65,7 @@ rule simulate_long_run:
         code=SIMULATE_CODE,
     output:
         nc="results/benchmark/long_run.nc",
+        timing="results/benchmark/long_run_timing.csv",
     log:
         "results/logs/simulate_long_run.log",
     benchmark:
@@ -83,12 +84,12 @@ rule plot_long_run:
         code=PLOT_CODE,
     output:
         png=report(
-            "figures/long_run.png",
+            "results/figures/long_run.png",
             caption="../report/long_run.rst",
             category="Speed and accuracy",
             labels={"figure": "long run"},
         ),
-        pdf="figures/long_run.pdf",
+        pdf="results/figures/long_run.pdf",
     log:
         "results/logs/plot_long_run.log",
     conda:
@@ -102,6 +103,7 @@ rule simulate_stability_chunk:
         code=SIMULATE_CODE,
     output:
         nc="results/stability/chunk_{chunk}.nc",
+        timing="results/stability/chunk_{chunk}_timing.csv",
     log:
         "results/logs/simulate_stability_chunk_{chunk}.log",
     benchmark:
@@ -122,9 +124,14 @@ rule merge_stability:
         chunks=expand(
             "results/stability/chunk_{chunk}.nc", chunk=scenes.stability_chunks(config)
         ),
+        timings=expand(
+            "results/stability/chunk_{chunk}_timing.csv",
+            chunk=scenes.stability_chunks(config),
+        ),
         code=MERGE_CODE,
     output:
         nc="results/stability/map.nc",
+        timing="results/stability/timing.csv",
     log:
         "results/logs/merge_stability.log",
     conda:
@@ -139,12 +146,12 @@ rule plot_stability_map:
         code=PLOT_CODE,
     output:
         png=report(
-            "figures/stability_map.png",
+            "results/figures/stability_map.png",
             caption="../report/stability_map.rst",
             category="Speed and accuracy",
             labels={"figure": "stability map"},
         ),
-        pdf="figures/stability_map.pdf",
+        pdf="results/figures/stability_map.pdf",
     log:
         "results/logs/plot_stability_map.log",
     conda:
@@ -179,6 +186,6 @@ rule benchmark:
         "results/benchmark/work_precision_full.csv",
         "results/benchmark/work_precision_full.png",
         "results/benchmark/work_precision.csv",
-        "figures/work_precision.png",
-        "figures/long_run.png",
-        "figures/stability_map.png",
+        "results/figures/work_precision.png",
+        "results/figures/long_run.png",
+        "results/figures/stability_map.png",

@@ -63,6 +63,7 @@ SIMULATE_CODE = package_code(
     "io",
     "pipeline/__init__.py",
     "pipeline/logs.py",
+    "pipeline/tables.py",
     "pipeline/simulate.py",
 )
 #: pipeline/studies.py: the benchmark and the stress cases
@@ -87,25 +88,44 @@ RENDER_CODE = package_code(
 )
 
 
+#: pipeline/publish.py: files only
+PUBLISH_CODE = package_code(
+    *IO, "pipeline/__init__.py", "pipeline/logs.py", "pipeline/publish.py"
+)
+
+#: the figures and documents git tracks, each with the file under results/ it is copied from. The
+#: work-precision figure is not among them: it is drawn from wall times, which vary from run to run.
+PUBLISHED = {
+    **{
+        f"figures/{fig}.{ext}": f"results/figures/{fig}.{ext}"
+        for fig in ("fig3", "fig4", "fig5", "long_run", "stability_map")
+        for ext in ("png", "pdf")
+    },
+    "README.md": "results/docs/README.md",
+    "REPLICATION.md": "results/docs/REPLICATION.md",
+}
+
+
 def all_outputs():
     return [
         *expand("results/fig3/case_{case}.nc", case=config["fig3"]["cases"]),
         "results/fig4/shock.nc",
         *expand("results/fig5/K_{K}.nc", K=fig5_labels()),
         "results/claims/checks.nc",
-        *expand(
-            "figures/{fig}.{ext}", fig=["fig3", "fig4", "fig5"], ext=["png", "pdf"]
-        ),
         "results/claims.csv",
         "results/benchmark/work_precision.csv",
         "results/benchmark/long_run.nc",
         "results/stability/map.nc",
         "results/stress/summary.csv",
-        *expand(
-            "figures/{fig}.{ext}",
-            fig=["work_precision", "long_run", "stability_map"],
-            ext=["png", "pdf"],
-        ),
-        "README.md",
-        "REPLICATION.md",
+        "results/figures/work_precision.png",
+        "results/docs/timings.md",
+        *PUBLISHED,
     ]
+
+
+onerror:
+    # A failed job may leave a tracked file restored by Snakemake with a new modification time:
+    # dated back, it is published again by the next run.
+    from escapement.pipeline.publish import mark_stale
+
+    mark_stale(list(PUBLISHED))

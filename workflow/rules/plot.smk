@@ -4,12 +4,12 @@ rule plot_fig3:
         code=PLOT_CODE,
     output:
         png=report(
-            "figures/fig3.png",
+            "results/figures/fig3.png",
             caption="../report/fig3.rst",
             category="Figures",
             labels={"figure": "Fig. 3", "content": "Poincare map"},
         ),
-        pdf="figures/fig3.pdf",
+        pdf="results/figures/fig3.pdf",
     log:
         "results/logs/plot_fig3.log",
     conda:
@@ -26,12 +26,12 @@ rule plot_fig4:
         code=PLOT_CODE,
     output:
         png=report(
-            "figures/fig4.png",
+            "results/figures/fig4.png",
             caption="../report/fig4.rst",
             category="Figures",
             labels={"figure": "Fig. 4", "content": "shock detail"},
         ),
-        pdf="figures/fig4.pdf",
+        pdf="results/figures/fig4.pdf",
     log:
         "results/logs/plot_fig4.log",
     conda:
@@ -46,12 +46,12 @@ rule plot_fig5:
         code=PLOT_CODE,
     output:
         png=report(
-            "figures/fig5.png",
+            "results/figures/fig5.png",
             caption="../report/fig5.rst",
             category="Figures",
             labels={"figure": "Fig. 5", "content": "phase diagrams"},
         ),
-        pdf="figures/fig5.pdf",
+        pdf="results/figures/fig5.pdf",
     log:
         "results/logs/plot_fig5.log",
     conda:

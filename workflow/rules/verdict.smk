@@ -31,28 +31,42 @@ rule render_docs:
         claims="results/claims.csv",
         benchmark="results/benchmark/work_precision.csv",
         long_run="results/benchmark/long_run.nc",
+        long_run_timing="results/benchmark/long_run_timing.csv",
         stability="results/stability/map.nc",
+        stability_timing="results/stability/timing.csv",
         stress="results/stress/summary.csv",
         templates=["workflow/templates/README.md", "workflow/templates/REPLICATION.md"],
-        # the documents show the figures: rendered after them, they are never older
-        figures=expand(
-            "figures/{fig}.png",
-            fig=[
-                "fig3",
-                "fig4",
-                "fig5",
-                "work_precision",
-                "long_run",
-                "stability_map",
-            ],
-        ),
+        timings_template="workflow/templates/timings.md",
         code=RENDER_CODE,
     output:
-        readme="README.md",
-        replication="REPLICATION.md",
+        readme="results/docs/README.md",
+        replication="results/docs/REPLICATION.md",
+        timings=report(
+            "results/docs/timings.md",
+            caption="../report/timings.rst",
+            category="Speed and accuracy",
+            labels={"document": "measured times"},
+        ),
     log:
         "results/logs/render_docs.log",
     conda:
         "../../environment/environment.yml"
     script:
         "../scripts/render_docs.py"
+
+
+# The tracked figures and documents, copied from results/ where their content changed. Flagged
+# update(): Snakemake does not delete them before the job, and restores them if it fails.
+rule publish:
+    input:
+        published=list(PUBLISHED.values()),
+        code=PUBLISH_CODE,
+    output:
+        tracked=[update(path) for path in PUBLISHED],
+    log:
+        "results/logs/publish.log",
+    localrule: True
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/publish.py"

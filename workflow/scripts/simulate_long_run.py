@@ -2,4 +2,4 @@
 
 from escapement.pipeline.simulate import simulate_long_run
 
-simulate_long_run(snakemake.params.scene, snakemake.output.nc, snakemake.log[0])  # noqa: F821
+simulate_long_run(snakemake.params.scene, snakemake.output.nc, snakemake.output.timing, snakemake.log[0])  # noqa: F821

@@ -144,8 +144,11 @@ def checks_scene(cases: list[dict], n_cycles: int) -> xr.Dataset:
     )
 
 
-def long_run_scene(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_rtol: float, ivp_cycles: int):
-    """Errors of the exact solver over ``n_cycles`` and of ``solve_ivp`` over ``ivp_cycles``, against 50 digits."""
+def long_run_scene(
+    params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_rtol: float, ivp_cycles: int
+) -> tuple[xr.Dataset, dict[str, float]]:
+    """Errors of the exact solver over ``n_cycles`` and of ``solve_ivp`` over ``ivp_cycles``, against 50 digits;
+    apart from the dataset (wall times vary from run to run), the wall time of each solver."""
     r = long_run(params, x0, _positive_int("n_cycles", n_cycles), ivp_method, ivp_rtol, _positive_int("ivp_cycles", ivp_cycles))
     coords = {"cycle": ("cycle", r["cycles"].astype(np.int32), {"long_name": "cycle number", "units": "1"})}
     names = {
@@ -173,17 +176,19 @@ def long_run_scene(params: Parameters, x0: float, n_cycles: int, ivp_method: str
         max_period_deviation=r["max_period_deviation"],
         fixed_point_velocity=r["fixed_point_velocity"],
         fixed_point_period=r["fixed_point_period"],
-        exact_wall_s=r["exact_wall_s"],
-        ivp_wall_s=r["ivp_wall_s"],
         any_nan=int(r["any_nan"]),
         **params.as_dict(),
     )
-    return xr.Dataset(variables, attrs=attrs)
+    timings = {"exact_seconds": r["exact_wall_s"], "ivp_seconds": r["ivp_wall_s"]}
+    return xr.Dataset(variables, attrs=attrs), timings
 
 
-def stability_chunk_scene(model: dict, b_values, F_values, speed_sample: int = 100) -> xr.Dataset:
+def stability_chunk_scene(
+    model: dict, b_values, F_values, speed_sample: int = 100
+) -> tuple[xr.Dataset, dict[str, float]]:
     """Fixed point and measured multiplier over the grid ``b_values x F_values`` (ensemble solver),
-    and the cost per trajectory of the ensemble against looping the scalar solver on a sample."""
+    and, apart from the dataset (wall times vary from run to run), the cost per trajectory of the
+    ensemble against looping the scalar solver on a sample."""
     b_values = np.asarray(b_values, dtype=float)
     F_values = np.asarray(F_values, dtype=float)
     bb, ff = np.meshgrid(b_values, F_values, indexing="ij")
@@ -225,8 +230,8 @@ def stability_chunk_scene(model: dict, b_values, F_values, speed_sample: int = 1
         "Stability and existence map of the escapement model over (b, F)",
         "stability_map",
         solver="exact, vectorised ensemble",
-        ensemble_seconds_per_trajectory=ensemble_per_trajectory,
-        scalar_seconds_per_trajectory=scalar_per_trajectory,
         **{k: float(v) for k, v in model.items() if v is not None},
     )
-    return xr.Dataset(variables, attrs=attrs)
+    timings = {"ensemble_seconds_per_trajectory": ensemble_per_trajectory,
+               "scalar_seconds_per_trajectory": scalar_per_trajectory}
+    return xr.Dataset(variables, attrs=attrs), timings

@@ -5,8 +5,9 @@ A template is Markdown with placeholders:
 * ``{{ claims_table }}``: the verdict table;
 * ``{{ claims_count:<status> }}`` and ``{{ claims_count:total }}``;
 * ``{{ claim:<claim_id>:<column> }}``: one cell of ``results/claims.csv``;
-* ``{{ fact:<name> }}``: a number from :func:`escapement.pipeline.facts.collect_facts` (measured ones are
-  wrapped in ``<!--m-->...<!--/m-->``);
+* ``{{ fact:<name> }}``: a number from :func:`escapement.pipeline.facts.collect_facts`; a measured one
+  (a wall time, which varies from run to run) only where ``measured=True``: never in a document git
+  tracks, which must come out byte-identical when the code has not changed;
 * ``{{ table:<name> }}``: a Markdown table made by the caller (for example ``stress``).
 
 An unknown placeholder, claim or column is an error, so that no stale or typed number survives.
@@ -57,7 +58,8 @@ def markdown_table(rows: list[dict[str, str]], columns: list[str]) -> str:
 
 
 def render(
-    template: str, rows: list[dict[str, str]], template_name: str = "the template", facts=None, tables=None
+    template: str, rows: list[dict[str, str]], template_name: str = "the template", facts=None, tables=None,
+    measured: bool = False,
 ) -> str:
     by_id = {row["claim_id"]: row for row in rows}
     facts = facts or {}
@@ -72,7 +74,12 @@ def render(
         if kind == "claim" and key in by_id and column in COLUMNS:
             return _cell(by_id[key][column])
         if kind == "fact" and key in facts and column is None:
-            return facts[key].render()
+            if facts[key].measured and not measured:
+                raise ValueError(
+                    f"{template_name}: {match.group(0)} is a measured value (it varies from run to run); "
+                    "a tracked document may not show it"
+                )
+            return facts[key].value
         if kind == "table" and key in tables and column is None:
             return tables[key]
         raise ValueError(f"{template_name}: unknown placeholder {match.group(0)}")

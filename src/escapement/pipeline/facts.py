@@ -2,13 +2,12 @@
 
 A fact is deterministic (an error against 50 digits, a measured multiplier) or measured
 (a wall time or a ratio of wall times, which varies from run to run and machine to
-machine). Measured facts are wrapped in ``<!--m-->...<!--/m-->`` in the documents, so that a
-check of the committed documents against a fresh run can mask them.
+machine). Measured facts come from the timing tables, never from a netCDF dataset, and appear
+only in ``results/docs/timings.md``, never in a document git tracks.
 """
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,23 +15,13 @@ import xarray as xr
 
 from ..paper.claims import fmt
 
-__all__ = ["Fact", "MEASURED", "mask_measured", "collect_facts"]
-
-MEASURED = re.compile(r"<!--m-->.*?<!--/m-->", re.S)
+__all__ = ["Fact", "collect_facts"]
 
 
 @dataclass(frozen=True)
 class Fact:
     value: str
     measured: bool = False
-
-    def render(self) -> str:
-        return f"<!--m-->{self.value}<!--/m-->" if self.measured else self.value
-
-
-def mask_measured(text: str) -> str:
-    """The text with every measured value blanked out."""
-    return MEASURED.sub("<!--m--><!--/m-->", text)
 
 
 def _row(rows: list[dict], method: str, setting: str = "") -> dict:
@@ -42,7 +31,10 @@ def _row(rows: list[dict], method: str, setting: str = "") -> dict:
     raise KeyError(f"the benchmark has no run of {method} {setting}")
 
 
-def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: xr.Dataset) -> dict[str, Fact]:
+def collect_facts(
+    benchmark_rows: list[dict], long_run: xr.Dataset, stability: xr.Dataset, long_run_timings: dict[str, float],
+    stability_timings: dict[str, float],
+) -> dict[str, Fact]:
     facts: dict[str, Fact] = {}
     exact = _row(benchmark_rows, "exact")
     for row in benchmark_rows:
@@ -60,8 +52,8 @@ def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: x
     facts["long_velocity_deviation"] = Fact(fmt(a["max_velocity_deviation"], 2))
     facts["long_period_deviation"] = Fact(fmt(a["max_period_deviation"], 2))
     facts["long_converged_after"] = Fact(str(int(a["converged_after"])))
-    facts["long_exact_wall"] = Fact(fmt(a["exact_wall_s"], 3), measured=True)
-    facts["long_ivp_wall"] = Fact(fmt(a["ivp_wall_s"], 3), measured=True)
+    facts["long_exact_wall"] = Fact(fmt(long_run_timings["exact_seconds"], 3), measured=True)
+    facts["long_ivp_wall"] = Fact(fmt(long_run_timings["ivp_seconds"], 3), measured=True)
     facts["long_nan"] = Fact("none" if not a["any_nan"] else "some")
     for solver in ("exact", "ivp"):
         drift = long_run[f"drift_{solver}"].dropna("cycle")
@@ -69,7 +61,6 @@ def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: x
         facts[f"long_{solver}_last_drift"] = Fact(fmt(abs(float(drift.values[-1])), 2))
         facts[f"long_{solver}_max_error_time"] = Fact(fmt(float(long_run[f"error_time_{solver}"].max()), 2))
 
-    s = stability.attrs
     mu, mu21 = stability["multiplier"].values, stability["multiplier_eq21"].values
     meanings = stability["outcome"].attrs["flag_meanings"].split()
     outcome = stability["outcome"].values
@@ -81,7 +72,8 @@ def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: x
     facts["stab_left"] = Fact(str(int((~completed).sum())))
     left_b = stability["b"].values[(~completed).any(axis=1)]
     facts["stab_left_b_min"] = Fact(fmt(float(left_b.min()), 4) if left_b.size else "none")
-    facts["stab_speedup"] = Fact(fmt(s["ensemble_speedup_per_trajectory"], 3), measured=True)
-    facts["stab_ensemble_per_trajectory"] = Fact(fmt(s["ensemble_seconds_per_trajectory"], 2), measured=True)
-    facts["stab_scalar_per_trajectory"] = Fact(fmt(s["scalar_seconds_per_trajectory"], 2), measured=True)
+    t = stability_timings
+    facts["stab_speedup"] = Fact(fmt(t["ensemble_speedup_per_trajectory"], 3), measured=True)
+    facts["stab_ensemble_per_trajectory"] = Fact(fmt(t["ensemble_seconds_per_trajectory"], 2), measured=True)
+    facts["stab_scalar_per_trajectory"] = Fact(fmt(t["scalar_seconds_per_trajectory"], 2), measured=True)
     return facts

@@ -1,4 +1,5 @@
-"""The job that writes README.md and REPLICATION.md from their templates and the results."""
+"""The job that writes the documents from their templates and the results: README.md and
+REPLICATION.md (tracked by git: deterministic numbers only) and timings.md (the measured times)."""
 
 from __future__ import annotations
 
@@ -9,23 +10,30 @@ from ..io.netcdf import read_netcdf
 from .docs import markdown_table, render, write_text
 from .facts import collect_facts
 from .logs import logged
-from .tables import read_stress, read_work_precision
+from .tables import read_stress, read_timings, read_work_precision
 from .verdict import read_claims_csv
 
 __all__ = ["render_docs"]
 
 
 def render_docs(
-    claims: str, benchmark: str, long_run: str, stability: str, stress: str, templates: Sequence[str],
-    outputs: Sequence[str], log: str,
+    claims: str, benchmark: str, long_run: str, long_run_timing: str, stability: str, stability_timing: str,
+    stress: str, templates: Sequence[str], outputs: Sequence[str], measured_template: str, measured_output: str,
+    log: str,
 ) -> None:
+    """Render each of ``templates`` to the matching ``outputs`` with deterministic facts only, and
+    ``measured_template`` to ``measured_output`` with the wall times too."""
     with logged(log, "render_docs"):
         rows = read_claims_csv(claims)
         facts = collect_facts(
             read_work_precision(benchmark),
             read_netcdf(long_run, ("cycle", "drift_exact", "drift_ivp", "error_time_exact", "error_time_ivp")),
             read_netcdf(stability, ("b", "F", "multiplier", "multiplier_eq21", "outcome")),
+            read_timings(long_run_timing),
+            read_timings(stability_timing),
         )
         tables = {"stress": markdown_table(read_stress(stress), ["regime", "outcome", "check", "passed", "detail"])}
-        for template, output in zip(templates, outputs):
+        for template, output in zip(templates, outputs, strict=True):
             write_text(render(Path(template).read_text(), rows, template, facts, tables), output)
+        write_text(render(Path(measured_template).read_text(), rows, measured_template, facts, tables, measured=True),
+                   measured_output)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import csv
 from collections.abc import Sequence
 
+from ..io.atomic import write_csv
 from ..io.netcdf import DatasetError, read_netcdf, write_netcdf
 from ..io.provenance import history_line, source_string
 from .logs import logged
@@ -15,9 +16,12 @@ __all__ = [
     "PHASE_VARIABLES",
     "SHOCK_VARIABLES",
     "STRESS_COLUMNS",
+    "TIMING_COLUMNS",
     "WORK_PRECISION_COLUMNS",
     "merge_stability",
     "read_stress",
+    "read_timings",
+    "write_timings",
     "read_work_precision",
 ]
 
@@ -26,6 +30,8 @@ SHOCK_VARIABLES = ("t", "velocity", "acceleration", "impact_time", "impulse", "e
 PHASE_VARIABLES = ("t", "displacement", "velocity", "impact_time", "impact_position", "velocity_after")
 WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "error_velocity", "error_time"]
 STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
+#: wall times, kept apart from the datasets (which are deterministic): one row per measurement
+TIMING_COLUMNS = ["measurement", "seconds"]
 
 
 def _read_csv(path: str, columns: list[str], what: str) -> list[dict]:
@@ -47,7 +53,19 @@ def read_stress(path: str) -> list[dict]:
     return _read_csv(path, STRESS_COLUMNS, "stress summary")
 
 
-def merge_stability(paths: Sequence[str], output: str, log: str) -> None:
+def read_timings(path: str) -> dict[str, float]:
+    return {row["measurement"]: float(row["seconds"]) for row in _read_csv(path, TIMING_COLUMNS, "timing table")}
+
+
+def write_timings(timings: dict[str, float], path: str) -> None:
+    write_csv([{"measurement": k, "seconds": repr(float(v))} for k, v in timings.items()], TIMING_COLUMNS, path)
+
+
+def merge_stability(
+    paths: Sequence[str], timing_paths: Sequence[str], output: str, timing_output: str, log: str
+) -> None:
+    """Concatenate the chunks along b; the timings are the medians over the chunks, with the
+    ensemble's speed-up per trajectory."""
     import numpy as np
     import xarray as xr
 
@@ -55,14 +73,18 @@ def merge_stability(paths: Sequence[str], output: str, log: str) -> None:
         chunks = [read_netcdf(p, ("b", "F", "multiplier", "outcome")) for p in paths]
         merged = xr.concat(chunks, dim="b", combine_attrs="override")  # the first chunk's attributes...
         merged.attrs.update(  # ...with the provenance of this merge
-            source=source_string(), history=history_line(f"merged from {len(chunks)} chunks by escapement")
-        )
-        ratios = [c.attrs["scalar_seconds_per_trajectory"] / c.attrs["ensemble_seconds_per_trajectory"] for c in chunks]
-        merged.attrs.update(
-            ensemble_speedup_per_trajectory=float(np.median(ratios)),
-            ensemble_seconds_per_trajectory=float(np.median([c.attrs["ensemble_seconds_per_trajectory"] for c in chunks])),
-            scalar_seconds_per_trajectory=float(np.median([c.attrs["scalar_seconds_per_trajectory"] for c in chunks])),
+            source=source_string(), history=history_line(f"merged from {len(chunks)} chunks by escapement"),
             chunks=len(chunks),
         )
-        logger.info("ensemble speed-up per trajectory (median over chunks): %.1f", merged.attrs["ensemble_speedup_per_trajectory"])
+        timings = [read_timings(p) for p in timing_paths]
+        ensemble = [t["ensemble_seconds_per_trajectory"] for t in timings]
+        scalar = [t["scalar_seconds_per_trajectory"] for t in timings]
+        merged_timings = {
+            "ensemble_seconds_per_trajectory": float(np.median(ensemble)),
+            "scalar_seconds_per_trajectory": float(np.median(scalar)),
+            "ensemble_speedup_per_trajectory": float(np.median(np.divide(scalar, ensemble))),
+        }
+        logger.info("ensemble speed-up per trajectory (median over chunks): %.1f",
+                    merged_timings["ensemble_speedup_per_trajectory"])
         write_netcdf(merged, output)
+        write_timings(merged_timings, timing_output)
