@@ -150,13 +150,31 @@ def test_rebound_accumulation_time_against_a_30_digit_sum(ratio, speed):
     assert rebound_accumulation_time(omega, distance, speed, ratio) == pytest.approx(expected, rel=1e-13)
 
 
-def test_rebound_accumulation_time_gives_up_beyond_its_bound():
-    assert rebound_accumulation_time(1.0, 0.1, 10.0, 1 - 1e-9, max_terms=1000) is None
+def test_rebound_accumulation_time_is_finite_however_close_the_ratio_is_to_one():
+    # As r -> 1 the sum tends to Ti2(x) / (1 - r): Ti2(100) = Ti2(1/100) + (pi/2) ln(100), and
+    # Ti2(1/100) = 0.01 - 0.01**3 / 9 + ... (an alternating series, 1e-6 relative is ample here).
+    ti2 = 0.01 - 1e-6 / 9 + 0.5 * math.pi * math.log(100.0)
+    for ratio in (1 - 1e-9, 1 - 1e-12, math.nextafter(1.0, 0.0)):
+        t = rebound_accumulation_time(1.0, 0.1, 10.0, ratio)
+        assert math.isfinite(t) and t == pytest.approx(2 * ti2 / (1 - ratio), rel=1e-6)
 
 
-def test_rebound_accumulation_time_rejects_invalid_input():
-    with pytest.raises(ValueError):
-        rebound_accumulation_time(1.0, 0.1, 1.0, 1.0)
+@pytest.mark.parametrize(
+    "args, name",
+    [
+        ((1.0, 0.1, 1.0, 1.0), "ratio"),
+        ((1.0, 0.1, 1.0, -0.5), "ratio"),
+        ((1.0, 0.1, 1.0, math.nan), "ratio"),
+        ((0.0, 0.1, 1.0, 0.5), "omega"),
+        ((1.0, 0.0, 1.0, 0.5), "distance"),
+        ((1.0, 0.1, -1.0, 0.5), "speed"),
+        ((1.0, 0.1, math.inf, 0.5), "speed"),
+        ((1e-300, 1e-300, 1.0, 0.5), "speed / \\(omega \\* distance\\)"),
+    ],
+)
+def test_rebound_accumulation_time_rejects_invalid_input(args, name):
+    with pytest.raises(ValueError, match=name + " = .* is invalid"):
+        rebound_accumulation_time(*args)
 
 
 def test_sample_arcs_is_nan_outside_the_trajectory():

@@ -166,6 +166,14 @@ def test_chattering_when_the_impact_reverses_the_velocity():
     assert s.exit.t_accumulation == pytest.approx(t_hit + 2 * float(total), rel=1e-14)
 
 
+def test_chattering_accumulates_in_finite_time_for_b_close_to_two():
+    # b = 1.999999: each rebound keeps 0.999999 of the speed, yet the rebounds accumulate in finite time
+    p = Parameters(M=1, K=1, F=0.1, b=1.999999, a1=-0.1, a2=-0.05)
+    s = solve_exact(p, 1.0, n_cycles=5)
+    assert s.status == Status.CHATTERING and "Zeno" in s.message
+    assert math.isfinite(s.exit.t_accumulation) and s.exit.t_accumulation > s.events.t[-1]
+
+
 def test_t_end_ends_the_run_inside_an_arc(case_a):
     s = solve_exact(case_a, 1.0, t_end=20.0)
     assert s.status == Status.COMPLETED

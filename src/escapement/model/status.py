@@ -94,14 +94,19 @@ def turned_back_message(t: float, zone: str, turning_point: float, centre: float
     )
 
 
-def chattering_message(t: float, position: str, b: float, ratio: float, t_accumulation: float | None) -> str:
-    """``ratio`` is v+/v- of the impact that reversed the velocity."""
+def chattering_message(t: float, position: str, b: float, ratio: float, t_accumulation: float) -> str:
+    """``ratio`` is v+/v- of the impact that reversed the velocity; ``t_accumulation`` the time at which
+    the rebounds accumulate, finite whenever the spring drives the mass back to the impact position
+    (the rebound durations then shrink geometrically, by ``|ratio| < 1``), and NaN where it does not
+    (the centre of oscillation at the impact position or in the direction of the rebound)."""
     head = (
         f"the impact at {position} at t = {t:.12g} s reversed the velocity (b = {b:.12g} > 1, "
         f"v+ = {ratio:.12g} v-): the mass rebounds instead of entering the impulse zone"
     )
-    if t_accumulation is None:
-        return head + "; the rebounds do not accumulate in finite time, and the escapement regime has ended"
+    if np.isnan(t_accumulation):
+        return head + (f"; the centre of oscillation lies at {position} or in the direction of the rebound, so the "
+                       f"spring does not drive the mass back to {position} (no Zeno point), and the escapement "
+                       "regime has ended")
     return (
         head + f"; the spring drives it back to {position} and the impacts accumulate at t = "
         f"{t_accumulation:.12g} s (a Zeno point), past which the impulsive model has no solution"

@@ -163,15 +163,14 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
                 break
         if automaton.reverses(v_before, v_after):
             distance = automaton.rebound_distance(kind, positions[kind])
-            t_acc = None
+            t_acc = math.nan  # unless the spring drives the mass back to the impact position
             ratio = float(v_after / v_before)  # the impact law's v+/v-, negative: a rebound
             if distance > 0.0:
-                rest = rebound_accumulation_time(params.omega, distance, abs(float(v_after)), abs(ratio))
-                t_acc = None if rest is None else float(t) + rest
+                t_acc = float(t) + rebound_accumulation_time(params.omega, distance, abs(float(v_after)), abs(ratio))
             status = Status.CHATTERING
             position = automaton.SURFACES[EventKind(kind)].position
             message = chattering_message(float(t), position, params.b, ratio, t_acc)
-            exit_ = Exit(t_accumulation=math.nan if t_acc is None else t_acc)
+            exit_ = Exit(t_accumulation=t_acc)
             break
         mode, awaited = after[kind]
         v = v_after

@@ -221,6 +221,5 @@ def _chattering(i, kind, v_after, v_before, t, t_err, omega, positions, status, 
     status[i] = Status.CHATTERING.code
     t_final[i] = now
     if distance > 0.0:
-        rest = rebound_accumulation_time(float(omega[i]), float(distance), abs(float(v_after)),
-                                         abs(float(v_after / v_before)))
-        t_acc[i] = math.nan if rest is None else now + rest
+        t_acc[i] = now + rebound_accumulation_time(float(omega[i]), float(distance), abs(float(v_after)),
+                                                   abs(float(v_after / v_before)))
