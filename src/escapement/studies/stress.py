@@ -16,10 +16,11 @@ from dataclasses import dataclass
 import mpmath
 import numpy as np
 
-from ..model.parameters import Parameters
+from ..model.parameters import ParameterError, Parameters
 from ..model.status import Status
 from ..paper import corrected as derived
 from ..paper.poincare import stability_grid
+from ..solvers.ensemble import solve_ensemble
 from ..solvers.exact import solve_exact
 from ..solvers.high_precision import solve_high_precision
 from ..solvers.reference import solve_reference
@@ -125,13 +126,22 @@ def b_one() -> StressResult:
 
 
 def _zeno_reference(speed: float, distance: float, omega: float, ratio: float) -> float:
+    """The flights (2/omega) atan(x r**n) summed in 30 digits: term by term while that is feasible,
+    else by mpmath's Euler-Maclaurin summation with the closed-form integral Ti2(x)/lambda,
+    Ti2(x) = Im Li2(i x), lambda = -log r."""
     with mpmath.workdps(30):
         x = mpmath.mpf(speed) / (mpmath.mpf(omega) * mpmath.mpf(distance))
-        total, term = mpmath.mpf(0), x
-        while term > mpmath.mpf("1e-20"):
-            total += mpmath.atan(term)
-            term *= mpmath.mpf(ratio)
-        total += term / (1 - mpmath.mpf(ratio))
+        r = mpmath.mpf(ratio)
+        if ratio <= 0.999:
+            total, term = mpmath.mpf(0), x
+            while term > mpmath.mpf("1e-20"):
+                total += mpmath.atan(term)
+                term *= r
+            total += term / (1 - r)
+        else:
+            lam = -mpmath.log(r)
+            integral = mpmath.im(mpmath.polylog(2, 1j * x)) / lam
+            total = mpmath.sumem(lambda n: mpmath.atan(x * mpmath.exp(-lam * n)), [0, mpmath.inf], integral=integral)
         return float(2 * total / mpmath.mpf(omega))
 
 
@@ -145,7 +155,7 @@ def _chattering(b: float) -> StressResult:
                                        p.omega, abs(1 - b))
     ok = s.status == Status.CHATTERING and _rel(s.exit.t_accumulation, expected) < 1e-12 and wall < 5
     return StressResult(s.status.value, "accumulation time of the rebounds against a 30-digit sum", ok,
-                        f"impacts accumulate {s.exit.t_accumulation - t_hit:.6f} s after the first rebound")
+                        f"impacts accumulate {s.exit.t_accumulation - t_hit:.6g} s after the first rebound")
 
 
 def b_between_one_and_two() -> StressResult:
@@ -154,6 +164,60 @@ def b_between_one_and_two() -> StressResult:
 
 def b_near_two() -> StressResult:
     return _chattering(1.999)
+
+
+def b_within_1e9_of_two() -> StressResult:
+    return _chattering(2.0 - 1e-9)
+
+
+def b_within_1e12_of_two() -> StressResult:
+    return _chattering(2.0 - 1e-12)
+
+
+# --- inputs refused before any work ----------------------------------------------------------
+
+
+def _refused(run: Callable[[], object], name: str, words: str, row: int | None = None) -> tuple[bool, str]:
+    """Whether ``run`` raises ParameterError naming ``name`` (and ``row``) with ``words`` in its
+    message; the message, for the table."""
+    try:
+        run()
+    except ParameterError as err:
+        return err.name == name and err.row == row and words in str(err), str(err)
+    return False, "accepted"
+
+
+def float_range_state() -> StressResult:
+    # 0.5 K x0**2 = 5e399 J does not fit in a float64 (largest 1.8e308)
+    ok, message = _refused(lambda: solve_exact(_paper(), 1e200, n_cycles=5), "x0", "1e-50, 1e+50")
+    return StressResult("refused", "x0 = 1e200 m: 0.5 K x0**2 overflows; refused naming x0 and its range", ok,
+                        message[:90])
+
+
+def float_range_subnormal_mass() -> StressResult:
+    # M = 1e-320 is subnormal: K/M overflows
+    ok, message = _refused(lambda: _paper(M=1e-320), "M", "1e-50, 1e+50")
+    return StressResult("refused", "M = 1e-320 kg (subnormal): K/M overflows; refused naming M, not K", ok,
+                        message[:90])
+
+
+def ensemble_bad_row() -> StressResult:
+    # the same rule as the scalar solver, applied to each row: b = True is not a number
+    ok, message = _refused(
+        lambda: solve_ensemble(1.0, 1.0, 1.0, [0.1, 0.2, True], -0.1, 0.05, n_cycles=5), "b", "a real number", row=2
+    )
+    return StressResult("refused", "ensemble row 2 has b = True: refused naming the row and b", ok, message[:90])
+
+
+def counts_refused() -> StressResult:
+    results = [
+        _refused(lambda n=n: solve_exact(_paper(), 1.0, n_cycles=n), "n_cycles", "")
+        for n in (0, -1, 1.5, True)
+    ]
+    results.append(_refused(lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, n_cycles=0), "n_cycles", ""))
+    ok = all(r[0] for r in results)
+    return StressResult("refused", "n_cycles = 0, -1, 1.5, True (and 0 for the ensemble): refused naming n_cycles",
+                        ok, results[0][1][:90])
 
 
 # --- grazing -----------------------------------------------------------------------------------
@@ -255,6 +319,13 @@ CASES = [
     StressCase("b_between_one_and_two", "1 < b < 2 (b = 1.5): the impact reverses the velocity",
                b_between_one_and_two),
     StressCase("b_near_two", "b -> 2 (b = 1.999)", b_near_two),
+    StressCase("b_within_1e-9_of_two", "b = 2 - 1e-9: about 1e10 rebounds", b_within_1e9_of_two),
+    StressCase("b_within_1e-12_of_two", "b = 2 - 1e-12: about 1e13 rebounds", b_within_1e12_of_two),
+    StressCase("float_range_state", "floating-point range: an initial state whose energy overflows",
+               float_range_state),
+    StressCase("float_range_subnormal_mass", "floating-point range: a subnormal mass", float_range_subnormal_mass),
+    StressCase("ensemble_bad_row", "one validation: a bad row of the ensemble", ensemble_bad_row),
+    StressCase("counts_refused", "one validation: cycle counts that are not positive integers", counts_refused),
     StressCase("graze_on_impact_position", "grazing: turning point exactly at an impact position",
                graze_on_impact_position),
     StressCase("graze_just_inside", "grazing: turning point 1e-17 m short of an impact position", graze_just_inside),
