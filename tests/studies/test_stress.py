@@ -13,9 +13,10 @@ import numpy as np
 import pytest
 
 from escapement.model import automaton
-from escapement.model.parameters import Parameters
+from escapement.model.parameters import ParameterError, Parameters
 from escapement.model.status import Status
 from escapement.paper.poincare import stability_grid
+from escapement.solvers.ensemble import solve_ensemble
 from escapement.solvers.exact import solve_exact
 from escapement.studies import stress
 from escapement.studies.stress import CASES, StressCase, StressResult, run_all, run_case
@@ -142,6 +143,69 @@ def check_b_between_one_and_two():
 
 def check_b_near_two():
     return _check_chattering(1.999)
+
+
+def zeno_time_near_one(omega: float, distance: float, speed: float, ratio: float) -> float:
+    """Euler-Maclaurin on paper for r = e^-lam close to 1: sum_n atan(y e^(-lam n)) = Ti2(y)/lam + atan(y)/2
+    + lam y / (12 (1 + y^2)) + O(lam^3), with Ti2(y) = Im Li2(i y) (in 30 digits)."""
+    with mpmath.workdps(30):
+        y = mpmath.mpf(speed) / (mpmath.mpf(omega) * mpmath.mpf(distance))
+        lam = -mpmath.log(mpmath.mpf(ratio))
+        total = mpmath.im(mpmath.polylog(2, 1j * y)) / lam + mpmath.atan(y) / 2 + lam * y / (12 * (1 + y * y))
+        return float(2 * total / mpmath.mpf(omega))
+
+
+def _check_chattering_near_two(b):
+    s = solve_exact(paper(b=b), 1.0, n_cycles=5)
+    assert len(s.events) == 1 and s.events.kind[0] == 3
+    t_hit = math.acos(0.1)
+    expected = t_hit + zeno_time_near_one(1.0, 0.1, abs(1 - b) * math.sqrt(0.99), abs(1 - b))
+    assert s.exit.t_accumulation == pytest.approx(expected, rel=1e-13)
+    return "chattering"
+
+
+def check_b_two_minus_1e9():
+    return _check_chattering_near_two(2.0 - 1e-9)
+
+
+def check_b_two_minus_1e12():
+    return _check_chattering_near_two(2.0 - 1e-12)
+
+
+# --- inputs refused before any work: the check is the error itself, with its name ---
+
+
+def check_float_range_state():
+    with np.errstate(over="ignore"):
+        assert np.isinf(np.float64(0.5) * np.float64(1e200) ** 2)  # the energy the state would have
+    with pytest.raises(ParameterError) as caught:
+        solve_exact(paper(), 1e200, n_cycles=5)
+    assert caught.value.name == "x0"
+    return "refused"
+
+
+def check_float_range_subnormal_mass():
+    with np.errstate(over="ignore", divide="ignore"):
+        assert np.isinf(np.float64(1.0) / np.float64(1e-320))  # K/M
+    with pytest.raises(ParameterError) as caught:
+        paper(M=1e-320)
+    assert caught.value.name == "M"
+    return "refused"
+
+
+def check_ensemble_bad_row():
+    with pytest.raises(ParameterError) as caught:
+        solve_ensemble(1.0, 1.0, 1.0, [0.1, 0.2, True], -0.1, 0.05, n_cycles=5)
+    assert (caught.value.name, caught.value.row) == ("b", 2)
+    return "refused"
+
+
+def check_counts_refused():
+    for n in (0, -1, 1.5, True):
+        with pytest.raises(ParameterError) as caught:
+            solve_exact(paper(), 1.0, n_cycles=n)
+        assert caught.value.name == "n_cycles"
+    return "refused"
 
 
 def check_graze_on_impact_position():
