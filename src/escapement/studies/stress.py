@@ -125,7 +125,7 @@ def b_one() -> StressResult:
                         ok, f"velocity before impact {s.cycles.velocity_before_impact[-1]:.15f} m/s")
 
 
-def _zeno_reference(speed: float, distance: float, omega: float, ratio: float) -> float:
+def _zeno_reference(speed: float, distance: float, omega: float, ratio: float) -> tuple[float, str]:
     """The flights (2/omega) atan(x r**n) summed in 30 digits: term by term while that is feasible,
     else by mpmath's Euler-Maclaurin summation with the closed-form integral Ti2(x)/lambda,
     Ti2(x) = Im Li2(i x), lambda = -log r."""
@@ -133,16 +133,18 @@ def _zeno_reference(speed: float, distance: float, omega: float, ratio: float) -
         x = mpmath.mpf(speed) / (mpmath.mpf(omega) * mpmath.mpf(distance))
         r = mpmath.mpf(ratio)
         if ratio <= 0.999:
+            method = "a 30-digit sum"
             total, term = mpmath.mpf(0), x
             while term > mpmath.mpf("1e-20"):
                 total += mpmath.atan(term)
                 term *= r
             total += term / (1 - r)
         else:
+            method = "30-digit Euler-Maclaurin summation"
             lam = -mpmath.log(r)
             integral = mpmath.im(mpmath.polylog(2, 1j * x)) / lam
             total = mpmath.sumem(lambda n: mpmath.atan(x * mpmath.exp(-lam * n)), [0, mpmath.inf], integral=integral)
-        return float(2 * total / mpmath.mpf(omega))
+        return float(2 * total / mpmath.mpf(omega)), method
 
 
 def _chattering(b: float) -> StressResult:
@@ -151,10 +153,10 @@ def _chattering(b: float) -> StressResult:
     s = solve_exact(p, 1.0, n_cycles=5)
     wall = time.perf_counter() - start
     t_hit = s.events.t[-1]
-    expected = t_hit + _zeno_reference(abs(s.events.v_after[-1]), abs(p.a1) if s.events.kind[-1] == 1 else p.a3,
-                                       p.omega, abs(1 - b))
-    ok = s.status == Status.CHATTERING and _rel(s.exit.t_accumulation, expected) < 1e-12 and wall < 5
-    return StressResult(s.status.value, "accumulation time of the rebounds against a 30-digit sum", ok,
+    rest, method = _zeno_reference(abs(s.events.v_after[-1]), abs(p.a1) if s.events.kind[-1] == 1 else p.a3,
+                                   p.omega, abs(1 - b))
+    ok = s.status == Status.CHATTERING and _rel(s.exit.t_accumulation, t_hit + rest) < 1e-12 and wall < 5
+    return StressResult(s.status.value, f"accumulation time of the rebounds against {method}", ok,
                         f"impacts accumulate {s.exit.t_accumulation - t_hit:.6g} s after the first rebound")
 
 
@@ -183,7 +185,7 @@ def _refused(run: Callable[[], object], name: str, words: str, row: int | None =
     try:
         run()
     except ParameterError as err:
-        return err.name == name and err.row == row and words in str(err), str(err)
+        return err.name == name and err.row == row and words in str(err), str(err).split(", so that")[0]
     return False, "accepted"
 
 
@@ -191,14 +193,14 @@ def float_range_state() -> StressResult:
     # 0.5 K x0**2 = 5e399 J does not fit in a float64 (largest 1.8e308)
     ok, message = _refused(lambda: solve_exact(_paper(), 1e200, n_cycles=5), "x0", "1e-50, 1e+50")
     return StressResult("refused", "x0 = 1e200 m: 0.5 K x0**2 overflows; refused naming x0 and its range", ok,
-                        message[:90])
+                        message)
 
 
 def float_range_subnormal_mass() -> StressResult:
     # M = 1e-320 is subnormal: K/M overflows
     ok, message = _refused(lambda: _paper(M=1e-320), "M", "1e-50, 1e+50")
     return StressResult("refused", "M = 1e-320 kg (subnormal): K/M overflows; refused naming M, not K", ok,
-                        message[:90])
+                        message)
 
 
 def ensemble_bad_row() -> StressResult:
@@ -206,7 +208,7 @@ def ensemble_bad_row() -> StressResult:
     ok, message = _refused(
         lambda: solve_ensemble(1.0, 1.0, 1.0, [0.1, 0.2, True], -0.1, 0.05, n_cycles=5), "b", "a real number", row=2
     )
-    return StressResult("refused", "ensemble row 2 has b = True: refused naming the row and b", ok, message[:90])
+    return StressResult("refused", "ensemble row 2 has b = True: refused naming the row and b", ok, message)
 
 
 def counts_refused() -> StressResult:
