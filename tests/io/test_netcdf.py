@@ -1,10 +1,13 @@
+import errno
 import os
+import subprocess
 
 import netCDF4
 import numpy as np
 import pytest
 import xarray as xr
 
+from escapement.io.atomic import WriteError
 from escapement.io.netcdf import DatasetError, read_netcdf, write_netcdf
 
 
@@ -64,3 +67,96 @@ def test_missing_file_and_missing_variable(tmp_path):
     path = write_netcdf(small_dataset(), tmp_path / "x.nc")
     with pytest.raises(DatasetError, match=r"x\.nc: lacks the variable\(s\) w"):
         read_netcdf(path, required=("v", "w"))
+
+
+# -- checksums ---------------------------------------------------------------------------------------------------------
+
+#: distinctive values of a coordinate, found in the file by their bytes (stored uncompressed)
+TIMES = np.array([1.2345678901234e10 + i for i in range(5)])
+
+
+def flip_bit(path, pattern: bytes, offset: int = 10) -> None:
+    """Flip one bit of ``path`` inside the only occurrence of ``pattern``."""
+    data = bytearray(path.read_bytes())
+    assert data.count(pattern) == 1
+    data[data.find(pattern) + offset] ^= 0x04
+    path.write_bytes(data)
+
+
+def test_every_variable_is_checksummed(tmp_path):
+    path = write_netcdf(small_dataset(), tmp_path / "x.nc")
+    with netCDF4.Dataset(path) as nc:
+        assert {name: nc[name].filters()["fletcher32"] for name in ("v", "t")} == {"v": True, "t": True}
+
+
+def test_flipped_bit_in_an_uncompressed_variable_fails_its_checksum(tmp_path):
+    ds = xr.Dataset({"v": ("t", np.arange(5.0))}, coords={"t": ("t", TIMES)})
+    path = write_netcdf(ds, tmp_path / "x.nc")
+    flip_bit(path, TIMES.tobytes())
+    with pytest.raises(DatasetError, match=r"x\.nc: .*the data of t \(Fletcher-32 checksum failed\) is corrupted"):
+        read_netcdf(path)
+    # The same file without the checksum: the flipped bit is read back as data.
+    bare = tmp_path / "bare.nc"
+    ds.to_netcdf(bare, engine="netcdf4", encoding={"t": {"_FillValue": None}})
+    flip_bit(bare, TIMES.tobytes())
+    with xr.open_dataset(bare, engine="netcdf4") as back:
+        changed = back["t"].values != TIMES
+    assert changed.tolist() == [False, True, False, False, False]
+
+
+def test_flipped_bit_in_a_compressed_variable_is_detected(tmp_path):
+    """Random bytes do not compress: zlib stores them as they come from the shuffle filter (byte k of
+    every value, then byte k + 1), where they can be found. zlib's own check would catch this flip too."""
+    values = np.random.default_rng(1).integers(-(2**62), 2**62, size=512, dtype=np.int64)
+    path = write_netcdf(xr.Dataset({"v": ("n", values)}), tmp_path / "x.nc")
+    with netCDF4.Dataset(path) as nc:
+        assert nc["v"].filters()["zlib"] and nc["v"].filters()["shuffle"]
+    shuffled = np.frombuffer(values.tobytes(), np.uint8).reshape(-1, 8).T.tobytes()
+    flip_bit(path, shuffled[2000:2064])
+    with pytest.raises(DatasetError, match=r"x\.nc: .*the data of v \(Fletcher-32 checksum or decompression failed\)"):
+        read_netcdf(path)
+
+
+# -- failures of the file system ---------------------------------------------------------------------------------------
+
+
+@pytest.fixture
+def full_disk(tmp_path):
+    """A 64 kB tmpfs (root only), unmounted at the end."""
+    if os.geteuid() != 0:
+        pytest.skip("mounting a tmpfs needs root")
+    point = tmp_path / "mnt"
+    point.mkdir()
+    try:
+        subprocess.run(["mount", "-t", "tmpfs", "-o", "size=64k", "tmpfs", str(point)], check=True, capture_output=True)
+    except (OSError, subprocess.CalledProcessError) as err:
+        pytest.skip(f"cannot mount a tmpfs here: {err}")
+    try:
+        yield point
+    finally:
+        # Lazily: netCDF leaves a file open when a full disk makes its closing fail.
+        subprocess.run(["umount", "--lazy", str(point)], check=True)
+
+
+def test_full_disk_names_the_file_and_the_cause(full_disk):
+    values = np.random.default_rng(2).integers(-(2**62), 2**62, size=40_000, dtype=np.int64)  # 320 kB, random
+    target = full_disk / "big.nc"
+    with pytest.raises(WriteError) as info:
+        write_netcdf(xr.Dataset({"v": ("n", values)}), target)
+    assert info.value.errno == errno.ENOSPC
+    message = str(info.value)
+    assert message.startswith(f"{target}: cannot write: no space left on device (")
+    assert "320000 bytes to write" in message and "NetCDF: HDF error" in message
+    assert list(full_disk.iterdir()) == []
+    stat = os.statvfs(full_disk)
+    assert stat.f_bfree * stat.f_frsize > 32_000  # the temporary's space is given back, though netCDF keeps it open
+
+
+def test_other_netcdf_failure_names_the_file(tmp_path, monkeypatch):
+    def fail(*args, **kwargs):
+        raise RuntimeError("NetCDF: Not a valid data type or _FillValue type mismatch")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", fail)
+    with pytest.raises(DatasetError, match=r"x\.nc: cannot write the netCDF file \(RuntimeError: NetCDF: Not a valid"):
+        write_netcdf(small_dataset(), tmp_path / "x.nc")
+    assert list(tmp_path.iterdir()) == []

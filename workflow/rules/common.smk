@@ -123,6 +123,15 @@ def all_outputs():
     ]
 
 
+onstart:
+    # A run killed outright leaves the temporaries of its atomic writes: those of ended writers go.
+    from escapement.io.atomic import remove_stale_temporaries
+
+    remove_stale_temporaries(".")
+    remove_stale_temporaries("figures")
+    remove_stale_temporaries("results", recursive=True)
+
+
 onerror:
     # A failed job may leave a tracked file restored by Snakemake with a new modification time:
     # dated back, it is published again by the next run.
