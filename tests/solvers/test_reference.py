@@ -101,3 +101,31 @@ def test_chattering_exit_time_is_the_exact_one():
     ref = solve_reference(p, 1.0, n_cycles=5)
     exact = solve_exact(p, 1.0, n_cycles=5)
     assert ref.exit.t_accumulation == pytest.approx(exact.exit.t_accumulation, rel=1e-9)
+
+
+def test_a_loose_tolerance_misses_no_turning_point(case_a):
+    """At rtol 0.1 DOP853 would take steps of more than half a period, over two zeros of the velocity
+    (no change of sign across the step: no turning point found, and the run stopped after two events);
+    steps are kept below half a period, so each holds at most one."""
+    exact = solve_exact(case_a, 1.0, n_cycles=5)
+    for record in (True, False):
+        ref = solve_reference(case_a, 1.0, n_cycles=5, rtol=0.1, record_trajectory=record)
+        assert ref.status == Status.COMPLETED, ref.message
+        assert np.array_equal(ref.events.kind, exact.events.kind)
+
+
+def test_a_zone_end_passed_just_before_the_turning_point_is_not_missed():
+    """The zone arc from a1 about F/K = 0.01 m turns 1e-6 m beyond a2 = 0.05 m, at
+    c + sqrt((a1 - c)**2 + ((1 - b) v- / w)**2) with v- = -w sqrt(x0**2 - a1**2) from rest at x0
+    (x0 from that closed form, 17 digits); one step of the integrator spans the crossing of a2 and the
+    turning point beyond it, where x - a2 has the same sign at both ends."""
+    p = Parameters(M=1, K=1, F=0.01, b=0.1, a1=-0.02, a2=0.05, a3=0.02, a4=-0.05)
+    x0 = -0.0355569444346792  # -sqrt(a1**2 + (0.040001**2 - 0.03**2) / 0.9**2)
+    radius = math.sqrt((p.a1 - p.zone_offset) ** 2 + (1 - p.b) ** 2 * (x0 * x0 - p.a1 * p.a1))
+    assert p.zone_offset + radius - p.a2 == pytest.approx(1e-6, rel=1e-6)
+    exact = solve_exact(p, x0, n_cycles=3)
+    for record in (True, False):
+        ref = solve_reference(p, x0, n_cycles=3, rtol=1e-12, record_trajectory=record)
+        assert ref.status == exact.status == Status.COMPLETED, ref.message
+        assert list(ref.events.kind[:2]) == [EventKind.IMPACT_A1, EventKind.ZONE_END_A2]
+        assert np.array_equal(ref.events.kind, exact.events.kind)

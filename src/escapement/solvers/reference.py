@@ -6,11 +6,23 @@ automaton (:mod:`escapement.model.automaton`, through the solver loop of
 :mod:`escapement.solvers.driver`) but none of the closed forms.  The motion is integrated segment by
 segment, and a segment ends at every event and at every turning point, so that
 ``x`` is monotone inside each segment and a surface can be crossed at most once
-in it: scipy locates an event only where the event function has opposite signs
-at the two ends of a step, and would miss a surface crossed and re-crossed
-inside one step near a turning point.  Each segment watches the surfaces the
-automaton watches that lie ahead in the direction of motion, and rest; after each event the state is put exactly on the surface, since scipy
-reports a spurious event when a segment starts on a surface it watches.
+in it.  Each segment watches the surfaces the automaton watches that lie ahead in the
+direction of motion, and rest; after each event the state is put exactly on the surface,
+since scipy reports a spurious event when a segment starts on a surface it watches.
+
+Grazing.  An integrator locates an event only where the event function has opposite signs
+at the two ends of a step.  A step that spans the crossing of a surface and the turning point
+just beyond it (a zone's end a2 or a4 passed slowly, an arc that turns a hair past it) can end
+where ``x`` has come back across the surface: the turning point is found, the crossing is not.
+So at the end of every segment the state there is checked against every surface the segment
+watches: one that lies between the start and the end in the direction of motion was crossed,
+and its crossing is located on the monotone stretch before the end (on the segment's dense
+output with SciPy, by integrating back from the end with CVODE).  The velocity has a single zero
+in any step (steps are kept below half a period, the spacing of its zeros), so no turning point
+is missed; an impact position (a1, a3) is reached moving towards the free centre, so it is
+grazed only just after a turning point, where a segment starts: one sign change, which the
+integrator finds.  An escapement that stops is declared so only at a turning point from which
+no watched surface lies ahead, so that the turning point it reports lies short of them.
 """
 
 from __future__ import annotations
@@ -20,10 +32,10 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from ..model import automaton
 from ..model.automaton import Mode
-from ..model.events import EventKind
 from ..model.limits import RunLimits
 from ..model.parameters import Parameters, check_initial_state
 from .driver import HORIZON, NO_EVENT, Step, drive
@@ -34,6 +46,11 @@ __all__ = ["DenseSegments", "IvpStepper", "solve_reference"]
 #: free half-swings in a row without an event after which the escapement has stopped
 #: (three turning points cover more than one whole revolution from any start)
 HALF_SWINGS_TO_STOP = 3
+#: the longest step, in half periods: the velocity's zeros are half a period apart, so a step
+#: shorter than that holds at most one of them and changes the velocity's sign across it
+MAX_STEP_HALF_PERIODS = 0.9
+#: relative and absolute tolerance of the root finding on a dense output (scipy's own for events)
+ROOT_TOLERANCE = 4.0 * np.finfo(float).eps
 
 
 @dataclass(frozen=True)
@@ -60,6 +77,24 @@ class Hit:
     y: tuple[float, float]
 
 
+@dataclass(frozen=True)
+class Segment:
+    """One segment to integrate: ``x'' = -omega2 (x - centre)`` from ``y0`` at ``t0`` up to ``t1``
+    at most, ending at the first of ``watches``."""
+
+    omega2: float
+    centre: float
+    t0: float
+    y0: tuple[float, float]
+    t1: float
+    watches: tuple[Watch, ...]
+
+    @property
+    def max_step(self) -> float:
+        """The longest step, below half a period (see :data:`MAX_STEP_HALF_PERIODS`)."""
+        return MAX_STEP_HALF_PERIODS * math.pi / math.sqrt(self.omega2)
+
+
 class SciPyIntegrator:
     """One segment with ``scipy.integrate.solve_ivp``."""
 
@@ -67,26 +102,49 @@ class SciPyIntegrator:
         self.method, self.rtol, self.atol, self.dense = method, rtol, atol, dense
         self.name = f"solve_ivp {method} rtol={rtol:g}"
 
-    def segment(self, omega2: float, centre: float, t0: float, y0, t1: float, watches: list[Watch]):
+    def segment(self, seg: Segment):
+        """The first event of the segment (None: none before ``t1``) and, if kept, the dense output."""
+        return self._solve(seg, self.dense)
+
+    def _solve(self, seg: Segment, dense: bool):
+        omega2, centre = seg.omega2, seg.centre
+
         def rhs(_t, y):
             return [y[1], -omega2 * (y[0] - centre)]
 
         functions = []
-        for w in watches:
+        for w in seg.watches:
             def event(t, y, w=w):
                 return w.value(y)
 
             event.terminal, event.direction = True, w.crossing
             functions.append(event)
         implicit = {"jac": [[0.0, 1.0], [-omega2, 0.0]]} if self.method in ("Radau", "BDF", "LSODA") else {}
-        sol = solve_ivp(rhs, (t0, t1), list(y0), method=self.method, rtol=self.rtol, atol=self.atol,
-                        events=functions or None, dense_output=self.dense, **implicit)
+        sol = solve_ivp(rhs, (seg.t0, seg.t1), list(seg.y0), method=self.method, rtol=self.rtol, atol=self.atol,
+                        events=functions or None, dense_output=dense, max_step=seg.max_step, **implicit)
         if sol.status == -1:
-            raise RuntimeError(f"solve_ivp failed at t = {t0:.12g} s: {sol.message}")
+            raise RuntimeError(f"solve_ivp failed at t = {seg.t0:.12g} s: {sol.message}")
         hits = [(te[0], i, ye[0]) for i, (te, ye) in enumerate(zip(sol.t_events or [], sol.y_events or [])) if len(te)]
         first = min(hits, key=lambda h: h[0]) if hits else None
         hit = None if first is None else Hit(float(first[0]), first[1], (float(first[2][0]), float(first[2][1])))
-        return hit, (sol.sol if self.dense else None)
+        return hit, (sol.sol if dense else None)
+
+    def crossing(self, seg: Segment, dense, end: Hit, index: int) -> Hit:
+        """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, on the segment's
+        dense output, where ``x`` is monotone from the start to ``end``; the segment is integrated
+        again with dense output if it was not kept (the same steps, so the same ``end``)."""
+        if dense is None:
+            again, dense = self._solve(seg, True)
+            if again != end:
+                raise RuntimeError(f"solve_ivp is not repeatable at t = {seg.t0:.12g} s: {again} != {end}")
+        position = seg.watches[index].position
+
+        def gap(t: float) -> float:
+            return float(dense(t)[0]) - position
+
+        t = brentq(gap, seg.t0, end.t, xtol=ROOT_TOLERANCE, rtol=ROOT_TOLERANCE)
+        y = dense(t)
+        return Hit(float(t), index, (float(y[0]), float(y[1])))
 
 
 class CvodeIntegrator:
@@ -99,7 +157,10 @@ class CvodeIntegrator:
         self.method, self.rtol, self.atol = method, rtol, atol
         self.name = f"CVODE {method} rtol={rtol:g}"
 
-    def segment(self, omega2: float, centre: float, t0: float, y0, t1: float, watches: list[Watch]):
+    def _solve(self, seg: Segment, watches: tuple[Watch, ...], directions: list[int], t_from: float, y_from,
+               t_to: float):
+        omega2, centre = seg.omega2, seg.centre
+
         def rhs(_t, y, yp):
             yp[0] = y[1]
             yp[1] = -omega2 * (y[0] - centre)
@@ -109,17 +170,31 @@ class CvodeIntegrator:
                 out[i] = w.value(y)
 
         events.terminal = [True] * len(watches)
-        events.direction = [w.crossing for w in watches]
+        events.direction = directions
         solver = self._cvode(rhs, method=self.method, rtol=self.rtol, atol=self.atol, eventsfn=events,
-                             num_events=len(watches), max_num_steps=1_000_000)
-        result = solver.solve([t0, t1], np.array(y0, dtype=float))
+                             num_events=len(watches), max_num_steps=1_000_000, max_step=seg.max_step)
+        result = solver.solve([t_from, t_to], np.array(y_from, dtype=float))
         if not result.success:
-            raise RuntimeError(f"CVODE failed at t = {t0:.12g} s: {result.message}")
+            raise RuntimeError(f"CVODE failed at t = {t_from:.12g} s: {result.message}")
         if result.t_events is None or len(result.t_events) == 0:
-            return None, None
+            return None
         index = int(np.flatnonzero(result.i_events[0])[0])
         y = result.y_events[0]
-        return Hit(float(result.t_events[0]), index, (float(y[0]), float(y[1]))), None
+        return Hit(float(result.t_events[0]), index, (float(y[0]), float(y[1])))
+
+    def segment(self, seg: Segment):
+        """The first event of the segment (None: none before ``t1``); CVODE keeps no dense output."""
+        return self._solve(seg, seg.watches, [w.crossing for w in seg.watches], seg.t0, seg.y0, seg.t1), None
+
+    def crossing(self, seg: Segment, dense, end: Hit, index: int) -> Hit:
+        """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, by integrating
+        back from ``end`` towards the start: ``x`` is monotone on that stretch, which holds one crossing."""
+        watch = seg.watches[index]
+        back = self._solve(seg, (watch,), [0], end.t, end.y, seg.t0)
+        if back is None:
+            raise RuntimeError(f"CVODE found no crossing of x = {watch.position!r} m between t = {seg.t0:.12g} s "
+                               f"and t = {end.t:.12g} s, where the segment passed it")
+        return Hit(back.t, index, back.y)
 
 
 @dataclass(frozen=True)
@@ -147,6 +222,11 @@ class DenseSegments:
         return x, v, a
 
 
+def _heading(centre: float, x: float, v: float) -> int:
+    """The direction of motion: that of ``v``, or at rest that of the spring's pull (0 at the centre)."""
+    return 1 if v > 0 else -1 if v < 0 else (1 if centre > x else -1 if centre < x else 0)
+
+
 class IvpStepper:
     """The next event by numerical integration, segment by segment (turning points end segments)."""
 
@@ -166,8 +246,10 @@ class IvpStepper:
         t_start = t
         largest = x
         rests = 0
-        while rests < HALF_SWINGS_TO_STOP:  # each pass ends in a return or a turning point
-            heading = 1 if v > 0 else -1 if v < 0 else (1 if centre > x else -1 if centre < x else 0)
+        # each pass ends in a return or a turning point; a free run stops after HALF_SWINGS_TO_STOP of
+        # them, or one more if a watched surface lies ahead of the last (see _ahead)
+        for _ in range(HALF_SWINGS_TO_STOP + 1):
+            heading = _heading(centre, x, v)
             # x is monotone inside a segment, so only the surfaces ahead can be crossed; one it
             # starts on cannot, and watching it would only give scipy's spurious event at the
             # start (the paper's initial condition is the state at t0+, after any jump).
@@ -175,7 +257,8 @@ class IvpStepper:
             kinds = [k for k in kinds if self.surfaces[k].value((x, v)) != 0.0]
             horizon = min(t + 0.75 * self.period, t_stop)
             watches = [self.surfaces[k] for k in kinds] + ([Watch(None, heading)] if heading else [])
-            hit, dense = self.integrator.segment(self.omega2, centre, t, (x, v), horizon, watches)
+            seg = Segment(self.omega2, centre, t, (x, v), horizon, tuple(watches))
+            hit, dense = self.integrator.segment(seg)
             if self.record:
                 self.seg_t.append(t), self.seg_sol.append(dense), self.seg_c.append(centre)
             if hit is None:
@@ -185,18 +268,46 @@ class IvpStepper:
                 if mode == Mode.FREE:
                     return Step(NO_EVENT, math.inf, 0.0, abs(x))
                 return Step(NO_EVENT, t - t_start, 0.0, x)
-            t = float(hit.t)
+            hit = self._first_crossing(seg, hit, dense, heading)
+            t = hit.t
             if hit.index == len(kinds):  # the velocity vanished: a turning point
-                x, v = float(hit.y[0]), 0.0
+                x, v = hit.y[0], 0.0
                 if mode != Mode.FREE:
                     return Step(NO_EVENT, t - t_start, 0.0, x)
                 largest = max(largest, x)
                 rests += 1
+                if rests >= HALF_SWINGS_TO_STOP and not self._ahead(watched, centre, x):
+                    break
                 continue
             kind = kinds[hit.index]
-            return Step(kind, t - t_start, float(hit.y[1]), max(largest, self.surfaces[kind].position), t_abs=t)
+            surface = self.surfaces[kind]
+            # the surface is crossed moving in its direction; near grazing the integrated velocity
+            # there is within the tolerance of zero, and may have the other sign: it is put at zero
+            v_hit = surface.direction * max(surface.direction * hit.y[1], 0.0)
+            return Step(kind, t - t_start, v_hit, max(largest, surface.position), t_abs=t)
         # free half-swings in a row without an event: the escapement has stopped
         return Step(NO_EVENT, math.inf, 0.0, abs(x))
+
+    def _first_crossing(self, seg: Segment, hit: Hit, dense, heading: int) -> Hit:
+        """The segment's first event: ``hit``, or the crossing of a watched surface that lies between
+        the start and ``hit`` in the direction of motion and that the integrator missed (a step that
+        spans the crossing and the turning point just beyond it shows no change of sign)."""
+        x0, x1 = seg.y0[0], hit.y[0]
+        passed = [i for i, w in enumerate(seg.watches)
+                  if i != hit.index and w.position is not None
+                  and (w.position - x0) * heading > 0.0 and (x1 - w.position) * heading > 0.0]
+        if not passed:
+            return hit
+        nearest = min(passed, key=lambda i: (seg.watches[i].position - x0) * heading)
+        return self.integrator.crossing(seg, dense, hit, nearest)
+
+    def _ahead(self, watched, centre: float, x: float) -> bool:
+        """True if, from a turning point at ``x``, a watched surface lies ahead in the direction of
+        the motion that follows (an impact position, a1 < 0 < a3, then lies between the turning point
+        and the free centre: the next segment crosses it)."""
+        heading = _heading(centre, x, 0.0)
+        return any(self.surfaces[k].direction == heading and (self.surfaces[k].position - x) * heading > 0.0
+                   for k in watched)
 
     def trajectory(self, t_final: float):
         if not self.record:
