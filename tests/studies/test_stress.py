@@ -253,6 +253,21 @@ def check_graze_zone_end():
     return "turned_back_in_zone"
 
 
+def check_reference_grazes_zone_end():
+    # closed form: the zone arc from a3 turns at c - R = a4 - 1e-9 m, beyond a4; the exact solver (its
+    # own closed forms, tested on such arcs in tests/solvers/test_grazing.py) crosses a4
+    p = Parameters(M=1.0, K=1.0, F=0.01, b=0.1, a1=-0.02, a2=0.05, a3=0.02, a4=-0.05)
+    with mpmath.workdps(50):
+        c = -mpmath.mpf("0.01")
+        radius = c - (mpmath.mpf(p.a4) - mpmath.mpf("1e-9"))
+        x0 = mpmath.sqrt(mpmath.mpf(p.a3) ** 2 + (radius**2 - (mpmath.mpf(p.a3) - c) ** 2) / mpmath.mpf("0.81"))
+        speed_at_a4 = mpmath.sqrt(radius**2 - (mpmath.mpf(p.a4) - c) ** 2)  # w = 1
+    s = solve_exact(p, float(x0), n_cycles=3)
+    assert list(s.events.kind[:2]) == [3, 4]
+    assert abs(s.events.v_before[1]) == pytest.approx(float(speed_at_a4), rel=1e-3)
+    return s.status.value
+
+
 def check_scales():
     for K in (1e-3, 1.0, 1e3):
         for M in (1e-3, 1.0, 1e3):

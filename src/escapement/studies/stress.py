@@ -176,6 +176,27 @@ def b_two_minus_1e12() -> StressResult:
     return _chattering(2.0 - 1e-12)
 
 
+def reference_grazes_zone_end() -> StressResult:
+    # From rest at x0 > a3 the free arc meets a3 with v^2 = w^2 (x0^2 - a3^2); after the impact the
+    # zone arc about c = -F/K has radius R, R^2 = (a3 - c)^2 + (1 - b)^2 (x0^2 - a3^2). x0 is chosen in
+    # 50 digits so that the arc turns 1e-9 m beyond a4: the mass crosses a4 slowly, and a single
+    # solve_ivp step can span both the crossing and the turning point.
+    p = Parameters(M=1.0, K=1.0, F=0.01, b=0.1, a1=-0.02, a2=0.05, a3=0.02, a4=-0.05)
+    delta = 1e-9
+    with mpmath.workdps(50):
+        c, a3, a4 = -mpmath.mpf(p.F) / mpmath.mpf(p.K), mpmath.mpf(p.a3), mpmath.mpf(p.a4)
+        radius = c - (a4 - mpmath.mpf(delta))
+        x0 = float(mpmath.sqrt(a3 * a3 + (radius**2 - (a3 - c) ** 2) / (1 - mpmath.mpf(p.b)) ** 2))
+    exact = solve_exact(p, x0, n_cycles=3)
+    ref = solve_reference(p, x0, n_cycles=3, method="DOP853", rtol=1e-12)
+    ok = (list(exact.events.kind[:2]) == [3, 4] and ref.status == exact.status
+          and list(ref.events.kind) == list(exact.events.kind))
+    return StressResult(ref.status.value, "zone arc turning 1e-9 m beyond a4 (closed form): the reference "
+                        "(DOP853, rtol 1e-12) crosses a4 as the exact solver does", ok,
+                        f"{len(ref.events)} events, the same kinds as the exact solver's: "
+                        f"{'yes' if list(ref.events.kind) == list(exact.events.kind) else 'no'}")
+
+
 # --- inputs refused before any work ----------------------------------------------------------
 
 
@@ -333,6 +354,8 @@ CASES = [
     StressCase("graze_just_inside", "grazing: turning point 1e-17 m short of an impact position", graze_just_inside),
     StressCase("graze_just_beyond", "grazing: turning point 1e-17 m beyond an impact position", graze_just_beyond),
     StressCase("graze_zone_end", "grazing: zone turning point within 1e-15 of its end", graze_zone_end),
+    StressCase("reference_grazes_zone_end", "grazing: the reference solver near a zone's end (1e-9 m)",
+               reference_grazes_zone_end),
     StressCase("scales", "K and M from 1e-3 to 1e3, F from 0 to 1e3", scales),
     StressCase("near_origin", "positions near the origin", near_origin),
 ]
