@@ -9,7 +9,8 @@ Layers, each importing only those above it in this list:
   corrected), the Poincare measurement and the claims; the benchmark, long run, stress cases;
 * :mod:`escapement.io`: CF datasets, netCDF files, atomic writes, provenance;
 * :mod:`escapement.plotting`: the figures;
-* :mod:`escapement.pipeline`: what the workflow's rules call (not imported here).
+* :mod:`escapement.pipeline`: what the workflow's rules call, and :mod:`escapement.cli`, the
+  command line ``python -m escapement solve`` (neither is imported here).
 """
 
 from importlib.metadata import PackageNotFoundError, version
