@@ -60,7 +60,8 @@ CONFIG = {
         "F": 1.0,
         "x0": 1.0,
         "n_cycles": 50,
-        "repeats": 5,
+        "min_seconds": 0.2,
+        "max_repeats": 500,
         "settings": {"exact": [], "RK45": [1.0e-3, 1.0e-6], "naive-RK4": [0.1]},
         "slow_settings": {"naive-RK4": [1.0e-4], "Radau": [1.0e-9]},
     },
@@ -131,7 +132,8 @@ def test_check_cases_in_order_with_their_groups_and_labels(config):
 
 
 def test_benchmark_scene_and_settings(config):
-    assert benchmark_scene(config) == {**MODEL, "F": 1.0, "x0": 1.0, "n_cycles": 50, "repeats": 5}
+    assert benchmark_scene(config) == {**MODEL, "F": 1.0, "x0": 1.0, "n_cycles": 50, "min_seconds": 0.2,
+                                       "max_repeats": 500}
     assert benchmark_settings(config) == {"RK45": [1.0e-3, 1.0e-6], "exact": [], "naive-RK4": [0.1]}
     assert benchmark_settings(config, slow=True) == {
         "RK45": [1.0e-3, 1.0e-6], "Radau": [1.0e-9], "exact": [], "naive-RK4": [0.1, 1.0e-4],

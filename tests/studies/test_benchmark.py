@@ -1,10 +1,11 @@
 import math
+import time
 
 import pytest
 
 from escapement.model.parameters import Parameters
 from escapement.solvers.high_precision import solve_high_precision
-from escapement.studies.benchmark import closed_form_map, run_method, work_precision
+from escapement.studies.benchmark import closed_form_map, median_wall, run_method, work_precision
 
 P = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
 N = 5
@@ -79,7 +80,7 @@ def test_invalid_methods_raise(method):
 
 def test_rows_hold_the_errors_of_each_run_against_50_digits(reference):
     v_ref, t_ref = reference
-    rows = work_precision(P, 1.0, N, {"exact": [], "naive-RK4": [0.1, 0.01]}, repeats=5)
+    rows = work_precision(P, 1.0, N, {"exact": [], "naive-RK4": [0.1, 0.01]}, min_seconds=0.01, max_repeats=5)
     assert [(r["method"], r["setting"]) for r in rows] == [("exact", ""), ("naive-RK4", "0.1"), ("naive-RK4", "0.01")]
     for row, setting in zip(rows[1:], (0.1, 0.01)):
         v, t = run_method("naive-RK4", setting, P, 1.0, N)  # deterministic: the same run again
@@ -90,7 +91,29 @@ def test_rows_hold_the_errors_of_each_run_against_50_digits(reference):
     assert all(r["wall_s"] > 0 and math.isfinite(r["wall_s"]) for r in rows)
 
 
-@pytest.mark.parametrize("settings, repeats, message", [({"exact": []}, 4, "repeats"), ({"magic": []}, 5, "method")])
-def test_invalid_benchmark_settings(settings, repeats, message):
+@pytest.mark.parametrize(
+    "settings, min_seconds, max_repeats, message",
+    [({"exact": []}, 0.0, 5, "min_seconds"), ({"exact": []}, 0.1, 0, "max_repeats"),
+     ({"exact": []}, 0.1, True, "max_repeats"), ({"magic": []}, 0.1, 5, "method")],
+)
+def test_invalid_benchmark_settings(settings, min_seconds, max_repeats, message):
     with pytest.raises(ValueError, match=message):
-        work_precision(P, 1.0, 5, settings, repeats)
+        work_precision(P, 1.0, 5, settings, min_seconds, max_repeats)
+
+
+def test_timing_repeats_a_fast_call_until_the_time_is_measured_and_a_slow_one_once():
+    calls = []
+
+    def fast():
+        calls.append(1)
+        return "fast"
+
+    wall, runs, result = median_wall(fast, min_seconds=1e-3, max_repeats=10_000)
+    assert result == "fast" and runs == len(calls) > 1 and wall >= 0
+
+    def slow():
+        time.sleep(0.02)
+        return "slow"
+
+    assert median_wall(slow, min_seconds=0.01, max_repeats=50)[1] == 1
+    assert median_wall(fast, min_seconds=10.0, max_repeats=7)[1] == 7  # the cap

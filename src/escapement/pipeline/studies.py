@@ -10,7 +10,7 @@ from ..model.parameters import Parameters, check_initial_state
 from ..studies.benchmark import work_precision
 from ..studies.stress import run_all
 from .logs import logged
-from .tables import STRESS_COLUMNS
+from .tables import STRESS_COLUMNS, WORK_PRECISION_COLUMNS
 
 __all__ = ["run_stress", "run_work_precision"]
 
@@ -20,9 +20,10 @@ def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str
         x0 = check_initial_state(scene["x0"], scene.get("v0", 0.0))[0]
         rows = work_precision(
             Parameters.from_mapping(scene), x0, scene["n_cycles"],
-            {k: list(v) for k, v in settings.items()}, scene["repeats"], log=logger.info,
+            {k: list(v) for k, v in settings.items()}, scene["min_seconds"], scene["max_repeats"], log=logger.info,
         )
         formatted = [{k: (f"{v:.6e}" if isinstance(v, float) else v) for k, v in row.items()} for row in rows]
+        assert list(rows[0]) == WORK_PRECISION_COLUMNS, list(rows[0])
         write_csv(formatted, list(rows[0]), output)
 
 

@@ -28,7 +28,7 @@ __all__ = [
 CYCLE_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude")
 SHOCK_VARIABLES = ("t", "velocity", "acceleration", "impact_time", "impulse", "energy_dissipated", "event_time")
 PHASE_VARIABLES = ("t", "displacement", "velocity", "impact_time", "impact_position", "velocity_after")
-WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "error_velocity", "error_time"]
+WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "repeats", "error_velocity", "error_time"]
 STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
 #: wall times, kept apart from the datasets (which are deterministic): one row per measurement
 TIMING_COLUMNS = ["measurement", "seconds"]

@@ -3,6 +3,12 @@
 Workload: ``n_cycles`` cycles from release at rest (the paper's Fig. 3 case (a) by default).
 Errors are relative, at the last cycle, for the velocity before impact and the impact time,
 against the 50-digit reference of :mod:`escapement.solvers.high_precision`.
+
+Timing is adaptive: each setting is run again until ``min_seconds`` of runs have been measured
+(at least once, at most ``max_repeats`` times), and its wall time is the median. A fast method
+(the exact solver: a millisecond) is repeated hundreds of times, which keeps the noise of a
+shared machine in check; a slow one (seconds per run) runs once or twice. The whole table then
+costs about ``min_seconds`` per setting, plus the slow runs.
 """
 
 from __future__ import annotations
@@ -19,7 +25,7 @@ from ..solvers.high_precision import solve_high_precision
 from ..solvers.naive import solve_naive
 from ..solvers.reference import solve_reference
 
-__all__ = ["METHODS", "closed_form_map", "run_method", "work_precision"]
+__all__ = ["METHODS", "closed_form_map", "median_wall", "run_method", "work_precision"]
 
 #: methods of solve_reference (SciPy's solve_ivp and SUNDIALS CVODE), by the benchmark's names
 INTEGRATORS = ("RK45", "DOP853", "LSODA", "Radau", "CVODE-Adams", "CVODE-BDF")
@@ -73,22 +79,27 @@ def run_method(method: str, setting: float | None, params: Parameters, x0: float
     raise ValueError(f"method = {method!r} is invalid: method must be one of {', '.join(METHODS)}")
 
 
-def _median_wall(fn: Callable[[], object], repeats: int) -> tuple[float, object]:
-    walls = []
+def median_wall(fn: Callable[[], object], min_seconds: float, max_repeats: int) -> tuple[float, int, object]:
+    """Run ``fn`` until ``min_seconds`` of runs are measured or ``max_repeats`` runs are done (at least
+    one); return the median wall time, the number of runs and the last result."""
+    walls: list[float] = []
     result = None
-    for _ in range(repeats):
+    while len(walls) < max_repeats and (not walls or sum(walls) < min_seconds):
         start = time.perf_counter()
         result = fn()
         walls.append(time.perf_counter() - start)
-    return statistics.median(walls), result
+    return statistics.median(walls), len(walls), result
 
 
 def work_precision(
-    params: Parameters, x0: float, n_cycles: int, settings: dict[str, list], repeats: int, log=None
+    params: Parameters, x0: float, n_cycles: int, settings: dict[str, list], min_seconds: float, max_repeats: int,
+    log=None,
 ) -> list[dict]:
-    """Rows ``method, setting, wall_s, error_velocity, error_time`` for every method and setting."""
-    if repeats < 5:
-        raise ValueError(f"repeats = {repeats!r} is invalid: repeats must be >= 5")
+    """Rows ``method, setting, wall_s, repeats, error_velocity, error_time`` for every method and setting."""
+    if not (isinstance(min_seconds, int | float) and 0 < min_seconds <= 60):
+        raise ValueError(f"min_seconds = {min_seconds!r} is invalid: min_seconds must be in (0, 60] (s)")
+    if isinstance(max_repeats, bool) or not isinstance(max_repeats, int) or not 1 <= max_repeats <= 10_000:
+        raise ValueError(f"max_repeats = {max_repeats!r} is invalid: max_repeats must be an integer in [1, 10000]")
     for method in settings:
         if method not in METHODS:
             raise ValueError(f"method = {method!r} is invalid: method must be one of {', '.join(METHODS)}")
@@ -97,15 +108,19 @@ def work_precision(
     rows = []
     for method, values in settings.items():
         for setting in values or [None]:
-            wall, (v, t) = _median_wall(lambda: run_method(method, setting, params, x0, n_cycles), repeats)
+            wall, runs, (v, t) = median_wall(
+                lambda: run_method(method, setting, params, x0, n_cycles), min_seconds, max_repeats
+            )
             row = {
                 "method": method,
                 "setting": "" if setting is None else f"{setting:g}",
                 "wall_s": wall,
+                "repeats": runs,
                 "error_velocity": abs(v - v_ref) / abs(v_ref),
                 "error_time": abs(t - t_ref) / abs(t_ref),
             }
             rows.append(row)
             if log is not None:
-                log(f"{method} {row['setting']}: {wall:.3e} s, errors {row['error_velocity']:.2e} {row['error_time']:.2e}")
+                log(f"{method} {row['setting']}: {wall:.3e} s (median of {runs}), "
+                    f"errors {row['error_velocity']:.2e} {row['error_time']:.2e}")
     return rows
