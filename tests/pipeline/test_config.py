@@ -179,7 +179,7 @@ def test_reordering_the_configuration_does_not_change_a_scene(config):
         (lambda c: c["fig3"]["cases"]["a"].update(M=0), "fig3.cases.a.M = 0 is invalid: M must be a number > 0 (kg)"),
         (lambda c: c["fig5"].update(K=[1.0, -2.0]), "fig5.K.1 = -2.0 is invalid: K must be a number > 0 (N/m)"),
         (lambda c: c["model"].update(a1="left"), "model.a1 = 'left' is invalid: a1 must be a number (m)"),
-        (lambda c: c["fig3"].update(n_cycles=2.5), "fig3.n_cycles = 2.5 is invalid: n_cycles must be an integer >= 1"),
+        (lambda c: c["fig3"].update(n_cycles=2.5), "fig3.n_cycles = 2.5 is invalid: n_cycles must be an integer in [1, 1000000]"),
         (lambda c: c["model"].pop("K"), "model: the key 'K' is missing: it must be given"),
         (lambda c: c.update(extra=1), "the configuration: unknown key 'extra'"),
         (lambda c: c["model"].update(x0=1.0), "model: unknown key 'x0'; the keys allowed here are F, K, M, a1, a2, a3, a4, b"),
@@ -205,6 +205,16 @@ def test_reordering_the_configuration_does_not_change_a_scene(config):
         (
             lambda c: c["checks"]["asymmetric"].update(positions=[[-0.1, 0.05, 0.2, 0.3]]),
             "checks (F=3,a1=-0.1,a2=0.05,a3=0.2,a4=0.3): a4 = 0.3 is invalid: a4 must be < a3 = 0.2 (m)",
+        ),
+        (lambda c: c["fig3"].update(n_cycles=10**7), "fig3.n_cycles = 10000000 is invalid"),
+        (lambda c: c["checks"].update(n_cycles=10**6), "checks.n_cycles = 1000000 is invalid"),
+        (
+            lambda c: c["fig4"].update(samples_per_second=100000, velocity_window=[0.0, 1000.0]),
+            "fig4.samples_per_second = 100000 is invalid: over the velocity_window of 1000 s it gives 1e+08 samples",
+        ),
+        (
+            lambda c: c["fig5"].update(n_cycles=10000, samples_per_period=2000),
+            "fig5.samples_per_period = 2000 is invalid: with n_cycles = 10000 it gives 20_000_000 samples",
         ),
         (
             lambda c: c["model"].update(M=1e-320),

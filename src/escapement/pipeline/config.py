@@ -202,8 +202,13 @@ def schema_error(config: Mapping, schema: Mapping) -> str | None:
     return f"{where} = {error.instance!r} is invalid: {name} must be {requirement}"
 
 
+#: the most samples a sampled time series may hold (three float64 arrays: 240 MB)
+MAX_SAMPLES = 10_000_000
+
+
 def _cross_field_error(config: Mapping) -> str | None:
-    """Rules that the schema cannot state: distinct Fig. 5 files, windows, chunks."""
+    """Rules that the schema cannot state: distinct Fig. 5 files, windows, chunks, the size of the
+    sampled time series (checked before any job, not after the work)."""
     labels = fig5_labels(config)
     for label in labels:
         same = [k for k, other in zip(config["fig5"]["K"], labels) if other == label]
@@ -216,6 +221,20 @@ def _cross_field_error(config: Mapping) -> str | None:
         lo, hi = config["fig4"][name]
         if not lo < hi:
             return f"fig4.{name} = {[lo, hi]!r} is invalid: {name} must be [start, end] with start < end (s)"
+        samples = (hi - lo) * config["fig4"]["samples_per_second"]
+        if samples > MAX_SAMPLES:
+            return (
+                f"fig4.samples_per_second = {config['fig4']['samples_per_second']!r} is invalid: over the "
+                f"{name} of {hi - lo:g} s it gives {samples:.3g} samples; samples_per_second times the window "
+                f"must be at most {MAX_SAMPLES:_}"
+            )
+    fig5 = config["fig5"]
+    if fig5["samples_per_period"] * fig5["n_cycles"] > MAX_SAMPLES:
+        return (
+            f"fig5.samples_per_period = {fig5['samples_per_period']!r} is invalid: with n_cycles = "
+            f"{fig5['n_cycles']!r} it gives {fig5['samples_per_period'] * fig5['n_cycles']:_} samples; "
+            f"samples_per_period times n_cycles must be at most {MAX_SAMPLES:_}"
+        )
     chunks, n = config["stability_map"]["chunks"], config["stability_map"]["b"]["n"]
     if chunks > n:
         return f"stability_map.chunks = {chunks!r} is invalid: chunks must be <= b.n = {n}"
