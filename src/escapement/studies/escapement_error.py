@@ -1,0 +1,115 @@
+"""The escapement error: the limit cycle's rate against its amplitude, decomposed as Airy did.
+
+Watchmakers judge an escapement by its rate (seconds gained or lost per day) against the
+balance's amplitude. Airy's classical result (1830): an impulse delivered symmetrically about
+the equilibrium leaves the period unchanged to first order in the impulse; one delivered before
+the equilibrium shortens the period (the clock gains), one after lengthens it (it loses). In the
+model of Mao, Fu & Li the period of a cycle is
+
+``T = 2 pi / w + dT1 + dT2``,
+
+``dT1`` the phase jumps of the two impacts (the paper's Eq. (24)) and ``dT2`` the time through
+the two impulse zones less the phase they advance (Eq. (25)), both in their corrected form
+(:mod:`escapement.paper.corrected`); on the limit cycle the sum is the period the exact solver
+measures.
+
+First order in the force, derived on paper: inside a zone the sine phase
+``phi = atan2(x, v / w)`` of the free motion advances at ``w - f x / (w A**2)``, ``A`` the
+amplitude of the arc (``A**2 = x**2 + v**2 / w**2``), so the zone from ``x = a`` to ``x = c``
+costs ``dT2 = f / (w**3 A**2) (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) + O(f**2)``: zero for a
+zone placed symmetrically about 0 (``c = -a``), negative for a zone before the equilibrium,
+positive for one after.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..model.parameters import Parameters
+from ..model.status import Status
+from ..paper import corrected
+from ..solvers.exact import solve_exact
+
+__all__ = [
+    "SECONDS_PER_DAY",
+    "LimitCycleRate",
+    "daily_rate",
+    "first_order_zone_change",
+    "limit_cycle_rate",
+    "rate_against_amplitude",
+]
+
+SECONDS_PER_DAY = 86_400.0
+
+
+def daily_rate(period: float, natural_period: float) -> float:
+    """Seconds gained per day (negative: lost) by a clock that counts ``natural_period`` per swing
+    of an oscillator whose period is ``period``: ``86400 (T0 / T - 1)``."""
+    return SECONDS_PER_DAY * (natural_period / period - 1.0)
+
+
+def first_order_zone_change(start: float, end: float, amplitude: float, omega: float, f: float) -> float:
+    """The first-order time cost of a zone from ``start`` to ``end`` (force per unit mass ``f`` along
+    the motion) on an arc of amplitude ``amplitude``: ``f (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) /
+    (w**3 A**2)`` (see the module docstring)."""
+    a2 = amplitude * amplitude
+    return f * (math.sqrt(a2 - start * start) - math.sqrt(a2 - end * end)) / (omega**3 * a2)
+
+
+@dataclass(frozen=True)
+class LimitCycleRate:
+    """The limit cycle of one configuration: its amplitude, period and rate, and the decomposition."""
+
+    F: float  #: force, N
+    amplitude: float  #: largest displacement of the limit cycle, m
+    velocity: float  #: fixed point of the map (16): velocity before the impact at a1, m/s
+    period: float  #: period measured by the exact solver from the fixed point, s
+    period_formula: float  #: 2 pi / w + dT1 + dT2 (corrected Eqs. (24)-(25)), s
+    impacts: float  #: dT1: phase jumps of the two impacts, s
+    zones: float  #: dT2: zone time less phase advance, both zones, s
+    rate: float  #: seconds per day gained (negative: lost)
+    rate_impacts: float  #: the part of the rate due to dT1, s/day (first order: -86400 dT1 / T0)
+    rate_zones: float  #: the part due to dT2, s/day
+
+
+def limit_cycle_rate(p: Parameters) -> LimitCycleRate:
+    """The limit cycle of ``p`` (the fixed point of the map (16)), measured with the exact solver
+    over one cycle from the fixed point, and decomposed by the corrected Eqs. (24)-(25).
+
+    Raises ``ValueError`` naming the configuration if it has no limit cycle (no fixed point, or the
+    cycle from it leaves the regime)."""
+    v = corrected.fixed_point(p)
+    if not math.isfinite(v):
+        raise ValueError(f"F = {p.F!r} N with a1..a4 = {p.a1}, {p.a2}, {p.a3}, {p.a4}: the map (16) has no fixed point")
+    release = -math.hypot(p.a1, v / p.omega)  # at rest on the free arc that meets a1 with v
+    run = solve_exact(p, release, n_cycles=1, record_trajectory=False)
+    if run.status != Status.COMPLETED:
+        raise ValueError(f"F = {p.F!r} N: the cycle from the fixed point leaves the regime: {run.message}")
+    w = p.omega
+    vel = corrected.cycle_velocities(v, p)
+    mirror = Parameters(M=p.M, K=p.K, F=p.F, b=p.b, a1=-p.a3, a2=-p.a4, a3=-p.a1, a4=-p.a2)
+    impacts = corrected.impact_phase_jump(p.a1, v, p) + corrected.impact_phase_jump(mirror.a1, -vel["v4"], mirror)
+    zones = corrected.zone_period_change(v, p) + corrected.zone_period_change(-vel["v4"], mirror)
+    t0 = 2.0 * math.pi / w
+    period = float(run.cycles.period[0])
+    return LimitCycleRate(
+        F=p.F,
+        amplitude=float(run.cycles.amplitude[0]),
+        velocity=v,
+        period=period,
+        period_formula=t0 + impacts + zones,
+        impacts=impacts,
+        zones=zones,
+        rate=daily_rate(period, t0),
+        rate_impacts=-SECONDS_PER_DAY * impacts / t0,
+        rate_zones=-SECONDS_PER_DAY * zones / t0,
+    )
+
+
+def rate_against_amplitude(base: Parameters, forces: np.ndarray) -> list[LimitCycleRate]:
+    """:func:`limit_cycle_rate` for each force in ``forces`` (N), the rest of ``base`` unchanged."""
+    values = base.as_dict()
+    return [limit_cycle_rate(Parameters(**{**values, "F": float(F)})) for F in forces]
