@@ -33,3 +33,18 @@ def test_write_text_is_atomic(tmp_path):
     write_text("hello", tmp_path / "a.md")
     assert (tmp_path / "a.md").read_text() == "hello"
     assert [p.name for p in tmp_path.iterdir()] == ["a.md"]
+
+
+def test_the_verdict_html_counts_the_claims_and_escapes_every_cell():
+    from escapement.pipeline.docs import verdict_html
+
+    claims = [dict(ROWS[0], claim_id="a", status="reproduced", note="x < y & z"),
+              dict(ROWS[0], claim_id="b", status="not_reproduced", note="")]
+    stress = [{"case": "c1", "regime": "r", "outcome": "completed", "check": "k", "passed": "yes", "detail": "<d>"},
+              {"case": "c2", "regime": "r", "outcome": "stopped", "check": "k", "passed": "no", "detail": ""}]
+    text = verdict_html(claims, stress)
+    assert "2 claims of the paper checked</strong>: 1 reproduced, 0 partially reproduced, 1 not reproduced" in text
+    assert "2 stress cases</strong>" in text and "1 pass, 1 fail: c2." in text
+    assert '<table id="claims"' in text and '<table id="stress"' in text
+    assert "x &lt; y &amp; z" in text and "&lt;d&gt;" in text and "<d>" not in text
+    assert text.count("<tr><td>") == 4

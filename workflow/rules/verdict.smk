@@ -17,6 +17,7 @@ rule check_claims:
         ),
     log:
         "results/logs/check_claims.log",
+    localrule: True
     conda:
         "../../environment/environment.yml"
     params:
@@ -47,8 +48,11 @@ rule render_docs:
             category="Speed and accuracy",
             labels={"document": "measured times"},
         ),
+        # the verdict as HTML tables, shown on the report's landing page (workflow/report/workflow.rst)
+        verdict="results/docs/verdict.html",
     log:
         "results/logs/render_docs.log",
+    localrule: True
     conda:
         "../../environment/environment.yml"
     script:

@@ -14,5 +14,6 @@ render_docs(  # noqa: F821
     [snakemake.output.readme, snakemake.output.replication],
     snakemake.input.timings_template,
     snakemake.output.timings,
+    snakemake.output.verdict,
     snakemake.log[0],
 )

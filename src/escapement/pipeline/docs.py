@@ -15,13 +15,14 @@ An unknown placeholder, claim or column is an error, so that no stale or typed n
 
 from __future__ import annotations
 
+import html
 import os
 import re
 
 from ..io.atomic import atomic_path
 from ..paper.claims import COLUMNS, STATUSES
 
-__all__ = ["claims_table", "markdown_table", "render", "write_text"]
+__all__ = ["claims_table", "html_table", "markdown_table", "render", "verdict_html", "write_text"]
 
 PLACEHOLDER = re.compile(r"\{\{\s*([a-z_]+)(?::([A-Za-z0-9_]+))?(?::([a-z_]+))?\s*\}\}")
 STATUS_LABEL = {"reproduced": "reproduced", "partially_reproduced": "partially", "not_reproduced": "**not reproduced**"}
@@ -55,6 +56,40 @@ def markdown_table(rows: list[dict[str, str]], columns: list[str]) -> str:
     lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
     lines += ["| " + " | ".join(_cell(row[c]) for c in columns) + " |" for row in rows]
     return "\n".join(lines)
+
+
+def html_table(rows: list[dict[str, str]], columns: list[str], caption: str, table_id: str) -> str:
+    """An HTML table of ``rows`` (every cell escaped), with a caption and an id for checks."""
+    head = "".join(f"<th>{html.escape(c)}</th>" for c in columns)
+    body = "\n".join(
+        "<tr>" + "".join(f"<td>{html.escape(str(row[c]))}</td>" for c in columns) + "</tr>" for row in rows
+    )
+    return (f'<table id="{table_id}" class="verdict"><caption>{html.escape(caption)}</caption>\n'
+            f"<thead><tr>{head}</tr></thead>\n<tbody>\n{body}\n</tbody></table>")
+
+
+def verdict_html(claims: list[dict[str, str]], stress: list[dict[str, str]]) -> str:
+    """The report's landing section: the verdict in a few lines, the claims register and the
+    stress table as HTML tables."""
+    counts = {status: sum(r["status"] == status for r in claims) for status in STATUSES}
+    failed = [r for r in stress if r["passed"] != "yes"]
+    lines = [
+        f"<p><strong>{len(claims)} claims of the paper checked</strong>: {counts['reproduced']} reproduced, "
+        f"{counts['partially_reproduced']} partially reproduced, {counts['not_reproduced']} not reproduced "
+        "(the reasons are in the table's note column and in REPLICATION.md).</p>",
+        f"<p><strong>{len(stress)} stress cases</strong> at the edges of the model's regime, each against an "
+        f"independent answer: {len(stress) - len(failed)} pass"
+        + (f", {len(failed)} fail: {html.escape(', '.join(r['case'] for r in failed))}" if failed else "")
+        + ".</p>",
+        html_table(
+            [{**r, "status": r["status"].replace("_", " ")} for r in claims],
+            ["claim_id", "source", "paper_value", "replicated_value", "status", "note"],
+            "The claims register (results/claims.csv)", "claims",
+        ),
+        html_table(stress, ["regime", "outcome", "check", "passed", "detail"],
+                   "The stress cases (results/stress/summary.csv)", "stress"),
+    ]
+    return "\n".join(lines) + "\n"
 
 
 def render(

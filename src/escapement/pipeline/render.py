@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from ..io.netcdf import read_netcdf
-from .docs import markdown_table, render, write_text
+from .docs import markdown_table, render, verdict_html, write_text
 from .facts import collect_facts
 from .logs import logged
 from .tables import read_stress, read_timings, read_work_precision
@@ -19,10 +19,11 @@ __all__ = ["render_docs"]
 def render_docs(
     claims: str, benchmark: str, long_run: str, long_run_timing: str, stability: str, stability_timing: str,
     stress: str, templates: Sequence[str], outputs: Sequence[str], measured_template: str, measured_output: str,
-    log: str,
+    verdict_output: str, log: str,
 ) -> None:
-    """Render each of ``templates`` to the matching ``outputs`` with deterministic facts only, and
-    ``measured_template`` to ``measured_output`` with the wall times too."""
+    """Render each of ``templates`` to the matching ``outputs`` with deterministic facts only,
+    ``measured_template`` to ``measured_output`` with the wall times too, and the verdict as HTML
+    for the report's landing page to ``verdict_output``."""
     with logged(log, "render_docs"):
         rows = read_claims_csv(claims)
         facts = collect_facts(
@@ -32,8 +33,10 @@ def render_docs(
             read_timings(long_run_timing),
             read_timings(stability_timing),
         )
-        tables = {"stress": markdown_table(read_stress(stress), ["regime", "outcome", "check", "passed", "detail"])}
+        stress_rows = read_stress(stress)
+        tables = {"stress": markdown_table(stress_rows, ["regime", "outcome", "check", "passed", "detail"])}
         for template, output in zip(templates, outputs, strict=True):
             write_text(render(Path(template).read_text(), rows, template, facts, tables), output)
         write_text(render(Path(measured_template).read_text(), rows, measured_template, facts, tables, measured=True),
                    measured_output)
+        write_text(verdict_html(rows, stress_rows), verdict_output)
