@@ -27,8 +27,13 @@ GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4
 MU2 = 0.6561  # (1 - 0.1)^4
 
 
-def attrs(F: float, outcome: str = "completed", **over) -> dict:
-    return {**GEOMETRY, "F": F, "x0": 1.0, "outcome": outcome, "outcome_message": f"{outcome}: a message", **over}
+def attrs(outcome: str = "completed") -> dict:
+    return {"outcome": outcome, "outcome_message": f"{outcome}: a message"}
+
+
+def parameters(F: float, **over) -> dict:
+    """The model's parameters and x0 as 0-d variables, as the scenes write them."""
+    return {name: ((), value) for name, value in {**GEOMETRY, "F": F, "x0": 1.0, **over}.items()}
 
 
 def velocities(F: float, v0: float, n: int) -> np.ndarray:
@@ -52,9 +57,10 @@ def fig3_ds(F=1.0, v0=1.0, n=50, period=6.3, outcome="completed", durations=None
             "event_time": ("event", t),
             "event_kind": ("event", kinds),
             "event_velocity_before": ("event", np.select([kinds == 1, kinds == 4], [v1, v5], 0.0)),
+            **parameters(F),
         },
         coords={"cycle": np.arange(1, n + 1)},
-        attrs=attrs(F, outcome),
+        attrs=attrs(outcome),
     )
 
 
@@ -68,9 +74,12 @@ def fig4_ds(vb=(0.8, -0.8), impulse=None, energy=None, swing=0.5) -> xr.Dataset:
             "velocity_before": ("impact", vb),
             "impulse": ("impact", -0.1 * vb if impulse is None else np.asarray(impulse)),
             "energy_dissipated": ("impact", 0.5 * vb**2 * 0.19 if energy is None else np.asarray(energy)),
+            "velocity_window": ("window_edge", [80.0, 87.0]),
+            "acceleration_window": ("window_edge", [81.0, 85.0]),
+            **parameters(0.5),
         },
         coords={"t": t},
-        attrs={**attrs(0.5), "velocity_window": [80.0, 87.0], "acceleration_window": [81.0, 85.0]},
+        attrs=attrs(),
     )
 
 
@@ -83,9 +92,10 @@ def fig5_ds(K: float, v_last: float, amplitude=1.0, vmax=1.0, outcome="completed
             "velocity_before_impact": ("cycle", [v_last, v_last]),
             "period": ("cycle", [6.0, 6.0]),
             "amplitude": ("cycle", [amplitude, amplitude]),
+            **parameters(0.5, K=K),
         },
         coords={"t": t},
-        attrs=attrs(0.5, outcome, K=K),
+        attrs=attrs(outcome),
     )
 
 

@@ -13,8 +13,10 @@ from escapement.io.netcdf import write_netcdf
 from escapement.paper.claims import CHECKS, COLUMNS, ClaimError
 from escapement.pipeline.verdict import check_claims, read_claims_csv, write_claims_csv
 
-MODEL = {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05, "x0": 1.0,
-         "outcome": "completed", "outcome_message": "completed 2 cycles"}
+#: the model's parameters and x0 as 0-d variables, as the scenes write them; the outcome as attributes
+MODEL = {k: ((), v) for k, v in {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1,
+                                 "a4": -0.05, "x0": 1.0}.items()}
+OUTCOME = {"outcome": "completed", "outcome_message": "completed 2 cycles"}
 # x1^2 = 0.3 f / 0.19 for f = 1: the fixed point of the map x1(k+1)^2 = 0.6561 x1(k)^2 + 0.543 f
 FIXED_POINT = (0.3 / 0.19) ** 0.5
 
@@ -24,18 +26,20 @@ def files(tmp_path) -> dict:
     fig3 = xr.Dataset(
         {**{k: ("cycle", np.full(2, v)) for k, v in cycles.items()},
          "event_time": ("event", np.arange(9.0)), "event_kind": ("event", np.array([1, 2, 3, 4] * 2 + [1], np.int8)),
-         "event_velocity_before": ("event", np.zeros(9))},
-        coords={"cycle": [1, 2]}, attrs=MODEL,
+         "event_velocity_before": ("event", np.zeros(9)), **MODEL},
+        coords={"cycle": [1, 2]}, attrs=OUTCOME,
     )
     fig4 = xr.Dataset(
         {"velocity": ("t", np.zeros(3)), "acceleration": ("t", np.zeros(3)), "velocity_before": ("impact", [1.0]),
-         "impulse": ("impact", [-0.1]), "energy_dissipated": ("impact", [0.095])},
-        coords={"t": [80.0, 81.0, 82.0]}, attrs=MODEL,
+         "impulse": ("impact", [-0.1]), "energy_dissipated": ("impact", [0.095]),
+         "velocity_window": ("window_edge", [80.0, 82.0]), "acceleration_window": ("window_edge", [80.0, 82.0]),
+         **MODEL},
+        coords={"t": [80.0, 81.0, 82.0]}, attrs=OUTCOME,
     )
     fig5 = xr.Dataset(
         {"velocity": ("t", np.zeros(3)), "impact_time": ("impact", [1.0]),
-         **{k: ("cycle", np.full(2, v)) for k, v in cycles.items()}},
-        coords={"t": [0.0, 1.0, 2.0]}, attrs=MODEL,
+         **{k: ("cycle", np.full(2, v)) for k, v in cycles.items()}, **MODEL},
+        coords={"t": [0.0, 1.0, 2.0]}, attrs=OUTCOME,
     )
     runs = xr.Dataset(
         {"label": ("case", ["p"]), "group": ("case", ["paper"]), "outcome": ("case", ["completed"]),

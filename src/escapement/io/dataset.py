@@ -1,23 +1,68 @@
-"""From a run to CF-1.11 datasets: per-cycle table, samples, impacts, and attributes."""
+"""From a run to CF-1.11 and ACDD-1.3 datasets: per-cycle table, samples, impacts, the model's
+parameters, and attributes.
+
+Every file describes itself: the model's parameters and initial state are 0-d variables with their
+units and long names (from :mod:`escapement.model.quantities`), never global attributes; counts
+(``n_cycles``, ``samples_per_period``, ...) and text (``solver``, ``outcome``) stay global
+attributes. The global ``summary`` states the model once (:data:`MODEL_SUMMARY`), then what the
+file holds. No CF standard name exists for the quantities of this model, so none is given.
+"""
 
 from __future__ import annotations
+
+import datetime as _dt
+from collections.abc import Mapping
 
 import numpy as np
 import xarray as xr
 
 from ..model.events import EventKind
+from ..model.quantities import quantity
 from ..solvers.result import Solution
-from .provenance import REFERENCE, history_line, source_string
+from .provenance import DOI, REFERENCE, history_line, package_version, source_string
 
 __all__ = [
+    "MODEL_SUMMARY",
     "cycle_variables",
+    "sample_times",
     "sample_variables",
     "impact_variables",
     "event_variables",
+    "parameter_variables",
+    "scalar_variable",
+    "provenance_attributes",
     "global_attributes",
+    "assemble",
     "dataset",
     "table_dataset",
 ]
+
+#: The model and its impact law, in the ``summary`` of every file (each file adds what it holds).
+MODEL_SUMMARY = (
+    "The escapement model of Mao, Fu & Li (2013): a mass M on a linear spring of constant K moves "
+    "freely, M x'' + K x = 0, between two impact positions a1 < 0 < a3. Moving right it strikes the "
+    "escapement at x = a1, moving left at x = a3; the impact law v+ = (1 - b) v- gives the velocity "
+    "just after each impact from the velocity just before it (impact coefficient b). After the impact "
+    "at a1 a constant force F pushes the mass in +x over the impulse zone [a1, a2]; after the impact at "
+    "a3 it pushes in -x over [a4, a3]. The motion is computed exactly from event to event (closed-form "
+    "harmonic arcs between the impacts and the ends of the impulse zones), in SI units; cycle k starts "
+    "at the k-th impact at a1."
+)
+
+#: ACDD-1.3 discovery attributes common to every file
+KEYWORDS = (
+    "vibro-impact, escapement mechanism, impact oscillator, impulsive differential equations, "
+    "Poincare map, non-smooth dynamics, replication"
+)
+LICENSE = "CC-BY-4.0"
+CREATOR = "escapement replication contributors"
+INSTITUTION = "escapement replication project"
+
+#: ISO 19115-1 coverage content types (ACDD-1.3) used here
+MODEL_RESULT = "modelResult"
+MODEL_INPUT = "auxiliaryInformation"
+CLASSIFICATION = "thematicClassification"
+QUALITY = "qualityInformation"
 
 CYCLE_VARIABLES = {
     "impact_time": ("s", "time of impact k at a1 (start of cycle k)"),
@@ -39,6 +84,17 @@ def cycle_variables(solution: Solution) -> dict[str, xr.DataArray]:
 
 def time_coordinate(t: np.ndarray) -> dict:
     return {"t": ("t", np.asarray(t, dtype=float), {"units": "s", "long_name": "time since release"})}
+
+
+def sample_times(grid: np.ndarray, jumps: np.ndarray) -> np.ndarray:
+    """The times ``grid`` and, for each jump time ``t_k`` inside it, ``t_k`` and the largest float
+    below it: one sample on each side of the jump (the arc before it, the arc from it). The result
+    increases strictly, as CF requires of a coordinate; a jump at the grid's first time keeps only
+    the sample after it."""
+    grid = np.asarray(grid, dtype=float)
+    jumps = np.asarray(jumps, dtype=float)
+    jumps = jumps[(jumps > grid[0]) & (jumps <= grid[-1])]
+    return np.union1d(grid, np.concatenate([np.nextafter(jumps, -np.inf), jumps]))
 
 
 def sample_variables(solution: Solution, t: np.ndarray, acceleration: bool = False) -> dict[str, xr.DataArray]:
@@ -116,15 +172,53 @@ def event_variables(solution: Solution, window: tuple[float, float] | None = Non
     }
 
 
-def global_attributes(title: str, scene: str, **extra) -> dict:
-    """CF-1.11 global attributes with provenance; ``extra`` adds numeric or text attributes."""
-    attrs = {
-        "Conventions": "CF-1.11",
-        "title": title,
-        "institution": "escapement replication project",
+def scalar_variable(value, units: str, long_name: str, content: str = MODEL_RESULT, **attrs) -> xr.DataArray:
+    """A 0-d variable with its units, long name and ACDD coverage content type."""
+    return xr.DataArray(
+        value, attrs={"units": units, "long_name": long_name, "coverage_content_type": content, **attrs}
+    )
+
+
+def parameter_variables(values: Mapping[str, float]) -> dict[str, xr.DataArray]:
+    """One 0-d variable per model parameter or initial-state component in ``values`` (by the
+    paper's symbol), with the units and long name of :mod:`escapement.model.quantities`."""
+    out = {}
+    for name, value in values.items():
+        q = quantity(name)
+        out[name] = scalar_variable(float(value), q.units, q.long_name, MODEL_INPUT)
+    return out
+
+
+def _now() -> str:
+    return _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat()
+
+
+def provenance_attributes(what: str) -> dict:
+    """Where and when a file was made: ``source`` (version and commit), ``history``, ``date_created``
+    (ISO 8601) and ``product_version`` (the package version)."""
+    return {
         "source": source_string(),
-        "history": history_line(f"created by escapement for scene {scene}"),
-        "references": REFERENCE,
+        "history": history_line(what),
+        "date_created": _now(),
+        "product_version": package_version(),
+    }
+
+
+def global_attributes(title: str, scene: str, summary: str, **extra) -> dict:
+    """CF-1.11 and ACDD-1.3 global attributes with provenance. ``summary`` says what the file holds
+    (after :data:`MODEL_SUMMARY`); ``extra`` adds counts or text (never a quantity with units: those
+    are variables)."""
+    attrs = {
+        "Conventions": "CF-1.11, ACDD-1.3",
+        "title": title,
+        "summary": f"{MODEL_SUMMARY} {summary}",
+        "keywords": KEYWORDS,
+        "license": LICENSE,
+        "creator_name": CREATOR,
+        "creator_type": "group",
+        "institution": INSTITUTION,
+        **provenance_attributes(f"created by escapement for scene {scene}"),
+        "references": f"{REFERENCE} (https://doi.org/{DOI})",
         "comment": "replication with new code: exact event-driven solution of the piecewise-linear model",
         "scene": scene,
     }
@@ -132,30 +226,47 @@ def global_attributes(title: str, scene: str, **extra) -> dict:
     return attrs
 
 
-def dataset(solution: Solution, variables: dict[str, xr.DataArray], title: str, scene: str, **extra) -> xr.Dataset:
-    """Assemble a dataset with the run's parameters, outcome and provenance as attributes."""
+def assemble(variables: Mapping[str, xr.DataArray], attrs: dict, coords: Mapping | None = None) -> xr.Dataset:
+    """The dataset of ``variables``, each with an ACDD ``coverage_content_type``: ``coordinate`` for
+    the coordinates, ``thematicClassification`` for flags, and ``modelResult`` where a variable
+    does not give its own."""
+    ds = xr.Dataset(dict(variables), coords=coords, attrs=attrs)
+    for name, variable in ds.variables.items():
+        if "coverage_content_type" not in variable.attrs:
+            if name in ds.coords:
+                content = "coordinate"
+            elif "flag_values" in variable.attrs:
+                content = CLASSIFICATION
+            else:
+                content = MODEL_RESULT
+            variable.attrs["coverage_content_type"] = content
+    return ds
+
+
+def dataset(
+    solution: Solution, variables: dict[str, xr.DataArray], title: str, scene: str, summary: str, **extra
+) -> xr.Dataset:
+    """Assemble a dataset with the run's parameters and initial state as 0-d variables, its outcome
+    and provenance as global attributes."""
     attrs = global_attributes(
-        title,
-        scene,
-        solver=solution.method,
-        outcome=solution.status.value,
+        title, scene, summary, solver=solution.method, outcome=solution.status.value,
         outcome_message=solution.message,
-        x0=solution.x0,
-        v0=solution.v0,
-        **solution.params.as_dict(),
     )
     attrs.update(extra)
-    return xr.Dataset(variables, attrs=attrs)
+    state = {"x0": solution.x0, "v0": solution.v0}
+    return assemble({**variables, **parameter_variables({**solution.params.as_dict(), **state})}, attrs)
 
 
-def table_dataset(columns: dict[str, tuple], title: str, scene: str, **extra) -> xr.Dataset:
-    """A table with one row per case: ``columns`` maps a name to ``(values, units, long_name)``;
-    ``units`` None marks a text column."""
+def table_dataset(columns: dict[str, tuple], title: str, scene: str, summary: str, **extra) -> xr.Dataset:
+    """A table with one row per case: ``columns`` maps a name to ``(values, units, long_name)`` or
+    ``(values, units, long_name, coverage_content_type)``; ``units`` None marks a text column."""
     n = len(next(iter(columns.values()))[0])
     variables = {}
-    for name, (values, units, long_name) in columns.items():
+    for name, (values, units, long_name, *content) in columns.items():
         attrs = {"long_name": long_name} if units is None else {"units": units, "long_name": long_name}
+        if content:
+            attrs["coverage_content_type"] = content[0]
         dtype = object if units is None else None
         variables[name] = xr.DataArray(np.array(values, dtype=dtype), dims="case", attrs=attrs)
     coords = {"case": ("case", np.arange(n, dtype=np.int32), {"long_name": "case number", "units": "1"})}
-    return xr.Dataset(variables, coords=coords, attrs=global_attributes(title, scene, **extra))
+    return assemble(variables, global_attributes(title, scene, summary, **extra), coords)

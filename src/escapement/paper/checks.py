@@ -116,7 +116,7 @@ def runs_only(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
 
 
 def params_of(ds: xr.Dataset) -> Parameters:
-    return Parameters(**{k: float(ds.attrs[k]) for k in MODEL_KEYS})
+    return Parameters(**{k: float(ds[k]) for k in MODEL_KEYS})
 
 
 def events_of(ds: xr.Dataset, kind: EventKind) -> np.ndarray:

@@ -194,7 +194,7 @@ def axis_range(claim, ev: Evidence) -> Verdict:
 @check("shock_readout", scenes=fig4)
 def shock_readout(claim, ev: Evidence) -> Verdict:
     ds = ev.fig4
-    m, b = float(ds.attrs["M"]), float(ds.attrs["b"])
+    m, b = float(ds["M"]), float(ds["b"])
     vb = ds["velocity_before"].values
     j, e = ds["impulse"].values, ds["energy_dissipated"].values
     if not len(j):
@@ -218,7 +218,7 @@ def shock_readout(claim, ev: Evidence) -> Verdict:
 @check("shock_axis", scenes=fig4, args=("quantity", "window"))
 def shock_axis(claim, ev: Evidence) -> Verdict:
     ds = ev.fig4
-    lo_t, hi_t = ds.attrs[claim["args"]["window"]]
+    lo_t, hi_t = ds[claim["args"]["window"]].values
     sel = ds.sel(t=slice(lo_t, hi_t))[claim["args"]["quantity"]].values
     lo, hi = claim["paper_value"]
     vmin, vmax = float(np.nanmin(sel)), float(np.nanmax(sel))
@@ -226,7 +226,7 @@ def shock_axis(claim, ev: Evidence) -> Verdict:
         f"[{fmt(vmin, 4)}, {fmt(vmax, 4)}]",
         REPRODUCED if lo <= vmin and vmax <= hi else NOT,
         note=(
-            f"F = {fmt(ds.attrs['F'], 3)} N, x0 = {fmt(ds.attrs['x0'], 3)} m; in any steady motion the velocity and "
+            f"F = {fmt(float(ds['F']), 3)} N, x0 = {fmt(float(ds['x0']), 3)} m; in any steady motion the velocity and "
             f"the acceleration swing about 0 within a period (about {fmt(params_of(ds).natural_period, 2)} s), so no "
             f"case fits an axis from {fmt(lo, 2)} to {fmt(hi, 2)} over this window: the printed panel seems to show "
             "part of the swing only"
@@ -238,7 +238,7 @@ def shock_axis(claim, ev: Evidence) -> Verdict:
 
 
 def _fig5_by_K(ev: Evidence) -> list[tuple[float, xr.Dataset]]:
-    return sorted(((float(ds.attrs["K"]), ds) for ds in ev.fig5.values()), key=lambda kv: kv[0])
+    return sorted(((float(ds["K"]), ds) for ds in ev.fig5.values()), key=lambda kv: kv[0])
 
 
 @check("fig5_converge", scenes=fig5_all)

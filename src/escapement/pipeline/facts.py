@@ -49,8 +49,8 @@ def collect_facts(
     a = long_run.attrs
     facts["long_n_cycles"] = Fact(f"{int(a['n_cycles']):,}".replace(",", " "))
     facts["long_ivp_cycles"] = Fact(str(int(a["ivp_cycles"])))
-    facts["long_velocity_deviation"] = Fact(fmt(a["max_velocity_deviation"], 2))
-    facts["long_period_deviation"] = Fact(fmt(a["max_period_deviation"], 2))
+    facts["long_velocity_deviation"] = Fact(fmt(float(long_run["max_velocity_deviation"]), 2))
+    facts["long_period_deviation"] = Fact(fmt(float(long_run["max_period_deviation"]), 2))
     facts["long_converged_after"] = Fact(str(int(a["converged_after"])))
     facts["long_exact_wall"] = Fact(fmt(long_run_timings["exact_seconds"], 3), measured=True)
     facts["long_ivp_wall"] = Fact(fmt(long_run_timings["ivp_seconds"], 3), measured=True)

@@ -81,7 +81,7 @@ def simulate_long_run(scene: Mapping, output: str, timing_output: str, log: str)
             scene["ivp_rtol"], scene["ivp_cycles"],
         )
         for key in ("max_velocity_deviation", "max_period_deviation"):
-            logger.info("%s: %.3e", key, ds.attrs[key])
+            logger.info("%s: %.3e", key, float(ds[key]))
         for key, seconds in timings.items():
             logger.info("%s: %.3e", key, seconds)
         write_netcdf(ds, output)

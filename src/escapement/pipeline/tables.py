@@ -7,8 +7,8 @@ import csv
 from collections.abc import Sequence
 
 from ..io.atomic import write_csv
+from ..io.dataset import provenance_attributes
 from ..io.netcdf import DatasetError, read_netcdf, write_netcdf
-from ..io.provenance import history_line, source_string
 from .logs import logged
 
 __all__ = [
@@ -25,9 +25,10 @@ __all__ = [
     "read_work_precision",
 ]
 
-CYCLE_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude")
-SHOCK_VARIABLES = ("t", "velocity", "acceleration", "impact_time", "impulse", "energy_dissipated", "event_time")
-PHASE_VARIABLES = ("t", "displacement", "velocity", "impact_time", "impact_position", "velocity_after")
+CYCLE_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude", "M", "K", "F", "x0")
+SHOCK_VARIABLES = ("t", "velocity", "acceleration", "impact_time", "impulse", "energy_dissipated", "event_time",
+                   "velocity_window", "acceleration_window", "F", "K", "x0")
+PHASE_VARIABLES = ("t", "displacement", "velocity", "impact_time", "impact_position", "velocity_after", "K")
 WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "repeats", "error_velocity", "error_time"]
 STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
 #: wall times, kept apart from the datasets (which are deterministic): one row per measurement
@@ -71,10 +72,10 @@ def merge_stability(
 
     with logged(log, "merge_stability") as logger:
         chunks = [read_netcdf(p, ("b", "F", "multiplier", "outcome")) for p in paths]
-        merged = xr.concat(chunks, dim="b", combine_attrs="override")  # the first chunk's attributes...
+        # the constant parameters (0-d, equal in every chunk) stay 0-d; the first chunk's attributes...
+        merged = xr.concat(chunks, dim="b", data_vars="minimal", combine_attrs="override")
         merged.attrs.update(  # ...with the provenance of this merge
-            source=source_string(), history=history_line(f"merged from {len(chunks)} chunks by escapement"),
-            chunks=len(chunks),
+            provenance_attributes(f"merged from {len(chunks)} chunks by escapement"), chunks=len(chunks),
         )
         timings = [read_timings(p) for p in timing_paths]
         ensemble = [t["ensemble_seconds_per_trajectory"] for t in timings]

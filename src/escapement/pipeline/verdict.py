@@ -13,6 +13,7 @@ from collections.abc import Mapping
 
 from ..io.atomic import write_csv
 from ..io.netcdf import read_netcdf
+from ..model.quantities import MODEL_KEYS
 from ..paper.claims import COLUMNS, Evidence, evaluate, load_claims
 from .logs import logged
 
@@ -21,9 +22,10 @@ __all__ = ["FIG3_VARIABLES", "FIG4_VARIABLES", "FIG5_VARIABLES", "CHECKS_VARIABL
 
 #: The variables the checks read from each output; a file lacking one is named by read_netcdf.
 FIG3_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude", "event_time", "event_kind",
-                  "event_velocity_before")
-FIG4_VARIABLES = ("t", "velocity", "acceleration", "velocity_before", "impulse", "energy_dissipated")
-FIG5_VARIABLES = ("t", "velocity", "impact_time", "velocity_before_impact", "period", "amplitude")
+                  "event_velocity_before", *MODEL_KEYS, "x0")
+FIG4_VARIABLES = ("t", "velocity", "acceleration", "velocity_before", "impulse", "energy_dissipated",
+                  "velocity_window", "acceleration_window", *MODEL_KEYS, "x0")
+FIG5_VARIABLES = ("t", "velocity", "impact_time", "velocity_before_impact", "period", "amplitude", *MODEL_KEYS)
 CHECKS_VARIABLES = ("label", "group", "outcome", "outcome_message", "F", "b", "x0", "velocity", "period",
                     "multiplier", "multiplier_eq21")
 

@@ -35,12 +35,12 @@ def _value(name: str, value: float) -> str:
 
 
 def _case_title(ds: xr.Dataset, label: str) -> str:
-    return f"({label}) {_value('F', ds.attrs['F'])}, {_value('x0', ds.attrs['x0'])}"
+    return f"({label}) {_value('F', float(ds['F']))}, {_value('x0', float(ds['x0']))}"
 
 
 def natural_period(ds: xr.Dataset) -> float:
     """2 pi / omega with omega = sqrt(K/M), from the dataset's own K and M (s)."""
-    return 2 * math.pi / math.sqrt(ds.attrs["K"] / ds.attrs["M"])
+    return 2 * math.pi / math.sqrt(float(ds["K"]) / float(ds["M"]))
 
 
 def fig3(cases: dict[str, xr.Dataset]):
@@ -57,8 +57,8 @@ def fig3(cases: dict[str, xr.Dataset]):
             for row, (name, ylabel) in enumerate(rows):
                 ax = axes[row, col]
                 ax.plot(ds["cycle"], ds[name], marker="o", markersize=2.5, color=INK, label="exact solution")
-                if name == "velocity_before_impact" and "fixed_point_19" in ds.attrs:
-                    ax.axhline(ds.attrs["fixed_point_19"], ls="--", lw=0.8, color=GUIDE, label="fixed point, Eq. (19)")
+                if name == "velocity_before_impact" and "fixed_point_19" in ds:
+                    ax.axhline(float(ds["fixed_point_19"]), ls="--", lw=0.8, color=GUIDE, label="fixed point, Eq. (19)")
                 if name == "period":
                     ax.axhline(period, ls=":", lw=0.9, color=GUIDE, label=f"2\u03c0/\u03c9 = {period:.4f} s (paper)")
                 ax.set_ylabel(ylabel)
@@ -77,8 +77,8 @@ def fig4(ds: xr.Dataset):
     t = ds["t"].values
     impacts = ds["impact_time"].values
     switches = ds["event_time"].values
-    v_lo, v_hi = ds.attrs["velocity_window"]
-    a_lo, a_hi = ds.attrs["acceleration_window"]
+    v_lo, v_hi = ds["velocity_window"].values
+    a_lo, a_hi = ds["acceleration_window"].values
     with style():
         fig, (ax_v, ax_a) = plt.subplots(1, 2, figsize=(7.2, 3.0))
         sel = (t >= v_lo) & (t <= v_hi)
@@ -106,7 +106,7 @@ def fig4(ds: xr.Dataset):
         ax_a.set_xlabel("Time (s)")
         ax_a.set_ylabel("Acceleration (m/s\u00b2)")
         ax_a.legend(loc="upper left")
-        fig.suptitle(f"{_value('F', ds.attrs['F'])}, {_value('x0', ds.attrs['x0'])}, {_value('K', ds.attrs['K'])}",
+        fig.suptitle(f"{_value('F', float(ds['F']))}, {_value('x0', float(ds['x0']))}, {_value('K', float(ds['K']))}",
                      fontsize=9)
         _outcome_note(ax_v, ds)
         fig.tight_layout()
@@ -132,7 +132,7 @@ def fig5(panels: dict[str, xr.Dataset]):
                       label="impacts")
             ax.set_xlabel("Displacement (m)")
             ax.set_ylabel("Velocity (m/s)")
-            ax.set_title(f"({letter}) {_value('K', ds.attrs['K'])}")
+            ax.set_title(f"({letter}) {_value('K', float(ds['K']))}")
             _outcome_note(ax, ds)
         axes[0, 0].legend(loc="upper left")
         fig.tight_layout()
@@ -181,7 +181,7 @@ def long_run(ds: xr.Dataset):
             ax_t.loglog(cycle, drift, color=colour, lw=1.2, marker=".", ms=3, label=label)
             error = np.maximum(ds[f"error_velocity_{solver}"].values, ERROR_FLOOR)
             ax_v.loglog(cycle, error, color=colour, lw=1.2, marker=".", ms=3, label=label)
-        ulp = np.spacing(ds.attrs["fixed_point_period"] * cycle.astype(float))
+        ulp = np.spacing(float(ds["fixed_point_period"]) * cycle.astype(float))
         ax_t.loglog(cycle, ulp, color=GUIDE, lw=0.8, ls=":", label="spacing of float64 at t")
         ax_t.set_ylabel("|impact time − reference| (s)")
         ax_t.set_title("phase error of the impact at a1")
