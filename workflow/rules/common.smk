@@ -119,6 +119,7 @@ def all_outputs():
         "results/stress/summary.csv",
         "results/figures/work_precision.png",
         "results/docs/timings.md",
+        "results/readings/axis_scores.csv",
         *PUBLISHED,
     ]
 

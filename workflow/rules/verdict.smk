@@ -74,3 +74,48 @@ rule publish:
         "../../environment/environment.yml"
     script:
         "../scripts/publish.py"
+
+
+# The paper's unstated choices read from its printed axes: every candidate reading simulated and
+# autoscaled to the printed tick steps, scored by the printed limits it reproduces.
+rule score_readings:
+    input:
+        code=package_code(
+            "model",
+            "solvers",
+            "paper",
+            "studies",
+            "plotting",
+            *IO,
+            *PIPELINE,
+            "pipeline/readings.py",
+        ),
+    output:
+        csv=report(
+            "results/readings/axis_scores.csv",
+            caption="../report/readings.rst",
+            category="Verdict",
+            labels={"table": "axis readings"},
+        ),
+    log:
+        "results/logs/score_readings.log",
+    conda:
+        "../../environment/environment.yml"
+    params:
+        settings={
+            "model": config["model"],
+            "fig3": config["fig3"],
+            "fig4": {
+                k: config["fig4"][k]
+                for k in (
+                    "velocity_window",
+                    "acceleration_window",
+                    "samples_per_second",
+                )
+            },
+            "fig5": {
+                k: config["fig5"][k] for k in ("K", "n_cycles", "samples_per_period")
+            },
+        },
+    script:
+        "../scripts/score_readings.py"

@@ -1,0 +1,282 @@
+"""The axes of the paper's Figs. 3-5 as printed: their tick labels, limits and tick steps.
+
+The figures of the paper's text survive only as their tick labels, one or a few to a line, in
+the order the text extraction met them (:data:`TICK_LINES`, keyed by the line number of the
+paper's plain text, 1-based). Each axis below lists its tick labels as printed, low to high,
+and the lines that show them. Reading them:
+
+* **Fig. 3** (Poincare map, six panels: velocity, period, amplitude for cases (a) and (b)). The
+  velocity axis of (a) is line 269 (0.95 to 1.3 by 0.05), that of (b) the ``3`` ending the page
+  header (line 263) and lines 281-289 (0.5 to 3 by 0.5). The amplitude axis of (a) is line 343
+  (1 to 1.4 by 0.05), that of (b) line 333 (``3``) and lines 391-399 (0.5 to 3 by 0.5). The
+  eighteen period labels (lines 297-319 and 347-367) split into two evenly spaced axes in one
+  way only: the odd ten-thousandths (6.2833, 6.2831, 6.2829, 6.2827) belong to a step of 0.0001,
+  whose axis then holds 6.2828, printed once; so the step-0.0002 axis stops at 6.283 and holds
+  6.2846, 6.2844, 6.2842, printed once each: (a) 6.283 to 6.2846 by 0.0002 (labels met first,
+  left column), (b) 6.2826 to 6.2834 by 0.0001. The six cycle axes: four of 0 to 50 (velocity,
+  period) and two of 0 to 60 (amplitude: lines 379-389 with 401, and 403-415). No axis of (b)
+  prints a ``0`` on its velocity or amplitude axis: the six ``0`` labels are the six cycle axes'.
+* **Fig. 4** (shock details): two value axes of -0.1 to 0.9 by 0.1 (each label twice, lines
+  425-449), time axes of 80 to 87 and 81 to 85 by 1 s (lines 447-477). Which time axis goes with
+  which value axis the text does not show beyond the order of the axis titles; the velocity
+  window is taken as 80-87 s and the acceleration window as 81-85 s. The time axes are the
+  windows themselves, so their limits test no reading (``scored=False``).
+* **Fig. 5** (phase diagrams): (a) K = 0.1: displacement -5, 0, 5 (lines 505-513), velocity -1.5
+  to 1.5 by 0.5; (b) K = 1: displacement -1 to 1 by 0.5 (lines 509-523), velocity -1 to 1 by 0.2
+  (lines 483-513); (c) K = 10: displacement -1 to 1 by 0.5 (lines 525-545), velocity -3 to 4 by 1
+  (lines 481, 485, 511, 525). Line 515 (``1009``) is the page number.
+
+The limits are the outermost tick labels: with automatic limits rounded out to ticks (MATLAB's
+default, and matplotlib's ``round_numbers`` mode) an axis ends on a labelled tick.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from decimal import Decimal
+
+__all__ = ["TICK_LINES", "Axis", "Panel", "PANELS", "panel", "panels_of"]
+
+#: the lines of the paper's text that carry the figures' tick labels, by line number (1-based), verbatim
+TICK_LINES: dict[int, str] = {
+    # Fig. 3 (page 1008)
+    263: "J. Mao et al. / Dynamics of periodic impulsive collision in escapement mechanism 3",
+    269: "1.3 1.25 1.2 1.15 1.1 1.05 1 0.95",
+    271: "0",
+    273: "10",
+    275: "20",
+    277: "30",
+    279: "40",
+    281: "2.5",
+    283: "2",
+    285: "1.5",
+    287: "1",
+    289: "0.5",
+    291: "50",
+    293: "0",
+    295: "10",
+    297: "6.2846",
+    299: "6.2834",
+    301: "6.2844",
+    303: "6.2833",
+    305: "6.2842",
+    307: "6.2832",
+    309: "6.284 6.2838 6.2836",
+    311: "6.2827 20",
+    313: "30",
+    315: "40",
+    317: "50",
+    319: "6.2826",
+    323: "10",
+    325: "20",
+    327: "40",
+    329: "30",
+    331: "50",
+    333: "3",
+    339: "0",
+    343: "1.4 1.35 1.3 1.25 1.2 1.15 1.1 1.05 1",
+    345: "50",
+    347: "6.283",
+    349: "6.2828",
+    351: "10",
+    353: "40",
+    355: "6.2829",
+    357: "6.2832",
+    359: "0",
+    361: "30",
+    363: "6.2831",
+    365: "6.2834",
+    367: "6.283",
+    369: "20",
+    379: "0",
+    381: "10",
+    383: "20",
+    385: "30",
+    387: "40",
+    389: "50",
+    391: "2.5",
+    393: "2",
+    395: "1.5",
+    397: "1",
+    399: "0.5",
+    401: "60",
+    403: "0",
+    405: "10",
+    407: "20",
+    409: "30",
+    411: "40",
+    413: "50",
+    415: "60",
+    # Fig. 4 (page 1008)
+    425: "0.9",
+    427: "0.9",
+    429: "0.8",
+    431: "0.8",
+    439: "0.7 0.6 0.5 0.4 0.3 0.2 0.1",
+    441: "0.7 0.6 0.5 0.4 0.3 0.2 0.1",
+    443: "0",
+    445: "0",
+    447: "-0.1 81",
+    449: "-0.1 80",
+    451: "82",
+    453: "83",
+    455: "84",
+    457: "85",
+    459: "86",
+    461: "87",
+    463: "81",
+    465: "82",
+    467: "83",
+    475: "84",
+    477: "85",
+    # Fig. 5 (page 1009)
+    479: "J. Mao et al. / Dynamics of periodic impulsive collision in escapement mechanism 1.5",
+    481: "4",
+    483: "1 0.8",
+    485: "3",
+    487: "0.6",
+    489: "0.5 0 -0.5",
+    491: "0.4",
+    499: "1",
+    501: "0.2 0 -0.2 -0.4 -0.6",
+    503: "-1",
+    505: "0",
+    507: "5",
+    509: "-1 -1",
+    511: "2 1 0 -1 -2",
+    513: "-0.8 -1.5 -5",
+    515: "1009",  # the page number
+    517: "-0.5",
+    519: "0",
+    521: "0.5",
+    523: "1",
+    525: "-3 -1",
+    527: "-0.5",
+    529: "0",
+    543: "0.5",
+    545: "1",
+}
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One printed axis: its title, its tick labels as printed (low to high) and the text lines
+    that show them."""
+
+    label: str
+    ticks: tuple[str, ...]
+    lines: tuple[int, ...]
+    scored: bool = True  #: False where the paper set the limits itself (a time window)
+
+    def __post_init__(self) -> None:
+        values = [Decimal(t) for t in self.ticks]
+        if len(values) < 2:
+            raise ValueError(f"axis {self.label!r}: at least two tick labels are needed")
+        steps = {b - a for a, b in zip(values, values[1:])}
+        if len(steps) != 1 or steps.pop() <= 0:
+            raise ValueError(f"axis {self.label!r}: tick labels {self.ticks} are not evenly spaced upwards")
+
+    @property
+    def low(self) -> float:
+        """The lowest tick label, the axis' lower limit."""
+        return float(self.ticks[0])
+
+    @property
+    def high(self) -> float:
+        """The highest tick label, the axis' upper limit."""
+        return float(self.ticks[-1])
+
+    @property
+    def step(self) -> float:
+        """The spacing of the tick labels."""
+        return float(Decimal(self.ticks[1]) - Decimal(self.ticks[0]))
+
+
+@dataclass(frozen=True)
+class Panel:
+    """One panel of a figure: ``figure`` ("3", "4", "5"), ``name`` (``a/velocity``, ``velocity``,
+    ``a``), what it shows, and its two axes."""
+
+    figure: str
+    name: str
+    shows: str
+    x: Axis
+    y: Axis
+
+    @property
+    def axes(self) -> dict[str, Axis]:
+        return {"x": self.x, "y": self.y}
+
+
+def _ticks(*labels: str) -> tuple[str, ...]:
+    return tuple(labels)
+
+
+_CYCLES_50 = _ticks("0", "10", "20", "30", "40", "50")
+_CYCLES_60 = _ticks("0", "10", "20", "30", "40", "50", "60")
+_HALVES_3 = _ticks("0.5", "1", "1.5", "2", "2.5", "3")
+_SHOCK = _ticks("-0.1", "0", "0.1", "0.2", "0.3", "0.4", "0.5", "0.6", "0.7", "0.8", "0.9")
+_SHOCK_LINES = (425, 427, 429, 431, 439, 441, 443, 445, 447, 449)
+_UNIT_HALVES = _ticks("-1", "-0.5", "0", "0.5", "1")
+
+PANELS: tuple[Panel, ...] = (
+    # Fig. 3 (a) F = 1 N, x(0) = 1 m
+    Panel("3", "a/velocity", "velocity before the impact at a1 against the cycle, case (a)",
+          Axis("Number of cycles", _CYCLES_50, (271, 273, 275, 277, 279, 291)),
+          Axis("Velocity before impact (m/s)",
+               _ticks("0.95", "1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3"), (269,))),
+    Panel("3", "a/period", "period against the cycle, case (a)",
+          Axis("Number of cycles", _CYCLES_50, (323, 325, 327, 329, 331, 339)),
+          Axis("Period (s)",
+               _ticks("6.283", "6.2832", "6.2834", "6.2836", "6.2838", "6.284", "6.2842", "6.2844", "6.2846"),
+               (297, 301, 305, 309, 347, 357, 365, 367))),
+    Panel("3", "a/amplitude", "amplitude of oscillation against the cycle, case (a)",
+          Axis("Number of cycles", _CYCLES_60, (379, 381, 383, 385, 387, 389, 401)),
+          Axis("Amplitude of oscillation (m)",
+               _ticks("1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3", "1.35", "1.4"), (343,))),
+    # Fig. 3 (b) F = 0.5 N, x(0) = 3 m
+    Panel("3", "b/velocity", "velocity before the impact at a1 against the cycle, case (b)",
+          Axis("Number of cycles", _CYCLES_50, (293, 295, 311, 313, 315, 317)),
+          Axis("Velocity before impact (m/s)", _HALVES_3, (263, 281, 283, 285, 287, 289))),
+    Panel("3", "b/period", "period against the cycle, case (b)",
+          Axis("Number of cycles", _CYCLES_50, (345, 351, 353, 359, 361, 369)),
+          Axis("Period (s)",
+               _ticks("6.2826", "6.2827", "6.2828", "6.2829", "6.283", "6.2831", "6.2832", "6.2833", "6.2834"),
+               (299, 303, 307, 311, 319, 347, 349, 355, 357, 363, 365, 367))),
+    Panel("3", "b/amplitude", "amplitude of oscillation against the cycle, case (b)",
+          Axis("Number of cycles", _CYCLES_60, (403, 405, 407, 409, 411, 413, 415)),
+          Axis("Amplitude of oscillation (m)", _HALVES_3, (333, 391, 393, 395, 397, 399))),
+    # Fig. 4: the case is not named
+    Panel("4", "velocity", "velocity against time over 80-87 s",
+          Axis("Time (s)", _ticks("80", "81", "82", "83", "84", "85", "86", "87"),
+               (447, 449, 451, 453, 455, 457, 459, 461, 463), scored=False),
+          Axis("Velocity (m/s)", _SHOCK, _SHOCK_LINES)),
+    Panel("4", "acceleration", "acceleration against time over 81-85 s",
+          Axis("Time (s)", _ticks("81", "82", "83", "84", "85"), (447, 463, 465, 467, 475, 477), scored=False),
+          Axis("Acceleration (m/s2)", _SHOCK, _SHOCK_LINES)),
+    # Fig. 5: neither F nor x0 is given
+    Panel("5", "a", "phase diagram, K = 0.1 N/m",
+          Axis("Displacement (m)", _ticks("-5", "0", "5"), (505, 507, 513)),
+          Axis("Velocity (m/s)", _ticks("-1.5", "-1", "-0.5", "0", "0.5", "1", "1.5"), (479, 483, 489, 499, 503, 513))),
+    Panel("5", "b", "phase diagram, K = 1 N/m",
+          Axis("Displacement (m)", _UNIT_HALVES, (509, 517, 519, 521, 523)),
+          Axis("Velocity (m/s)",
+               _ticks("-1", "-0.8", "-0.6", "-0.4", "-0.2", "0", "0.2", "0.4", "0.6", "0.8", "1"),
+               (483, 487, 491, 499, 501, 509, 513))),
+    Panel("5", "c", "phase diagram, K = 10 N/m",
+          Axis("Displacement (m)", _UNIT_HALVES, (525, 527, 529, 543, 545)),
+          Axis("Velocity (m/s)", _ticks("-3", "-2", "-1", "0", "1", "2", "3", "4"), (481, 485, 511, 525))),
+)
+
+
+def panel(figure: str, name: str) -> Panel:
+    """The panel ``name`` of Fig. ``figure``."""
+    for p in PANELS:
+        if p.figure == figure and p.name == name:
+            return p
+    raise KeyError(f"Fig. {figure} has no panel {name!r}")
+
+
+def panels_of(figure: str) -> tuple[Panel, ...]:
+    """The panels of Fig. ``figure``, in the order above."""
+    return tuple(p for p in PANELS if p.figure == figure)

@@ -1,0 +1,180 @@
+"""The candidate readings' series against closed forms derived on paper.
+
+Notation: omega = sqrt(K/M), f = F/M, symmetric geometry a3 = -a1, a4 = -a2. In free flight
+``v**2 + omega**2 x**2`` is constant; across an impulse zone passed in the direction of the force
+``v**2`` gains ``2 f`` times the zone's length on top of the spring's ``omega**2 (x_in**2 - x_out**2)``;
+an impact multiplies ``v`` by ``1 - b``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from escapement import solve_exact
+from escapement.studies.readings import (
+    critical_times,
+    fig3_readings,
+    fig4_readings,
+    fig5_readings,
+    largest_abs_per_cycle,
+    step1_amplitudes,
+)
+
+MODEL = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05}
+B, A1, A2, A3, A4 = 0.1, -0.1, 0.05, 0.1, -0.05
+N = 50
+
+
+def cycle_by_energy(v1: float, w2: float, f: float) -> dict[str, float]:
+    """One cycle from the velocity v1 before the impact at a1, step by step."""
+    v1p = (1 - B) * v1
+    v2 = math.sqrt(v1p**2 + w2 * (A1**2 - A2**2) + 2 * f * (A2 - A1))  # through (a1, a2) with +f
+    v4 = math.sqrt(v2**2 + w2 * (A2**2 - A3**2))  # free to a3 (speed)
+    v4p = (1 - B) * v4
+    v5 = math.sqrt(v4p**2 + w2 * (A3**2 - A4**2) + 2 * f * (A3 - A4))  # through (a4, a3) with -f, moving left
+    v1_next = math.sqrt(v5**2 + w2 * (A4**2 - A1**2))  # free to a1
+    return {"v2": v2, "v4": v4, "v5": v5, "v1_next": v1_next}
+
+
+def velocities(v1: float, n: int, w2: float = 1.0, f: float = 1.0) -> np.ndarray:
+    out = [v1]
+    for _ in range(n):
+        out.append(cycle_by_energy(out[-1], w2, f)["v1_next"])
+    return np.array(out)
+
+
+def by_name(readings, panel: str, *words: str):
+    found = [r for r in readings if r.panel == panel and all(w in r.name for w in words)]
+    assert len(found) == 1, [r.name for r in found]
+    return found[0]
+
+
+@pytest.fixture(scope="module")
+def fig3():
+    return fig3_readings(MODEL, {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0}}, N)
+
+
+def test_first_velocity_from_the_left_is_sqrt_0_99(fig3):
+    """Released at -1 m: v**2 = omega**2 (x0**2 - a1**2) = 0.99 at a1."""
+    v = by_name(fig3, "a/velocity", "release -x0").y
+    assert v[0] == pytest.approx(math.sqrt(0.99), rel=1e-13)
+
+
+def test_first_velocity_from_the_right_passes_the_impact_at_a3(fig3):
+    """Released at +1 m: speed sqrt(1 - a3**2) at a3, times (1 - b), through (a4, a3) with the
+    force, free from a4 to a1."""
+    v4p = (1 - B) * math.sqrt(1.0 - A3**2)
+    v5 = math.sqrt(v4p**2 + (A3**2 - A4**2) + 2 * 1.0 * (A3 - A4))
+    expected = math.sqrt(v5**2 + A4**2 - A1**2)
+    v = by_name(fig3, "a/velocity", "release +x0").y
+    assert v[0] == pytest.approx(expected, rel=1e-13)
+    assert expected == pytest.approx(1.0497142, abs=1e-7)
+
+
+@pytest.mark.parametrize("case, F, x0", [("a", 1.0, 1.0), ("b", 0.5, 3.0)])
+def test_velocity_series_follows_the_energy_balance_from_the_left(fig3, case, F, x0):
+    r = by_name(fig3, f"{case}/velocity", "release -x0")
+    expected = velocities(math.sqrt(x0**2 - A1**2), N - 1, f=F)
+    np.testing.assert_allclose(r.y, expected, rtol=1e-12)
+    np.testing.assert_array_equal(r.x, np.arange(1, N + 1))
+
+
+def test_step1_amplitude_from_minus_3_starts_at_3_and_has_one_more_point(fig3):
+    r = by_name(fig3, "b/amplitude", "release -x0", "Step-1")
+    assert r.y[0] == pytest.approx(3.0, rel=1e-14)
+    assert len(r.y) == N + 1 and r.x[-1] == N + 1
+    v = velocities(math.sqrt(9.0 - A1**2), N, f=0.5)
+    np.testing.assert_allclose(r.y, np.hypot(A1, v), rtol=1e-12)
+    step8 = by_name(fig3, "b/amplitude", "release -x0", "Step-8")
+    np.testing.assert_allclose(step8.y, r.y[1:], rtol=0)
+    assert len(step8.y) == N
+
+
+def test_largest_displacement_and_largest_abs_per_cycle(fig3):
+    """Right turning point sqrt(a2**2 + v2**2) (free after a2); left one h0(k + 1)."""
+    v = velocities(math.sqrt(0.99), N, f=1.0)
+    right = np.array([math.hypot(A2, cycle_by_energy(vk, 1.0, 1.0)["v2"]) for vk in v[:-1]])
+    left = np.hypot(A1, v[1:])
+    largest = by_name(fig3, "a/amplitude", "release -x0", "largest displacement")
+    np.testing.assert_allclose(largest.y, right, rtol=1e-12)
+    largest_abs = by_name(fig3, "a/amplitude", "release -x0", "largest |x|")
+    np.testing.assert_allclose(largest_abs.y, np.maximum(right, left), rtol=1e-12)
+
+
+def test_amplitude_helpers_on_a_run(case_b):
+    run = solve_exact(case_b, -3.0, n_cycles=4)
+    h0 = step1_amplitudes(run)
+    assert len(h0) == 5 and h0[0] == pytest.approx(3.0, rel=1e-14)
+    assert len(largest_abs_per_cycle(run)) == 4
+
+
+def test_fig3_reads_every_case_release_and_quantity(fig3):
+    assert len(fig3) == 2 * 2 * 7
+    assert {r.panel for r in fig3} == {f"{c}/{q}" for c in "ab" for q in ("velocity", "period", "amplitude")}
+    assert all(r.outcome == "completed" for r in fig3)
+
+
+def test_shock_window_draws_the_velocity_before_and_after_the_impact():
+    """From -1 m (K = 1, F = 1): x = -cos t meets a1 at t = acos(0.1) with v = sqrt(0.99); the
+    acceleration is -x = 0.1 before it and 0.1 + F/M = 1.1 after."""
+    readings = fig4_readings(MODEL, {"a": {"F": 1.0, "x0": 1.0}}, {"velocity": (0.0, 1.5)}, 100, K_values=(1.0,))
+    assert len(readings) == 2 * 2  # two release sides, two quantities
+    v = by_name(readings, "velocity", "x0 = -1 m", "velocity over")
+    t1 = math.acos(0.1)
+    at_impact = v.y[np.isclose(v.x, t1, rtol=0, atol=1e-12)]
+    np.testing.assert_allclose(at_impact, [math.sqrt(0.99), 0.9 * math.sqrt(0.99)], rtol=1e-12)
+    assert v.y.max() == pytest.approx(math.sqrt(0.99), rel=1e-12)
+    assert v.y.min() == pytest.approx(0.0, abs=1e-15)
+    a = by_name(readings, "velocity", "x0 = -1 m", "acceleration over")
+    np.testing.assert_allclose(a.y[np.isclose(a.x, t1, rtol=0, atol=1e-12)], [0.1, 1.1], rtol=1e-12)
+    assert (a.y.min(), a.y.max()) == (pytest.approx(0.1, rel=1e-12), pytest.approx(1.1, rel=1e-12))
+
+
+@pytest.fixture(scope="module")
+def fig5():
+    return fig5_readings(MODEL, {"b": 1.0, "c": 10.0}, 60, 50, forces=(0.5,), releases=(-1.0, 1.0))
+
+
+def test_phase_trajectory_k10_from_the_left_spans_the_first_cycle(fig5):
+    """K = 10, F = 0.5, from -1 m: speeds only fall after the first cycle (the map contracts to
+    v* < sqrt(9.9)); the fastest point is a1 before the first impact, the most negative a3 before
+    the second; x runs from -1 to the first right turning point."""
+    r = by_name(fig5, "c", "x0 = -1 m", "whole trajectory")
+    w2, f = 10.0, 0.5
+    first = cycle_by_energy(math.sqrt(w2 * (1.0 - A1**2)), w2, f)
+    assert r.y.max() == pytest.approx(math.sqrt(9.9), rel=1e-12)
+    assert r.y.min() == pytest.approx(-first["v4"], rel=1e-12)
+    assert r.x.min() == pytest.approx(-1.0, rel=1e-14)
+    assert r.x.max() == pytest.approx(math.hypot(A2, first["v2"] / math.sqrt(w2)), rel=1e-12)
+    mirror = by_name(fig5, "c", "x0 = +1 m", "whole trajectory")
+    assert (mirror.y.min(), mirror.y.max()) == (pytest.approx(-r.y.max(), rel=1e-12),
+                                                pytest.approx(-r.y.min(), rel=1e-12))
+
+
+def test_last_cycle_is_the_limit_cycle(fig5):
+    """Fixed point of v**2 -> (1-b)**4 v**2 + 2 f (a2 - a1)(b**2 - 2b + 2) (K = 1, F = 0.5); the
+    fastest point of the limit cycle is a2 (the zone's force ends there)."""
+    f = 0.5
+    c = 2 * f * (A2 - A1) * (B**2 - 2 * B + 2)
+    v_star = math.sqrt(c / (1 - (1 - B) ** 4))
+    v2 = cycle_by_energy(v_star, 1.0, f)["v2"]
+    r = by_name(fig5, "b", "x0 = -1 m", "last cycle")
+    assert r.y.max() == pytest.approx(v2, rel=1e-9)
+    assert r.y.min() == pytest.approx(-v2, rel=1e-9)
+    assert r.x.max() == pytest.approx(math.hypot(A2, v2), rel=1e-9)
+
+
+def test_critical_times_are_turning_points_or_passages_through_the_centre(case_b):
+    run = solve_exact(case_b, -1.0, n_cycles=5)
+    t = critical_times(run, 0.0, run.t_final)
+    assert t[0] == 0.0  # the release is a turning point
+    assert np.all(np.diff(t) > 0)
+    _, v, a = run.sample(t)
+    # at each: v = 0 (turning point) or a = 0 (the centre of the arc, where |v| peaks)
+    assert np.all(np.minimum(np.abs(v), np.abs(a)) < 1e-12)
+    # per cycle the two turning points only: the free arcs' centre 0 lies inside the impulse zones,
+    # and the zones' centres +-F/K = +-0.5 m lie beyond them; the release adds one
+    assert len(t) == 2 * 5 + 1
