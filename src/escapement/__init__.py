@@ -13,38 +13,43 @@ Layers, each importing only those above it in this list:
   command line ``python -m escapement solve`` (neither is imported here).
 """
 
+from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
-
-from .model import EventKind, EventLog, ParameterError, Parameters, Status
-from .solvers import (
-    EnsembleSolution,
-    Exit,
-    Solution,
-    solve_ensemble,
-    solve_exact,
-    solve_high_precision,
-    solve_naive,
-    solve_reference,
-)
 
 try:
     __version__ = version("escapement")
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-__all__ = [
-    "EnsembleSolution",
-    "EventKind",
-    "EventLog",
-    "Exit",
-    "ParameterError",
-    "Parameters",
-    "Solution",
-    "Status",
-    "__version__",
-    "solve_ensemble",
-    "solve_exact",
-    "solve_high_precision",
-    "solve_naive",
-    "solve_reference",
-]
+#: the public names, each re-exported from the layer that defines it. They are imported on first
+#: use (PEP 562), so that ``import escapement.io`` or a plotting job does not load the solvers and
+#: SciPy: each of the workflow's jobs imports only the layers it uses.
+_EXPORTS = {
+    "EventKind": "model",
+    "EventLog": "model",
+    "ParameterError": "model",
+    "Parameters": "model",
+    "Status": "model",
+    "EnsembleSolution": "solvers",
+    "Exit": "solvers",
+    "Solution": "solvers",
+    "solve_ensemble": "solvers",
+    "solve_exact": "solvers",
+    "solve_high_precision": "solvers",
+    "solve_naive": "solvers",
+    "solve_reference": "solvers",
+}
+
+__all__ = ["__version__", *sorted(_EXPORTS)]
+
+
+def __getattr__(name: str):
+    if name not in _EXPORTS:
+        raise AttributeError(f"module 'escapement' has no attribute {name!r}")
+    value = getattr(import_module(f".{_EXPORTS[name]}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_EXPORTS})

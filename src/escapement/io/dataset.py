@@ -10,7 +10,6 @@ file holds. No CF standard name exists for the quantities of this model, so none
 
 from __future__ import annotations
 
-import datetime as _dt
 from collections.abc import Mapping
 
 import numpy as np
@@ -19,7 +18,7 @@ import xarray as xr
 from ..model.events import EventKind
 from ..model.quantities import quantity
 from ..solvers.result import Solution
-from .provenance import DOI, REFERENCE, history_line, package_version, source_string
+from .provenance import DOI, REFERENCE, provenance_attributes
 
 __all__ = [
     "MODEL_SUMMARY",
@@ -30,7 +29,6 @@ __all__ = [
     "event_variables",
     "parameter_variables",
     "scalar_variable",
-    "provenance_attributes",
     "global_attributes",
     "assemble",
     "dataset",
@@ -187,21 +185,6 @@ def parameter_variables(values: Mapping[str, float]) -> dict[str, xr.DataArray]:
         q = quantity(name)
         out[name] = scalar_variable(float(value), q.units, q.long_name, MODEL_INPUT)
     return out
-
-
-def _now() -> str:
-    return _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat()
-
-
-def provenance_attributes(what: str) -> dict:
-    """Where and when a file was made: ``source`` (version and commit), ``history``, ``date_created``
-    (ISO 8601) and ``product_version`` (the package version)."""
-    return {
-        "source": source_string(),
-        "history": history_line(what),
-        "date_created": _now(),
-        "product_version": package_version(),
-    }
 
 
 def global_attributes(title: str, scene: str, summary: str, **extra) -> dict:

@@ -6,7 +6,7 @@ import datetime as _dt
 import subprocess
 from pathlib import Path
 
-__all__ = ["git_commit", "package_version", "source_string", "history_line"]
+__all__ = ["git_commit", "history_line", "package_version", "provenance_attributes", "source_string"]
 
 DOI = "10.3233/SAV-130800"
 REFERENCE = (
@@ -55,3 +55,14 @@ def source_string() -> str:
 def history_line(what: str) -> str:
     now = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat()
     return f"{now}: {what}"
+
+
+def provenance_attributes(what: str) -> dict:
+    """Where and when a file was made: ``source`` (version and commit), ``history``, ``date_created``
+    (ISO 8601) and ``product_version`` (the package version)."""
+    return {
+        "source": source_string(),
+        "history": history_line(what),
+        "date_created": _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat(),
+        "product_version": package_version(),
+    }

@@ -7,8 +7,8 @@ import csv
 from collections.abc import Sequence
 
 from ..io.atomic import write_csv
-from ..io.dataset import provenance_attributes
 from ..io.netcdf import DatasetError, read_netcdf, write_netcdf
+from ..io.provenance import provenance_attributes
 from .logs import logged
 
 __all__ = [
