@@ -68,7 +68,15 @@ SIMULATE_CODE = package_code(
 )
 #: pipeline/studies.py: the benchmark and the stress cases
 STUDIES_CODE = package_code(
-    "model", "solvers", "paper", "studies", *IO, *PIPELINE, "pipeline/studies.py"
+    "model",
+    "solvers",
+    "paper",
+    "studies",
+    *IO,
+    *PIPELINE,
+    "pipeline/config.py",
+    "pipeline/edge_cases.py",
+    "pipeline/studies.py",
 )
 #: pipeline/tables.py: netCDF files only
 MERGE_CODE = package_code(*IO, *PIPELINE)

@@ -31,6 +31,7 @@ __all__ = [
     "config_error",
     "fig3_scene",
     "fig4_scene",
+    "fig5_label_collision",
     "fig5_labels",
     "fig5_scene",
     "long_run_scene",
@@ -71,6 +72,19 @@ def fig4_scene(config: Mapping) -> dict:
 def fig5_labels(config: Mapping) -> list[str]:
     """File labels of the Fig. 5 panels, one per spring constant: ``0.1``, ``1``, ``10``."""
     return [f"{k:g}" for k in config["fig5"]["K"]]
+
+
+def fig5_label_collision(spring_constants: list) -> str | None:
+    """The problem, if two of ``spring_constants`` would write the same Fig. 5 file."""
+    labels = [f"{k:g}" for k in spring_constants]
+    for label in labels:
+        same = [k for k, other in zip(spring_constants, labels) if other == label]
+        if len(same) > 1:
+            return (
+                f"fig5.K = {list(spring_constants)!r} is invalid: K must be spring constants that differ "
+                f"in their file labels ({' and '.join(repr(k) for k in same)} would both write K_{label}.nc)"
+            )
+    return None
 
 
 def fig5_scene(config: Mapping, label: str) -> dict:
@@ -209,14 +223,9 @@ MAX_SAMPLES = 10_000_000
 def _cross_field_error(config: Mapping) -> str | None:
     """Rules that the schema cannot state: distinct Fig. 5 files, windows, chunks, the size of the
     sampled time series (checked before any job, not after the work)."""
-    labels = fig5_labels(config)
-    for label in labels:
-        same = [k for k, other in zip(config["fig5"]["K"], labels) if other == label]
-        if len(same) > 1:
-            return (
-                f"fig5.K = {config['fig5']['K']!r} is invalid: K must be spring constants that differ "
-                f"in their file labels ({' and '.join(repr(k) for k in same)} would both write K_{label}.nc)"
-            )
+    collision = fig5_label_collision(config["fig5"]["K"])
+    if collision:
+        return collision
     for name in ("velocity_window", "acceleration_window"):
         lo, hi = config["fig4"][name]
         if not lo < hi:

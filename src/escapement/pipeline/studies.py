@@ -9,6 +9,7 @@ from ..io.netcdf import read_netcdf
 from ..model.parameters import Parameters, check_initial_state
 from ..studies.benchmark import work_precision
 from ..studies.stress import run_all
+from .edge_cases import run_edge_cases
 from .logs import logged
 from .tables import STRESS_COLUMNS, WORK_PRECISION_COLUMNS
 
@@ -28,9 +29,10 @@ def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str
 
 
 def run_stress(long_run: str, output: str, log: str) -> None:
-    """Every stress case, and the very long run's bounds, as one CSV row each."""
+    """Every stress case (the solver's, then the files' and the configuration's), and the very long
+    run's bounds, as one CSV row each."""
     with logged(log, "run_stress") as logger:
-        rows = run_all()
+        rows = run_all() + run_edge_cases()
         lr = read_netcdf(long_run, ("cycle", "error_time_exact", "max_velocity_deviation", "max_period_deviation"))
         velocity, period = float(lr["max_velocity_deviation"]), float(lr["max_period_deviation"])
         bounded = (velocity <= 1e-12 and period <= 1e-12
