@@ -33,6 +33,7 @@ _EXPORTS = {
     "EnsembleSolution": "solvers",
     "Exit": "solvers",
     "Solution": "solvers",
+    "iter_cycles": "solvers",
     "solve_ensemble": "solvers",
     "solve_exact": "solvers",
     "solve_high_precision": "solvers",

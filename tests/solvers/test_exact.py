@@ -245,3 +245,37 @@ def test_a_failed_run_is_not_success(case_a):
     s = solve_exact(case_a, 0.05, n_cycles=3)
     assert not s.success and s.status.code == 1
     assert s.exit.margin == pytest.approx(0.1 - 0.05)
+
+
+@pytest.mark.parametrize("params, x0", [
+    (Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0),
+    (Parameters(M=0.7, K=3.0, F=0.4, b=0.3, a1=-0.12, a2=0.02, a3=0.09, a4=-0.04), 0.8),
+])
+def test_the_amplitude_is_the_top_of_the_free_swing_from_a2(params, x0):
+    """In a regular cycle only the free arc from a2 to a3 passes the top of its circle, so the amplitude is
+    its radius sqrt(a2**2 + (v2 / w)**2), with v2 at a2 from energy through the zone (a1, a2) about c = F/K:
+    v2**2 = ((1 - b) v1)**2 + w**2 ((a1 - c)**2 - (a2 - c)**2), v1 the velocity before the impact at a1."""
+    s = solve_exact(params, x0, n_cycles=200, record_trajectory=False)
+    with mpmath.workdps(40):
+        w2 = mpmath.mpf(params.K) / mpmath.mpf(params.M)
+        c, a1, a2 = mpmath.mpf(params.F) / mpmath.mpf(params.K), mpmath.mpf(params.a1), mpmath.mpf(params.a2)
+        for v1, amplitude in zip(s.cycles.velocity_before_impact, s.cycles.amplitude):
+            v2_sq = ((1 - mpmath.mpf(params.b)) * mpmath.mpf(v1)) ** 2 + w2 * ((a1 - c) ** 2 - (a2 - c) ** 2)
+            assert amplitude == pytest.approx(float(mpmath.sqrt(a2**2 + v2_sq / w2)), rel=2e-15)
+
+
+def test_the_event_log_and_the_arcs_are_the_stored_buffers_not_copies(case_a):
+    s = solve_exact(case_a, 1.0, n_cycles=100)
+    for column in (s.events.t, s.events.v_before, s.cycles.impact_time, s.cycles.period, s.cycles.amplitude):
+        assert not column.flags.owndata  # a view of the loop's packed buffer
+    assert len(s.trajectory.t_start) == len(s.events) and s.trajectory.t_start[1:].tolist() == s.events.t[:-1].tolist()
+
+
+def test_a_run_over_its_memory_budget_is_refused_before_any_work(case_a):
+    from escapement.model.limits import MemoryBudgetError
+
+    with pytest.raises(MemoryBudgetError) as err:
+        solve_exact(case_a, 1.0, n_cycles=10_000, memory_budget=1_000_000)
+    assert (err.value.name, err.value.value, err.value.budget) == ("n_cycles", 10_000, 1_000_000)
+    assert err.value.estimate > 1_000_000 and isinstance(err.value, ParameterError)
+    assert solve_exact(case_a, 1.0, n_cycles=10_000, record_trajectory=False, memory_budget=10_000_000).success

@@ -36,3 +36,36 @@ def test_the_reference_fixed_point_is_eq19():
     assert r["fixed_point_velocity"] == pytest.approx(math.sqrt(2 * 0.15 / (0.2 - 0.01)), rel=1e-15)
     assert r["cycles"][-1] == 300 and not r["any_nan"]
     assert np.isnan(r["ivp"][0][r["cycles"] > 5]).all() and np.isfinite(r["ivp"][0][r["cycles"] <= 5]).all()
+
+
+def test_the_streamed_long_run_gives_the_numbers_of_the_whole_cycle_table():
+    """The long run keeps only sampled cycles and running maxima; from the whole table of solve_exact the
+    same numbers follow."""
+    import mpmath
+
+    from escapement.solvers.exact import solve_exact
+
+    n = 30_000
+    r = long_run(P, 1.0, n, "DOP853", 1e-8, 20)
+    c = solve_exact(P, 1.0, n_cycles=n, record_trajectory=False).cycles
+    n0 = r["converged_after"]
+    v_star, t_star = r["fixed_point_velocity"], r["fixed_point_period"]
+    assert r["max_velocity_deviation"] == float(np.max(np.abs(c.velocity_before_impact[n0:] - v_star))) / v_star
+    assert r["max_period_deviation"] == float(np.max(np.abs(c.period[n0:] - t_star))) / t_star
+    et, ev, drift = r["exact"]
+    sampled = r["cycles"]
+    # the drift is t - t_ref; t_ref from the error: |drift| / t_ref = et
+    with mpmath.workdps(60):
+        t_ref = [mpmath.mpf(c.impact_time[k - 1]) - mpmath.mpf(d) for k, d in zip(sampled, drift)]
+    assert np.all(np.isfinite(et)) and np.all(np.isfinite(ev))
+    assert et == pytest.approx([abs(d) / float(t) for d, t in zip(drift, t_ref)], rel=1e-12)
+    assert not r["any_nan"]
+
+
+@pytest.mark.parametrize("n_cycles", [10, 248])
+def test_a_long_run_shorter_than_the_transient_is_refused(n_cycles):
+    from escapement.model.parameters import ParameterError
+
+    with pytest.raises(ParameterError) as err:
+        long_run(P, 1.0, n_cycles, "DOP853", 1e-8, 5)
+    assert (err.value.name, err.value.value) == ("n_cycles", n_cycles) and "> 248" in err.value.requirement

@@ -5,6 +5,13 @@ solver) is checked by :func:`check_count`: a positive integer (not a bool), at m
 maximum, or a :class:`~escapement.model.parameters.ParameterError` that names it. The scalar
 solvers and the ensemble take their limits through :class:`RunLimits`, so they refuse the same
 values with the same message.
+
+A run also has a memory budget (:attr:`RunLimits.memory_budget`, by default
+:data:`MEMORY_BUDGET` bytes): a solver estimates, before any work, the bytes its result will
+hold (events, cycle table, trajectory) from the limits alone, and refuses a run whose estimate
+exceeds the budget with a :class:`MemoryBudgetError` that states both. The exact solver streams
+its cycles in constant memory (:func:`escapement.solvers.stream.iter_cycles`) for runs that do
+not fit.
 """
 
 from __future__ import annotations
@@ -15,7 +22,18 @@ from numbers import Integral, Real
 
 from .parameters import ParameterError
 
-__all__ = ["EVENTS_PER_CYCLE", "MAX_CYCLES", "MAX_DIGITS", "MAX_EVENTS", "MIN_DIGITS", "RunLimits", "check_count"]
+__all__ = [
+    "EVENTS_PER_CYCLE",
+    "MAX_CYCLES",
+    "MAX_DIGITS",
+    "MAX_EVENTS",
+    "MAX_MEMORY_BUDGET",
+    "MEMORY_BUDGET",
+    "MIN_DIGITS",
+    "MemoryBudgetError",
+    "RunLimits",
+    "check_count",
+]
 
 EVENTS_PER_CYCLE = 4
 DEFAULT_MAX_EVENTS_FOR_TIME = 10_000_000
@@ -25,6 +43,21 @@ MAX_CYCLES = 1_000_000_000
 MAX_EVENTS = 5_000_000_000
 #: the significant digits the high-precision solver may work with: more than float64's 16, at most 1000
 MIN_DIGITS, MAX_DIGITS = 17, 1000
+#: the bytes a run's result may hold unless the caller says otherwise: 2 GB, a quarter of a laptop's 8 GB
+MEMORY_BUDGET = 2_000_000_000
+#: the largest memory budget a caller may give: 1 TB
+MAX_MEMORY_BUDGET = 1_000_000_000_000
+
+
+class MemoryBudgetError(ParameterError):
+    """A run whose stored output would exceed its memory budget; a :class:`ParameterError` that names
+    the count which sets the size (``n_cycles``, ``max_events`` or the number of trajectories), with the
+    estimate and the budget in bytes."""
+
+    def __init__(self, name: str, value: object, requirement: str, estimate: int, budget: int) -> None:
+        super().__init__(name, value, requirement)
+        self.estimate = estimate
+        self.budget = budget
 
 
 def check_count(name: str, value: object, maximum: int, minimum: int = 1) -> int:
@@ -43,12 +76,14 @@ class RunLimits:
 
     ``n_cycles`` is at most :data:`MAX_CYCLES` and ``max_events`` at most :data:`MAX_EVENTS`;
     ``max_events`` defaults to the events of ``n_cycles`` cycles with a margin, or to
-    10**7 for a run to ``t_end`` alone.
+    10**7 for a run to ``t_end`` alone. ``memory_budget`` (bytes, at most :data:`MAX_MEMORY_BUDGET`)
+    defaults to :data:`MEMORY_BUDGET`.
     """
 
     n_cycles: int | None = None
     t_end: float | None = None
     max_events: int | None = None
+    memory_budget: int | None = None
 
     def __post_init__(self) -> None:
         if self.n_cycles is None and self.t_end is None:
@@ -64,7 +99,28 @@ class RunLimits:
         if self.max_events is None:
             bound = DEFAULT_MAX_EVENTS_FOR_TIME
             if self.n_cycles is not None:
-                bound = EVENTS_PER_CYCLE * (self.n_cycles + 2) + 8
+                bound = events_for(self.n_cycles)
             object.__setattr__(self, "max_events", bound)
         else:
             object.__setattr__(self, "max_events", check_count("max_events", self.max_events, MAX_EVENTS))
+        budget = MEMORY_BUDGET if self.memory_budget is None else self.memory_budget
+        object.__setattr__(self, "memory_budget", check_count("memory_budget", budget, MAX_MEMORY_BUDGET))
+
+    @property
+    def stored_events(self) -> int:
+        """The most events the run can take: ``max_events``, or fewer for ``n_cycles`` cycles."""
+        if self.n_cycles is None:
+            return self.max_events
+        return min(self.max_events, events_for(self.n_cycles))
+
+    @property
+    def stored_cycles(self) -> int:
+        """The most complete cycles the run can hold: ``n_cycles``, or the cycles that ``stored_events``
+        events make (each takes :data:`EVENTS_PER_CYCLE` of them)."""
+        most = self.stored_events // EVENTS_PER_CYCLE
+        return most if self.n_cycles is None else min(self.n_cycles, most)
+
+
+def events_for(n_cycles: int) -> int:
+    """The events of ``n_cycles`` cycles with a margin for the first ones (the default ``max_events``)."""
+    return EVENTS_PER_CYCLE * (n_cycles + 2) + 8

@@ -18,18 +18,23 @@ from ..model import automaton
 from ..model.automaton import Awaited, Mode
 from ..model.events import EventKind
 from ..model.kinematics import VECTOR, arc_maximum, compensated_add, crossing, rebound_accumulation_time
-from ..model.limits import RunLimits
+from ..model.limits import MEMORY_BUDGET, MemoryBudgetError, RunLimits
 from ..model.parameters import ParameterError, validate_arrays
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 from .result import CycleTable, EnsembleSolution
 
-__all__ = ["solve_ensemble"]
+__all__ = ["CELL_BYTES", "MAX_CELLS", "ROW_BYTES", "TABLE_BYTES", "ensemble_bytes", "solve_ensemble"]
 
 _RUNNING = -1
-#: the most values one cycle table may hold, trajectories * (n_cycles + 1): the four tables of 8-byte
-#: floats take at most 1.6 GB
-MAX_CELLS = 50_000_000
+#: bytes per trajectory and cycle (a cell of the tables, n_cycles + 1 of them per trajectory), with a margin
+#: for the trajectory's own state from 120 cells on: the four tables of 8-byte floats (32 bytes) and the
+#: boolean masks of their shape at the end (measured peak: 34.3)
+CELL_BYTES = 40
+#: below 120 cells, the cells at TABLE_BYTES and each trajectory's state, some 60 floats (measured 500 bytes)
+TABLE_BYTES, ROW_BYTES = 35, 600
+#: the most cells the default memory budget allows: 50 million, trajectories * (n_cycles + 1)
+MAX_CELLS = MEMORY_BUDGET // CELL_BYTES
 _A1, _A3 = int(EventKind.IMPACT_A1), int(EventKind.IMPACT_A3)
 _IMPACT = np.array(automaton.IMPACT_TABLE)
 _CENTRE_SIGN = np.array(automaton.CENTRE_SIGN)
@@ -45,18 +50,27 @@ for _mode in Mode:
             _WATCH[_mode * 4 + _awaited, _kind] = True
 
 
+def ensemble_bytes(n_trajectories: int, n_cycles: int) -> int:
+    """The bytes :func:`solve_ensemble` takes at most for ``n_trajectories`` runs of ``n_cycles`` cycles."""
+    cells = n_cycles + 1
+    return n_trajectories * max(CELL_BYTES * cells, TABLE_BYTES * cells + ROW_BYTES)
+
+
 def solve_ensemble(
-    M, K, F, b, a1, a2, a3=None, a4=None, x0=1.0, v0=0.0, *, n_cycles: int, max_events=None, amplitude: bool = True
+    M, K, F, b, a1, a2, a3=None, a4=None, x0=1.0, v0=0.0, *, n_cycles: int, max_events=None, amplitude: bool = True,
+    memory_budget: int | None = None,
 ) -> EnsembleSolution:
     """Integrate every trajectory for ``n_cycles`` complete cycles (or until it leaves the regime).
 
     Inputs are validated by the rules of :class:`escapement.Parameters` and
     :func:`escapement.model.parameters.check_initial_state`, row by row, and the counts by
     :class:`~escapement.model.limits.RunLimits`, before any work; the first invalid row is named
-    in the error. ``n_cycles + 1`` times the number of trajectories is at most :data:`MAX_CELLS`.
+    in the error. The run's size (:func:`ensemble_bytes`) is at most ``memory_budget`` bytes (default
+    :data:`~escapement.model.limits.MEMORY_BUDGET`: ``n_cycles + 1`` times the number of trajectories at most
+    :data:`MAX_CELLS`), or a :class:`~escapement.model.limits.MemoryBudgetError` says so before any work.
     With ``amplitude=False`` the per-cycle maxima are not computed.
     """
-    limits = RunLimits(n_cycles=n_cycles, max_events=max_events)
+    limits = RunLimits(n_cycles=n_cycles, max_events=max_events, memory_budget=memory_budget)
     if not isinstance(amplitude, bool | np.bool_):
         raise ParameterError("amplitude", amplitude, "True or False")
     given = {**dict(zip(MODEL_KEYS, (M, K, F, b, a1, a2, a3, a4))), "x0": x0, "v0": v0}
@@ -64,10 +78,19 @@ def solve_ensemble(
     M, K, F, b, a1, a2, a3, a4, x, v = (checked[name].ravel() for name in (*MODEL_KEYS, "x0", "v0"))
     n = len(M)
     n_cycles = limits.n_cycles
-    if n * (n_cycles + 1) > MAX_CELLS:
-        requirement = (f"at most {MAX_CELLS // n - 1:_} for {n:_} trajectories (the cycle tables hold "
-                       f"trajectories * (n_cycles + 1) <= {MAX_CELLS:_} values)")
-        raise ParameterError("n_cycles", n_cycles, requirement)
+    budget = limits.memory_budget
+    estimate = ensemble_bytes(n, n_cycles)
+    if estimate > budget:
+        where = (f"each trajectory takes max({CELL_BYTES} (n_cycles + 1), {TABLE_BYTES} (n_cycles + 1) + {ROW_BYTES}) "
+                 f"bytes: an estimated {estimate:_} bytes, over the memory budget of {budget:_} bytes")
+        cells = (budget // n) // CELL_BYTES  # the most cells per trajectory, at CELL_BYTES each ...
+        if CELL_BYTES * cells < TABLE_BYTES * cells + ROW_BYTES:  # ... or, for fewer, at TABLE_BYTES plus the state
+            cells = (budget // n - ROW_BYTES) // TABLE_BYTES
+        if cells < 2:
+            raise MemoryBudgetError("trajectories", n, f"at most {budget // ensemble_bytes(1, n_cycles):_} for "
+                                    f"n_cycles = {n_cycles:_} ({where})", estimate, budget)
+        raise MemoryBudgetError("n_cycles", n_cycles, f"at most {cells - 1:_} for {n:_} trajectories ({where})",
+                                estimate, budget)
     omega, offset = np.sqrt(K / M), F / K
     positions = {kind: {"a1": a1, "a2": a2, "a3": a3, "a4": a4}[s.position] for kind, s in automaton.SURFACES.items()}
 

@@ -1,0 +1,128 @@
+"""The exact solver's cycles in chunks, in constant memory.
+
+:func:`iter_cycles` runs the loop of :func:`escapement.solvers.exact.solve_exact`
+(:class:`~escapement.solvers.exact.ClosedFormRun`) without keeping the event log, and hands its
+per-cycle table over in chunks of at most ``chunk`` cycles as it goes: the loop's state (the
+compensated time sum, the state, the cycle under way) carries over from chunk to chunk, so the
+chunks put together are, number for number, the ``cycles`` of ``solve_exact`` for the same run.
+Memory holds one chunk at a time (32 bytes a cycle), whatever the number of cycles::
+
+    stream = iter_cycles(params, 1.0, n_cycles=10**8)
+    for chunk in stream:  # CycleTable, at most 100_000 cycles each
+        ...
+    stream.summary.status, stream.summary.message  # how the run ended, as solve_exact says it
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from ..model.limits import MemoryBudgetError, RunLimits, check_count
+from ..model.parameters import Parameters, check_initial_state
+from ..model.status import Status
+from .exact import SEGMENT, ClosedFormRun, Packed
+from .result import CycleTable, Exit
+
+__all__ = ["CHUNK_BYTES_PER_CYCLE", "DEFAULT_CHUNK", "MAX_CHUNK", "CycleStream", "StreamSummary", "iter_cycles"]
+
+#: cycles per chunk unless the caller says otherwise
+DEFAULT_CHUNK = 100_000
+#: the most cycles a chunk may hold
+MAX_CHUNK = 10_000_000
+#: bytes a cycle of a chunk takes: four floats packed (growing buffers, up to 1/16 over-allocated); besides,
+#: the loop holds one pass (:data:`~escapement.solvers.exact.PASS_BYTES`, 0.4 MB) as Python floats in lists
+CHUNK_BYTES_PER_CYCLE = 34
+
+
+@dataclass(frozen=True)
+class StreamSummary:
+    """How a streamed run ended: the fields of :class:`~escapement.solvers.result.Solution` that do not
+    grow with the run."""
+
+    status: Status
+    message: str
+    exit: Exit
+    t_final: float
+    n_cycles: int  #: complete cycles handed over, all chunks together
+    n_events: int  #: events of the run
+
+    @property
+    def success(self) -> bool:
+        """True when the requested cycles or end time were reached."""
+        return self.status.success
+
+
+class CycleStream(Iterator[CycleTable]):
+    """An iterator over the per-cycle table of one run, chunk by chunk (see :func:`iter_cycles`); once it
+    is exhausted, :attr:`summary` says how the run ended."""
+
+    def __init__(self, run: ClosedFormRun, chunk: int) -> None:
+        self._run = run
+        self._chunk = chunk
+        self._summary: StreamSummary | None = None
+
+    def __iter__(self) -> CycleStream:
+        return self
+
+    def __next__(self) -> CycleTable:
+        run = self._run
+        packed = Packed(run.cycle_columns)
+        if run.outcome is None:
+            start = run.cycles
+            # each pass runs SEGMENT events, or ends the chunk or the run
+            for _ in range(run.limits.max_events // SEGMENT + 2):
+                run.advance(SEGMENT, start + self._chunk - run.cycles)
+                packed.take()
+                if run.outcome is not None or run.cycles - start >= self._chunk:
+                    break
+            else:
+                raise RuntimeError(f"the closed-form loop did not end within max_events = {run.limits.max_events}")
+        impact_time, velocity, period, amplitude = packed.numpy()
+        if not len(period):
+            if self._summary is None:
+                outcome = run.outcome
+                self._summary = StreamSummary(outcome.status, outcome.message, outcome.exit,
+                                              float(outcome.t_final), run.cycles, run.events)
+            raise StopIteration
+        return CycleTable(impact_time=impact_time, velocity_before_impact=velocity, period=period, amplitude=amplitude)
+
+    @property
+    def summary(self) -> StreamSummary:
+        """How the run ended; available once the stream is exhausted."""
+        if self._summary is None:
+            raise RuntimeError("the stream is not exhausted yet: iterate over it to the end first")
+        return self._summary
+
+
+def iter_cycles(
+    params: Parameters,
+    x0: float,
+    v0: float = 0.0,
+    *,
+    n_cycles: int | None = None,
+    t_end: float | None = None,
+    max_events: int | None = None,
+    chunk: int = DEFAULT_CHUNK,
+    memory_budget: int | None = None,
+) -> CycleStream:
+    """The per-cycle table of :func:`~escapement.solvers.exact.solve_exact` for the same arguments, in
+    chunks of at most ``chunk`` cycles (:class:`~escapement.solvers.result.CycleTable` each), in memory
+    that does not grow with the run: no event log, no trajectory, one chunk at a time.
+
+    The limits are those of ``solve_exact``; regime exits end the stream, and its :attr:`CycleStream.summary`
+    says how the run ended (status, message, exit, end time). ``chunk`` is at most :data:`MAX_CHUNK`, and a
+    chunk's :data:`CHUNK_BYTES_PER_CYCLE` bytes a cycle at most ``memory_budget``.
+    """
+    if not isinstance(params, Parameters):
+        raise TypeError("params must be an escapement.Parameters")
+    x, v = check_initial_state(x0, v0)
+    limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
+    chunk = check_count("chunk", chunk, MAX_CHUNK)
+    estimate = chunk * CHUNK_BYTES_PER_CYCLE
+    if estimate > limits.memory_budget:
+        most = limits.memory_budget // CHUNK_BYTES_PER_CYCLE
+        requirement = (f"at most {most:_} for a chunk of {CHUNK_BYTES_PER_CYCLE} bytes a cycle ({estimate:_} bytes) "
+                       f"to fit the memory budget of {limits.memory_budget:_} bytes")
+        raise MemoryBudgetError("chunk", chunk, requirement, estimate, limits.memory_budget)
+    return CycleStream(ClosedFormRun(params, x, v, limits, keep_events=False), chunk)
