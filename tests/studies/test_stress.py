@@ -191,6 +191,17 @@ def check_ensemble_bad_row():
     return "refused"
 
 
+def check_memory_budget():
+    from escapement.model.limits import MemoryBudgetError
+
+    # at least 4 events of 8-byte times, positions and velocities per cycle: over 2 GB long before 1e9 cycles
+    assert 10**9 * 4 * 3 * 8 > 2_000_000_000
+    with pytest.raises(MemoryBudgetError) as caught:
+        solve_exact(paper(), 1.0, n_cycles=10**9, record_trajectory=False)
+    assert caught.value.name == "n_cycles"
+    return "refused"
+
+
 def check_counts_refused():
     for n in (0, -1, 1.5, True):
         with pytest.raises(ParameterError) as caught:

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import mpmath
 import numpy as np
 
+from ..model.limits import MemoryBudgetError
 from ..model.parameters import ParameterError, Parameters
 from ..model.status import Status
 from ..paper import corrected as derived
@@ -24,6 +25,7 @@ from ..solvers.ensemble import solve_ensemble
 from ..solvers.exact import solve_exact
 from ..solvers.high_precision import solve_high_precision
 from ..solvers.reference import solve_reference
+from ..solvers.stream import iter_cycles
 
 __all__ = ["CASES", "StressCase", "StressResult", "run_all", "run_case"]
 
@@ -232,6 +234,24 @@ def ensemble_bad_row() -> StressResult:
     return StressResult("refused", "ensemble row 2 has b = True: refused naming the row and b", ok, message)
 
 
+def memory_budget() -> StressResult:
+    # 1e9 cycles would store some 1.8e11 bytes (about 176 per cycle): over the 2 GB budget; the same
+    # run streams in chunks whose concatenation is the stored run, bit for bit
+    start = time.perf_counter()
+    try:
+        solve_exact(_paper(), 1.0, n_cycles=10**9, record_trajectory=False)
+        refused, message = False, "accepted"
+    except MemoryBudgetError as err:
+        refused, message = err.name == "n_cycles" and err.estimate > err.budget, str(err).split("; ")[0]
+    quick = time.perf_counter() - start < 1.0
+    stream = iter_cycles(_paper(), 1.0, n_cycles=20_000, chunk=3_000)
+    streamed = np.concatenate([c.impact_time for c in stream])
+    stored = solve_exact(_paper(), 1.0, n_cycles=20_000, record_trajectory=False).cycles.impact_time
+    same = np.array_equal(streamed, stored)
+    return StressResult("refused", "n_cycles = 1e9 refused within a second, naming the size; streamed in chunks, a "
+                        "run equals the stored one bit for bit", refused and quick and same, message)
+
+
 def counts_refused() -> StressResult:
     results = [
         _refused(lambda n=n: solve_exact(_paper(), 1.0, n_cycles=n), "n_cycles", "")
@@ -348,6 +368,7 @@ CASES = [
                float_range_state),
     StressCase("float_range_subnormal_mass", "floating-point range: a subnormal mass", float_range_subnormal_mass),
     StressCase("ensemble_bad_row", "one validation: a bad row of the ensemble", ensemble_bad_row),
+    StressCase("memory_budget", "memory: a run too large to store, and its streamed form", memory_budget),
     StressCase("counts_refused", "one validation: cycle counts that are not positive integers", counts_refused),
     StressCase("graze_on_impact_position", "grazing: turning point exactly at an impact position",
                graze_on_impact_position),
