@@ -194,8 +194,8 @@ DOCS = {"render_docs": 1, "publish": 1, "all": 1}
 @pytest.mark.parametrize(
     "edit, expected",
     [
-        (lambda c: c["fig4"].update(samples_per_second=500), {"simulate_fig4": 1, "plot_fig4": 1, **VERDICT}),
-        (lambda c: c["fig5"].update(n_cycles=61), {"simulate_fig5": 3, "plot_fig5": 1, **VERDICT}),
+        (lambda c: c["fig4"].update(samples_per_second=500), {"simulate_fig4": 1, "plot_fig4": 1, "score_readings": 1, **VERDICT}),
+        (lambda c: c["fig5"].update(n_cycles=61), {"simulate_fig5": 3, "plot_fig5": 1, "score_readings": 1, **VERDICT}),
         (lambda c: c["checks"].update(n_cycles=301), {"simulate_checks": 1, **VERDICT}),
         (
             lambda c: c["long_run"].update(ivp_cycles=900),
@@ -207,7 +207,7 @@ DOCS = {"render_docs": 1, "publish": 1, "all": 1}
         ),
         (
             lambda c: c["fig3"]["cases"]["b"].update(F=0.6),
-            {"simulate_fig3": 1, "plot_fig3": 1, "simulate_checks": 1, **VERDICT},
+            {"simulate_fig3": 1, "plot_fig3": 1, "simulate_checks": 1, "score_readings": 1, **VERDICT},
         ),
     ],
 )
