@@ -43,6 +43,7 @@ rule plot_work_precision:
         pdf="results/figures/work_precision.pdf",
     log:
         "results/logs/plot_work_precision.log",
+    localrule: True
     conda:
         "../../environment/environment.yml"
     script:
@@ -92,6 +93,7 @@ rule plot_long_run:
         pdf="results/figures/long_run.pdf",
     log:
         "results/logs/plot_long_run.log",
+    localrule: True
     conda:
         "../../environment/environment.yml"
     script:
@@ -134,6 +136,7 @@ rule merge_stability:
         timing="results/stability/timing.csv",
     log:
         "results/logs/merge_stability.log",
+    localrule: True
     conda:
         "../../environment/environment.yml"
     script:
@@ -154,6 +157,7 @@ rule plot_stability_map:
         pdf="results/figures/stability_map.pdf",
     log:
         "results/logs/plot_stability_map.log",
+    localrule: True
     conda:
         "../../environment/environment.yml"
     script:

@@ -12,6 +12,7 @@ rule plot_fig3:
         pdf="results/figures/fig3.pdf",
     log:
         "results/logs/plot_fig3.log",
+    localrule: True
     conda:
         "../../environment/environment.yml"
     params:
@@ -34,6 +35,7 @@ rule plot_fig4:
         pdf="results/figures/fig4.pdf",
     log:
         "results/logs/plot_fig4.log",
+    localrule: True
     conda:
         "../../environment/environment.yml"
     script:
@@ -54,6 +56,7 @@ rule plot_fig5:
         pdf="results/figures/fig5.pdf",
     log:
         "results/logs/plot_fig5.log",
+    localrule: True
     conda:
         "../../environment/environment.yml"
     params:
