@@ -14,13 +14,15 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from ..io.atomic import atomic_path  # noqa: E402
 
-__all__ = ["style", "save_figure", "INK", "ACCENT", "MUTED", "GUIDE"]
+__all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "save_figure", "style"]
 
 #: colours of the figures, named by role
 INK = "#1f4e79"
 ACCENT = "#c0392b"
 MUTED = "#b8b8b8"
 GUIDE = "#666666"
+#: fill of the cells of a map where no cycle exists: a light grey, in neither viridis nor magma
+NO_CYCLE = "#dcdcdc"
 
 
 @contextlib.contextmanager
