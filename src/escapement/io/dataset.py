@@ -32,6 +32,7 @@ __all__ = [
     "global_attributes",
     "assemble",
     "dataset",
+    "run_dataset",
     "table_dataset",
 ]
 
@@ -238,6 +239,41 @@ def dataset(
     attrs.update(extra)
     state = {"x0": solution.x0, "v0": solution.v0}
     return assemble({**variables, **parameter_variables({**solution.params.as_dict(), **state})}, attrs)
+
+
+def run_dataset(solution: Solution) -> xr.Dataset:
+    """One run as a dataset (what :meth:`Solution.to_xarray <escapement.Solution.to_xarray>` returns): its
+    per-cycle table (:func:`cycle_variables`), every event (:func:`event_variables`), its end time and the
+    numbers behind a regime exit (NaN where they do not apply), with the parameters, initial state,
+    outcome and provenance of :func:`dataset`. The high-precision solver's mpmath numbers become their
+    nearest doubles."""
+    variables = {**cycle_variables(solution), **event_variables(solution)}
+    variables = {name: da.astype(float) if da.dtype == object else da for name, da in variables.items()}
+    variables["t_final"] = scalar_variable(
+        float(solution.t_final), "s", "end of the computed trajectory (inf: the free oscillation goes on for ever)"
+    )
+    exit_numbers = {
+        "exit_turning_point": ("m", "where the motion turns at a regime exit (radius of the free swing when stopped)"),
+        "exit_margin": ("m", "how far short of the awaited position the motion turns at a regime exit"),
+        "exit_t_accumulation": ("s", "time at which the rebounds of a chattering run accumulate"),
+    }
+    for name, (units, long_name) in exit_numbers.items():
+        value = float(getattr(solution.exit, name.removeprefix("exit_")))
+        variables[name] = scalar_variable(value, units, f"{long_name}; NaN where it does not apply")
+    return dataset(
+        solution,
+        variables,
+        title=f"One run of the escapement model (Mao, Fu & Li 2013), solver {solution.method}",
+        scene="run",
+        summary=(
+            "This file holds one run released at x0 with velocity v0: per cycle (the Poincare map on the section "
+            "x = a1, v > 0), the time of the impact at a1, the velocity just before it, the period and the "
+            "amplitude; every event of the run (impacts and ends of the impulse zones); the end of the computed "
+            "trajectory; and the numbers behind a regime exit, if the run left the escapement regime."
+        ),
+        n_cycles=len(solution.cycles),
+        n_events=len(solution.events),
+    )
 
 
 def table_dataset(columns: dict[str, tuple], title: str, scene: str, summary: str, **extra) -> xr.Dataset:

@@ -11,7 +11,34 @@ __all__ = ["EventKind", "EventLog"]
 
 
 class EventKind(IntEnum):
-    """What happens at an event; the integer codes are stored in netCDF files."""
+    """What happens at an event; the integer codes are stored in netCDF files.
+
+    Parameters
+    ----------
+    value : int
+        The stored code, 1 to 4: ``EventKind(3)`` is :attr:`IMPACT_A3`.
+
+    Attributes
+    ----------
+    IMPACT_A1 : int
+        1: impact at ``a1`` (m) moving right; the impulse zone ``(a1, a2)`` begins.
+    ZONE_END_A2 : int
+        2: the impulse ends at ``a2`` (m) moving right; free flight begins.
+    IMPACT_A3 : int
+        3: impact at ``a3`` (m) moving left; the impulse zone ``(a4, a3)`` begins.
+    ZONE_END_A4 : int
+        4: the impulse ends at ``a4`` (m) moving left; free flight begins.
+
+    Examples
+    --------
+    >>> from escapement import EventKind
+    >>> EventKind(3)
+    <EventKind.IMPACT_A3: 3>
+    >>> EventKind.IMPACT_A3.is_impact, EventKind.ZONE_END_A4.is_impact
+    (True, False)
+    >>> EventKind.IMPACT_A1 == 1  # an int: compares equal to the stored code
+    True
+    """
 
     IMPACT_A1 = 1  #: impact at a1 moving right; the impulse zone (a1, a2) begins
     ZONE_END_A2 = 2  #: the impulse ends at a2 moving right; free flight begins
@@ -20,12 +47,42 @@ class EventKind(IntEnum):
 
     @property
     def is_impact(self) -> bool:
+        """True for the impacts (at ``a1`` and ``a3``), False for the ends of the impulse zones."""
         return self in (EventKind.IMPACT_A1, EventKind.IMPACT_A3)
 
 
 @dataclass(frozen=True)
 class EventLog:
-    """Every event in time order: time [s], kind, position [m], velocity before and after [m/s]."""
+    """Every event in time order: time [s], kind, position [m], velocity before and after [m/s].
+
+    The solvers make it (:attr:`escapement.Solution.events`); all five arrays have one entry per
+    event. The high-precision solver stores mpmath numbers (object arrays).
+
+    Parameters
+    ----------
+    t : numpy.ndarray of float, shape (n,)
+        Time of each event, s.
+    kind : numpy.ndarray of int, shape (n,)
+        Kind of each event, as :class:`EventKind` codes.
+    x : numpy.ndarray of float, shape (n,)
+        Position of each event (``a1`` .. ``a4``), m.
+    v_before : numpy.ndarray of float, shape (n,)
+        Velocity just before each event, m/s.
+    v_after : numpy.ndarray of float, shape (n,)
+        Velocity just after each event, m/s (the impact law ``v+ = (1 - b) v-`` at the impacts, the
+        velocity before at the ends of the impulse zones).
+
+    Examples
+    --------
+    >>> from escapement import EventKind, Parameters, solve_exact
+    >>> run = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=2)
+    >>> log = run.events
+    >>> len(log), [EventKind(k).name for k in log.kind[:3]]
+    (11, ['IMPACT_A3', 'ZONE_END_A4', 'IMPACT_A1'])
+    >>> i = log.of_kind(EventKind.IMPACT_A1)[0]
+    >>> float(log.x[i]), bool(abs(log.v_after[i] - 0.9 * log.v_before[i]) < 1e-15)
+    (-0.1, True)
+    """
 
     t: np.ndarray
     kind: np.ndarray
@@ -37,5 +94,16 @@ class EventLog:
         return len(self.t)
 
     def of_kind(self, kind: EventKind) -> np.ndarray:
-        """Indices of the events of one kind."""
+        """Indices of the events of one kind.
+
+        Parameters
+        ----------
+        kind : EventKind
+            The kind of event.
+
+        Returns
+        -------
+        numpy.ndarray of int
+            Their indices into the log's arrays, in time order.
+        """
         return np.flatnonzero(self.kind == int(kind))

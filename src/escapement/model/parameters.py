@@ -79,6 +79,30 @@ class ParameterError(ValueError):
     """An input value is outside its allowed range; the message names it.
 
     ``row`` is the index of the offending trajectory when the input is an array of them.
+
+    Parameters
+    ----------
+    name : str
+        The input's name (``"a2"``, ``"n_cycles"``, ...), kept as the attribute ``name``.
+    value : object
+        The refused value, as given (in the input's SI unit).
+    requirement : str
+        What the value must be, in words, with the unit.
+    row : int or None
+        The index of the offending trajectory for an array input (the ensemble), else None.
+
+    Examples
+    --------
+    >>> from escapement import ParameterError, Parameters
+    >>> try:
+    ...     Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=-0.2)
+    ... except ParameterError as err:
+    ...     print(err.name, err.value)
+    ...     print(err)
+    a2 -0.2
+    a2 = -0.2 is invalid: a2 must be > a1 = -0.1 (m)
+    >>> isinstance(ParameterError("b", 3.0, "in (0, 2)"), ValueError)
+    True
     """
 
     def __init__(self, name: str, value: object, requirement: str, row: int | None = None) -> None:
@@ -233,6 +257,42 @@ class Parameters:
 
     ``a3`` and ``a4`` default to the symmetric geometry ``a3 = -a1``,
     ``a4 = -a2``; give them to study the paper's asymmetric map, Eq. (16).
+    Every value is checked when the parameters are made (:func:`rules`) and stored as a float.
+
+    Parameters
+    ----------
+    M : float
+        Mass, kg (> 0).
+    K : float
+        Spring constant, N/m (> 0).
+    F : float
+        Force of the escapement over an impulse zone, N (>= 0).
+    b : float
+        Impact coefficient, dimensionless, in ``(0, 2)``: the impact law is ``v+ = (1 - b) v-``.
+    a1 : float
+        Impact position of the first half cycle (moving right), m (``a1 < 0`` in the paper).
+    a2 : float
+        End of the first impulse zone, m (``> a1``).
+    a3 : float, optional
+        Impact position of the second half cycle (moving left), m; default ``-a1``.
+    a4 : float, optional
+        End of the second impulse zone, m (``< a3``); default ``-a2``.
+
+    Raises
+    ------
+    ParameterError
+        If a value is not a finite real number or breaks a rule; the message names it and the rule.
+
+    Examples
+    --------
+    The paper's Fig. 3 (a) (Sec. 4):
+
+    >>> from escapement import Parameters
+    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    >>> p
+    Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05, a3=0.1, a4=-0.05)
+    >>> p.symmetric, p.omega, round(p.natural_period, 6)
+    (True, 1.0, 6.283185)
     """
 
     M: float

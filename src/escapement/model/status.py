@@ -15,7 +15,35 @@ __all__ = ["Status", "flag_attributes"]
 
 
 class Status(str, Enum):
-    """How a run ended. ``value`` is the name written in text; :attr:`code` the stored integer."""
+    """How a run ended. ``value`` is the name written in text; :attr:`code` the stored integer.
+
+    Parameters
+    ----------
+    value : str
+        The name written in text (``"completed"``, ``"stopped"``, ...): ``Status("stopped")`` is
+        :attr:`STOPPED`; :meth:`from_code` looks a member up by its stored integer instead.
+
+    Attributes
+    ----------
+    COMPLETED : str
+        Code 0: the requested number of cycles, or the requested end time (s), was reached.
+    STOPPED : str
+        Code 1: the free swing never reaches the next impact position; the mass oscillates freely.
+    TURNED_BACK_IN_ZONE : str
+        Code 2: the velocity vanished inside an impulse zone, outside the model.
+    CHATTERING : str
+        Code 3: an impact reversed the velocity (``b > 1``).
+    EVENT_LIMIT : str
+        Code 4: the bound on the number of events was reached first.
+
+    Examples
+    --------
+    >>> from escapement import Status
+    >>> Status("stopped").code, Status.STOPPED.success, Status.COMPLETED.success
+    (1, False, True)
+    >>> Status.from_code(2)
+    <Status.TURNED_BACK_IN_ZONE: 'turned_back_in_zone'>
+    """
 
     COMPLETED = "completed"
     """The requested number of cycles, or the requested end time, was reached."""
@@ -49,7 +77,23 @@ class Status(str, Enum):
 
     @classmethod
     def from_code(cls, code: int) -> Status:
-        """The outcome whose :attr:`code` is ``code``."""
+        """The outcome whose :attr:`code` is ``code``.
+
+        Parameters
+        ----------
+        code : int
+            A stored code, 0 to 4.
+
+        Returns
+        -------
+        Status
+            The outcome.
+
+        Raises
+        ------
+        ValueError
+            If no outcome has that code.
+        """
         for status, value in CODES.items():
             if value == int(code):
                 return status

@@ -69,6 +69,63 @@ def solve_ensemble(
     :data:`~escapement.model.limits.MEMORY_BUDGET`: ``n_cycles + 1`` times the number of trajectories at most
     :data:`MAX_CELLS`), or a :class:`~escapement.model.limits.MemoryBudgetError` says so before any work.
     With ``amplitude=False`` the per-cycle maxima are not computed.
+
+    The model's inputs and the initial state are numbers or arrays, broadcast to one shape; each
+    element is one trajectory (the result's rows follow the flattened shape).
+
+    Parameters
+    ----------
+    M : float or array_like
+        Mass, kg.
+    K : float or array_like
+        Spring constant, N/m.
+    F : float or array_like
+        Force of the escapement over an impulse zone, N.
+    b : float or array_like
+        Impact coefficient, dimensionless, in ``(0, 2)``.
+    a1 : float or array_like
+        Impact position of the first half cycle (moving right), m.
+    a2 : float or array_like
+        End of the first impulse zone, m.
+    a3 : float or array_like, optional
+        Impact position of the second half cycle (moving left), m; default ``-a1``.
+    a4 : float or array_like, optional
+        End of the second impulse zone, m; default ``-a2``.
+    x0 : float or array_like, default 1
+        Initial displacement at ``t = 0+``, m.
+    v0 : float or array_like, default 0
+        Initial velocity at ``t = 0+``, m/s.
+    n_cycles : int
+        Complete cycles to run.
+    max_events : int, optional
+        Bound on the number of events of each trajectory.
+    amplitude : bool, default True
+        Compute the per-cycle maxima of ``x`` (m); NaN without.
+    memory_budget : int, optional
+        The most bytes the run may take (default :data:`~escapement.model.limits.MEMORY_BUDGET`, 2 GB).
+
+    Returns
+    -------
+    EnsembleSolution
+        One row per trajectory: outcomes, end times (s), the per-cycle table (impact time in s,
+        velocity before impact in m/s, period in s, amplitude in m) of shape ``(N, n_cycles)``.
+
+    Raises
+    ------
+    ParameterError
+        If an input is invalid (the message names it and the row), or
+        (:class:`~escapement.model.limits.MemoryBudgetError`) the run would exceed ``memory_budget``.
+
+    Examples
+    --------
+    Two forces (N) at once:
+
+    >>> from escapement import solve_ensemble
+    >>> runs = solve_ensemble(M=1.0, K=1.0, F=[0.5, 1.0], b=0.1, a1=-0.1, a2=0.05, x0=1.0, n_cycles=3)
+    >>> runs.cycles.period.shape, bool(runs.success.all())
+    ((2, 3), True)
+    >>> runs.cycles.period[:, -1].round(4)  # s
+    array([6.2991, 6.2979])
     """
     limits = RunLimits(n_cycles=n_cycles, max_events=max_events, memory_budget=memory_budget)
     if not isinstance(amplitude, bool | np.bool_):

@@ -672,6 +672,62 @@ def solve_exact(
     run above ``memory_budget`` bytes (default :data:`~escapement.model.limits.MEMORY_BUDGET`) is refused
     with a :class:`~escapement.model.limits.MemoryBudgetError`; :func:`escapement.solvers.stream.iter_cycles`
     gives the cycles of any run in constant memory.
+
+    Parameters
+    ----------
+    params : Parameters
+        The model's parameters (SI units: kg, N/m, N, 1, m).
+    x0 : float
+        Initial displacement at ``t = 0+``, m.
+    v0 : float, default 0
+        Initial velocity at ``t = 0+``, m/s.
+    n_cycles : int, optional
+        Complete cycles to run (cycle ``k`` runs from the ``k``-th impact at ``a1`` to the next); at
+        least one of ``n_cycles`` and ``t_end`` is given.
+    t_end : float, optional
+        End time, s.
+    max_events : int, optional
+        Bound on the number of events (default: those of ``n_cycles`` cycles with a margin, or
+        10**7 for a run to ``t_end`` alone).
+    record_trajectory : bool, default True
+        Keep the harmonic arcs, for :meth:`Solution.sample <escapement.Solution.sample>`.
+    memory_budget : int, optional
+        The most bytes the result may hold (default :data:`~escapement.model.limits.MEMORY_BUDGET`, 2 GB).
+
+    Returns
+    -------
+    Solution
+        The run: ``status`` and ``message`` (how it ended), ``events``, ``cycles`` (the Poincare
+        map: impact time in s, velocity before impact in m/s, period in s, amplitude in m),
+        ``trajectory`` and ``t_final`` (s). Leaving the escapement regime is an outcome, not an error.
+
+    Raises
+    ------
+    TypeError
+        If ``params`` is not a :class:`~escapement.Parameters`.
+    ParameterError
+        If ``x0``, ``v0`` or a limit is invalid (the message names it); a
+        :class:`~escapement.model.limits.MemoryBudgetError` if the run would exceed ``memory_budget``.
+
+    Examples
+    --------
+    The paper's Fig. 3 (a), released from rest at ``x0 = 1`` m:
+
+    >>> from escapement import Parameters, solve_exact
+    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    >>> run = solve_exact(p, x0=1.0, n_cycles=50)
+    >>> run.status, len(run.cycles)
+    (<Status.COMPLETED: 'completed'>, 50)
+    >>> round(float(run.cycles.period[-1]), 4)  # s
+    6.2957
+    >>> x, v, a = run.sample([0.0, 1.0])  # m, m/s, m/s**2
+    >>> round(float(x[1]), 6)
+    0.540302
+
+    A release too close to the centre never reaches an impact position:
+
+    >>> solve_exact(p, x0=0.01, n_cycles=5).status
+    <Status.STOPPED: 'stopped'>
     """
     if not isinstance(params, Parameters):
         raise TypeError("params must be an escapement.Parameters")

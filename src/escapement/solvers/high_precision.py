@@ -71,7 +71,50 @@ class MpmathStepper:
 def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = 50,
                          t_end: float | None = None, max_events: int | None = None, dps: int = 50) -> Solution:
     """Run the model in ``dps``-digit arithmetic (17 to 1000 digits) from ``(x0, v0)`` at ``t = 0+``;
-    the limits and outcomes are those of :func:`escapement.solvers.exact.solve_exact`."""
+    the limits and outcomes are those of :func:`escapement.solvers.exact.solve_exact`.
+
+    Parameters
+    ----------
+    params : Parameters
+        The model's parameters (SI units: kg, N/m, N, 1, m).
+    x0 : float
+        Initial displacement at ``t = 0+``, m.
+    v0 : float, default 0
+        Initial velocity at ``t = 0+``, m/s.
+    n_cycles : int or None, default 50
+        Complete cycles to run (None: run to ``t_end``).
+    t_end : float, optional
+        End time, s.
+    max_events : int, optional
+        Bound on the number of events.
+    dps : int, default 50
+        Significant decimal digits of the arithmetic, 17 to 1000.
+
+    Returns
+    -------
+    Solution
+        The run; its event log and per-cycle arrays hold mpmath numbers (object arrays: ``float``
+        gives their nearest doubles), times in s, positions in m, velocities in m/s. No trajectory is
+        kept.
+
+    Raises
+    ------
+    TypeError
+        If ``params`` is not a :class:`~escapement.Parameters`.
+    ParameterError
+        If ``x0``, ``v0``, a limit or ``dps`` is invalid (the message names it).
+
+    Examples
+    --------
+    >>> from escapement import Parameters, solve_exact, solve_high_precision
+    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    >>> ref = solve_high_precision(p, x0=1.0, n_cycles=2, dps=30)
+    >>> ref.method, ref.status.value
+    ('mpmath 30 digits', 'completed')
+    >>> period = ref.cycles.period[-1]  # s, an mpmath number
+    >>> bool(abs(float(period) - solve_exact(p, x0=1.0, n_cycles=2).cycles.period[-1]) < 1e-13)
+    True
+    """
     if not isinstance(params, Parameters):
         raise TypeError("params must be an escapement.Parameters")
     x, v = check_initial_state(x0, v0)

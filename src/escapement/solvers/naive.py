@@ -66,7 +66,47 @@ class NaiveStepper:
 
 
 def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int, step: float) -> Solution:
-    """Run ``n_cycles`` cycles with fixed RK4 steps of ``step`` seconds."""
+    """Run ``n_cycles`` cycles with fixed RK4 steps of ``step`` seconds.
+
+    Events are applied at the end of the step that passes them, not located: the errors are of
+    the order of ``step`` (see the module's docstring). For comparison with the exact solver only.
+
+    Parameters
+    ----------
+    params : Parameters
+        The model's parameters (SI units: kg, N/m, N, 1, m).
+    x0 : float
+        Initial displacement at ``t = 0+``, m.
+    v0 : float, default 0
+        Initial velocity at ``t = 0+``, m/s.
+    n_cycles : int
+        Complete cycles to run.
+    step : float
+        The fixed step, s (finite and > 0).
+
+    Returns
+    -------
+    Solution
+        The run (times in s, positions in m, velocities in m/s); no trajectory is kept.
+
+    Raises
+    ------
+    TypeError
+        If ``params`` is not a :class:`~escapement.Parameters`.
+    ParameterError
+        If ``step``, ``x0``, ``v0`` or ``n_cycles`` is invalid (the message names it).
+
+    Examples
+    --------
+    >>> from escapement import Parameters, solve_exact, solve_naive
+    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    >>> rough = solve_naive(p, x0=1.0, n_cycles=2, step=1e-3)
+    >>> rough.method, len(rough.cycles)
+    ('naive RK4 h=0.001', 2)
+    >>> error = abs(rough.cycles.period[-1] - solve_exact(p, x0=1.0, n_cycles=2).cycles.period[-1])
+    >>> bool(error < 2e-3)  # s: of the order of the step
+    True
+    """
     if not isinstance(params, Parameters):
         raise TypeError("params must be an escapement.Parameters")
     if isinstance(step, bool) or not isinstance(step, float | int) or not (step > 0 and math.isfinite(step)):

@@ -335,6 +335,54 @@ def solve_reference(
     ``atol`` defaults to ``rtol`` times a length scale (the largest of |x0|, |a_i|, F/K
     and |v0|/omega) for x, and omega times that for v.  Same limits and outcomes as
     :func:`escapement.solvers.exact.solve_exact`.
+
+    Parameters
+    ----------
+    params : Parameters
+        The model's parameters (SI units: kg, N/m, N, 1, m).
+    x0 : float
+        Initial displacement at ``t = 0+``, m.
+    v0 : float, default 0
+        Initial velocity at ``t = 0+``, m/s.
+    n_cycles : int, optional
+        Complete cycles to run; at least one of ``n_cycles`` and ``t_end`` is given.
+    t_end : float, optional
+        End time, s.
+    max_events : int, optional
+        Bound on the number of events.
+    method : str, default "DOP853"
+        The integrator (see above).
+    rtol : float, default 1e-12
+        Relative tolerance, dimensionless, in ``(0, 1)``.
+    atol : float, optional
+        Absolute tolerance on ``x``, m (``omega`` times it on ``v``, m/s); default see above.
+    record_trajectory : bool, default True
+        Keep the dense output, for :meth:`Solution.sample <escapement.Solution.sample>` (not with CVODE).
+
+    Returns
+    -------
+    Solution
+        The run (times in s, positions in m, velocities in m/s).
+
+    Raises
+    ------
+    TypeError
+        If ``params`` is not a :class:`~escapement.Parameters`.
+    ValueError
+        If ``rtol`` is outside ``(0, 1)``, a CVODE method is asked to keep the trajectory, or (a
+        :class:`~escapement.ParameterError`) ``x0``, ``v0`` or a limit is invalid.
+    RuntimeError
+        If the integrator fails.
+
+    Examples
+    --------
+    >>> from escapement import Parameters, solve_exact, solve_reference
+    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    >>> ivp = solve_reference(p, x0=1.0, n_cycles=1, rtol=1e-10, record_trajectory=False)
+    >>> ivp.method, ivp.status.value
+    ('solve_ivp DOP853 rtol=1e-10', 'completed')
+    >>> bool(abs(ivp.cycles.period[0] - solve_exact(p, x0=1.0, n_cycles=1).cycles.period[0]) < 1e-8)  # s
+    True
     """
     if not isinstance(params, Parameters):
         raise TypeError("params must be an escapement.Parameters")

@@ -113,6 +113,51 @@ def iter_cycles(
     The limits are those of ``solve_exact``; regime exits end the stream, and its :attr:`CycleStream.summary`
     says how the run ended (status, message, exit, end time). ``chunk`` is at most :data:`MAX_CHUNK`, and a
     chunk's :data:`CHUNK_BYTES_PER_CYCLE` bytes a cycle at most ``memory_budget``.
+
+    Parameters
+    ----------
+    params : Parameters
+        The model's parameters (SI units: kg, N/m, N, 1, m).
+    x0 : float
+        Initial displacement at ``t = 0+``, m.
+    v0 : float, default 0
+        Initial velocity at ``t = 0+``, m/s.
+    n_cycles : int, optional
+        Complete cycles to run; at least one of ``n_cycles`` and ``t_end`` is given.
+    t_end : float, optional
+        End time, s.
+    max_events : int, optional
+        Bound on the number of events.
+    chunk : int, default 100_000
+        The most cycles a chunk holds.
+    memory_budget : int, optional
+        The most bytes a chunk may take (default :data:`~escapement.model.limits.MEMORY_BUDGET`, 2 GB).
+
+    Returns
+    -------
+    CycleStream
+        An iterator of :class:`~escapement.solvers.result.CycleTable` chunks (impact time in s,
+        velocity before impact in m/s, period in s, amplitude in m); the run goes on as it is iterated.
+
+    Raises
+    ------
+    TypeError
+        If ``params`` is not a :class:`~escapement.Parameters`.
+    ParameterError
+        If ``x0``, ``v0``, a limit or ``chunk`` is invalid, or
+        (:class:`~escapement.model.limits.MemoryBudgetError`) a chunk would exceed ``memory_budget``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from escapement import Parameters, iter_cycles, solve_exact
+    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    >>> stream = iter_cycles(p, x0=1.0, n_cycles=250, chunk=100)
+    >>> periods = [chunk.period for chunk in stream]  # s
+    >>> [len(c) for c in periods], stream.summary.status.value
+    ([100, 100, 50], 'completed')
+    >>> bool(np.array_equal(np.concatenate(periods), solve_exact(p, x0=1.0, n_cycles=250).cycles.period))
+    True
     """
     if not isinstance(params, Parameters):
         raise TypeError("params must be an escapement.Parameters")

@@ -1,0 +1,196 @@
+"""What a notebook sees of a run: a short repr, the run as a CF dataset (``to_xarray``) and its
+cycles and events as tables (``to_dataframe``)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pandas as pd
+import pytest
+import xarray as xr
+
+from escapement import EventKind, Parameters, Status, solve_ensemble, solve_exact, solve_high_precision
+from escapement.io.netcdf import read_netcdf, write_netcdf
+
+
+@pytest.fixture(scope="module")
+def run50():
+    """Fig. 3 (a) (M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m) from x0 = 1 m, 50 cycles."""
+    return solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=50)
+
+
+@pytest.fixture(scope="module")
+def stopped():
+    """Released at 0.01 m from rest, the free swing (radius 0.01 m) never reaches a1 = -0.1 m or a3 = 0.1 m."""
+    return solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 0.01, n_cycles=5)
+
+
+# --- repr ---------------------------------------------------------------------------------------
+
+
+def test_the_repr_of_a_50_cycle_run_is_a_short_summary(run50):
+    text = repr(run50)
+    assert len(text) < 1000
+    assert len(text.splitlines()) <= 12
+    assert text.splitlines()[0] == "<escapement.Solution> completed (exact)"
+    assert "completed 50 cycles" in text
+    assert "array(" not in text  # no array is printed, whatever the length of the run
+    assert f"events:     {len(run50.events)} " in text
+    assert "cycles:     50;" in text
+    params = next(line for line in text.splitlines() if line.startswith("parameters:"))
+    assert params == ("parameters: M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m, a3 = 0.1 m, "
+                      "a4 = -0.05 m")
+    assert "initial:    x0 = 1 m, v0 = 0 m/s" in text
+    assert str(run50) == text
+
+
+def test_the_repr_does_not_grow_with_the_run():
+    p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    short, long = (repr(solve_exact(p, 1.0, n_cycles=n, record_trajectory=False)) for n in (5, 5000))
+    assert len(long.splitlines()) == len(short.splitlines())
+    assert abs(len(long) - len(short)) < 20  # only the digits of the counts and times differ
+
+
+def test_the_repr_of_a_regime_exit_names_it_and_its_numbers(stopped):
+    text = repr(stopped)
+    assert text.splitlines()[0] == "<escapement.Solution> stopped (exact)"
+    assert "t = 0 .. inf s" in text
+    assert "exit:       turning_point = 0.01 m, margin = 0.09 m" in text
+    assert "a1 = -0.1 m (moving right)" in text  # the message, wrapped but whole
+    assert max(len(line) for line in text.splitlines()) <= 120
+
+
+def test_the_repr_of_a_high_precision_run_prints_its_numbers_as_doubles():
+    p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    hp = solve_high_precision(p, 1.0, n_cycles=2, dps=20)
+    text = repr(hp)
+    assert text.splitlines()[0] == "<escapement.Solution> completed (mpmath 20 digits)"
+    assert f"period {float(hp.cycles.period[-1]):.6g} s" in text
+    assert "trajectory: not kept" in text
+
+
+def test_the_repr_of_an_ensemble_counts_the_outcomes_in_a_few_lines():
+    x0 = np.where(np.arange(1000) % 4 == 0, 0.01, 1.0)  # a quarter released inside the free swing: they stop
+    runs = solve_ensemble(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05, x0=x0, n_cycles=20)
+    text = repr(runs)
+    assert len(text) < 1000
+    assert text.splitlines()[0] == "<escapement.EnsembleSolution> 1000 trajectories, 20 cycles (exact, vectorised ensemble)"
+    assert "outcomes:                completed 750, stopped 250" in text
+    assert "exit_turning_point:      0.01 m" in text
+    assert "array(" not in text
+
+
+def test_the_cycle_table_and_arcs_print_short(run50):
+    cycles = repr(run50.cycles)
+    assert cycles.splitlines()[0] == "<CycleTable> 50 cycles"
+    lo, hi = run50.cycles.period.min(), run50.cycles.period.max()
+    assert f"period                  {lo:.6g} .. {hi:.6g} s" in cycles
+    assert len(cycles) < 400
+    arcs = repr(run50.trajectory)
+    assert arcs.startswith(f"<ArcTable> {len(run50.trajectory.t_start)} harmonic arcs") and len(arcs) < 200
+
+
+# --- to_xarray ----------------------------------------------------------------------------------
+
+
+def test_to_xarray_round_trips_through_the_netcdf_writer_with_units_everywhere(run50, tmp_path):
+    ds = run50.to_xarray()
+    path = write_netcdf(ds, tmp_path / "run.nc")
+    back = read_netcdf(path)
+    xr.testing.assert_identical(back, ds)
+    without_units = {name for name, variable in back.variables.items() if "units" not in variable.attrs}
+    assert without_units == {"event_kind"}  # a CF flag variable: flag_values and flag_meanings, no units
+    assert "flag_values" in back["event_kind"].attrs
+    assert all("long_name" in variable.attrs for variable in back.variables.values())
+
+
+def test_to_xarray_holds_the_solution_s_arrays_and_outcome(run50):
+    ds = run50.to_xarray()
+    np.testing.assert_array_equal(ds["period"].values, run50.cycles.period)
+    np.testing.assert_array_equal(ds["velocity_before_impact"].values, run50.cycles.velocity_before_impact)
+    np.testing.assert_array_equal(ds["cycle"].values, np.arange(1, 51))
+    np.testing.assert_array_equal(ds["event_time"].values, run50.events.t)
+    np.testing.assert_array_equal(ds["event_kind"].values, run50.events.kind)
+    assert float(ds["t_final"]) == run50.t_final
+    assert {name: ds[name].attrs["units"] for name in ("period", "velocity_before_impact", "K", "x0", "t_final")} == {
+        "period": "s", "velocity_before_impact": "m s-1", "K": "N m-1", "x0": "m", "t_final": "s"}
+    assert float(ds["F"]) == 1.0 and float(ds["x0"]) == 1.0 and float(ds["a3"]) == 0.1
+    assert ds.attrs["outcome"] == "completed" and ds.attrs["solver"] == "exact"
+    assert ds.attrs["outcome_message"] == "completed 50 cycles"
+    assert ds.attrs["Conventions"] == "CF-1.11, ACDD-1.3"
+    assert np.isnan(float(ds["exit_margin"]))
+
+
+def test_to_xarray_of_a_stopped_run_keeps_the_exit_and_an_infinite_end(stopped, tmp_path):
+    back = read_netcdf(write_netcdf(stopped.to_xarray(), tmp_path / "stopped.nc"))
+    assert back.sizes["cycle"] == 0 and back.sizes["event"] == 0
+    assert float(back["t_final"]) == np.inf
+    assert float(back["exit_turning_point"]) == 0.01
+    assert float(back["exit_margin"]) == pytest.approx(0.1 - 0.01, abs=1e-15)
+    assert back.attrs["outcome"] == "stopped"
+
+
+def test_to_xarray_of_a_high_precision_run_stores_the_nearest_doubles(tmp_path):
+    p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    hp = solve_high_precision(p, 1.0, n_cycles=2, dps=20)
+    back = read_netcdf(write_netcdf(hp.to_xarray(), tmp_path / "hp.nc"))
+    assert back["period"].dtype == np.float64
+    assert back["period"].values.tolist() == [float(x) for x in hp.cycles.period]
+    assert back["event_velocity_after"].values.tolist() == [float(x) for x in hp.events.v_after]
+
+
+def test_importing_the_solvers_imports_neither_io_nor_xarray_nor_pandas():
+    """to_xarray and to_dataframe import the io layer on use: the solvers stay below it."""
+    code = ("import sys, escapement.solvers\n"
+            "print(sorted({'escapement.io', 'escapement.io.dataset', 'xarray', 'pandas'} & set(sys.modules)))")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert result.stdout.strip() == "[]"
+
+
+# --- to_dataframe -------------------------------------------------------------------------------
+
+
+def test_the_cycles_dataframe_copies_the_cycle_table(run50):
+    df = run50.to_dataframe("cycles")
+    assert isinstance(df, pd.DataFrame)
+    assert df.index.name == "cycle" and df.index.tolist() == list(range(1, 51))
+    for name in ("impact_time", "velocity_before_impact", "period", "amplitude"):
+        np.testing.assert_array_equal(df[name].to_numpy(), getattr(run50.cycles, name))
+    assert df.loc[50, "period"] == run50.cycles.period[-1]
+    assert df.attrs["units"] == {"impact_time": "s", "velocity_before_impact": "m s-1", "period": "s", "amplitude": "m"}
+    assert set(df.attrs["long_names"]) == set(df.columns)
+    assert run50.to_dataframe().equals(df)  # cycles by default
+
+
+def test_the_events_dataframe_copies_the_event_log(run50):
+    df = run50.to_dataframe("events")
+    ev = run50.events
+    assert len(df) == len(ev) and df.index.name == "event" and df.index[0] == 0
+    np.testing.assert_array_equal(df["event_time"].to_numpy(), ev.t)
+    np.testing.assert_array_equal(df["event_velocity_after"].to_numpy(), ev.v_after)
+    np.testing.assert_array_equal(df["event_position"].to_numpy(), ev.x)
+    impacts = df[df["event_kind"] == EventKind.IMPACT_A1]
+    assert impacts.index.tolist() == ev.of_kind(EventKind.IMPACT_A1).tolist()
+    assert (impacts["event_position"] == -0.1).all()  # every impact at a1 is at a1
+    assert df.attrs["units"]["event_velocity_before"] == "m s-1" and "event_kind" not in df.attrs["units"]
+
+
+def test_the_dataframes_of_a_high_precision_run_hold_doubles():
+    p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    hp = solve_high_precision(p, 1.0, n_cycles=2, dps=20)
+    df = hp.to_dataframe("cycles")
+    assert df["amplitude"].dtype == np.float64
+    assert df["amplitude"].tolist() == [float(x) for x in hp.cycles.amplitude]
+    assert hp.to_dataframe("events")["event_time"].tolist() == [float(x) for x in hp.events.t]
+
+
+def test_an_unknown_table_is_refused_by_name(run50):
+    with pytest.raises(ValueError, match="table = 'impacts' is invalid: table must be one of 'cycles', 'events'"):
+        run50.to_dataframe("impacts")
+
+
+def test_a_stopped_run_gives_empty_tables(stopped):
+    assert stopped.status is Status.STOPPED
+    assert stopped.to_dataframe("cycles").empty and stopped.to_dataframe("events").empty
