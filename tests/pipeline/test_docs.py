@@ -48,3 +48,17 @@ def test_the_verdict_html_counts_the_claims_and_escapes_every_cell():
     assert '<table id="claims"' in text and '<table id="stress"' in text
     assert "x &lt; y &amp; z" in text and "&lt;d&gt;" in text and "<d>" not in text
     assert text.count("<tr><td>") == 4
+
+
+def test_markdown_html_renders_headings_tables_and_code_as_a_fragment():
+    from escapement.pipeline.docs import markdown_html
+
+    text = ("<!-- generated -->\n# Title\n\n## 1. Section\n\n| a | b |\n|---|---|\n| 1 | x < y |\n\n"
+            "```bash\nsnakemake --cores 2\n```\n")
+    html = markdown_html(text)
+    assert "<h1>Title</h1>" in html and "<h2>1. Section</h2>" in html
+    assert '<table class="verdict">' in html
+    assert "<th>a</th>" in html and "<td>1</td>" in html and "<td>x &lt; y</td>" in html
+    assert '<pre><code class="language-bash">snakemake --cores 2\n</code></pre>' in html
+    assert "<!-- generated -->" in html
+    assert "<html" not in html and "<body" not in html

@@ -11,6 +11,8 @@ A template is Markdown with placeholders:
 * ``{{ table:<name> }}``: a Markdown table made by the caller (for example ``stress``).
 
 An unknown placeholder, claim or column is an error, so that no stale or typed number survives.
+
+:func:`markdown_html` turns a rendered document into HTML for the Snakemake report.
 """
 
 from __future__ import annotations
@@ -19,10 +21,14 @@ import html
 import os
 import re
 
+import markdown
+from markdown.extensions import Extension
+from markdown.treeprocessors import Treeprocessor
+
 from ..io.atomic import atomic_path
 from ..paper.claims import COLUMNS, STATUSES
 
-__all__ = ["claims_table", "html_table", "markdown_table", "render", "verdict_html", "write_text"]
+__all__ = ["claims_table", "html_table", "markdown_html", "markdown_table", "render", "verdict_html", "write_text"]
 
 PLACEHOLDER = re.compile(r"\{\{\s*([a-z_]+)(?::([A-Za-z0-9_]+))?(?::([a-z_]+))?\s*\}\}")
 STATUS_LABEL = {"reproduced": "reproduced", "partially_reproduced": "partially", "not_reproduced": "**not reproduced**"}
@@ -90,6 +96,28 @@ def verdict_html(claims: list[dict[str, str]], stress: list[dict[str, str]]) -> 
                    "The stress cases (results/stress/summary.csv)", "stress"),
     ]
     return "\n".join(lines) + "\n"
+
+
+class _TableClass(Treeprocessor):
+    """Give every table of the document the class of the verdict tables (:func:`html_table`)."""
+
+    def run(self, root):
+        for table in root.iter("table"):
+            table.set("class", "verdict")
+
+
+class _TableClassExtension(Extension):
+    def extendMarkdown(self, md):  # noqa: N802 (Python-Markdown's name)
+        md.treeprocessors.register(_TableClass(md), "table_class", 0)
+
+
+def markdown_html(text: str) -> str:
+    """``text`` (Markdown, with pipe tables and fenced code blocks) as an HTML fragment, no
+    ``<html>`` or ``<body>``, for the report's landing page; its tables take the class
+    ``verdict``, as those of :func:`verdict_html` do. Raw HTML in ``text`` (the generated-file
+    comment) passes through unchanged."""
+    converter = markdown.Markdown(extensions=["tables", "fenced_code", _TableClassExtension()], output_format="html")
+    return converter.convert(text) + "\n"
 
 
 def render(
