@@ -24,9 +24,24 @@ MODEL = {"M": 1.0, "K": 1.0, "b": 0.1, "F": 0.0, "a1": -0.1, "a2": 0.05}
 
 def test_poincare_scene_keeps_no_trajectory(case_a):
     ds = poincare_scene(case_a, 1.0, 50)
-    assert set(ds.dims) == {"cycle", "event"}
+    assert set(ds.dims) == {"cycle", "event", "amplitude_cycle"}
     assert ds.sizes["cycle"] == 50
     assert ds["cycle"].values[0] == 1
+
+
+def test_poincare_scene_amplitudes_by_definition(case_a):
+    """From -1 m the free arc before the first impact has the Step-1 amplitude |x0| = 1 m (energy
+    is conserved on it: derived on paper); Step 1 has one value more than there are cycles, Step 8
+    is it shifted by one; the largest displacement is the right turning point."""
+    step1 = poincare_scene(case_a, -1.0, 5, "step1")["amplitude"]
+    assert step1.sizes["amplitude_cycle"] == 6 and step1.attrs["definition"] == "step1"
+    assert float(step1[0]) == pytest.approx(1.0, rel=1e-14)
+    step8 = poincare_scene(case_a, -1.0, 5, "step8")["amplitude"]
+    np.testing.assert_array_equal(step8.values, step1.values[1:])
+    largest = poincare_scene(case_a, -1.0, 5, "largest_displacement")
+    np.testing.assert_array_equal(largest["amplitude"].values, solve_exact(case_a, -1.0, n_cycles=5).cycles.amplitude)
+    with pytest.raises(ParameterError, match="amplitude"):
+        poincare_scene(case_a, -1.0, 5, "peak")
 
 
 def test_shock_scene_samples_only_inside_its_windows(case_b):

@@ -147,7 +147,7 @@ def status(c: dict, ev: Evidence) -> str:
 def test_the_register_names_only_registered_checks_and_uses_every_one():
     used = {c["check"] for c in yaml.safe_load(REGISTER.read_text())["claims"]}
     assert used == set(CHECKS)
-    assert len(cl.load_claims(REGISTER)) == 34
+    assert len(cl.load_claims(REGISTER)) == 37
 
 
 def test_the_register_gives_the_fig3_cases_of_the_configuration():
@@ -218,10 +218,9 @@ def test_a_malformed_register_is_rejected(tmp_path, mutate, message):
 
 
 def test_rows_have_the_columns_and_the_printed_paper_values():
-    rows = cl.evaluate([claim("axis_range", tolerance=None, paper_value=[0.5, 3.0], case="b",
-                              quantity="velocity_before_impact")], evidence())
+    rows = cl.evaluate([claim("fig5_converge", paper_value=[0.5, 3.0])], evidence())
     assert list(rows[0]) == cl.COLUMNS
-    assert rows[0]["paper_value"] == "[0.5, 3]" and rows[0]["tolerance"] == ""
+    assert rows[0]["paper_value"] == "[0.5, 3]" and rows[0]["tolerance"] == "1e-08"
 
 
 def test_fmt_is_stable_and_short():
@@ -397,12 +396,6 @@ def test_period_initial_condition():
     assert status(c, evidence(checks=runs(*paper, {**same, "outcome": "stopped"}))) == "not_reproduced"
 
 
-def test_axis_range():
-    c = claim("axis_range", tolerance=None, paper_value=[0.95, 1.3], case="a", quantity="velocity_before_impact")
-    assert status(c, evidence()) == "reproduced"  # from 1 up to 1.2566 m/s
-    assert status(c, evidence(fig3={"a": fig3_ds(v0=0.9)})) == "not_reproduced"
-
-
 # --- Sec. 4, Fig. 4 ------------------------------------------------------------------------------
 
 
@@ -411,13 +404,6 @@ def test_shock_readout():
     assert status(c, evidence()) == "reproduced"  # impulse -b M v-, energy M v-^2 (2b - b^2)/2
     assert status(c, evidence(fig4=fig4_ds(impulse=[-0.08, 0.09]))) == "not_reproduced"
     assert status(c, evidence(fig4=fig4_ds(vb=[]))) == "not_reproduced"
-
-
-@pytest.mark.parametrize("quantity, window", [("velocity", "velocity_window"), ("acceleration", "acceleration_window")])
-def test_shock_axis(quantity, window):
-    c = claim("shock_axis", tolerance=None, paper_value=[-0.1, 0.9], quantity=quantity, window=window)
-    assert status(c, evidence(fig4=fig4_ds(swing=0.05))) == "reproduced"
-    assert status(c, evidence(fig4=fig4_ds(swing=0.5))) == "not_reproduced"
 
 
 # --- Sec. 4, Fig. 5 (ordered by the attribute K, whatever the labels) ----------------------------

@@ -38,7 +38,7 @@ MODEL = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05}
 #: a small configuration written out here, so that the expected scenes are known by hand
 CONFIG = {
     "model": dict(MODEL),
-    "fig3": {"n_cycles": 50, "cases": {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0, "b": 0.2}}},
+    "fig3": {"n_cycles": 50, "amplitude": "step1", "cases": {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0, "b": 0.2}}},
     "fig4": {
         "F": 0.5,
         "x0": 3.0,
@@ -66,6 +66,7 @@ CONFIG = {
         "slow_settings": {"naive-RK4": [1.0e-4], "Radau": [1.0e-9]},
     },
     "long_run": {"F": 1.0, "x0": 1.0, "n_cycles": 1000, "ivp_method": "DOP853", "ivp_rtol": 1.0e-12, "ivp_cycles": 100},
+    "escapement_error": {"F": {"start": 0.1, "stop": 0.4, "n": 3}, "zones": {"paper": [-0.1, 0.05]}},
     "stability_map": {"b": {"start": 0.0, "stop": 2.0, "n": 4}, "F": {"start": 1.0, "stop": 2.0, "n": 3}, "chunks": 3},
 }
 
@@ -90,9 +91,10 @@ def test_the_small_configuration_is_valid(config):
 
 def test_fig3_scene_merges_the_model_the_case_and_n_cycles(config):
     assert fig3_scene(config, "b") == {
-        "F": 0.5, "K": 1.0, "M": 1.0, "a1": -0.1, "a2": 0.05, "b": 0.2, "n_cycles": 50, "x0": 3.0,
+        "F": 0.5, "K": 1.0, "M": 1.0, "a1": -0.1, "a2": 0.05, "amplitude": "step1", "b": 0.2, "n_cycles": 50,
+        "x0": 3.0,
     }
-    assert list(fig3_scene(config, "a")) == ["F", "K", "M", "a1", "a2", "b", "n_cycles", "x0"]  # sorted
+    assert list(fig3_scene(config, "a")) == ["F", "K", "M", "a1", "a2", "amplitude", "b", "n_cycles", "x0"]  # sorted
     assert fig3_scene(config, "a")["b"] == 0.1
 
 
@@ -109,6 +111,39 @@ def test_fig5_labels_and_one_scene_per_spring_constant(config):
         **MODEL, "K": 10.0, "F": 0.5, "x0": 1.0, "n_cycles": 60, "samples_per_period": 400,
     }
     assert fig5_scene(config, "0.1")["K"] == 0.1
+
+
+def test_fig5_force_and_release_may_be_given_per_panel(config):
+    config["fig5"].update(F=[1.0, 0.5, 0.25], x0=[-1.0, -1.0, 3.0])
+    assert config_error(config, SCHEMA) is None
+    assert [(fig5_scene(config, k)["F"], fig5_scene(config, k)["x0"]) for k in ("0.1", "1", "10")] == [
+        (1.0, -1.0), (0.5, -1.0), (0.25, 3.0)]
+
+
+@pytest.mark.parametrize("key", ["F", "x0"])
+def test_a_per_panel_list_of_the_wrong_length_is_named(config, key):
+    config["fig5"][key] = [0.5, 0.5]
+    assert config_error(config, SCHEMA) == (
+        f"fig5.{key} = [0.5, 0.5] is invalid: {key} must be one number, or a list of 3 numbers, one per spring "
+        "constant of fig5.K = [0.1, 1.0, 10.0]")
+
+
+def test_the_amplitudes_the_schema_allows_are_those_the_readings_define():
+    from escapement.studies.readings import AMPLITUDES
+
+    assert SCHEMA["properties"]["fig3"]["properties"]["amplitude"]["enum"] == list(AMPLITUDES)
+
+
+def test_an_unknown_amplitude_is_refused_naming_the_choices(config):
+    config["fig3"]["amplitude"] = "peak"
+    assert config_error(config, SCHEMA) == (
+        "fig3.amplitude = 'peak' is invalid: amplitude must be one of step1, step8, largest_displacement, largest_abs")
+
+
+def test_the_escapement_error_forces_are_spaced_geometrically(config):
+    from escapement.pipeline.config import escapement_error_forces
+
+    assert escapement_error_forces(config) == pytest.approx([0.1, 0.2, 0.4], rel=1e-15)
 
 
 def test_check_cases_in_order_with_their_groups_and_labels(config):
@@ -318,6 +353,8 @@ def test_every_scene_override_refers_to_the_one_model_block(where):
             assert node["$ref"] == "#/$defs/model"
         elif where == "fig5" and name == "K":  # a list of spring constants, one panel each
             assert _resolve(own["items"]) is model["K"]
+        elif where == "fig5" and name == "F":  # one force, or one per panel
+            assert [_resolve(o if "$ref" in o else o["items"]) for o in own["anyOf"]] == [model["F"]] * 2
         else:
             assert _resolve(own) is model[name]
 

@@ -36,10 +36,13 @@ def files(tmp_path) -> dict:
          **MODEL},
         coords={"t": [80.0, 81.0, 82.0]}, attrs=OUTCOME,
     )
+    # a phase ellipse of 0.9 m by 0.95 m/s: with Fig. 5 (b)'s tick steps (0.5 m, 0.2 m/s) its axes round out to
+    # the printed -1 .. 1 and -1 .. 1
+    phase = np.linspace(0.0, 2.0 * np.pi, 9)
     fig5 = xr.Dataset(
-        {"velocity": ("t", np.zeros(3)), "impact_time": ("impact", [1.0]),
-         **{k: ("cycle", np.full(2, v)) for k, v in cycles.items()}, **MODEL},
-        coords={"t": [0.0, 1.0, 2.0]}, attrs=OUTCOME,
+        {"displacement": ("t", 0.9 * np.cos(phase)), "velocity": ("t", -0.95 * np.sin(phase)),
+         "impact_time": ("impact", [1.0]), **{k: ("cycle", np.full(2, v)) for k, v in cycles.items()}, **MODEL},
+        coords={"t": phase}, attrs=OUTCOME,
     )
     runs = xr.Dataset(
         {"label": ("case", ["p"]), "group": ("case", ["paper"]), "outcome": ("case", ["completed"]),
@@ -57,6 +60,8 @@ def files(tmp_path) -> dict:
          "check": "fixed_point", "args": {"case": "first"}},
         {"id": "multiplier", "source": "Eq. (21)", "statement": "s", "paper_value": 0.6561, "tolerance": 1e-8,
          "check": "multiplier_paper_cases"},
+        {"id": "fig5b_axes", "source": "Fig. 5 (b)", "statement": "s", "paper_value": None, "tolerance": None,
+         "check": "printed_axes", "args": {"figure": "5", "panel": "b"}},
     ]
     register.write_text(yaml.safe_dump({"version": 1, "claims": claims}))
     return {"register": str(register), "fig3": {"first": str(paths["fig3"])}, "fig4": str(paths["fig4"]),
@@ -67,9 +72,11 @@ def test_the_job_writes_one_row_per_claim_with_the_configured_label(tmp_path):
     output = tmp_path / "claims.csv"
     check_claims(**files(tmp_path), output=str(output), log=str(tmp_path / "log"))
     rows = read_claims_csv(output)
-    assert [r["claim_id"] for r in rows] == ["fixed_point_first", "multiplier"]
-    assert [r["status"] for r in rows] == ["reproduced", "reproduced"]
+    assert [r["claim_id"] for r in rows] == ["fixed_point_first", "multiplier", "fig5b_axes"]
+    assert [r["status"] for r in rows] == ["reproduced", "reproduced", "reproduced"]
     assert rows[0]["replicated_value"] == "1.256561725 m/s at cycle 2"
+    # the job autoscaled the Fig. 5 output itself (matplotlib, the printed tick steps)
+    assert rows[2]["replicated_value"] == "Displacement (m): [-1, 1]; Velocity (m/s): [-1, 1] (4 of 4 printed limits)"
 
 
 def test_the_job_fails_naming_the_claim_when_a_check_raises(tmp_path, monkeypatch):

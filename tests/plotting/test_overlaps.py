@@ -28,7 +28,8 @@ from escapement.io.scenes import (
     shock_scene,
     stability_chunk_scene,
 )
-from escapement.plotting.paper_figures import fig3, fig4, fig5, long_run, stability_map, work_precision
+from escapement.io.studies import escapement_error_scene
+from escapement.plotting.paper_figures import escapement_error, fig3, fig4, fig5, long_run, stability_map, work_precision
 from escapement.studies.benchmark import METHODS
 from escapement.studies.benchmark import work_precision as work_precision_rows
 
@@ -206,6 +207,15 @@ def _fig4():
     return fig4(shock_scene(paper_parameters(F=0.5), 3.0, (80.0, 87.0), (81.0, 85.0), 50))
 
 
+def _fig4_one_impact():  # the adopted reading: K = 0.1 N/m from -3 m, one impact and its impulse arrow
+    return fig4(shock_scene(paper_parameters(F=0.5, K=0.1), -3.0, (80.0, 87.0), (81.0, 85.0), 50))
+
+
+def _escapement_error():
+    zones = {"paper": [-0.1, 0.05], "before": [-0.2, -0.05], "after": [0.05, 0.2]}
+    return escapement_error(escapement_error_scene(paper_parameters(F=1.0), [0.1, 0.5, 2.0], zones))
+
+
 def _fig5():
     return fig5({f"{K:g}": phase_scene(paper_parameters(F=0.5, K=K), 1.0, 8, 60) for K in (0.1, 1.0, 10.0)})
 
@@ -232,7 +242,8 @@ def _stability_map():
     return stability_map(stability_chunk_scene(model, b, np.linspace(0.01, 2.0, 6), speed_sample=2)[0])
 
 
-FIGURES = {"fig3": _fig3, "fig4": _fig4, "fig5": _fig5, "fig5 stopped": _fig5_stopped,
+FIGURES = {"fig3": _fig3, "fig4": _fig4, "fig4 one impact": _fig4_one_impact, "escapement_error": _escapement_error,
+           "fig5": _fig5, "fig5 stopped": _fig5_stopped,
            "work_precision": _work_precision, "long_run": _long_run, "stability_map": _stability_map}
 
 

@@ -100,6 +100,45 @@ rule plot_long_run:
         "../scripts/plot_long_run.py"
 
 
+rule simulate_escapement_error:
+    input:
+        code=SIMULATE_CODE,
+    output:
+        nc="results/escapement_error/rate.nc",
+    log:
+        "results/logs/simulate_escapement_error.log",
+    localrule: True
+    conda:
+        "../../environment/environment.yml"
+    params:
+        model=scenes.stability_model(config),
+        forces=scenes.escapement_error_forces(config),
+        zones=config["escapement_error"]["zones"],
+    script:
+        "../scripts/simulate_escapement_error.py"
+
+
+rule plot_escapement_error:
+    input:
+        nc="results/escapement_error/rate.nc",
+        code=PLOT_CODE,
+    output:
+        png=report(
+            "results/figures/escapement_error.png",
+            caption="../report/escapement_error.rst",
+            category="Beyond the paper",
+            labels={"figure": "escapement error"},
+        ),
+        pdf="results/figures/escapement_error.pdf",
+    log:
+        "results/logs/plot_escapement_error.log",
+    localrule: True
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/plot_escapement_error.py"
+
+
 rule simulate_stability_chunk:
     input:
         code=SIMULATE_CODE,

@@ -89,8 +89,11 @@ RENDER_CODE = package_code(
     "paper",
     *IO,
     *PIPELINE,
+    "studies",
+    "plotting",
     "pipeline/docs.py",
     "pipeline/facts.py",
+    "pipeline/readings.py",
     "pipeline/render.py",
     "pipeline/verdict.py",
 )
@@ -106,7 +109,14 @@ PUBLISH_CODE = package_code(
 PUBLISHED = {
     **{
         f"figures/{fig}.{ext}": f"results/figures/{fig}.{ext}"
-        for fig in ("fig3", "fig4", "fig5", "long_run", "stability_map")
+        for fig in (
+            "fig3",
+            "fig4",
+            "fig5",
+            "long_run",
+            "stability_map",
+            "escapement_error",
+        )
         for ext in ("png", "pdf")
     },
     "README.md": "results/docs/README.md",
@@ -124,6 +134,7 @@ def all_outputs():
         "results/benchmark/work_precision.csv",
         "results/benchmark/long_run.nc",
         "results/stability/map.nc",
+        "results/escapement_error/rate.nc",
         "results/stress/summary.csv",
         "results/figures/work_precision.png",
         "results/docs/timings.md",

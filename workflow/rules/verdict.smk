@@ -6,7 +6,15 @@ rule check_claims:
         fig5=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
         checks="results/claims/checks.nc",
         code=package_code(
-            "model", "solvers", "paper", *IO, *PIPELINE, "pipeline/verdict.py"
+            "model",
+            "solvers",
+            "paper",
+            "studies",
+            "plotting",
+            *IO,
+            *PIPELINE,
+            "pipeline/readings.py",
+            "pipeline/verdict.py",
         ),
     output:
         csv=report(
@@ -36,6 +44,7 @@ rule render_docs:
         stability="results/stability/map.nc",
         stability_timing="results/stability/timing.csv",
         stress="results/stress/summary.csv",
+        readings="results/readings/axis_scores.csv",
         templates=["workflow/templates/README.md", "workflow/templates/REPLICATION.md"],
         timings_template="workflow/templates/timings.md",
         code=RENDER_CODE,
@@ -50,6 +59,8 @@ rule render_docs:
         ),
         # the verdict as HTML tables, shown on the report's landing page (workflow/report/workflow.rst)
         verdict="results/docs/verdict.html",
+        # REPLICATION.md as HTML, shown on the landing page too
+        replication_html="results/docs/replication.html",
     log:
         "results/logs/render_docs.log",
     localrule: True

@@ -26,6 +26,7 @@ from ..paper.poincare import ensemble_return_map, measure_cycle, return_map, sta
 from ..paper.printed import fixed_point_19
 from ..solvers.exact import solve_exact
 from ..studies.long_run import long_run
+from ..studies.readings import AMPLITUDES
 from .dataset import (
     CLASSIFICATION,
     MODEL_INPUT,
@@ -68,10 +69,24 @@ def _window_variable(lo: float, hi: float, long_name: str) -> xr.DataArray:
                         attrs={"units": "s", "long_name": long_name, "coverage_content_type": MODEL_INPUT})
 
 
-def poincare_scene(params: Parameters, x0: float, n_cycles: int) -> xr.Dataset:
-    """Fig. 3: velocity before impact, period and amplitude for cycles 1 .. n_cycles."""
-    run = solve_exact(params, x0, n_cycles=_positive_int("n_cycles", n_cycles), record_trajectory=False)
+def poincare_scene(params: Parameters, x0: float, n_cycles: int, amplitude: str = "largest_displacement"
+                   ) -> xr.Dataset:
+    """Fig. 3: velocity before impact, period and amplitude for cycles 1 .. n_cycles; the amplitude
+    is the definition ``amplitude`` names in :data:`escapement.studies.readings.AMPLITUDES`, on a
+    coordinate ``amplitude_cycle`` of its own (the Step-1 amplitude has one value more than there
+    are cycles)."""
+    if amplitude not in AMPLITUDES:
+        raise ParameterError("amplitude", amplitude, f"one of {', '.join(AMPLITUDES)}")
+    run = solve_exact(params, x0, n_cycles=_positive_int("n_cycles", n_cycles),
+                      record_trajectory=amplitude == "largest_abs")
     variables = {**cycle_variables(run), **event_variables(run)}
+    cycle, values = AMPLITUDES[amplitude].values(run)
+    variables["amplitude"] = xr.DataArray(
+        values, dims="amplitude_cycle",
+        coords={"amplitude_cycle": ("amplitude_cycle", cycle,
+                                    {"long_name": "cycle number of the amplitude", "units": "1"})},
+        attrs={"units": "m", "long_name": AMPLITUDES[amplitude].long_name, "definition": amplitude},
+    )
     variables["fixed_point_19"] = scalar_variable(
         fixed_point_19(params), "m s-1", "fixed point of the map (17) by Eq. (19) as printed (velocity before impact)"
     )

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import xarray as xr
@@ -50,6 +50,9 @@ class Evidence:
     fig4: xr.Dataset
     fig5: Mapping[str, xr.Dataset]
     checks: xr.Dataset
+    #: the limits each printed panel's axes get when the outputs are autoscaled with the printed
+    #: tick step, ``{(figure, panel): {"x": (low, high), "y": (low, high)}}`` (scored axes only)
+    axes: Mapping[tuple[str, str], Mapping[str, tuple[float, float]]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,7 @@ import numpy as np
 import xarray as xr
 import yaml
 
+from . import axis_claims  # noqa: F401  (registers the axis claims' check)
 from . import corrected as derived
 from .checks import (
     CHECKS,
@@ -179,15 +180,6 @@ def period_initial_condition(claim, ev: Evidence) -> Verdict:
     return Verdict("; ".join(parts), within(worst, claim["tolerance"]), note=f"largest difference {fmt(worst, 2)} s")
 
 
-@check("axis_range", scenes=fig3_case, args=("case", "quantity"))
-def axis_range(claim, ev: Evidence) -> Verdict:
-    values = ev.fig3[claim["args"]["case"]][claim["args"]["quantity"]].values
-    lo, hi = claim["paper_value"]
-    vmin, vmax = float(np.min(values)), float(np.max(values))
-    return Verdict(f"[{fmt(vmin, 6)}, {fmt(vmax, 6)}]", REPRODUCED if lo <= vmin and vmax <= hi else NOT,
-                   note="range of the simulated curve over the plotted cycles")
-
-
 # --- Sec. 4, Fig. 4 ----------------------------------------------------------------------------
 
 
@@ -212,25 +204,6 @@ def shock_readout(claim, ev: Evidence) -> Verdict:
             "the figure labels both"
         ),
         paper_value="no number given",
-    )
-
-
-@check("shock_axis", scenes=fig4, args=("quantity", "window"))
-def shock_axis(claim, ev: Evidence) -> Verdict:
-    ds = ev.fig4
-    lo_t, hi_t = ds[claim["args"]["window"]].values
-    sel = ds.sel(t=slice(lo_t, hi_t))[claim["args"]["quantity"]].values
-    lo, hi = claim["paper_value"]
-    vmin, vmax = float(np.nanmin(sel)), float(np.nanmax(sel))
-    return Verdict(
-        f"[{fmt(vmin, 4)}, {fmt(vmax, 4)}]",
-        REPRODUCED if lo <= vmin and vmax <= hi else NOT,
-        note=(
-            f"F = {fmt(float(ds['F']), 3)} N, x0 = {fmt(float(ds['x0']), 3)} m; in any steady motion the velocity and "
-            f"the acceleration swing about 0 within a period (about {fmt(params_of(ds).natural_period, 2)} s), so no "
-            f"case fits an axis from {fmt(lo, 2)} to {fmt(hi, 2)} over this window: the printed panel seems to show "
-            "part of the swing only"
-        ),
     )
 
 

@@ -32,10 +32,11 @@ default, and matplotlib's ``round_numbers`` mode) an axis ends on a labelled tic
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from decimal import Decimal
 
-__all__ = ["TICK_LINES", "Axis", "Panel", "PANELS", "panel", "panels_of"]
+__all__ = ["CYCLES", "FIG5_PANEL_K", "TICK_LINES", "Axis", "Panel", "PANELS", "limits_match", "panel", "panels_of"]
 
 #: the lines of the paper's text that carry the figures' tick labels, by line number (1-based), verbatim
 TICK_LINES: dict[int, str] = {
@@ -158,6 +159,15 @@ TICK_LINES: dict[int, str] = {
 }
 
 
+def limits_match(low: float, high: float, printed_low: float, printed_high: float, step: float) -> int:
+    """How many of the two limits equal the printed ones (to a billionth of the tick step, the
+    rounding of a multiple of the step in floating point)."""
+    tol = 1e-9 * step
+    return int(math.isclose(low, printed_low, rel_tol=0.0, abs_tol=tol)) + int(
+        math.isclose(high, printed_high, rel_tol=0.0, abs_tol=tol)
+    )
+
+
 @dataclass(frozen=True)
 class Axis:
     """One printed axis: its title, its tick labels as printed (low to high) and the text lines
@@ -191,6 +201,11 @@ class Axis:
         """The spacing of the tick labels."""
         return float(Decimal(self.ticks[1]) - Decimal(self.ticks[0]))
 
+    def matches(self, low: float, high: float) -> int:
+        """How many of the limits ``low``, ``high`` equal the printed ones (0, 1 or 2), to a billionth
+        of the tick step: the rounding of a multiple of the step in floating point."""
+        return limits_match(low, high, self.low, self.high, self.step)
+
 
 @dataclass(frozen=True)
 class Panel:
@@ -212,6 +227,8 @@ def _ticks(*labels: str) -> tuple[str, ...]:
     return tuple(labels)
 
 
+#: the title of the cycle axes of Fig. 3: their limits follow from the number of cycles plotted
+CYCLES = "Number of cycles"
 _CYCLES_50 = _ticks("0", "10", "20", "30", "40", "50")
 _CYCLES_60 = _ticks("0", "10", "20", "30", "40", "50", "60")
 _HALVES_3 = _ticks("0.5", "1", "1.5", "2", "2.5", "3")
@@ -222,29 +239,29 @@ _UNIT_HALVES = _ticks("-1", "-0.5", "0", "0.5", "1")
 PANELS: tuple[Panel, ...] = (
     # Fig. 3 (a) F = 1 N, x(0) = 1 m
     Panel("3", "a/velocity", "velocity before the impact at a1 against the cycle, case (a)",
-          Axis("Number of cycles", _CYCLES_50, (271, 273, 275, 277, 279, 291)),
+          Axis(CYCLES, _CYCLES_50, (271, 273, 275, 277, 279, 291)),
           Axis("Velocity before impact (m/s)",
                _ticks("0.95", "1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3"), (269,))),
     Panel("3", "a/period", "period against the cycle, case (a)",
-          Axis("Number of cycles", _CYCLES_50, (323, 325, 327, 329, 331, 339)),
+          Axis(CYCLES, _CYCLES_50, (323, 325, 327, 329, 331, 339)),
           Axis("Period (s)",
                _ticks("6.283", "6.2832", "6.2834", "6.2836", "6.2838", "6.284", "6.2842", "6.2844", "6.2846"),
                (297, 301, 305, 309, 347, 357, 365, 367))),
     Panel("3", "a/amplitude", "amplitude of oscillation against the cycle, case (a)",
-          Axis("Number of cycles", _CYCLES_60, (379, 381, 383, 385, 387, 389, 401)),
+          Axis(CYCLES, _CYCLES_60, (379, 381, 383, 385, 387, 389, 401)),
           Axis("Amplitude of oscillation (m)",
                _ticks("1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3", "1.35", "1.4"), (343,))),
     # Fig. 3 (b) F = 0.5 N, x(0) = 3 m
     Panel("3", "b/velocity", "velocity before the impact at a1 against the cycle, case (b)",
-          Axis("Number of cycles", _CYCLES_50, (293, 295, 311, 313, 315, 317)),
+          Axis(CYCLES, _CYCLES_50, (293, 295, 311, 313, 315, 317)),
           Axis("Velocity before impact (m/s)", _HALVES_3, (263, 281, 283, 285, 287, 289))),
     Panel("3", "b/period", "period against the cycle, case (b)",
-          Axis("Number of cycles", _CYCLES_50, (345, 351, 353, 359, 361, 369)),
+          Axis(CYCLES, _CYCLES_50, (345, 351, 353, 359, 361, 369)),
           Axis("Period (s)",
                _ticks("6.2826", "6.2827", "6.2828", "6.2829", "6.283", "6.2831", "6.2832", "6.2833", "6.2834"),
                (299, 303, 307, 311, 319, 347, 349, 355, 357, 363, 365, 367))),
     Panel("3", "b/amplitude", "amplitude of oscillation against the cycle, case (b)",
-          Axis("Number of cycles", _CYCLES_60, (403, 405, 407, 409, 411, 413, 415)),
+          Axis(CYCLES, _CYCLES_60, (403, 405, 407, 409, 411, 413, 415)),
           Axis("Amplitude of oscillation (m)", _HALVES_3, (333, 391, 393, 395, 397, 399))),
     # Fig. 4: the case is not named
     Panel("4", "velocity", "velocity against time over 80-87 s",
@@ -267,6 +284,10 @@ PANELS: tuple[Panel, ...] = (
           Axis("Displacement (m)", _UNIT_HALVES, (525, 527, 529, 543, 545)),
           Axis("Velocity (m/s)", _ticks("-3", "-2", "-1", "0", "1", "2", "3", "4"), (481, 485, 511, 525))),
 )
+
+
+#: the spring constant of each Fig. 5 panel, from the paper's panel captions "(a) K=0.1" etc., N/m
+FIG5_PANEL_K: dict[str, float] = {"a": 0.1, "b": 1.0, "c": 10.0}
 
 
 def panel(figure: str, name: str) -> Panel:

@@ -29,8 +29,11 @@ __all__ = [
     "check_config",
     "check_config_file",
     "config_error",
+    "escapement_error_forces",
+    "escapement_error_scenes",
     "fig3_scene",
     "fig4_scene",
+    "FIG5_PER_PANEL",
     "fig5_label_collision",
     "fig5_labels",
     "fig5_scene",
@@ -60,9 +63,10 @@ def _scene(*blocks: Mapping) -> dict:
 
 
 def fig3_scene(config: Mapping, case: str) -> dict:
-    """Fig. 3, one case: the model block, the case's keys and ``n_cycles``."""
+    """Fig. 3, one case: the model block, the case's keys, ``n_cycles`` and ``amplitude``."""
     scene = config["fig3"]
-    return _scene(config["model"], scene["cases"][case], {"n_cycles": scene["n_cycles"]})
+    return _scene(config["model"], scene["cases"][case],
+                  {"n_cycles": scene["n_cycles"], "amplitude": scene["amplitude"]})
 
 
 def fig4_scene(config: Mapping) -> dict:
@@ -87,11 +91,18 @@ def fig5_label_collision(spring_constants: list) -> str | None:
     return None
 
 
+#: the Fig. 5 keys that may be given one per panel (a list as long as ``fig5.K``)
+FIG5_PER_PANEL = ("F", "x0")
+
+
 def fig5_scene(config: Mapping, label: str) -> dict:
-    """Fig. 5, the panel of the spring constant labelled ``label``."""
-    scene = {k: v for k, v in config["fig5"].items() if k != "K"}
-    stiffness = dict(zip(fig5_labels(config), config["fig5"]["K"]))[label]
-    return _scene(config["model"], scene, {"K": stiffness})
+    """Fig. 5, the panel of the spring constant labelled ``label``: a key given as a list (one
+    value per spring constant, :data:`FIG5_PER_PANEL`) takes the panel's value."""
+    fig5 = config["fig5"]
+    index = fig5_labels(config).index(label)
+    scene = {k: (v[index] if k in FIG5_PER_PANEL and isinstance(v, list) else v)
+             for k, v in fig5.items() if k != "K"}
+    return _scene(config["model"], scene, {"K": fig5["K"][index]})
 
 
 def check_cases(config: Mapping) -> list[dict]:
@@ -111,7 +122,7 @@ def check_cases(config: Mapping) -> list[dict]:
                 keys = dict(zip(("a1", "a2", "a3", "a4"), positions))
                 label = f"F={force:g}," + ",".join(f"{k}={v:g}" for k, v in keys.items())
                 cases.append(_scene(base, keys, {"F": force, "group": group, "label": label}))
-    return [{k: v for k, v in case.items() if k != "n_cycles"} for case in cases]
+    return [{k: v for k, v in case.items() if k not in ("n_cycles", "amplitude")} for case in cases]
 
 
 def benchmark_scene(config: Mapping) -> dict:
@@ -127,6 +138,21 @@ def benchmark_settings(config: Mapping, slow: bool = False) -> dict[str, list]:
         for method, values in config["benchmark"]["slow_settings"].items():
             settings[method] = sorted(set(settings.get(method, [])) | set(values), reverse=True)
     return dict(sorted(settings.items()))
+
+
+def escapement_error_forces(config: Mapping) -> list[float]:
+    """The forces of the escapement-error study: ``n`` values spaced geometrically from ``start`` to
+    ``stop`` (N)."""
+    axis = config["escapement_error"]["F"]
+    start, stop, n = float(axis["start"]), float(axis["stop"]), int(axis["n"])
+    return [start] if n == 1 else [start * (stop / start) ** (i / (n - 1)) for i in range(n)]
+
+
+def escapement_error_scenes(config: Mapping) -> dict[str, dict]:
+    """The model of each impulse zone of the escapement-error study (the second half cycle mirrors
+    the first), without F."""
+    return {name: _scene(config["model"], {"a1": a1, "a2": a2, "a3": -a1, "a4": -a2})
+            for name, (a1, a2) in config["escapement_error"]["zones"].items()}
 
 
 def long_run_scene(config: Mapping) -> dict:
@@ -168,6 +194,9 @@ def scenes(config: Mapping) -> dict[str, dict]:
     found.update({f"checks ({case['label']})": case for case in check_cases(config)})
     found["benchmark"] = benchmark_scene(config)
     found["long_run"] = long_run_scene(config)
+    for name, model in escapement_error_scenes(config).items():
+        for force in {escapement_error_forces(config)[0], escapement_error_forces(config)[-1]}:
+            found[f"escapement_error.zones.{name} (F = {force:g})"] = _scene(model, {"F": force, "x0": 1.0})
     b_values, f_values = stability_axes(config)
     for b in (b_values[0], b_values[-1]):
         for force in (f_values[0], f_values[-1]):
@@ -238,6 +267,10 @@ def _cross_field_error(config: Mapping) -> str | None:
                 f"must be at most {MAX_SAMPLES:_}"
             )
     fig5 = config["fig5"]
+    for key in FIG5_PER_PANEL:
+        if isinstance(fig5[key], list) and len(fig5[key]) != len(fig5["K"]):
+            return (f"fig5.{key} = {fig5[key]!r} is invalid: {key} must be one number, or a list of "
+                    f"{len(fig5['K'])} numbers, one per spring constant of fig5.K = {fig5['K']!r}")
     if fig5["samples_per_period"] * fig5["n_cycles"] > MAX_SAMPLES:
         return (
             f"fig5.samples_per_period = {fig5['samples_per_period']!r} is invalid: with n_cycles = "

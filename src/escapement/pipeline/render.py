@@ -1,5 +1,6 @@
 """The job that writes the documents from their templates and the results: README.md and
-REPLICATION.md (tracked by git: deterministic numbers only) and timings.md (the measured times)."""
+REPLICATION.md (tracked by git: deterministic numbers only), timings.md (the measured times), and
+for the report's landing page the verdict and REPLICATION.md as HTML."""
 
 from __future__ import annotations
 
@@ -7,9 +8,10 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from ..io.netcdf import read_netcdf
-from .docs import markdown_table, render, verdict_html, write_text
+from .docs import markdown_html, markdown_table, render, verdict_html, write_text
 from .facts import collect_facts
 from .logs import logged
+from .readings import best_readings_table, read_scores
 from .tables import read_stress, read_timings, read_work_precision
 from .verdict import read_claims_csv
 
@@ -18,12 +20,14 @@ __all__ = ["render_docs"]
 
 def render_docs(
     claims: str, benchmark: str, long_run: str, long_run_timing: str, stability: str, stability_timing: str,
-    stress: str, templates: Sequence[str], outputs: Sequence[str], measured_template: str, measured_output: str,
-    verdict_output: str, log: str,
+    stress: str, readings: str, templates: Sequence[str], outputs: Sequence[str], measured_template: str,
+    measured_output: str, verdict_output: str, replication_html_output: str, log: str,
 ) -> None:
     """Render each of ``templates`` to the matching ``outputs`` with deterministic facts only,
-    ``measured_template`` to ``measured_output`` with the wall times too, and the verdict as HTML
-    for the report's landing page to ``verdict_output``."""
+    ``measured_template`` to ``measured_output`` with the wall times too, and for the report's
+    landing page the verdict as HTML to ``verdict_output`` and the output named REPLICATION.md as
+    HTML to ``replication_html_output``. ``readings`` is the score table of the readings of the
+    printed axes (:mod:`escapement.pipeline.readings`), summarised per panel in REPLICATION.md."""
     with logged(log, "render_docs"):
         rows = read_claims_csv(claims)
         facts = collect_facts(
@@ -34,9 +38,16 @@ def render_docs(
             read_timings(stability_timing),
         )
         stress_rows = read_stress(stress)
-        tables = {"stress": markdown_table(stress_rows, ["regime", "outcome", "check", "passed", "detail"])}
+        tables = {
+            "stress": markdown_table(stress_rows, ["regime", "outcome", "check", "passed", "detail"]),
+            "readings": markdown_table(best_readings_table(read_scores(readings)),
+                                       ["figure", "panel", "printed limits", "limits reproduced", "best-supported readings"]),
+        }
+        documents = {}
         for template, output in zip(templates, outputs, strict=True):
-            write_text(render(Path(template).read_text(), rows, template, facts, tables), output)
+            documents[Path(output).name] = render(Path(template).read_text(), rows, template, facts, tables)
+            write_text(documents[Path(output).name], output)
         write_text(render(Path(measured_template).read_text(), rows, measured_template, facts, tables, measured=True),
                    measured_output)
         write_text(verdict_html(rows, stress_rows), verdict_output)
+        write_text(markdown_html(documents["REPLICATION.md"]), replication_html_output)

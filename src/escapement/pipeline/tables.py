@@ -13,6 +13,7 @@ from .logs import logged
 
 __all__ = [
     "CYCLE_VARIABLES",
+    "ESCAPEMENT_ERROR_VARIABLES",
     "PHASE_VARIABLES",
     "SHOCK_VARIABLES",
     "STRESS_COLUMNS",
@@ -26,6 +27,9 @@ __all__ = [
 ]
 
 CYCLE_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude", "M", "K", "F", "x0")
+#: what the escapement-error figure reads
+ESCAPEMENT_ERROR_VARIABLES = ("amplitude", "rate", "rate_impacts", "rate_zones", "zone_name", "zone_a1", "zone_a2",
+                              "max_period_difference", "M", "K", "b")
 SHOCK_VARIABLES = ("t", "velocity", "acceleration", "impact_time", "impulse", "energy_dissipated", "event_time",
                    "velocity_window", "acceleration_window", "F", "K", "x0")
 PHASE_VARIABLES = ("t", "displacement", "velocity", "impact_time", "impact_position", "velocity_after", "K")

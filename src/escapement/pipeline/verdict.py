@@ -16,6 +16,7 @@ from ..io.netcdf import read_netcdf
 from ..model.quantities import MODEL_KEYS
 from ..paper.claims import COLUMNS, Evidence, evaluate, load_claims
 from .logs import logged
+from .readings import scene_axes
 
 __all__ = ["FIG3_VARIABLES", "FIG4_VARIABLES", "FIG5_VARIABLES", "CHECKS_VARIABLES", "check_claims",
            "write_claims_csv", "read_claims_csv"]
@@ -25,7 +26,7 @@ FIG3_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude", "eve
                   "event_velocity_before", *MODEL_KEYS, "x0")
 FIG4_VARIABLES = ("t", "velocity", "acceleration", "velocity_before", "impulse", "energy_dissipated",
                   "velocity_window", "acceleration_window", *MODEL_KEYS, "x0")
-FIG5_VARIABLES = ("t", "velocity", "impact_time", "velocity_before_impact", "period", "amplitude", *MODEL_KEYS)
+FIG5_VARIABLES = ("t", "displacement", "velocity", "impact_time", "velocity_before_impact", "period", "amplitude", *MODEL_KEYS)
 CHECKS_VARIABLES = ("label", "group", "outcome", "outcome_message", "F", "b", "x0", "velocity", "period",
                     "multiplier", "multiplier_eq21")
 
@@ -50,11 +51,15 @@ def check_claims(
     """Evaluate the register on the outputs (``fig3`` and ``fig5`` keyed by their configured labels)
     and write the table; raise, naming the claim, when a check fails."""
     with logged(log, "check_claims") as logger:
+        fig3_data = {label: read_netcdf(path, FIG3_VARIABLES) for label, path in fig3.items()}
+        fig4_data = read_netcdf(fig4, FIG4_VARIABLES)
+        fig5_data = {label: read_netcdf(path, FIG5_VARIABLES) for label, path in fig5.items()}
         evidence = Evidence(
-            fig3={label: read_netcdf(path, FIG3_VARIABLES) for label, path in fig3.items()},
-            fig4=read_netcdf(fig4, FIG4_VARIABLES),
-            fig5={label: read_netcdf(path, FIG5_VARIABLES) for label, path in fig5.items()},
+            fig3=fig3_data,
+            fig4=fig4_data,
+            fig5=fig5_data,
             checks=read_netcdf(checks, CHECKS_VARIABLES),
+            axes=scene_axes(fig3_data, fig4_data, fig5_data),
         )
         rows = evaluate(load_claims(register), evidence)
         for row in rows:

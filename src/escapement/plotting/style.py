@@ -14,7 +14,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from ..io.atomic import atomic_path  # noqa: E402
 
-__all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "save_figure", "style"]
+__all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "SERIES", "save_figure", "style"]
 
 #: colours of the figures, named by role
 INK = "#1f4e79"
@@ -23,6 +23,8 @@ MUTED = "#b8b8b8"
 GUIDE = "#666666"
 #: fill of the cells of a map where no cycle exists: a light grey, in neither viridis nor magma
 NO_CYCLE = "#dcdcdc"
+#: colours of up to four series of equal standing (the impulse zones of the escapement-error figure)
+SERIES = (INK, ACCENT, "#d68910", GUIDE)
 
 
 @contextlib.contextmanager

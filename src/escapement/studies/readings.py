@@ -35,7 +35,7 @@ where ``|v|`` peaks), and each event adds its one-sided values.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -47,6 +47,8 @@ from ..solvers.exact import solve_exact
 from ..solvers.result import Solution
 
 __all__ = [
+    "AMPLITUDES",
+    "Amplitude",
     "FIG4_K",
     "FIG5_FORCES",
     "FIG5_RELEASES",
@@ -184,6 +186,50 @@ def _phase_series(run: Solution, lo: float, hi: float, samples_per_second: float
 # --- amplitudes --------------------------------------------------------------------------------
 
 
+@dataclass(frozen=True)
+class Amplitude:
+    """One definition of Fig. 3's "amplitude of oscillation": its long name, and the values per
+    cycle with the cycle numbers they belong to."""
+
+    label: str  #: short name, as the score table of the readings names it
+    long_name: str
+    values: Callable[[Solution], tuple[np.ndarray, np.ndarray]] = field(repr=False)
+
+
+def _per_cycle(values: Callable[[Solution], np.ndarray]) -> Callable[[Solution], tuple[np.ndarray, np.ndarray]]:
+    def of(run: Solution) -> tuple[np.ndarray, np.ndarray]:
+        y = np.asarray(values(run), dtype=float)
+        return np.arange(1, len(y) + 1, dtype=np.int32), y
+    return of
+
+
+#: The definitions of the amplitude a Fig. 3 scene may plot (the configuration's ``fig3.amplitude``).
+#: The printed axes favour ``step1`` (REPLICATION.md, the readings of the printed axes).
+AMPLITUDES: dict[str, Amplitude] = {
+    "step1": Amplitude(
+        "Step-1 amplitude h0(k), k = 1..N+1",
+        "Step-1 amplitude h0(k) = sqrt(a1^2 + (v_k / omega)^2) of the free arc that ends in impact k at a1 "
+        "(k = 1 .. N+1; Eqs. (9b), (22a))",
+        _per_cycle(lambda run: step1_amplitudes(run)),
+    ),
+    "step8": Amplitude(
+        "Step-8 amplitude h4(k) = h0(k+1), k = 1..N",
+        "Step-8 amplitude h4(k) = h0(k+1) of the free arc that ends cycle k (k = 1 .. N)",
+        _per_cycle(lambda run: step1_amplitudes(run)[1:len(run.cycles) + 1]),
+    ),
+    "largest_displacement": Amplitude(
+        "largest displacement per cycle",
+        "largest displacement between impact k and impact k+1 (right turning point)",
+        _per_cycle(lambda run: run.cycles.amplitude),
+    ),
+    "largest_abs": Amplitude(
+        "largest |x| per cycle",
+        "largest |x| between impact k and impact k+1",
+        _per_cycle(lambda run: largest_abs_per_cycle(run)),
+    ),
+}
+
+
 def step1_amplitudes(run: Solution) -> np.ndarray:
     """``h0(k)``, k = 1, 2, ...: the amplitude ``sqrt(a1**2 + (v / omega)**2)`` of the free arc
     that ends in the k-th impact at a1 (``v`` the velocity before it), for every such impact of
@@ -227,11 +273,9 @@ def fig3_readings(model: Mapping, cases: Mapping[str, Mapping], n_cycles: int) -
             add("velocity", "velocity before the impact at a1", c.velocity_before_impact)
             add("period", "period, impact to impact", c.period)
             add("period", "Eq. (23) as printed", [period_23(float(v), p) for v in c.velocity_before_impact])
-            add("amplitude", "largest displacement per cycle", c.amplitude)
-            add("amplitude", "largest |x| per cycle", largest_abs_per_cycle(run))
-            h0 = step1_amplitudes(run)
-            add("amplitude", "Step-1 amplitude h0(k), k = 1..N+1", h0, np.arange(1, len(h0) + 1, dtype=float))
-            add("amplitude", "Step-8 amplitude h4(k) = h0(k+1), k = 1..N", h0[1:len(c) + 1])
+            for name in ("largest_displacement", "largest_abs", "step1", "step8"):
+                cycle, values = AMPLITUDES[name].values(run)
+                add("amplitude", AMPLITUDES[name].label, values, cycle.astype(float))
     return readings
 
 
