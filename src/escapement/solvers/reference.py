@@ -31,8 +31,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 from ..model import automaton
 from ..model.automaton import Mode
@@ -99,6 +97,12 @@ class SciPyIntegrator:
     """One segment with ``scipy.integrate.solve_ivp``."""
 
     def __init__(self, method: str, rtol: float, atol: np.ndarray, dense: bool) -> None:
+        # SciPy's integrators are loaded here, when a reference run starts, not when the solvers are
+        # imported: a job that runs only the exact solver does not pay their import (about 0.7 s)
+        from scipy.integrate import solve_ivp
+        from scipy.optimize import brentq
+
+        self._solve_ivp, self._brentq = solve_ivp, brentq
         self.method, self.rtol, self.atol, self.dense = method, rtol, atol, dense
         self.name = f"solve_ivp {method} rtol={rtol:g}"
 
@@ -120,7 +124,7 @@ class SciPyIntegrator:
             event.terminal, event.direction = True, w.crossing
             functions.append(event)
         implicit = {"jac": [[0.0, 1.0], [-omega2, 0.0]]} if self.method in ("Radau", "BDF", "LSODA") else {}
-        sol = solve_ivp(rhs, (seg.t0, seg.t1), list(seg.y0), method=self.method, rtol=self.rtol, atol=self.atol,
+        sol = self._solve_ivp(rhs, (seg.t0, seg.t1), list(seg.y0), method=self.method, rtol=self.rtol, atol=self.atol,
                         events=functions or None, dense_output=dense, max_step=seg.max_step, **implicit)
         if sol.status == -1:
             raise RuntimeError(f"solve_ivp failed at t = {seg.t0:.12g} s: {sol.message}")
@@ -142,7 +146,7 @@ class SciPyIntegrator:
         def gap(t: float) -> float:
             return float(dense(t)[0]) - position
 
-        t = brentq(gap, seg.t0, end.t, xtol=ROOT_TOLERANCE, rtol=ROOT_TOLERANCE)
+        t = self._brentq(gap, seg.t0, end.t, xtol=ROOT_TOLERANCE, rtol=ROOT_TOLERANCE)
         y = dense(t)
         return Hit(float(t), index, (float(y[0]), float(y[1])))
 
