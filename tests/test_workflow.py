@@ -124,7 +124,8 @@ def test_every_netcdf_output_holds_its_variables(workflow_run, path):
 
 def test_fig3_has_the_configured_number_of_cycles(workflow_run):
     ds = read_netcdf(workflow_run / "results/fig3/case_a.nc")
-    assert ds.sizes["cycle"] == REDUCED_FIG3_CYCLES and float(ds["F"]) == 1.0 and float(ds["x0"]) == 1.0
+    assert ds.sizes["cycle"] == REDUCED_FIG3_CYCLES and float(ds["F"]) == 1.0 and float(ds["x0"]) == -1.0
+    assert ds.sizes["amplitude_cycle"] == REDUCED_FIG3_CYCLES + 1  # the Step-1 amplitude: N + 1 values
     assert "t" not in ds.dims
 
 
@@ -135,13 +136,14 @@ def test_fig4_window_and_fig5_spring_constants(workflow_run):
         assert float(read_netcdf(workflow_run / f"results/fig5/K_{label}.nc")["K"]) == k
 
 
-@pytest.mark.parametrize("name", ["fig3", "fig4", "fig5", "work_precision", "long_run", "stability_map"])
+@pytest.mark.parametrize("name", ["fig3", "fig4", "fig5", "work_precision", "long_run", "stability_map",
+                                  "escapement_error"])
 def test_figures_exist_as_png_and_pdf(workflow_run, name):
     assert (workflow_run / f"results/figures/{name}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert (workflow_run / f"results/figures/{name}.pdf").read_bytes()[:5] == b"%PDF-"
 
 
-TRACKED = [f"figures/{name}.{ext}" for name in ("fig3", "fig4", "fig5", "long_run", "stability_map")
+TRACKED = [f"figures/{name}.{ext}" for name in ("fig3", "fig4", "fig5", "long_run", "stability_map", "escapement_error")
            for ext in ("png", "pdf")] + ["README.md", "REPLICATION.md"]
 
 
@@ -307,9 +309,9 @@ def touched_run(tmp_path_factory):
 
 
 SIMULATIONS = {"simulate_fig3": 2, "simulate_fig4": 1, "simulate_fig5": 3, "simulate_checks": 1,
-               "simulate_long_run": 1, "simulate_stability_chunk": 4}
+               "simulate_long_run": 1, "simulate_stability_chunk": 4, "simulate_escapement_error": 1}
 PLOTS = {"plot_fig3": 1, "plot_fig4": 1, "plot_fig5": 1, "plot_work_precision": 1, "plot_long_run": 1,
-         "plot_stability_map": 1}
+         "plot_stability_map": 1, "plot_escapement_error": 1}
 
 
 def _planned_after_an_edit(where: Path, module: str) -> dict[str, int]:
@@ -351,6 +353,8 @@ def test_a_pipeline_plot_edit_replans_no_simulation(touched_run):
     [
         (["plot", "tables"], ["escapement.io.scenes", "escapement.io.dataset", "escapement.paper", "escapement.studies"]),
         (["simulate", "studies"], ["escapement.plotting", "matplotlib"]),
+        (["simulate"], ["scipy.integrate"]),  # the exact solver's jobs load no SciPy integrator
+        (["render"], ["escapement.plotting", "matplotlib", "scipy.integrate"]),
     ],
 )
 def test_each_kind_of_job_imports_only_what_its_rules_depend_on(modules, absent):

@@ -89,13 +89,11 @@ RENDER_CODE = package_code(
     "paper",
     *IO,
     *PIPELINE,
-    "studies",
-    "plotting",
+    "pipeline/claims_csv.py",
     "pipeline/docs.py",
     "pipeline/facts.py",
-    "pipeline/readings.py",
     "pipeline/render.py",
-    "pipeline/verdict.py",
+    "pipeline/scores.py",
 )
 
 

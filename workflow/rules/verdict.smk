@@ -13,7 +13,9 @@ rule check_claims:
             "plotting",
             *IO,
             *PIPELINE,
+            "pipeline/claims_csv.py",
             "pipeline/readings.py",
+            "pipeline/scores.py",
             "pipeline/verdict.py",
         ),
     output:
@@ -100,6 +102,7 @@ rule score_readings:
             *IO,
             *PIPELINE,
             "pipeline/readings.py",
+            "pipeline/scores.py",
         ),
     output:
         csv=report(

@@ -11,9 +11,7 @@ readings that reproduce the most limits over the panel's scored axes.
 
 from __future__ import annotations
 
-import csv
 import math
-from collections import defaultdict
 from collections.abc import Iterable, Mapping
 
 import numpy as np
@@ -24,12 +22,10 @@ from ..paper.printed_axes import FIG5_PANEL_K, PANELS, Panel, limits_match
 from ..plotting.autoscale import VARIANTS, autoscaled_limits_many
 from ..studies.readings import Reading, all_readings
 from .logs import logged
+from .scores import CLAIM_AUTOSCALE, COLUMNS, best_readings, best_readings_table, read_scores
 
 __all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "PAPER_SETTINGS", "best_readings", "best_readings_table", "read_scores", "limits_match", "scene_axes", "score_readings",
            "score_table"]
-
-COLUMNS = ["figure", "panel", "axis", "reading", "outcome", "autoscale", "data_min", "data_max", "low", "high",
-           "printed_low", "printed_high", "step", "matches"]
 
 #: Sec. 4 of the paper, with the replication's sampling (the blocks of the workflow's configuration)
 PAPER_SETTINGS: dict = {
@@ -83,52 +79,32 @@ def score_table(readings: Iterable[Reading], panels: Iterable[Panel] = PANELS,
     return rows
 
 
-def best_readings(rows: Iterable[Mapping], autoscale: str | None = None) -> list[dict]:
-    """Per panel (in the order met), the readings that reproduce the most printed limits over the
-    panel's scored axes: ``{"figure", "panel", "score", "out_of", "best": [(reading, autoscale), ...]}``.
-    With ``autoscale`` only that variant's rows count."""
-    totals: dict[tuple[str, str], dict[tuple[str, str], int]] = defaultdict(lambda: defaultdict(int))
-    axes: dict[tuple[str, str], set[str]] = defaultdict(set)
-    for row in rows:
-        if autoscale is not None and row["autoscale"] != autoscale:
-            continue
-        key = (str(row["figure"]), str(row["panel"]))
-        totals[key][(row["reading"], row["autoscale"])] += int(row["matches"])
-        axes[key].add(row["axis"])
-    result = []
-    for key, scores in totals.items():
-        top = max(scores.values())
-        result.append({
-            "figure": key[0], "panel": key[1], "score": top, "out_of": 2 * len(axes[key]),
-            "best": [choice for choice, score in scores.items() if score == top],
-        })
-    return result
-
-
-#: the autoscaling the axis claims use: limits rounded out to the printed ticks, no margin (the
-#: behaviour of MATLAB's automatic limits, in which the paper's figures appear to be drawn)
-CLAIM_AUTOSCALE = "round, margin 0"
-
-
 def _scene_series(figure: str, name: str, fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset,
                   fig5: Mapping[str, xr.Dataset]) -> tuple[np.ndarray, np.ndarray] | None:
     """The points the pipeline's own figure draws in the printed panel ``name`` of Fig. ``figure``,
     as ``(x, y)``, or None if no output holds that panel (a Fig. 3 case or a Fig. 5 spring
-    constant the configuration does not have)."""
+    constant the configuration does not have, or a run that left the regime, whose claims are not
+    evaluated)."""
     if figure == "3":
         case, quantity = name.split("/")
-        if case not in fig3:
+        if case not in fig3 or not _completed(fig3[case]):
             return None
         variable = fig3[case][{"velocity": "velocity_before_impact"}.get(quantity, quantity)]
         return variable[variable.dims[0]].values, variable.values
     if figure == "4":
+        if not _completed(fig4):
+            return None
         lo, hi = fig4[f"{name}_window"].values
         window = fig4[name].sel(t=slice(lo, hi))
         return window["t"].values, window.values
     for ds in fig5.values():
-        if math.isclose(float(ds["K"]), FIG5_PANEL_K[name], rel_tol=1e-12):
+        if math.isclose(float(ds["K"]), FIG5_PANEL_K[name], rel_tol=1e-12) and _completed(ds):
             return ds["displacement"].values, ds["velocity"].values
     return None
+
+
+def _completed(ds: xr.Dataset) -> bool:
+    return ds.attrs.get("outcome", "completed") == "completed"
 
 
 def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset, fig5: Mapping[str, xr.Dataset],
@@ -137,7 +113,7 @@ def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset, fig5: Mapping[s
     case label, Fig. 4, Fig. 5 by any label) are autoscaled with the printed tick step:
     ``{(figure, panel): {"x": (low, high), "y": (low, high)}}`` (scored axes only; a panel no output
     holds is left out)."""
-    margin = VARIANTS[autoscale]
+    margin = VARIANTS[autoscale]  # CLAIM_AUTOSCALE names one of the variants
     found: dict[tuple[str, str], dict[str, tuple[float, float]]] = {}
     for p in PANELS:
         series = _scene_series(p.figure, p.name, fig3, fig4, fig5)
@@ -148,40 +124,6 @@ def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset, fig5: Mapping[s
             for (axis_name, axis), values in zip(p.axes.items(), series) if axis.scored
         }
     return found
-
-
-def read_scores(path: str) -> list[dict]:
-    """The score table written by :func:`score_readings`, numbers as floats and ``matches`` as int."""
-    with open(path, newline="") as handle:
-        rows = list(csv.DictReader(handle))
-    if not rows or list(rows[0]) != COLUMNS:
-        raise ValueError(f"{path}: not a score table of the readings (columns {COLUMNS})")
-    for row in rows:
-        for name in ("data_min", "data_max", "low", "high", "printed_low", "printed_high", "step"):
-            row[name] = float(row[name])
-        row["matches"] = int(row["matches"])
-    return rows
-
-
-def best_readings_table(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> list[dict[str, str]]:
-    """One row per printed panel for the documents: its printed limits, and the readings that
-    reproduce the most of them under ``autoscale``, with how many."""
-    rows = [r for r in rows if r["autoscale"] == autoscale]
-    printed: dict[tuple[str, str], dict[str, str]] = {}
-    for r in rows:
-        printed.setdefault((str(r["figure"]), str(r["panel"])), {})[r["axis"]] = (
-            f"{r['axis']} {r['printed_low']:g} to {r['printed_high']:g}")
-    table = []
-    for best in best_readings(rows, autoscale=autoscale):
-        key = (best["figure"], best["panel"])
-        table.append({
-            "figure": best["figure"],
-            "panel": best["panel"],
-            "printed limits": "; ".join(printed[key][axis] for axis in sorted(printed[key])),
-            "limits reproduced": f"{best['score']} of {best['out_of']}",
-            "best-supported readings": "<br>".join(name for name, _ in best["best"]),  # a name may hold "; "
-        })
-    return table
 
 
 def _formatted(row: Mapping) -> dict:

@@ -11,9 +11,9 @@ from ..io.netcdf import read_netcdf
 from .docs import markdown_html, markdown_table, render, verdict_html, write_text
 from .facts import collect_facts
 from .logs import logged
-from .readings import best_readings_table, read_scores
+from .scores import best_readings_table, read_scores
 from .tables import read_stress, read_timings, read_work_precision
-from .verdict import read_claims_csv
+from .claims_csv import read_claims_csv
 
 __all__ = ["render_docs"]
 

@@ -7,14 +7,12 @@ reads the table back for the documents.  A check that fails makes the job fail, 
 
 from __future__ import annotations
 
-import csv
-import os
 from collections.abc import Mapping
 
-from ..io.atomic import write_csv
 from ..io.netcdf import read_netcdf
 from ..model.quantities import MODEL_KEYS
-from ..paper.claims import COLUMNS, Evidence, evaluate, load_claims
+from ..paper.claims import Evidence, evaluate, load_claims
+from .claims_csv import read_claims_csv, write_claims_csv
 from .logs import logged
 from .readings import scene_axes
 
@@ -29,20 +27,6 @@ FIG4_VARIABLES = ("t", "velocity", "acceleration", "velocity_before", "impulse",
 FIG5_VARIABLES = ("t", "displacement", "velocity", "impact_time", "velocity_before_impact", "period", "amplitude", *MODEL_KEYS)
 CHECKS_VARIABLES = ("label", "group", "outcome", "outcome_message", "F", "b", "x0", "velocity", "period",
                     "multiplier", "multiplier_eq21")
-
-
-def write_claims_csv(rows: list[dict[str, str]], path: str | os.PathLike) -> None:
-    """Write the table atomically, with exactly the columns of ``COLUMNS``."""
-    write_csv(rows, COLUMNS, path)
-
-
-def read_claims_csv(path: str | os.PathLike) -> list[dict[str, str]]:
-    """Read the table back; a file with other columns is rejected, naming it."""
-    with open(path, newline="") as handle:
-        reader = csv.DictReader(handle)
-        if reader.fieldnames != COLUMNS:
-            raise ValueError(f"{path}: columns {reader.fieldnames} are not {COLUMNS}")
-        return list(reader)
 
 
 def check_claims(
