@@ -355,6 +355,7 @@ def test_a_pipeline_plot_edit_replans_no_simulation(touched_run):
         (["simulate", "studies"], ["escapement.plotting", "matplotlib"]),
         (["simulate"], ["scipy.integrate"]),  # the exact solver's jobs load no SciPy integrator
         (["render"], ["escapement.plotting", "matplotlib", "scipy.integrate"]),
+        (["verdict"], ["escapement.plotting.paper_figures", "escapement.plotting.style"]),  # autoscale only
     ],
 )
 def test_each_kind_of_job_imports_only_what_its_rules_depend_on(modules, absent):

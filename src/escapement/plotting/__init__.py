@@ -1,6 +1,34 @@
-"""Figures of the replication: one style sheet, deterministic files."""
+"""Figures of the replication: one style sheet, deterministic files.
 
-from .paper_figures import escapement_error, fig3, fig4, fig5, long_run, stability_map, work_precision
-from .style import save_figure, style
+The names are imported on first use (PEP 562), so that a job needing only
+:mod:`escapement.plotting.autoscale` (the axis claims) does not load the figures' code.
+"""
 
-__all__ = ["escapement_error", "fig3", "fig4", "fig5", "long_run", "save_figure", "stability_map", "style", "work_precision"]
+from importlib import import_module
+
+#: each public name and the module that defines it
+_EXPORTS = {
+    "escapement_error": "paper_figures",
+    "fig3": "paper_figures",
+    "fig4": "paper_figures",
+    "fig5": "paper_figures",
+    "long_run": "paper_figures",
+    "save_figure": "style",
+    "stability_map": "paper_figures",
+    "style": "style",
+    "work_precision": "paper_figures",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str):
+    if name not in _EXPORTS:
+        raise AttributeError(f"module 'escapement.plotting' has no attribute {name!r}")
+    value = getattr(import_module(f".{_EXPORTS[name]}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_EXPORTS})
