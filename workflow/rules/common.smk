@@ -32,8 +32,8 @@ def stability_chunk(chunk):
 
 
 def package_code(*parts):
-    """Source files of the package that a rule's script imports: the top-level ``__init__.py``
-    (which every import runs) and the named parts, each a subpackage (``"model"``) or a module
+    """Source files of the package that a rule's script imports: the top-level ``__init__.py`` and
+    ``_lazy.py`` (which every import runs) and the named parts, each a subpackage (``"model"``) or a module
     (``"io/netcdf.py"``); with no parts, every file. Snakemake tracks only the rule's own script:
     these inputs make an edit of the code rerun the jobs that import it, and only those.
     """
@@ -41,7 +41,7 @@ def package_code(*parts):
     if not parts:
         files = list(src.rglob("*"))
     else:
-        files = [src / "__init__.py"]
+        files = [src / "__init__.py", src / "_lazy.py"]  # every import runs these
         for part in parts:
             path = src / part
             if not path.exists():

@@ -4,7 +4,7 @@ The names are imported on first use (PEP 562): a job that needs only the exact s
 load SciPy's integrators (the reference solver's ``solve_ivp``, about 0.7 s) or mpmath.
 """
 
-from importlib import import_module
+from .._lazy import lazy_exports
 
 #: each public name and the module that defines it
 _EXPORTS = {
@@ -26,13 +26,4 @@ _EXPORTS = {
 __all__ = sorted(_EXPORTS)
 
 
-def __getattr__(name: str):
-    if name not in _EXPORTS:
-        raise AttributeError(f"module 'escapement.solvers' has no attribute {name!r}")
-    value = getattr(import_module(f".{_EXPORTS[name]}", __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted({*globals(), *_EXPORTS})
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
