@@ -15,14 +15,14 @@ from escapement.solvers.reference import solve_reference
 NAMES = ("impact_time", "velocity_before_impact", "period", "amplitude")
 
 
-def _compare(params_list, x0s, v0s, n_cycles):
+def _compare(params_list, x0s, v0s, n_cycles, max_events=None, amplitude=True):
     arrays = {k: [getattr(p, k) for p in params_list] for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4")}
-    ens = solve_ensemble(**arrays, x0=x0s, v0=v0s, n_cycles=n_cycles)
+    ens = solve_ensemble(**arrays, x0=x0s, v0=v0s, n_cycles=n_cycles, max_events=max_events, amplitude=amplitude)
     for i, p in enumerate(params_list):
-        run = solve_exact(p, x0s[i], v0s[i], n_cycles=n_cycles, record_trajectory=False)
+        run = solve_exact(p, x0s[i], v0s[i], n_cycles=n_cycles, max_events=max_events, record_trajectory=False)
         assert ens.outcome(i) == run.status
         n = len(run.cycles)
-        for name in NAMES:
+        for name in NAMES if amplitude else NAMES[:-1]:
             got, want = getattr(ens.cycles, name)[i, :n], getattr(run.cycles, name)
             assert got == pytest.approx(want, rel=1e-13, abs=1e-300), name
             assert np.isnan(getattr(ens.cycles, name)[i, n:]).all()
@@ -41,6 +41,17 @@ def _compare(params_list, x0s, v0s, n_cycles):
 def test_ensemble_equals_the_scalar_solver_to_1e13(cases):
     ps, x0s, v0s = zip(*cases)
     _compare(list(ps), np.array(x0s), np.array(v0s), n_cycles=6)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(parameters(), initial_displacement, initial_velocity), min_size=1, max_size=30),
+       st.sampled_from([None, 1, 6, 57, 97, 130]), st.booleans())
+def test_the_cycles_in_lock_step_give_the_scalar_solvers_numbers(cases, max_events, amplitude):
+    """Over 40 cycles, with event bounds that end runs inside a cycle and between cycles, with and without
+    the amplitude: the trajectories that leave the lock-step cycles (an ending, an arc off the common path)
+    and come back at a later cycle than the others are followed as the scalar solver follows them."""
+    ps, x0s, v0s = zip(*cases)
+    _compare(list(ps), np.array(x0s), np.array(v0s), n_cycles=40, max_events=max_events, amplitude=amplitude)
 
 
 def test_paper_cases_over_many_cycles():
@@ -185,12 +196,19 @@ def test_amplitude_must_be_a_bool():
         solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2, amplitude="no")
 
 
-def test_a_completed_row_with_a_non_finite_number_is_a_bug_raised(monkeypatch):
+@pytest.mark.parametrize("path", ["per-event passes", "cycles in lock-step"])
+def test_a_completed_row_with_a_non_finite_number_is_a_bug_raised(monkeypatch, path):
     """The invariant: completed rows hold only finite numbers; if the arithmetic ever produced
-    one, the run raises instead of reporting it as completed."""
+    one, the run raises instead of reporting it as completed. The amplitude made NaN on either path: in
+    the per-event passes (arc_maximum, every arc sent there by a grazing bound no arc passes), or in
+    the cycles in lock-step (the top of the free swing, c + hypot(u0, w0))."""
     import escapement.solvers.ensemble as ensemble
 
-    monkeypatch.setattr(ensemble, "arc_maximum", lambda *args: np.full(len(args[1]), np.nan))
+    if path == "per-event passes":
+        monkeypatch.setattr(ensemble, "arc_maximum", lambda *args: np.full(len(args[1]), np.nan))
+        monkeypatch.setattr(ensemble, "GRAZING", np.inf)
+    else:
+        monkeypatch.setattr(ensemble.np, "hypot", lambda u, w: np.full(np.shape(u), np.nan))
     with pytest.raises(FloatingPointError, match="^row 0: a completed run holds a non-finite amplitude"):
         solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2)
     out = solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2, amplitude=False)  # not computed: NaN

@@ -1,7 +1,8 @@
 """The exact solver's specialised loop against two other paths to the same numbers: a minimal loop
-written out by hand (minimal_loop.py), and the generic solver loop with one stepper call and one
-``arc_maximum`` per event (``solve_exact_stepwise``). Every number must be the same, bit for bit.
-Not timed: the speed is measured side by side outside the test suite."""
+written out by hand (:func:`escapement.studies.floor.minimal_cycles`, which minimal_loop.py re-exports),
+and the generic solver loop with one stepper call and one ``arc_maximum`` per event
+(``solve_exact_stepwise``). Every number must be the same, bit for bit. Not timed: the speed is measured
+side by side outside the test suite (:mod:`escapement.studies.floor`)."""
 
 from __future__ import annotations
 
@@ -131,3 +132,33 @@ def test_arcs_that_reach_their_end_at_a_turning_point_give_the_numbers_of_the_ge
         outcomes.add(fast.status)
     assert Status.TURNED_BACK_IN_ZONE in outcomes and Status.COMPLETED in outcomes
     assert fallbacks, "no arc arrived close enough to its turning point to leave the shortcut"
+
+
+@pytest.mark.parametrize("params, impact, end", [
+    (Parameters(M=1.0, K=1.0, F=0.02, b=0.1, a1=-0.05, a2=0.1), "a1", "a2"),
+    (Parameters(M=1.0, K=1.0, F=0.02, b=0.1, a1=-0.1, a2=0.05, a3=0.05, a4=-0.1), "a3", "a4"),
+])
+@pytest.mark.parametrize("amplitude", [True, False])
+def test_the_ensemble_follows_the_releases_around_a_turning_point_as_the_scalar_solver(params, impact, end,
+                                                                                        amplitude):
+    """The releases of the test above as one ensemble, mixed with releases whose first zone arc turns well
+    inside or well past the zone's end: in the ensemble's cycles in lock-step some trajectories turn back,
+    some leave for the per-event passes (an arc that arrives near its turning point) and come back a cycle
+    later than the others; each gives the scalar solver's numbers (to rounding: NumPy's arctan2 and hypot)."""
+    from escapement.solvers.ensemble import solve_ensemble
+
+    x0 = _release_for_zone_turning_at(params, impact, mpmath.mpf(getattr(params, end)))
+    releases = np.array([x0 + k * math.ulp(x0) for k in range(-60, 61)] + [0.9 * x0, 1.1 * x0, 2 * x0, x0 / 3])
+    ens = solve_ensemble(*(getattr(params, k) for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4")), x0=releases,
+                         n_cycles=6, amplitude=amplitude)
+    for i, release in enumerate(releases):
+        run = solve_exact(params, float(release), n_cycles=6, record_trajectory=False)
+        assert ens.outcome(i) == run.status
+        n = len(run.cycles)
+        for name in CYCLE_COLUMNS if amplitude else CYCLE_COLUMNS[:-1]:
+            got = getattr(ens.cycles, name)[i]
+            assert got[:n] == pytest.approx(getattr(run.cycles, name), rel=1e-13, abs=1e-300), name
+            assert np.isnan(got[n:]).all()
+        assert ens.t_final[i] == pytest.approx(run.t_final, rel=1e-13)
+    assert {Status(s) for s in map(lambda i: ens.outcome(i), range(len(releases)))} >= {Status.COMPLETED,
+                                                                                         Status.TURNED_BACK_IN_ZONE}
