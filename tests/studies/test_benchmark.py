@@ -5,7 +5,14 @@ import pytest
 
 from escapement.model.parameters import Parameters
 from escapement.solvers.high_precision import solve_high_precision
-from escapement.studies.benchmark import closed_form_map, median_wall, run_method, work_precision
+from escapement.studies.benchmark import (
+    closed_form_map,
+    headline_ratios,
+    median_wall,
+    per_cycle_times,
+    run_method,
+    work_precision,
+)
 
 P = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
 N = 5
@@ -31,7 +38,7 @@ def test_closed_form_map_needs_release_beyond_a3():
 
 
 # Tolerances, from the error each method can make over the N = 5 cycles (about 20 events, 40 segments):
-# * exact and map16: rounding, some ulps per event: 1e-14;
+# * exact, the per-cycle closed form and map16: rounding, some ulps per event: 1e-14;
 # * an integrator at rtol: each segment's local error is up to a few rtol and an event location moves the
 #   time by that over |v| >= 0.1 m/s: within 1e3 rtol;
 # * naive RK4 at step h: each event is applied up to one step late, so the time is off by at most 20 h
@@ -40,6 +47,7 @@ def test_closed_form_map_needs_release_beyond_a3():
     "method, setting, tol_v, tol_t",
     [
         ("exact", None, 1e-14, 1e-14),
+        ("closed-form cycles", None, 1e-14, 1e-14),
         ("map16", None, 1e-14, 1e-14),
         ("RK45", 1e-8, 1e-5, 1e-5),
         ("DOP853", 1e-10, 1e-7, 1e-7),
@@ -81,14 +89,54 @@ def test_invalid_methods_raise(method):
 def test_rows_hold_the_errors_of_each_run_against_50_digits(reference):
     v_ref, t_ref = reference
     rows = work_precision(P, 1.0, N, {"exact": [], "naive-RK4": [0.1, 0.01]}, min_seconds=0.01, max_repeats=5)
-    assert [(r["method"], r["setting"]) for r in rows] == [("exact", ""), ("naive-RK4", "0.1"), ("naive-RK4", "0.01")]
-    for row, setting in zip(rows[1:], (0.1, 0.01)):
+    assert [(r["method"], r["setting"]) for r in rows] == [
+        ("exact", ""), ("closed-form cycles", ""), ("naive-RK4", "0.1"), ("naive-RK4", "0.01")]
+    for row, setting in zip(rows[2:], (0.1, 0.01)):
         v, t = run_method("naive-RK4", setting, P, 1.0, N)  # deterministic: the same run again
         assert row["error_velocity"] == pytest.approx(abs(v - v_ref) / v_ref, rel=1e-12)
         assert row["error_time"] == pytest.approx(abs(t - t_ref) / t_ref, rel=1e-12)
-    assert rows[0]["error_velocity"] < 1e-14 and rows[0]["error_time"] < 1e-14
-    assert rows[2]["error_time"] < rows[1]["error_time"]  # a smaller step is more accurate
+    for row in rows[:2]:  # the exact solver and the per-cycle closed form
+        assert row["error_velocity"] < 1e-14 and row["error_time"] < 1e-14
+    assert rows[3]["error_time"] < rows[2]["error_time"]  # a smaller step is more accurate
     assert all(r["wall_s"] > 0 and math.isfinite(r["wall_s"]) for r in rows)
+
+
+def test_the_closed_form_row_follows_exact_only_when_asked():
+    rows = work_precision(P, 1.0, N, {"map16": [], "exact": []}, min_seconds=0.01, max_repeats=2)
+    assert [r["method"] for r in rows] == ["map16", "exact", "closed-form cycles"]
+    rows = work_precision(P, 1.0, N, {"map16": []}, min_seconds=0.01, max_repeats=2)
+    assert [r["method"] for r in rows] == ["map16"]
+    rows = work_precision(P, 1.0, N, {"exact": []}, min_seconds=0.01, max_repeats=2, closed_form=False)
+    assert [r["method"] for r in rows] == ["exact"]
+
+
+def test_headline_ratios_pick_the_fastest_setting_that_reaches_the_target(reference):
+    settings = {"DOP853": [1e-6, 1e-10], "CVODE-Adams": [1e-9], "naive-RK4": [0.1]}  # naive-RK4 is no candidate
+    h = headline_ratios(P, 1.0, N, settings, target=1e-5, min_seconds=0.01, max_repeats=3)
+    assert h["n_cycles"] == N and h["target"] == 1e-5 and h["errors"] == ("error_velocity", "error_time")
+    assert [(r["method"], r["setting"]) for r in h["candidates"]] == [
+        ("DOP853", "1e-06"), ("DOP853", "1e-10"), ("CVODE-Adams", "1e-09")]
+    reaching = [r for r in h["candidates"] if r["error_velocity"] <= 1e-5 and r["error_time"] <= 1e-5]
+    assert h["ode"] == min(reaching, key=lambda r: r["wall_s"])
+    assert h["exact"]["method"] == "exact" and h["closed_form"]["method"] == "closed-form cycles"
+    assert h["closed_form"]["error_velocity"] < 1e-14 and h["closed_form"]["error_time"] < 1e-14
+    assert h["exact_over_closed_form"] == h["exact"]["wall_s"] / h["closed_form"]["wall_s"]
+    assert h["ode_over_closed_form"] == h["ode"]["wall_s"] / h["closed_form"]["wall_s"]
+    assert h["ode_over_exact"] == h["ode"]["wall_s"] / h["exact"]["wall_s"]
+    # a target no setting reaches: no ode row, no ratio against it
+    none = headline_ratios(P, 1.0, N, {"DOP853": [1e-6]}, target=1e-30, errors=("error_time",), min_seconds=0.01,
+                           max_repeats=2)
+    assert none["ode"] is None and math.isnan(none["ode_over_closed_form"]) and math.isnan(none["ode_over_exact"])
+    with pytest.raises(ValueError, match="errors"):
+        headline_ratios(P, 1.0, N, {}, errors=("error_amplitude",))
+
+
+def test_per_cycle_times_compare_the_closed_form_with_the_exact_solver():
+    rows = per_cycle_times(P, 1.0, (5, 50), min_seconds=0.01, max_repeats=3)
+    assert [r["n_cycles"] for r in rows] == [5, 50]
+    for r in rows:
+        assert r["exact_s_per_cycle"] > 0 and r["closed_form_s_per_cycle"] > 0
+        assert r["ratio"] == pytest.approx(r["exact_s_per_cycle"] / r["closed_form_s_per_cycle"], rel=1e-12)
 
 
 @pytest.mark.parametrize(

@@ -3,7 +3,7 @@ import math
 import numpy as np
 import pytest
 
-from escapement.model.parameters import Parameters
+from escapement.model.parameters import ParameterError, Parameters
 from escapement.studies.long_run import converged_after, long_run, sample_cycles
 
 P = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
@@ -26,6 +26,27 @@ def test_a_short_long_run_stays_at_rounding_level():
     assert np.nanmax(et) < 1e-15 and np.nanmax(ev) < 1e-15
     assert r["max_velocity_deviation"] < 1e-15 and r["max_period_deviation"] < 1e-15
     assert np.nanmax(r["ivp"][0]) > np.nanmax(et)
+    # the series in closed form, checked by the streamed event solver over the whole run
+    assert r["series_method"] == "closed-form cycles" and r["fallback"] is None and r["distinct_cycles"] < 200
+    assert r["check_cycles"] == 20_000 and r["check_max_relative_difference"] <= 1e-14
+    assert set(r["check_differences"]) == {"impact_time", "velocity_before_impact", "period", "amplitude"}
+    cf_t, cf_v, _ = r["closed_form"]
+    assert np.nanmax(cf_t) < 1e-15 and np.nanmax(cf_v) < 1e-14 and np.isfinite(cf_t).all()
+    assert r["closed_form_wall_s"] > 0 and r["exact_wall_s"] > 0
+
+
+def test_a_long_run_checks_the_closed_form_on_a_prefix():
+    r = long_run(P, 1.0, 20_000, "DOP853", 1e-8, 5, check_cycles=1_000)
+    assert r["check_cycles"] == 1_000 and r["check_max_relative_difference"] <= 1e-14
+    sampled = r["cycles"]
+    es_t = r["exact"][0]
+    assert np.isfinite(es_t[sampled <= 1_000]).all() and np.isnan(es_t[sampled > 1_000]).all()
+    assert np.isfinite(r["closed_form"][0]).all()  # the closed forms cover every cycle
+
+
+def test_the_event_solver_must_run_past_the_transient():
+    with pytest.raises(ParameterError, match="check_cycles"):
+        long_run(P, 1.0, 20_000, "DOP853", 1e-8, 5, check_cycles=10)
 
 
 def test_the_reference_fixed_point_is_eq19():
@@ -38,11 +59,12 @@ def test_the_reference_fixed_point_is_eq19():
     assert np.isnan(r["ivp"][0][r["cycles"] > 5]).all() and np.isfinite(r["ivp"][0][r["cycles"] <= 5]).all()
 
 
-def test_the_streamed_long_run_gives_the_numbers_of_the_whole_cycle_table():
+def test_the_long_run_gives_the_numbers_of_the_whole_cycle_table():
     """The long run keeps only sampled cycles and running maxima; from the whole table of solve_exact the
-    same numbers follow."""
+    same numbers follow, and the closed forms' whole table is within 1e-14 of it."""
     import mpmath
 
+    from escapement.solvers.cycles import compare_tables, solve_cycles
     from escapement.solvers.exact import solve_exact
 
     n = 30_000
@@ -60,6 +82,9 @@ def test_the_streamed_long_run_gives_the_numbers_of_the_whole_cycle_table():
     assert np.all(np.isfinite(et)) and np.all(np.isfinite(ev))
     assert et == pytest.approx([abs(d) / float(t) for d, t in zip(drift, t_ref)], rel=1e-12)
     assert not r["any_nan"]
+    closed = solve_cycles(P, 1.0, n_cycles=n).cycles
+    assert r["check_differences"] == compare_tables(closed, c)
+    assert r["check_max_relative_difference"] <= 1e-14
 
 
 @pytest.mark.parametrize("n_cycles", [10, 248])

@@ -219,8 +219,9 @@ def checks_scene(cases: list[dict], n_cycles: int) -> xr.Dataset:
 def long_run_scene(
     params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_rtol: float, ivp_cycles: int
 ) -> tuple[xr.Dataset, dict[str, float]]:
-    """Errors of the exact solver over ``n_cycles`` and of ``solve_ivp`` over ``ivp_cycles``, against 50 digits;
-    apart from the dataset (wall times vary from run to run), the wall time of each solver."""
+    """Errors of the exact solver and of the per-cycle closed forms over ``n_cycles`` and of ``solve_ivp`` over
+    ``ivp_cycles``, against 50 digits, and the largest difference between the closed forms and the exact solver;
+    apart from the dataset (wall times vary from run to run), the wall time of each method."""
     r = long_run(params, x0, _positive_int("n_cycles", n_cycles), ivp_method, ivp_rtol, _positive_int("ivp_cycles", ivp_cycles))
     coords = {"cycle": ("cycle", r["cycles"].astype(np.int32), {"long_name": "cycle number", "units": "1"})}
     names = {
@@ -230,7 +231,8 @@ def long_run_scene(
     }
     variables = {}
     ivp_label = f"solve_ivp {ivp_method} rtol={ivp_rtol:g}"
-    for solver, label in (("exact", "exact solver"), ("ivp", ivp_label)):
+    methods = (("exact", "exact solver"), ("closed_form", "per-cycle closed forms"), ("ivp", ivp_label))
+    for solver, label in methods:
         for (name, (units, long_name)), values in zip(names.items(), r[solver]):
             variables[f"{name}_{solver}"] = xr.DataArray(
                 values, dims="cycle", coords=coords,
@@ -246,6 +248,11 @@ def long_run_scene(
             r["max_period_deviation"], "1",
             "largest relative deviation of the period from the limit cycle's once converged, exact solver", QUALITY,
         ),
+        closed_form_difference=scalar_variable(
+            r["check_max_relative_difference"], "1",
+            "largest relative difference between the per-cycle closed forms and the exact solver, over the impact "
+            "time, velocity before impact, period and amplitude of every cycle both ran", QUALITY,
+        ),
         fixed_point_velocity=scalar_variable(
             r["fixed_point_velocity"], "m s-1", "velocity before impact at a1 on the limit cycle, 50-digit reference"
         ),
@@ -260,19 +267,24 @@ def long_run_scene(
         (
             "This file holds the errors against a 50-digit reference of one run released from rest at x0, at "
             "cycles spaced evenly in log: the relative errors of the impact time at a1 and of the velocity "
-            "before it, and the drift of the impact time, for the exact solver over n_cycles cycles and for "
-            "solve_ivp over ivp_cycles cycles; the limit cycle of the reference; and the largest deviations "
-            "of the exact solver from it after converged_after cycles (any_nan is 1 if the exact run gave a "
-            "NaN)."
+            "before it, and the drift of the impact time, for the exact solver over check_cycles cycles, for "
+            "the per-cycle closed forms (the return map of the squared velocity, Eq. (16), and each cycle's "
+            "arcs) over n_cycles cycles and for solve_ivp over ivp_cycles cycles; the largest difference "
+            "between the closed forms and the exact solver; the limit cycle of the reference; and the largest "
+            "deviations of the exact solver from it after converged_after cycles (any_nan is 1 if the exact "
+            "run gave a NaN)."
         ),
-        solver="exact; " + ivp_label,
+        solver="exact; closed-form cycles; " + ivp_label,
         ivp_label=ivp_label,
         n_cycles=int(n_cycles),
+        check_cycles=int(r["check_cycles"]),
+        closed_form_method=r["series_method"],
         ivp_cycles=int(ivp_cycles),
         converged_after=int(r["converged_after"]),
         any_nan=int(r["any_nan"]),
     )
-    timings = {"exact_seconds": r["exact_wall_s"], "ivp_seconds": r["ivp_wall_s"]}
+    timings = {"exact_seconds": r["exact_wall_s"], "closed_form_seconds": r["closed_form_wall_s"],
+               "ivp_seconds": r["ivp_wall_s"]}
     return assemble(variables, attrs), timings
 
 

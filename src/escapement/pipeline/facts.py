@@ -43,7 +43,7 @@ def collect_facts(
         facts[f"{key}_error_velocity"] = Fact(fmt(float(row["error_velocity"]), 2))
         facts[f"{key}_error_time"] = Fact(fmt(float(row["error_time"]), 2))
         facts[f"{key}_ratio"] = Fact(fmt(float(row["wall_s"]) / float(exact["wall_s"]), 3), measured=True)
-    worst_ivp = max(float(r["wall_s"]) for r in benchmark_rows if r["method"] not in ("exact", "map16"))
+    worst_ivp = max(float(r["wall_s"]) for r in benchmark_rows if r["method"] not in ("exact", "closed-form cycles", "map16"))
     facts["bench_slowest_ratio"] = Fact(fmt(worst_ivp / float(exact["wall_s"]), 3), measured=True)
 
     a = long_run.attrs
@@ -54,8 +54,10 @@ def collect_facts(
     facts["long_converged_after"] = Fact(str(int(a["converged_after"])))
     facts["long_exact_wall"] = Fact(fmt(long_run_timings["exact_seconds"], 3), measured=True)
     facts["long_ivp_wall"] = Fact(fmt(long_run_timings["ivp_seconds"], 3), measured=True)
+    facts["long_closed_form_wall"] = Fact(fmt(long_run_timings["closed_form_seconds"], 3), measured=True)
+    facts["long_closed_form_difference"] = Fact(fmt(float(long_run["closed_form_difference"]), 2))
     facts["long_nan"] = Fact("none" if not a["any_nan"] else "some")
-    for solver in ("exact", "ivp"):
+    for solver in ("exact", "closed_form", "ivp"):
         drift = long_run[f"drift_{solver}"].dropna("cycle")
         facts[f"long_{solver}_last_cycle"] = Fact(str(int(drift["cycle"].values[-1])))
         facts[f"long_{solver}_last_drift"] = Fact(fmt(abs(float(drift.values[-1])), 2))

@@ -32,7 +32,9 @@ def render_docs(
         rows = read_claims_csv(claims)
         facts = collect_facts(
             read_work_precision(benchmark),
-            read_netcdf(long_run, ("cycle", "drift_exact", "drift_ivp", "error_time_exact", "error_time_ivp")),
+            read_netcdf(long_run, ("cycle", "drift_exact", "drift_closed_form", "drift_ivp", "error_time_exact",
+                                  "error_time_closed_form", "error_time_ivp", "closed_form_difference",
+                                  "max_velocity_deviation", "max_period_deviation")),
             read_netcdf(stability, ("b", "F", "multiplier", "multiplier_eq21", "outcome")),
             read_timings(long_run_timing),
             read_timings(stability_timing),

@@ -415,10 +415,11 @@ def fig5(panels: dict[str, xr.Dataset]):
 
 #: errors below this are drawn at it on log axes (an exact zero has no logarithm)
 ERROR_FLOOR = 1e-17
-MARKERS = {"exact": "*", "map16": "P", "naive-RK4": "x", "RK45": "o", "DOP853": "s", "LSODA": "^", "Radau": "v",
+MARKERS = {"exact": "*", "closed-form cycles": "X", "map16": "P", "naive-RK4": "x", "RK45": "o", "DOP853": "s", "LSODA": "^", "Radau": "v",
            "CVODE-Adams": "D", "CVODE-BDF": "d"}
 #: the benchmark's methods in words, where their names are not words
-METHOD_LABELS = {"exact": "exact solver", "map16": "map (16) + corrected period (23)",
+METHOD_LABELS = {"exact": "exact solver", "closed-form cycles": "per-cycle closed forms",
+                 "map16": "map (16) + corrected period (23)",
                  "naive-RK4": "naive RK4, fixed step"}
 
 

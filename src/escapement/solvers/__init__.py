@@ -16,6 +16,7 @@ _EXPORTS = {
     "Solution": "result",
     "StreamSummary": "stream",
     "iter_cycles": "stream",
+    "solve_cycles": "cycles",
     "solve_ensemble": "ensemble",
     "solve_exact": "exact",
     "solve_high_precision": "high_precision",

@@ -9,6 +9,14 @@ Timing is adaptive: each setting is run again until ``min_seconds`` of runs have
 (the exact solver: a millisecond) is repeated hundreds of times, which keeps the noise of a
 shared machine in check; a slow one (seconds per run) runs once or twice. The whole table then
 costs about ``min_seconds`` per setting, plus the slow runs.
+
+Beside the exact event solver, ``closed-form cycles`` is the per-cycle closed form
+(:func:`escapement.solvers.cycles.solve_cycles`: the event solver up to the first impact at a1, then the return
+map of v^2 and each cycle's arcs in a few vectorised calls); :func:`work_precision` adds its row after
+``exact`` whenever ``exact`` is among the settings. :func:`headline_ratios` measures, side by side in one process,
+the exact solver, the closed form and the fastest ``solve_ivp``/CVODE setting that reaches a target error
+(1e-12 on 1000 cycles by default), and :func:`per_cycle_times` the time per cycle of the closed form and of the
+exact solver at several lengths.
 """
 
 from __future__ import annotations
@@ -20,16 +28,22 @@ from collections.abc import Callable
 
 from ..model.parameters import Parameters
 from ..paper import corrected as derived
+from ..solvers.cycles import CLOSED_FORM, solve_cycles
 from ..solvers.exact import solve_exact
 from ..solvers.high_precision import solve_high_precision
 from ..solvers.naive import solve_naive
 from ..solvers.reference import solve_reference
 
-__all__ = ["METHODS", "closed_form_map", "median_wall", "run_method", "work_precision"]
+__all__ = ["HEADLINE_SETTINGS", "METHODS", "closed_form_map", "headline_ratios", "median_wall", "per_cycle_times",
+           "run_method", "work_precision"]
 
 #: methods of solve_reference (SciPy's solve_ivp and SUNDIALS CVODE), by the benchmark's names
 INTEGRATORS = ("RK45", "DOP853", "LSODA", "Radau", "CVODE-Adams", "CVODE-BDF")
-METHODS = ("exact", "map16", *INTEGRATORS, "naive-RK4")
+METHODS = ("exact", CLOSED_FORM, "map16", *INTEGRATORS, "naive-RK4")
+#: the integrator settings :func:`headline_ratios` tries by default: those that can reach 1e-12 on 1000 cycles
+#: in a run of seconds (Radau, several minutes there, is left out)
+HEADLINE_SETTINGS = {"DOP853": [1e-12, 1e-13], "LSODA": [1e-12, 1e-13], "CVODE-Adams": [1e-12, 1e-13],
+                     "CVODE-BDF": [1e-12, 1e-13], "RK45": [1e-12]}
 
 
 def closed_form_map(params: Parameters, x0: float, n_cycles: int) -> tuple[float, float]:
@@ -64,6 +78,11 @@ def run_method(method: str, setting: float | None, params: Parameters, x0: float
     if method == "exact":
         c = solve_exact(params, x0, n_cycles=n_cycles, record_trajectory=False).cycles
         return float(c.velocity_before_impact[-1]), float(c.impact_time[-1])
+    if method == CLOSED_FORM:
+        run = solve_cycles(params, x0, n_cycles=n_cycles)
+        if len(run.cycles) < n_cycles:
+            raise RuntimeError(f"{CLOSED_FORM} ended early: {run.message}")
+        return float(run.cycles.velocity_before_impact[-1]), float(run.cycles.impact_time[-1])
     if method == "map16":
         return closed_form_map(params, x0, n_cycles)
     if method in INTEGRATORS:
@@ -91,36 +110,128 @@ def median_wall(fn: Callable[[], object], min_seconds: float, max_repeats: int) 
     return statistics.median(walls), len(walls), result
 
 
-def work_precision(
-    params: Parameters, x0: float, n_cycles: int, settings: dict[str, list], min_seconds: float, max_repeats: int,
-    log=None,
-) -> list[dict]:
-    """Rows ``method, setting, wall_s, repeats, error_velocity, error_time`` for every method and setting."""
+def _check_timing(min_seconds, max_repeats) -> None:
     if not (isinstance(min_seconds, int | float) and 0 < min_seconds <= 60):
         raise ValueError(f"min_seconds = {min_seconds!r} is invalid: min_seconds must be in (0, 60] (s)")
     if isinstance(max_repeats, bool) or not isinstance(max_repeats, int) or not 1 <= max_repeats <= 10_000:
         raise ValueError(f"max_repeats = {max_repeats!r} is invalid: max_repeats must be an integer in [1, 10000]")
+
+
+def _check_methods(settings) -> None:
     for method in settings:
         if method not in METHODS:
             raise ValueError(f"method = {method!r} is invalid: method must be one of {', '.join(METHODS)}")
+
+
+def _reference(params: Parameters, x0: float, n_cycles: int) -> tuple[float, float]:
+    """Velocity before impact and impact time at cycle ``n_cycles``, 50 digits, as floats."""
     ref = solve_high_precision(params, x0, n_cycles=n_cycles).cycles
-    v_ref, t_ref = float(ref.velocity_before_impact[-1]), float(ref.impact_time[-1])
+    return float(ref.velocity_before_impact[-1]), float(ref.impact_time[-1])
+
+
+def _row(method: str, setting, params: Parameters, x0: float, n_cycles: int, reference: tuple[float, float],
+         min_seconds: float, max_repeats: int, log=None) -> dict:
+    """One setting timed (:func:`median_wall`) and its errors at the last cycle against ``reference``."""
+    v_ref, t_ref = reference
+    wall, runs, (v, t) = median_wall(lambda: run_method(method, setting, params, x0, n_cycles), min_seconds,
+                                     max_repeats)
+    row = {
+        "method": method,
+        "setting": "" if setting is None else f"{setting:g}",
+        "wall_s": wall,
+        "repeats": runs,
+        "error_velocity": abs(v - v_ref) / abs(v_ref),
+        "error_time": abs(t - t_ref) / abs(t_ref),
+    }
+    if log is not None:
+        log(f"{method} {row['setting']}: {wall:.3e} s (median of {runs}), "
+            f"errors {row['error_velocity']:.2e} {row['error_time']:.2e}")
+    return row
+
+
+def work_precision(
+    params: Parameters, x0: float, n_cycles: int, settings: dict[str, list], min_seconds: float, max_repeats: int,
+    log=None, closed_form: bool = True,
+) -> list[dict]:
+    """Rows ``method, setting, wall_s, repeats, error_velocity, error_time`` for every method and setting.
+
+    With ``closed_form`` (the default) the per-cycle closed form's row (``closed-form cycles``, no setting)
+    follows ``exact``'s wherever the settings name ``exact`` but not it."""
+    _check_timing(min_seconds, max_repeats)
+    _check_methods(settings)
+    if closed_form and "exact" in settings and CLOSED_FORM not in settings:
+        ordered = {}
+        for method, values in settings.items():
+            ordered[method] = values
+            if method == "exact":
+                ordered[CLOSED_FORM] = []
+        settings = ordered
+    reference = _reference(params, x0, n_cycles)
+    return [_row(method, setting, params, x0, n_cycles, reference, min_seconds, max_repeats, log)
+            for method, values in settings.items() for setting in values or [None]]
+
+
+def headline_ratios(
+    params: Parameters, x0: float, n_cycles: int = 1000, settings: dict[str, list] | None = None,
+    target: float = 1e-12, errors: tuple[str, ...] = ("error_velocity", "error_time"), min_seconds: float = 0.2,
+    max_repeats: int = 500, log=None,
+) -> dict:
+    """The exact solver, the per-cycle closed form and the fastest integrator setting that reaches ``target``,
+    timed side by side in one process on ``n_cycles`` cycles, and the ratios of their wall times.
+
+    Every run is timed as in :func:`work_precision` (:func:`median_wall`) and its errors measured the same way
+    (relative, at the last cycle, against 50 digits). An integrator setting (``settings``: method to rtols,
+    default :data:`HEADLINE_SETTINGS`) reaches the target where each error named in ``errors`` is at most
+    ``target``; the fastest of those is the one compared.
+
+    Returns a dict: ``n_cycles``, ``target``, ``errors``; the rows (as :func:`work_precision`'s) ``exact``,
+    ``closed_form`` and ``ode`` (None where no setting reaches the target), and ``candidates`` (every integrator
+    row); and the ratios ``exact_over_closed_form``, ``ode_over_closed_form`` and ``ode_over_exact`` (wall
+    time over wall time; NaN without an ``ode`` row).
+    """
+    _check_timing(min_seconds, max_repeats)
+    settings = HEADLINE_SETTINGS if settings is None else settings
+    _check_methods(settings)
+    if not set(errors) <= {"error_velocity", "error_time"} or not errors:
+        raise ValueError(f"errors = {errors!r} is invalid: errors must name error_velocity, error_time or both")
+    if not (isinstance(target, int | float) and target > 0):
+        raise ValueError(f"target = {target!r} is invalid: target must be > 0")
+    reference = _reference(params, x0, n_cycles)
+
+    def row(method, setting=None):
+        return _row(method, setting, params, x0, n_cycles, reference, min_seconds, max_repeats, log)
+
+    exact, closed = row("exact"), row(CLOSED_FORM)
+    candidates = [row(method, setting) for method, values in settings.items() if method in INTEGRATORS
+                  for setting in values]
+    reaching = [r for r in candidates if all(r[name] <= target for name in errors)]
+    ode = min(reaching, key=lambda r: r["wall_s"]) if reaching else None
+    ode_wall = math.nan if ode is None else ode["wall_s"]
+    return {
+        "n_cycles": n_cycles,
+        "target": target,
+        "errors": tuple(errors),
+        "exact": exact,
+        "closed_form": closed,
+        "ode": ode,
+        "candidates": candidates,
+        "exact_over_closed_form": exact["wall_s"] / closed["wall_s"],
+        "ode_over_closed_form": ode_wall / closed["wall_s"],
+        "ode_over_exact": ode_wall / exact["wall_s"],
+    }
+
+
+def per_cycle_times(params: Parameters, x0: float, n_cycles=(50, 1000, 100_000), min_seconds: float = 0.2,
+                    max_repeats: int = 500) -> list[dict]:
+    """Wall time per cycle of the per-cycle closed form and of the exact solver, timed side by side
+    (:func:`median_wall`) for each number of cycles: rows ``n_cycles``, ``exact_s_per_cycle``,
+    ``closed_form_s_per_cycle`` and ``ratio`` (exact over closed form)."""
+    _check_timing(min_seconds, max_repeats)
     rows = []
-    for method, values in settings.items():
-        for setting in values or [None]:
-            wall, runs, (v, t) = median_wall(
-                lambda: run_method(method, setting, params, x0, n_cycles), min_seconds, max_repeats
-            )
-            row = {
-                "method": method,
-                "setting": "" if setting is None else f"{setting:g}",
-                "wall_s": wall,
-                "repeats": runs,
-                "error_velocity": abs(v - v_ref) / abs(v_ref),
-                "error_time": abs(t - t_ref) / abs(t_ref),
-            }
-            rows.append(row)
-            if log is not None:
-                log(f"{method} {row['setting']}: {wall:.3e} s (median of {runs}), "
-                    f"errors {row['error_velocity']:.2e} {row['error_time']:.2e}")
+    for n in n_cycles:
+        exact = median_wall(lambda: solve_exact(params, x0, n_cycles=n, record_trajectory=False), min_seconds,
+                            max_repeats)[0]
+        closed = median_wall(lambda: solve_cycles(params, x0, n_cycles=n), min_seconds, max_repeats)[0]
+        rows.append({"n_cycles": n, "exact_s_per_cycle": exact / n, "closed_form_s_per_cycle": closed / n,
+                     "ratio": exact / closed})
     return rows

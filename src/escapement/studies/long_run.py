@@ -4,9 +4,14 @@ The reference is the 50-digit solution of :mod:`escapement.solvers.high_precisio
 transient has decayed below 1e-45 (in v^2 it decays by (1-b)^4 per cycle), and from there
 on exactly periodic: t_ref(n) = t_ref(n0) + (n - n0) T*, computed in 50 digits.
 
-The exact solver's cycles come in chunks (:func:`escapement.solvers.stream.iter_cycles`), of which only
-the sampled cycles and the largest deviations after convergence are kept: the run takes the same memory
-for 10**4 cycles as for 10**8.
+The subject is the exact event solver: its cycles come in chunks
+(:func:`escapement.solvers.stream.iter_cycles`), of which only the sampled cycles and the largest
+deviations after convergence are kept, so the run takes the same memory for 10**4 cycles as for 10**8;
+it runs over the first ``check_cycles`` cycles (by default the whole run up to :data:`EXACT_CHECK_CYCLES`).
+Beside it, the per-cycle closed forms (:func:`escapement.solvers.cycles.solve_cycles`: the return map
+of v^2 and each cycle's arcs, the impact times a compensated sum of the periods) give the same series
+over all ``n_cycles`` cycles in a few vectorised calls; every chunk of the event solver is compared
+with them, quantity by quantity, and the largest relative difference is reported.
 """
 
 from __future__ import annotations
@@ -19,11 +24,17 @@ import numpy as np
 
 from ..model.limits import MAX_CYCLES, check_count
 from ..model.parameters import ParameterError, Parameters
+from ..solvers.cycles import compare_tables, solve_cycles
 from ..solvers.high_precision import solve_high_precision
 from ..solvers.reference import solve_reference
+from ..solvers.result import CycleTable
 from ..solvers.stream import iter_cycles
 
-__all__ = ["converged_after", "sample_cycles", "long_run"]
+__all__ = ["EXACT_CHECK_CYCLES", "converged_after", "sample_cycles", "long_run"]
+
+#: the cycles the streamed event solver checks the closed form over unless told otherwise: the whole of the
+#: workflow's long run (10**6 cycles, a couple of seconds); a longer run is checked on this prefix
+EXACT_CHECK_CYCLES = 1_000_000
 
 
 def converged_after(params: Parameters, digits: int = 45) -> int:
@@ -40,15 +51,31 @@ def sample_cycles(n_cycles: int, per_decade: int = 40) -> np.ndarray:
     return np.unique(np.round(np.logspace(0, decades, int(per_decade * decades) + 1)).astype(int))
 
 
-def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_rtol: float, ivp_cycles: int) -> dict:
-    """Errors of the exact solver over ``n_cycles`` and of ``solve_ivp`` over ``ivp_cycles``.
+def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_rtol: float, ivp_cycles: int,
+             check_cycles: int | None = None) -> dict:
+    """Errors of the exact solver and of the per-cycle closed forms over ``n_cycles``, and of ``solve_ivp``
+    over ``ivp_cycles``, against the 50-digit reference.
 
-    ``n_cycles`` must exceed :func:`converged_after` (the deviations are taken after it)."""
+    ``exact``, ``closed_form`` and ``ivp`` hold each method's relative errors of the impact time and of the
+    velocity, and the drift of the impact time, at the sampled ``cycles`` (NaN past the cycles it ran: the
+    event solver runs ``check_cycles`` cycles, by default ``n_cycles`` up to :data:`EXACT_CHECK_CYCLES`).
+    ``max_velocity_deviation`` and ``max_period_deviation`` are the event solver's largest relative
+    deviations from the limit cycle after :func:`converged_after` cycles. ``check_differences`` holds the
+    largest relative difference between the closed forms and the event solver per quantity
+    (``check_max_relative_difference`` the largest; inf if one ended where the other did not);
+    ``series_method`` says which method made the closed-form series (``"closed-form cycles"``, or
+    ``"exact"`` where the closed form does not apply). ``exact_wall_s``, ``closed_form_wall_s`` and
+    ``ivp_wall_s`` are the wall times.
+
+    ``n_cycles`` and ``check_cycles`` must exceed :func:`converged_after` (the deviations are taken after it)."""
     n_cycles = check_count("n_cycles", n_cycles, MAX_CYCLES)
+    n_check = min(n_cycles, EXACT_CHECK_CYCLES) if check_cycles is None else check_count(
+        "check_cycles", check_cycles, n_cycles)
     n0 = converged_after(params)
-    if n_cycles <= n0:
-        raise ParameterError("n_cycles", n_cycles, f"> {n0:_}, the cycles after which the transient has decayed "
-                             "below 1e-45 (the deviations from the fixed point are taken after them)")
+    for name, value in (("n_cycles", n_cycles), ("check_cycles", n_check)):
+        if value <= n0:
+            raise ParameterError(name, value, f"> {n0:_}, the cycles after which the transient has decayed "
+                                 "below 1e-45 (the deviations from the fixed point are taken after them)")
     hp = solve_high_precision(params, x0, n_cycles=n0 + 1, dps=50).cycles
     cycles = sample_cycles(n_cycles)
     with mpmath.workdps(60):
@@ -73,31 +100,49 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
                     ev[i] = float(abs(mpmath.mpf(v[i]) - reference_v[i]) / reference_v[i])
             return et, ev, drift
 
+        # the per-cycle series, in closed form
+        start = time.perf_counter()
+        run = solve_cycles(params, x0, n_cycles=n_cycles)
+        closed_wall = time.perf_counter() - start
+        table, done = run.cycles, len(run.cycles)
+        if done <= n0:
+            raise RuntimeError(f"the run ended after {done} cycles, before cycle {n0 + 1}: {run.message}")
+        closed_form = errors(*_sampled(table, cycles), done)
+
+        # the event solver over the first n_check cycles, chunk by chunk: its errors, its deviations from the
+        # limit cycle once converged, and its differences from the closed-form series
         start = time.perf_counter()
         sampled_t, sampled_v = (np.full(len(cycles), np.nan) for _ in range(2))
+        differences = dict.fromkeys(("impact_time", "velocity_before_impact", "period", "amplitude"), 0.0)
         max_v_dev = max_t_dev = -math.inf
         any_nan = False
-        done = 0  # cycles before the chunk
-        stream = iter_cycles(params, x0, n_cycles=n_cycles)
+        checked = 0  # cycles before the chunk
+        stream = iter_cycles(params, x0, n_cycles=n_check)
         for chunk in stream:
             size = len(chunk)
-            here = (cycles > done) & (cycles <= done + size)
-            sampled_t[here] = chunk.impact_time[cycles[here] - done - 1]
-            sampled_v[here] = chunk.velocity_before_impact[cycles[here] - done - 1]
-            tail = slice(max(n0 - done, 0), size)  # the cycles from n0 + 1 on (index n0 of the whole run)
+            here = (cycles > checked) & (cycles <= checked + size)
+            sampled_t[here] = chunk.impact_time[cycles[here] - checked - 1]
+            sampled_v[here] = chunk.velocity_before_impact[cycles[here] - checked - 1]
+            tail = slice(max(n0 - checked, 0), size)  # the cycles from n0 + 1 on (index n0 of the whole run)
             if tail.start < size:
                 max_v_dev = max(max_v_dev, float(np.max(np.abs(chunk.velocity_before_impact[tail] - float(v_star)))))
                 max_t_dev = max(max_t_dev, float(np.max(np.abs(chunk.period[tail] - float(t_star)))))
             any_nan = any_nan or bool(np.isnan(chunk.impact_time).any() or np.isnan(chunk.velocity_before_impact).any())
-            done += size
+            part = CycleTable(*(getattr(table, name)[checked:checked + size] for name in differences))
+            for name, gap in compare_tables(part, chunk).items():
+                differences[name] = math.nan if math.isnan(gap) or math.isnan(differences[name]) else max(
+                    differences[name], gap)
+            checked += size
         exact_wall = time.perf_counter() - start
-        if done <= n0:
-            raise RuntimeError(f"the exact run ended after {done} cycles, before cycle {n0 + 1}: "
+        if checked <= n0:
+            raise RuntimeError(f"the exact run ended after {checked} cycles, before cycle {n0 + 1}: "
                                f"{stream.summary.message}")
-        exact = errors(sampled_t, sampled_v, done)
+        if checked != min(n_check, done):
+            differences = dict.fromkeys(differences, math.inf)  # one run ended where the other did not
+        exact = errors(sampled_t, sampled_v, checked)
         max_v_dev /= float(v_star)
         max_t_dev /= float(t_star)
-
+        worst = math.nan if any(math.isnan(d) for d in differences.values()) else max(differences.values())
         start = time.perf_counter()
         ivp = solve_reference(params, x0, n_cycles=ivp_cycles, method=ivp_method, rtol=ivp_rtol,
                               record_trajectory=False)
@@ -106,6 +151,7 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
     return {
         "cycles": cycles,
         "exact": exact,
+        "closed_form": closed_form,
         "ivp": ivp_errors,
         "converged_after": n0,
         "max_velocity_deviation": max_v_dev,
@@ -115,6 +161,13 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
         "exact_wall_s": exact_wall,
         "ivp_wall_s": ivp_wall,
         "any_nan": any_nan,
+        "series_method": run.method,
+        "fallback": run.fallback,
+        "distinct_cycles": run.distinct_cycles,
+        "closed_form_wall_s": closed_wall,
+        "check_cycles": checked,
+        "check_differences": differences,
+        "check_max_relative_difference": worst,
     }
 
 
