@@ -275,3 +275,48 @@ def test_fig4_velocity_axis_paper():
     p, x0 = CASE["b"]
     v = solve_exact(p, x0, t_end=87.0).sample(np.linspace(80.0, 87.0, 7001))[1]
     assert v.min() >= -0.1 and v.max() <= 0.9
+
+
+# --- further claims (escapement.paper.register, .existence, .airy) ---------------------------------
+
+
+def test_asymmetric_existence_replicated_follows_the_sign_of_C():
+    """(a1..a4) = (-0.3, -0.25, 0.1, 0.05): C = -0.0152 + 0.181 F (derived on paper), F* = 0.0839779 N."""
+    positions = dict(a1=-0.3, a2=-0.25, a3=0.1, a4=0.05)
+    run = solve_exact(paper(0.05, **positions), -0.4, n_cycles=50, record_trajectory=False)
+    e = [0.4**2 - 0.3**2]
+    while e[-1] > 0:
+        e.append(0.6561 * e[-1] - 0.0152 + 0.181 * 0.05)
+    assert run.status == Status.STOPPED
+    impacts = run.events.v_before[run.events.kind == 1]
+    assert impacts**2 == pytest.approx(e[:-1], rel=1e-12)  # every impact the map allows, and no more
+    converged = solve_exact(paper(0.1, **positions), -0.4, n_cycles=200, record_trajectory=False)
+    assert converged.cycles.velocity_before_impact[-1] == pytest.approx(math.sqrt(0.0029 / 0.3439), rel=1e-10)
+
+
+@pytest.mark.xfail(strict=True, reason="Sec. 4: the initial amplitude has no effect; from |x0| <= |a1| nothing starts")
+def test_initial_amplitude_inside_the_impact_positions_paper():
+    assert measure_cycle(paper(1.0), 0.0999).outcome == "completed"
+
+
+def test_grazing_release_has_two_continuations_50_digits():
+    """a3 = 0.3, F = 0.1: from rest at -A the swing after the first impulse turns exactly at a3;
+    A^2 = 0.01 + 0.05 / 0.81, and a touch counted as an impact leads to v1^2 = 0.15 (derived on paper)."""
+    p = paper(0.1, a3=0.3, a4=-0.05)
+    a = math.sqrt(0.01 + 0.05 / 0.81)
+    above = solve_high_precision(p, -a * (1 + 1e-12), n_cycles=2)
+    v1 = above.events.v_before[above.events.kind == 1]
+    assert float(v1[1]) == pytest.approx(math.sqrt(0.15), rel=1e-9)
+    assert solve_high_precision(p, -a * (1 - 1e-12), n_cycles=2).status == Status.STOPPED
+
+
+def test_period_as_daily_rate_replicated():
+    """86400 (T0/T - 1) with the 50-digit period of case (a): about 171 s a day slow."""
+    p, x0 = CASE["a"]
+    period = float(solve_high_precision(p, x0, n_cycles=50).cycles.period[-1])
+    assert 86_400 * (2 * math.pi / period - 1) == pytest.approx(-171.4, abs=0.05)
+
+
+@pytest.mark.xfail(strict=True, reason="Sec. 4: the period is the natural one, 6.2832 s; the impacts delay each cycle")
+def test_period_is_the_natural_period_paper():
+    assert cycles("a")[1].period[-1] == pytest.approx(2 * math.pi, abs=PRINTED_4_DECIMALS)

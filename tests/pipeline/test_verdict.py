@@ -26,7 +26,7 @@ def files(tmp_path) -> dict:
     fig3 = xr.Dataset(
         {**{k: ("cycle", np.full(2, v)) for k, v in cycles.items()},
          "event_time": ("event", np.arange(9.0)), "event_kind": ("event", np.array([1, 2, 3, 4] * 2 + [1], np.int8)),
-         "event_velocity_before": ("event", np.zeros(9)), **MODEL},
+         "event_velocity_before": ("event", np.zeros(9)), "event_velocity_after": ("event", np.zeros(9)), **MODEL},
         coords={"cycle": [1, 2]}, attrs=OUTCOME,
     )
     fig4 = xr.Dataset(

@@ -21,7 +21,7 @@ __all__ = ["FIG3_VARIABLES", "FIG4_VARIABLES", "FIG5_VARIABLES", "CHECKS_VARIABL
 
 #: The variables the checks read from each output; a file lacking one is named by read_netcdf.
 FIG3_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude", "event_time", "event_kind",
-                  "event_velocity_before", *MODEL_KEYS, "x0")
+                  "event_velocity_before", "event_velocity_after", *MODEL_KEYS, "x0")
 FIG4_VARIABLES = ("t", "velocity", "acceleration", "velocity_before", "impulse", "energy_dissipated",
                   "velocity_window", "acceleration_window", *MODEL_KEYS, "x0")
 FIG5_VARIABLES = ("t", "displacement", "velocity", "impact_time", "velocity_before_impact", "period", "amplitude", *MODEL_KEYS)

@@ -31,6 +31,8 @@ import numpy as np
 from ..model.parameters import Parameters
 from ..model.status import Status
 from ..paper import corrected
+# the daily rate and Airy's first-order zone cost live with the check of Airy's theorem
+from ..paper.airy import SECONDS_PER_DAY, daily_rate, first_order_zone_change
 from ..solvers.exact import solve_exact
 
 __all__ = [
@@ -41,22 +43,6 @@ __all__ = [
     "limit_cycle_rate",
     "rate_against_amplitude",
 ]
-
-SECONDS_PER_DAY = 86_400.0
-
-
-def daily_rate(period: float, natural_period: float) -> float:
-    """Seconds gained per day (negative: lost) by a clock that counts ``natural_period`` per swing
-    of an oscillator whose period is ``period``: ``86400 (T0 / T - 1)``."""
-    return SECONDS_PER_DAY * (natural_period / period - 1.0)
-
-
-def first_order_zone_change(start: float, end: float, amplitude: float, omega: float, f: float) -> float:
-    """The first-order time cost of a zone from ``start`` to ``end`` (force per unit mass ``f`` along
-    the motion) on an arc of amplitude ``amplitude``: ``f (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) /
-    (w**3 A**2)`` (see the module docstring)."""
-    a2 = amplitude * amplitude
-    return f * (math.sqrt(a2 - start * start) - math.sqrt(a2 - end * end)) / (omega**3 * a2)
 
 
 @dataclass(frozen=True)

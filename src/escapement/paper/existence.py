@@ -1,0 +1,226 @@
+"""Checks on where a limit cycle exists and where the solution is unique (Secs. 3.3, 4 and 5).
+
+Each check runs the exact solver on the configurations its ``args`` in the register name, and
+compares the outcomes with a closed form derived on paper; the verdict comes from a pure function
+(``*_verdict``) of the measured numbers, so that the tests can give it every case.
+
+Closed forms used (derived here, from the map (16), which is right):
+
+* the map is ``v1(k+1)**2 = (1 - b)**4 v1(k)**2 + C`` with
+  ``M C = (b**2 - 2b) K (a1**2 - a3**2) + 2 F [(1 - b)**2 (a2 - a1) + (a3 - a4)]``; a fixed point
+  (a limit cycle) needs ``C > 0``, i.e. ``F > F* = (2b - b**2) K (a1**2 - a3**2) / (2 [(1 - b)**2
+  (a2 - a1) + (a3 - a4)])`` (the bracket is positive since a2 > a1, a3 > a4). In the symmetric case
+  ``a1**2 = a3**2``, so ``F* = 0``: a limit cycle for every F > 0. Below F*, ``v1**2`` falls by at least
+  ``|C|`` per cycle and the escapement stops after finitely many cycles;
+* from rest at ``x0`` the free swing covers ``[-|x0|, |x0|]``: it meets an impact position only if
+  ``|x0| > min(-a1, a3)``;
+* grazing: released from rest at ``-A`` (``A > -a1``), the mass hits a1 with ``w**2 (A**2 - a1**2)`` as
+  squared speed, and after the impulse its free swing turns at ``h2``, ``h2**2 = a1**2 + (1 - b)**2
+  (A**2 - a1**2) + 2 f (a2 - a1) / w**2``. ``h2 = a3`` (the swing touches a3 at rest) for
+  ``A**2 = a1**2 + (a3**2 - a1**2 - 2 f (a2 - a1) / w**2) / (1 - b)**2``. If that touch counts as an
+  impact (with speed 0) the impulse -f then acts from a3 to a4 and the next impact at a1 comes with
+  ``v1**2 = w**2 (a3**2 - a1**2) + 2 f (a3 - a4)``; if not, the mass swings freely for ever with
+  amplitude a3.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+from ..model.events import EventKind
+from ..model.parameters import Parameters
+from ..model.status import Status
+from ..solvers.exact import solve_exact
+from .checks import NOT, PARTIAL, REPRODUCED, Evidence, Verdict, check, fmt, runs_only
+
+__all__ = [
+    "existence_threshold",
+    "existence_verdict",
+    "grazing_limit",
+    "grazing_release",
+    "grazing_verdict",
+    "map_constant",
+    "release_verdict",
+]
+
+
+def _params(args: Mapping, F: float, positions: Sequence[float] | None = None) -> Parameters:
+    a1, a2, a3, a4 = positions if positions is not None else args["positions"]
+    return Parameters(M=float(args.get("M", 1.0)), K=float(args.get("K", 1.0)), F=float(F), b=float(args.get("b", 0.1)),
+                      a1=float(a1), a2=float(a2), a3=float(a3), a4=float(a4))
+
+
+def map_constant(p: Parameters) -> float:
+    """``C`` of ``v1(k+1)**2 = (1 - b)**4 v1(k)**2 + C``, written from the module's closed form."""
+    b = p.b
+    return ((b * b - 2 * b) * p.K * (p.a1**2 - p.a3**2)
+            + 2 * p.F * ((1 - b) ** 2 * (p.a2 - p.a1) + (p.a3 - p.a4))) / p.M
+
+
+def existence_threshold(p: Parameters) -> float:
+    """``F*``: the force at which ``C`` changes sign (N); a limit cycle needs ``F > F*``."""
+    b = p.b
+    return (2 * b - b * b) * p.K * (p.a1**2 - p.a3**2) / (2 * ((1 - b) ** 2 * (p.a2 - p.a1) + (p.a3 - p.a4)))
+
+
+# --- Sec. 5: whether a limit cycle exists depends on F and the positions ------------------------
+
+
+def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: float) -> Verdict:
+    """``rows``: per force ``F``, the closed-form ``C`` and ``fixed_point`` and the run's ``outcome``,
+    ``cycles`` and last ``velocity``. Reproduced when every run agrees with the sign of C (C > 0:
+    converges to the fixed point; C < 0: stops) and the forces lie on both sides of F*."""
+    agree = []
+    for r in rows:
+        if r["C"] > 0:
+            ok = r["outcome"] == Status.COMPLETED.value and abs(r["velocity"] - r["fixed_point"]) <= (
+                tolerance * r["fixed_point"])
+        else:
+            ok = r["outcome"] == Status.STOPPED.value
+        agree.append(ok)
+    parts = []
+    for r in rows:
+        if r["outcome"] == Status.COMPLETED.value:
+            parts.append(f"F = {fmt(r['F'], 4)} N (C = {fmt(r['C'], 4)} m^2/s^2): converges, v1 = {fmt(r['velocity'])} "
+                         f"m/s after {r['cycles']} cycles (closed form {fmt(r['fixed_point'])})")
+        else:
+            parts.append(f"F = {fmt(r['F'], 4)} N (C = {fmt(r['C'], 4)} m^2/s^2): {r['outcome']} after "
+                         f"{r['cycles']} complete cycles")
+    both_sides = any(r["C"] > 0 for r in rows) and any(r["C"] < 0 for r in rows)
+    status = REPRODUCED if all(agree) and both_sides else NOT
+    why = ("the runs agree with the sign of C on both sides of F*" if status == REPRODUCED else
+           "a run disagrees with the sign of C" if not all(agree) else "the forces do not straddle F*")
+    return Verdict("; ".join(parts), status, note=(
+        f"F* = (2b - b^2) K (a1^2 - a3^2) / (2 [(1-b)^2 (a2 - a1) + (a3 - a4)]) = {fmt(threshold, 6)} N (closed "
+        f"form): C < 0 below it, no fixed point, v1^2 falls by |C| or more per cycle until the escapement stops; "
+        f"in the symmetric case F* = 0; {why}"),
+        paper_value="the limit cycle's existence depends on F and a1..a4")
+
+
+@check("existence_sign_change", scenes=runs_only, args=("positions", "forces", "x0", "n_cycles"))
+def existence_sign_change(claim, ev: Evidence) -> Verdict:
+    args = claim["args"]
+    rows = []
+    for F in args["forces"]:
+        p = _params(args, F)
+        c = map_constant(p)
+        run = solve_exact(p, float(args["x0"]), n_cycles=int(args["n_cycles"]), record_trajectory=False)
+        v = run.cycles.velocity_before_impact
+        rows.append({"F": p.F, "C": c, "fixed_point": math.sqrt(c / (1 - (1 - p.b) ** 4)) if c > 0 else math.nan,
+                     "outcome": run.status.value, "cycles": len(run.cycles), "velocity": float(v[-1]) if len(v) else
+                     math.nan})
+    return existence_verdict(rows, existence_threshold(_params(args, 0.0)), claim["tolerance"])
+
+
+# --- Sec. 4: "the initial amplitude has no effect on the convergence" ---------------------------
+
+
+def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) -> Verdict:
+    """``rows``: per release ``x0`` the run's ``outcome`` and last ``velocity``, and the closed-form
+    ``fixed_point``. Reproduced when every release converges to the fixed point; partially when those
+    beyond ``boundary`` do and those inside it stop; not reproduced otherwise."""
+    beyond = [r for r in rows if abs(r["x0"]) > boundary]
+    inside = [r for r in rows if abs(r["x0"]) <= boundary]
+
+    def converged(r) -> bool:
+        return r["outcome"] == Status.COMPLETED.value and abs(r["velocity"] - r["fixed_point"]) <= (
+            tolerance * r["fixed_point"])
+
+    text = "; ".join(
+        f"x0 = {fmt(r['x0'], 6)} m: " + (f"converges to {fmt(r['velocity'])} m/s" if converged(r) else r["outcome"])
+        for r in rows)
+    if all(converged(r) for r in rows):
+        status = REPRODUCED
+    elif beyond and all(converged(r) for r in beyond) and all(r["outcome"] == Status.STOPPED.value for r in inside):
+        status = PARTIAL
+    else:
+        status = NOT
+    return Verdict(text, status, note=(
+        f"from rest at x0 the free swing covers [-|x0|, |x0|] and meets an impact position only if |x0| > "
+        f"min(-a1, a3) = {fmt(boundary, 6)} m (closed form); beyond it every release converges to the same fixed "
+        f"point (Eq. (19): {fmt(rows[0]['fixed_point'])} m/s), inside it (or exactly on it) the escapement never "
+        "starts and the mass swings freely"),
+        paper_value="convergence independent of the initial amplitude")
+
+
+@check("release_boundary", scenes=runs_only, args=("positions", "F", "releases", "n_cycles"))
+def release_boundary(claim, ev: Evidence) -> Verdict:
+    args = claim["args"]
+    p = _params(args, args["F"])
+    star = math.sqrt(map_constant(p) / (1 - (1 - p.b) ** 4))
+    rows = []
+    for x0 in args["releases"]:
+        run = solve_exact(p, float(x0), n_cycles=int(args["n_cycles"]), record_trajectory=False)
+        v = run.cycles.velocity_before_impact
+        rows.append({"x0": float(x0), "outcome": run.status.value, "velocity": float(v[-1]) if len(v) else math.nan,
+                     "fixed_point": star})
+    return release_verdict(rows, min(-p.a1, p.a3), claim["tolerance"])
+
+
+# --- Secs. 3.3 and 5: existence and uniqueness -------------------------------------------------
+
+
+def grazing_release(p: Parameters) -> float:
+    """``A``: released from rest at ``-A`` the swing after the first impulse turns exactly at a3."""
+    w2 = p.omega2
+    a_sq = p.a1**2 + (p.a3**2 - p.a1**2 - 2 * p.f * (p.a2 - p.a1) / w2) / (1 - p.b) ** 2
+    if a_sq <= p.a1**2:
+        raise ValueError(f"a1..a4 = {p.a1}, {p.a2}, {p.a3}, {p.a4}, F = {p.F}: no release grazes a3 "
+                         "(the first impulse alone carries the swing past it)")
+    return math.sqrt(a_sq)
+
+
+def grazing_limit(p: Parameters) -> float:
+    """The velocity before the next impact at a1 if the touch at a3 counts as an impact with speed 0."""
+    return math.sqrt(p.omega2 * (p.a3**2 - p.a1**2) + 2 * p.f * (p.a3 - p.a4))
+
+
+def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> Verdict:
+    """``rows``: per offset ``delta`` of the release from the grazing one, ``above`` (released at
+    ``-A (1 + delta)``: its ``outcome`` and ``v_next``, the velocity before its second impact at a1) and
+    ``below`` (at ``-A (1 - delta)``: its ``outcome``). Two continuations (the paper's uniqueness fails)
+    when the runs above continue towards ``limit`` and those below stop, whatever delta: partially
+    reproduced (unique off grazing). Reproduced when both sides agree; not reproduced when the
+    runs above do not tend to the closed-form continuation."""
+    split = all(r["above"]["outcome"] == Status.COMPLETED.value and r["below"]["outcome"] == Status.STOPPED.value
+                for r in rows)
+    smallest = min(rows, key=lambda r: r["delta"])
+    error = abs(smallest["above"]["v_next"] - limit) / limit
+    text = "; ".join(
+        f"delta = {fmt(r['delta'], 2)}: from -A(1 + delta) {r['above']['outcome']}"
+        + (f", next impact at a1 with {fmt(r['above']['v_next'])} m/s" if math.isfinite(r["above"]["v_next"]) else "")
+        + f"; from -A(1 - delta) {r['below']['outcome']}" for r in rows)
+    if not split:
+        status = REPRODUCED
+    elif error <= tolerance:
+        status = PARTIAL
+    else:
+        status = NOT
+    return Verdict(text + f"; the grazing motion's two continuations: impact and impulse (next v1 = {fmt(limit)} "
+                   "m/s, closed form) or no impact (free swing of amplitude a3 for ever)", status, note=(
+        "g(t) of Eq. (2) is the force sigma f switched on and off where x crosses a1..a4: discontinuous in y, so "
+        "A y + g is not Lipschitz there and the cited theorem does not apply; off grazing every event is a transversal "
+        "crossing and the solution is unique, but a swing that touches a3 at rest has two continuations, the "
+        "one-sided limits of neighbouring solutions, an O(1) apart however small delta (the solver, like the "
+        "jump set x xdot < 0, counts the touch as no impact)"),
+        paper_value="exactly one solution (A and g Lipschitz)")
+
+
+@check("grazing_uniqueness", scenes=runs_only, args=("positions", "F", "deltas", "n_cycles"))
+def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
+    args = claim["args"]
+    p = _params(args, args["F"])
+    release = grazing_release(p)
+
+    def run(x0: float) -> dict:
+        sol = solve_exact(p, x0, n_cycles=int(args["n_cycles"]), record_trajectory=False)
+        impacts = sol.events.of_kind(EventKind.IMPACT_A1)
+        v_next = float(sol.events.v_before[impacts[1]]) if len(impacts) > 1 else math.nan
+        return {"outcome": sol.status.value, "v_next": v_next}
+
+    rows = [{"delta": float(d), "above": run(-release * (1 + float(d))), "below": run(-release * (1 - float(d)))}
+            for d in args["deltas"]]
+    verdict = grazing_verdict(rows, grazing_limit(p), claim["tolerance"])
+    return Verdict(f"grazing release A = {fmt(release)} m (closed form); " + verdict.replicated_value, verdict.status,
+                   note=verdict.note, paper_value=verdict.paper_value)
