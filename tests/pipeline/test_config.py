@@ -65,6 +65,8 @@ CONFIG = {
         "settings": {"exact": [], "RK45": [1.0e-3, 1.0e-6], "naive-RK4": [0.1]},
         "slow_settings": {"naive-RK4": [1.0e-4], "Radau": [1.0e-9]},
     },
+    "speed": {"headline": {"n_cycles": 20, "target": 1.0e-9, "settings": {"DOP853": [1.0e-12]}},
+              "floor": {"exact_cycles": [100], "ensemble_trajectories": 10, "ensemble_cycles": 5}},
     "long_run": {"F": 1.0, "x0": 1.0, "n_cycles": 1000, "ivp_method": "DOP853", "ivp_rtol": 1.0e-12, "ivp_cycles": 100},
     "escapement_error": {"F": {"start": 0.1, "stop": 0.4, "n": 3}, "zones": {"paper": [-0.1, 0.05]}},
     "stability_map": {"b": {"start": 0.0, "stop": 2.0, "n": 4}, "F": {"start": 1.0, "stop": 2.0, "n": 3}, "chunks": 3},

@@ -224,8 +224,30 @@ rule run_stress:
         "../scripts/run_stress.py"
 
 
+rule run_speed:
+    input:
+        code=STUDIES_CODE,
+    output:
+        csv="results/benchmark/speed.csv",
+        headline="results/benchmark/headline.csv",
+    log:
+        "results/logs/run_speed.log",
+    benchmark:
+        "results/benchmarks/run_speed.tsv"
+    conda:
+        "../../environment/environment.yml"
+    threads: 2  # the machine to itself while it times
+    params:
+        scene=scenes.benchmark_scene(config),
+        speed=config["speed"],
+    script:
+        "../scripts/run_speed.py"
+
+
 rule benchmark:
     input:
+        "results/benchmark/speed.csv",
+        "results/benchmark/headline.csv",
         "results/benchmark/work_precision_full.csv",
         "results/benchmark/work_precision_full.png",
         "results/benchmark/work_precision.csv",

@@ -1,4 +1,4 @@
-"""The jobs of the studies beyond the paper: the work-precision benchmark and the stress cases."""
+"""The jobs of the studies beyond the paper: the work-precision benchmark, the speed table and the stress cases."""
 
 from __future__ import annotations
 
@@ -7,13 +7,14 @@ from collections.abc import Mapping
 from ..io.atomic import write_csv
 from ..io.netcdf import read_netcdf
 from ..model.parameters import Parameters, check_initial_state
-from ..studies.benchmark import work_precision
+from ..studies.benchmark import headline_ratios, per_cycle_times, work_precision
+from ..studies.floor import ensemble_floor, exact_floor
 from ..studies.stress import run_all
 from .edge_cases import run_edge_cases
 from .logs import logged
-from .tables import STRESS_COLUMNS, WORK_PRECISION_COLUMNS
+from .tables import SPEED_COLUMNS, STRESS_COLUMNS, WORK_PRECISION_COLUMNS
 
-__all__ = ["run_stress", "run_work_precision"]
+__all__ = ["run_speed", "run_stress", "run_work_precision"]
 
 
 def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str, log: str) -> None:
@@ -26,6 +27,53 @@ def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str
         formatted = [{k: (f"{v:.6e}" if isinstance(v, float) else v) for k, v in row.items()} for row in rows]
         assert list(rows[0]) == WORK_PRECISION_COLUMNS, list(rows[0])
         write_csv(formatted, list(rows[0]), output)
+
+
+def _formatted(rows: list[dict], columns: list[str]) -> list[dict]:
+    return [{c: (f"{row[c]:.6e}" if isinstance(row.get(c), float) else row.get(c, "")) for c in columns} for row in rows]
+
+
+def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str, log: str) -> None:
+    """The speed table (``output``): the headline ratios on ``speed["headline"]["n_cycles"]`` cycles (the fastest
+    integrator setting whose impact time reaches ``target`` against the exact solver and the per-cycle closed
+    forms), the exact solver against the closed forms per cycle, and the floors (the exact solver against a minimal
+    loop, the ensemble against a NumPy loop); and the headline's work-precision rows (``headline_output``)."""
+    with logged(log, "run_speed") as logger:
+        params = Parameters.from_mapping(scene)
+        x0 = check_initial_state(scene["x0"], scene.get("v0", 0.0))[0]
+        head = speed["headline"]
+        h = headline_ratios(params, x0, head["n_cycles"], {k: list(v) for k, v in head["settings"].items()},
+                            head["target"], ("error_time",), scene["min_seconds"], scene["max_repeats"],
+                            log=logger.info)
+        n, ode = h["n_cycles"], h["ode"]
+        if ode is None:
+            label = "fastest integrator setting reaching the target"
+            note = f"no candidate setting reaches {head['target']:g} in impact time"
+            ode = {"wall_s": float("nan"), "repeats": 0}
+        else:
+            label = f"{ode['method']} rtol {ode['setting']}"
+            note = (f"the fastest candidate whose impact time at cycle {n} is within {head['target']:g} of 50 digits "
+                    f"(its error {ode['error_time']:.2e}; velocity {ode['error_velocity']:.2e})")
+        rows = [
+            {"name": f"{label} / solve_exact", "n": n, "ratio": h["ode_over_exact"], "time_s": ode["wall_s"],
+             "reference_s": h["exact"]["wall_s"], "repeats": ode["repeats"], "note": note},
+            {"name": f"{label} / closed-form cycles", "n": n, "ratio": h["ode_over_closed_form"],
+             "time_s": ode["wall_s"], "reference_s": h["closed_form"]["wall_s"], "repeats": ode["repeats"],
+             "note": note},
+        ]
+        for r in per_cycle_times(params, x0, (50, n, 100_000), scene["min_seconds"], scene["max_repeats"]):
+            rows.append({"name": "solve_exact / closed-form cycles", "n": r["n_cycles"], "ratio": r["ratio"],
+                         "time_s": r["exact_s_per_cycle"] * r["n_cycles"],
+                         "reference_s": r["closed_form_s_per_cycle"] * r["n_cycles"],
+                         "note": "per run, without the trajectory"})
+        floor = speed["floor"]
+        rows += exact_floor(tuple(floor["exact_cycles"]), params=params, x0=x0)
+        rows += ensemble_floor(floor["ensemble_trajectories"], floor["ensemble_cycles"])
+        for row in rows:
+            logger.info("%s, n = %s: %.4g", row["name"], row["n"], row["ratio"])
+        write_csv(_formatted(rows, SPEED_COLUMNS), SPEED_COLUMNS, output)
+        table = [h["exact"], h["closed_form"], *h["candidates"]]
+        write_csv(_formatted(table, WORK_PRECISION_COLUMNS), WORK_PRECISION_COLUMNS, headline_output)
 
 
 def run_stress(long_run: str, output: str, log: str) -> None:

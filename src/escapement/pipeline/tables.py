@@ -16,6 +16,7 @@ __all__ = [
     "ESCAPEMENT_ERROR_VARIABLES",
     "PHASE_VARIABLES",
     "SHOCK_VARIABLES",
+    "SPEED_COLUMNS",
     "STRESS_COLUMNS",
     "TIMING_COLUMNS",
     "WORK_PRECISION_COLUMNS",
@@ -34,6 +35,8 @@ SHOCK_VARIABLES = ("t", "velocity", "acceleration", "impact_time", "impulse", "e
                    "velocity_window", "acceleration_window", "F", "K", "x0")
 PHASE_VARIABLES = ("t", "displacement", "velocity", "impact_time", "impact_position", "velocity_after", "K")
 WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "repeats", "error_velocity", "error_time"]
+#: the speed table: a ratio of two wall times (or of two peak memories) measured side by side
+SPEED_COLUMNS = ["name", "n", "ratio", "time_s", "reference_s", "repeats", "bytes", "reference_bytes", "note"]
 STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
 #: wall times, kept apart from the datasets (which are deterministic): one row per measurement
 TIMING_COLUMNS = ["measurement", "seconds"]
