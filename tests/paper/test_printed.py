@@ -6,6 +6,7 @@ paper's form is kept as a strict xfail that says why.
 
 import math
 
+import numpy as np
 import pytest
 
 from escapement.model.events import EventKind
@@ -162,3 +163,14 @@ def test_eq24_plus_25_as_printed_give_the_limit_cycle_period(name):
     v = pe.fixed_point_19(p)
     predicted = p.natural_period + 2 * (pe.period_perturbation_24(v, p) + pe.period_perturbation_25(v, p))
     assert predicted == pytest.approx(s.cycles.period[-1], rel=1e-6)
+
+
+@pytest.mark.parametrize("b", [*np.linspace(0.0, 2.0, 200), 1e-12, 0.1, 0.3, 1.999999, 2.0 - 2**-40])
+def test_eq21_multiplier_is_correctly_rounded(b):
+    """(1 - b)**4 is the float nearest the exact fourth power of the float 1 - b: in 300-bit
+    arithmetic the power is exact (4 x 53 bits), and mpmath rounds it to the nearest float."""
+    import mpmath
+
+    with mpmath.workprec(300):
+        exact = mpmath.mpf(1.0 - float(b)) ** 4
+        assert float(exact) == pe.multiplier_21_of(float(b))

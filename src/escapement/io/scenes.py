@@ -23,7 +23,7 @@ from ..model.quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS
 from ..model.status import Status, flag_attributes
 from ..paper.corrected import fixed_point
 from ..paper.poincare import ensemble_return_map, measure_cycle, return_map, stability_grid
-from ..paper.printed import fixed_point_19
+from ..paper.printed import fixed_point_19, multiplier_21, multiplier_21_of
 from ..solvers.exact import solve_exact
 from ..studies.long_run import long_run
 from ..studies.readings import AMPLITUDES
@@ -195,7 +195,7 @@ def checks_scene(cases: list[dict], n_cycles: int) -> xr.Dataset:
         "period": ([m.period for *_, m in runs], "s", "period of the last cycle"),
         "amplitude": ([m.amplitude for *_, m in runs], "m", "amplitude of the last cycle"),
         "multiplier": ([m.multiplier for *_, m in runs], "1", "multiplier mu_2 measured from the return map"),
-        "multiplier_eq21": ([(1 - p.b) ** 4 for _, p, _, _ in runs], "1", "multiplier (1 - b)**4 of Eq. (21)"),
+        "multiplier_eq21": ([multiplier_21(p) for _, p, _, _ in runs], "1", "multiplier (1 - b)**4 of Eq. (21)"),
         "fixed_point_eq16": ([fixed_point(p) for _, p, _, _ in runs], "m s-1", "fixed point of the map (16)"),
         "cycles_to_converge": (
             np.array([m.cycles_to_converge for *_, m in runs], dtype=np.int32), "1",
@@ -288,6 +288,12 @@ def long_run_scene(
     return assemble(variables, attrs), timings
 
 
+def _multiplier_21_grid(b: np.ndarray) -> np.ndarray:
+    """Eq. (21) at every cell, computed once per distinct ``b`` (the same float on every machine)."""
+    values, index = np.unique(b, return_inverse=True)
+    return np.array([multiplier_21_of(float(v)) for v in values])[index].reshape(b.shape)
+
+
 def stability_chunk_scene(
     model: dict, b_values, F_values, speed_sample: int = 100
 ) -> tuple[xr.Dataset, dict[str, float]]:
@@ -323,7 +329,7 @@ def stability_chunk_scene(
 
     variables = {
         "multiplier": grid_var(grid["multiplier"], "1", "multiplier mu_2 measured from the simulated return map"),
-        "multiplier_eq21": grid_var((1 - bb) ** 4, "1", "multiplier (1 - b)**4 of Eq. (21)"),
+        "multiplier_eq21": grid_var(_multiplier_21_grid(bb), "1", "multiplier (1 - b)**4 of Eq. (21)"),
         "fixed_point": grid_var(grid["fixed_point"], "m s-1", "fixed point of the simulated return map"),
         "period": grid_var(grid["period"], "s", "period of the cycle at the fixed point"),
         "outcome": xr.DataArray(
