@@ -31,3 +31,9 @@ def case_a() -> Parameters:
 def case_b() -> Parameters:
     """Fig. 3 (b): F = 0.5 N (with x0 = 3 m)."""
     return paper_parameters(F=0.5)
+
+
+def pytest_collection_modifyitems(config, items):
+    """The end-to-end files first: each takes about a minute of one worker, so under ``-n 2`` they
+    start at once on their own workers and the unit tests fill the gaps."""
+    items.sort(key=lambda item: not item.path.name.startswith("test_workflow"))

@@ -1,10 +1,11 @@
-"""End-to-end: the workflow on a copy of the repository in a temporary directory.
+"""End-to-end: the workflow run once on a copy of the repository in a temporary directory.
 
-The copies run a reduced configuration (:func:`reduce`: few cycles, a small map, a short
-benchmark), so that every rule and every file format is exercised in seconds. The full
-configuration runs in CI's Quick start, which also checks that the documents it regenerates
-are the committed ones; :func:`test_the_committed_verdict_is_the_expected_one` ties those
-documents to the expected verdict.
+The copy runs a reduced configuration (:func:`workflow_copies.reduce`: few cycles, a small map, a
+short benchmark), so that every rule and every file format is exercised in seconds; the tests that
+damage a run work on a copy of it. The full configuration runs in CI's Quick start, which also checks
+that the documents it regenerates are the committed ones;
+:func:`test_the_committed_verdict_is_the_expected_one` ties those documents to the expected verdict.
+The plans of dry runs, which need no run, are in ``test_workflow_plans.py``.
 """
 
 from __future__ import annotations
@@ -17,73 +18,9 @@ import sys
 from pathlib import Path
 
 import pytest
-import yaml
+from workflow_copies import REDUCED_FIG3_CYCLES, REPO, copy_run, edit_config, planned_jobs, reduced_copy, snakemake
 
 from escapement.io.netcdf import read_netcdf
-
-REPO = Path(__file__).resolve().parents[1]
-PARTS = ["Snakefile", "config", "profiles", "workflow", "environment", "src", "README.md", "REPLICATION.md"]
-
-
-def copy_repository(dest: Path) -> Path:
-    for part in PARTS:
-        src = REPO / part
-        if src.is_dir():
-            shutil.copytree(src, dest / part, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
-        else:
-            shutil.copy2(src, dest / part)
-    return dest
-
-
-def snakemake(where: Path, *args: str, check: bool = True) -> subprocess.CompletedProcess:
-    result = subprocess.run(
-        [sys.executable, "-m", "snakemake", *args], cwd=where, capture_output=True, text=True, timeout=600
-    )
-    if check and result.returncode != 0:
-        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{result.stdout}\n{result.stderr}")
-    return result
-
-
-def planned_jobs(where: Path) -> dict[str, int]:
-    """Rules a dry run would execute, with their job counts (from the job stats table)."""
-    out = snakemake(where, "--dry-run", "--cores", "2").stdout
-    if "Nothing to be done" in out:
-        return {}
-    table = out.split("Job stats:")[1].split("total")[0]
-    return {m[0]: int(m[1]) for m in re.findall(r"^(\w+)\s+(\d+)\s*$", table, re.M) if m[0] != "job"}
-
-
-def _edit_config(where: Path, edit) -> str:
-    path = where / "config/config.yaml"
-    original = path.read_text()
-    config = yaml.safe_load(original)
-    edit(config)
-    path.write_text(yaml.safe_dump(config))
-    return original
-
-
-REDUCED_FIG3_CYCLES = 12
-
-
-def reduce(config: dict) -> None:
-    """Shrink every scene to a few cycles and samples; the rules, formats and checks stay."""
-    config["fig3"]["n_cycles"] = REDUCED_FIG3_CYCLES
-    config["fig4"]["samples_per_second"] = 50
-    config["fig5"].update(n_cycles=12, samples_per_period=16)
-    config["checks"]["n_cycles"] = 40
-    config["benchmark"]["n_cycles"] = 5
-    config["long_run"].update(n_cycles=2000, ivp_cycles=10)
-    config["escapement_error"]["F"]["n"] = 3
-    config["stability_map"].update(
-        b={"start": 0.0, "stop": 2.0, "n": 12}, F={"start": 0.01, "stop": 2.0, "n": 12}, chunks=2
-    )
-
-
-def reduced_copy(dest: Path) -> Path:
-    where = copy_repository(dest)
-    _edit_config(where, reduce)
-    return where
-
 
 @pytest.fixture(scope="module")
 def workflow_run(tmp_path_factory):
@@ -166,21 +103,16 @@ def test_redrawing_leaves_every_tracked_file_byte_identical(workflow_run):
     assert planned_jobs(workflow_run) == {}
 
 
-def test_a_failed_run_leaves_the_tracked_documents_in_place(workflow_run):
-    claims = workflow_run / "results/claims.csv"
-    original, stat = claims.read_bytes(), claims.stat()
-    before = {path: (workflow_run / path).read_bytes() for path in TRACKED}
+def test_a_failed_run_leaves_the_tracked_documents_in_place(workflow_run, tmp_path):
+    run = copy_run(workflow_run, tmp_path / "run")
+    before = {path: (run / path).read_bytes() for path in TRACKED}
+    claims = run / "results/claims.csv"
+    stat = claims.stat()
     claims.write_text("not,the,claims,table\n")
     os.utime(claims, ns=(stat.st_atime_ns, stat.st_mtime_ns))
-    try:
-        result = snakemake(workflow_run, "--cores", "1", "--forcerun", "render_docs", check=False)
-        assert result.returncode != 0
-        assert {path: (workflow_run / path).read_bytes() for path in TRACKED} == before
-    finally:
-        claims.write_bytes(original)
-        os.utime(claims, ns=(stat.st_atime_ns, stat.st_mtime_ns))
-        snakemake(workflow_run, "--cores", "2")
-    assert planned_jobs(workflow_run) == {}
+    result = snakemake(run, "--cores", "1", "--forcerun", "render_docs", check=False)
+    assert result.returncode != 0
+    assert {path: (run / path).read_bytes() for path in TRACKED} == before
 
 
 def test_logs_and_benchmarks_are_written(workflow_run):
@@ -217,60 +149,11 @@ DOCS = {"render_docs": 1, "publish": 1, "all": 1}
     ],
 )
 def test_editing_one_scene_reruns_that_scene_only(workflow_run, edit, expected):
-    original = _edit_config(workflow_run, edit)
+    original = edit_config(workflow_run, edit)
     try:
         assert planned_jobs(workflow_run) == expected
     finally:
         (workflow_run / "config/config.yaml").write_text(original)
-
-
-# One problem of each kind the configuration check finds (a model rule, the schema, two scenes that
-# collide); tests/pipeline/test_config.py has every message, without starting Snakemake.
-@pytest.mark.parametrize(
-    "edit, words",
-    [
-        (lambda c: c["model"].update(M=0.0), ["model.M = 0.0 is invalid: M must be a number > 0 (kg)"]),
-        (lambda c: c["fig4"].update(colour="red"), ["fig4: unknown key 'colour'"]),
-        (lambda c: c["fig5"].update(K=[1.0, 1.0000001, 10.0]), ["would both write K_1.nc"]),
-    ],
-)
-def test_an_invalid_configuration_stops_before_any_job(tmp_path, edit, words):
-    where = copy_repository(tmp_path)
-    _edit_config(where, edit)
-    result = snakemake(where, "--cores", "2", check=False)
-    assert result.returncode != 0
-    message = result.stdout + result.stderr
-    for word in words:
-        assert word in message
-    assert not (where / "results").exists()
-    assert not list((where / "figures").glob("*")) if (where / "figures").exists() else True
-
-
-def test_a_yaml_error_in_the_configuration_is_named_with_its_line(tmp_path):
-    where = copy_repository(tmp_path)
-    path = where / "config/config.yaml"
-    lines = path.read_text().splitlines()
-    number = next(i for i, line in enumerate(lines) if line.startswith("fig4:")) + 1
-    lines.insert(number, "  F: [0.5")
-    path.write_text("\n".join(lines) + "\n")
-    result = snakemake(where, "--dry-run", check=False)
-    assert result.returncode != 0
-    assert f"config/config.yaml, line {number + 2}, column " in result.stdout + result.stderr
-    assert "not valid YAML" in result.stdout + result.stderr
-
-
-def test_the_default_profile_is_used(tmp_path):
-    where = copy_repository(tmp_path)
-    result = snakemake(where, "--dry-run")
-    assert "Using workflow specific profile profiles/default" in result.stdout + result.stderr
-    assert "rerun-incomplete" in (where / "profiles/default/config.yaml").read_text()
-
-
-def test_the_slurm_profile_plans_every_job(tmp_path):
-    where = copy_repository(tmp_path)
-    result = snakemake(where, "--workflow-profile", "profiles/slurm", "--dry-run")
-    assert "Using workflow specific profile profiles/slurm" in result.stdout + result.stderr
-    assert "simulate_fig3" in result.stdout and "plot_fig5" in result.stdout
 
 
 def test_the_report_shows_every_figure(workflow_run):
@@ -290,80 +173,6 @@ def test_compliance_checker_passes_cf_1_11(workflow_run):
                             text=True, timeout=300)
     assert result.returncode == 0, result.stdout[-3000:]
     assert result.stdout.count("All tests passed") == len(paths), result.stdout[-3000:]
-
-
-@pytest.fixture(scope="module")
-def touched_run(tmp_path_factory):
-    """A copy whose outputs exist, empty, and are marked up to date without running any job
-    (``--touch``): enough for dry runs, in seconds."""
-    where = copy_repository(tmp_path_factory.mktemp("touched"))
-    summary = snakemake(where, "--summary").stdout
-    for line in summary.splitlines()[1:]:
-        path = where / line.split("\t")[0]
-        if line.strip() and not path.exists():
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.touch()
-    snakemake(where, "--touch", "--cores", "1")
-    assert planned_jobs(where) == {}
-    return where
-
-
-SIMULATIONS = {"simulate_fig3": 2, "simulate_fig4": 1, "simulate_fig5": 3, "simulate_checks": 1,
-               "simulate_long_run": 1, "simulate_stability_chunk": 4, "simulate_escapement_error": 1}
-PLOTS = {"plot_fig3": 1, "plot_fig4": 1, "plot_fig5": 1, "plot_work_precision": 1, "plot_long_run": 1,
-         "plot_stability_map": 1, "plot_escapement_error": 1}
-
-
-def _planned_after_an_edit(where: Path, module: str) -> dict[str, int]:
-    """The jobs a dry run plans once a comment is appended to ``module``; the file is restored."""
-    path = where / "src/escapement" / module
-    original, stat = path.read_bytes(), path.stat()
-    path.write_bytes(original + b"\n# an edit\n")
-    try:
-        return planned_jobs(where)
-    finally:
-        path.write_bytes(original)
-        os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
-
-
-def test_a_plotting_edit_replans_the_plots_and_documents_only(touched_run):
-    planned = _planned_after_an_edit(touched_run, "plotting/paper_figures.py")
-    assert {rule: planned.get(rule) for rule in PLOTS} == PLOTS
-    assert planned["publish"] == 1 and "render_docs" not in planned  # the documents do not show the drawing code
-    for rule in (*SIMULATIONS, "run_work_precision", "run_stress", "merge_stability"):
-        assert rule not in planned, planned
-    assert planned_jobs(touched_run) == {}
-
-
-def test_a_solver_edit_replans_the_simulations(touched_run):
-    planned = _planned_after_an_edit(touched_run, "solvers/exact.py")
-    assert {rule: planned.get(rule) for rule in SIMULATIONS} == SIMULATIONS
-    assert planned["run_work_precision"] == 1 and planned["run_stress"] == 1
-    assert planned_jobs(touched_run) == {}
-
-
-def test_a_pipeline_plot_edit_replans_no_simulation(touched_run):
-    planned = _planned_after_an_edit(touched_run, "pipeline/plot.py")
-    assert {rule: planned.get(rule) for rule in PLOTS} == PLOTS
-    assert not set(planned) & {*SIMULATIONS, "run_work_precision", "run_stress", "merge_stability"}, planned
-
-
-@pytest.mark.parametrize(
-    "modules, absent",
-    [
-        (["plot", "tables"], ["escapement.io.scenes", "escapement.io.dataset", "escapement.paper", "escapement.studies"]),
-        (["simulate", "studies"], ["escapement.plotting", "matplotlib"]),
-        (["simulate"], ["scipy.integrate"]),  # the exact solver's jobs load no SciPy integrator
-        (["render"], ["escapement.plotting", "matplotlib", "scipy.integrate"]),
-        (["verdict"], ["escapement.plotting.paper_figures", "escapement.plotting.style"]),  # autoscale only
-    ],
-)
-def test_each_kind_of_job_imports_only_what_its_rules_depend_on(modules, absent):
-    """What the rules' code inputs assume, checked in a fresh interpreter."""
-    code = "import sys\n" + "".join(f"import escapement.pipeline.{m}\n" for m in modules)
-    code += f"print(sorted(set({absent!r}) & set(sys.modules)))"
-    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert result.stdout.strip() == "[]"
 
 
 EXPECTED_VERDICT = {
@@ -467,36 +276,16 @@ def test_the_work_precision_table_and_its_targets(workflow_run):
     [("results/fig4/shock.nc", "results/figures/fig4.png", "plot_fig4"),
      ("results/claims/checks.nc", "results/claims.csv", "check_claims")],
 )
-def test_a_damaged_netcdf_fails_its_rule_naming_the_file(workflow_run, damaged, target, rule):
-    path = workflow_run / damaged
-    original, stat = path.read_bytes(), path.stat()
-    path.write_bytes(original[: len(original) // 3])
-    os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
-    try:
-        result = snakemake(workflow_run, "--cores", "1", "--forcerun", rule, target, check=False)
-        assert result.returncode != 0
-        assert f"{path.name}: not a readable netCDF file" in result.stdout + result.stderr
-        assert not (workflow_run / target).exists()  # no partial output left behind
-    finally:
-        path.write_bytes(original)
-        os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
-        snakemake(workflow_run, "--cores", "2")
-    assert planned_jobs(workflow_run) == {}
-
-
-def test_a_motion_that_leaves_the_regime_is_recorded(tmp_path):
-    where = reduced_copy(tmp_path)
-    _edit_config(where, lambda c: c["fig3"]["cases"]["a"].update(x0=0.05))
-    snakemake(where, "--cores", "2", "results/fig3/case_a.nc", "results/figures/fig3.png", "results/claims.csv")
-    ds = read_netcdf(where / "results/fig3/case_a.nc")
-    assert ds.attrs["outcome"] == "stopped" and ds.sizes["cycle"] == 0
-    assert "never passes the next impact position" in ds.attrs["outcome_message"]
-    from escapement.pipeline.verdict import read_claims_csv
-
-    rows = {r["claim_id"]: r for r in read_claims_csv(where / "results/claims.csv")}
-    assert rows["eq19_fixed_point_case_a"]["status"] == "not_reproduced"
-    assert "left the escapement regime" in rows["eq19_fixed_point_case_a"]["replicated_value"]
-    assert (where / "results/figures/fig3.png").exists()
+def test_a_damaged_netcdf_fails_its_rule_naming_the_file(workflow_run, tmp_path, damaged, target, rule):
+    run = copy_run(workflow_run, tmp_path / "run")
+    path = run / damaged
+    stat = path.stat()
+    path.write_bytes(path.read_bytes()[: stat.st_size // 3])
+    os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))  # damaged, not updated: only the rule reruns
+    result = snakemake(run, "--cores", "1", "--forcerun", rule, target, check=False)
+    assert result.returncode != 0
+    assert f"{path.name}: not a readable netCDF file" in result.stdout + result.stderr
+    assert not (run / target).exists()  # no partial output left behind
 
 
 def test_the_stress_summary_passes(workflow_run):

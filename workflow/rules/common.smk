@@ -1,3 +1,4 @@
+import os
 from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
@@ -35,7 +36,9 @@ def package_code(*parts):
     """Source files of the package that a rule's script imports: the top-level ``__init__.py`` and
     ``_lazy.py`` (which every import runs) and the named parts, each a subpackage (``"model"``) or a module
     (``"io/netcdf.py"``); with no parts, every file. Snakemake tracks only the rule's own script:
-    these inputs make an edit of the code rerun the jobs that import it, and only those.
+    these inputs make an edit of the code rerun the jobs that import it, and only those. The paths are
+    relative to the working directory, as Snakemake records them: a clone that is moved or copied
+    keeps its outputs up to date.
     """
     src = Path(workflow.basedir) / "src" / "escapement"
     if not parts:
@@ -47,7 +50,7 @@ def package_code(*parts):
             if not path.exists():
                 raise WorkflowError(f"package_code: {path} does not exist")
             files += list(path.rglob("*")) if path.is_dir() else [path]
-    return sorted({str(p) for p in files if p.suffix in (".py", ".mplstyle")})
+    return sorted({os.path.relpath(p) for p in files if p.suffix in (".py", ".mplstyle")})
 
 
 # What each kind of job imports (read the imports of the pipeline module its script calls,
