@@ -232,3 +232,53 @@ def test_the_export():
     import escapement.solvers
 
     assert escapement.solvers.solve_cycles is solve_cycles
+
+
+def _streamed(chunks):
+    tables = list(chunks)
+    return ({name: np.concatenate([np.empty(0)] + [getattr(t, name) for t in tables]) for name in COLUMNS},
+            [len(t) for t in tables])
+
+
+@pytest.mark.parametrize("chunk", [1, 7, 100, 10_000])
+@pytest.mark.parametrize("p, x0", [(params(), -1.0), (params(F=0.5), 3.0), (params(a3=0.2, a4=-0.02), 1.0)])
+def test_streamed_chunks_are_solve_cycles_number_for_number(p, x0, chunk):
+    n = 700
+    stored = solve_cycles(p, x0, n_cycles=n)
+    chunks = cyc.iter_closed_form_cycles(p, x0, n_cycles=n, chunk=chunk)
+    columns, sizes = _streamed(chunks)
+    assert chunks.method == CLOSED_FORM and chunks.fallback is None
+    assert sizes == [min(chunk, n - i) for i in range(0, n, chunk)]
+    for name in COLUMNS:
+        assert np.array_equal(columns[name], getattr(stored.cycles, name)), name
+    summary = chunks.summary
+    assert summary.status is Status.COMPLETED and summary.n_cycles == n and summary.t_final == stored.t_final
+    exact = solve_exact(p, x0, n_cycles=n, record_trajectory=False)  # the event count from the event solver
+    assert summary.n_events == len(exact.events) and summary.message == exact.message
+
+
+@pytest.mark.parametrize("p, x0, why", [
+    (params(b=1.5), 1.0, "outside (0, 1]"),  # chatters
+    (params(), 0.05, "did not complete"),  # never reaches a1
+    (params(b=1e-3), 1.0, "more than the 7_812 cycles"),  # a transient of 9_500 cycles, beyond the budget
+])
+def test_streamed_runs_the_closed_form_cannot_make_are_the_event_solvers(p, x0, why):
+    n = 10_000
+    chunks = cyc.iter_closed_form_cycles(p, x0, n_cycles=n, chunk=1_000, memory_budget=10**6)
+    columns, _ = _streamed(chunks)
+    assert chunks.method == "exact" and why in chunks.fallback
+    exact = solve_exact(p, x0, n_cycles=n, record_trajectory=False)
+    for name in COLUMNS:
+        assert np.array_equal(columns[name], getattr(exact.cycles, name)), name
+    assert chunks.summary.status is exact.status and chunks.summary.t_final == exact.t_final
+
+
+def test_a_stream_is_not_summarised_before_it_ends_and_refuses_a_chunk_beyond_the_budget():
+    chunks = cyc.iter_closed_form_cycles(params(), 1.0, n_cycles=100, chunk=10)
+    next(chunks)
+    with pytest.raises(RuntimeError, match="not exhausted"):
+        chunks.summary
+    with pytest.raises(MemoryBudgetError, match="chunk"):
+        cyc.iter_closed_form_cycles(params(), 1.0, n_cycles=10**6, chunk=10**6, memory_budget=10**6)
+    with pytest.raises(ParameterError, match="chunk"):
+        cyc.iter_closed_form_cycles(params(), 1.0, n_cycles=100, chunk=0)

@@ -50,7 +50,9 @@ def package_code(*parts):
             if not path.exists():
                 raise WorkflowError(f"package_code: {path} does not exist")
             files += list(path.rglob("*")) if path.is_dir() else [path]
-    return sorted({os.path.relpath(p) for p in files if p.suffix in (".py", ".mplstyle")})
+    return sorted(
+        {os.path.relpath(p) for p in files if p.suffix in (".py", ".mplstyle")}
+    )
 
 
 # What each kind of job imports (read the imports of the pipeline module its script calls,

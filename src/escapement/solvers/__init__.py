@@ -9,12 +9,14 @@ from .._lazy import lazy_exports
 #: each public name and the module that defines it
 _EXPORTS = {
     "ArcTable": "result",
+    "CycleChunks": "cycles",
     "CycleStream": "stream",
     "CycleTable": "result",
     "EnsembleSolution": "result",
     "Exit": "result",
     "Solution": "result",
     "StreamSummary": "stream",
+    "iter_closed_form_cycles": "cycles",
     "iter_cycles": "stream",
     "solve_cycles": "cycles",
     "solve_ensemble": "ensemble",

@@ -75,6 +75,7 @@ from __future__ import annotations
 
 import math
 import struct
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -83,24 +84,27 @@ import numpy as np
 from ..model import automaton
 from ..model.events import EventKind
 from ..model.kinematics import VECTOR, arc_maximum, crossing
-from ..model.limits import RunLimits
+from ..model.limits import MemoryBudgetError, RunLimits, check_count
 from ..model.parameters import Parameters, check_initial_state
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 from .driver import check_memory
 from .exact import SEGMENT, ClosedFormRun, solve_exact, stages
 from .result import CycleTable, Exit, Solution
+from .stream import DEFAULT_CHUNK, MAX_CHUNK, CycleStream, StreamSummary, iter_cycles
 
 __all__ = [
     "CLOSED_FORM",
     "CROSS_CHECK_RTOL",
     "GRAZING_SPEED_SQ",
     "CrossCheckError",
+    "CycleChunks",
     "CycleMap",
     "CycleRun",
     "compare_tables",
     "cross_check",
     "cycle_map",
+    "iter_closed_form_cycles",
     "solve_cycles",
 ]
 
@@ -270,16 +274,43 @@ def _prepared(params: Parameters) -> _Prepared | None:
     return found
 
 
-def _first_impact(params: Parameters, x: float, v: float) -> tuple[float, float] | str:
+class _Cycles(NamedTuple):
+    """A closed-form run's distinct cycles (``distinct`` of them; the last stands for every later cycle once
+    at the fixed point) and what its impact times need: the first ``t1``, the last period ``big`` and its 22
+    leading bits ``big_hi``, the compensated prefix sums ``hi + lo`` of the periods less ``big``."""
+
+    v: np.ndarray
+    period: np.ndarray
+    amplitude: np.ndarray
+    t1: float
+    big: float
+    big_hi: float
+    hi: np.ndarray
+    lo: np.ndarray
+    residual: float
+    distinct: int
+
+
+def _first_impact(params: Parameters, x: float, v: float) -> tuple[float, float, int] | str:
     """Time and velocity of the first impact at a1 from the release, by the event solver's loop run for one
-    cycle; or why the run does not complete it."""
+    cycle, and the events up to it, that impact included (the run's events less the cycle's four); or why
+    the run does not complete it."""
     run = ClosedFormRun(params, x, v, RunLimits(n_cycles=1), keep_events=False)
     run.advance(SEGMENT)
     outcome = run.outcome
     if outcome is None or outcome.status is not Status.COMPLETED or not run.cycle_columns[0]:
         said = "did not end" if outcome is None else f"{outcome.status.value}: {outcome.message}"
         return f"the event solver's first cycle from the release did not complete ({said})"
-    return float(run.cycle_columns[0][0]), float(run.cycle_columns[1][0])
+    return float(run.cycle_columns[0][0]), float(run.cycle_columns[1][0]), int(run.events) - 4
+
+
+def _start(params: Parameters, prep: _Prepared | None, x: float, v: float) -> tuple[float, float, int] | str:
+    """The first impact at a1 (:func:`_first_impact`), or why the closed form does not apply from the start."""
+    if not 0.0 < params.b <= 1.0:
+        return f"b = {params.b!r} is outside (0, 1]: the impact reverses the velocity (the run chatters)"
+    if prep is None:
+        return "the automaton's cycle is not the four arcs a1 -> a2 -> a3 -> a4 -> a1"
+    return _first_impact(params, x, v)
 
 
 def _transient(cmap: CycleMap, v1: float, n: int) -> int:
@@ -316,13 +347,14 @@ def _prefix_sums(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return hi, lo
 
 
-def _filled(values: np.ndarray, n: int) -> np.ndarray:
-    """``values`` extended to ``n`` entries by repeating its last."""
-    if len(values) >= n:
-        return values[:n]
-    out = np.empty(n)
-    out[:len(values)] = values
-    out[len(values):] = values[-1]
+def _window(values: np.ndarray, start: int, stop: int) -> np.ndarray:
+    """Entries ``start .. stop - 1`` of ``values`` extended for ever by repeating its last."""
+    if len(values) >= stop:
+        return values[start:stop]
+    out = np.empty(stop - start)
+    head = values[start:] if start < len(values) else values[:0]
+    out[:len(head)] = head
+    out[len(head):] = values[-1]
     return out
 
 
@@ -346,17 +378,24 @@ def _arcs(params: Parameters, prep: _Prepared, v: np.ndarray):
     return starts, reached, dt, arrival, angle
 
 
-def _closed_form(params: Parameters, prep: _Prepared, t1: float, v1: float, n: int):
-    """The cycle table of ``n`` cycles from the first impact at a1 ``(t1, v1)``: ``(table, t_final, residual,
-    distinct)``, or why the closed form does not apply (a string). Under ``np.errstate(all="ignore")``: a NaN
-    is a decision here, not a warning."""
+def _distinct_cycles(params: Parameters, prep: _Prepared, t1: float, v1: float, n: int,
+                     most: int | None = None) -> _Cycles | str:
+    """The distinct cycles of ``n`` from the first impact at a1 ``(t1, v1)``, or why the closed form does not
+    apply (a string): also where more than ``most`` cycles would have to be evaluated at once (a streamed
+    run's memory budget: the transient, not the run, sets how many). Under ``np.errstate(all="ignore")``: a NaN is a decision here, not a warning."""
     cmap, col = prep.cycle_map, prep.columns
     star = cmap.fixed_point_sq
     count = _transient(cmap, v1, n)
+    longer = (f"the transient lasts more than the {most:_} cycles the memory budget holds at once (mu = "
+              f"{cmap.mu!r}): the closed form evaluates it in one piece") if most is not None else ""
+    if most is not None and count > most:
+        return longer
     v_sq = cmap.velocity_sq(v1, np.arange(1, count + 1))
     same = v_sq == star
     same[0] = False  # the first is the event solver's v1
     if count < n and not same[-1]:  # the bound did not hold: every cycle
+        if most is not None and n > most:
+            return longer
         count = n
         v_sq = cmap.velocity_sq(v1, np.arange(1, n + 1))
         same = v_sq == star
@@ -397,18 +436,23 @@ def _closed_form(params: Parameters, prep: _Prepared, t1: float, v1: float, n: i
     following = np.append(v[1:], v[-1]) if fixed else v[1:]
     predicted = arrival[3, :len(following)]
     residual = float(np.max(np.abs(predicted - following) / following)) if len(following) else 0.0
-    # impact times: t_k = t1 + (k - 1) T + D_{k-1}, D the prefix sums of T_j - T
     big = period[-1]
     hi, lo = _prefix_sums(period - big)
-    k = np.arange(n + 1, dtype=float)  # k - 1 for cycles 1 .. n, and n for the end of the last
     sigma = big * _SPLIT
-    big_hi = sigma - (sigma - big)
-    s, e1 = _two_sum(k * big_hi, t1)
-    s, e2 = _two_sum(s, _filled(hi, n + 1))
-    t = s + (((e1 + e2) + k * (big - big_hi)) + _filled(lo, n + 1))
-    table = CycleTable(impact_time=t[:n], velocity_before_impact=_filled(v, n), period=_filled(period, n),
-                       amplitude=_filled(amplitude, n))
-    return table, float(t[n]), residual, m
+    return _Cycles(v, period, amplitude, t1, big, sigma - (sigma - big), hi, lo, residual, m)
+
+
+def _rows(c: _Cycles, start: int, stop: int) -> tuple[CycleTable, float]:
+    """Cycles ``start + 1 .. stop`` of the run (table rows ``start .. stop - 1``), and the time of the impact
+    at a1 that ends cycle ``stop``. Impact times: ``t_k = t1 + (k - 1) T + D_{k-1}``, ``D`` the prefix sums of
+    ``T_j - T``; each entry from its own ``k`` alone, so that any window of cycles is the same numbers."""
+    k = np.arange(start, stop + 1, dtype=float)  # k - 1 for cycles start + 1 .. stop, and stop for the end
+    s, e1 = _two_sum(k * c.big_hi, c.t1)
+    s, e2 = _two_sum(s, _window(c.hi, start, stop + 1))
+    t = s + (((e1 + e2) + k * (c.big - c.big_hi)) + _window(c.lo, start, stop + 1))
+    table = CycleTable(impact_time=t[:-1], velocity_before_impact=_window(c.v, start, stop),
+                       period=_window(c.period, start, stop), amplitude=_window(c.amplitude, start, stop))
+    return table, float(t[-1])
 
 
 def solve_cycles(
@@ -488,28 +532,154 @@ def solve_cycles(
                  "stream the cycles in constant memory with escapement.solvers.iter_cycles")
     prep = _prepared(params)
     cmap = cycle_map(params) if prep is None else prep.cycle_map
-    if not 0.0 < params.b <= 1.0:
-        reason = f"b = {params.b!r} is outside (0, 1]: the impact reverses the velocity (the run chatters)"
-    elif prep is None:
-        reason = "the automaton's cycle is not the four arcs a1 -> a2 -> a3 -> a4 -> a1"
-    else:
-        first = _first_impact(params, x, v)
-        reason = first if isinstance(first, str) else None
+    first = _start(params, prep, x, v)
+    reason = first if isinstance(first, str) else None
     if reason is None:
         with np.errstate(all="ignore"):
-            done = _closed_form(params, prep, *first, n)
+            done = _distinct_cycles(params, prep, first[0], first[1], n)
         reason = done if isinstance(done, str) else None
     if reason is not None:
         exact = solve_exact(params, x, v, n_cycles=n, record_trajectory=False, memory_budget=memory_budget)
         run = CycleRun(params, x, v, n, exact.status, exact.message, exact.cycles, exact.t_final, "exact", reason,
                        cmap, exit=exact.exit, solution=exact)
     else:
-        table, t_final, residual, distinct = done
+        table, t_final = _rows(done, 0, n)
         run = CycleRun(params, x, v, n, Status.COMPLETED, f"completed {n} cycles", table, t_final, CLOSED_FORM,
-                       None, cmap, map_residual=residual, distinct_cycles=distinct)
+                       None, cmap, map_residual=done.residual, distinct_cycles=done.distinct)
     if check:
         cross_check(run, rtol)
     return run
+
+
+class CycleChunks(Iterator[CycleTable]):
+    """:func:`solve_cycles`'s cycle table in chunks (see :func:`iter_closed_form_cycles`); once it is
+    exhausted, :attr:`summary` says how the run ended."""
+
+    def __init__(self, cycles: _Cycles | None, events_before: int, n: int, chunk: int,
+                 fallback: CycleStream | None, reason: str | None, cmap: CycleMap) -> None:
+        self._cycles, self._events_before, self._n, self._chunk = cycles, events_before, n, chunk
+        self._fallback, self._done, self._summary = fallback, 0, None
+        self.method = "exact" if fallback is not None else CLOSED_FORM  #: which solver makes the chunks
+        self.fallback = reason  #: why the event solver makes the run; None where the closed forms do
+        self.cycle_map = cmap
+        self.distinct_cycles = 0 if cycles is None else cycles.distinct  #: cycles whose arcs were computed
+        self.map_residual = math.nan if cycles is None else cycles.residual  #: as :attr:`CycleRun.map_residual`
+
+    def __iter__(self) -> CycleChunks:
+        return self
+
+    def __next__(self) -> CycleTable:
+        if self._fallback is not None:
+            try:
+                return next(self._fallback)
+            except StopIteration:
+                self._summary = self._fallback.summary
+                raise
+        if self._done >= self._n:
+            raise StopIteration
+        stop = min(self._done + self._chunk, self._n)
+        with np.errstate(all="ignore"):
+            table, t_end = _rows(self._cycles, self._done, stop)
+        self._done = stop
+        if stop == self._n:  # a cycle is four events: the impacts at a1 and a3 and the ends of their zones
+            self._summary = StreamSummary(Status.COMPLETED, f"completed {self._n} cycles", Exit(), t_end, self._n,
+                                          self._events_before + 4 * self._n)
+        return table
+
+    @property
+    def summary(self) -> StreamSummary:
+        """How the run ended; available once the stream is exhausted."""
+        if self._summary is None:
+            raise RuntimeError("the stream is not exhausted yet: iterate over it to the end first")
+        return self._summary
+
+
+def iter_closed_form_cycles(
+    params: Parameters,
+    x0: float,
+    v0: float = 0.0,
+    *,
+    n_cycles: int,
+    chunk: int = DEFAULT_CHUNK,
+    memory_budget: int | None = None,
+) -> CycleChunks:
+    """The cycle table of :func:`solve_cycles` for the same arguments, in chunks of at most ``chunk`` cycles,
+    in memory that does not grow with the run: the distinct cycles are computed once, and each chunk's
+    rows from them (every row from its own cycle number alone, so the chunks put together are
+    ``solve_cycles``'s table number for number). The distinct cycles are those of the transient (about
+    ``45 / -log10(mu)``, whatever the run's length); where they would not fit the memory budget, or the
+    closed form does not apply, the event solver streams the run
+    (:func:`~escapement.solvers.stream.iter_cycles`) and :attr:`CycleChunks.fallback` says why.
+
+    Parameters
+    ----------
+    params : Parameters
+        The model's parameters (SI units: kg, N/m, N, 1, m).
+    x0 : float
+        Initial displacement at ``t = 0+``, m.
+    v0 : float, default 0
+        Initial velocity at ``t = 0+``, m/s.
+    n_cycles : int
+        Complete cycles (cycle ``k`` runs from the ``k``-th impact at a1 to the next).
+    chunk : int, default 100_000
+        The most cycles a chunk holds.
+    memory_budget : int, optional
+        The most bytes a chunk, or the transient's cycles, and their work arrays may take (default
+        :data:`~escapement.model.limits.MEMORY_BUDGET`), :data:`PEAK_BYTES_PER_CYCLE` a cycle.
+
+    Returns
+    -------
+    CycleChunks
+        An iterator of :class:`~escapement.solvers.result.CycleTable` chunks (impact time in s, velocity
+        before impact in m/s, period in s, amplitude in m); its ``summary`` (status, message, end time)
+        once exhausted, ``method`` and ``fallback``.
+
+    Raises
+    ------
+    TypeError
+        If ``params`` is not a :class:`~escapement.Parameters`.
+    ParameterError
+        If ``x0``, ``v0``, ``n_cycles``, ``chunk`` or ``memory_budget`` is invalid, or
+        (:class:`~escapement.model.limits.MemoryBudgetError`) a chunk would exceed ``memory_budget``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from escapement import Parameters
+    >>> from escapement.solvers.cycles import iter_closed_form_cycles, solve_cycles
+    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    >>> chunks = iter_closed_form_cycles(p, x0=1.0, n_cycles=250, chunk=100)
+    >>> times = [c.impact_time for c in chunks]  # s
+    >>> [len(t) for t in times], chunks.method, chunks.summary.status.value
+    ([100, 100, 50], 'closed-form cycles', 'completed')
+    >>> bool(np.array_equal(np.concatenate(times), solve_cycles(p, x0=1.0, n_cycles=250).cycles.impact_time))
+    True
+    """
+    if not isinstance(params, Parameters):
+        raise TypeError("params must be an escapement.Parameters")
+    x, v = check_initial_state(x0, v0)
+    limits = RunLimits(n_cycles=n_cycles, memory_budget=memory_budget)
+    n = limits.n_cycles
+    chunk = check_count("chunk", chunk, MAX_CHUNK)
+    estimate = chunk * PEAK_BYTES_PER_CYCLE
+    if estimate > limits.memory_budget:
+        most = limits.memory_budget // PEAK_BYTES_PER_CYCLE
+        requirement = (f"at most {most:_} for a chunk of {PEAK_BYTES_PER_CYCLE} bytes a cycle ({estimate:_} bytes) "
+                       f"to fit the memory budget of {limits.memory_budget:_} bytes")
+        raise MemoryBudgetError("chunk", chunk, requirement, estimate, limits.memory_budget)
+    prep = _prepared(params)
+    cmap = cycle_map(params) if prep is None else prep.cycle_map
+    first = _start(params, prep, x, v)
+    reason = first if isinstance(first, str) else None
+    if reason is None:
+        with np.errstate(all="ignore"):
+            done = _distinct_cycles(params, prep, first[0], first[1], n,
+                                    most=limits.memory_budget // PEAK_BYTES_PER_CYCLE)
+        reason = done if isinstance(done, str) else None
+    if reason is not None:
+        stream = iter_cycles(params, x, v, n_cycles=n, chunk=chunk, memory_budget=memory_budget)
+        return CycleChunks(None, 0, n, chunk, stream, reason, cmap)
+    return CycleChunks(done, first[2], n, chunk, None, None, cmap)
 
 
 def _relative(a, b) -> np.ndarray:
