@@ -282,3 +282,15 @@ def test_a_stream_is_not_summarised_before_it_ends_and_refuses_a_chunk_beyond_th
         cyc.iter_closed_form_cycles(params(), 1.0, n_cycles=10**6, chunk=10**6, memory_budget=10**6)
     with pytest.raises(ParameterError, match="chunk"):
         cyc.iter_closed_form_cycles(params(), 1.0, n_cycles=100, chunk=0)
+
+
+def test_a_streamed_run_takes_the_memory_of_a_chunk_whatever_its_length():
+    from escapement.studies.floor import peak_bytes
+
+    def drained(n):
+        return lambda: [None for _ in cyc.iter_closed_form_cycles(params(), 1.0, n_cycles=n, chunk=1_000)]
+
+    short, long = peak_bytes(drained(10_000)), peak_bytes(drained(1_000_000))
+    assert long <= 1.5 * short, (short, long)  # a hundred times the cycles, not the memory
+    stored = peak_bytes(lambda: solve_cycles(params(), 1.0, n_cycles=1_000_000))
+    assert stored >= 20 * long, (stored, long)  # what the stored table takes

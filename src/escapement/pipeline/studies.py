@@ -8,7 +8,7 @@ from ..io.atomic import write_csv
 from ..io.netcdf import read_netcdf
 from ..model.parameters import Parameters, check_initial_state
 from ..studies.benchmark import headline_ratios, per_cycle_times, work_precision
-from ..studies.floor import ensemble_floor, exact_floor
+from ..studies.floor import ensemble_floor, exact_floor, stream_floor
 from ..studies.stress import run_all
 from .edge_cases import run_edge_cases
 from .logs import logged
@@ -69,6 +69,7 @@ def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str,
         floor = speed["floor"]
         rows += exact_floor(tuple(floor["exact_cycles"]), params=params, x0=x0)
         rows += ensemble_floor(floor["ensemble_trajectories"], floor["ensemble_cycles"])
+        rows += stream_floor(tuple(floor["stream_cycles"]), params=params, x0=x0)
         for row in rows:
             logger.info("%s, n = %s: %.4g", row["name"], row["n"], row["ratio"])
         write_csv(_formatted(rows, SPEED_COLUMNS), SPEED_COLUMNS, output)

@@ -35,6 +35,7 @@ import numpy as np
 from ..model.parameters import Parameters
 from ..solvers.ensemble import solve_ensemble
 from ..solvers.exact import solve_exact
+from ..solvers.cycles import iter_closed_form_cycles
 from ..solvers.result import CycleTable
 from ..solvers.stream import iter_cycles
 
@@ -48,6 +49,7 @@ __all__ = [
     "numpy_cycles",
     "peak_bytes",
     "side_by_side",
+    "stream_floor",
 ]
 
 TWO_PI = 2.0 * math.pi
@@ -354,6 +356,39 @@ def ensemble_floor(n_trajectories: int = 10_000, n_cycles: int = 50, repeats: in
         {"name": f"solve_ensemble / numpy loop, peak memory per trajectory, {n_cycles} cycles", "n": n_trajectories,
          "ratio": memory["ensemble"] / memory["numpy"], "bytes": memory["ensemble"],
          "reference_bytes": memory["numpy"]},
+    ]
+
+
+def _drained(stream) -> None:
+    for _ in stream:
+        pass
+
+
+def stream_floor(sizes=(1_000_000, 100_000_000), repeats: int = 3, params: Parameters = PAPER_A,
+                 x0: float = 1.0) -> list[dict]:
+    """Long runs in constant memory. The event solver's stream (:func:`~escapement.solvers.stream.iter_cycles`)
+    against the closed forms' (:func:`~escapement.solvers.cycles.iter_closed_form_cycles`) over the smaller of
+    ``sizes`` (time, side by side, and peak memory), and the closed forms' stream over the larger against the
+    smaller: its ``ratio`` is the peak memory's, ``time_s`` and ``reference_s`` the two wall times (one run each).
+    Each row has ``name``, ``n``, ``ratio``, ``time_s``, ``reference_s``, ``bytes`` and ``reference_bytes``."""
+    small, large = sorted(sizes)
+
+    def closed(n):
+        return lambda: _drained(iter_closed_form_cycles(params, x0, n_cycles=n))
+
+    def exact(n):
+        return lambda: _drained(iter_cycles(params, x0, n_cycles=n))
+
+    times = side_by_side({"exact": exact(small), "closed": closed(small)}, repeats)
+    memory = {"exact": peak_bytes(exact(small)), "closed": peak_bytes(closed(small)), "large": peak_bytes(closed(large))}
+    large_time = side_by_side({"large": closed(large)}, 1)["large"][0]
+    return [
+        _row("solve_exact streamed / closed-form cycles streamed", small, times["exact"], times["closed"],
+             bytes=memory["exact"], reference_bytes=memory["closed"]),
+        {"name": f"closed-form cycles streamed, peak memory against {small:_} cycles", "n": large,
+         "ratio": memory["large"] / memory["closed"], "time_s": large_time,
+         "reference_s": statistics.median(times["closed"]), "repeats": 1, "bytes": memory["large"],
+         "reference_bytes": memory["closed"]},
     ]
 
 

@@ -8,10 +8,11 @@ The subject is the exact event solver: its cycles come in chunks
 (:func:`escapement.solvers.stream.iter_cycles`), of which only the sampled cycles and the largest
 deviations after convergence are kept, so the run takes the same memory for 10**4 cycles as for 10**8;
 it runs over the first ``check_cycles`` cycles (by default the whole run up to :data:`EXACT_CHECK_CYCLES`).
-Beside it, the per-cycle closed forms (:func:`escapement.solvers.cycles.solve_cycles`: the return map
-of v^2 and each cycle's arcs, the impact times a compensated sum of the periods) give the same series
-over all ``n_cycles`` cycles in a few vectorised calls; every chunk of the event solver is compared
-with them, quantity by quantity, and the largest relative difference is reported.
+Beside it, the per-cycle closed forms (:func:`escapement.solvers.cycles.iter_closed_form_cycles`: the
+return map of v^2 and each cycle's arcs, the impact times a compensated sum of the periods) give the
+same series over all ``n_cycles`` cycles, streamed in chunks of the same size, a few vectorised calls
+each; every chunk of the event solver is compared with the closed forms' chunk beside it, quantity by
+quantity, and the largest relative difference is reported. Both take memory for one chunk at a time.
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ import numpy as np
 
 from ..model.limits import MAX_CYCLES, check_count
 from ..model.parameters import ParameterError, Parameters
-from ..solvers.cycles import compare_tables, solve_cycles
+from ..solvers.cycles import compare_tables, iter_closed_form_cycles
 from ..solvers.high_precision import solve_high_precision
 from ..solvers.reference import solve_reference
 from ..solvers.result import CycleTable
@@ -32,6 +33,8 @@ from ..solvers.stream import iter_cycles
 
 __all__ = ["EXACT_CHECK_CYCLES", "converged_after", "sample_cycles", "long_run"]
 
+#: cycles per chunk of both streamed series
+CHUNK = 100_000
 #: the cycles the streamed event solver checks the closed form over unless told otherwise: the whole of the
 #: workflow's long run (10**6 cycles, a couple of seconds); a longer run is checked on this prefix
 EXACT_CHECK_CYCLES = 1_000_000
@@ -100,40 +103,50 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
                     ev[i] = float(abs(mpmath.mpf(v[i]) - reference_v[i]) / reference_v[i])
             return et, ev, drift
 
-        # the per-cycle series, in closed form
-        start = time.perf_counter()
-        run = solve_cycles(params, x0, n_cycles=n_cycles)
-        closed_wall = time.perf_counter() - start
-        table, done = run.cycles, len(run.cycles)
-        if done <= n0:
-            raise RuntimeError(f"the run ended after {done} cycles, before cycle {n0 + 1}: {run.message}")
-        closed_form = errors(*_sampled(table, cycles), done)
-
-        # the event solver over the first n_check cycles, chunk by chunk: its errors, its deviations from the
-        # limit cycle once converged, and its differences from the closed-form series
-        start = time.perf_counter()
-        sampled_t, sampled_v = (np.full(len(cycles), np.nan) for _ in range(2))
+        # the per-cycle series in closed form over n_cycles and the event solver's over the first n_check,
+        # both streamed in chunks of the same size, side by side: the sampled cycles of each, the event
+        # solver's deviations from the limit cycle once converged, and the two series' differences
+        closed = iter_closed_form_cycles(params, x0, n_cycles=n_cycles, chunk=CHUNK)
+        stream = iter_cycles(params, x0, n_cycles=n_check, chunk=CHUNK)
+        closed_t, closed_v, sampled_t, sampled_v = (np.full(len(cycles), np.nan) for _ in range(4))
         differences = dict.fromkeys(("impact_time", "velocity_before_impact", "period", "amplitude"), 0.0)
         max_v_dev = max_t_dev = -math.inf
         any_nan = False
-        checked = 0  # cycles before the chunk
-        stream = iter_cycles(params, x0, n_cycles=n_check)
-        for chunk in stream:
+        done = checked = 0  # cycles before the chunk, of each series
+        closed_wall = exact_wall = 0.0
+        for _ in range(n_cycles // CHUNK + 2):
+            start = time.perf_counter()
+            part = next(closed, None)
+            closed_wall += time.perf_counter() - start
+            if part is None:
+                break
+            _take(part, done, cycles, closed_t, closed_v)
+            done += len(part)
+            if checked >= n_check:
+                continue
+            start = time.perf_counter()
+            chunk = next(stream, None)
+            exact_wall += time.perf_counter() - start
+            if chunk is None:
+                continue
             size = len(chunk)
-            here = (cycles > checked) & (cycles <= checked + size)
-            sampled_t[here] = chunk.impact_time[cycles[here] - checked - 1]
-            sampled_v[here] = chunk.velocity_before_impact[cycles[here] - checked - 1]
+            _take(chunk, checked, cycles, sampled_t, sampled_v)
             tail = slice(max(n0 - checked, 0), size)  # the cycles from n0 + 1 on (index n0 of the whole run)
             if tail.start < size:
                 max_v_dev = max(max_v_dev, float(np.max(np.abs(chunk.velocity_before_impact[tail] - float(v_star)))))
                 max_t_dev = max(max_t_dev, float(np.max(np.abs(chunk.period[tail] - float(t_star)))))
             any_nan = any_nan or bool(np.isnan(chunk.impact_time).any() or np.isnan(chunk.velocity_before_impact).any())
-            part = CycleTable(*(getattr(table, name)[checked:checked + size] for name in differences))
             for name, gap in compare_tables(part, chunk).items():
                 differences[name] = math.nan if math.isnan(gap) or math.isnan(differences[name]) else max(
                     differences[name], gap)
             checked += size
-        exact_wall = time.perf_counter() - start
+        else:
+            raise RuntimeError(f"the closed-form series did not end within {n_cycles // CHUNK + 2} chunks")
+        for rest in stream:  # the event solver's cycles past the end of the closed-form series
+            checked += len(rest)
+        if done <= n0:
+            raise RuntimeError(f"the run ended after {done} cycles, before cycle {n0 + 1}: {closed.summary.message}")
+        closed_form = errors(closed_t, closed_v, done)
         if checked <= n0:
             raise RuntimeError(f"the exact run ended after {checked} cycles, before cycle {n0 + 1}: "
                                f"{stream.summary.message}")
@@ -161,14 +174,22 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
         "exact_wall_s": exact_wall,
         "ivp_wall_s": ivp_wall,
         "any_nan": any_nan,
-        "series_method": run.method,
-        "fallback": run.fallback,
-        "distinct_cycles": run.distinct_cycles,
+        "series_method": closed.method,
+        "fallback": closed.fallback,
+        "distinct_cycles": closed.distinct_cycles,
         "closed_form_wall_s": closed_wall,
         "check_cycles": checked,
         "check_differences": differences,
         "check_max_relative_difference": worst,
     }
+
+
+def _take(chunk: CycleTable, before: int, cycles: np.ndarray, t: np.ndarray, v: np.ndarray) -> None:
+    """Into ``t`` and ``v``, the impact times and velocities of a chunk that follows ``before`` cycles at the
+    sampled cycle numbers ``cycles`` it holds."""
+    here = (cycles > before) & (cycles <= before + len(chunk))
+    t[here] = chunk.impact_time[cycles[here] - before - 1]
+    v[here] = chunk.velocity_before_impact[cycles[here] - before - 1]
 
 
 def _sampled(table, cycles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
