@@ -72,6 +72,7 @@ rule simulate_long_run:
         "results/logs/simulate_long_run.log",
     benchmark:
         "results/benchmarks/simulate_long_run.tsv"
+    priority: 10  # the longest job at the head of a chain (stress table, its figure): started first
     conda:
         "../../environment/environment.yml"
     params:
