@@ -294,3 +294,18 @@ def test_the_stress_summary_passes(workflow_run):
     rows = list(csv.DictReader(open(workflow_run / "results/stress/summary.csv")))
     assert len(rows) >= 15
     assert all(r["passed"] == "yes" for r in rows), [r for r in rows if r["passed"] != "yes"]
+
+
+def test_a_motion_that_leaves_the_regime_is_recorded(workflow_run, tmp_path):
+    where = copy_run(workflow_run, tmp_path / "run")
+    edit_config(where, lambda c: c["fig3"]["cases"]["a"].update(x0=0.05))
+    snakemake(where, "--cores", "2", "results/fig3/case_a.nc", "results/figures/fig3.png", "results/claims.csv")
+    ds = read_netcdf(where / "results/fig3/case_a.nc")
+    assert ds.attrs["outcome"] == "stopped" and ds.sizes["cycle"] == 0
+    assert "never passes the next impact position" in ds.attrs["outcome_message"]
+    from escapement.pipeline.verdict import read_claims_csv
+
+    rows = {r["claim_id"]: r for r in read_claims_csv(where / "results/claims.csv")}
+    assert rows["eq19_fixed_point_case_a"]["status"] == "not_reproduced"
+    assert "left the escapement regime" in rows["eq19_fixed_point_case_a"]["replicated_value"]
+    assert (where / "results/figures/fig3.png").exists()

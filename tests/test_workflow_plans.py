@@ -10,9 +10,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from workflow_copies import copy_repository, edit_config, planned_jobs, reduced_copy, snakemake
+from workflow_copies import copy_repository, edit_config, planned_jobs, snakemake
 
-from escapement.io.netcdf import read_netcdf
 
 # One problem of each kind the configuration check finds (a model rule, the schema, two scenes that
 # collide); tests/pipeline/test_config.py has every message, without starting Snakemake.
@@ -135,18 +134,3 @@ def test_each_kind_of_job_imports_only_what_its_rules_depend_on(modules, absent)
     code += f"print(sorted(set({absent!r}) & set(sys.modules)))"
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert result.stdout.strip() == "[]"
-
-
-def test_a_motion_that_leaves_the_regime_is_recorded(tmp_path):
-    where = reduced_copy(tmp_path)
-    edit_config(where, lambda c: c["fig3"]["cases"]["a"].update(x0=0.05))
-    snakemake(where, "--cores", "2", "results/fig3/case_a.nc", "results/figures/fig3.png", "results/claims.csv")
-    ds = read_netcdf(where / "results/fig3/case_a.nc")
-    assert ds.attrs["outcome"] == "stopped" and ds.sizes["cycle"] == 0
-    assert "never passes the next impact position" in ds.attrs["outcome_message"]
-    from escapement.pipeline.verdict import read_claims_csv
-
-    rows = {r["claim_id"]: r for r in read_claims_csv(where / "results/claims.csv")}
-    assert rows["eq19_fixed_point_case_a"]["status"] == "not_reproduced"
-    assert "left the escapement regime" in rows["eq19_fixed_point_case_a"]["replicated_value"]
-    assert (where / "results/figures/fig3.png").exists()

@@ -134,7 +134,7 @@ def test_solve_exact_stays_within_its_estimate_without_a_second_copy(record):
 
 @pytest.mark.parametrize("record", [False, True])
 def test_the_generic_loop_stays_within_its_estimate(record):
-    n = 20_000
+    n = 8_000
     stepper_bytes = 34 if record else 0
     estimate = check_memory(RunLimits(n_cycles=n), 40 + stepper_bytes, 40, "", "")
     _, held, peak = _peak(lambda: solve_exact_stepwise(P, 1.0, n_cycles=n, record_trajectory=record))
