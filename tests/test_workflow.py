@@ -299,6 +299,8 @@ def test_the_stress_summary_passes(workflow_run):
 def test_a_motion_that_leaves_the_regime_is_recorded(workflow_run, tmp_path):
     where = copy_run(workflow_run, tmp_path / "run")
     edit_config(where, lambda c: c["fig3"]["cases"]["a"].update(x0=0.05))
+    for made in ("results/figures/fig3.png", "results/claims.csv"):  # the copy's, made before the edit
+        (where / made).unlink()
     snakemake(where, "--cores", "2", "results/fig3/case_a.nc", "results/figures/fig3.png", "results/claims.csv")
     ds = read_netcdf(where / "results/fig3/case_a.nc")
     assert ds.attrs["outcome"] == "stopped" and ds.sizes["cycle"] == 0

@@ -260,7 +260,8 @@ def test_streamed_chunks_are_solve_cycles_number_for_number(p, x0, chunk):
 @pytest.mark.parametrize("p, x0, why", [
     (params(b=1.5), 1.0, "outside (0, 1]"),  # chatters
     (params(), 0.05, "did not complete"),  # never reaches a1
-    (params(b=1e-3), 1.0, "more than the 7_812 cycles"),  # a transient of 9_500 cycles, beyond the budget
+    # a transient of 9_527 cycles; the budget holds a chunk (1_000 x 128 bytes) and 2_180 x 400 bytes besides
+    (params(b=1e-3), 1.0, "more than the 2_180 cycles"),
 ])
 def test_streamed_runs_the_closed_form_cannot_make_are_the_event_solvers(p, x0, why):
     n = 10_000
@@ -294,3 +295,32 @@ def test_a_streamed_run_takes_the_memory_of_a_chunk_whatever_its_length():
     assert long <= 1.5 * short, (short, long)  # a hundred times the cycles, not the memory
     stored = peak_bytes(lambda: solve_cycles(params(), 1.0, n_cycles=1_000_000))
     assert stored >= 20 * long, (stored, long)  # what the stored table takes
+
+
+def test_a_streamed_chunk_owns_its_arrays():
+    chunks = cyc.iter_closed_form_cycles(params(), 1.0, n_cycles=600, chunk=100)  # a transient of ~250 cycles
+    first = next(chunks)
+    expected = solve_cycles(params(), 1.0, n_cycles=600).cycles
+    for name in COLUMNS:
+        getattr(first, name)[:] = 0.0
+    rest = list(chunks)
+    for name in COLUMNS:
+        assert np.array_equal(np.concatenate([getattr(c, name) for c in rest]), getattr(expected, name)[100:]), name
+
+
+@pytest.mark.parametrize("b", [1e-3, 1e-4])
+def test_the_transient_stays_within_the_memory_budget(b):
+    from escapement.studies.floor import peak_bytes
+
+    p = params(b=b)
+    prep = cyc._prepared(p)
+    count = cyc._transient(prep.cycle_map, cyc._start(p, prep, 1.0, 0.0)[1], 10**8)  # every cycle distinct
+    chunk = 1_000
+    budget = chunk * cyc.CHUNK_BYTES_PER_CYCLE + count * cyc.PEAK_BYTES_PER_CYCLE  # just enough for the guard
+    chunks = cyc.iter_closed_form_cycles(p, 1.0, n_cycles=count + 10 * chunk, chunk=chunk, memory_budget=budget)
+    assert chunks.method == CLOSED_FORM
+    streamed = peak_bytes(lambda: [None for _ in cyc.iter_closed_form_cycles(p, 1.0, n_cycles=count + 10 * chunk,
+                                                                               chunk=chunk, memory_budget=budget)])
+    assert streamed <= budget, (streamed, budget)
+    stored = peak_bytes(lambda: solve_cycles(p, 1.0, n_cycles=count, memory_budget=count * cyc.PEAK_BYTES_PER_CYCLE))
+    assert stored <= count * cyc.PEAK_BYTES_PER_CYCLE, (stored, count)

@@ -94,6 +94,7 @@ from .result import CycleTable, Exit, Solution
 from .stream import DEFAULT_CHUNK, MAX_CHUNK, CycleStream, StreamSummary, iter_cycles
 
 __all__ = [
+    "CHUNK_BYTES_PER_CYCLE",
     "CLOSED_FORM",
     "CROSS_CHECK_RTOL",
     "GRAZING_SPEED_SQ",
@@ -114,8 +115,12 @@ CLOSED_FORM = "closed-form cycles"
 GRAZING_SPEED_SQ = 1e-3
 #: the relative difference :func:`cross_check` accepts on every quantity
 CROSS_CHECK_RTOL = 1e-14
-#: bytes per cycle at the peak: the four columns, the impact times' work arrays and the transient's
-PEAK_BYTES_PER_CYCLE = 128
+#: bytes per cycle at the peak of a run whose every cycle is distinct (the transient's arcs and work arrays, 357
+#: measured with tracemalloc); a run that reaches the fixed point takes less (its columns and the impact times'
+#: work arrays, about 100)
+PEAK_BYTES_PER_CYCLE = 400
+#: bytes per cycle of a streamed chunk: its rows and the impact times' work arrays (about 96 measured)
+CHUNK_BYTES_PER_CYCLE = 128
 #: the columns of a cycle table, in order
 COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
 #: the arcs of a cycle, in words, for the reasons of a fallback
@@ -580,6 +585,9 @@ class CycleChunks(Iterator[CycleTable]):
         stop = min(self._done + self._chunk, self._n)
         with np.errstate(all="ignore"):
             table, t_end = _rows(self._cycles, self._done, stop)
+        # a chunk owns its arrays, as the event solver's do: a window inside the transient is a view of it
+        table = CycleTable(impact_time=table.impact_time, **{
+            name: getattr(table, name).copy() for name in COLUMNS if name != "impact_time"})
         self._done = stop
         if stop == self._n:  # a cycle is four events: the impacts at a1 and a3 and the ends of their zones
             self._summary = StreamSummary(Status.COMPLETED, f"completed {self._n} cycles", Exit(), t_end, self._n,
@@ -624,8 +632,9 @@ def iter_closed_form_cycles(
     chunk : int, default 100_000
         The most cycles a chunk holds.
     memory_budget : int, optional
-        The most bytes a chunk, or the transient's cycles, and their work arrays may take (default
-        :data:`~escapement.model.limits.MEMORY_BUDGET`), :data:`PEAK_BYTES_PER_CYCLE` a cycle.
+        The most bytes a chunk (:data:`CHUNK_BYTES_PER_CYCLE` a cycle) and the transient's distinct cycles
+        (:data:`PEAK_BYTES_PER_CYCLE` a cycle while they are computed) may take together (default
+        :data:`~escapement.model.limits.MEMORY_BUDGET`).
 
     Returns
     -------
@@ -661,10 +670,10 @@ def iter_closed_form_cycles(
     limits = RunLimits(n_cycles=n_cycles, memory_budget=memory_budget)
     n = limits.n_cycles
     chunk = check_count("chunk", chunk, MAX_CHUNK)
-    estimate = chunk * PEAK_BYTES_PER_CYCLE
+    estimate = chunk * CHUNK_BYTES_PER_CYCLE
     if estimate > limits.memory_budget:
-        most = limits.memory_budget // PEAK_BYTES_PER_CYCLE
-        requirement = (f"at most {most:_} for a chunk of {PEAK_BYTES_PER_CYCLE} bytes a cycle ({estimate:_} bytes) "
+        most = limits.memory_budget // CHUNK_BYTES_PER_CYCLE
+        requirement = (f"at most {most:_} for a chunk of {CHUNK_BYTES_PER_CYCLE} bytes a cycle ({estimate:_} bytes) "
                        f"to fit the memory budget of {limits.memory_budget:_} bytes")
         raise MemoryBudgetError("chunk", chunk, requirement, estimate, limits.memory_budget)
     prep = _prepared(params)
@@ -674,7 +683,7 @@ def iter_closed_form_cycles(
     if reason is None:
         with np.errstate(all="ignore"):
             done = _distinct_cycles(params, prep, first[0], first[1], n,
-                                    most=limits.memory_budget // PEAK_BYTES_PER_CYCLE)
+                                    most=(limits.memory_budget - estimate) // PEAK_BYTES_PER_CYCLE)
         reason = done if isinstance(done, str) else None
     if reason is not None:
         stream = iter_cycles(params, x, v, n_cycles=n, chunk=chunk, memory_budget=memory_budget)

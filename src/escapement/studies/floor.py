@@ -369,7 +369,8 @@ def stream_floor(sizes=(1_000_000, 100_000_000), repeats: int = 3, params: Param
     """Long runs in constant memory. The event solver's stream (:func:`~escapement.solvers.stream.iter_cycles`)
     against the closed forms' (:func:`~escapement.solvers.cycles.iter_closed_form_cycles`) over the smaller of
     ``sizes`` (time, side by side, and peak memory), and the closed forms' stream over the larger against the
-    smaller: its ``ratio`` is the peak memory's, ``time_s`` and ``reference_s`` the two wall times (one run each).
+    smaller: its ``ratio`` is the peak memory's, ``time_s`` the larger run's wall time (one run) and
+    ``reference_s`` the smaller's (the median of the side-by-side runs).
     Each row has ``name``, ``n``, ``ratio``, ``time_s``, ``reference_s``, ``bytes`` and ``reference_bytes``."""
     small, large = sorted(sizes)
 

@@ -106,27 +106,34 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
         # the per-cycle series in closed form over n_cycles and the event solver's over the first n_check,
         # both streamed in chunks of the same size, side by side: the sampled cycles of each, the event
         # solver's deviations from the limit cycle once converged, and the two series' differences
+        wall = time.perf_counter()
         closed = iter_closed_form_cycles(params, x0, n_cycles=n_cycles, chunk=CHUNK)
+        closed_wall = time.perf_counter() - wall
+        wall = time.perf_counter()
         stream = iter_cycles(params, x0, n_cycles=n_check, chunk=CHUNK)
+        exact_wall = time.perf_counter() - wall
         closed_t, closed_v, sampled_t, sampled_v = (np.full(len(cycles), np.nan) for _ in range(4))
         differences = dict.fromkeys(("impact_time", "velocity_before_impact", "period", "amplitude"), 0.0)
         max_v_dev = max_t_dev = -math.inf
         any_nan = False
         done = checked = 0  # cycles before the chunk, of each series
-        closed_wall = exact_wall = 0.0
-        for _ in range(n_cycles // CHUNK + 2):
-            start = time.perf_counter()
-            part = next(closed, None)
-            closed_wall += time.perf_counter() - start
-            if part is None:
+        parts = [closed, stream]  # the series still under way
+        for _ in range(n_cycles // CHUNK + 3):
+            wall = time.perf_counter()
+            part = next(closed, None) if closed in parts else None
+            closed_wall += time.perf_counter() - wall
+            wall = time.perf_counter()
+            chunk = next(stream, None) if stream in parts else None
+            exact_wall += time.perf_counter() - wall
+            if part is None and closed in parts:
+                parts.remove(closed)
+            if chunk is None and stream in parts:
+                parts.remove(stream)
+            if not parts:
                 break
-            _take(part, done, cycles, closed_t, closed_v)
-            done += len(part)
-            if checked >= n_check:
-                continue
-            start = time.perf_counter()
-            chunk = next(stream, None)
-            exact_wall += time.perf_counter() - start
+            if part is not None:
+                _take(part, done, cycles, closed_t, closed_v)
+                done += len(part)
             if chunk is None:
                 continue
             size = len(chunk)
@@ -136,14 +143,13 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
                 max_v_dev = max(max_v_dev, float(np.max(np.abs(chunk.velocity_before_impact[tail] - float(v_star)))))
                 max_t_dev = max(max_t_dev, float(np.max(np.abs(chunk.period[tail] - float(t_star)))))
             any_nan = any_nan or bool(np.isnan(chunk.impact_time).any() or np.isnan(chunk.velocity_before_impact).any())
-            for name, gap in compare_tables(part, chunk).items():
-                differences[name] = math.nan if math.isnan(gap) or math.isnan(differences[name]) else max(
-                    differences[name], gap)
+            if part is not None:  # the same cycles, both series chunked alike
+                for name, gap in compare_tables(part, chunk).items():
+                    differences[name] = math.nan if math.isnan(gap) or math.isnan(differences[name]) else max(
+                        differences[name], gap)
             checked += size
         else:
-            raise RuntimeError(f"the closed-form series did not end within {n_cycles // CHUNK + 2} chunks")
-        for rest in stream:  # the event solver's cycles past the end of the closed-form series
-            checked += len(rest)
+            raise RuntimeError(f"the two series did not end within {n_cycles // CHUNK + 3} chunks")
         if done <= n0:
             raise RuntimeError(f"the run ended after {done} cycles, before cycle {n0 + 1}: {closed.summary.message}")
         closed_form = errors(closed_t, closed_v, done)
