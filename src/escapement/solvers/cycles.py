@@ -75,7 +75,6 @@ from __future__ import annotations
 
 import math
 import struct
-from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -91,7 +90,7 @@ from ..model.status import Status
 from .driver import check_memory
 from .exact import SEGMENT, ClosedFormRun, solve_exact, stages
 from .result import CycleTable, Exit, Solution
-from .stream import DEFAULT_CHUNK, MAX_CHUNK, CycleStream, StreamSummary, iter_cycles
+from .stream import DEFAULT_CHUNK, MAX_CHUNK, ChunkIterator, CycleStream, StreamSummary, iter_cycles
 
 __all__ = [
     "CHUNK_BYTES_PER_CYCLE",
@@ -556,7 +555,7 @@ def solve_cycles(
     return run
 
 
-class CycleChunks(Iterator[CycleTable]):
+class CycleChunks(ChunkIterator):
     """:func:`solve_cycles`'s cycle table in chunks (see :func:`iter_closed_form_cycles`); once it is
     exhausted, :attr:`summary` says how the run ended."""
 
@@ -569,9 +568,6 @@ class CycleChunks(Iterator[CycleTable]):
         self.cycle_map = cmap
         self.distinct_cycles = 0 if cycles is None else cycles.distinct  #: cycles whose arcs were computed
         self.map_residual = math.nan if cycles is None else cycles.residual  #: as :attr:`CycleRun.map_residual`
-
-    def __iter__(self) -> CycleChunks:
-        return self
 
     def __next__(self) -> CycleTable:
         if self._fallback is not None:
@@ -593,13 +589,6 @@ class CycleChunks(Iterator[CycleTable]):
             self._summary = StreamSummary(Status.COMPLETED, f"completed {self._n} cycles", Exit(), t_end, self._n,
                                           self._events_before + 4 * self._n)
         return table
-
-    @property
-    def summary(self) -> StreamSummary:
-        """How the run ended; available once the stream is exhausted."""
-        if self._summary is None:
-            raise RuntimeError("the stream is not exhausted yet: iterate over it to the end first")
-        return self._summary
 
 
 def iter_closed_form_cycles(

@@ -24,7 +24,8 @@ from ..model.status import Status
 from .exact import SEGMENT, ClosedFormRun, Packed
 from .result import CycleTable, Exit
 
-__all__ = ["CHUNK_BYTES_PER_CYCLE", "DEFAULT_CHUNK", "MAX_CHUNK", "CycleStream", "StreamSummary", "iter_cycles"]
+__all__ = ["CHUNK_BYTES_PER_CYCLE", "DEFAULT_CHUNK", "MAX_CHUNK", "ChunkIterator", "CycleStream", "StreamSummary",
+           "iter_cycles"]
 
 #: cycles per chunk unless the caller says otherwise
 DEFAULT_CHUNK = 100_000
@@ -53,17 +54,30 @@ class StreamSummary:
         return self.status.success
 
 
-class CycleStream(Iterator[CycleTable]):
+class ChunkIterator(Iterator[CycleTable]):
+    """A run's per-cycle table, chunk by chunk; once it is exhausted, :attr:`summary` says how the run ended
+    (the base of :class:`CycleStream` and of the closed forms' :class:`~escapement.solvers.cycles.CycleChunks`)."""
+
+    _summary: StreamSummary | None = None
+
+    def __iter__(self) -> ChunkIterator:
+        return self
+
+    @property
+    def summary(self) -> StreamSummary:
+        """How the run ended; available once the stream is exhausted."""
+        if self._summary is None:
+            raise RuntimeError("the stream is not exhausted yet: iterate over it to the end first")
+        return self._summary
+
+
+class CycleStream(ChunkIterator):
     """An iterator over the per-cycle table of one run, chunk by chunk (see :func:`iter_cycles`); once it
     is exhausted, :attr:`summary` says how the run ended."""
 
     def __init__(self, run: ClosedFormRun, chunk: int) -> None:
         self._run = run
         self._chunk = chunk
-        self._summary: StreamSummary | None = None
-
-    def __iter__(self) -> CycleStream:
-        return self
 
     def __next__(self) -> CycleTable:
         run = self._run
@@ -86,13 +100,6 @@ class CycleStream(Iterator[CycleTable]):
                                               float(outcome.t_final), run.cycles, run.events)
             raise StopIteration
         return CycleTable(impact_time=impact_time, velocity_before_impact=velocity, period=period, amplitude=amplitude)
-
-    @property
-    def summary(self) -> StreamSummary:
-        """How the run ended; available once the stream is exhausted."""
-        if self._summary is None:
-            raise RuntimeError("the stream is not exhausted yet: iterate over it to the end first")
-        return self._summary
 
 
 def iter_cycles(
