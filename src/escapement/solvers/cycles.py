@@ -83,14 +83,14 @@ import numpy as np
 from ..model import automaton
 from ..model.events import EventKind
 from ..model.kinematics import VECTOR, arc_maximum, crossing
-from ..model.limits import MemoryBudgetError, RunLimits, check_count
+from ..model.limits import RunLimits
 from ..model.parameters import Parameters, check_initial_state
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 from .driver import check_memory
 from .exact import SEGMENT, ClosedFormRun, solve_exact, stages
 from .result import CycleTable, Exit, Solution
-from .stream import DEFAULT_CHUNK, MAX_CHUNK, ChunkIterator, CycleStream, StreamSummary, iter_cycles
+from .stream import DEFAULT_CHUNK, ChunkIterator, CycleStream, StreamSummary, check_chunk, iter_cycles
 
 __all__ = [
     "CHUNK_BYTES_PER_CYCLE",
@@ -386,7 +386,8 @@ def _distinct_cycles(params: Parameters, prep: _Prepared, t1: float, v1: float, 
                      most: int | None = None) -> _Cycles | str:
     """The distinct cycles of ``n`` from the first impact at a1 ``(t1, v1)``, or why the closed form does not
     apply (a string): also where more than ``most`` cycles would have to be evaluated at once (a streamed
-    run's memory budget: the transient, not the run, sets how many). Under ``np.errstate(all="ignore")``: a NaN is a decision here, not a warning."""
+    run's memory budget: the transient, not the run, sets how many). Under ``np.errstate(all="ignore")``: a
+    NaN is a decision here, not a warning."""
     cmap, col = prep.cycle_map, prep.columns
     star = cmap.fixed_point_sq
     count = _transient(cmap, v1, n)
@@ -562,7 +563,7 @@ class CycleChunks(ChunkIterator):
     def __init__(self, cycles: _Cycles | None, events_before: int, n: int, chunk: int,
                  fallback: CycleStream | None, reason: str | None, cmap: CycleMap) -> None:
         self._cycles, self._events_before, self._n, self._chunk = cycles, events_before, n, chunk
-        self._fallback, self._done, self._summary = fallback, 0, None
+        self._fallback, self._done = fallback, 0
         self.method = "exact" if fallback is not None else CLOSED_FORM  #: which solver makes the chunks
         self.fallback = reason  #: why the event solver makes the run; None where the closed forms do
         self.cycle_map = cmap
@@ -658,13 +659,7 @@ def iter_closed_form_cycles(
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles, memory_budget=memory_budget)
     n = limits.n_cycles
-    chunk = check_count("chunk", chunk, MAX_CHUNK)
-    estimate = chunk * CHUNK_BYTES_PER_CYCLE
-    if estimate > limits.memory_budget:
-        most = limits.memory_budget // CHUNK_BYTES_PER_CYCLE
-        requirement = (f"at most {most:_} for a chunk of {CHUNK_BYTES_PER_CYCLE} bytes a cycle ({estimate:_} bytes) "
-                       f"to fit the memory budget of {limits.memory_budget:_} bytes")
-        raise MemoryBudgetError("chunk", chunk, requirement, estimate, limits.memory_budget)
+    chunk, estimate = check_chunk(chunk, CHUNK_BYTES_PER_CYCLE, limits.memory_budget)
     prep = _prepared(params)
     cmap = cycle_map(params) if prep is None else prep.cycle_map
     first = _start(params, prep, x, v)

@@ -25,7 +25,7 @@ from .exact import SEGMENT, ClosedFormRun, Packed
 from .result import CycleTable, Exit
 
 __all__ = ["CHUNK_BYTES_PER_CYCLE", "DEFAULT_CHUNK", "MAX_CHUNK", "ChunkIterator", "CycleStream", "StreamSummary",
-           "iter_cycles"]
+           "check_chunk", "iter_cycles"]
 
 #: cycles per chunk unless the caller says otherwise
 DEFAULT_CHUNK = 100_000
@@ -170,11 +170,19 @@ def iter_cycles(
         raise TypeError("params must be an escapement.Parameters")
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
-    chunk = check_count("chunk", chunk, MAX_CHUNK)
-    estimate = chunk * CHUNK_BYTES_PER_CYCLE
-    if estimate > limits.memory_budget:
-        most = limits.memory_budget // CHUNK_BYTES_PER_CYCLE
-        requirement = (f"at most {most:_} for a chunk of {CHUNK_BYTES_PER_CYCLE} bytes a cycle ({estimate:_} bytes) "
-                       f"to fit the memory budget of {limits.memory_budget:_} bytes")
-        raise MemoryBudgetError("chunk", chunk, requirement, estimate, limits.memory_budget)
+    chunk, _ = check_chunk(chunk, CHUNK_BYTES_PER_CYCLE, limits.memory_budget)
     return CycleStream(ClosedFormRun(params, x, v, limits, keep_events=False), chunk)
+
+
+def check_chunk(chunk: int, bytes_per_cycle: int, memory_budget: int) -> tuple[int, int]:
+    """``chunk`` checked (an integer in [1, :data:`MAX_CHUNK`]) and the bytes a chunk of it takes at
+    ``bytes_per_cycle``; :class:`~escapement.model.limits.MemoryBudgetError` naming ``chunk`` and the most that
+    fits where that exceeds ``memory_budget``."""
+    chunk = check_count("chunk", chunk, MAX_CHUNK)
+    estimate = chunk * bytes_per_cycle
+    if estimate > memory_budget:
+        most = memory_budget // bytes_per_cycle
+        requirement = (f"at most {most:_} for a chunk of {bytes_per_cycle} bytes a cycle ({estimate:_} bytes) "
+                       f"to fit the memory budget of {memory_budget:_} bytes")
+        raise MemoryBudgetError("chunk", chunk, requirement, estimate, memory_budget)
+    return chunk, estimate

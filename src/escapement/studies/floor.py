@@ -33,9 +33,9 @@ from collections.abc import Callable
 import numpy as np
 
 from ..model.parameters import Parameters
+from ..solvers.cycles import iter_closed_form_cycles
 from ..solvers.ensemble import solve_ensemble
 from ..solvers.exact import solve_exact
-from ..solvers.cycles import iter_closed_form_cycles
 from ..solvers.result import CycleTable
 from ..solvers.stream import iter_cycles
 
