@@ -19,7 +19,8 @@ import yaml
 
 from escapement.paper import claims as cl
 from escapement.paper import printed as pe
-from escapement.paper.checks import CHECKS, Evidence
+from escapement.paper.checks import Evidence
+from escapement.paper.registry import CHECKS
 from escapement.model.parameters import Parameters
 
 REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"

@@ -1,14 +1,15 @@
 """The checks of the claims register on the paper's equations (Sec. 3), and what every check uses.
 
-A check, registered by name with :func:`check`, computes the replicated value of one kind of claim
-from the datasets (and the paper's closed forms where the claim is a formula) and decides the status:
-``reproduced``, ``partially_reproduced`` or ``not_reproduced``; tolerances and the Fig. 3 case labels
-come from the register (``tolerance``, ``args``). Each check declares the scenes it reads, so that a
-scene that left the escapement regime gets its defined verdict (:func:`escapement.paper.claims.evaluate`);
-the checks on the runs of the checks dataset handle each run's outcome themselves. The checks on the
-figures are in :mod:`escapement.paper.claims`; those on the period formulas in :mod:`.period_checks`; the further
-ones in :mod:`.register`, :mod:`.existence`, :mod:`.figure_checks` and :mod:`.airy`; all imported at the end
-so that they register with this module.
+A check, marked with :func:`check` by its name in the register, computes the replicated value of
+one kind of claim from the datasets (and the paper's closed forms where the claim is a formula) and
+decides the status: ``reproduced``, ``partially_reproduced`` or ``not_reproduced``; tolerances and
+the Fig. 3 case labels come from the register (``tolerance``, ``args``). Each check declares the
+scenes it reads, so that a scene that left the escapement regime gets its defined verdict
+(:func:`escapement.paper.claims.evaluate`); the checks on the runs of the checks dataset handle each
+run's outcome themselves. The checks on the figures of Sec. 4 are in :mod:`.section4_checks`, those
+on the period formulas in :mod:`.period_checks`, the further ones in :mod:`.register`,
+:mod:`.existence`, :mod:`.figure_checks`, :mod:`.airy` and :mod:`.axis_claims`; every one of them
+is named in the one list of :mod:`.registry`.
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ from ..model.status import Status
 from . import corrected as derived
 from . import printed as pe
 
-__all__ = ["STATUSES", "CHECKS", "Check", "Evidence", "Verdict", "check", "fmt"]
+__all__ = ["STATUSES", "Check", "Evidence", "Verdict", "check", "fmt"]
 
 STATUSES = ("reproduced", "partially_reproduced", "not_reproduced")
 REPRODUCED, PARTIAL, NOT = STATUSES
@@ -77,19 +78,32 @@ class Check:
     args: tuple[str, ...] = ()
 
 
-CHECKS: dict[str, Check] = {}
-
-
 def check(name: str, *, scenes: Scenes, args: tuple[str, ...] = ()) -> Callable:
-    """Register the decorated function as the check ``name`` of the register."""
+    """Mark the decorated function as the check ``name`` of the register.
 
-    def register(function: Callable) -> Callable:
-        if name in CHECKS:
-            raise ValueError(f"two checks are named '{name}'")
-        CHECKS[name] = Check(name, function, scenes, tuple(args))
+    The function gets the attribute ``check``, its :class:`Check`; it counts in the register once
+    :mod:`escapement.paper.registry` lists it. Nothing is registered on import.
+
+    Parameters
+    ----------
+    name : str
+        The name by which the register (``workflow/claims.yaml``) calls the check.
+    scenes : callable
+        ``scenes(claim, evidence)``: the datasets the check reads, by a name for the verdict.
+    args : tuple of str
+        The keys the check needs in the claim's ``args``.
+
+    Returns
+    -------
+    callable
+        The decorator; it returns the function itself.
+    """
+
+    def mark(function: Callable) -> Callable:
+        function.check = Check(name, function, scenes, tuple(args))
         return function
 
-    return register
+    return mark
 
 
 # --- the scenes a check reads ------------------------------------------------------------------
@@ -302,5 +316,3 @@ def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
         ),
     )
 
-
-from . import airy, existence, figure_checks, period_checks, register  # noqa: E402,F401  (they register)

@@ -1,6 +1,6 @@
 """The checks of the claims register on the period formulas of Sec. 3.4, Eqs. (22)-(25): each
-printed form against the simulated step durations and periods of Fig. 3 (moved here from
-:mod:`escapement.paper.checks`, which registers them)."""
+printed form against the simulated step durations and periods of Fig. 3 (listed in
+:mod:`escapement.paper.registry`)."""
 
 from __future__ import annotations
 
