@@ -29,7 +29,7 @@ from escapement.io.scenes import (
     stability_chunk_scene,
 )
 from escapement.io.studies import escapement_error_scene
-from escapement.plotting.paper_figures import escapement_error, fig3, fig4, fig5, long_run, stability_map, work_precision
+from escapement.plotting import escapement_error, fig3, fig4, fig5, long_run, stability_map, work_precision
 from escapement.studies.benchmark import METHODS
 from escapement.studies.benchmark import work_precision as work_precision_rows
 

@@ -7,7 +7,7 @@ from matplotlib.figure import Figure
 
 from escapement import Parameters
 from escapement.io.scenes import phase_scene, poincare_scene, shock_scene
-from escapement.plotting.paper_figures import fig3, fig4, fig5, stability_map, work_precision
+from escapement.plotting import fig3, fig4, fig5, stability_map, work_precision
 from escapement.plotting.style import save_figure
 
 

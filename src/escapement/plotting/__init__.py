@@ -8,15 +8,15 @@ from .._lazy import lazy_exports
 
 #: each public name and the module that defines it
 _EXPORTS = {
-    "escapement_error": "paper_figures",
+    "escapement_error": "study_figures",
     "fig3": "paper_figures",
     "fig4": "paper_figures",
     "fig5": "paper_figures",
-    "long_run": "paper_figures",
+    "long_run": "study_figures",
     "save_figure": "style",
-    "stability_map": "paper_figures",
+    "stability_map": "study_figures",
     "style": "style",
-    "work_precision": "paper_figures",
+    "work_precision": "study_figures",
 }
 
 __all__ = sorted(_EXPORTS)
