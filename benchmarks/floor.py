@@ -7,9 +7,9 @@ numbers (the tests compare them):
   closed forms as :func:`escapement.model.kinematics.crossing` (the same operations in the same order), the
   same compensated time sum and the paper's impact law ``v+ = (1 - b) v-``, one regular cycle after
   another; no exits, no event log, no checks. It gives the cycle table of
-  :func:`~escapement.solvers.exact.solve_exact` bit for bit.
+  :func:`escapement.solvers.solve_exact` bit for bit.
 * :func:`numpy_cycles`, the same loop vectorised with NumPy over many trajectories at once, the floor of
-  :func:`~escapement.solvers.ensemble.solve_ensemble`; the same operations on arrays, so the same numbers
+  :func:`escapement.solvers.solve_ensemble`; the same operations on arrays, so the same numbers
   in practice (the tests ask for 1e-14, relative).
 
 Both assume the regime holds (the paper's cases: ``a1 < 0``, ``a4 <= a2``, ``a4 <= a3``, ``b < 1``, a
@@ -17,7 +17,9 @@ release that reaches an impact): outside it their numbers mean nothing.
 
 :func:`exact_floor` and :func:`ensemble_floor` measure the ratios, in one process, the runs of each pair
 interleaved and repeated (medians); they return rows of dicts (``name``, ``ratio``, the times or bytes),
-ready for a CSV. Wall times depend on the machine and its load; the ratios much less.
+ready for a CSV; :func:`floor_rows` gives every row of the speed table's floors (rule run_speed). Wall
+times depend on the machine and its load; the ratios much less. The solvers are reached through their
+public names only (:mod:`escapement.solvers`).
 """
 
 from __future__ import annotations
@@ -28,33 +30,31 @@ import statistics
 import time
 import tracemalloc
 from array import array
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+from typing import NamedTuple
 
 import numpy as np
 
-from ..model.parameters import Parameters
-from ..solvers.cycles import iter_closed_form_cycles
-from ..solvers.ensemble import solve_ensemble
-from ..solvers.exact import solve_exact
-from ..solvers.result import CycleTable
-from ..solvers.stream import iter_cycles
+from escapement.model import Parameters
+from escapement.solvers import iter_closed_form_cycles, iter_cycles, solve_ensemble, solve_exact
 
 __all__ = [
-    "PAPER_A",
-    "ensemble_floor",
-    "ensemble_workload",
-    "exact_floor",
-    "floor_rows",
-    "minimal_cycles",
-    "numpy_cycles",
-    "peak_bytes",
-    "side_by_side",
-    "stream_floor",
+    "PAPER_A", "Cycles", "ensemble_floor", "ensemble_workload", "exact_floor", "floor_rows",
+    "minimal_cycles", "numpy_cycles", "peak_bytes", "side_by_side", "stream_floor",
 ]
 
 TWO_PI = 2.0 * math.pi
 #: the paper's Fig. 3 case (a): the workload of the scalar floor, released at rest at 1 m
 PAPER_A = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+
+
+class Cycles(NamedTuple):
+    """The cycle table of :func:`numpy_cycles` (s, m/s, s, m): a row per trajectory, a column per cycle."""
+
+    impact_time: np.ndarray
+    velocity_before_impact: np.ndarray
+    period: np.ndarray
+    amplitude: np.ndarray
 
 
 def minimal_cycles(p: Parameters, x0: float, v0: float, n_cycles: int) -> tuple[array, array, array, array]:
@@ -187,10 +187,10 @@ def _numpy_add(t_sum, t_err, dt):
     t_sum[:] = new
 
 
-def numpy_cycles(M, K, F, b, a1, a2, a3=None, a4=None, x0=1.0, v0=0.0, *, n_cycles: int) -> CycleTable:
+def numpy_cycles(M, K, F, b, a1, a2, a3=None, a4=None, x0=1.0, v0=0.0, *, n_cycles: int) -> Cycles:
     """:func:`minimal_cycles` vectorised over trajectories: the cycle table, each column of shape
     ``(N, n_cycles)``, of every trajectory (the inputs broadcast to ``(N,)``, as for
-    :func:`~escapement.solvers.ensemble.solve_ensemble`; ``a3``, ``a4`` default to ``-a1``, ``-a2``).
+    :func:`escapement.solvers.solve_ensemble`; ``a3``, ``a4`` default to ``-a1``, ``-a2``).
 
     The first arc picks, per trajectory, the first of a1 moving right and a3 moving left; the trajectories
     that hit a3 first then take the zone to a4 and the swing to a1; from there every cycle is four arcs of
@@ -255,7 +255,7 @@ def numpy_cycles(M, K, F, b, a1, a2, a3=None, a4=None, x0=1.0, v0=0.0, *, n_cycl
         elapsed += dt
         periods[:, cycle] = elapsed
         amplitudes[:, cycle] = np.where(top > floor, top, floor)
-    return CycleTable(impact_time=times, velocity_before_impact=speeds, period=periods, amplitude=amplitudes)
+    return Cycles(impact_time=times, velocity_before_impact=speeds, period=periods, amplitude=amplitudes)
 
 
 # --- measuring -------------------------------------------------------------------------------------------------
@@ -288,17 +288,16 @@ def _row(name: str, n: int, times: list[float], reference: list[float], **extra)
             "repeats": len(times), **extra}
 
 
-def _streamed(params: Parameters, x0: float, n_cycles: int) -> None:
-    stream = iter_cycles(params, x0, n_cycles=n_cycles)
+def _drained(stream) -> None:
     for _ in stream:
         pass
 
 
 def exact_floor(sizes=(1_000, 100_000), repeats: dict | int | None = None, params: Parameters = PAPER_A,
                 x0: float = 1.0) -> list[dict]:
-    """:func:`~escapement.solvers.exact.solve_exact` against :func:`minimal_cycles` on the periodic regime,
+    """:func:`escapement.solvers.solve_exact` against :func:`minimal_cycles` on the periodic regime,
     ``n`` cycles for each of ``sizes``: storing the full result (the default, with the arcs), storing without
-    the arcs (``record_trajectory=False``), and streaming the cycles (:func:`~escapement.solvers.stream.iter_cycles`).
+    the arcs (``record_trajectory=False``), and streaming the cycles (:func:`escapement.solvers.iter_cycles`).
     One row per way and size: ``name``, ``n``, ``ratio`` (median time over the minimal loop's), ``time_s``,
     ``reference_s``, ``repeats``. ``repeats`` (a dict by size, or one number for all) defaults to about
     a second of the minimal loop per size: at least 7 runs, at most 300."""
@@ -313,7 +312,7 @@ def exact_floor(sizes=(1_000, 100_000), repeats: dict | int | None = None, param
             "minimal": lambda n=n: minimal_cycles(params, x0, 0.0, n),
             "storing": lambda n=n: solve_exact(params, x0, n_cycles=n),
             "storing without arcs": lambda n=n: solve_exact(params, x0, n_cycles=n, record_trajectory=False),
-            "streaming": lambda n=n: _streamed(params, x0, n),
+            "streaming": lambda n=n: _drained(iter_cycles(params, x0, n_cycles=n)),
         }, count)
         for way in ("storing", "storing without arcs", "streaming"):
             rows.append(_row(f"solve_exact {way} / minimal loop", n, times[way], times["minimal"]))
@@ -323,7 +322,7 @@ def exact_floor(sizes=(1_000, 100_000), repeats: dict | int | None = None, param
 def ensemble_workload(n_trajectories: int) -> dict:
     """The ensemble's workload: the paper's case (a) with the force spread over [0.5, 1.5] N and the release
     alternating between 1 m and -1 m (so that the first impact is at a3 for half the trajectories, at a1 for
-    the others); keyword arguments of :func:`~escapement.solvers.ensemble.solve_ensemble` and
+    the others); keyword arguments of :func:`escapement.solvers.solve_ensemble` and
     :func:`numpy_cycles` but ``n_cycles``."""
     return dict(M=1.0, K=1.0, F=np.linspace(0.5, 1.5, n_trajectories), b=0.1, a1=-0.1, a2=0.05,
                 x0=np.where(np.arange(n_trajectories) % 2 == 0, 1.0, -1.0), v0=0.0)
@@ -342,7 +341,7 @@ def peak_bytes(function: Callable[[], object]) -> int:
 
 
 def ensemble_floor(n_trajectories: int = 10_000, n_cycles: int = 50, repeats: int = 7) -> list[dict]:
-    """:func:`~escapement.solvers.ensemble.solve_ensemble` against :func:`numpy_cycles` on
+    """:func:`escapement.solvers.solve_ensemble` against :func:`numpy_cycles` on
     :func:`ensemble_workload`: a row for the time (``ratio``, ``time_s``, ``reference_s``, ``repeats``) and
     one for the peak memory per trajectory (``ratio``, ``bytes``, ``reference_bytes``, per trajectory), each
     with ``name`` and ``n`` (the trajectories); ``n_cycles`` cycles each."""
@@ -359,15 +358,10 @@ def ensemble_floor(n_trajectories: int = 10_000, n_cycles: int = 50, repeats: in
     ]
 
 
-def _drained(stream) -> None:
-    for _ in stream:
-        pass
-
-
 def stream_floor(sizes=(1_000_000, 100_000_000), repeats: int = 3, params: Parameters = PAPER_A,
                  x0: float = 1.0) -> list[dict]:
-    """Long runs in constant memory. The event solver's stream (:func:`~escapement.solvers.stream.iter_cycles`)
-    against the closed forms' (:func:`~escapement.solvers.cycles.iter_closed_form_cycles`) over the smaller of
+    """Long runs in constant memory. The event solver's stream (:func:`escapement.solvers.iter_cycles`)
+    against the closed forms' (:func:`escapement.solvers.iter_closed_form_cycles`) over the smaller of
     ``sizes`` (time, side by side, and peak memory), and the closed forms' stream over the larger against the
     smaller: its ``ratio`` is the peak memory's, ``time_s`` the larger run's wall time (one run) and
     ``reference_s`` the smaller's (the median of the side-by-side runs).
@@ -393,6 +387,13 @@ def stream_floor(sizes=(1_000_000, 100_000_000), repeats: int = 3, params: Param
     ]
 
 
-def floor_rows(exact_sizes=(1_000, 100_000), n_trajectories: int = 10_000, n_cycles: int = 50) -> list[dict]:
-    """Every row of :func:`exact_floor` and :func:`ensemble_floor`."""
-    return [*exact_floor(exact_sizes), *ensemble_floor(n_trajectories, n_cycles)]
+def floor_rows(settings: Mapping, params: Parameters = PAPER_A, x0: float = 1.0) -> list[dict]:
+    """Every row of the speed table's floors: :func:`exact_floor` on ``settings["exact_cycles"]``,
+    :func:`ensemble_floor` on ``settings["ensemble_trajectories"]`` and ``settings["ensemble_cycles"]``,
+    :func:`stream_floor` on ``settings["stream_cycles"]`` (the configuration's ``speed.floor``); the scalar
+    floors from ``x0`` (m) with ``params``."""
+    return [
+        *exact_floor(tuple(settings["exact_cycles"]), params=params, x0=x0),
+        *ensemble_floor(settings["ensemble_trajectories"], settings["ensemble_cycles"]),
+        *stream_floor(tuple(settings["stream_cycles"]), params=params, x0=x0),
+    ]

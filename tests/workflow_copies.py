@@ -16,7 +16,8 @@ from pathlib import Path
 import yaml
 
 REPO = Path(__file__).resolve().parents[1]
-PARTS = ["Snakefile", "config", "profiles", "workflow", "environment", "src", "README.md", "REPLICATION.md"]
+PARTS = ["Snakefile", "config", "profiles", "workflow", "environment", "src", "benchmarks", "README.md",
+         "REPLICATION.md"]
 
 
 def copy_repository(dest: Path) -> Path:

@@ -286,7 +286,7 @@ def test_a_stream_is_not_summarised_before_it_ends_and_refuses_a_chunk_beyond_th
 
 
 def test_a_streamed_run_takes_the_memory_of_a_chunk_whatever_its_length():
-    from escapement.studies.floor import peak_bytes
+    from benchmarks.floor import peak_bytes
 
     def drained(n):
         return lambda: [None for _ in cyc.iter_closed_form_cycles(params(), 1.0, n_cycles=n, chunk=1_000)]
@@ -310,7 +310,7 @@ def test_a_streamed_chunk_owns_its_arrays():
 
 @pytest.mark.parametrize("b", [1e-3, 1e-4])
 def test_the_transient_stays_within_the_memory_budget(b):
-    from escapement.studies.floor import peak_bytes
+    from benchmarks.floor import peak_bytes
 
     p = params(b=b)
     prep = cyc._prepared(p)

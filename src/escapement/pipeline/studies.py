@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 from ..io.atomic import write_csv
 from ..io.netcdf import read_netcdf
 from ..model.parameters import Parameters, check_initial_state
 from ..studies.benchmark import headline_ratios, per_cycle_times, work_precision
-from ..studies.floor import ensemble_floor, exact_floor, stream_floor
 from ..studies.stress import run_all
 from .edge_cases import run_edge_cases
 from .logs import logged
@@ -33,11 +32,13 @@ def _formatted(rows: list[dict], columns: list[str]) -> list[dict]:
     return [{c: (f"{row[c]:.6e}" if isinstance(row.get(c), float) else row.get(c, "")) for c in columns} for row in rows]
 
 
-def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str, log: str) -> None:
+def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str, log: str,
+              floors: Callable[[Mapping, Parameters, float], list[dict]]) -> None:
     """The speed table (``output``): the headline ratios on ``speed["headline"]["n_cycles"]`` cycles (the fastest
     integrator setting whose impact time reaches ``target`` against the exact solver and the per-cycle closed
-    forms), the exact solver against the closed forms per cycle, and the floors (the exact solver against a minimal
-    loop, the ensemble against a NumPy loop); and the headline's work-precision rows (``headline_output``)."""
+    forms), the exact solver against the closed forms per cycle, and the floors, the rows that
+    ``floors(speed["floor"], params, x0)`` measures (``benchmarks.floor.floor_rows``: the exact solver against a
+    minimal loop, the ensemble against a NumPy loop); and the headline's work-precision rows (``headline_output``)."""
     with logged(log, "run_speed") as logger:
         params = Parameters.from_mapping(scene)
         x0 = check_initial_state(scene["x0"], scene.get("v0", 0.0))[0]
@@ -66,10 +67,7 @@ def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str,
                          "time_s": r["exact_s_per_cycle"] * r["n_cycles"],
                          "reference_s": r["closed_form_s_per_cycle"] * r["n_cycles"],
                          "note": "per run, without the trajectory"})
-        floor = speed["floor"]
-        rows += exact_floor(tuple(floor["exact_cycles"]), params=params, x0=x0)
-        rows += ensemble_floor(floor["ensemble_trajectories"], floor["ensemble_cycles"])
-        rows += stream_floor(tuple(floor["stream_cycles"]), params=params, x0=x0)
+        rows += floors(speed["floor"], params, x0)
         for row in rows:
             logger.info("%s, n = %s: %.4g", row["name"], row["n"], row["ratio"])
         write_csv(_formatted(rows, SPEED_COLUMNS), SPEED_COLUMNS, output)

@@ -1,14 +1,11 @@
-"""The exact solver's specialised loop against two other paths to the same numbers: a minimal loop
-written out by hand (:func:`escapement.studies.floor.minimal_cycles`, which minimal_loop.py re-exports),
-and the generic solver loop with one stepper call and one ``arc_maximum`` per event
-(``solve_exact_stepwise``). Every number must be the same, bit for bit. Not timed: the speed is measured
-side by side outside the test suite (:mod:`escapement.studies.floor`)."""
+"""The exact solver's specialised loop against the generic solver loop with one stepper call and one
+``arc_maximum`` per event (``solve_exact_stepwise``): every number must be the same, bit for bit. The
+minimal closed-form loop, a third path to the cycle table, is tested with the speed floors
+(tests/benchmarks/test_floor.py)."""
 
 from __future__ import annotations
 
-import importlib.util
 import math
-from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -21,10 +18,6 @@ import escapement.solvers.exact as exact
 from escapement.model.parameters import Parameters
 from escapement.model.status import Status
 from escapement.solvers.exact import solve_exact, solve_exact_stepwise
-
-_spec = importlib.util.spec_from_file_location("minimal_loop", Path(__file__).with_name("minimal_loop.py"))
-minimal_loop = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(minimal_loop)
 
 CYCLE_COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
 EVENT_COLUMNS = ("t", "kind", "x", "v_before", "v_after")
@@ -51,15 +44,6 @@ def assert_same_run(fast, slow) -> None:
             assert _bits(getattr(fast.trajectory, name)) == _bits(getattr(slow.trajectory, name)), f"arcs.{name}"
         assert _bits([fast.trajectory.t_final, fast.trajectory.omega]) == _bits([slow.trajectory.t_final,
                                                                                  slow.trajectory.omega])
-
-
-@pytest.mark.parametrize("F, x0", [(1.0, 1.0), (0.5, 3.0)])
-def test_the_minimal_loop_gives_the_cycle_table_of_solve_exact_over_10_000_cycles(F, x0):
-    p = Parameters(M=1.0, K=1.0, F=F, b=0.1, a1=-0.1, a2=0.05)
-    run = solve_exact(p, x0, n_cycles=10_000, record_trajectory=False)
-    assert run.status == Status.COMPLETED
-    for name, column in zip(CYCLE_COLUMNS, minimal_loop.minimal_cycles(p, x0, 0.0, 10_000)):
-        assert _bits(getattr(run.cycles, name)) == _bits(np.frombuffer(column)), name
 
 
 @pytest.mark.parametrize("record", [True, False])
