@@ -4,7 +4,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from escapement.model.parameters import ParameterError, Parameters, check_initial_state, validate_arrays
+from escapement.model.parameters import B_SMALLEST, ParameterError, Parameters, check_initial_state, validate_arrays
 from escapement.model.quantities import INITIAL_STATE, PARAMETERS
 
 VALID = dict(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
@@ -222,9 +222,20 @@ def test_an_impact_coefficient_lost_in_one_minus_b_is_refused(b):
     assert err.value.name == "b" and "1 - b" in err.value.requirement and "1e-12" in err.value.requirement
 
 
-def test_the_smallest_impact_coefficient_is_accepted_and_kept_by_one_minus_b():
-    assert Parameters(**{**VALID, "b": 1e-12}).b == 1e-12
-    assert (1.0 - 1e-12) != 1.0 and abs((1.0 - (1.0 - 1e-12)) / 1e-12 - 1.0) < 1e-3  # 4 digits of b survive
+@pytest.mark.parametrize("factor", [1.0, 1.37, 3.0, 1e3, 1e11])
+def test_every_accepted_impact_coefficient_survives_the_impact_law_to_4_digits(factor):
+    """The impact law v+ = (1 - b) v- loses b's low digits in 1 - b: from the smallest b Parameters
+    accepts up, the b the law applies (recovered from the velocity after a unit impact) agrees to 4 digits."""
+    p = Parameters(**{**VALID, "b": B_SMALLEST * factor})
+    v_after = (1.0 - p.b) * 1.0
+    assert abs((1.0 - v_after) / p.b - 1.0) < 1e-4
+
+
+@pytest.mark.parametrize("b", [1e-12 * (1 - 1e-9), 1e-14, 1e-16, 1e-17])
+def test_an_impact_coefficient_below_the_smallest_is_refused_naming_it(b):
+    with pytest.raises(ParameterError) as err:
+        Parameters(**{**VALID, "b": b})
+    assert err.value.name == "b" and err.value.value == b
 
 
 def test_the_papers_values_lie_far_inside_the_range():

@@ -1,39 +1,101 @@
-"""The table of quantities: every model key once, with valid UDUNITS units that match their labels."""
+"""The table of quantities: units with the dimensions the model's equations require, and the
+documentation and configuration schema that state the same names and units."""
 
 import dataclasses
+import inspect
+import re
+from pathlib import Path
 
 import pytest
+import yaml
 from cf_units import Unit
 
-from escapement.model.parameters import Parameters
-from escapement.model.quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS, REQUIRED_KEYS, Quantity, quantity
+from escapement.model.parameters import ParameterError, Parameters
+from escapement.model.quantities import (
+    INITIAL_STATE,
+    MODEL_KEYS,
+    PARAMETERS,
+    REQUIRED_KEYS,
+    SYMMETRIC_DEFAULTS,
+    VARIABLES,
+    Quantity,
+    quantity,
+)
 
-#: SI base units of each quantity, from the model (Sec. 2 of the paper): M x'' + K x = F
-SI = {"M": "kg", "K": "kg s-2", "F": "kg m s-2", "b": "1", "a1": "m", "a2": "m", "a3": "m", "a4": "m",
-      "x0": "m", "v0": "m s-1"}
+SCHEMA = yaml.safe_load((Path(__file__).parents[2] / "workflow/schemas/config.schema.yaml").read_text())
+ALL = {**PARAMETERS, **INITIAL_STATE, **VARIABLES}
+VALID = dict(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 
 
-def test_the_model_keys_are_the_paper_symbols_in_order_and_the_fields_of_parameters():
-    assert MODEL_KEYS == ("M", "K", "F", "b", "a1", "a2", "a3", "a4")
-    assert tuple(f.name for f in dataclasses.fields(Parameters)) == MODEL_KEYS
-    assert REQUIRED_KEYS == ("M", "K", "F", "b", "a1", "a2")
-    assert tuple(INITIAL_STATE) == ("x0", "v0")
+def unit(name: str) -> Unit:
+    return Unit(quantity(name).units)
 
 
-@pytest.mark.parametrize("name", list(SI))
-def test_units_are_udunits_and_have_the_dimension_of_the_model(name):
+MASS, LENGTH, TIME = Unit("kg"), Unit("m"), Unit("s")
+
+#: what the model's equations require of the units (Sec. 2 of the paper): the SI base units of
+#: mass, length and time, and M x'' + K x = F, v+ = (1 - b) v-, omega**2 = K/M
+RELATIONS = {
+    "the mass is in kilograms": lambda: (unit("M"), MASS),
+    "a position is a length": lambda: (unit("displacement"), LENGTH),
+    "the initial displacement is a position": lambda: (unit("x0"), unit("displacement")),
+    "a1 is a position": lambda: (unit("a1"), unit("displacement")),
+    "a2 is a position": lambda: (unit("a2"), unit("displacement")),
+    "a3 is a position": lambda: (unit("a3"), unit("displacement")),
+    "a4 is a position": lambda: (unit("a4"), unit("displacement")),
+    "the amplitude is a position": lambda: (unit("amplitude"), unit("displacement")),
+    "time is in seconds": lambda: (unit("t"), TIME),
+    "the period is a time": lambda: (unit("period"), unit("t")),
+    "an impact time is a time": lambda: (unit("impact_time"), unit("t")),
+    "velocity is length over time": lambda: (unit("velocity"), unit("displacement") / unit("t")),
+    "the initial velocity is a velocity": lambda: (unit("v0"), unit("velocity")),
+    "the velocity before impact is a velocity": lambda: (unit("velocity_before_impact"), unit("velocity")),
+    "acceleration is velocity over time": lambda: (unit("acceleration"), unit("velocity") / unit("t")),
+    "F = M x''": lambda: (unit("F"), unit("M") * unit("acceleration")),
+    "K x is a force": lambda: (unit("K") * unit("displacement"), unit("F")),
+    "omega**2 = K/M is 1/time**2": lambda: (unit("K") / unit("M"), TIME ** -2),
+    "the zone offset F/K is a length": lambda: (unit("F") / unit("K"), LENGTH),
+    "(1 - b) v is a velocity: b is a pure number": lambda: (unit("b"), Unit("1")),
+    "the impulse is M (v+ - v-)": lambda: (unit("impulse"), unit("M") * unit("velocity")),
+    "the energy dissipated is M v**2 / 2": lambda: (unit("energy_dissipated"), unit("M") * unit("velocity") ** 2),
+}
+
+
+@pytest.mark.parametrize("relation", list(RELATIONS))
+def test_units_have_the_dimensions_the_equations_require(relation):
+    have, need = RELATIONS[relation]()
+    assert have == need, f"{relation}: {have} is not {need}"
+
+
+@pytest.mark.parametrize("name", list(ALL))
+def test_each_quantity_is_found_by_its_name_and_its_printed_units_mean_its_udunits(name):
     q = quantity(name)
-    assert q.name == name
-    unit = Unit(q.units)
-    assert unit == Unit(SI[name])
-    assert Unit(q.unit_label) == unit  # the plain label means the same units
+    assert q is ALL[name] and q.name == name
+    assert Unit(q.unit_label) == Unit(q.units), f"{name}: {q.unit_label!r} is not {q.units!r}"
+    assert q.dimensionless == (Unit(q.units) == Unit("1"))
 
 
-def test_a_label_shows_units_except_for_pure_numbers():
-    assert PARAMETERS["K"].label() == "spring constant (N/m)"
-    assert PARAMETERS["b"].label() == PARAMETERS["b"].long_name
-    assert Quantity("x", "x", "m", "m", "length").label() == "length (m)"
-    assert quantity("v0").label() == "initial velocity (m/s)"
+def test_the_model_keys_are_the_fields_of_parameters_in_order():
+    assert tuple(f.name for f in dataclasses.fields(Parameters)) == MODEL_KEYS
+
+
+@pytest.mark.parametrize("name", MODEL_KEYS)
+def test_a_key_may_be_left_out_exactly_when_it_has_a_symmetric_default(name):
+    values = {**VALID, "a3": 0.2, "a4": -0.01}
+    values.pop(name)
+    if name in REQUIRED_KEYS:
+        with pytest.raises(ParameterError) as err:
+            Parameters.from_mapping(values)
+        assert err.value.name == name
+    else:
+        mirror = SYMMETRIC_DEFAULTS[name]
+        assert getattr(Parameters.from_mapping(values), name) == -values[mirror]
+
+
+def test_an_axis_label_shows_the_symbol_and_units_except_for_pure_numbers():
+    assert Quantity("l", "L", "m", "m", "length of the pendulum", "length").axis_label() == "Length L (m)"
+    assert Quantity("q", "", "1", "1", "quality factor").axis_label() == "Quality factor"
+    assert Quantity("w", "\u03c9", "s-1", "1/s", "angular frequency").axis_label() == "Angular frequency \u03c9 (1/s)"
 
 
 def test_an_unknown_name_raises():
@@ -44,3 +106,77 @@ def test_an_unknown_name_raises():
 def test_quantities_are_immutable():
     with pytest.raises(dataclasses.FrozenInstanceError):
         PARAMETERS["M"].units = "g"
+
+
+# --- the documentation and the configuration state the table's names and units ------------------
+
+
+def _docstring_entries(doc: str) -> dict[str, str]:
+    """The entries of the Parameters section of a numpydoc docstring: name to type line and text."""
+    text = inspect.cleandoc(doc)
+    section = text.split("Parameters\n----------\n", 1)[1].split("\n\n", 1)[0]
+    entries: dict[str, str] = {}
+    for line in section.splitlines():
+        head = re.fullmatch(r"(\w+) : (.+)", line)
+        if head:
+            name = head.group(1)
+            entries[name] = line
+        else:
+            entries[name] += "\n" + line.strip()
+    return entries
+
+
+def test_the_docstring_of_parameters_documents_each_parameter_with_its_long_name_and_units():
+    entries = _docstring_entries(Parameters.__doc__)
+    assert list(entries) == list(PARAMETERS)
+    for name, q in PARAMETERS.items():
+        entry = entries[name].lower()
+        assert q.long_name.lower() in entry, name
+        assert ("dimensionless" if q.dimensionless else f", {q.unit_label.lower()}") in entry, name
+        assert ("optional" in entry.splitlines()[0]) == (name not in REQUIRED_KEYS), name
+
+
+#: the quantities a configuration gives
+CONFIGURED = {**PARAMETERS, **INITIAL_STATE}
+
+
+def _refers_to(node: dict) -> set[str]:
+    """The configured quantities a schema node holds, through a ``$ref`` (also of its items and alternatives)."""
+    refs = [node.get("$ref"), node.get("items", {}).get("$ref")]
+    for alternative in node.get("anyOf", []):
+        refs += [alternative.get("$ref"), alternative.get("items", {}).get("$ref")]
+    return {ref.rsplit("/", 1)[1] for ref in refs if ref} & set(CONFIGURED)
+
+
+def _described(node, key=None):
+    """Every node of the schema with a description, with the quantity it holds (or None)."""
+    if isinstance(node, dict):
+        if "description" in node:
+            held = ({key} & set(CONFIGURED)) | _refers_to(node)
+            yield node["description"], (held.pop() if held else None)
+        for child_key, child in node.items():
+            yield from _described(child, child_key)
+    elif isinstance(node, list):
+        for child in node:
+            yield from _described(child, key)
+
+
+#: each description in the schema of a quantity with units, and the quantity
+DESCRIBED = [(text, name) for text, name in _described(SCHEMA) if name and not CONFIGURED[name].dimensionless]
+
+
+def test_the_schema_describes_the_dimensional_parameters_in_several_places():
+    described = [name for _, name in DESCRIBED]
+    assert set(described) == {"M", "K", "F", "a1", "a2", "a3", "a4", "x0"}
+    assert described.count("K") > 1 and described.count("F") > 1
+
+
+@pytest.mark.parametrize("text, name", DESCRIBED)
+def test_each_description_of_a_quantity_in_the_schema_states_the_tables_units(text, name):
+    stated = re.findall(r"\(([^()]*)\)", text)
+    assert CONFIGURED[name].unit_label in stated, f"{name}: {text!r} does not state {CONFIGURED[name].unit_label}"
+
+
+@pytest.mark.parametrize("name", MODEL_KEYS)
+def test_the_schema_titles_each_parameter_with_its_long_name(name):
+    assert SCHEMA["$defs"]["model"]["properties"][name]["title"] == PARAMETERS[name].long_name

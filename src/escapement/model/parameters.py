@@ -50,11 +50,12 @@ from numbers import Real
 
 import numpy as np
 
-from .quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS
+from .quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS, REQUIRED_KEYS, SYMMETRIC_DEFAULTS, quantity
 
 __all__ = [
     "B_SMALLEST",
     "LARGEST",
+    "SIGNS",
     "SMALLEST",
     "ParameterError",
     "Parameters",
@@ -70,6 +71,9 @@ SMALLEST = 1e-50
 LARGEST = 1e50
 #: the smallest impact coefficient: 1 - b keeps b to 4 significant digits
 B_SMALLEST = 1e-12
+
+#: the sign and order rules on the parameters, in words, as the messages and the docstring state them
+SIGNS = {"M": "> 0", "K": "> 0", "F": ">= 0", "b": "in the open interval (0, 2)", "a2": "> a1", "a4": "< a3"}
 
 _WHY = ("so that the squares and products the solvers form (omega**2 = K/M, F/K, v/omega, squared speeds, "
         "energies) stay normal float64 numbers")
@@ -115,9 +119,11 @@ class ParameterError(ValueError):
 
 
 def _unit(name: str) -> str:
-    if name in PARAMETERS:
-        return PARAMETERS[name].unit_label
-    return INITIAL_STATE[name].unit_label
+    return quantity(name).unit_label
+
+
+#: the positions along the line of motion: the parameters measured as the displacement is
+_POSITIONS = tuple(name for name, q in PARAMETERS.items() if q.units == quantity("displacement").units)
 
 
 def _magnitude(name: str, values: np.ndarray, zero: bool):
@@ -138,19 +144,19 @@ def rules(v: Mapping[str, np.ndarray]):
     offending row's values).
     """
     with np.errstate(all="ignore"):
-        yield "M", v["M"] > 0, f"> 0 ({_unit('M')})"
+        yield "M", v["M"] > 0, f"{SIGNS['M']} ({_unit('M')})"
         yield _magnitude("M", v["M"], zero=False)
-        yield "K", v["K"] > 0, f"> 0 ({_unit('K')})"
+        yield "K", v["K"] > 0, f"{SIGNS['K']} ({_unit('K')})"
         yield _magnitude("K", v["K"], zero=False)
-        yield "F", v["F"] >= 0, f">= 0 ({_unit('F')})"
+        yield "F", v["F"] >= 0, f"{SIGNS['F']} ({_unit('F')})"
         yield _magnitude("F", v["F"], zero=True)
-        yield "b", (v["b"] > 0) & (v["b"] < 2), "in the open interval (0, 2)"
+        yield "b", (v["b"] > 0) & (v["b"] < 2), SIGNS["b"]
         yield "b", v["b"] >= B_SMALLEST, (f">= {B_SMALLEST:.0e} (and < 2), so that the impact law's factor 1 - b "
                                           "keeps b to 4 significant digits")
-        for name in ("a1", "a2", "a3", "a4"):
+        for name in _POSITIONS:
             yield _magnitude(name, v[name], zero=True)
-        yield "a2", v["a1"] < v["a2"], "> a1 = {a1!r} (m)"
-        yield "a4", v["a4"] < v["a3"], "< a3 = {a3!r} (m)"
+        yield "a2", v["a1"] < v["a2"], SIGNS["a2"] + " = {a1!r} " + f"({_unit('a2')})"
+        yield "a4", v["a4"] < v["a3"], SIGNS["a4"] + " = {a3!r} " + f"({_unit('a4')})"
 
 
 def state_rules(s: Mapping[str, np.ndarray]):
@@ -230,12 +236,12 @@ def validate_arrays(values: Mapping[str, object], single: bool = False, state: b
     One rule set (:func:`rules`, :func:`state_rules`) serves a single model (``single``: every value
     a number) and an ensemble (one row per element of the broadcast shape).
     """
-    names = ("M", "K", "F", "b", "a1", "a2") + (tuple(INITIAL_STATE) if state else ())
+    names = REQUIRED_KEYS + (tuple(INITIAL_STATE) if state else ())
     for key in names:
         if values.get(key) is None:
             raise ParameterError(key, None, "given")
-    checked = {name: real_array(name, values[name]) for name in ("M", "K", "F", "b", "a1", "a2")}
-    for name, mirror in (("a3", "a1"), ("a4", "a2")):
+    checked = {name: real_array(name, values[name]) for name in REQUIRED_KEYS}
+    for name, mirror in SYMMETRIC_DEFAULTS.items():
         checked[name] = -checked[mirror] if values.get(name) is None else real_array(name, values[name])
     checked = {k: checked[k] for k in MODEL_KEYS}
     if state:
@@ -253,7 +259,7 @@ def validate_arrays(values: Mapping[str, object], single: bool = False, state: b
 
 @dataclass(frozen=True)
 class Parameters:
-    """Physical parameters in SI units: kg, N/m, N, 1, m.
+    """Physical parameters of the escapement model, in the units of :mod:`escapement.model.quantities`.
 
     ``a3`` and ``a4`` default to the symmetric geometry ``a3 = -a1``,
     ``a4 = -a2``; give them to study the paper's asymmetric map, Eq. (16).
@@ -261,22 +267,7 @@ class Parameters:
 
     Parameters
     ----------
-    M : float
-        Mass, kg (> 0).
-    K : float
-        Spring constant, N/m (> 0).
-    F : float
-        Force of the escapement over an impulse zone, N (>= 0).
-    b : float
-        Impact coefficient, dimensionless, in ``(0, 2)``: the impact law is ``v+ = (1 - b) v-``.
-    a1 : float
-        Impact position of the first half cycle (moving right), m (``a1 < 0`` in the paper).
-    a2 : float
-        End of the first impulse zone, m (``> a1``).
-    a3 : float, optional
-        Impact position of the second half cycle (moving left), m; default ``-a1``.
-    a4 : float, optional
-        End of the second impulse zone, m (``< a3``); default ``-a2``.
+    {parameters}
 
     Raises
     ------
@@ -312,7 +303,7 @@ class Parameters:
     @classmethod
     def from_mapping(cls, values: Mapping[str, object]) -> Parameters:
         """From a mapping with the model keys (others are ignored); a missing key is named."""
-        for key in ("M", "K", "F", "b", "a1", "a2"):
+        for key in REQUIRED_KEYS:
             if key not in values:
                 raise ParameterError(key, None, "given (it is missing)")
         return cls(**{k: values[k] for k in MODEL_KEYS if values.get(k) is not None})
@@ -350,6 +341,24 @@ class Parameters:
     def as_dict(self) -> dict[str, float]:
         """Every parameter by the paper's symbol."""
         return {n: getattr(self, n) for n in MODEL_KEYS}
+
+
+def _parameters_section() -> str:
+    """The entries of the Parameters section of :class:`Parameters`' docstring, one per row of the
+    parameters table: long name, units, sign rule (:data:`SIGNS`) and default."""
+    lines = []
+    for name, q in PARAMETERS.items():
+        mirror = SYMMETRIC_DEFAULTS.get(name)
+        units = "dimensionless" if q.dimensionless else q.unit_label
+        rule = f" ({SIGNS[name]})" if name in SIGNS else ""
+        default = f"; default -{mirror}" if mirror else ""
+        lines += [f"{name} : float{', optional' if mirror else ''}",
+                  f"    {q.long_name[:1].upper()}{q.long_name[1:]}, {units}{rule}{default}."]
+    return "\n    ".join(lines)
+
+
+if Parameters.__doc__:  # None when docstrings are stripped (python -OO)
+    Parameters.__doc__ = Parameters.__doc__.replace("{parameters}", _parameters_section())
 
 
 def check_initial_state(x0: object, v0: object) -> tuple[float, float]:

@@ -9,16 +9,29 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Quantity", "PARAMETERS", "INITIAL_STATE", "MODEL_KEYS", "REQUIRED_KEYS", "quantity"]
+__all__ = ["Quantity", "PARAMETERS", "INITIAL_STATE", "VARIABLES", "MODEL_KEYS", "REQUIRED_KEYS", "SYMMETRIC_DEFAULTS",
+           "quantity"]
 
 
 @dataclass(frozen=True)
 class Quantity:
     """One named quantity.
 
-    ``name`` is the key in the configuration, in :class:`Parameters` and in the netCDF files;
-    ``symbol`` the paper's symbol for labels; ``units`` the UDUNITS string; ``unit_label`` the
-    units as printed in axis labels and messages.
+    Parameters
+    ----------
+    name : str
+        The key in the configuration, in :class:`~escapement.model.parameters.Parameters` and in the
+        netCDF files.
+    symbol : str
+        The paper's symbol, for labels ("" where the paper gives none).
+    units : str
+        The units as a UDUNITS string (as CF requires).
+    unit_label : str
+        The same units as printed in axis labels, docstrings and messages.
+    long_name : str
+        What the quantity is, in words (the CF ``long_name`` and the configuration's ``title``).
+    short_name : str, optional
+        A shorter name for axis labels; default the long name.
     """
 
     name: str
@@ -26,22 +39,36 @@ class Quantity:
     units: str
     unit_label: str
     long_name: str
+    short_name: str = ""
 
-    def label(self) -> str:
-        """An axis label: ``long name (units)``, or just the long name for a pure number."""
-        return self.long_name if self.unit_label == "1" else f"{self.long_name} ({self.unit_label})"
+    @property
+    def dimensionless(self) -> bool:
+        """True for a pure number (units ``1``)."""
+        return self.units == "1"
+
+    def axis_label(self) -> str:
+        """An axis label: the short name, capitalised, the symbol and the units.
+
+        Returns
+        -------
+        str
+            ``Force F (N)``; a pure number has no units: ``Impact coefficient b``.
+        """
+        name = self.short_name or self.long_name
+        text = " ".join(part for part in (name[:1].upper() + name[1:], self.symbol) if part)
+        return text if self.dimensionless else f"{text} ({self.unit_label})"
 
 
 def _table(*rows: Quantity) -> dict[str, Quantity]:
     return {q.name: q for q in rows}
 
 
-#: Model parameters (Sec. 2-3 of the paper, SI units)
+#: Model parameters (Sec. 2-3 of the paper)
 PARAMETERS = _table(
     Quantity("M", "M", "kg", "kg", "mass"),
     Quantity("K", "K", "N m-1", "N/m", "spring constant"),
-    Quantity("F", "F", "N", "N", "force of the escapement over an impulse zone"),
-    Quantity("b", "b", "1", "1", "impact coefficient (v+ = (1 - b) v-)"),
+    Quantity("F", "F", "N", "N", "force of the escapement over an impulse zone", "force"),
+    Quantity("b", "b", "1", "1", "impact coefficient (v+ = (1 - b) v-)", "impact coefficient"),
     Quantity("a1", "a\u2081", "m", "m", "impact position of the first half cycle (moving right)"),
     Quantity("a2", "a\u2082", "m", "m", "end of the first impulse zone"),
     Quantity("a3", "a\u2083", "m", "m", "impact position of the second half cycle (moving left)"),
@@ -54,13 +81,50 @@ INITIAL_STATE = _table(
     Quantity("v0", "v(0)", "m s-1", "m/s", "initial velocity"),
 )
 
+#: The computed variables of a run, by their names in the datasets: the trajectory, the impacts and
+#: the Poincare map per cycle (cycle k starts at the k-th impact at a1)
+VARIABLES = _table(
+    Quantity("t", "t", "s", "s", "time since release", "time"),
+    Quantity("displacement", "x", "m", "m", "displacement x", "displacement"),
+    Quantity("velocity", "v", "m s-1", "m/s", "velocity dx/dt", "velocity"),
+    Quantity("acceleration", "", "m s-2", "m/s\u00b2", "acceleration d2x/dt2 between impacts", "acceleration"),
+    Quantity("impulse", "", "N s", "N s", "impulse of the impact force, M (v+ - v-)", "impulse"),
+    Quantity("energy_dissipated", "", "J", "J", "kinetic energy dissipated by the impact", "energy dissipated"),
+    Quantity("impact_time", "", "s", "s", "time of impact k at a1 (start of cycle k)", "impact time"),
+    Quantity("velocity_before_impact", "", "m s-1", "m/s", "velocity just before impact k at a1",
+             "velocity before impact"),
+    Quantity("period", "", "s", "s", "time from impact k to impact k+1 at a1", "period"),
+    Quantity("amplitude", "", "m", "m",
+             "largest displacement between impact k and impact k+1 (right turning point)",
+             "amplitude of oscillation"),
+)
+
 MODEL_KEYS = tuple(PARAMETERS)
-#: a3 and a4 default to the symmetric geometry a3 = -a1, a4 = -a2
-REQUIRED_KEYS = ("M", "K", "F", "b", "a1", "a2")
+#: the parameters that may be left out, each defaulting to minus its mirror: the symmetric geometry
+#: a3 = -a1, a4 = -a2
+SYMMETRIC_DEFAULTS = {"a3": "a1", "a4": "a2"}
+REQUIRED_KEYS = tuple(name for name in MODEL_KEYS if name not in SYMMETRIC_DEFAULTS)
 
 
 def quantity(name: str) -> Quantity:
-    """The quantity called ``name`` (a parameter or an initial-state component)."""
-    if name in PARAMETERS:
-        return PARAMETERS[name]
-    return INITIAL_STATE[name]
+    """The quantity called ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A parameter, an initial-state component or a computed variable.
+
+    Returns
+    -------
+    Quantity
+        Its row of the table.
+
+    Raises
+    ------
+    KeyError
+        If no table has that name.
+    """
+    for table in (PARAMETERS, INITIAL_STATE, VARIABLES):
+        if name in table:
+            return table[name]
+    raise KeyError(name)
