@@ -1,6 +1,6 @@
 """The model layer: parameters, the hybrid automaton, closed-form kinematics, events, outcomes."""
 
-from .automaton import Awaited, Mode, Surface
+from .automaton import Mode, Surface
 from .events import EventKind, EventLog
 from .limits import RunLimits
 from .parameters import ParameterError, Parameters, check_initial_state
@@ -8,7 +8,6 @@ from .quantities import INITIAL_STATE, PARAMETERS, Quantity
 from .status import Status
 
 __all__ = [
-    "Awaited",
     "EventKind",
     "EventLog",
     "INITIAL_STATE",

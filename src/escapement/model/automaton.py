@@ -1,26 +1,11 @@
-"""The escapement as a hybrid automaton: its modes, surfaces, transitions, impact law and exits.
+"""The escapement as a hybrid automaton, written once as data: every solver drives these tables.
 
-This module is the model's rules, written once; every solver (exact, ensemble, reference,
-high precision, naive) drives it and none restates it. The rules are tables indexed by small
-integers and functions of plain arithmetic, so that they serve floats, NumPy arrays and
-mpmath numbers alike.
-
-Modes (Sec. 2 and Appendix A of the paper):
-
-* :attr:`Mode.FREE`: ``x'' = -omega**2 x`` (steps 1, 4, 5, 8); centre 0.
-* :attr:`Mode.ZONE_RIGHT`: entered by the impact at a1; ``x'' = -omega**2 x + f`` (step 3);
-  centre ``+F/K``; left at a2 moving right.
-* :attr:`Mode.ZONE_LEFT`: entered by the impact at a3; ``x'' = -omega**2 x - f`` (step 7);
-  centre ``-F/K``; left at a4 moving left.
-
-In free flight the escapement awaits one impact (:class:`Awaited`): at a3 moving left after
-the impulse (a1, a2), at a1 moving right after the impulse (a4, a3), and at first whichever
-of the two comes first. The impulse follows an impact only (the escapement unlocks at the
-impact). The impact law is Eqs. (A-2), (A-4): ``v+ = (1 - b) v-``.
-
-A run leaves the regime (:class:`~escapement.model.status.Status`) when no watched surface is
-ever passed (free flight: the escapement stopped; a zone: the mass turned back inside it), or
-when an impact reverses the velocity (``b > 1``: the impacts chatter).
+The state of the automaton is the kind of the last event (:data:`RELEASE` before the first). Each
+state is a row of :data:`ARCS`: the mode of the arc that follows (its centre of oscillation) and the
+surfaces that can end it. Each surface (:data:`SURFACES`) is a parameter's position, a direction of
+crossing and whether reaching it is an impact. The event reached is the next state. The impact law
+is Eqs. (A-2), (A-4): ``v+ = (1 - b) v-``. A run leaves the regime (:data:`EXIT_WITHOUT_EVENT`)
+where no watched surface is ever passed, or where an impact reverses the velocity (``b > 1``).
 """
 
 from __future__ import annotations
@@ -32,113 +17,110 @@ from .events import EventKind
 from .status import Status
 
 __all__ = [
-    "Mode",
-    "Awaited",
-    "Surface",
-    "SURFACES",
+    "ARCS",
     "CENTRE_SIGN",
-    "ZONE_OF",
     "EXIT_WITHOUT_EVENT",
-    "watched",
-    "transition",
+    "RELEASE",
+    "SURFACES",
+    "ZONE_OF",
+    "Arc",
+    "Mode",
+    "Surface",
     "centre",
-    "position",
+    "cycle_plan",
     "is_impact",
-    "velocity_after",
-    "reverses",
+    "position",
     "rebound_distance",
+    "reverses",
+    "velocity_after",
 ]
 
 
 class Mode(IntEnum):
-    """Which equation of motion holds (the integers index the tables below)."""
+    """Which equation of motion holds: ``x'' = -omega**2 (x - c)`` with the centre ``c`` of :data:`CENTRE_SIGN`."""
 
-    FREE = 0
-    ZONE_RIGHT = 1
-    ZONE_LEFT = 2
+    FREE = 0  #: free flight (steps 1, 4, 5, 8 of the paper), centre 0
+    ZONE_RIGHT = 1  #: the impulse zone (a1, a2) after the impact at a1 (step 3), centre +F/K
+    ZONE_LEFT = 2  #: the impulse zone (a4, a3) after the impact at a3 (step 7), centre -F/K
 
 
-class Awaited(IntEnum):
-    """The impact the escapement waits for in free flight (the codes of the impact events)."""
-
-    EITHER = 0
-    A1 = int(EventKind.IMPACT_A1)
-    A3 = int(EventKind.IMPACT_A3)
+#: the centre of oscillation of each mode, in units of F/K
+CENTRE_SIGN = (0.0, 1.0, -1.0)
 
 
 @dataclass(frozen=True)
 class Surface:
-    """An event surface: ``x`` reaching the parameter ``position`` while moving in ``direction``."""
+    """An event: ``x`` reaching the parameter ``position`` while moving in ``direction``."""
 
     kind: EventKind
-    position: str  #: name of the parameter that gives the position (a1 .. a4)
+    position: str  #: the parameter that gives the position (a1 .. a4)
     direction: int  #: +1 moving right, -1 moving left
+    impact: bool  #: an impact (the impact law applies), or the end of an impulse zone
 
 
 SURFACES: dict[EventKind, Surface] = {
-    EventKind.IMPACT_A1: Surface(EventKind.IMPACT_A1, "a1", +1),
-    EventKind.ZONE_END_A2: Surface(EventKind.ZONE_END_A2, "a2", +1),
-    EventKind.IMPACT_A3: Surface(EventKind.IMPACT_A3, "a3", -1),
-    EventKind.ZONE_END_A4: Surface(EventKind.ZONE_END_A4, "a4", -1),
+    EventKind.IMPACT_A1: Surface(EventKind.IMPACT_A1, "a1", +1, True),
+    EventKind.ZONE_END_A2: Surface(EventKind.ZONE_END_A2, "a2", +1, False),
+    EventKind.IMPACT_A3: Surface(EventKind.IMPACT_A3, "a3", -1, True),
+    EventKind.ZONE_END_A4: Surface(EventKind.ZONE_END_A4, "a4", -1, False),
 }
 
-#: the centre of oscillation in each mode, in units of F/K
-CENTRE_SIGN = (0.0, 1.0, -1.0)
 
-#: the mode each event leads to, and the impact awaited after it
-_TRANSITIONS: dict[EventKind, tuple[Mode, Awaited]] = {
-    EventKind.IMPACT_A1: (Mode.ZONE_RIGHT, Awaited.A3),
-    EventKind.ZONE_END_A2: (Mode.FREE, Awaited.A3),
-    EventKind.IMPACT_A3: (Mode.ZONE_LEFT, Awaited.A1),
-    EventKind.ZONE_END_A4: (Mode.FREE, Awaited.A1),
+@dataclass(frozen=True)
+class Arc:
+    """A row of the automaton: the arc that follows an event, its mode and the surfaces that can end it."""
+
+    mode: Mode
+    watched: tuple[EventKind, ...]
+
+
+#: the state before the first event
+RELEASE = 0
+
+#: the arc after each state. The impulse follows an impact only (the escapement unlocks at the impact);
+#: from the release the escapement awaits whichever impact comes first.
+ARCS: dict[int, Arc] = {
+    RELEASE: Arc(Mode.FREE, (EventKind.IMPACT_A1, EventKind.IMPACT_A3)),
+    EventKind.IMPACT_A1: Arc(Mode.ZONE_RIGHT, (EventKind.ZONE_END_A2,)),
+    EventKind.ZONE_END_A2: Arc(Mode.FREE, (EventKind.IMPACT_A3,)),
+    EventKind.IMPACT_A3: Arc(Mode.ZONE_LEFT, (EventKind.ZONE_END_A4,)),
+    EventKind.ZONE_END_A4: Arc(Mode.FREE, (EventKind.IMPACT_A1,)),
 }
 
-_WATCHED: dict[tuple[Mode, Awaited], tuple[EventKind, ...]] = {
-    (Mode.FREE, Awaited.EITHER): (EventKind.IMPACT_A1, EventKind.IMPACT_A3),
-    (Mode.FREE, Awaited.A1): (EventKind.IMPACT_A1,),
-    (Mode.FREE, Awaited.A3): (EventKind.IMPACT_A3,),
-}
-_ZONE_END = {Mode.ZONE_RIGHT: (EventKind.ZONE_END_A2,), Mode.ZONE_LEFT: (EventKind.ZONE_END_A4,)}
-
-#: each impulse zone by its mode: (name in messages, the surface that ends it)
-ZONE_OF = {Mode.ZONE_RIGHT: ("(a1, a2)", EventKind.ZONE_END_A2), Mode.ZONE_LEFT: ("(a4, a3)", EventKind.ZONE_END_A4)}
-
-#: how the run ends when no watched surface is passed in a mode
+#: how a run ends where no watched surface is ever passed in a mode
 EXIT_WITHOUT_EVENT = {Mode.FREE: Status.STOPPED, Mode.ZONE_RIGHT: Status.TURNED_BACK_IN_ZONE,
                       Mode.ZONE_LEFT: Status.TURNED_BACK_IN_ZONE}
 
-#: the mode and awaited impact at the start of a run
-INITIAL = (Mode.FREE, Awaited.EITHER)
-
-#: event codes that are impacts, as a lookup table by code (index 0 unused)
-IMPACT_TABLE = (False, True, False, True, False)
+#: each impulse zone by its mode: its name in messages and the surface that ends it
+ZONE_OF = {Mode.ZONE_RIGHT: ("(a1, a2)", EventKind.ZONE_END_A2), Mode.ZONE_LEFT: ("(a4, a3)", EventKind.ZONE_END_A4)}
 
 
-def watched(mode: Mode, awaited: Awaited) -> tuple[EventKind, ...]:
-    """The surfaces that can end the current arc."""
-    if mode == Mode.FREE:
-        return _WATCHED[(Mode.FREE, Awaited(awaited))]
-    return _ZONE_END[Mode(mode)]
-
-
-def transition(kind: EventKind) -> tuple[Mode, Awaited]:
-    """The mode after the event ``kind``, and the impact awaited from then on."""
-    return _TRANSITIONS[EventKind(kind)]
+def cycle_plan() -> tuple[EventKind, ...]:
+    """The events of one cycle, after an impact at a1 up to the next: the rows of :data:`ARCS` followed from
+    a1 (each state after the release watches a single surface)."""
+    plan = []
+    state = EventKind.IMPACT_A1
+    for _ in range(len(SURFACES)):
+        (state,) = ARCS[state].watched
+        plan.append(state)
+        if state == EventKind.IMPACT_A1:
+            return tuple(plan)
+    raise RuntimeError("the automaton's rows do not return to the impact at a1")
 
 
 def centre(mode: int, zone_offset):
-    """The centre of oscillation in ``mode``; ``zone_offset`` is F/K (a number or an array)."""
+    """The centre of oscillation in ``mode``; ``zone_offset`` is F/K (a number or an array), m."""
     return CENTRE_SIGN[int(mode)] * zone_offset
 
 
-def position(kind: EventKind, params) -> float:
-    """Where the surface ``kind`` lies for these parameters."""
+def position(kind: int, params):
+    """Where the surface ``kind`` lies for these parameters, m."""
     return getattr(params, SURFACES[EventKind(kind)].position)
 
 
 def is_impact(kind: int) -> bool:
     """True for the impacts at a1 and a3, False for the ends of the impulse zones."""
-    return IMPACT_TABLE[int(kind)]
+    return SURFACES[EventKind(kind)].impact
 
 
 def velocity_after(v_before, b, impact):
@@ -154,7 +136,7 @@ def reverses(v_before, v_after):
     return v_after * v_before < 0.0
 
 
-def rebound_distance(kind: EventKind, where):
+def rebound_distance(kind: int, where):
     """After a rebound at the impact ``kind`` at position ``where``, the distance from the free
     centre (0) to it on the side the spring pushes towards (> 0 when the spring drives the mass
     back to it)."""

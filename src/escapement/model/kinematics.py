@@ -12,20 +12,18 @@ given direction of motion, so
   which loses accuracy near a turning point).
 
 No step size and no root finding: each event costs a square root and an ``atan2``.
-Each formula is written once for floats and NumPy arrays alike (the argument ``lib``).
+Each formula is written once for floats and NumPy arrays alike.
 """
 
 from __future__ import annotations
 
 import math
 from fractions import Fraction
-from types import SimpleNamespace
 
 import numpy as np
 
 __all__ = [
-    "SCALAR",
-    "VECTOR",
+    "arc_terms",
     "crossing",
     "arc_maximum",
     "compensated_add",
@@ -37,54 +35,53 @@ __all__ = [
 TWO_PI = 2.0 * math.pi
 
 
-def _pick(condition, yes, no):
-    return yes if condition else no
+def arc_terms(centre, x0, omega, target):
+    """The terms of :func:`crossing` that depend on the arc's two positions only: ``u0 = x0 - c``,
+    ``q = target - c`` and ``k = omega**2 (x0 - target)(x0 + target - 2 c)`` (by energy, the arrival's
+    ``v**2 = v0**2 + k``). An arc from one surface to the next has them once per parameter set."""
+    return x0 - centre, target - centre, (omega * omega) * ((x0 - target) * (x0 + target - 2.0 * centre))
 
 
-#: the functions the closed forms need, for one float at a time and for NumPy arrays
-SCALAR = SimpleNamespace(sqrt=math.sqrt, atan2=math.atan2, hypot=math.hypot, where=_pick, maximum=max)
-VECTOR = SimpleNamespace(sqrt=np.sqrt, atan2=np.arctan2, hypot=np.hypot, where=np.where, maximum=np.maximum)
-
-
-def crossing(centre, x0, v0, omega, target, direction, lib=SCALAR):
-    """First arrival at ``x = target`` moving in ``direction`` (+1 right, -1 left).
+def crossing(u0, q, k, v0, omega, direction, xp=math):
+    """First arrival at the target moving in ``direction`` (+1 right, -1 left), for an arc about a centre
+    ``c`` from ``x0 = c + u0`` at velocity ``v0`` to ``target = c + q``, with ``k`` from :func:`arc_terms`.
 
     Returns ``(reached, tau, v, angle)``: whether the arc passes the target strictly, the time
     after the start, the velocity on arrival and the phase angle swept (``angle = omega * tau``).
     Where ``reached`` is false (the turning point lies short of the target or exactly on it:
-    grazing) the other values are meaningless. ``lib`` is :data:`SCALAR` or :data:`VECTOR`.
+    grazing) the other values are meaningless. ``xp`` is :mod:`math` for floats, :mod:`numpy` for
+    arrays (the same names, the same operations).
     """
-    v_sq = v0 * v0 + (omega * omega) * ((x0 - target) * (x0 + target - 2.0 * centre))
-    reached = v_sq > 0.0
-    v1 = direction * lib.sqrt(lib.maximum(v_sq, 0.0))
-    u0 = x0 - centre
-    q = target - centre
+    v_sq = v0 * v0 + k
+    v1 = direction * xp.sqrt(abs(v_sq))
     w0 = v0 / omega
     w1 = v1 / omega
     # Clockwise angle from (u0, w0) to (q, w1), in (0, 2 pi].
-    angle = lib.atan2(w0 * q - u0 * w1, u0 * q + w0 * w1)
+    angle = xp.atan2(w0 * q - u0 * w1, u0 * q + w0 * w1)
     angle = angle + TWO_PI * (angle <= 0.0)  # arithmetic, not a branch: floats and arrays alike
-    return reached, angle / omega, v1, angle
+    return v_sq > 0.0, angle / omega, v1, angle
 
 
-def arc_maximum(centre, x0, v0, omega, angle, x1, lib=SCALAR):
-    """Largest ``x`` on the arc that starts at ``(x0, v0)``, sweeps ``angle`` and ends at ``x1``."""
+def arc_maximum(centre, x0, v0, omega, angle, x1):
+    """Largest ``x`` on the arc that starts at ``(x0, v0)``, sweeps ``angle`` and ends at ``x1`` (arrays or
+    numbers): the top of its circle, ``centre + R``, if the arc passes it, else the larger end."""
     u0 = x0 - centre
     w0 = v0 / omega
-    start = lib.atan2(w0, u0)  # the top of the circle (x = centre + R) is at phase 0
+    start = np.arctan2(w0, u0)  # the top of the circle (x = centre + R) is at phase 0
     to_top = start + TWO_PI * (start < 0.0)
-    return lib.where(to_top <= angle, centre + lib.hypot(u0, w0), lib.maximum(x0, x1))
+    return np.where(to_top <= angle, centre + np.hypot(u0, w0), np.maximum(x0, x1))
 
 
-def compensated_add(total, error, term, lib=SCALAR):
-    """Neumaier's compensated sum: add ``term`` to ``total + error``; returns the new pair.
+def compensated_add(total, error, term):
+    """Add ``term`` to the compensated sum ``total + error``; returns the new pair (floats or arrays).
 
-    The time of an event is the sum of every duration before it; summed this way it stays
-    within an ulp or so of the exact sum however many events there are.
+    The rounding error of ``total + term`` is exact by Knuth's TwoSum (no branch), and carried in
+    ``error``: the time of an event, the sum of every duration before it, stays within an ulp or so
+    of the exact sum however many events there are.
     """
     new = total + term
-    error = error + lib.where(abs(total) >= abs(term), (total - new) + term, (term - new) + total)
-    return new, error
+    part = new - total
+    return new, error + ((total - (new - part)) + (term - part))
 
 
 def time_to_rest(centre: float, x0: float, v0: float, omega: float) -> tuple[float, float]:

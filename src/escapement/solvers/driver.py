@@ -1,6 +1,7 @@
-"""The solver loop: drives the automaton from event to event with a pluggable integrator.
+"""The integrators' loop: drives the automaton from event to event with a pluggable integrator.
 
-One loop serves the exact, reference, high-precision and naive solvers. An integrator (a
+The reference, high-precision and naive solvers integrate the equations of motion numerically and
+check the exact solver (:mod:`escapement.solvers.kernel`) against an independent path. An integrator (a
 *stepper*) answers one question: starting in ``mode`` from ``(x, v)`` at time ``t``, which of
 the watched surfaces is reached first, when, and at what velocity? Everything else, which
 surfaces are watched, the impact law, the next mode, the regime exits, the cycle bookkeeping
@@ -21,9 +22,8 @@ A stepper that keeps a trajectory says how many bytes it stores per event in an 
 
 Before any work the loop estimates the bytes the run's result will hold (:func:`check_memory`) and
 refuses a run whose estimate exceeds :attr:`~escapement.model.limits.RunLimits.memory_budget`.
-How a run ends (an :class:`Outcome`) is decided by :func:`no_event_outcome`,
-:func:`horizon_outcome` and :func:`chattering_outcome`, which the exact solver's own loop
-(:mod:`escapement.solvers.exact`) shares.
+How a run ends (an :class:`~escapement.solvers.outcomes.Outcome`) is decided by the functions of
+:mod:`escapement.solvers.outcomes`, which the exact solver's loop shares.
 """
 
 from __future__ import annotations
@@ -36,32 +36,24 @@ import mpmath
 import numpy as np
 
 from ..model import automaton
-from ..model.automaton import Mode
+from ..model.automaton import RELEASE, Mode
 from ..model.events import EventKind, EventLog
-from ..model.kinematics import compensated_add, rebound_accumulation_time
-from ..model.limits import EVENTS_PER_CYCLE, MemoryBudgetError, RunLimits, events_for
+from ..model.kinematics import compensated_add
+from ..model.limits import RunLimits
 from ..model.parameters import Parameters
-from ..model.status import (
-    Status,
-    chattering_message,
-    event_limit_message,
-    stopped_message,
-    turned_back_message,
+from ..model.status import Status, event_limit_message
+from .outcomes import (
+    Outcome,
+    chattering_outcome,
+    check_memory,
+    completed_outcome,
+    finish,
+    horizon_outcome,
+    no_event_outcome,
 )
-from .result import ArcTable, CycleTable, Exit, Solution
+from .result import CycleTable, Exit, Solution
 
-__all__ = [
-    "HORIZON",
-    "NO_EVENT",
-    "Outcome",
-    "Step",
-    "Stepper",
-    "chattering_outcome",
-    "check_memory",
-    "drive",
-    "horizon_outcome",
-    "no_event_outcome",
-]
+__all__ = ["HORIZON", "NO_EVENT", "Step", "Stepper", "drive"]
 
 NO_EVENT = 0
 HORIZON = -1
@@ -99,95 +91,6 @@ class Stepper(Protocol):
                    watched: tuple[EventKind, ...], t_stop: float) -> Step: ...
 
     def trajectory(self, t_final: float): ...
-
-
-class Outcome(NamedTuple):
-    """How a run ended: its status and message, the numbers behind a regime exit, and the end of its
-    trajectory."""
-
-    status: Status
-    message: str
-    exit: Exit
-    t_final: object  #: a float, or an mpmath number for the high-precision solver
-
-
-def no_event_outcome(params: Parameters, mode: Mode, awaited: automaton.Awaited, centre, t, dt, turning) -> Outcome:
-    """No watched surface is ever passed from time ``t`` in ``mode``: in free flight the escapement
-    stopped (``turning`` is the radius of the swing), in a zone the mass turned back at ``turning``,
-    ``dt`` after ``t``."""
-    status = automaton.EXIT_WITHOUT_EVENT[mode]
-    if status is Status.STOPPED:
-        watched = automaton.watched(mode, awaited)
-        missed = {name: automaton.position(k, params) for name, k in (("a1", EventKind.IMPACT_A1),
-                                                                       ("a3", EventKind.IMPACT_A3)) if k in watched}
-        message = stopped_message(float(t), float(turning), {k: float(m) for k, m in missed.items()})
-        exit_ = Exit(turning_point=float(turning), margin=float(min(abs(m) for m in missed.values()) - turning))
-        return Outcome(status, message, exit_, math.inf)
-    zone, end_kind = automaton.ZONE_OF[mode]
-    end = automaton.position(end_kind, params)
-    t_final = t + dt
-    message = turned_back_message(float(t_final), zone, float(turning), float(centre), float(end))
-    return Outcome(status, message, Exit(turning_point=float(turning), margin=float(abs(end - turning))), t_final)
-
-
-def horizon_outcome(t_stop: float, impacts_a1: int) -> Outcome:
-    """The end time comes before the next event."""
-    return Outcome(Status.COMPLETED, f"reached t_end = {t_stop:.12g} s after {impacts_a1} impacts at a1", Exit(),
-                   t_stop)
-
-
-def chattering_outcome(params: Parameters, kind: EventKind, t, v_before, v_after) -> Outcome:
-    """The impact ``kind`` at time ``t`` reversed the velocity: the rebounds accumulate (or not)."""
-    distance = automaton.rebound_distance(kind, automaton.position(kind, params))
-    t_acc = math.nan  # unless the spring drives the mass back to the impact position
-    ratio = float(v_after / v_before)  # the impact law's v+/v-, negative: a rebound
-    if distance > 0.0:
-        t_acc = float(t) + rebound_accumulation_time(params.omega, distance, abs(float(v_after)), abs(ratio))
-    position = automaton.SURFACES[EventKind(kind)].position
-    message = chattering_message(float(t), position, params.b, ratio, t_acc)
-    return Outcome(Status.CHATTERING, message, Exit(t_accumulation=t_acc), t)
-
-
-def check_memory(limits: RunLimits, event_bytes: float, cycle_bytes: float, contents: str, remedy: str,
-                 fixed_bytes: int = 0) -> int:
-    """The bytes a run's result will hold at most, from its limits: ``event_bytes`` for each of its
-    :attr:`~RunLimits.stored_events` events, ``cycle_bytes`` for each of its
-    :attr:`~RunLimits.stored_cycles` cycles, and ``fixed_bytes`` whatever their number. Raise
-    :class:`MemoryBudgetError` when that exceeds ``limits.memory_budget``, naming the count that sets the
-    size (``n_cycles``, or ``max_events`` when it binds) with its largest value within the budget, what the
-    run stores (``contents``) and what to do instead (``remedy``)."""
-    budget = limits.memory_budget
-
-    def size(n_events: int, n_cycles: int) -> int:
-        return int(math.ceil(n_events * event_bytes + n_cycles * cycle_bytes)) + fixed_bytes
-
-    estimate = size(limits.stored_events, limits.stored_cycles)
-    if estimate <= budget:
-        return estimate
-    if limits.n_cycles is not None and events_for(limits.n_cycles) <= limits.max_events:
-        name, value = "n_cycles", limits.n_cycles
-
-        def fits(n: int) -> bool:
-            return size(events_for(n), n) <= budget
-
-        # events_for(n) = 4 n + 16 events and n cycles: the largest n that fits, to within rounding
-        per_cycle = events_for(1) - events_for(0)
-        most = int((budget - fixed_bytes - events_for(0) * event_bytes) // (per_cycle * event_bytes + cycle_bytes))
-    else:
-        name, value = "max_events", limits.max_events
-
-        def fits(n: int) -> bool:
-            return size(n, n // EVENTS_PER_CYCLE) <= budget
-
-        most = int((budget - fixed_bytes) // (event_bytes + cycle_bytes / EVENTS_PER_CYCLE))
-    for _ in range(2):  # the division above is within one of the answer
-        most = most + 1 if fits(most + 1) else most - 1 if most > 0 and not fits(most) else most
-    requirement = (
-        f"at most {max(most, 0):_} for this run to fit its memory budget: it would store {contents}, an estimated "
-        f"{estimate:_} bytes ({estimate / 1e9:.3g} GB), over the budget of {budget:_} bytes ({budget / 1e9:.3g} GB); "
-        f"{remedy}"
-    )
-    raise MemoryBudgetError(name, value, requirement, estimate, budget)
 
 
 class _Records:
@@ -233,14 +136,10 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
     t_stop = math.inf if limits.t_end is None else limits.t_end
     zero = x * 0  # 0 in the arithmetic of the run (float or mpmath)
     b = zero + params.b
-    offset = params.zone_offset
     positions = {kind: automaton.position(kind, params) for kind in EventKind}
-    impact = automaton.IMPACT_TABLE
-    # the automaton's tables, looked up once: centres by mode, watched surfaces by (mode, awaited),
-    # the next mode and awaited impact by event
-    centres = [automaton.centre(m, offset) for m in Mode]
-    watching = {(m, a): automaton.watched(m, a) for m in Mode for a in automaton.Awaited}
-    after = {kind: automaton.transition(kind) for kind in EventKind}
+    # the automaton's rows, by state: the mode, its centre and the surfaces watched
+    arcs = {state: (arc.mode, automaton.centre(arc.mode, params.zone_offset), arc.watched)
+            for state, arc in automaton.ARCS.items()}
 
     ev = _Records(floats, ("t", "x", "v_before", "v_after"))
     kinds = array("b")
@@ -249,16 +148,16 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
     impacts_a1 = 0
     t_sum = t_err = t = zero
     elapsed = zero  # time since the last impact at a1, summed inside the cycle for an exact period
-    mode, awaited = automaton.INITIAL
+    state = RELEASE
     outcome = None
     t_final = t
 
     for _ in range(limits.max_events):
-        c = centres[mode]
-        step = stepper.next_event(mode, c, t, x, v, watching[(mode, awaited)], t_stop)
+        mode, c, watched = arcs[state]
+        step = stepper.next_event(mode, c, t, x, v, watched, t_stop)
         kind = step[0]
         if kind == NO_EVENT:
-            outcome = no_event_outcome(params, mode, awaited, c, t, step.dt, step.x_max)
+            outcome = no_event_outcome(params, state, c, t, step.dt, step.x_max)
             break
         _, dt, v_before, x_max, t_abs, x_at = step
         if kind == HORIZON or t + dt > t_stop:
@@ -272,7 +171,7 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
             t = t_sum = t_abs
         elapsed += dt
         x = positions[kind] if x_at is None else x_at
-        v_after = automaton.velocity_after(v_before, b, impact[kind])
+        v_after = automaton.velocity_after(v_before, b, automaton.is_impact(kind))
         ev["t"].append(t), kinds.append(kind), ev["x"].append(x), ev["v_before"].append(v_before)
         ev["v_after"].append(v_after)
         t_final = t
@@ -284,12 +183,12 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
             cycle_max = x
             elapsed = zero
             if target_impacts is not None and impacts_a1 >= target_impacts:
-                outcome = Outcome(Status.COMPLETED, f"completed {impacts_a1 - 1} cycles", Exit(), t)
+                outcome = completed_outcome(impacts_a1 - 1, t)
                 break
         if automaton.reverses(v_before, v_after):
             outcome = chattering_outcome(params, kind, t, v_before, v_after)
             break
-        mode, awaited = after[kind]
+        state = int(kind)
         v = v_after
     else:
         outcome = Outcome(Status.EVENT_LIMIT, event_limit_message(float(t), limits.max_events), Exit(), t_final)
@@ -306,28 +205,6 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
                   x0=x0, v0=v0)
 
 
-def finish(params: Parameters, method: str, outcome: Outcome, events: EventLog, cycles: CycleTable, trajectory, *,
-           x0: float, v0: float) -> Solution:
-    """The :class:`Solution` of a run that ended with ``outcome``; a completed run holding a non-finite
-    number raises (:func:`_check_finite`)."""
-    t_final = float(outcome.t_final)
-    if outcome.status is Status.COMPLETED:
-        _check_finite(method, events, cycles, trajectory, t_final)
-    return Solution(
-        params=params,
-        x0=float(x0),
-        v0=float(v0),
-        method=method,
-        status=outcome.status,
-        message=outcome.message,
-        events=events,
-        cycles=cycles,
-        trajectory=trajectory,
-        t_final=t_final,
-        exit=outcome.exit,
-    )
-
-
 def _cycle_table(events: EventLog, maxima: np.ndarray, periods: np.ndarray) -> CycleTable:
     """Complete cycles only: an impact at a1 that starts an unfinished cycle is dropped."""
     impacts = events.of_kind(EventKind.IMPACT_A1)
@@ -338,27 +215,3 @@ def _cycle_table(events: EventLog, maxima: np.ndarray, periods: np.ndarray) -> C
         period=periods,
         amplitude=maxima,
     )
-
-
-def _check_finite(method: str, events: EventLog, cycles: CycleTable, trajectory, t_final: float) -> None:
-    """A completed run holds only finite numbers: its event log, its cycle table, its end time and
-    (for a table of arcs) its trajectory. Otherwise the input validation
-    (:mod:`escapement.model.parameters`) let through a value whose arithmetic leaves the float64
-    range: that is a bug, raised, not an outcome."""
-    columns = {f"events.{name}": getattr(events, name) for name in ("t", "x", "v_before", "v_after")}
-    columns.update({f"cycles.{name}": getattr(cycles, name)
-                    for name in ("impact_time", "velocity_before_impact", "period", "amplitude")})
-    if isinstance(trajectory, ArcTable):
-        columns.update({f"trajectory.{name}": getattr(trajectory, name)
-                        for name in ("t_start", "centre", "x_start", "v_start")})
-        columns["trajectory.omega"] = np.array([trajectory.omega])
-    columns["t_final"] = np.array([t_final])
-    for name, values in columns.items():
-        doubles = np.asarray(values, dtype=float)  # mpmath numbers as their nearest doubles
-        finite = np.isfinite(doubles)
-        if not finite.all():
-            index = int(np.flatnonzero(~finite)[0])
-            raise FloatingPointError(
-                f"{method}: a completed run holds a non-finite {name}[{index}] = {float(doubles[index])!r}; the "
-                "input validation (escapement.model.parameters) must refuse the inputs that lead to it"
-            )

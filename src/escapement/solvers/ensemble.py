@@ -1,106 +1,42 @@
 """The exact solver for many trajectories at once, one per array element.
 
-The same automaton (:mod:`escapement.model.automaton`), closed forms
-(:mod:`escapement.model.kinematics`, on arrays) and parameter rules
-(:func:`escapement.model.parameters.validate_arrays`) as the scalar solvers, advanced in
-lock-step, in two kinds of passes, as the scalar loop (:class:`escapement.solvers.exact.ClosedFormRun`):
-
-* a per-event pass (:func:`_pass`) moves each running trajectory to its next event, whatever its mode:
-  every watched surface, the regime exits, the impact law; one that ends (cycles done, stopped, turned
-  back, chattering, its event bound) is masked out. It takes the first events of every trajectory, and
-  every arc the other kind of pass leaves;
-* once every running trajectory sits at an impact at a1 (or waits there), their cycles run in lock-step
-  (:func:`_cycles`): per cycle the four arcs of every trajectory at once, from the automaton's single
-  watched surface of each mode (:data:`_PLAN`), with the arithmetic of the per-event pass and the checks of
-  the scalar loop's unrolled cycles; a trajectory whose arc leaves that common path goes back to the
-  per-event passes before that arc. Some 30 operations on arrays per arc and no per-event bookkeeping;
-  :func:`escapement.studies.floor.ensemble_floor` measures it against a bare NumPy loop over the same
-  closed forms (:func:`escapement.studies.floor.numpy_cycles`).
-
-Parameters and initial states broadcast to a common shape ``(N,)``.
+The same automaton (:mod:`escapement.model.automaton`), rows (:func:`escapement.solvers.kernel.rows`, one
+column per trajectory) and closed forms (:func:`~escapement.model.kinematics.crossing` on arrays) as the scalar
+event loop, advanced in lock-step: each pass moves every running trajectory by one event, the trajectories in
+the same state together (all of them, in the regime, once their first events are behind them). A trajectory
+that ends (cycles done, stopped, turned back, chattering, its event bound) leaves the passes. Parameters and
+initial states broadcast to a common shape ``(N,)``.
 """
 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
 import numpy as np
 
 from ..model import automaton
-from ..model.automaton import Awaited, Mode
+from ..model.automaton import RELEASE
 from ..model.events import EventKind
-from ..model.kinematics import VECTOR, arc_maximum, compensated_add, crossing, rebound_accumulation_time
+from ..model.kinematics import arc_maximum, arc_terms, compensated_add, crossing, rebound_accumulation_time
 from ..model.limits import MEMORY_BUDGET, MemoryBudgetError, RunLimits
 from ..model.parameters import ParameterError, validate_arrays
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
-from .exact import GRAZING
 from .result import CycleTable, EnsembleSolution
 
 __all__ = ["CELL_BYTES", "MAX_CELLS", "ROW_BYTES", "TABLE_BYTES", "ensemble_bytes", "solve_ensemble"]
 
 _RUNNING = -1
-TWO_PI = 2.0 * math.pi
 #: bytes per trajectory and cycle (a cell of the tables, n_cycles + 1 of them per trajectory), with a margin
 #: for the trajectory's own state from 120 cells on: the four tables of 8-byte floats (32 bytes) and the
-#: boolean masks of their shape at the end (measured peak: 34.3)
+#: boolean masks of their shape at the end
 CELL_BYTES = 40
-#: below 120 cells, the cells at TABLE_BYTES and each trajectory's state, some 70 floats with the compact copy
-#: the cycles in lock-step take of it (measured 630 bytes for 20 000 trajectories of one cycle)
+#: below 120 cells, the cells at TABLE_BYTES and each trajectory's state: its rows (five states, seven numbers
+#: each) and some thirty floats of state and work arrays
 TABLE_BYTES, ROW_BYTES = 35, 600
 #: the most cells the default memory budget allows: 50 million, trajectories * (n_cycles + 1)
 MAX_CELLS = MEMORY_BUDGET // CELL_BYTES
-_A1, _A3 = int(EventKind.IMPACT_A1), int(EventKind.IMPACT_A3)
-_IMPACT = np.array(automaton.IMPACT_TABLE)
-_CENTRE_SIGN = np.array(automaton.CENTRE_SIGN)
-_NEXT_MODE = np.zeros(5, dtype=int)
-_NEXT_AWAITED = np.zeros(5, dtype=int)
-for _kind in EventKind:
-    _NEXT_MODE[_kind], _NEXT_AWAITED[_kind] = automaton.transition(_kind)
-#: row (mode * 4 + awaited code) -> whether each event kind is watched, from the automaton
-_WATCH = np.zeros((len(Mode) * 4, 5), dtype=bool)
-for _mode in Mode:
-    for _awaited in Awaited:
-        for _kind in automaton.watched(_mode, _awaited):
-            _WATCH[_mode * 4 + _awaited, _kind] = True
-
-
-#: the automaton's own impact law and test of a rebound, for which the cycles run in lock-step (_cycles)
-_PAPER_LAW, _PAPER_REVERSES = automaton.velocity_after, automaton.reverses
-
-
-class _Arc(NamedTuple):
-    """An arc of the cycle from an impact at a1, from the automaton (as :func:`escapement.solvers.exact.stages`
-    builds it for one trajectory): the event it starts from and the one it ends at, the centre's sign, the
-    directions of motion at its ends, whether it passes the top of its circle and ends at an impact."""
-
-    start_kind: int
-    end_kind: int
-    centre_sign: float
-    start: float
-    direction: float
-    top: bool
-    impact: bool
-
-
-def _cycle_arcs() -> tuple[_Arc, ...]:
-    """The arcs from an impact at a1 to the next, each mode after an event watching one surface."""
-    arcs, kind = [], int(EventKind.IMPACT_A1)
-    for _ in range(len(EventKind)):
-        mode, awaited = automaton.transition(kind)
-        (nxt,) = automaton.watched(mode, awaited)
-        start, end = automaton.SURFACES[kind].direction, automaton.SURFACES[nxt].direction
-        arcs.append(_Arc(kind, int(nxt), float(_CENTRE_SIGN[mode]), float(start), float(end), start > 0 > end,
-                         automaton.is_impact(nxt)))
-        kind = int(nxt)
-        if kind == _A1:
-            return tuple(arcs)
-    raise RuntimeError("the automaton's cycle does not return to the impact at a1")
-
-
-_PLAN = _cycle_arcs()
-_FIRST_TOP = next((i for i, arc in enumerate(_PLAN) if arc.top), len(_PLAN))
+_A1 = int(EventKind.IMPACT_A1)
 
 
 def ensemble_bytes(n_trajectories: int, n_cycles: int) -> int:
@@ -202,13 +138,13 @@ def solve_ensemble(
         raise MemoryBudgetError("n_cycles", n_cycles, f"at most {cells - 1:_} for {n:_} trajectories ({where})",
                                 estimate, budget)
     omega, offset = np.sqrt(K / M), F / K
-    positions = {kind: {"a1": a1, "a2": a2, "a3": a3, "a4": a4}[s.position] for kind, s in automaton.SURFACES.items()}
+    values = {"a1": a1, "a2": a2, "a3": a3, "a4": a4}
+    positions = {kind: values[s.position] for kind, s in automaton.SURFACES.items()}
 
     t = np.zeros(n)  # compensated sum of the durations: t + t_err
     t_err = np.zeros(n)
     elapsed = np.zeros(n)  # time since the last impact at a1
-    mode = np.full(n, int(Mode.FREE))
-    awaited = np.full(n, int(Awaited.EITHER))
+    state = np.full(n, RELEASE)
     status = np.full(n, _RUNNING)
     count = np.zeros(n, dtype=int)
     cycle_max = np.full(n, -np.inf)
@@ -222,25 +158,19 @@ def solve_ensemble(
     t_acc = np.full(n, np.nan)
 
     events = np.zeros(n, dtype=np.int64)  # each trajectory's events so far
-    parked = np.zeros(n, dtype=bool)  # at an impact at a1, waiting for the cycles in lock-step (_cycles)
-    # the cycles in lock-step take the paper's impact law with b < 1 (no rebound), as the scalar loop's
-    eligible = (automaton.velocity_after is _PAPER_LAW and automaton.reverses is _PAPER_REVERSES) & (1.0 - b > 0.0)
-    state = dict(x=x, v=v, t=t, t_err=t_err, elapsed=elapsed, mode=mode, awaited=awaited, status=status, count=count,
-                 events=events, parked=parked, eligible=eligible, cycle_max=cycle_max, times=times, speeds=speeds,
-                 periods=periods, maxima=maxima, t_final=t_final, turning=turning, margin=margin, t_acc=t_acc,
-                 omega=omega, offset=offset, b=b, positions=positions)
+    s = dict(x=x, v=v, t=t, t_err=t_err, elapsed=elapsed, state=state, status=status, count=count, events=events,
+             cycle_max=cycle_max, times=times, speeds=speeds, periods=periods, maxima=maxima, t_final=t_final,
+             turning=turning, margin=margin, t_acc=t_acc, omega=omega, offset=offset, b=b, positions=positions)
     with np.errstate(invalid="ignore", divide="ignore"):
-        for _ in range(2 * limits.max_events + 2):  # each pass moves every running trajectory by an event or more
-            running = status == _RUNNING
-            movers = running & ~parked
-            if movers.any():
-                _pass(np.flatnonzero(movers), state, n_cycles, limits.max_events, amplitude)
-            elif running.any():  # every running trajectory parked: their cycles, a group per count of cycles
-                rows = np.flatnonzero(parked)
-                for cycle in np.unique(count[rows]):
-                    _cycles(rows[count[rows] == cycle], state, n_cycles, limits.max_events, amplitude)
-            else:
+        table = _rows(s, x, v)
+        for _ in range(limits.max_events + 1):  # each pass moves every running trajectory by one event
+            running = np.flatnonzero(status == _RUNNING)
+            if not len(running):
                 break
+            for st in np.unique(state[running]):  # the trajectories in each state together
+                group = running[state[running] == st]
+                _pass(slice(None) if len(group) == n else group, int(st), table, s, n_cycles, limits.max_events,
+                      amplitude)
         else:
             raise RuntimeError("the ensemble's loop did not end within its bound of passes")
 
@@ -260,215 +190,88 @@ def solve_ensemble(
     )
 
 
-def _pass(ii: np.ndarray, s: dict, n_cycles: int, max_events: int, amplitude: bool) -> None:
-    """One event of each trajectory ``ii`` (running, not parked): the automaton's watched surfaces by
-    :func:`~escapement.model.kinematics.crossing` on arrays, the regime exits, the impact law, the cycle
-    table at the impacts at a1. A trajectory still running at its ``max_events``-th event ends there; one at
-    an impact at a1 with a whole cycle's events to go is parked for :func:`_cycles`."""
-    x, v, t, t_err, elapsed, mode, awaited = (s[k] for k in ("x", "v", "t", "t_err", "elapsed", "mode", "awaited"))
-    status, count, events, cycle_max, t_final = (s[k] for k in ("status", "count", "events", "cycle_max", "t_final"))
-    omega, offset, b, positions = s["omega"], s["offset"], s["b"], s["positions"]
-    xs, vs, om, md = x[ii], v[ii], omega[ii], mode[ii]
-    centre = _CENTRE_SIGN[md] * offset[ii]
-    # each row's watched surfaces, at most two: the first and, in free flight awaiting
-    # either impact, the second
-    best_dt = np.full(len(ii), np.inf)
-    best = {name: np.zeros(len(ii)) for name in ("v", "angle", "target")}
-    kind = np.zeros(len(ii), dtype=int)
-    for candidate in EventKind:
-        surface = automaton.SURFACES[candidate]
-        on = _WATCH[md * 4 + awaited[ii], candidate]
-        if not on.any():
-            continue
-        target = positions[candidate][ii]
-        reached, dt, v_new, angle = crossing(centre, xs, vs, om, target, float(surface.direction), VECTOR)
-        take = on & reached & (dt < best_dt)
-        best_dt = np.where(take, dt, best_dt)
-        kind = np.where(take, int(candidate), kind)
-        for name, value in (("v", v_new), ("angle", angle), ("target", target)):
-            best[name] = np.where(take, value, best[name])
-    ended = kind == 0
-    if ended.any():
-        _exit(ii[ended], md[ended], centre[ended], xs[ended], vs[ended], om[ended], awaited, positions, t, t_err,
-              status, t_final, s["turning"], s["margin"])
-    go = ~ended
-    jj = ii[go]
-    d, k, v_new, target = best_dt[go], kind[go], best["v"][go], best["target"][go]
+def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict:
+    """The automaton's rows for every trajectory: per state, the arc's terms (one column per trajectory),
+    its centre, direction, impact flag and next state; the release's row is the surface reached first."""
+    omega, offset, positions = s["omega"], s["offset"], s["positions"]
+    table = {}
+    for state, arc in automaton.ARCS.items():
+        centre = automaton.centre(arc.mode, offset)
+        start = x if state == RELEASE else positions[state]
+        best = None
+        for kind in arc.watched:  # the release watches two: the first reached (where neither, either)
+            surface = automaton.SURFACES[kind]
+            u0, q, k = arc_terms(centre, start, omega, positions[kind])
+            row = dict(u0=u0, q=q, k=k, direction=np.full(len(x), float(surface.direction)), target=positions[kind],
+                       impact=np.full(len(x), surface.impact), following=np.full(len(x), int(kind)), centre=centre)
+            if best is None:
+                best = row
+                continue
+            reached, dt, _, _ = crossing(u0, q, k, v, omega, float(surface.direction), np)
+            old_reached, old_dt, _, _ = crossing(best["u0"], best["q"], best["k"], v, omega, best["direction"], np)
+            take = reached & ~(old_reached & (old_dt <= dt))
+            best = {name: np.where(take, row[name], best[name]) for name in row}
+        table[state] = best
+    return table
+
+
+def _pass(ii, st: int, table: dict, s: dict, n_cycles: int, max_events: int, amplitude: bool) -> None:
+    """One event of each trajectory ``ii`` (running, all in state ``st``): the row's closed form, the regime
+    exits, the impact law, the cycle table at the impacts at a1, the event bound."""
+    row = {name: value[ii] for name, value in table[st].items()}
+    x, v, t, t_err, elapsed = (s[name][ii] for name in ("x", "v", "t", "t_err", "elapsed"))
+    omega = s["omega"][ii]
+    reached, dt, v1, angle = crossing(row["u0"], row["q"], row["k"], v, omega, row["direction"], np)
+    rows = np.arange(len(s["x"]))[ii]
+    if not reached.all():
+        _exit(rows[~reached], st, s)
+        rows, keep = rows[reached], reached
+        x, v, t, t_err, elapsed, omega, dt, v1, angle = (a[keep] for a in (x, v, t, t_err, elapsed, omega, dt, v1,
+                                                                              angle))
+        row = {name: value[keep] for name, value in row.items()}
+        if not len(rows):
+            return
+        ii = rows
+    target = row["target"]
     if amplitude:
-        cycle_max[jj] = np.maximum(cycle_max[jj], arc_maximum(centre[go], xs[go], vs[go], om[go], best["angle"][go],
-                                                              target, VECTOR))
-    t[jj], t_err[jj] = compensated_add(t[jj], t_err[jj], d, VECTOR)
-    elapsed[jj] += d
-    x[jj] = target
-    events[jj] += 1
-    hit1 = k == _A1
-    i1 = jj[hit1]
-    c = count[i1]
-    s["times"][i1, c] = t[i1] + t_err[i1]
-    s["speeds"][i1, c] = v_new[hit1]
+        s["cycle_max"][ii] = np.maximum(s["cycle_max"][ii], arc_maximum(row["centre"], x, v, omega, angle, target))
+    t, t_err = compensated_add(t, t_err, dt)
+    s["t"][ii], s["t_err"][ii] = t, t_err
+    s["elapsed"][ii] = elapsed + dt
+    s["x"][ii] = target
+    s["events"][ii] += 1
+    v_after = automaton.velocity_after(v1, s["b"][ii], row["impact"])
+    s["v"][ii] = v_after
+    s["state"][ii] = row["following"]
+    hit = row["following"] == _A1
+    if hit.any():
+        _impact_a1(rows[hit], v1[hit], s, n_cycles, amplitude)
+    chatter = (s["status"][rows] == _RUNNING) & automaton.reverses(v1, v_after)
+    for i, vb, va in zip(rows[chatter], v1[chatter], v_after[chatter]):
+        _chattering(i, EventKind(int(s["state"][i])), va, vb, s)
+    # the event bound: a trajectory still running after its last event ends there
+    limited = rows[(s["status"][rows] == _RUNNING) & (s["events"][rows] >= max_events)]
+    s["status"][limited] = Status.EVENT_LIMIT.code
+    s["t_final"][limited] = s["t"][limited] + s["t_err"][limited]
+
+
+def _impact_a1(i1: np.ndarray, v_before: np.ndarray, s: dict, n_cycles: int, amplitude: bool) -> None:
+    """The trajectories ``i1`` reached the impact at a1: a cycle ends (but the first) and the next begins."""
+    c = s["count"][i1]
+    now = s["t"][i1] + s["t_err"][i1]
+    s["times"][i1, c] = now
+    s["speeds"][i1, c] = v_before
     later = c > 0
     if amplitude:
-        s["maxima"][i1[later], c[later] - 1] = cycle_max[i1[later]]
-    s["periods"][i1[later], c[later] - 1] = elapsed[i1[later]]
-    elapsed[i1] = 0.0
-    cycle_max[i1] = x[i1]
-    count[i1] += 1
-    done = np.zeros(len(jj), dtype=bool)
-    done[hit1] = count[i1] >= n_cycles + 1
-    status[jj[done]] = Status.COMPLETED.code
-    t_final[jj[done]] = t[jj[done]] + t_err[jj[done]]
-    v_after = automaton.velocity_after(v_new, b[jj], _IMPACT[k])
-    chatter = ~done & automaton.reverses(v_new, v_after)
-    for i, kk, va, vb in zip(jj[chatter], k[chatter], v_after[chatter], v_new[chatter]):
-        _chattering(i, EventKind(int(kk)), va, vb, t, t_err, omega, positions, status, t_final, s["t_acc"])
-    v[jj] = v_after
-    mode[jj] = _NEXT_MODE[k]
-    awaited[jj] = _NEXT_AWAITED[k]
-    # the event bound: a trajectory still running after its last event ends there
-    limited = (status[jj] == _RUNNING) & (events[jj] >= max_events)
-    status[jj[limited]] = Status.EVENT_LIMIT.code
-    t_final[jj[limited]] = t[jj[limited]] + t_err[jj[limited]]
-    # at an impact at a1 with a whole cycle's events to go: the cycles in lock-step take over
-    s["parked"][jj] = hit1 & (status[jj] == _RUNNING) & s["eligible"][jj] & (events[jj] + len(_PLAN) <= max_events)
+        s["maxima"][i1[later], c[later] - 1] = s["cycle_max"][i1[later]]
+    s["periods"][i1[later], c[later] - 1] = s["elapsed"][i1[later]]
+    s["elapsed"][i1] = 0.0
+    s["cycle_max"][i1] = s["x"][i1]
+    s["count"][i1] += 1
+    done = s["count"][i1] >= n_cycles + 1
+    s["status"][i1[done]] = Status.COMPLETED.code
+    s["t_final"][i1[done]] = now[done]
 
-
-def _cycles(rows: np.ndarray, s: dict, n_cycles: int, max_events: int, amplitude: bool) -> None:
-    """The cycles of the trajectories ``rows``, each at an impact at a1 and at the same count of cycles, in
-    lock-step: per cycle the four arcs of :data:`_PLAN` of every one at once, on compact arrays of their own.
-
-    Each arc is :func:`~escapement.model.kinematics.crossing` on arrays (the same operations), taken where
-    the scalar loop's unrolled cycles take it (:meth:`escapement.solvers.exact.ClosedFormRun._cycles`): the
-    surface is reached, the motion starts in the arc's direction, and the amplitude's shortcut holds (the
-    angle below the stage's bound, the arrival away from a turning point), so the arc's largest ``x`` is
-    ``c + hypot(u0, w0)`` over the top and ``max(x_from, target)`` elsewhere, the number of
-    :func:`~escapement.model.kinematics.arc_maximum`. A trajectory that leaves that path, or whose event bound
-    leaves no whole cycle, goes back to the per-event passes, its state that of the event before the arc; one
-    that completes its cycles ends. Until then the state in ``s`` is not updated: the lanes carry it."""
-    positions, omega = s["positions"], s["omega"][rows]
-    cycle_start = positions[_A1][rows]  # the largest x so far at the impact at a1
-    entered = cycle = int(s["count"][rows[0]])  # the impacts at a1 so far, the same for every lane
-    lane = dict(rows=rows, omega=omega, v=s["v"][rows], t=s["t"][rows], t_err=s["t_err"][rows],
-                events=s["events"][rows], start=cycle_start)  # each cycle from entry on takes len(_PLAN) events
-    lane["stop"] = cycle + np.minimum(n_cycles + 1 - cycle, (max_events - lane["events"]) // len(_PLAN))
-    # per arc: the surface terms k, u, q, the grazing bound, the bound of the angle (a number where it is
-    # the same for all), the centre (over the top), the larger end (from the first arc over the top on); the
-    # impact law's factor, one for every impact
-    lane["factor"] = 1.0 - s["b"][rows] * True
-    consts = []
-    floor = cycle_start
-    for i, arc in enumerate(_PLAN):
-        x_from, target = positions[arc.start_kind][rows], positions[arc.end_kind][rows]
-        centre = arc.centre_sign * s["offset"][rows]
-        q = target - centre
-        if arc.top or arc.start != arc.direction:
-            cap = np.inf  # over the top, or round the bottom
-        else:  # straight on: less than half a turn where it moves towards its target
-            cap = np.where(target > x_from if arc.start > 0 else target < x_from, math.pi, -np.inf)
-        ends = np.maximum(x_from, target)
-        if i < _FIRST_TOP:
-            floor = np.maximum(floor, ends)
-        consts.append(dict(k=(omega * omega) * ((x_from - target) * (x_from + target - 2.0 * centre)),
-                           u=x_from - centre, q=q, g=GRAZING * (q * q), cap=cap, centre=centre if arc.top else None,
-                           ends=ends if i > _FIRST_TOP and not arc.top else None))
-    del x_from, target, centre, q, cap, ends
-    lane["floor"] = floor  # the largest x of the arcs before the first over the top
-
-    def leave(keep: np.ndarray, arc: int, elapsed, cycle_max) -> None:
-        """The lanes not in ``keep`` go back to the per-event passes before arc ``arc``; the rest stay."""
-        out = ~keep
-        r = lane["rows"][out]
-        kind = _PLAN[arc].start_kind if arc < len(_PLAN) else _A1
-        s["x"][r] = positions[kind][r]
-        s["v"][r], s["t"][r], s["t_err"][r] = lane["v"][out], lane["t"][out], lane["t_err"][out]
-        s["elapsed"][r] = elapsed[out]
-        if amplitude:
-            if arc < len(_PLAN) and arc <= _FIRST_TOP:  # the constant part of the amplitude so far
-                cycle_max = lane["start"]
-                for before in _PLAN[:arc]:
-                    cycle_max = np.maximum(cycle_max, np.maximum(positions[before.start_kind][lane["rows"]],
-                                                                 positions[before.end_kind][lane["rows"]]))
-            s["cycle_max"][r] = cycle_max[out]
-        s["mode"][r], s["awaited"][r] = _NEXT_MODE[kind], _NEXT_AWAITED[kind]
-        s["count"][r] = cycle
-        s["events"][r] = lane["events"][out] + len(_PLAN) * (cycle - entered) + arc % len(_PLAN)
-        s["parked"][r] = False
-        for name, value in lane.items():
-            lane[name] = value[keep]
-        for c in consts:
-            for name, value in c.items():
-                if isinstance(value, np.ndarray):
-                    c[name] = value[keep]
-
-    times, speeds, periods, maxima, status = s["times"], s["speeds"], s["periods"], s["maxima"], s["status"]
-
-    def cells() -> tuple:
-        """The lanes' rows, and where they are in the cycle tables: a slice where they are consecutive."""
-        rows = lane["rows"]
-        return rows, slice(rows[0], rows[-1] + 1) if rows[-1] - rows[0] == len(rows) - 1 else rows
-
-    rows, at = cells()
-    for _ in range(n_cycles + 1):  # each pass completes a cycle of every lane, or ends a lane
-        v, ts, te = lane["v"], lane["t"], lane["t_err"]
-        elapsed = np.zeros(len(v))
-        cycle_max = None  # from the first arc over the top on (before it, lane["floor"])
-        for i, (arc, c) in enumerate(zip(_PLAN, consts)):
-            omega, u, q = lane["omega"], c["u"], c["q"]
-            v1 = v * v
-            v1 += c["k"]
-            np.sqrt(v1, out=v1)  # v_sq > 0 is w1**2 > g below: g >= 0, and sqrt gives NaN below 0
-            if arc.direction < 0:
-                np.negative(v1, out=v1)
-            w0 = v / omega
-            w1 = v1 / omega
-            angle = np.arctan2(w0 * q - u * w1, u * q + w0 * w1)
-            angle[angle <= 0.0] += TWO_PI
-            w1 *= w1
-            ok = w1 > c["g"]
-            ok &= w0 > 0.0 if arc.start > 0 else w0 < 0.0
-            ok &= angle < c["cap"]
-            if not ok.all():
-                leave(ok, i, elapsed, cycle_max)
-                if not len(lane["rows"]):
-                    return
-                v, ts, te = lane["v"], lane["t"], lane["t_err"]  # the lanes left, as leave() kept them
-                elapsed, v1, w0, angle = elapsed[ok], v1[ok], w0[ok], angle[ok]
-                if cycle_max is not None:
-                    cycle_max = cycle_max[ok]
-                omega, u, q = lane["omega"], c["u"], c["q"]
-                rows, at = cells()
-            angle /= omega  # the duration
-            if amplitude and i >= _FIRST_TOP:
-                m = c["centre"] + np.hypot(u, w0) if arc.top else c["ends"]
-                cycle_max = np.maximum(lane["floor"] if cycle_max is None else cycle_max, m)
-            # compensated_add: ts >= 0 and the duration > 0, so |ts| >= |dt| is ts >= dt, which holds
-            # for every lane but in the first arcs of a run
-            new = ts + angle
-            big = ts >= angle
-            te += (ts - new) + angle if big.all() else np.where(big, (ts - new) + angle, (angle - new) + ts)
-            ts = new
-            elapsed += angle
-            v = v1 * lane["factor"] if arc.impact else v1
-            lane["v"], lane["t"], lane["t_err"] = v, ts, te
-        # the impact at a1 ends the cycle
-        now = ts + te
-        times[at, cycle], speeds[at, cycle], periods[at, cycle - 1] = now, v1, elapsed
-        if amplitude:
-            maxima[at, cycle - 1] = lane["floor"] if cycle_max is None else cycle_max
-        cycle += 1
-        finished = cycle >= lane["stop"]
-        if finished.any():
-            completed = finished & (cycle >= n_cycles + 1)
-            status[rows[completed]] = Status.COMPLETED.code
-            # as after an event of the per-event passes: one still running at its last event ends there
-            limited = finished & ~completed & (lane["events"] + len(_PLAN) * (cycle - entered) >= max_events)
-            status[rows[limited]] = Status.EVENT_LIMIT.code
-            ended = completed | limited
-            s["t_final"][rows[ended]] = now[ended]
-            leave(~finished, len(_PLAN), np.zeros(len(rows)), lane["start"])
-            if not len(lane["rows"]):
-                return
-            rows, at = cells()
-    raise RuntimeError("the cycles in lock-step did not end within n_cycles + 1 passes")
 
 def _check_completed_rows(status, times, speeds, periods, maxima, t_final) -> None:
     """A completed row holds only finite numbers; otherwise the input validation let through a
@@ -486,42 +289,41 @@ def _check_completed_rows(status, times, speeds, periods, maxima, t_final) -> No
             )
 
 
-def _exit(rows, mode, centre, x, v, omega, awaited, positions, t, t_err, status, t_final, turning, margin):
-    """Rows that pass no watched surface: the escapement stopped, or the mass turned back in a zone."""
-    free = mode == Mode.FREE
+
+def _exit(rows: np.ndarray, st: int, s: dict) -> None:
+    """Trajectories that pass no surface watched in state ``st``: the escapement stopped (free flight), or the
+    mass turned back in a zone."""
+    arc = automaton.ARCS[st]
+    centre = automaton.centre(arc.mode, s["offset"][rows])
+    x, v, omega = s["x"][rows], s["v"][rows], s["omega"][rows]
     w = v / omega
     radius = np.hypot(x - centre, w)
-    now = t[rows] + t_err[rows]
-    # free flight: the swing of this radius misses the awaited impact positions
-    r = rows[free]
-    missed = np.full(len(r), np.inf)
-    for kind in (EventKind.IMPACT_A1, EventKind.IMPACT_A3):
-        on = _WATCH[int(Mode.FREE) * 4 + awaited[r], kind]
-        missed = np.where(on, np.minimum(missed, np.abs(positions[kind][r])), missed)
-    status[r] = Status.STOPPED.code
-    t_final[r] = np.inf
-    turning[r] = radius[free]
-    margin[r] = missed - radius[free]
+    now = s["t"][rows] + s["t_err"][rows]
+    if automaton.EXIT_WITHOUT_EVENT[arc.mode] is Status.STOPPED:  # the swing misses every watched position
+        missed = np.min([np.abs(s["positions"][kind][rows]) for kind in arc.watched], axis=0)
+        s["status"][rows] = Status.STOPPED.code
+        s["t_final"][rows] = np.inf
+        s["turning"][rows] = radius
+        s["margin"][rows] = missed - radius
+        return
     # a zone: the motion turns at centre + R moving right, centre - R moving left
-    z = ~free
-    r = rows[z]
-    right = v[z] > 0
-    start = np.arctan2(w[z], x[z] - centre[z])
-    to_rest = np.where(v[z] == 0, 0.0, np.where(right, start, start + math.pi)) / omega[z]
-    point = np.where(v[z] == 0, x[z], centre[z] + np.where(right, radius[z], -radius[z]))
-    end = np.where(mode[z] == Mode.ZONE_RIGHT, positions[EventKind.ZONE_END_A2][r], positions[EventKind.ZONE_END_A4][r])
-    status[r] = Status.TURNED_BACK_IN_ZONE.code
-    t_final[r] = now[z] + to_rest
-    turning[r] = point
-    margin[r] = np.abs(end - point)
+    right = v > 0
+    start = np.arctan2(w, x - centre)
+    to_rest = np.where(v == 0, 0.0, np.where(right, start, start + math.pi)) / omega
+    point = np.where(v == 0, x, centre + np.where(right, radius, -radius))
+    end = s["positions"][automaton.ZONE_OF[arc.mode][1]][rows]
+    s["status"][rows] = Status.TURNED_BACK_IN_ZONE.code
+    s["t_final"][rows] = now + to_rest
+    s["turning"][rows] = point
+    s["margin"][rows] = np.abs(end - point)
 
 
-def _chattering(i, kind, v_after, v_before, t, t_err, omega, positions, status, t_final, t_acc):
-    """A row whose impact reversed the velocity: the time at which the rebounds accumulate."""
-    distance = automaton.rebound_distance(kind, positions[kind][i])
-    now = t[i] + t_err[i]
-    status[i] = Status.CHATTERING.code
-    t_final[i] = now
+def _chattering(i: int, kind: EventKind, v_after: float, v_before: float, s: dict) -> None:
+    """A trajectory whose impact reversed the velocity: the time at which the rebounds accumulate."""
+    distance = automaton.rebound_distance(kind, s["positions"][kind][i])
+    now = s["t"][i] + s["t_err"][i]
+    s["status"][i] = Status.CHATTERING.code
+    s["t_final"][i] = now
     if distance > 0.0:
-        t_acc[i] = now + rebound_accumulation_time(float(omega[i]), float(distance), abs(float(v_after)),
-                                                   abs(float(v_after / v_before)))
+        s["t_acc"][i] = now + rebound_accumulation_time(float(s["omega"][i]), float(distance), abs(float(v_after)),
+                                                        abs(float(v_after / v_before)))

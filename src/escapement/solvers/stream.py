@@ -1,11 +1,11 @@
 """The exact solver's cycles in chunks, in constant memory.
 
-:func:`iter_cycles` runs the loop of :func:`escapement.solvers.exact.solve_exact`
-(:class:`~escapement.solvers.exact.ClosedFormRun`) without keeping the event log, and hands its
-per-cycle table over in chunks of at most ``chunk`` cycles as it goes: the loop's state (the
-compensated time sum, the state, the cycle under way) carries over from chunk to chunk, so the
+:func:`iter_cycles` runs the event loop of :func:`escapement.solvers.exact.solve_exact`
+(:class:`~escapement.solvers.kernel.EventRun`) in passes of :data:`PASS_EVENTS` events, derives each
+pass's cycles as ``solve_exact`` does, and hands the per-cycle table over in chunks of at most ``chunk``
+cycles: the loop's state and the events of the cycle under way carry over from pass to pass, so the
 chunks put together are, number for number, the ``cycles`` of ``solve_exact`` for the same run.
-Memory holds one chunk at a time (32 bytes a cycle), whatever the number of cycles::
+Memory holds one pass and one chunk at a time, whatever the number of cycles::
 
     stream = iter_cycles(params, 1.0, n_cycles=10**8)
     for chunk in stream:  # CycleTable, at most 100_000 cycles each
@@ -18,22 +18,25 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..model.limits import MemoryBudgetError, RunLimits, check_count
 from ..model.parameters import Parameters, check_initial_state
 from ..model.status import Status
-from .exact import SEGMENT, ClosedFormRun, Packed
+from .kernel import Block, EventRun, cycle_rows, event_block
 from .result import CycleTable, Exit
 
-__all__ = ["CHUNK_BYTES_PER_CYCLE", "DEFAULT_CHUNK", "MAX_CHUNK", "ChunkIterator", "CycleStream", "StreamSummary",
-           "check_chunk", "iter_cycles"]
+__all__ = ["CHUNK_BYTES_PER_CYCLE", "DEFAULT_CHUNK", "MAX_CHUNK", "PASS_EVENTS", "ChunkIterator", "CycleStream",
+           "StreamSummary", "check_chunk", "iter_cycles"]
 
 #: cycles per chunk unless the caller says otherwise
 DEFAULT_CHUNK = 100_000
 #: the most cycles a chunk may hold
 MAX_CHUNK = 10_000_000
-#: bytes a cycle of a chunk takes: four floats packed (growing buffers, up to 1/16 over-allocated); besides,
-#: the loop holds one pass (:data:`~escapement.solvers.exact.PASS_BYTES`, 0.4 MB) as Python floats in lists
-CHUNK_BYTES_PER_CYCLE = 34
+#: bytes a cycle of a chunk takes: four floats, and the parts of a chunk gathered before they are joined
+CHUNK_BYTES_PER_CYCLE = 64
+#: events per pass of the loop (about 0.5 MB of derived arrays each)
+PASS_EVENTS = 1 << 12
 
 
 @dataclass(frozen=True)
@@ -75,31 +78,52 @@ class CycleStream(ChunkIterator):
     """An iterator over the per-cycle table of one run, chunk by chunk (see :func:`iter_cycles`); once it
     is exhausted, :attr:`summary` says how the run ended."""
 
-    def __init__(self, run: ClosedFormRun, chunk: int) -> None:
+    def __init__(self, run: EventRun, chunk: int) -> None:
         self._run = run
         self._chunk = chunk
+        self._cycles = 0  # complete cycles handed over
+        self._carry: tuple | None = None  # the events from the impact at a1 that begins the cycle under way
+        self._ready: list[tuple[np.ndarray, ...]] = []  # cycles derived, not yet handed over
+        self._pending = 0
 
     def __next__(self) -> CycleTable:
         run = self._run
-        packed = Packed(run.cycle_columns)
-        if run.outcome is None:
-            start = run.cycles
-            # each pass runs SEGMENT events, or ends the chunk or the run
-            for _ in range(run.limits.max_events // SEGMENT + 2):
-                run.advance(SEGMENT, start + self._chunk - run.cycles)
-                packed.take()
-                if run.outcome is not None or run.cycles - start >= self._chunk:
-                    break
-            else:
-                raise RuntimeError(f"the closed-form loop did not end within max_events = {run.limits.max_events}")
-        impact_time, velocity, period, amplitude = packed.numpy()
-        if not len(period):
+        while self._pending < self._chunk and run.outcome is None:
+            run.advance(PASS_EVENTS)
+            self._derive(run.take())
+        if not self._pending:
             if self._summary is None:
                 outcome = run.outcome
                 self._summary = StreamSummary(outcome.status, outcome.message, outcome.exit,
-                                              float(outcome.t_final), run.cycles, run.events)
+                                              float(outcome.t_final), self._cycles, run.events)
             raise StopIteration
+        columns = [np.concatenate(parts) for parts in zip(*self._ready)]
+        head = [column[:self._chunk] for column in columns]
+        rest = [column[self._chunk:] for column in columns]
+        self._ready = [tuple(rest)] if len(rest[0]) else []
+        self._pending = len(rest[0])
+        self._cycles += len(head[0])
+        impact_time, velocity, period, amplitude = head
         return CycleTable(impact_time=impact_time, velocity_before_impact=velocity, period=period, amplitude=amplitude)
+
+    def _derive(self, stored: tuple[np.ndarray, np.ndarray, np.ndarray]) -> None:
+        """The cycles that the events of a pass complete, after those carried over from the last pass."""
+        run = self._run
+        if self._carry is None:
+            start, before, parts = 0, run.release, [()] * 3
+        else:
+            start, before, parts = self._carry
+        t, v_before, angle = (np.concatenate((*old, new)) if old else new for old, new in zip(parts, stored))
+        block: Block = event_block(run, start, t, v_before, angle, before=before)
+        cycles, begins = cycle_rows(block)
+        if len(cycles[0]):
+            self._ready.append(cycles)
+            self._pending += len(cycles[0])
+        if begins < len(block.t):  # from the impact at a1 that begins the cycle under way
+            before = (int(block.kind[begins - 1]) if begins else before[0], block.arc_x[begins], block.arc_v[begins])
+            self._carry = (start + begins, before, [(column[begins:],) for column in (t, v_before, angle)])
+        else:  # no impact at a1 yet: every event so far
+            self._carry = (start, before, [(column,) for column in (t, v_before, angle)])
 
 
 def iter_cycles(
@@ -171,7 +195,7 @@ def iter_cycles(
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
     chunk, _ = check_chunk(chunk, CHUNK_BYTES_PER_CYCLE, limits.memory_budget)
-    return CycleStream(ClosedFormRun(params, x, v, limits, keep_events=False), chunk)
+    return CycleStream(EventRun(params, x, v, limits), chunk)
 
 
 def check_chunk(chunk: int, bytes_per_cycle: int, memory_budget: int) -> tuple[int, int]:

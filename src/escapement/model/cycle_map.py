@@ -1,0 +1,88 @@
+"""The return map of a cycle, ``v_{k+1}**2 = mu v_k**2 + c``: linear in the square of the velocity before
+the impact at a1, derived from the arcs of one cycle by energy (the one place its constants are computed).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .parameters import Parameters
+
+__all__ = ["CycleMap", "cycle_map"]
+
+
+@dataclass(frozen=True)
+class CycleMap:
+    """The return map of the velocity before the impact at a1, linear in its square:
+    ``v_{k+1}**2 = mu v_k**2 + c`` (:func:`cycle_map` derives it).
+
+    Examples
+    --------
+    >>> from escapement import Parameters
+    >>> from escapement.model.cycle_map import cycle_map
+    >>> m = cycle_map(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05))
+    >>> round(m.mu, 12), round(m.c, 12), round(m.fixed_point_sq, 12)  # 1, m**2/s**2, m**2/s**2
+    (0.6561, 0.543, 1.578947368421)
+    """
+
+    mu: float  #: ``(1 - b)**4``, the multiplier of ``v**2``
+    c: float  #: the constant, m**2/s**2
+    one_minus_mu: float  #: ``1 - mu = b (2 - b) (1 + (1 - b)**2)``
+    log_mu: float  #: ``ln mu = 4 log1p(-b)`` (``-inf`` at ``b = 1``)
+
+    @property
+    def fixed_point_sq(self) -> float:
+        """``v***2 = c / (1 - mu)``, m**2/s**2 (not positive: no fixed point)."""
+        return self.c / self.one_minus_mu
+
+    @property
+    def fixed_point(self) -> float:
+        """``v*``, m/s; NaN where ``v***2 <= 0``."""
+        sq = self.fixed_point_sq
+        return math.sqrt(sq) if sq > 0.0 else math.nan
+
+    def velocity_sq(self, v1: float, k) -> np.ndarray:
+        """``v_k**2 = v***2 + (v1**2 - v***2) mu**(k-1)`` for the cycle numbers ``k`` (1 for the first).
+
+        ``mu**(k-1)`` as ``exp((k-1) ln mu)``, ``ln mu = 4 log1p(-b)``: the power of the rounded ``mu`` would
+        carry its rounding ``k - 1`` times (a relative ``4 (k-1) eps``, up to ``eps / (e b)`` of ``v**2`` on the
+        transient as ``b -> 0``), the exponential only that of ``(k-1) ln mu``."""
+        star = self.fixed_point_sq
+        steps = np.asarray(k, dtype=float) - 1.0
+        decay = np.exp(steps * self.log_mu) if math.isfinite(self.log_mu) else np.power(self.mu, steps)
+        return star + (v1 * v1 - star) * decay
+
+
+def cycle_map(params: Parameters) -> CycleMap:
+    """The constants of the return map ``v_{k+1}**2 = mu v_k**2 + c`` for any geometry.
+
+    A cycle runs from an impact at a1 through four harmonic arcs: a1 to a2 in the zone (a1, a2) (centre
+    ``+F/K``), a2 to a3 free, a3 to a4 in the zone (a4, a3) (centre ``-F/K``), a4 to a1 free. On an arc from
+    ``x`` to ``y`` about ``c`` energy gives ``v_y**2 = v_x**2 + w**2 (x - y)(x + y - 2 c)``, and each impact
+    multiplies ``v**2`` by ``beta = (1 - b)**2``. With ``f = F/M``:
+
+    * ``mu = beta**2 = (1 - b)**4``, ``1 - mu = b (2 - b) (1 + (1 - b)**2)`` (no cancellation as ``b -> 0``);
+    * ``c = b (2 - b) w**2 (a3**2 - a1**2) + 2 f [(1 - b)**2 (a2 - a1) + (a3 - a4)]``;
+    * the fixed point ``v***2 = c / (1 - mu)``; in the symmetric case (``a3 = -a1``, ``a4 = -a2``)
+      ``v***2 = 2 f (a2 - a1) / (b (2 - b))``.
+
+    Parameters
+    ----------
+    params : Parameters
+        The model's parameters.
+
+    Returns
+    -------
+    CycleMap
+        ``mu = (1 - b)**4``, ``c`` (m**2/s**2) and ``1 - mu``; the fixed point ``c / (1 - mu)``.
+    """
+    b, w2, f = params.b, params.omega2, params.f
+    beta = (1.0 - b) * (1.0 - b)
+    b2 = b * (2.0 - b)  # 1 - beta, without cancellation
+    c = (b2 * w2 * ((params.a3 - params.a1) * (params.a3 + params.a1))
+         + 2.0 * f * (beta * (params.a2 - params.a1) + (params.a3 - params.a4)))
+    log_mu = 4.0 * math.log1p(-b) if b < 1.0 else -math.inf
+    return CycleMap(mu=beta * beta, c=c, one_minus_mu=b2 * (1.0 + beta), log_mu=log_mu)

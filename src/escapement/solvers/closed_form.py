@@ -1,0 +1,239 @@
+"""The closed forms of whole cycles, the engine of :mod:`escapement.solvers.cycles`.
+
+From the first impact at a1 (the event solver's, :class:`~escapement.solvers.kernel.EventRun`) every cycle
+follows from the return map of ``v**2`` (:func:`~escapement.model.cycle_map.cycle_map`): the velocities
+before each impact at a1 for every cycle at once, then the four arcs of all the distinct cycles in one
+:func:`~escapement.model.kinematics.crossing` call on ``(4, m)`` arrays, with the rows of the event loop
+(:func:`~escapement.solvers.kernel.rows`). The period is the arcs' durations summed in the event solver's
+order, the amplitude the largest of ``a1`` and the arcs' largest ``x``.
+
+Distinct cycles only: from some cycle on, ``v_k**2`` is the float ``v***2`` (rounding is monotone, so it
+stays there), so the arcs are computed for the distinct cycles only (about ``45 / -log10(mu)`` of them).
+Impact times ``t_k = t_1 + (k-1) T + sum_{j<k} (T_j - T)``, ``T`` the last period: ``T_j - T`` is exact
+(Sterbenz), ``(k-1) T`` an exact product (``T`` split into its 22 leading bits and the rest) plus a tiny
+one, the remainders' prefix sums compensated, and the parts added with TwoSum: within about an ulp of the
+exact sum of the floats.
+
+The closed form does not apply (a string says why) where ``b`` is outside ``(0, 1]``, the first partial
+cycle does not complete, ``v_k**2`` is not positive, an arc cannot reach its end, or an arc grazes its end:
+it arrives with ``v**2 <= GRAZING_SPEED_SQ (w**2 (x - c)**2 + v0**2)``, where the arrival phase amplifies
+the rounding of the velocity and the closed form and the event solver would no longer agree to 1e-14.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from ..model import automaton
+from ..model.cycle_map import CycleMap, cycle_map
+from ..model.limits import RunLimits
+from ..model.parameters import Parameters
+from ..model.kinematics import arc_maximum, crossing
+from ..model.status import Status
+from .kernel import A1, PLAN, EventRun, kinds_from, rows
+from .result import CycleTable
+
+__all__ = ["GRAZING_SPEED_SQ", "Cycles", "Prepared", "distinct_cycles", "first_impact", "prepared", "table_rows"]
+
+#: an arc grazes where it arrives with ``v**2`` at most this times its largest, ``w**2 (x - c)**2 + v0**2``
+GRAZING_SPEED_SQ = 1e-3
+#: ``2**31 + 1``: the split of a period into its 22 leading bits and the rest, for exact products
+_SPLIT = float(2**31 + 1)
+#: the arcs of a cycle, for messages
+_ARCS = ("the force arc a1 -> a2", "the free swing a2 -> a3", "the force arc a3 -> a4", "the free swing a4 -> a1")
+
+
+class Prepared(NamedTuple):
+    """What a run needs from its parameters alone: the map, the rows of a cycle's arcs (from the impact at
+    a1), whether the event that starts each is an impact, and the arcs' terms as ``(4, 1)`` columns."""
+
+    cycle_map: CycleMap
+    jumps: tuple
+    columns: dict
+
+
+def prepared(params: Parameters) -> Prepared:
+    """The four arcs of a cycle from the impact at a1, as the event loop's rows give them, with the map."""
+    table = rows(params)
+    states = (A1, *PLAN[:-1])  # the event that starts each arc
+    plan = [table[state] for state in states]
+    columns = {name: np.array([[getattr(row, name)] for row in plan]) for name in ("u0", "q", "k", "direction", "target")}
+    columns["centre"] = np.array([[automaton.centre(automaton.ARCS[s].mode, params.zone_offset)] for s in states])
+    columns["x_from"] = np.array([[automaton.position(s, params)] for s in states])
+    return Prepared(cycle_map(params), tuple(automaton.is_impact(s) for s in states), columns)
+
+
+class Cycles(NamedTuple):
+    """A closed-form run's distinct cycles (``distinct`` of them; the last stands for every later cycle once
+    at the fixed point) and what its impact times need: the first ``t1``, the last period ``big`` and its 22
+    leading bits ``big_hi``, the compensated prefix sums ``hi + lo`` of the periods less ``big``."""
+
+    v: np.ndarray
+    period: np.ndarray
+    amplitude: np.ndarray
+    t1: float
+    big: float
+    big_hi: float
+    hi: np.ndarray
+    lo: np.ndarray
+    residual: float
+    distinct: int
+
+
+def first_impact(params: Parameters, x: float, v: float) -> tuple[float, float, int] | str:
+    """Time and velocity of the first impact at a1 from the release, by the event loop run for one cycle,
+    and the events up to it, that impact included; or why the closed form does not apply from the start."""
+    if not 0.0 < params.b <= 1.0:
+        return f"b = {params.b!r} is outside (0, 1]: the impact reverses the velocity (the run chatters)"
+    run = EventRun(params, x, v, RunLimits(n_cycles=1))
+    run.advance(run.limits.max_events)
+    outcome = run.outcome
+    if outcome.status is not Status.COMPLETED:
+        return f"the event solver's first cycle from the release did not complete ({outcome.status.value}: {outcome.message})"
+    t, v_before, _ = run.take()
+    i = int(np.flatnonzero(kinds_from(run.first, 0, len(t)) == A1)[0])
+    return float(t[i]), float(v_before[i]), i + 1
+
+
+def _transient(cmap: CycleMap, v1: float, n: int) -> int:
+    """How many of the first cycles to evaluate ``v_k**2`` for: past them it is the float ``v***2`` (checked
+    by the caller, who evaluates them all where this bound does not hold)."""
+    star, delta, mu = cmap.fixed_point_sq, v1 * v1 - cmap.fixed_point_sq, cmap.mu
+    if delta == 0.0 or mu == 0.0:
+        return min(n, 2)
+    if not (star > 0.0 and 0.0 < mu < 1.0 and math.isfinite(delta)):
+        return n
+    # |delta| mu**(k-1) below a quarter of an ulp of v***2: k - 1 > log(2**-55 v***2 / |delta|) / log(mu)
+    ratio = 2.0**-55 * star / abs(delta)
+    k = 0 if ratio >= 1.0 else math.ceil(math.log(ratio) / math.log(mu))
+    return min(n, k + 3)
+
+
+def _two_sum(a, b):
+    """Knuth's TwoSum on arrays: ``s + e == a + b`` exactly, ``s = fl(a + b)``."""
+    s = a + b
+    bb = s - a
+    return s, (a - (s - bb)) + (b - bb)
+
+
+def _prefix_sums(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Exclusive prefix sums ``D_i = sum_{j<i} d_j``, ``i = 0 .. len(d)``, as ``hi + lo``, compensated: ``hi`` is
+    ``cumsum``, and with ``r_j = hi_j + d_j - hi_{j+1}`` exactly (TwoSum of ``hi_j + d_j``, less ``hi_{j+1}``,
+    which is that sum's rounding: the difference is exact) ``D_i = hi_i + sum_{j<i} r_j``; ``lo`` is that sum."""
+    hi = np.zeros(len(d) + 1)
+    np.cumsum(d, out=hi[1:])
+    before, after = hi[:-1], hi[1:]
+    s, e = _two_sum(before, d)
+    lo = np.zeros_like(hi)
+    np.cumsum((s - after) + e, out=lo[1:])
+    return hi, lo
+
+
+def _window(values: np.ndarray, start: int, stop: int) -> np.ndarray:
+    """Entries ``start .. stop - 1`` of ``values`` extended for ever by repeating its last."""
+    if len(values) >= stop:
+        return values[start:stop]
+    out = np.empty(stop - start)
+    head = values[start:] if start < len(values) else values[:0]
+    out[:len(head)] = head
+    out[len(head):] = values[-1]
+    return out
+
+
+def _arcs(params: Parameters, prep: Prepared, v: np.ndarray):
+    """The four arcs of the cycles that start with the velocities ``v`` before the impact at a1, in one
+    :func:`~escapement.model.kinematics.crossing` call on ``(4, m)`` arrays: ``(start velocities, reached,
+    times, arrival velocities, angles)``. The arrival of each arc, the start of the next, is computed as
+    ``crossing`` computes it (``d sqrt(v**2 + k)``), the impact law applied where the event is an impact."""
+    b, col = params.b, prep.columns
+    starts = np.empty((4, len(v)))
+    speed = v
+    for i, jump in enumerate(prep.jumps):
+        speed = automaton.velocity_after(speed, b, True) if jump else speed
+        starts[i] = speed
+        speed = col["direction"][i, 0] * np.sqrt(abs(speed * speed + col["k"][i, 0]))
+    reached, dt, arrival, angle = crossing(col["u0"], col["q"], col["k"], starts, params.omega, col["direction"], np)
+    return starts, reached, dt, arrival, angle
+
+
+def distinct_cycles(params: Parameters, prep: Prepared, t1: float, v1: float, n: int,
+                     most: int | None = None) -> Cycles | str:
+    """The distinct cycles of ``n`` from the first impact at a1 ``(t1, v1)``, or why the closed form does not
+    apply (a string): also where more than ``most`` cycles would have to be evaluated at once (a streamed
+    run's memory budget: the transient, not the run, sets how many). Under ``np.errstate(all="ignore")``: a
+    NaN is a decision here, not a warning."""
+    cmap, col = prep.cycle_map, prep.columns
+    star = cmap.fixed_point_sq
+    count = _transient(cmap, v1, n)
+    longer = (f"the transient lasts more than the {most:_} cycles the memory budget holds at once (mu = "
+              f"{cmap.mu!r}): the closed form evaluates it in one piece") if most is not None else ""
+    if most is not None and count > most:
+        return longer
+    v_sq = cmap.velocity_sq(v1, np.arange(1, count + 1))
+    same = v_sq == star
+    same[0] = False  # the first is the event solver's v1
+    if count < n and not same[-1]:  # the bound did not hold: every cycle
+        if most is not None and n > most:
+            return longer
+        count = n
+        v_sq = cmap.velocity_sq(v1, np.arange(1, n + 1))
+        same = v_sq == star
+        same[0] = False
+    differ = np.flatnonzero(~same)
+    m = int(differ[-1]) + 1  # cycles 1 .. m differ from the fixed point; m + 1 .. n are it
+    fixed = m < n  # the last distinct cycle stands for cycles m + 1 .. n, at the fixed point
+    if fixed:
+        m += 1
+    positive = v_sq[:m] > 0.0
+    negative = None  # the reason at the first cycle whose v**2 is not positive, if the arcs before it hold
+    if not positive.all():
+        q = int(np.flatnonzero(~positive)[0])  # q >= 1: v_sq[0] is about v1**2 > 0
+        negative = f"the closed form's v**2 is not positive at cycle {q + 1} ({float(v_sq[q])!r} m**2/s**2)"
+        m, fixed = max(q, 1), False
+    v = np.sqrt(v_sq[:m])
+    v[0] = v1
+    starts, reached, dt, arrival, angle = _arcs(params, prep, v)
+    omega = params.omega
+    largest = (omega * (col["x_from"] - col["centre"])) ** 2 + starts * starts
+    ok = reached & (arrival * arrival > GRAZING_SPEED_SQ * largest)
+    if not ok.all():
+        j = int(np.flatnonzero(~ok.all(axis=0))[0])
+        arc = int(np.flatnonzero(~ok[:, j])[0])
+        cycle = f"cycles {j + 1} .. {n} (the fixed point)" if fixed and j == m - 1 else f"cycle {j + 1}"
+        what = ("cannot reach its end (the run leaves the regime: the escapement stops or the mass turns back "
+                "in the zone)" if not reached[arc, j] else
+                f"grazes its end (arrives with v**2 = {float(arrival[arc, j] ** 2):.3g} m**2/s**2, at most "
+                f"{GRAZING_SPEED_SQ:g} of the arc's largest, {float(largest[arc, j]):.3g})")
+        return f"{_ARCS[arc]} of {cycle} {what}"
+    if negative is not None:
+        return negative
+    period = ((dt[0] + dt[1]) + dt[2]) + dt[3]  # the event solver's order
+    amplitude = np.max(arc_maximum(col["centre"], col["x_from"], starts, omega, angle, col["target"]),
+                       axis=0)
+    amplitude = np.maximum(amplitude, col["x_from"][0, 0])  # the impact at a1 begins the cycle
+    # the map against the arcs: the arrival at a1 from cycle j is v_{j+1} (and at the fixed point, itself)
+    following = np.append(v[1:], v[-1]) if fixed else v[1:]
+    predicted = arrival[3, :len(following)]
+    residual = float(np.max(np.abs(predicted - following) / following)) if len(following) else 0.0
+    big = period[-1]
+    hi, lo = _prefix_sums(period - big)
+    sigma = big * _SPLIT
+    return Cycles(v, period, amplitude, t1, big, sigma - (sigma - big), hi, lo, residual, m)
+
+
+def table_rows(c: Cycles, start: int, stop: int) -> tuple[CycleTable, float]:
+    """Cycles ``start + 1 .. stop`` of the run (table rows ``start .. stop - 1``), and the time of the impact
+    at a1 that ends cycle ``stop``. Impact times: ``t_k = t1 + (k - 1) T + D_{k-1}``, ``D`` the prefix sums of
+    ``T_j - T``; each entry from its own ``k`` alone, so that any window of cycles is the same numbers."""
+    k = np.arange(start, stop + 1, dtype=float)  # k - 1 for cycles start + 1 .. stop, and stop for the end
+    s, e1 = _two_sum(k * c.big_hi, c.t1)
+    s, e2 = _two_sum(s, _window(c.hi, start, stop + 1))
+    t = s + (((e1 + e2) + k * (c.big - c.big_hi)) + _window(c.lo, start, stop + 1))
+    table = CycleTable(impact_time=t[:-1], velocity_before_impact=_window(c.v, start, stop),
+                       period=_window(c.period, start, stop), amplitude=_window(c.amplitude, start, stop))
+    return table, float(t[-1])
+
+

@@ -1,0 +1,247 @@
+"""The exact solver's event loop: the automaton's rows, one closed form per arc, one plain loop.
+
+Between events the motion is a harmonic arc about its mode's centre, so each event comes from the
+closed form :func:`~escapement.model.kinematics.crossing`: no step size, no root finding. The loop
+(:meth:`EventRun.advance`) reads, per event, the row of the state it is in (:func:`rows`: the centre,
+the surface it watches, the direction of crossing, whether it is an impact, the next state), asks
+``crossing`` when the surface is reached, adds the duration to a compensated sum, applies the impact
+law (:func:`~escapement.model.automaton.velocity_after`) at impacts and stores three numbers: the
+event's time, the velocity before it and the angle its arc swept. Everything else (kinds, positions,
+velocities after, the arcs, the cycle table) follows from the automaton after the loop, on arrays
+(:func:`event_block`, :func:`cycle_rows`). The run is resumable: :meth:`EventRun.advance` runs a bounded
+number of events and keeps its state, so a run in several passes gives the numbers of a run in one.
+"""
+
+from __future__ import annotations
+
+import math
+from array import array
+from typing import NamedTuple
+
+import numpy as np
+
+from ..model import automaton
+from ..model.automaton import RELEASE, Mode
+from ..model.events import EventKind
+from ..model.kinematics import arc_maximum, arc_terms, compensated_add, crossing, time_to_rest
+from ..model.limits import RunLimits
+from ..model.parameters import Parameters
+from ..model.status import Status, event_limit_message
+from .outcomes import Outcome, chattering_outcome, completed_outcome, horizon_outcome, no_event_outcome
+from .result import Exit
+
+__all__ = ["A1", "PLAN", "Block", "EventRun", "Row", "event_block", "cycle_rows", "kinds_from", "rows"]
+
+A1 = int(EventKind.IMPACT_A1)
+#: the events of a cycle after the impact at a1, the last that impact
+PLAN = tuple(int(kind) for kind in automaton.cycle_plan())
+
+
+class Row(NamedTuple):
+    """The arc that follows a state, in numbers for one parameter set: from the state's surface (or the
+    release) about the centre of its mode, to the surface it watches."""
+
+    u0: float  #: where the arc starts, from its centre, m
+    q: float  #: where it ends, from its centre, m
+    k: float  #: the change of v**2 on the way, m2 s-2 (:func:`~escapement.model.kinematics.arc_terms`)
+    direction: float  #: the direction of motion at its end, +1.0 or -1.0
+    impact: bool  #: reaching its end is an impact
+    following: int  #: the event it ends at: the next state
+    target: float  #: where it ends, m
+
+
+def rows(params: Parameters) -> list[Row | None]:
+    """The rows of :data:`~escapement.model.automaton.ARCS` for ``params``, by state; ``None`` for the release,
+    which watches two surfaces (:meth:`EventRun.release_row` picks the one reached first)."""
+    table: list[Row | None] = [None] * (len(automaton.SURFACES) + 1)
+    for state, arc in automaton.ARCS.items():
+        if len(arc.watched) == 1:
+            table[state] = _row(params, automaton.position(state, params), arc.mode, arc.watched[0])
+    return table
+
+
+def _row(params: Parameters, start: float, mode: Mode, kind: EventKind) -> Row:
+    """The arc from ``start`` in ``mode`` to the surface ``kind``."""
+    surface = automaton.SURFACES[kind]
+    target = automaton.position(kind, params)
+    u0, q, k = arc_terms(automaton.centre(mode, params.zone_offset), start, params.omega, target)
+    return Row(u0, q, k, float(surface.direction), surface.impact, int(kind), target)
+
+
+def kinds_from(first: int, start: int, n: int) -> np.ndarray:
+    """The kinds of the events ``start .. start + n - 1`` of a run whose first event is ``first``: after it,
+    each row has one surface, so the kinds go round the cycle's :data:`PLAN`."""
+    shift = (PLAN.index(first) + start) % len(PLAN)
+    return np.tile(np.array(PLAN[shift:] + PLAN[:shift], dtype=np.int8), n // len(PLAN) + 1)[:n]
+
+
+class EventRun:
+    """One run of the exact solver, resumable: :meth:`advance` runs at most a given number of events and keeps
+    the state for the next call. The events are stored in :attr:`stored` until :meth:`take` hands them
+    over; :attr:`outcome` is set when the run ends."""
+
+    def __init__(self, params: Parameters, x: float, v: float, limits: RunLimits) -> None:
+        self.params, self.limits = params, limits
+        self.omega, self.b = params.omega, params.b
+        self.release = (RELEASE, x, v)  # the state before the first event
+        self.rows = rows(params)
+        self.t_stop = math.inf if limits.t_end is None else limits.t_end
+        self.state, self.x, self.v = RELEASE, x, v  # the last event's kind, and the state after it
+        self.t_sum = self.t_err = self.time = 0.0
+        self.events = 0
+        self.first: int | None = None  # the first event's kind
+        self.last = limits.max_events  # the events of the whole run (n_cycles: up to the last impact at a1)
+        self.stored = array("d")  # per event: its time, the velocity before it, the angle its arc swept
+        self.outcome: Outcome | None = None
+        self.open_arc = False  # the run ended inside an arc (no surface reached, or the end time)
+        self.taken = 0  # the events handed over by take()
+        self.rows[RELEASE] = self.release_row()
+
+    def release_row(self) -> Row | None:
+        """The row of the release: of the surfaces it watches, the one reached first (None: neither)."""
+        best = None
+        for kind in automaton.ARCS[RELEASE].watched:
+            row = _row(self.params, self.x, automaton.ARCS[RELEASE].mode, kind)
+            reached, dt, _, _ = crossing(row.u0, row.q, row.k, self.v, self.omega, row.direction)
+            if reached and (best is None or dt < best[0]):
+                best = (dt, row)
+        if best is None:
+            return None
+        first = self.first = best[1].following
+        if self.limits.n_cycles is not None:  # the (n_cycles + 1)-th impact at a1 ends the run
+            to_a1 = (PLAN.index(A1) - PLAN.index(first)) % len(PLAN)
+            self.last = min(self.last, to_a1 + len(PLAN) * self.limits.n_cycles + 1)
+        return best[1]
+
+    def advance(self, n: int) -> None:
+        """Run at most ``n`` more events, or until the run ends (:attr:`outcome` set)."""
+        if self.outcome is not None:
+            return
+        table, omega, b, t_stop = self.rows, self.omega, self.b, self.t_stop
+        law, reverses = automaton.velocity_after, automaton.reverses
+        store = self.stored.extend
+        state, x, v, t_sum, t_err, t = self.state, self.x, self.v, self.t_sum, self.t_err, self.time
+        ending, v1, i = None, v, -1
+        limit = min(n, self.last - self.events)
+        if table[state] is None:  # from the release, neither impact is reached
+            ending, limit = "no event", 0
+        for i in range(limit):
+            u0, q, k, direction, impact, following, target = table[state]
+            reached, dt, v1, angle = crossing(u0, q, k, v, omega, direction)
+            if not reached:
+                ending = "no event"
+                break
+            if t + dt > t_stop:
+                ending = "horizon"
+                break
+            t_sum, t_err = compensated_add(t_sum, t_err, dt)
+            t = t_sum + t_err
+            store((t, v1, angle))
+            x, state, v = target, following, v1
+            if impact:
+                v = law(v1, b, True)
+                if reverses(v1, v):
+                    ending = "chattering"
+                    break
+        self.state, self.x, self.v, self.t_sum, self.t_err, self.time = state, x, v, t_sum, t_err, t
+        self.events += limit if ending is None else max(i, 0) + (ending == "chattering")
+        self._end(ending, v1)
+
+    def _end(self, ending: str | None, v1: float) -> None:
+        """The outcome of a pass that ended with ``ending``, or at the run's last event."""
+        if ending == "no event":
+            self.open_arc = True
+            self.outcome = self._no_event()
+        elif ending == "horizon":
+            self.open_arc = True
+            self.outcome = horizon_outcome(self.t_stop, self.impacts_a1())
+        elif ending == "chattering":
+            self.outcome = chattering_outcome(self.params, EventKind(self.state), self.time, v1, self.v)
+        elif self.events >= self.last:
+            if self.limits.n_cycles is not None and self.impacts_a1() == self.limits.n_cycles + 1:
+                self.outcome = completed_outcome(self.limits.n_cycles, self.time)
+            else:
+                message = event_limit_message(float(self.time), self.limits.max_events)
+                self.outcome = Outcome(Status.EVENT_LIMIT, message, Exit(), self.time)
+
+    def _no_event(self) -> Outcome:
+        """No watched surface is passed from the state after the last event: the turning point of the arc."""
+        mode = automaton.ARCS[self.state].mode
+        centre = automaton.centre(mode, self.params.zone_offset)
+        if mode == Mode.FREE:
+            return no_event_outcome(self.params, self.state, centre, self.time, math.inf,
+                                    math.hypot(self.x - centre, self.v / self.omega))
+        dt, turning_point = time_to_rest(centre, self.x, self.v, self.omega)
+        return no_event_outcome(self.params, self.state, centre, self.time, dt, turning_point)
+
+    def impacts_a1(self) -> int:
+        """The impacts at a1 so far."""
+        if self.first is None or self.events == 0:
+            return 0
+        to_a1 = (PLAN.index(A1) - PLAN.index(self.first)) % len(PLAN)
+        return 0 if self.events <= to_a1 else (self.events - to_a1 - 1) // len(PLAN) + 1
+
+    def take(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The events stored since the last call (times, s; velocities before, m/s; angles swept, rad), as
+        views of the loop's buffer (no copy; they keep it alive); a new buffer takes the next events."""
+        rows = np.frombuffer(self.stored, dtype=float).reshape(-1, 3) if len(self.stored) else np.zeros((0, 3))
+        self.stored = array("d")
+        self.taken = self.events
+        return rows[:, 0], rows[:, 1], rows[:, 2]
+
+
+class Block(NamedTuple):
+    """Consecutive events of a run, each with the arc that ends at it, all on arrays."""
+
+    start: int  #: the index of the first event in the run
+    kind: np.ndarray
+    t: np.ndarray  #: s
+    x: np.ndarray  #: m
+    v_before: np.ndarray  #: m/s
+    v_after: np.ndarray  #: m/s
+    dt: np.ndarray  #: the duration of the arc, s
+    arc_max: np.ndarray  #: the largest x on the arc, m
+    arc_centre: np.ndarray  #: the centre of the arc, m (one more than the events: the arc after the last)
+    arc_x: np.ndarray  #: where the arc starts, m (likewise)
+    arc_v: np.ndarray  #: the velocity it starts with, m/s (likewise)
+
+
+def event_block(run: EventRun, start: int, t, v_before, angle, before: tuple[int, float, float],
+                amplitude: bool = True) -> Block:
+    """The events ``start ..`` of ``run`` from what the loop stored, ``before`` the state before the first of
+    them (the last event's kind, or the release, and the position and velocity after it)."""
+    params, n = run.params, len(t)
+    kind = kinds_from(run.first, start, n) if n else np.zeros(0, dtype=np.int8)
+    by_kind = [(automaton.position(k, params), s.impact, automaton.ARCS[k].mode) for k, s in automaton.SURFACES.items()]
+    position = np.array([math.nan] + [p for p, _, _ in by_kind])
+    impact = np.array([False] + [i for _, i, _ in by_kind])
+    x = position[kind]
+    v_after = automaton.velocity_after(v_before, params.b, impact[kind])
+    centres = np.array([automaton.centre(automaton.ARCS[state].mode, params.zone_offset)
+                        for state in range(len(automaton.ARCS))])
+    state_before, x_before, v_after_before = before
+    arc_centre = centres[np.concatenate(([state_before], kind)).astype(np.intp)]
+    arc_x = np.concatenate(([x_before], x))
+    arc_v = np.concatenate(([v_after_before], v_after))
+    arc_max = (arc_maximum(arc_centre[:n], arc_x[:n], arc_v[:n], run.omega, angle, x) if amplitude
+               else np.full(n, math.nan))
+    return Block(start, kind, t, x, v_before, v_after, angle / run.omega, arc_max, arc_centre, arc_x, arc_v)
+
+
+def cycle_rows(block: Block) -> tuple[tuple[np.ndarray, ...], int]:
+    """The complete cycles in ``block`` (from an impact at a1 to the next): their impact times, velocities
+    before the impact, periods (the arcs' durations summed in order) and amplitudes (the largest x from the
+    impact at a1 on); and the index in the block of the impact at a1 that begins the unfinished cycle (the
+    block's length where there is none)."""
+    at_a1 = np.flatnonzero(block.kind == A1)
+    if len(at_a1) < 2:
+        return tuple(np.zeros(0) for _ in range(4)), (int(at_a1[0]) if len(at_a1) else len(block.t))
+    first, m, width = int(at_a1[0]), len(at_a1) - 1, len(PLAN)
+    arcs = slice(first + 1, first + 1 + m * width)
+    dt, arc_max = block.dt[arcs].reshape(m, width), block.arc_max[arcs].reshape(m, width)
+    period = dt[:, 0].copy()
+    amplitude = np.maximum(block.x[at_a1[:-1]], arc_max[:, 0])
+    for j in range(1, width):  # in the order of the events, as a running sum and maximum
+        period += dt[:, j]
+        amplitude = np.maximum(amplitude, arc_max[:, j])
+    return (block.t[at_a1[:-1]], block.v_before[at_a1[:-1]], period, amplitude), int(at_a1[-1])

@@ -1,0 +1,149 @@
+"""How a run ends, and the checks every solver makes before and after it.
+
+The outcomes (:class:`Outcome`) of the automaton's exits, from :mod:`escapement.model.automaton`: no
+watched surface passed (:func:`no_event_outcome`), the end time (:func:`horizon_outcome`), an impact
+that reverses the velocity (:func:`chattering_outcome`). :func:`check_memory` refuses, before any work,
+a run whose result would exceed its memory budget; :func:`finish` makes the :class:`Solution` and
+refuses a completed run that holds a non-finite number.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from ..model import automaton
+from ..model.events import EventKind, EventLog
+from ..model.kinematics import rebound_accumulation_time
+from ..model.limits import EVENTS_PER_CYCLE, MemoryBudgetError, RunLimits, events_for
+from ..model.parameters import Parameters
+from ..model.status import Status, chattering_message, stopped_message, turned_back_message
+from .result import ArcTable, CycleTable, Exit, Solution
+
+__all__ = ["Outcome", "chattering_outcome", "check_memory", "finish", "horizon_outcome", "no_event_outcome"]
+
+
+class Outcome(NamedTuple):
+    """How a run ended: its status and message, the numbers behind a regime exit, and the end of its
+    trajectory."""
+
+    status: Status
+    message: str
+    exit: Exit
+    t_final: object  #: a float, or an mpmath number for the high-precision solver
+
+
+def no_event_outcome(params: Parameters, state: int, centre, t, dt, turning) -> Outcome:
+    """No surface watched in ``state`` (a row of :data:`~escapement.model.automaton.ARCS`) is ever passed
+    from time ``t``: in free flight the escapement stopped (``turning`` is the radius of the swing), in a
+    zone the mass turned back at ``turning``, ``dt`` after ``t``."""
+    arc = automaton.ARCS[state]
+    status = automaton.EXIT_WITHOUT_EVENT[arc.mode]
+    if status is Status.STOPPED:
+        missed = {automaton.SURFACES[kind].position: float(automaton.position(kind, params)) for kind in arc.watched}
+        message = stopped_message(float(t), float(turning), missed)
+        exit_ = Exit(turning_point=float(turning), margin=float(min(abs(m) for m in missed.values()) - turning))
+        return Outcome(status, message, exit_, math.inf)
+    zone, end_kind = automaton.ZONE_OF[arc.mode]
+    end = automaton.position(end_kind, params)
+    t_final = t + dt
+    message = turned_back_message(float(t_final), zone, float(turning), float(centre), float(end))
+    return Outcome(status, message, Exit(turning_point=float(turning), margin=float(abs(end - turning))), t_final)
+
+
+def horizon_outcome(t_stop: float, impacts_a1: int) -> Outcome:
+    """The end time comes before the next event."""
+    return Outcome(Status.COMPLETED, f"reached t_end = {t_stop:.12g} s after {impacts_a1} impacts at a1", Exit(),
+                   t_stop)
+
+
+def completed_outcome(n_cycles: int, t) -> Outcome:
+    """The run's last cycle ended at ``t``."""
+    return Outcome(Status.COMPLETED, f"completed {n_cycles} cycles", Exit(), t)
+
+
+def chattering_outcome(params: Parameters, kind: EventKind, t, v_before, v_after) -> Outcome:
+    """The impact ``kind`` at time ``t`` reversed the velocity: the rebounds accumulate (or not)."""
+    distance = automaton.rebound_distance(kind, automaton.position(kind, params))
+    t_acc = math.nan  # unless the spring drives the mass back to the impact position
+    ratio = float(v_after / v_before)  # the impact law's v+/v-, negative: a rebound
+    if distance > 0.0:
+        t_acc = float(t) + rebound_accumulation_time(params.omega, distance, abs(float(v_after)), abs(ratio))
+    position = automaton.SURFACES[EventKind(kind)].position
+    message = chattering_message(float(t), position, params.b, ratio, t_acc)
+    return Outcome(Status.CHATTERING, message, Exit(t_accumulation=t_acc), t)
+
+
+def check_memory(limits: RunLimits, event_bytes: float, cycle_bytes: float, contents: str, remedy: str,
+                 fixed_bytes: int = 0) -> int:
+    """The bytes a run's result will hold at most, from its limits: ``event_bytes`` for each of its
+    :attr:`~RunLimits.stored_events` events, ``cycle_bytes`` for each of its
+    :attr:`~RunLimits.stored_cycles` cycles, and ``fixed_bytes`` whatever their number. Raise
+    :class:`MemoryBudgetError` when that exceeds ``limits.memory_budget``, naming the count that sets the
+    size (``n_cycles``, or ``max_events`` when it binds) with its largest value within the budget, what the
+    run stores (``contents``) and what to do instead (``remedy``)."""
+    budget = limits.memory_budget
+
+    def size(n_events: int, n_cycles: int) -> int:
+        return int(math.ceil(n_events * event_bytes + n_cycles * cycle_bytes)) + fixed_bytes
+
+    estimate = size(limits.stored_events, limits.stored_cycles)
+    if estimate <= budget:
+        return estimate
+    if limits.n_cycles is not None and events_for(limits.n_cycles) <= limits.max_events:
+        name, value = "n_cycles", limits.n_cycles
+
+        def fits(n: int) -> bool:
+            return size(events_for(n), n) <= budget
+
+        per_cycle = events_for(1) - events_for(0)
+        most = int((budget - fixed_bytes - events_for(0) * event_bytes) // (per_cycle * event_bytes + cycle_bytes))
+    else:
+        name, value = "max_events", limits.max_events
+
+        def fits(n: int) -> bool:
+            return size(n, n // EVENTS_PER_CYCLE) <= budget
+
+        most = int((budget - fixed_bytes) // (event_bytes + cycle_bytes / EVENTS_PER_CYCLE))
+    for _ in range(2):  # the division above is within one of the answer
+        most = most + 1 if fits(most + 1) else most - 1 if most > 0 and not fits(most) else most
+    requirement = (
+        f"at most {max(most, 0):_} for this run to fit its memory budget: it would store {contents}, an estimated "
+        f"{estimate:_} bytes ({estimate / 1e9:.3g} GB), over the budget of {budget:_} bytes ({budget / 1e9:.3g} GB); "
+        f"{remedy}"
+    )
+    raise MemoryBudgetError(name, value, requirement, estimate, budget)
+
+
+def finish(params: Parameters, method: str, outcome: Outcome, events: EventLog, cycles: CycleTable, trajectory, *,
+           x0: float, v0: float) -> Solution:
+    """The :class:`Solution` of a run that ended with ``outcome``; a completed run holding a non-finite
+    number raises :class:`FloatingPointError` (the input validation let through what it must refuse)."""
+    t_final = float(outcome.t_final)
+    if outcome.status is Status.COMPLETED:
+        _check_finite(method, events, cycles, trajectory, t_final)
+    return Solution(params=params, x0=float(x0), v0=float(v0), method=method, status=outcome.status,
+                    message=outcome.message, events=events, cycles=cycles, trajectory=trajectory, t_final=t_final,
+                    exit=outcome.exit)
+
+
+def _check_finite(method: str, events: EventLog, cycles: CycleTable, trajectory, t_final: float) -> None:
+    columns = {f"events.{name}": getattr(events, name) for name in ("t", "x", "v_before", "v_after")}
+    columns.update({f"cycles.{name}": getattr(cycles, name)
+                    for name in ("impact_time", "velocity_before_impact", "period", "amplitude")})
+    if isinstance(trajectory, ArcTable):
+        columns.update({f"trajectory.{name}": getattr(trajectory, name)
+                        for name in ("t_start", "centre", "x_start", "v_start")})
+        columns["trajectory.omega"] = np.array([trajectory.omega])
+    columns["t_final"] = np.array([t_final])
+    for name, values in columns.items():
+        doubles = np.asarray(values, dtype=float)  # mpmath numbers as their nearest doubles
+        finite = np.isfinite(doubles)
+        if not finite.all():
+            index = int(np.flatnonzero(~finite)[0])
+            raise FloatingPointError(
+                f"{method}: a completed run holds a non-finite {name}[{index}] = {float(doubles[index])!r}; the "
+                "input validation (escapement.model.parameters) must refuse the inputs that lead to it"
+            )
