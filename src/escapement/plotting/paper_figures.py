@@ -13,6 +13,7 @@ import xarray as xr
 
 from .captions import (
     assumed_reading,
+    axis_label,
     broken,
     initial_velocity,
     natural_period,
@@ -21,6 +22,7 @@ from .captions import (
     quantity_value,
     release,
     signed,
+    unit,
     wrap,
 )
 from .labels import Label, finish, legend_below
@@ -31,11 +33,7 @@ __all__ = ["fig3", "fig4", "fig5"]
 
 def fig3(cases: dict[str, xr.Dataset]):
     """Velocity before impact, period and amplitude against the cycle, one column per case."""
-    rows = [
-        ("velocity_before_impact", "Velocity before impact (m/s)"),
-        ("period", "Period (s)"),
-        ("amplitude", "Amplitude of oscillation (m)"),
-    ]
+    rows = ("velocity_before_impact", "period", "amplitude")
     first = next(iter(cases.values()))
     definitions = "\n".join(wrap(f"{name}: {first[name].attrs['long_name']}", 100) for name in ("period", "amplitude")
                              if "long_name" in first[name].attrs)
@@ -45,7 +43,7 @@ def fig3(cases: dict[str, xr.Dataset]):
                                  layout="constrained")
         for col, (label, ds) in enumerate(cases.items()):
             period = natural_period(ds)
-            for row, (name, ylabel) in enumerate(rows):
+            for row, name in enumerate(rows):
                 ax = axes[row, col]
                 ax.plot(ds[ds[name].dims[0]], ds[name], marker="o", markersize=2.5, lw=1.0, color=INK, zorder=2,
                         label="exact solution, per cycle")
@@ -56,7 +54,7 @@ def fig3(cases: dict[str, xr.Dataset]):
                 if name == "period":
                     ax.axhline(period, ls=":", lw=1.2, color=GUIDE, zorder=3,
                                label=f"2\u03c0/\u03c9 = {period:.4f} s, the period the paper reports")
-                ax.set_ylabel(ylabel)
+                ax.set_ylabel(axis_label(name))
                 if row == 2:
                     ax.set_xlabel("Number of cycles")
             reading = assumed_reading(ds, f"{quantity_value('F', float(ds['F']))}, {release(ds)}")
@@ -86,11 +84,11 @@ def fig4(ds: xr.Dataset):
         ax_v.plot(impacts, before, "o", mfc="white", color=ACCENT, label="velocity just before an impact")
         ax_v.plot(impacts, after, "o", color=ACCENT, label="velocity just after an impact")
         ax_v.set_xlim(v_lo, v_hi)
-        ax_v.set_xlabel("Time (s)")
-        ax_v.set_ylabel("Velocity (m/s)")
+        ax_v.set_xlabel(axis_label("t"))
+        ax_v.set_ylabel(axis_label("velocity"))
         inside = (impacts >= v_lo) & (impacts <= v_hi)
         for ti, j, e, vb, va in zip(impacts[inside], impulse[inside], energy[inside], before[inside], after[inside]):
-            labels.append(Label(ax_v, f"impulse {signed(j, '+.4f')} N s\ndissipated {e:.4f} J", (ti, (vb + va) / 2),
+            labels.append(Label(ax_v, f"impulse {signed(j, '+.4f')} {unit('impulse')}\ndissipated {e:.4f} {unit('energy_dissipated')}", (ti, (vb + va) / 2),
                                  style={"fontsize": 6.5, "color": ACCENT}))
 
         sel = (t >= a_lo) & (t <= a_hi)
@@ -105,12 +103,12 @@ def fig4(ds: xr.Dataset):
             base, tip = (y_lo + 0.85 * (y_hi - y_lo), y_lo + 0.12 * (y_hi - y_lo))[:: 1 if j < 0 else -1]
             ax_a.annotate("", xy=(ti, tip), xytext=(ti, base), arrowprops={"arrowstyle": "-|>", "color": ACCENT,
                                                                           "lw": 1.4})
-            labels.append(Label(ax_a, f"impulse {signed(j, '+.4f')} N s", (ti, tip),
+            labels.append(Label(ax_a, f"impulse {signed(j, '+.4f')} {unit('impulse')}", (ti, tip),
                                  style={"fontsize": 6.5, "color": ACCENT}))
         ax_a.plot([], [], color=ACCENT, lw=1.4, label="impulse M \u0394v at an impact (Dirac, not to scale)")
         ax_a.set_xlim(a_lo, a_hi)
-        ax_a.set_xlabel("Time (s)")
-        ax_a.set_ylabel("Acceleration (m/s\u00b2)")
+        ax_a.set_xlabel(axis_label("t"))
+        ax_a.set_ylabel(axis_label("acceleration"))
         params = f"{quantity_value('F', float(ds['F']))}, {quantity_value('K', float(ds['K']))}, {release(ds)}"
         reading = assumed_reading(ds, f"case assumed (the paper does not say which it shows): {params}")
         fig.suptitle(f"{paper_source(ds, 'Fig. 4')}\n{wrap(reading, 110)}", fontsize=8.5)
@@ -139,8 +137,8 @@ def fig5(panels: dict[str, xr.Dataset]):
                 ax.plot(xb[last], vb[last], color=INK, lw=1.4, label="last cycle")
             ax.vlines(ds["impact_position"], ds["velocity_after"], ds["velocity_before"], color=ACCENT, lw=0.8,
                       label="impacts (velocity jumps)")
-            ax.set_xlabel("Displacement (m)")
-            ax.set_ylabel("Velocity (m/s)")
+            ax.set_xlabel(axis_label("displacement"))
+            ax.set_ylabel(axis_label("velocity"))
             start = "from rest" if initial_velocity(ds) == 0 else quantity_value("v0", initial_velocity(ds))
             reading = assumed_reading(ds, f"{quantity_value('F', float(ds['F']))}, {quantity_value('x0', float(ds['x0']))}, {start}")
             ax.set_title(f"({letter}) {quantity_value('K', float(ds['K']))}\n{wrap(reading, 40)}")

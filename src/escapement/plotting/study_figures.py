@@ -13,7 +13,8 @@ import xarray as xr
 from matplotlib.patches import Patch, PathPatch
 from matplotlib.path import Path
 
-from .captions import quantity_value, release
+from ..model.status import Status
+from .captions import axis_label, quantity_value, release, unit
 from .labels import finish, legend_below
 from .style import ACCENT, GUIDE, INK, NO_CYCLE, SERIES, style
 
@@ -48,7 +49,8 @@ def work_precision(rows: list[dict]):
             ax.set_ylabel("Relative error")
             ax.set_title(title)
             ax.axhline(ERROR_FLOOR, color=GUIDE, lw=0.6, ls=":")
-        fig.suptitle("Work-precision, Fig. 3 case (a): errors against 50 digits (exact zero drawn at 1e-17)\n"
+        fig.suptitle("Work-precision, Fig. 3 case (a): errors against 50 digits (exact zero drawn at "
+                     f"{ERROR_FLOOR:.0e})\n"
                      "map (16) + corrected period (23): the closed-form Poincar\u00e9 map, no integration",
                      fontsize=8.5)
         legend_below(fig, axes, ncols=5, fontsize=7)
@@ -63,13 +65,13 @@ def long_run(ds: xr.Dataset):
     with style():
         fig, (ax_t, ax_v) = plt.subplots(1, 2, figsize=(8.4, 3.8), sharex=True, layout="constrained")
         for solver, colour, label in series:
-            drift = np.maximum(np.abs(ds[f"drift_{solver}"].values), 1e-17)
+            drift = np.maximum(np.abs(ds[f"drift_{solver}"].values), ERROR_FLOOR)
             ax_t.loglog(cycle, drift, color=colour, lw=1.2, marker=".", ms=3, label=label)
             error = np.maximum(ds[f"error_velocity_{solver}"].values, ERROR_FLOOR)
             ax_v.loglog(cycle, error, color=colour, lw=1.2, marker=".", ms=3, label=label)
         ulp = np.spacing(float(ds["fixed_point_period"]) * cycle.astype(float))
         ax_t.loglog(cycle, ulp, color=GUIDE, lw=0.8, ls=":", label="spacing of float64 at t")
-        ax_t.set_ylabel("|impact time − reference| (s)")
+        ax_t.set_ylabel(f"|impact time − reference| ({unit('impact_time')})")
         ax_t.set_title("phase error of the impact at a1")
         ax_v.set_ylabel("Relative error")
         ax_v.set_title("velocity before impact")
@@ -127,7 +129,7 @@ def stability_map(ds: xr.Dataset):
     deviation = np.abs(ds["multiplier"].values - ds["multiplier_eq21"].values).T
     outcome = ds["outcome"].values.T
     meanings = ds["outcome"].attrs["flag_meanings"].split()
-    completed = meanings.index("completed")
+    completed = meanings.index(Status.COMPLETED.value)
     no_cycle = (outcome != completed) | ~np.isfinite(mu)
     with style():
         fig, axes = plt.subplots(1, 2, figsize=(8.4, 4.0), sharey=True, layout="constrained")
@@ -148,9 +150,9 @@ def stability_map(ds: xr.Dataset):
             if cells is not None:
                 ax.add_patch(PathPatch(cells, facecolor=NO_CYCLE, edgecolor=GUIDE, hatch="////", lw=0,
                                        label=label))
-            ax.set_xlabel("Impact coefficient b")
+            ax.set_xlabel(axis_label("b"))
             ax.grid(False)  # grid lines over a map read as cell borders
-        axes[0].set_ylabel("Force F (N)")
+        axes[0].set_ylabel(axis_label("F"))
         axes[0].set_title("Multiplier measured from the simulated return map")
         axes[1].set_title("Distance from Eq. (21)")
         constants = ", ".join(quantity_value(k, float(ds[k])) for k in ("M", "K", "a1", "a2", "a3", "a4") if k in ds)
@@ -174,19 +176,19 @@ def escapement_error(ds: xr.Dataset):
         fig, axes = plt.subplots(1, 3, figsize=(10.2, 3.9), sharex=True, layout="constrained")
         for i, name in enumerate(names):
             a1, a2 = float(ds["zone_a1"][i]), float(ds["zone_a2"][i])
-            label = f"{name}: impact at a1 = {a1:g} m, impulse to a2 = {a2:g} m"
+            label = f"{name}: impact at {quantity_value('a1', a1)}, impulse to {quantity_value('a2', a2)}"
             for ax, (variable, _, _) in zip(axes, panels):
                 ax.plot(ds["amplitude"][i], ds[variable][i], marker="o", ms=2.5, lw=1.1, color=SERIES[i % 4],
                         label=label)
         for ax, (_, ylabel, title) in zip(axes, panels):
             ax.axhline(0.0, color=GUIDE, lw=0.6, ls=":")
-            ax.set_xlabel("Amplitude of the limit cycle (m)")
+            ax.set_xlabel(f"Amplitude of the limit cycle ({unit('amplitude')})")
             ax.set_ylabel(ylabel)
             ax.set_title(title)
         model = ", ".join(quantity_value(k, float(ds[k])) for k in ("M", "K", "b"))
         fig.suptitle(
             "Escapement error (beyond the paper): rate of a clock counting 2\u03c0/\u03c9 per swing, against amplitude\n"
-            f"{model}; F from {float(ds['F'][0]):g} to {float(ds['F'][-1]):g} N; the second half cycle mirrors the "
+            f"{model}; F from {float(ds['F'][0]):g} to {float(ds['F'][-1]):g} {unit('F')}; the second half cycle mirrors the "
             f"first; exact solver, Eqs. (24)-(25) corrected agree to {float(ds['max_period_difference']):.0e}",
             fontsize=8.5)
         legend_below(fig, axes, ncols=2, fontsize=7.5)
