@@ -40,7 +40,8 @@ def test_a_line_is_broken_at_each_jump():
 def test_only_a_run_that_did_not_complete_gets_a_note():
     fig, ax = plt.subplots()
     try:
-        assert outcome_note(ax, xr.Dataset(attrs={"outcome": Status.COMPLETED.value})) == []
+        completed = {"outcome": Status.COMPLETED.value, "outcome_message": "50 cycles"}
+        assert outcome_note(ax, xr.Dataset(attrs=completed)) == []
         assert outcome_note(ax, xr.Dataset()) == []
         stopped = xr.Dataset(attrs={"outcome": Status.STOPPED.value, "outcome_message": "the escapement stopped"})
         (note,) = outcome_note(ax, stopped)
