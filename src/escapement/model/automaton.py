@@ -115,12 +115,12 @@ def centre(mode: int, zone_offset):
 
 def position(kind: int, params):
     """Where the surface ``kind`` lies for these parameters, m."""
-    return getattr(params, SURFACES[EventKind(kind)].position)
+    return getattr(params, SURFACES[kind].position)
 
 
 def is_impact(kind: int) -> bool:
     """True for the impacts at a1 and a3, False for the ends of the impulse zones."""
-    return SURFACES[EventKind(kind)].impact
+    return SURFACES[kind].impact
 
 
 def velocity_after(v_before, b, impact):
@@ -140,4 +140,4 @@ def rebound_distance(kind: int, where):
     """After a rebound at the impact ``kind`` at position ``where``, the distance from the free
     centre (0) to it on the side the spring pushes towards (> 0 when the spring drives the mass
     back to it)."""
-    return -SURFACES[EventKind(kind)].direction * where
+    return -SURFACES[kind].direction * where

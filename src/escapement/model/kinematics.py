@@ -62,14 +62,21 @@ def crossing(u0, q, k, v0, omega, direction, xp=math):
     return v_sq > 0.0, angle / omega, v1, angle
 
 
-def arc_maximum(centre, x0, v0, omega, angle, x1):
-    """Largest ``x`` on the arc that starts at ``(x0, v0)``, sweeps ``angle`` and ends at ``x1`` (arrays or
-    numbers): the top of its circle, ``centre + R``, if the arc passes it, else the larger end."""
+def arc_maximum(centre, x0, v0, omega, angle, x1, v1):
+    """Largest ``x`` on the arc that starts at ``(x0, v0)``, sweeps ``angle`` (rad) and ends at ``(x1, v1)``
+    (arrays or numbers): the top of its circle, ``centre + R``, if the arc passes it, else the larger end.
+
+    In the phase plane ``(x - c, v / omega)`` the state turns clockwise, and the top is where ``v`` turns
+    from positive to negative. An arc of less than a full turn that starts moving right (or at rest at
+    the bottom) passes it if it arrives moving left or turns more than half a circle; one that starts
+    moving left passes it only if it turns more than half a circle and arrives moving left.
+    """
     u0 = x0 - centre
-    w0 = v0 / omega
-    start = np.arctan2(w0, u0)  # the top of the circle (x = centre + R) is at phase 0
-    to_top = start + TWO_PI * (start < 0.0)
-    return np.where(to_top <= angle, centre + np.hypot(u0, w0), np.maximum(x0, x1))
+    right = (v0 > 0.0) | ((v0 == 0.0) & (u0 < 0.0))
+    left_at_end = v1 < 0.0
+    more_than_half = angle > math.pi
+    passes = np.where(right, left_at_end | more_than_half, left_at_end & more_than_half)
+    return np.where(passes, centre + np.hypot(u0, v0 / omega), np.maximum(x0, x1))
 
 
 def compensated_add(total, error, term):

@@ -211,7 +211,7 @@ def distinct_cycles(params: Parameters, prep: Prepared, t1: float, v1: float, n:
     if negative is not None:
         return negative
     period = ((dt[0] + dt[1]) + dt[2]) + dt[3]  # the event solver's order
-    amplitude = np.max(arc_maximum(col["centre"], col["x_from"], starts, omega, angle, col["target"]),
+    amplitude = np.max(arc_maximum(col["centre"], col["x_from"], starts, omega, angle, col["target"], arrival),
                        axis=0)
     amplitude = np.maximum(amplitude, col["x_from"][0, 0])  # the impact at a1 begins the cycle
     # the map against the arcs: the arrival at a1 from cycle j is v_{j+1} (and at the fixed point, itself)

@@ -163,14 +163,15 @@ def solve_ensemble(
              turning=turning, margin=margin, t_acc=t_acc, omega=omega, offset=offset, b=b, positions=positions)
     with np.errstate(invalid="ignore", divide="ignore"):
         table = _rows(s, x, v)
-        for _ in range(limits.max_events + 1):  # each pass moves every running trajectory by one event
-            running = np.flatnonzero(status == _RUNNING)
-            if not len(running):
+        every = np.arange(n)
+        for passes in range(limits.max_events + 1):  # each pass moves every running trajectory by one event
+            running = status == _RUNNING
+            ii = slice(None) if running.all() else np.flatnonzero(running)
+            if not len(every[ii]):
                 break
-            for st in np.unique(state[running]):  # the trajectories in each state together
-                group = running[state[running] == st]
-                _pass(slice(None) if len(group) == n else group, int(st), table, s, n_cycles, limits.max_events,
-                      amplitude)
+            # a trajectory has had at most `passes` events: the bound can end one only from this pass on
+            last = passes + 1 >= limits.max_events
+            _pass(ii, state[ii] * n + every[ii], table, s, n_cycles, limits.max_events if last else None, amplitude)
         else:
             raise RuntimeError("the ensemble's loop did not end within its bound of passes")
 
@@ -190,87 +191,97 @@ def solve_ensemble(
     )
 
 
-def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict:
-    """The automaton's rows for every trajectory: per state, the arc's terms (one column per trajectory),
-    its centre, direction, impact flag and next state; the release's row is the surface reached first."""
+def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict[str, np.ndarray]:
+    """The automaton's rows for every trajectory, each field a column per state, flattened: entry ``state * N +
+    i`` is trajectory ``i``'s. Per state the arc's terms, centre, end, direction, impact flag and next state;
+    the release's row is that of the surface reached first (where neither is, the first watched)."""
     omega, offset, positions = s["omega"], s["offset"], s["positions"]
-    table = {}
+    ones = np.ones(len(x))
+    rows = []
     for state, arc in automaton.ARCS.items():
-        centre = automaton.centre(arc.mode, offset)
+        centre = automaton.centre(arc.mode, offset) * ones
         start = x if state == RELEASE else positions[state]
         best = None
-        for kind in arc.watched:  # the release watches two: the first reached (where neither, either)
+        for kind in arc.watched:
             surface = automaton.SURFACES[kind]
             u0, q, k = arc_terms(centre, start, omega, positions[kind])
-            row = dict(u0=u0, q=q, k=k, direction=np.full(len(x), float(surface.direction)), target=positions[kind],
-                       impact=np.full(len(x), surface.impact), following=np.full(len(x), int(kind)), centre=centre)
-            if best is None:
-                best = row
-                continue
-            reached, dt, _, _ = crossing(u0, q, k, v, omega, float(surface.direction), np)
-            old_reached, old_dt, _, _ = crossing(best["u0"], best["q"], best["k"], v, omega, best["direction"], np)
-            take = reached & ~(old_reached & (old_dt <= dt))
-            best = {name: np.where(take, row[name], best[name]) for name in row}
-        table[state] = best
+            row = dict(u0=u0, q=q, k=k, direction=surface.direction * ones, target=positions[kind] * ones,
+                       impact=surface.impact * ones, following=int(kind) * ones, centre=centre)
+            if best is not None:  # the earlier of the two, where both are reached
+                reached, dt, _, _ = crossing(u0, q, k, v, omega, float(surface.direction), np)
+                first, first_dt, _, _ = crossing(best["u0"], best["q"], best["k"], v, omega, best["direction"], np)
+                take = reached & ~(first & (first_dt <= dt))
+                row = {name: np.where(take, row[name], best[name]) for name in row}
+            best = row
+        rows.append(best)
+    table = {name: np.concatenate([row[name] for row in rows]) for name in rows[0]}
+    table["impact"] = table["impact"].astype(bool)
+    table["following"] = table["following"].astype(np.intp)
     return table
 
 
-def _pass(ii, st: int, table: dict, s: dict, n_cycles: int, max_events: int, amplitude: bool) -> None:
-    """One event of each trajectory ``ii`` (running, all in state ``st``): the row's closed form, the regime
-    exits, the impact law, the cycle table at the impacts at a1, the event bound."""
-    row = {name: value[ii] for name, value in table[st].items()}
-    x, v, t, t_err, elapsed = (s[name][ii] for name in ("x", "v", "t", "t_err", "elapsed"))
-    omega = s["omega"][ii]
+def _pass(ii, flat: np.ndarray, table: dict, s: dict, n_cycles: int, max_events: int | None,
+          amplitude: bool) -> None:
+    """One event of each running trajectory ``ii`` (a slice or indices; ``flat`` their rows in ``table``): the
+    row's closed form, the regime exits, the impact law, the cycle table at the impacts at a1, and the event
+    bound where ``max_events`` is given."""
+    row = {name: column.take(flat) for name, column in table.items()}
+    x, v, t, t_err, omega = (s[name][ii] for name in ("x", "v", "t", "t_err", "omega"))
     reached, dt, v1, angle = crossing(row["u0"], row["q"], row["k"], v, omega, row["direction"], np)
-    rows = np.arange(len(s["x"]))[ii]
-    if not reached.all():
-        _exit(rows[~reached], st, s)
-        rows, keep = rows[reached], reached
-        x, v, t, t_err, elapsed, omega, dt, v1, angle = (a[keep] for a in (x, v, t, t_err, elapsed, omega, dt, v1,
-                                                                              angle))
-        row = {name: value[keep] for name, value in row.items()}
-        if not len(rows):
-            return
-        ii = rows
-    target = row["target"]
+    index = None
+    if not reached.all():  # these leave the regime; the pass goes on with the others
+        index = np.arange(len(s["x"]))[ii]
+        _exits(index[~reached], s)
+        ii = index = index[reached]
+        x, v, t, t_err, omega, dt, v1, angle = (a[reached] for a in (x, v, t, t_err, omega, dt, v1, angle))
+        row = {name: value[reached] for name, value in row.items()}
     if amplitude:
-        s["cycle_max"][ii] = np.maximum(s["cycle_max"][ii], arc_maximum(row["centre"], x, v, omega, angle, target))
-    t, t_err = compensated_add(t, t_err, dt)
-    s["t"][ii], s["t_err"][ii] = t, t_err
-    s["elapsed"][ii] = elapsed + dt
-    s["x"][ii] = target
+        s["cycle_max"][ii] = np.maximum(s["cycle_max"][ii], arc_maximum(row["centre"], x, v, omega, angle,
+                                                                        row["target"], v1))
+    s["t"][ii], s["t_err"][ii] = compensated_add(t, t_err, dt)
+    s["elapsed"][ii] += dt
+    s["x"][ii] = row["target"]
     s["events"][ii] += 1
+    s["state"][ii] = row["following"]
     v_after = automaton.velocity_after(v1, s["b"][ii], row["impact"])
     s["v"][ii] = v_after
-    s["state"][ii] = row["following"]
     hit = row["following"] == _A1
     if hit.any():
-        _impact_a1(rows[hit], v1[hit], s, n_cycles, amplitude)
-    chatter = (s["status"][rows] == _RUNNING) & automaton.reverses(v1, v_after)
-    for i, vb, va in zip(rows[chatter], v1[chatter], v_after[chatter]):
-        _chattering(i, EventKind(int(s["state"][i])), va, vb, s)
-    # the event bound: a trajectory still running after its last event ends there
-    limited = rows[(s["status"][rows] == _RUNNING) & (s["events"][rows] >= max_events)]
-    s["status"][limited] = Status.EVENT_LIMIT.code
-    s["t_final"][limited] = s["t"][limited] + s["t_err"][limited]
+        index = np.arange(len(s["x"]))[ii] if index is None else index
+        _impact_a1(index[hit], v1[hit], s, n_cycles, amplitude)
+    chatter = automaton.reverses(v1, v_after)
+    if chatter.any():
+        index = np.arange(len(s["x"]))[ii] if index is None else index
+        chatter &= s["status"][index] == _RUNNING  # not those that completed their cycles
+        for i, vb, va in zip(index[chatter], v1[chatter], v_after[chatter]):
+            _chattering(i, EventKind(int(s["state"][i])), va, vb, s)
+    if max_events is not None:  # a trajectory still running after its last event ends there
+        index = np.arange(len(s["x"]))[ii] if index is None else index
+        limited = index[(s["status"][index] == _RUNNING) & (s["events"][index] >= max_events)]
+        s["status"][limited] = Status.EVENT_LIMIT.code
+        s["t_final"][limited] = s["t"][limited] + s["t_err"][limited]
 
 
 def _impact_a1(i1: np.ndarray, v_before: np.ndarray, s: dict, n_cycles: int, amplitude: bool) -> None:
-    """The trajectories ``i1`` reached the impact at a1: a cycle ends (but the first) and the next begins."""
+    """The trajectories ``i1`` reached the impact at a1: a cycle ends (but the first) and the next begins.
+    The tables are written through flat indices (row * width + cycle)."""
     c = s["count"][i1]
     now = s["t"][i1] + s["t_err"][i1]
-    s["times"][i1, c] = now
-    s["speeds"][i1, c] = v_before
+    cell = i1 * (n_cycles + 1) + c
+    s["times"].put(cell, now)
+    s["speeds"].put(cell, v_before)
     later = c > 0
+    ended = i1[later]
+    cell = ended * n_cycles + (c[later] - 1)  # the cycle that ends here
     if amplitude:
-        s["maxima"][i1[later], c[later] - 1] = s["cycle_max"][i1[later]]
-    s["periods"][i1[later], c[later] - 1] = s["elapsed"][i1[later]]
+        s["maxima"].put(cell, s["cycle_max"][ended])
+    s["periods"].put(cell, s["elapsed"][ended])
     s["elapsed"][i1] = 0.0
     s["cycle_max"][i1] = s["x"][i1]
-    s["count"][i1] += 1
-    done = s["count"][i1] >= n_cycles + 1
-    s["status"][i1[done]] = Status.COMPLETED.code
-    s["t_final"][i1[done]] = now[done]
+    s["count"][i1] = c + 1
+    done = i1[c + 1 >= n_cycles + 1]
+    s["status"][done] = Status.COMPLETED.code
+    s["t_final"][done] = s["t"][done] + s["t_err"][done]
 
 
 def _check_completed_rows(status, times, speeds, periods, maxima, t_final) -> None:
@@ -288,6 +299,12 @@ def _check_completed_rows(status, times, speeds, periods, maxima, t_final) -> No
                 "validation (escapement.model.parameters) must refuse the inputs that lead to it"
             )
 
+
+
+def _exits(rows: np.ndarray, s: dict) -> None:
+    """Trajectories that pass no surface watched in their state, a state at a time."""
+    for st in np.unique(s["state"][rows]):
+        _exit(rows[s["state"][rows] == st], int(st), s)
 
 
 def _exit(rows: np.ndarray, st: int, s: dict) -> None:

@@ -35,6 +35,9 @@ __all__ = ["A1", "PLAN", "Block", "EventRun", "Row", "event_block", "cycle_rows"
 A1 = int(EventKind.IMPACT_A1)
 #: the events of a cycle after the impact at a1, the last that impact
 PLAN = tuple(int(kind) for kind in automaton.cycle_plan())
+#: how a pass of the loop can end before its last event: no watched surface is reached, the end time comes
+#: first, an impact reversed the velocity
+NO_EVENT, HORIZON, REBOUND = "no event", "end time", "rebound"
 
 
 class Row(NamedTuple):
@@ -96,6 +99,11 @@ class EventRun:
         self.open_arc = False  # the run ended inside an arc (no surface reached, or the end time)
         self.taken = 0  # the events handed over by take()
         self.rows[RELEASE] = self.release_row()
+        # by event kind (the release at 0): the position, whether it is an impact, the centre of the arc after it
+        states = range(len(automaton.ARCS))
+        self.position = np.array([math.nan, *(automaton.position(k, params) for k in states[1:])])
+        self.impact = np.array([False, *(automaton.is_impact(k) for k in states[1:])])
+        self.centre = np.array([automaton.centre(automaton.ARCS[k].mode, params.zone_offset) for k in states])
 
     def release_row(self) -> Row | None:
         """The row of the release: of the surfaces it watches, the one reached first (None: neither)."""
@@ -124,15 +132,15 @@ class EventRun:
         ending, v1, i = None, v, -1
         limit = min(n, self.last - self.events)
         if table[state] is None:  # from the release, neither impact is reached
-            ending, limit = "no event", 0
+            ending, limit = NO_EVENT, 0
         for i in range(limit):
             u0, q, k, direction, impact, following, target = table[state]
             reached, dt, v1, angle = crossing(u0, q, k, v, omega, direction)
             if not reached:
-                ending = "no event"
+                ending = NO_EVENT
                 break
             if t + dt > t_stop:
-                ending = "horizon"
+                ending = HORIZON
                 break
             t_sum, t_err = compensated_add(t_sum, t_err, dt)
             t = t_sum + t_err
@@ -141,21 +149,21 @@ class EventRun:
             if impact:
                 v = law(v1, b, True)
                 if reverses(v1, v):
-                    ending = "chattering"
+                    ending = REBOUND
                     break
         self.state, self.x, self.v, self.t_sum, self.t_err, self.time = state, x, v, t_sum, t_err, t
-        self.events += limit if ending is None else max(i, 0) + (ending == "chattering")
+        self.events += limit if ending is None else max(i, 0) + (ending == REBOUND)
         self._end(ending, v1)
 
     def _end(self, ending: str | None, v1: float) -> None:
         """The outcome of a pass that ended with ``ending``, or at the run's last event."""
-        if ending == "no event":
+        if ending == NO_EVENT:
             self.open_arc = True
             self.outcome = self._no_event()
-        elif ending == "horizon":
+        elif ending == HORIZON:
             self.open_arc = True
             self.outcome = horizon_outcome(self.t_stop, self.impacts_a1())
-        elif ending == "chattering":
+        elif ending == REBOUND:
             self.outcome = chattering_outcome(self.params, EventKind(self.state), self.time, v1, self.v)
         elif self.events >= self.last:
             if self.limits.n_cycles is not None and self.impacts_a1() == self.limits.n_cycles + 1:
@@ -210,20 +218,15 @@ def event_block(run: EventRun, start: int, t, v_before, angle, before: tuple[int
                 amplitude: bool = True) -> Block:
     """The events ``start ..`` of ``run`` from what the loop stored, ``before`` the state before the first of
     them (the last event's kind, or the release, and the position and velocity after it)."""
-    params, n = run.params, len(t)
+    n = len(t)
     kind = kinds_from(run.first, start, n) if n else np.zeros(0, dtype=np.int8)
-    by_kind = [(automaton.position(k, params), s.impact, automaton.ARCS[k].mode) for k, s in automaton.SURFACES.items()]
-    position = np.array([math.nan] + [p for p, _, _ in by_kind])
-    impact = np.array([False] + [i for _, i, _ in by_kind])
-    x = position[kind]
-    v_after = automaton.velocity_after(v_before, params.b, impact[kind])
-    centres = np.array([automaton.centre(automaton.ARCS[state].mode, params.zone_offset)
-                        for state in range(len(automaton.ARCS))])
+    x = run.position[kind]
+    v_after = automaton.velocity_after(v_before, run.b, run.impact[kind])
     state_before, x_before, v_after_before = before
-    arc_centre = centres[np.concatenate(([state_before], kind)).astype(np.intp)]
+    arc_centre = run.centre[np.concatenate(([state_before], kind)).astype(np.intp)]
     arc_x = np.concatenate(([x_before], x))
     arc_v = np.concatenate(([v_after_before], v_after))
-    arc_max = (arc_maximum(arc_centre[:n], arc_x[:n], arc_v[:n], run.omega, angle, x) if amplitude
+    arc_max = (arc_maximum(arc_centre[:n], arc_x[:n], arc_v[:n], run.omega, angle, x, v_before) if amplitude
                else np.full(n, math.nan))
     return Block(start, kind, t, x, v_before, v_after, angle / run.omega, arc_max, arc_centre, arc_x, arc_v)
 
