@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 
+from ..model.cycle_map import cycle_map
 from ..model.parameters import Parameters
 
 __all__ = [
@@ -54,18 +55,14 @@ def cycle_velocities(v1: float, p: Parameters) -> dict[str, float]:
 
 
 def map_constant(p: Parameters) -> float:
-    """``C`` in the map ``v1(k+1)**2 = (1 - b)**4 v1(k)**2 + C`` (Eq. (16) is right)."""
-    b, f = p.b, p.f
-    return (
-        (b**2 - 2 * b) * p.omega2 * (p.a1**2 - p.a3**2)
-        - 2 * (1 - b) ** 2 * (p.a1 - p.a2) * f
-        + 2 * (p.a3 - p.a4) * f
-    )
+    """``C`` in the map ``v1(k+1)**2 = (1 - b)**4 v1(k)**2 + C`` (Eq. (16) is right): the model's cycle map,
+    :func:`escapement.model.cycle_map.cycle_map`."""
+    return cycle_map(p).c
 
 
 def fixed_point(p: Parameters) -> float:
     """Fixed point of the general map (16): ``sqrt(C / (1 - (1 - b)**4))`` (NaN if none)."""
-    return _sqrt(map_constant(p) / (1 - (1 - p.b) ** 4))
+    return cycle_map(p).fixed_point
 
 
 def fixed_point_energy_sequence(v1: float, p: Parameters, n: int) -> list[float]:

@@ -107,23 +107,19 @@ class CycleStream(ChunkIterator):
         return CycleTable(impact_time=impact_time, velocity_before_impact=velocity, period=period, amplitude=amplitude)
 
     def _derive(self, stored: tuple[np.ndarray, np.ndarray, np.ndarray]) -> None:
-        """The cycles that the events of a pass complete, after those carried over from the last pass."""
+        """The cycles that the events of a pass complete, the events carried over from the last pass first;
+        the events from the impact at a1 that begins the cycle under way are carried to the next."""
         run = self._run
-        if self._carry is None:
-            start, before, parts = 0, run.release, [()] * 3
-        else:
-            start, before, parts = self._carry
-        t, v_before, angle = (np.concatenate((*old, new)) if old else new for old, new in zip(parts, stored))
-        block: Block = event_block(run, start, t, v_before, angle, before=before)
+        start, before, carried = self._carry or (0, run.release, None)
+        columns = stored if carried is None else tuple(np.concatenate(pair) for pair in zip(carried, stored))
+        block: Block = event_block(run, start, *columns, before=before)
         cycles, begins = cycle_rows(block)
         if len(cycles[0]):
             self._ready.append(cycles)
             self._pending += len(cycles[0])
-        if begins < len(block.t):  # from the impact at a1 that begins the cycle under way
-            before = (int(block.kind[begins - 1]) if begins else before[0], block.arc_x[begins], block.arc_v[begins])
-            self._carry = (start + begins, before, [(column[begins:],) for column in (t, v_before, angle)])
-        else:  # no impact at a1 yet: every event so far
-            self._carry = (start, before, [(column,) for column in (t, v_before, angle)])
+        if begins:  # the state after the event before that impact at a1
+            before = (int(block.kind[begins - 1]), block.arc_x[begins], block.arc_v[begins])
+        self._carry = (start + begins, before, tuple(column[begins:].copy() for column in columns))
 
 
 def iter_cycles(
