@@ -7,6 +7,9 @@ configuration runs in CI's Quick start.
 
 from __future__ import annotations
 
+import ast
+import json
+import os
 import re
 import shutil
 import subprocess
@@ -85,3 +88,26 @@ def copy_run(run: Path, dest: Path) -> Path:
     damages it: the shared run stays as it was, and nothing has to be rerun to restore it."""
     shutil.copytree(run, dest, symlinks=True)
     return dest
+
+
+#: what a workflow script is run with before its first line: Snakemake's object, of which the imports use only
+#: ``scriptdir``
+_STUB = "import types\nsnakemake = types.SimpleNamespace(scriptdir={scriptdir!r})\n"
+_LIST = ("\nimport json as _json, sys as _sys\nprint(_json.dumps(sorted({m.__file__ for n, m in list(_sys.modules.items())"
+         "\n    if n.partition('.')[0] in ('escapement', 'benchmarks') and getattr(m, '__file__', None)})))\n")
+
+
+def loaded_files(where: Path, script: str, also: tuple[str, ...] = ()) -> tuple[set[str], set[str]]:
+    """The files of the package and of the benchmarks that a fresh interpreter has loaded once it has run
+    ``script``'s statements up to its last import (with a stand-in for Snakemake's object), and once it has
+    then imported the modules ``also``; relative to ``where``, whose package (``where/src``) is the one loaded."""
+    path = where / script
+    tree = ast.parse(path.read_text())
+    last = max(i for i, node in enumerate(tree.body) if isinstance(node, (ast.Import, ast.ImportFrom)))
+    code = _STUB.format(scriptdir=str(path.parent)) + ast.unparse(ast.Module(tree.body[: last + 1], [])) + _LIST
+    code += "".join(f"import {name}\n" for name in also) + _LIST
+    env = {**os.environ, "PYTHONPATH": str(where / "src")}
+    result = subprocess.run([sys.executable, "-c", code], cwd=where, env=env, capture_output=True, text=True,
+                            check=True)
+    before, after = (json.loads(line) for line in result.stdout.splitlines()[-2:])
+    return {os.path.relpath(f, where) for f in before}, {os.path.relpath(f, where) for f in after}

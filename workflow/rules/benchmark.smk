@@ -1,6 +1,6 @@
 rule run_work_precision:
     input:
-        code=STUDIES_CODE,
+        code=code("run_work_precision.py"),
     output:
         csv="results/benchmark/work_precision.csv",
     log:
@@ -33,7 +33,7 @@ use rule run_work_precision as run_work_precision_full with:
 rule plot_work_precision:
     input:
         csv="results/benchmark/work_precision.csv",
-        code=PLOT_CODE,
+        code=code("plot_work_precision.py"),
     output:
         png=report(
             "results/figures/work_precision.png",
@@ -54,7 +54,7 @@ rule plot_work_precision:
 use rule plot_work_precision as plot_work_precision_full with:
     input:
         csv="results/benchmark/work_precision_full.csv",
-        code=PLOT_CODE,
+        code=code("plot_work_precision.py"),
     output:
         png="results/benchmark/work_precision_full.png",
         pdf="results/benchmark/work_precision_full.pdf",
@@ -64,7 +64,7 @@ use rule plot_work_precision as plot_work_precision_full with:
 
 rule simulate_long_run:
     input:
-        code=SIMULATE_CODE,
+        code=code("simulate_long_run.py"),
     output:
         nc="results/benchmark/long_run.nc",
         timing="results/benchmark/long_run_timing.csv",
@@ -84,7 +84,7 @@ rule simulate_long_run:
 rule plot_long_run:
     input:
         nc="results/benchmark/long_run.nc",
-        code=PLOT_CODE,
+        code=code("plot_long_run.py"),
     output:
         png=report(
             "results/figures/long_run.png",
@@ -104,7 +104,7 @@ rule plot_long_run:
 
 rule simulate_escapement_error:
     input:
-        code=SIMULATE_CODE,
+        code=code("simulate_escapement_error.py"),
     output:
         nc="results/escapement_error/rate.nc",
     log:
@@ -123,7 +123,7 @@ rule simulate_escapement_error:
 rule plot_escapement_error:
     input:
         nc="results/escapement_error/rate.nc",
-        code=PLOT_CODE,
+        code=code("plot_escapement_error.py"),
     output:
         png=report(
             "results/figures/escapement_error.png",
@@ -143,7 +143,7 @@ rule plot_escapement_error:
 
 rule simulate_stability_chunk:
     input:
-        code=SIMULATE_CODE,
+        code=code("simulate_stability_chunk.py"),
     output:
         nc="results/stability/chunk_{chunk}.nc",
         timing="results/stability/chunk_{chunk}_timing.csv",
@@ -157,7 +157,7 @@ rule simulate_stability_chunk:
         "../../environment/environment.yml"
     params:
         model=scenes.stability_model(config),
-        axes=lambda wildcards: stability_chunk(wildcards.chunk),
+        axes=stability_chunk,
     script:
         "../scripts/simulate_stability_chunk.py"
 
@@ -171,7 +171,7 @@ rule merge_stability:
             "results/stability/chunk_{chunk}_timing.csv",
             chunk=scenes.stability_chunks(config),
         ),
-        code=MERGE_CODE,
+        code=code("merge_stability.py"),
     output:
         nc="results/stability/map.nc",
         timing="results/stability/timing.csv",
@@ -187,7 +187,7 @@ rule merge_stability:
 rule plot_stability_map:
     input:
         nc="results/stability/map.nc",
-        code=PLOT_CODE,
+        code=code("plot_stability_map.py"),
     output:
         png=report(
             "results/figures/stability_map.png",
@@ -208,7 +208,7 @@ rule plot_stability_map:
 rule run_stress:
     input:
         long_run="results/benchmark/long_run.nc",
-        code=STUDIES_CODE,
+        code=code("run_stress.py"),
     output:
         csv=report(
             "results/stress/summary.csv",
@@ -228,7 +228,7 @@ rule run_stress:
 
 rule run_speed:
     input:
-        code=STUDIES_CODE,
+        code=code("run_speed.py"),
     output:
         csv="results/benchmark/speed.csv",
         headline="results/benchmark/headline.csv",

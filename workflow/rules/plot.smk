@@ -1,7 +1,7 @@
 rule plot_fig3:
     input:
         nc=expand("results/fig3/case_{case}.nc", case=config["fig3"]["cases"]),
-        code=PLOT_CODE,
+        code=code("plot_fig3.py"),
     output:
         png=report(
             "results/figures/fig3.png",
@@ -24,7 +24,7 @@ rule plot_fig3:
 rule plot_fig4:
     input:
         nc="results/fig4/shock.nc",
-        code=PLOT_CODE,
+        code=code("plot_fig4.py"),
     output:
         png=report(
             "results/figures/fig4.png",
@@ -45,7 +45,7 @@ rule plot_fig4:
 rule plot_fig5:
     input:
         nc=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
-        code=PLOT_CODE,
+        code=code("plot_fig5.py"),
     output:
         png=report(
             "results/figures/fig5.png",

@@ -1,6 +1,6 @@
 rule simulate_fig3:
     input:
-        code=SIMULATE_CODE,
+        code=code("simulate_fig3.py"),
     output:
         nc="results/fig3/case_{case}.nc",
     log:
@@ -12,14 +12,14 @@ rule simulate_fig3:
     conda:
         "../../environment/environment.yml"
     params:
-        scene=lambda wildcards: fig3_scene(wildcards.case),
+        scene=fig3_scene,
     script:
         "../scripts/simulate_fig3.py"
 
 
 rule simulate_fig4:
     input:
-        code=SIMULATE_CODE,
+        code=code("simulate_fig4.py"),
     output:
         nc="results/fig4/shock.nc",
     log:
@@ -36,7 +36,7 @@ rule simulate_fig4:
 
 rule simulate_fig5:
     input:
-        code=SIMULATE_CODE,
+        code=code("simulate_fig5.py"),
     output:
         nc="results/fig5/K_{K}.nc",
     log:
@@ -48,14 +48,14 @@ rule simulate_fig5:
     conda:
         "../../environment/environment.yml"
     params:
-        scene=lambda wildcards: fig5_scene(wildcards.K),
+        scene=fig5_scene,
     script:
         "../scripts/simulate_fig5.py"
 
 
 rule simulate_checks:
     input:
-        code=SIMULATE_CODE,
+        code=code("simulate_checks.py"),
     output:
         nc="results/claims/checks.nc",
     log:

@@ -5,20 +5,7 @@ rule check_claims:
         fig4="results/fig4/shock.nc",
         fig5=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
         checks="results/claims/checks.nc",
-        code=package_code(
-            "model",
-            "solvers",
-            "paper",
-            "studies",
-            "plotting/__init__.py",
-            "plotting/autoscale.py",
-            *IO,
-            *PIPELINE,
-            "pipeline/claims_csv.py",
-            "pipeline/readings.py",
-            "pipeline/scores.py",
-            "pipeline/verdict.py",
-        ),
+        code=code("check_claims.py"),
     output:
         csv=report(
             "results/claims.csv",
@@ -50,7 +37,7 @@ rule render_docs:
         readings="results/readings/axis_scores.csv",
         templates=["workflow/templates/README.md", "workflow/templates/REPLICATION.md"],
         timings_template="workflow/templates/timings.md",
-        code=RENDER_CODE,
+        code=code("render_docs.py"),
     output:
         readme="results/docs/README.md",
         replication="results/docs/REPLICATION.md",
@@ -78,7 +65,7 @@ rule render_docs:
 rule publish:
     input:
         published=list(PUBLISHED.values()),
-        code=PUBLISH_CODE,
+        code=code("publish.py"),
     output:
         tracked=[update(path) for path in PUBLISHED],
     log:
@@ -94,18 +81,7 @@ rule publish:
 # autoscaled to the printed tick steps, scored by the printed limits it reproduces.
 rule score_readings:
     input:
-        code=package_code(
-            "model",
-            "solvers",
-            "paper",
-            "studies",
-            "plotting/__init__.py",
-            "plotting/autoscale.py",
-            *IO,
-            *PIPELINE,
-            "pipeline/readings.py",
-            "pipeline/scores.py",
-        ),
+        code=code("score_readings.py"),
     output:
         csv=report(
             "results/readings/axis_scores.csv",
