@@ -60,7 +60,8 @@ def prepared(params: Parameters) -> Prepared:
     table = rows(params)
     states = (A1, *PLAN[:-1])  # the event that starts each arc
     plan = [table[state] for state in states]
-    columns = {name: np.array([[getattr(row, name)] for row in plan]) for name in ("u0", "q", "k", "direction", "target")}
+    columns = {name: np.array([[getattr(row, name)] for row in plan]) for name in ("u0", "q", "k", "direction")}
+    columns["target"] = np.array([[automaton.position(row.following, params)] for row in plan])
     columns["centre"] = np.array([[automaton.centre(automaton.ARCS[s].mode, params.zone_offset)] for s in states])
     columns["x_from"] = np.array([[automaton.position(s, params)] for s in states])
     return Prepared(cycle_map(params), tuple(automaton.is_impact(s) for s in states), columns)

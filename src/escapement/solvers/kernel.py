@@ -50,7 +50,6 @@ class Row(NamedTuple):
     direction: float  #: the direction of motion at its end, +1.0 or -1.0
     impact: bool  #: reaching its end is an impact
     following: int  #: the event it ends at: the next state
-    target: float  #: where it ends, m
 
 
 def rows(params: Parameters) -> list[Row | None]:
@@ -68,20 +67,20 @@ def _row(params: Parameters, start: float, mode: Mode, kind: EventKind) -> Row:
     surface = automaton.SURFACES[kind]
     target = automaton.position(kind, params)
     u0, q, k = arc_terms(automaton.centre(mode, params.zone_offset), start, params.omega, target)
-    return Row(u0, q, k, float(surface.direction), surface.impact, int(kind), target)
+    return Row(u0, q, k, float(surface.direction), surface.impact, int(kind))
 
 
 def kinds_from(first: int, start: int, n: int) -> np.ndarray:
     """The kinds of the events ``start .. start + n - 1`` of a run whose first event is ``first``: after it,
     each row has one surface, so the kinds go round the cycle's :data:`PLAN`."""
     shift = (PLAN.index(first) + start) % len(PLAN)
-    return np.tile(np.array(PLAN[shift:] + PLAN[:shift], dtype=np.int8), n // len(PLAN) + 1)[:n]
+    return np.tile(np.array(PLAN[shift:] + PLAN[:shift], dtype=np.intp), n // len(PLAN) + 1)[:n]
 
 
 class EventRun:
     """One run of the exact solver, resumable: :meth:`advance` runs at most a given number of events and keeps
-    the state for the next call. The events are stored in :attr:`stored` until :meth:`take` hands them
-    over; :attr:`outcome` is set when the run ends."""
+    the state for the next call. The events are stored in :attr:`t`, :attr:`v_before` and :attr:`angle`
+    until :meth:`take` hands them over; :attr:`outcome` is set when the run ends."""
 
     def __init__(self, params: Parameters, x: float, v: float, limits: RunLimits) -> None:
         self.params, self.limits = params, limits
@@ -89,12 +88,13 @@ class EventRun:
         self.release = (RELEASE, x, v)  # the state before the first event
         self.rows = rows(params)
         self.t_stop = math.inf if limits.t_end is None else limits.t_end
-        self.state, self.x, self.v = RELEASE, x, v  # the last event's kind, and the state after it
+        self.state, self.v = RELEASE, v  # the last event's kind, and the velocity after it
         self.t_sum = self.t_err = self.time = 0.0
         self.events = 0
         self.first: int | None = None  # the first event's kind
         self.last = limits.max_events  # the events of the whole run (n_cycles: up to the last impact at a1)
-        self.stored = array("d")  # per event: its time, the velocity before it, the angle its arc swept
+        # per event: its time (s), the velocity before it (m/s), the angle its arc swept (rad)
+        self.t, self.v_before, self.angle = array("d"), array("d"), array("d")
         self.outcome: Outcome | None = None
         self.open_arc = False  # the run ended inside an arc (no surface reached, or the end time)
         self.taken = 0  # the events handed over by take()
@@ -109,7 +109,7 @@ class EventRun:
         """The row of the release: of the surfaces it watches, the one reached first (None: neither)."""
         best = None
         for kind in automaton.ARCS[RELEASE].watched:
-            row = _row(self.params, self.x, automaton.ARCS[RELEASE].mode, kind)
+            row = _row(self.params, self.release[1], automaton.ARCS[RELEASE].mode, kind)
             reached, dt, _, _ = crossing(row.u0, row.q, row.k, self.v, self.omega, row.direction)
             if reached and (best is None or dt < best[0]):
                 best = (dt, row)
@@ -127,14 +127,14 @@ class EventRun:
             return
         table, omega, b, t_stop = self.rows, self.omega, self.b, self.t_stop
         law, reverses = automaton.velocity_after, automaton.reverses
-        store = self.stored.extend
-        state, x, v, t_sum, t_err, t = self.state, self.x, self.v, self.t_sum, self.t_err, self.time
+        put_t, put_v, put_angle = self.t.append, self.v_before.append, self.angle.append
+        state, v, t_sum, t_err, t = self.state, self.v, self.t_sum, self.t_err, self.time
         ending, v1, i = None, v, -1
         limit = min(n, self.last - self.events)
         if table[state] is None:  # from the release, neither impact is reached
             ending, limit = NO_EVENT, 0
         for i in range(limit):
-            u0, q, k, direction, impact, following, target = table[state]
+            u0, q, k, direction, impact, following = table[state]
             reached, dt, v1, angle = crossing(u0, q, k, v, omega, direction)
             if not reached:
                 ending = NO_EVENT
@@ -144,14 +144,16 @@ class EventRun:
                 break
             t_sum, t_err = compensated_add(t_sum, t_err, dt)
             t = t_sum + t_err
-            store((t, v1, angle))
-            x, state, v = target, following, v1
+            put_t(t)
+            put_v(v1)
+            put_angle(angle)
+            state, v = following, v1
             if impact:
-                v = law(v1, b, True)
+                v = law(v1, b, 1.0)
                 if reverses(v1, v):
                     ending = REBOUND
                     break
-        self.state, self.x, self.v, self.t_sum, self.t_err, self.time = state, x, v, t_sum, t_err, t
+        self.state, self.v, self.t_sum, self.t_err, self.time = state, v, t_sum, t_err, t
         self.events += limit if ending is None else max(i, 0) + (ending == REBOUND)
         self._end(ending, v1)
 
@@ -174,12 +176,13 @@ class EventRun:
 
     def _no_event(self) -> Outcome:
         """No watched surface is passed from the state after the last event: the turning point of the arc."""
+        x = self.release[1] if self.state == RELEASE else automaton.position(self.state, self.params)
         mode = automaton.ARCS[self.state].mode
         centre = automaton.centre(mode, self.params.zone_offset)
         if mode == Mode.FREE:
             return no_event_outcome(self.params, self.state, centre, self.time, math.inf,
-                                    math.hypot(self.x - centre, self.v / self.omega))
-        dt, turning_point = time_to_rest(centre, self.x, self.v, self.omega)
+                                    math.hypot(x - centre, self.v / self.omega))
+        dt, turning_point = time_to_rest(centre, x, self.v, self.omega)
         return no_event_outcome(self.params, self.state, centre, self.time, dt, turning_point)
 
     def impacts_a1(self) -> int:
@@ -190,12 +193,13 @@ class EventRun:
         return 0 if self.events <= to_a1 else (self.events - to_a1 - 1) // len(PLAN) + 1
 
     def take(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The events stored since the last call (times, s; velocities before, m/s; angles swept, rad), as
-        views of the loop's buffer (no copy; they keep it alive); a new buffer takes the next events."""
-        rows = np.frombuffer(self.stored, dtype=float).reshape(-1, 3) if len(self.stored) else np.zeros((0, 3))
-        self.stored = array("d")
+        """The events stored since the last call: times (s), velocities before (m/s) and angles swept (rad), as
+        arrays over the loop's buffers (no copy: they keep them alive); new buffers take the next events."""
+        columns = tuple(np.frombuffer(column, dtype=float) if len(column) else np.zeros(0)
+                        for column in (self.t, self.v_before, self.angle))
+        self.t, self.v_before, self.angle = array("d"), array("d"), array("d")
         self.taken = self.events
-        return rows[:, 0], rows[:, 1], rows[:, 2]
+        return columns
 
 
 class Block(NamedTuple):
@@ -219,16 +223,16 @@ def event_block(run: EventRun, start: int, t, v_before, angle, before: tuple[int
     """The events ``start ..`` of ``run`` from what the loop stored, ``before`` the state before the first of
     them (the last event's kind, or the release, and the position and velocity after it)."""
     n = len(t)
-    kind = kinds_from(run.first, start, n) if n else np.zeros(0, dtype=np.int8)
+    kind = kinds_from(run.first, start, n) if n else np.zeros(0, dtype=np.intp)
     x = run.position[kind]
     v_after = automaton.velocity_after(v_before, run.b, run.impact[kind])
     state_before, x_before, v_after_before = before
-    arc_centre = run.centre[np.concatenate(([state_before], kind)).astype(np.intp)]
+    arc_centre = np.concatenate(([run.centre[state_before]], run.centre[kind]))
     arc_x = np.concatenate(([x_before], x))
     arc_v = np.concatenate(([v_after_before], v_after))
     arc_max = (arc_maximum(arc_centre[:n], arc_x[:n], arc_v[:n], run.omega, angle, x, v_before) if amplitude
                else np.full(n, math.nan))
-    return Block(start, kind, t, x, v_before, v_after, angle / run.omega, arc_max, arc_centre, arc_x, arc_v)
+    return Block(start, kind.astype(np.int8), t, x, v_before, v_after, angle / run.omega, arc_max, arc_centre, arc_x, arc_v)
 
 
 def cycle_rows(block: Block) -> tuple[tuple[np.ndarray, ...], int]:
