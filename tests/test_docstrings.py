@@ -1,7 +1,7 @@
-"""The public API's docstrings: every name ``escapement.__all__`` exports, and the methods of
-:class:`escapement.Solution` that a notebook reaches for, has numpydoc sections (Parameters with a
-type and, for the model's quantities, the SI unit; Returns for functions; Examples), and the
-examples run as doctests."""
+"""The public API's docstrings: every name ``escapement.__all__`` exports, the method of
+:class:`escapement.Solution` and the function of :mod:`escapement.io` that a notebook reaches
+for, has numpydoc sections (Parameters with a type and, for the model's quantities, the SI unit;
+Returns for functions; Examples), and the examples run as doctests."""
 
 from __future__ import annotations
 
@@ -14,12 +14,13 @@ import time
 import pytest
 
 import escapement
+import escapement.io
 from escapement.model.quantities import INITIAL_STATE, PARAMETERS
 
 EXPORTED = {name: getattr(escapement, name) for name in escapement.__all__ if name != "__version__"}
 METHODS = {
-    "Solution.to_xarray": escapement.Solution.to_xarray,
     "Solution.to_dataframe": escapement.Solution.to_dataframe,
+    "io.run_dataset": escapement.io.run_dataset,
 }
 DOCUMENTED = {**EXPORTED, **METHODS}
 #: the unit each quantity's entry names: the plain-text label of escapement.model.quantities

@@ -73,7 +73,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     if args.netcdf:
         from .io.netcdf import write_netcdf
-        from .io.scenes import poincare_scene
+        from .pipeline.simulate import poincare_scene
 
         write_netcdf(poincare_scene(params, args.x0, args.cycles), args.netcdf)
         print(f"# {run.status.value}: {run.message}; wrote {args.netcdf}")

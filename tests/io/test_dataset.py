@@ -1,6 +1,11 @@
+"""The CF datasets of a run: its variables, their units and long names, the global attributes,
+and one run as a dataset (:func:`escapement.io.run_dataset`)."""
+
 import datetime as dt
 
 import numpy as np
+import pytest
+import xarray as xr
 
 import escapement
 from escapement.io.dataset import (
@@ -10,12 +15,26 @@ from escapement.io.dataset import (
     event_variables,
     impact_variables,
     parameter_variables,
-    sample_times,
+    run_dataset,
     sample_variables,
 )
+from escapement.io.netcdf import read_netcdf, write_netcdf
 from escapement.io.provenance import DOI
 from escapement.model.parameters import Parameters
 from escapement.solvers.exact import solve_exact
+from escapement.solvers.high_precision import solve_high_precision
+
+
+@pytest.fixture(scope="module")
+def run50():
+    """Fig. 3 (a) (M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m) from x0 = 1 m, 50 cycles."""
+    return solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=50)
+
+
+@pytest.fixture(scope="module")
+def stopped():
+    """Released at 0.01 m from rest, the free swing (radius 0.01 m) never reaches a1 = -0.1 m or a3 = 0.1 m."""
+    return solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 0.01, n_cycles=5)
 
 
 def test_every_variable_has_units_and_a_long_name(case_b):
@@ -81,20 +100,6 @@ def test_every_variable_has_a_coverage_content_type(case_b):
     assert content["F"] == content["x0"] == "auxiliaryInformation"
 
 
-def test_sample_times_add_a_sample_on_each_side_of_each_jump():
-    below = np.nextafter
-    t = sample_times(np.array([0.0, 1.0, 2.0, 3.0]), np.array([1.5, 2.0, 0.0, 5.0]))
-    # 1.5: both sides added; 2.0 on the grid: the sample below it added; 0.0 at the start: nothing below it;
-    # 5.0 outside the grid: nothing
-    assert t.tolist() == [0.0, 1.0, below(1.5, 0.0), 1.5, below(2.0, 0.0), 2.0, 3.0]
-    assert np.all(np.diff(t) > 0)
-
-
-def test_sample_times_keep_the_grid_without_jumps():
-    grid = np.linspace(80.0, 87.0, 8)
-    assert sample_times(grid, np.array([])).tolist() == grid.tolist()
-
-
 def test_impulse_and_dissipated_energy_follow_the_impact_law():
     p = Parameters(M=2.0, K=1.0, F=0.5, b=0.2, a1=-0.1, a2=0.05)
     run = solve_exact(p, 3.0, n_cycles=3)
@@ -104,3 +109,67 @@ def test_impulse_and_dissipated_energy_follow_the_impact_law():
     assert np.allclose(imp["energy_dissipated"].values, 0.5 * 2.0 * vb**2 * (1 - 0.8**2), rtol=1e-14)
     assert np.all(np.isin(imp["impact_position"].values, [-0.1, 0.1]))
 
+
+# --- run_dataset --------------------------------------------------------------------------------
+
+
+def test_run_dataset_round_trips_through_the_netcdf_writer_with_units_everywhere(run50, tmp_path):
+    ds = run_dataset(run50)
+    path = write_netcdf(ds, tmp_path / "run.nc")
+    back = read_netcdf(path)
+    xr.testing.assert_identical(back, ds)
+    without_units = {name for name, variable in back.variables.items() if "units" not in variable.attrs}
+    assert without_units == {"event_kind"}  # a CF flag variable: flag_values and flag_meanings, no units
+    assert "flag_values" in back["event_kind"].attrs
+    assert all("long_name" in variable.attrs for variable in back.variables.values())
+
+
+def test_run_dataset_holds_the_solution_s_arrays_and_outcome(run50):
+    ds = run_dataset(run50)
+    np.testing.assert_array_equal(ds["period"].values, run50.cycles.period)
+    np.testing.assert_array_equal(ds["velocity_before_impact"].values, run50.cycles.velocity_before_impact)
+    np.testing.assert_array_equal(ds["cycle"].values, np.arange(1, 51))
+    np.testing.assert_array_equal(ds["event_time"].values, run50.events.t)
+    np.testing.assert_array_equal(ds["event_kind"].values, run50.events.kind)
+    assert float(ds["t_final"]) == run50.t_final
+    assert {name: ds[name].attrs["units"] for name in ("period", "velocity_before_impact", "K", "x0", "t_final")} == {
+        "period": "s", "velocity_before_impact": "m s-1", "K": "N m-1", "x0": "m", "t_final": "s"}
+    assert float(ds["F"]) == 1.0 and float(ds["x0"]) == 1.0 and float(ds["a3"]) == 0.1
+    assert ds.attrs["outcome"] == "completed" and ds.attrs["solver"] == "exact"
+    assert ds.attrs["outcome_message"] == "completed 50 cycles"
+    assert ds.attrs["Conventions"] == "CF-1.11, ACDD-1.3"
+    assert np.isnan(float(ds["exit_margin"]))
+
+
+def test_run_dataset_of_a_stopped_run_keeps_the_exit_and_an_infinite_end(stopped, tmp_path):
+    back = read_netcdf(write_netcdf(run_dataset(stopped), tmp_path / "stopped.nc"))
+    assert back.sizes["cycle"] == 0 and back.sizes["event"] == 0
+    assert float(back["t_final"]) == np.inf
+    assert float(back["exit_turning_point"]) == 0.01
+    assert float(back["exit_margin"]) == pytest.approx(0.1 - 0.01, abs=1e-15)
+    assert back.attrs["outcome"] == "stopped"
+
+
+def test_run_dataset_of_a_high_precision_run_stores_the_nearest_doubles(tmp_path):
+    p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    hp = solve_high_precision(p, 1.0, n_cycles=2, dps=20)
+    back = read_netcdf(write_netcdf(run_dataset(hp), tmp_path / "hp.nc"))
+    assert back["period"].dtype == np.float64
+    assert back["period"].values.tolist() == [float(x) for x in hp.cycles.period]
+    assert back["event_velocity_after"].values.tolist() == [float(x) for x in hp.events.v_after]
+
+
+def test_a_run_s_data_frames_have_the_names_units_and_long_names_of_its_dataset(run50):
+    ds = run_dataset(run50)
+    for table in ("cycles", "events"):
+        frame = run50.to_dataframe(table)
+        for name in frame.columns:
+            np.testing.assert_array_equal(frame[name].to_numpy(), ds[name].values)
+            assert frame.attrs["long_names"][name] == ds[name].attrs["long_name"]
+            assert frame.attrs["units"].get(name) == ds[name].attrs.get("units")
+
+
+def test_run_dataset_is_exported_by_io():
+    import escapement.io
+
+    assert escapement.io.run_dataset is run_dataset and "run_dataset" in dir(escapement.io)

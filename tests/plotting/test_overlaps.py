@@ -21,14 +21,14 @@ from matplotlib.text import Annotation, Text
 from matplotlib.transforms import Bbox
 
 from escapement import Parameters
-from escapement.io.scenes import (
+from escapement.pipeline.simulate import (
+    escapement_error_scene,
     long_run_scene,
     phase_scene,
     poincare_scene,
     shock_scene,
     stability_chunk_scene,
 )
-from escapement.io.studies import escapement_error_scene
 from escapement.plotting import escapement_error, fig3, fig4, fig5, long_run, stability_map, work_precision
 from escapement.studies.benchmark import METHODS
 from escapement.studies.benchmark import work_precision as work_precision_rows

@@ -6,7 +6,7 @@ from matplotlib.collections import QuadMesh
 from matplotlib.figure import Figure
 
 from escapement import Parameters
-from escapement.io.scenes import phase_scene, poincare_scene, shock_scene
+from escapement.pipeline.simulate import phase_scene, poincare_scene, shock_scene
 from escapement.plotting import fig3, fig4, fig5, stability_map, work_precision
 from escapement.plotting.style import save_figure
 
@@ -92,7 +92,7 @@ def test_the_fixed_point_line_is_drawn_over_the_points_in_its_own_colour(case_a)
 
 
 def _stability(b=(0.5, 0.9, 1.1, 1.5), F=(0.5, 1.0, 2.0)):
-    from escapement.io.scenes import stability_chunk_scene
+    from escapement.pipeline.simulate import stability_chunk_scene
 
     return stability_chunk_scene({"M": 1.0, "K": 1.0, "a1": -0.1, "a2": 0.05}, list(b), list(F), speed_sample=2)[0]
 

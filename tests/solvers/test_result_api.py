@@ -1,5 +1,5 @@
-"""What a notebook sees of a run: a short repr, the run as a CF dataset (``to_xarray``) and its
-cycles and events as tables (``to_dataframe``)."""
+"""What a notebook sees of a run: a short repr and its cycles and events as tables
+(``to_dataframe``); the run as a CF dataset is :func:`escapement.io.run_dataset` (tests/io)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,6 @@ import pytest
 import xarray as xr
 
 from escapement import EventKind, Parameters, Status, solve_ensemble, solve_exact, solve_high_precision
-from escapement.io.netcdf import read_netcdf, write_netcdf
 
 
 @pytest.fixture(scope="module")
@@ -92,57 +91,8 @@ def test_the_cycle_table_and_arcs_print_short(run50):
     assert arcs.startswith(f"<ArcTable> {len(run50.trajectory.t_start)} harmonic arcs") and len(arcs) < 200
 
 
-# --- to_xarray ----------------------------------------------------------------------------------
-
-
-def test_to_xarray_round_trips_through_the_netcdf_writer_with_units_everywhere(run50, tmp_path):
-    ds = run50.to_xarray()
-    path = write_netcdf(ds, tmp_path / "run.nc")
-    back = read_netcdf(path)
-    xr.testing.assert_identical(back, ds)
-    without_units = {name for name, variable in back.variables.items() if "units" not in variable.attrs}
-    assert without_units == {"event_kind"}  # a CF flag variable: flag_values and flag_meanings, no units
-    assert "flag_values" in back["event_kind"].attrs
-    assert all("long_name" in variable.attrs for variable in back.variables.values())
-
-
-def test_to_xarray_holds_the_solution_s_arrays_and_outcome(run50):
-    ds = run50.to_xarray()
-    np.testing.assert_array_equal(ds["period"].values, run50.cycles.period)
-    np.testing.assert_array_equal(ds["velocity_before_impact"].values, run50.cycles.velocity_before_impact)
-    np.testing.assert_array_equal(ds["cycle"].values, np.arange(1, 51))
-    np.testing.assert_array_equal(ds["event_time"].values, run50.events.t)
-    np.testing.assert_array_equal(ds["event_kind"].values, run50.events.kind)
-    assert float(ds["t_final"]) == run50.t_final
-    assert {name: ds[name].attrs["units"] for name in ("period", "velocity_before_impact", "K", "x0", "t_final")} == {
-        "period": "s", "velocity_before_impact": "m s-1", "K": "N m-1", "x0": "m", "t_final": "s"}
-    assert float(ds["F"]) == 1.0 and float(ds["x0"]) == 1.0 and float(ds["a3"]) == 0.1
-    assert ds.attrs["outcome"] == "completed" and ds.attrs["solver"] == "exact"
-    assert ds.attrs["outcome_message"] == "completed 50 cycles"
-    assert ds.attrs["Conventions"] == "CF-1.11, ACDD-1.3"
-    assert np.isnan(float(ds["exit_margin"]))
-
-
-def test_to_xarray_of_a_stopped_run_keeps_the_exit_and_an_infinite_end(stopped, tmp_path):
-    back = read_netcdf(write_netcdf(stopped.to_xarray(), tmp_path / "stopped.nc"))
-    assert back.sizes["cycle"] == 0 and back.sizes["event"] == 0
-    assert float(back["t_final"]) == np.inf
-    assert float(back["exit_turning_point"]) == 0.01
-    assert float(back["exit_margin"]) == pytest.approx(0.1 - 0.01, abs=1e-15)
-    assert back.attrs["outcome"] == "stopped"
-
-
-def test_to_xarray_of_a_high_precision_run_stores_the_nearest_doubles(tmp_path):
-    p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-    hp = solve_high_precision(p, 1.0, n_cycles=2, dps=20)
-    back = read_netcdf(write_netcdf(hp.to_xarray(), tmp_path / "hp.nc"))
-    assert back["period"].dtype == np.float64
-    assert back["period"].values.tolist() == [float(x) for x in hp.cycles.period]
-    assert back["event_velocity_after"].values.tolist() == [float(x) for x in hp.events.v_after]
-
-
 def test_importing_the_solvers_imports_neither_io_nor_xarray_nor_pandas():
-    """to_xarray and to_dataframe import the io layer on use: the solvers stay below it."""
+    """to_dataframe imports pandas on use, and the solvers never import io: they stay below it."""
     code = ("import sys, escapement.solvers\n"
             "print(sorted({'escapement.io', 'escapement.io.dataset', 'xarray', 'pandas'} & set(sys.modules)))")
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

@@ -17,13 +17,13 @@ import xarray as xr
 
 from ..model.events import EventKind
 from ..model.quantities import quantity
+from ..solvers.describe import CYCLE_COLUMNS, EVENT_COLUMNS
 from ..solvers.result import Solution
 from .provenance import DOI, REFERENCE, provenance_attributes
 
 __all__ = [
     "MODEL_SUMMARY",
     "cycle_variables",
-    "sample_times",
     "sample_variables",
     "impact_variables",
     "event_variables",
@@ -63,21 +63,14 @@ MODEL_INPUT = "auxiliaryInformation"
 CLASSIFICATION = "thematicClassification"
 QUALITY = "qualityInformation"
 
-CYCLE_VARIABLES = {
-    "impact_time": ("s", "time of impact k at a1 (start of cycle k)"),
-    "velocity_before_impact": ("m s-1", "velocity just before impact k at a1"),
-    "period": ("s", "time from impact k to impact k+1 at a1"),
-    "amplitude": ("m", "largest displacement between impact k and impact k+1 (right turning point)"),
-}
-
-
 def cycle_variables(solution: Solution) -> dict[str, xr.DataArray]:
-    """The Poincare map per cycle, on the coordinate ``cycle`` = 1 .. N."""
+    """The Poincare map per cycle, on the coordinate ``cycle`` = 1 .. N, each column with the units
+    and long name of :data:`escapement.solvers.describe.CYCLE_COLUMNS`."""
     cycles = solution.cycles
     coords = {"cycle": ("cycle", cycles.cycle.astype(np.int32), {"long_name": "cycle number", "units": "1"})}
     return {
         name: xr.DataArray(getattr(cycles, name), dims="cycle", coords=coords, attrs={"units": u, "long_name": ln})
-        for name, (u, ln) in CYCLE_VARIABLES.items()
+        for name, (u, ln) in CYCLE_COLUMNS.items()
     }
 
 
@@ -85,19 +78,9 @@ def time_coordinate(t: np.ndarray) -> dict:
     return {"t": ("t", np.asarray(t, dtype=float), {"units": "s", "long_name": "time since release"})}
 
 
-def sample_times(grid: np.ndarray, jumps: np.ndarray) -> np.ndarray:
-    """The times ``grid`` and, for each jump time ``t_k`` inside it, ``t_k`` and the largest float
-    below it: one sample on each side of the jump (the arc before it, the arc from it). The result
-    increases strictly, as CF requires of a coordinate; a jump at the grid's first time keeps only
-    the sample after it."""
-    grid = np.asarray(grid, dtype=float)
-    jumps = np.asarray(jumps, dtype=float)
-    jumps = jumps[(jumps > grid[0]) & (jumps <= grid[-1])]
-    return np.union1d(grid, np.concatenate([np.nextafter(jumps, -np.inf), jumps]))
-
-
 def sample_variables(solution: Solution, t: np.ndarray, acceleration: bool = False) -> dict[str, xr.DataArray]:
-    """Displacement, velocity (and the smooth part of the acceleration) at times ``t``."""
+    """Displacement, velocity (and the smooth part of the acceleration) at times ``t`` (the experiment
+    chooses them: :func:`escapement.experiments.figures.sample_times`)."""
     x, v, a = solution.sample(t)
     coords = time_coordinate(t)
     out = {
@@ -142,33 +125,26 @@ def impact_variables(solution: Solution, window: tuple[float, float] | None = No
 
 
 def event_variables(solution: Solution, window: tuple[float, float] | None = None) -> dict[str, xr.DataArray]:
-    """Every event (impacts and ends of the impulse), optionally inside ``window``."""
+    """Every event (impacts and ends of the impulse), optionally inside ``window``, each column with
+    the units and long name of :data:`escapement.solvers.describe.EVENT_COLUMNS`; the kind as CF
+    flags."""
     ev = solution.events
     keep = np.ones(len(ev), dtype=bool)
     if window is not None:
         keep = (ev.t >= window[0]) & (ev.t <= window[1])
     kinds = list(EventKind)
-    return {
-        "event_time": xr.DataArray(ev.t[keep], dims="event", attrs={"units": "s", "long_name": "time of the event"}),
-        "event_kind": xr.DataArray(
-            ev.kind[keep].astype(np.int8),
-            dims="event",
-            attrs={
-                "long_name": "kind of event",
-                "flag_values": np.array([int(k) for k in kinds], dtype=np.int8),
-                "flag_meanings": "impact_at_a1 end_of_impulse_at_a2 impact_at_a3 end_of_impulse_at_a4",
-            },
-        ),
-        "event_position": xr.DataArray(
-            ev.x[keep], dims="event", attrs={"units": "m", "long_name": "position of the event"}
-        ),
-        "event_velocity_before": xr.DataArray(
-            ev.v_before[keep], dims="event", attrs={"units": "m s-1", "long_name": "velocity just before the event"}
-        ),
-        "event_velocity_after": xr.DataArray(
-            ev.v_after[keep], dims="event", attrs={"units": "m s-1", "long_name": "velocity just after the event"}
-        ),
+    flags = {
+        "flag_values": np.array([int(k) for k in kinds], dtype=np.int8),
+        "flag_meanings": "impact_at_a1 end_of_impulse_at_a2 impact_at_a3 end_of_impulse_at_a4",
     }
+    out = {}
+    for name, (field, units, long_name) in EVENT_COLUMNS.items():
+        values = getattr(ev, field)[keep]
+        if units is None:
+            out[name] = xr.DataArray(values.astype(np.int8), dims="event", attrs={"long_name": long_name, **flags})
+        else:
+            out[name] = xr.DataArray(values, dims="event", attrs={"units": units, "long_name": long_name})
+    return out
 
 
 def scalar_variable(value, units: str, long_name: str, content: str = MODEL_RESULT, **attrs) -> xr.DataArray:
@@ -242,11 +218,36 @@ def dataset(
 
 
 def run_dataset(solution: Solution) -> xr.Dataset:
-    """One run as a dataset (what :meth:`Solution.to_xarray <escapement.Solution.to_xarray>` returns): its
-    per-cycle table (:func:`cycle_variables`), every event (:func:`event_variables`), its end time and the
-    numbers behind a regime exit (NaN where they do not apply), with the parameters, initial state,
-    outcome and provenance of :func:`dataset`. The high-precision solver's mpmath numbers become their
-    nearest doubles."""
+    """One run as a CF-1.11 / ACDD-1.3 dataset.
+
+    The per-cycle table (:func:`cycle_variables`) on the coordinate ``cycle``, every event
+    (:func:`event_variables`), the end time ``t_final`` and the numbers behind a regime exit (NaN
+    where they do not apply), each with its ``units`` and ``long_name``; the parameters and initial
+    state as 0-d variables, the outcome, the solver and the provenance as global attributes
+    (:func:`dataset`). The high-precision solver's mpmath numbers become their nearest doubles.
+    Write it with :func:`escapement.io.write_netcdf`.
+
+    Parameters
+    ----------
+    solution : Solution
+        A run of any solver.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset, in memory.
+
+    Examples
+    --------
+    >>> from escapement import Parameters, solve_exact
+    >>> from escapement.io import run_dataset
+    >>> run = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=3)
+    >>> ds = run_dataset(run)
+    >>> ds.sizes["cycle"], ds.sizes["event"], ds.attrs["outcome"]
+    (3, 15, 'completed')
+    >>> ds["period"].attrs["units"], bool(ds["period"][0] == run.cycles.period[0])
+    ('s', True)
+    """
     variables = {**cycle_variables(solution), **event_variables(solution)}
     variables = {name: da.astype(float) if da.dtype == object else da for name, da in variables.items()}
     variables["t_final"] = scalar_variable(

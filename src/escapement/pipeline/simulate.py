@@ -1,25 +1,43 @@
-"""The simulation jobs: a scene's parameters in, one netCDF file out (never a figure)."""
+"""The simulation jobs: a scene's parameters in, one netCDF file out (never a figure).
+
+Each scene is run by :mod:`escapement.experiments` and made a dataset by :mod:`escapement.io`;
+the ``*_scene`` functions do both and return the dataset in memory, the ``simulate_*`` jobs log
+the outcome and write it.
+"""
 
 from __future__ import annotations
 
 import logging
 from collections.abc import Mapping, Sequence
 
+import xarray as xr
+
+from ..experiments.checks import measure_cases
+from ..experiments.escapement_error import escapement_error
+from ..experiments.figures import phase, poincare, shock
+from ..experiments.long_run import run_long
+from ..experiments.stability import stability_chunk
 from ..io.netcdf import write_netcdf
 from ..io.scenes import (
-    checks_scene,
-    long_run_scene,
-    phase_scene,
-    poincare_scene,
-    shock_scene,
-    stability_chunk_scene,
+    checks_dataset,
+    long_run_dataset,
+    phase_dataset,
+    poincare_dataset,
+    shock_dataset,
+    stability_dataset,
 )
-from ..io.studies import escapement_error_scene
+from ..io.studies import escapement_error_dataset
 from ..model.parameters import Parameters, check_initial_state
 from .logs import logged
 from .tables import write_timings
 
 __all__ = [
+    "checks_scene",
+    "escapement_error_scene",
+    "long_run_scene",
+    "phase_scene",
+    "poincare_scene",
+    "shock_scene",
     "simulate_checks",
     "simulate_escapement_error",
     "simulate_long_run",
@@ -27,7 +45,62 @@ __all__ = [
     "simulate_poincare",
     "simulate_shock",
     "simulate_stability_chunk",
+    "stability_chunk_scene",
 ]
+
+
+def poincare_scene(params: Parameters, x0: float, n_cycles: int, amplitude: str = "largest_displacement"
+                   ) -> xr.Dataset:
+    """The Fig. 3 dataset of a run from ``x0`` (:func:`escapement.experiments.figures.poincare`)."""
+    run = poincare(params, x0, n_cycles, amplitude)
+    return poincare_dataset(run.solution, run.n_cycles, run.amplitude_definition, run.amplitude_long_name,
+                            run.amplitude_cycle, run.amplitude, run.fixed_point_19)
+
+
+def shock_scene(params: Parameters, x0: float, velocity_window: tuple[float, float],
+                acceleration_window: tuple[float, float], samples_per_second: int) -> xr.Dataset:
+    """The Fig. 4 dataset (:func:`escapement.experiments.figures.shock`)."""
+    run = shock(params, x0, velocity_window, acceleration_window, samples_per_second)
+    return shock_dataset(run.solution, run.t, run.window, run.velocity_window, run.acceleration_window,
+                         run.samples_per_second)
+
+
+def phase_scene(params: Parameters, x0: float, n_cycles: int, samples_per_period: int) -> xr.Dataset:
+    """The dataset of one Fig. 5 panel (:func:`escapement.experiments.figures.phase`)."""
+    run = phase(params, x0, n_cycles, samples_per_period)
+    return phase_dataset(run.solution, run.t, run.n_cycles, run.samples_per_period)
+
+
+def checks_scene(cases: Sequence[Mapping], n_cycles: int) -> xr.Dataset:
+    """The checks dataset of the claims register (:func:`escapement.experiments.checks.measure_cases`)."""
+    return checks_dataset(measure_cases(cases, n_cycles), n_cycles)
+
+
+def long_run_scene(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_rtol: float,
+                   ivp_cycles: int) -> tuple[xr.Dataset, dict[str, float]]:
+    """The long-run dataset and, apart from it, each method's wall time
+    (:func:`escapement.experiments.long_run.run_long`)."""
+    run = run_long(params, x0, n_cycles, ivp_method, ivp_rtol, ivp_cycles)
+    ds = long_run_dataset(run.errors, params, x0, run.n_cycles, run.ivp_method, run.ivp_rtol, run.ivp_cycles)
+    return ds, run.timings
+
+
+def stability_chunk_scene(model: Mapping, b_values: Sequence[float], F_values: Sequence[float],
+                          speed_sample: int = 100) -> tuple[xr.Dataset, dict[str, float]]:
+    """The dataset of one chunk of the stability map and, apart from it, the cost per trajectory of
+    each solver (:func:`escapement.experiments.stability.stability_chunk`)."""
+    chunk = stability_chunk(model, b_values, F_values, speed_sample)
+    grid = {"multiplier": chunk.multiplier, "multiplier_eq21": chunk.multiplier_eq21,
+            "fixed_point": chunk.fixed_point, "period": chunk.period, "status": chunk.status}
+    return stability_dataset(chunk.b_values, chunk.F_values, grid, chunk.constants), chunk.timings
+
+
+def escapement_error_scene(base: Parameters, forces: Sequence[float], zones: Mapping[str, Sequence[float]]
+                           ) -> xr.Dataset:
+    """The escapement-error dataset (:func:`escapement.experiments.escapement_error.escapement_error`)."""
+    result = escapement_error(base, forces, zones)
+    return escapement_error_dataset(result.zones, result.forces, result.values, result.max_period_difference,
+                                    result.seconds_per_day, result.model)
 
 
 def _x0(scene: Mapping) -> float:

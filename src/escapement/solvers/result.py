@@ -7,67 +7,37 @@ run ended (``status``, ``message``, ``success``), the numbers behind a regime ex
 kept, the trajectory.
 
 Their ``repr`` is a short summary (outcome, counts, time span, parameters with units), whatever the
-length of the run; the arrays are in the fields. :meth:`Solution.to_xarray` gives the run as the
-CF dataset the workflow writes, :meth:`Solution.to_dataframe` its cycles or events as a table.
+length of the run (written by :mod:`.describe`); the arrays are in the fields.
+:meth:`Solution.to_dataframe` gives its cycles or events as a table, and
+:func:`escapement.io.run_dataset` the run as the CF dataset the workflow writes.
 """
 
 from __future__ import annotations
 
 import math
-import textwrap
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
-from ..model.events import EventKind, EventLog
+from ..model.events import EventLog
 from ..model.kinematics import sample_arcs
 from ..model.parameters import Parameters
-from ..model.quantities import INITIAL_STATE, PARAMETERS
 from ..model.status import Status
+from .describe import (
+    CYCLE_COLUMNS,
+    EVENT_COLUMNS,
+    arc_table_summary,
+    cycle_table_summary,
+    ensemble_summary,
+    exit_summary,
+    solution_summary,
+)
 
-if TYPE_CHECKING:  # io and pandas are imported on use (see Solution.to_xarray)
+if TYPE_CHECKING:  # pandas is imported on use (see Solution.to_dataframe)
     import pandas as pd
-    import xarray as xr
 
 __all__ = ["ArcTable", "CycleTable", "EnsembleSolution", "Exit", "Solution", "Trajectory"]
-
-#: the plain-text units of the per-cycle columns and of the exit's numbers, for the summaries
-CYCLE_UNITS = {"impact_time": "s", "velocity_before_impact": "m/s", "period": "s", "amplitude": "m"}
-EXIT_UNITS = {"turning_point": "m", "margin": "m", "t_accumulation": "s"}
-#: the width the summaries wrap the message to, and of their column of labels
-_WIDTH = 120
-_LABEL = 12
-
-
-def _number(value, unit: str = "") -> str:
-    """``value`` to 6 significant digits (an mpmath number as its nearest double), with its unit."""
-    text = f"{float(value):.6g}"
-    return text if unit in ("", "1") else f"{text} {unit}"
-
-
-def _span(values, unit: str) -> str:
-    """The range of ``values`` (NaN ignored): ``lo .. hi unit``, one number if they agree."""
-    finite = np.asarray(values, dtype=float)
-    finite = finite[~np.isnan(finite)]
-    if not finite.size:
-        return "none"
-    lo, hi = finite.min(), finite.max()
-    return _number(lo, unit) if lo == hi else f"{_number(lo)} .. {_number(hi, unit)}"
-
-
-def _line(label: str, text: str, column: int = _LABEL, wrap: bool = False) -> str:
-    """One line of a summary: the label in a column ``column`` wide, ``text`` beside it (wrapped
-    with ``wrap``)."""
-    head = f"{label + ':':<{column}}"
-    if not wrap:
-        return head + text
-    return textwrap.fill(text, _WIDTH, initial_indent=head, subsequent_indent=" " * column, break_on_hyphens=False)
-
-
-def _parameters_text(params: Parameters) -> str:
-    return ", ".join(f"{name} = {_number(value, PARAMETERS[name].unit_label)}"
-                     for name, value in params.as_dict().items())
 
 
 class Trajectory(Protocol):
@@ -94,8 +64,7 @@ class ArcTable:
         return len(self.t_start)
 
     def __repr__(self) -> str:
-        return (f"<ArcTable> {len(self)} harmonic arcs from t = {_span(self.t_start[:1], 's')} to "
-                f"t_final = {_number(self.t_final, 's')}, omega = {_number(self.omega, 'rad/s')}")
+        return arc_table_summary(self)
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Displacement, velocity and smooth acceleration at times ``t`` (NaN outside [0, t_final])."""
@@ -119,12 +88,7 @@ class CycleTable:
         return len(self.period)
 
     def __repr__(self) -> str:
-        shape = np.shape(self.period)
-        size = f"{shape[-1]} cycles" + (f" x {shape[0]} trajectories" if len(shape) == 2 else "")
-        lines = [f"<CycleTable> {size}"]
-        for name, unit in CYCLE_UNITS.items():
-            lines.append(f"  {name:<24}{_span(getattr(self, name), unit)}")
-        return "\n".join(lines)
+        return cycle_table_summary(self)
 
     @property
     def cycle(self) -> np.ndarray:
@@ -173,8 +137,7 @@ class Exit:
 
     def summary(self) -> str:
         """The numbers that apply, with their units (empty if none does)."""
-        return ", ".join(f"{name} = {_number(getattr(self, name), unit)}" for name, unit in EXIT_UNITS.items()
-                         if not math.isnan(getattr(self, name)))
+        return exit_summary(self)
 
 
 @dataclass(frozen=True, repr=False)
@@ -215,8 +178,8 @@ class Solution:
 
     See Also
     --------
-    Solution.to_xarray : the run as a CF dataset.
     Solution.to_dataframe : its cycles or events as a :class:`pandas.DataFrame`.
+    escapement.io.run_dataset : the run as a CF dataset.
 
     Examples
     --------
@@ -254,22 +217,6 @@ class Solution:
         return self.status.success
 
     def __repr__(self) -> str:
-        ev, cycles = self.events, self.cycles
-        impacts = int(np.count_nonzero(np.isin(ev.kind, [int(EventKind.IMPACT_A1), int(EventKind.IMPACT_A3)])))
-        lines = [
-            f"<escapement.Solution> {self.status.value} ({self.method})",
-            _line("message", self.message, wrap=True),
-            _line("time span", f"t = 0 .. {_number(self.t_final, 's')} (t_final)"),
-        ]
-        events = f"{len(ev)} ({impacts} impacts)"
-        if len(ev):
-            events += f" from t = {_number(ev.t[0], 's')} to {_number(ev.t[-1], 's')}"
-        lines.append(_line("events", events))
-        text = f"{len(cycles)}"
-        if len(cycles):
-            text += (f"; the last: period {_number(cycles.period[-1], 's')}, velocity before impact "
-                     f"{_number(cycles.velocity_before_impact[-1], 'm/s')}, amplitude {_number(cycles.amplitude[-1], 'm')}")
-        lines.append(_line("cycles", text))
         if self.trajectory is None:
             kept = "not kept"
         elif isinstance(self.trajectory, ArcTable):
@@ -277,14 +224,7 @@ class Solution:
             kept = f"kept ({n} harmonic arc{'' if n == 1 else 's'})"
         else:
             kept = "kept"
-        lines.append(_line("trajectory", kept))
-        state = ", ".join(f"{name} = {_number(value, INITIAL_STATE[name].unit_label)}"
-                          for name, value in (("x0", self.x0), ("v0", self.v0)))
-        lines.append(_line("initial", state))
-        lines.append(_line("parameters", _parameters_text(self.params)))
-        if self.exit.summary():
-            lines.append(_line("exit", self.exit.summary()))
-        return "\n".join(lines)
+        return solution_summary(self, kept)
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Displacement [m], velocity [m/s] and acceleration [m/s^2] at times ``t`` [s]."""
@@ -292,44 +232,12 @@ class Solution:
             raise ValueError("this run kept no trajectory; solve again with record_trajectory=True")
         return self.trajectory.sample(np.asarray(t, dtype=float))
 
-    def to_xarray(self) -> xr.Dataset:
-        """The run as the CF-1.11 / ACDD-1.3 dataset the workflow writes for it.
-
-        The per-cycle table on the coordinate ``cycle`` (``impact_time`` in s,
-        ``velocity_before_impact`` in m s-1, ``period`` in s, ``amplitude`` in m), every event
-        (``event_time``, ``event_kind``, ``event_position``, ``event_velocity_before`` and
-        ``event_velocity_after``), ``t_final`` and the exit's numbers, and the parameters and initial
-        state as 0-d variables, each with its ``units`` and ``long_name``; the outcome, the solver and
-        the provenance as global attributes. Built by :func:`escapement.io.dataset.run_dataset`, from
-        the builders of the workflow's files; the high-precision solver's mpmath numbers become their
-        nearest doubles. Write it with :func:`escapement.io.write_netcdf`.
-
-        Returns
-        -------
-        xarray.Dataset
-            The dataset, in memory.
-
-        Examples
-        --------
-        >>> from escapement import Parameters, solve_exact
-        >>> run = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=3)
-        >>> ds = run.to_xarray()
-        >>> ds.sizes["cycle"], ds.sizes["event"], ds.attrs["outcome"]
-        (3, 15, 'completed')
-        >>> ds["period"].attrs["units"], bool(ds["period"][0] == run.cycles.period[0])
-        ('s', True)
-        """
-        # io sits above solvers in the package's layers (escapement/__init__.py): imported here, on
-        # use, never at module level, as pandas' DataFrame.to_xarray imports xarray when called.
-        from ..io.dataset import run_dataset
-
-        return run_dataset(self)
-
     def to_dataframe(self, table: str = "cycles") -> pd.DataFrame:
         """The run's cycles or events as a :class:`pandas.DataFrame`.
 
-        The columns are the variables of :meth:`to_xarray` (the same names, values and units), a
-        row per cycle or per event: for ``"cycles"`` the index is the cycle number ``cycle`` (1 .. N)
+        The columns are the variables of the run's CF dataset (:func:`escapement.io.run_dataset`: the
+        same names, values and units, from :mod:`escapement.solvers.describe`), a row per cycle or per
+        event: for ``"cycles"`` the index is the cycle number ``cycle`` (1 .. N)
         and the columns ``impact_time`` (s), ``velocity_before_impact`` (m s-1), ``period`` (s) and
         ``amplitude`` (m); for ``"events"`` the index ``event`` counts from 0 and the columns are
         ``event_time`` (s), ``event_kind`` (the :class:`~escapement.EventKind` code, which compares
@@ -364,24 +272,22 @@ class Solution:
         >>> int((events["event_kind"] == EventKind.IMPACT_A1).sum())
         4
         """
-        # io (and pandas with it) sits above solvers: imported on use, as in to_xarray
-        import pandas as pd
+        import pandas as pd  # imported on use: a job that only solves does not load it
 
-        from ..io.dataset import cycle_variables, event_variables
-
-        builders = {"cycles": cycle_variables, "events": event_variables}
-        if table not in builders:
-            raise ValueError(f"table = {table!r} is invalid: table must be one of {', '.join(map(repr, builders))}")
-        variables = builders[table](self)
         if table == "cycles":
             index = pd.Index(self.cycles.cycle, name="cycle")
-        else:
+            columns = {name: (getattr(self.cycles, name), units, long_name)
+                       for name, (units, long_name) in CYCLE_COLUMNS.items()}
+        elif table == "events":
             index = pd.RangeIndex(len(self.events), name="event")
-        columns = {name: da.values.astype(float) if da.dtype == object else da.values
-                   for name, da in variables.items()}
-        frame = pd.DataFrame(columns, index=index)
-        frame.attrs["units"] = {name: da.attrs["units"] for name, da in variables.items() if "units" in da.attrs}
-        frame.attrs["long_names"] = {name: da.attrs["long_name"] for name, da in variables.items()}
+            columns = {name: (getattr(self.events, field), units, long_name)
+                       for name, (field, units, long_name) in EVENT_COLUMNS.items()}
+        else:
+            raise ValueError(f"table = {table!r} is invalid: table must be one of 'cycles', 'events'")
+        frame = pd.DataFrame({name: np.asarray(values, dtype=np.int8 if name == "event_kind" else float)
+                              for name, (values, _, _) in columns.items()}, index=index)
+        frame.attrs["units"] = {name: units for name, (_, units, _) in columns.items() if units is not None}
+        frame.attrs["long_names"] = {name: long_name for name, (_, _, long_name) in columns.items()}
         return frame
 
 
@@ -441,21 +347,4 @@ class EnsembleSolution:
         return Status.from_code(int(self.status[i]))
 
     def __repr__(self) -> str:
-        n = len(self.status)
-        codes, counts = np.unique(np.asarray(self.status), return_counts=True)
-        outcomes = ", ".join(f"{Status.from_code(code).value} {count}" for code, count in zip(codes, counts))
-        shape = np.shape(self.cycles.period)
-        column = 25
-        lines = [
-            f"<escapement.EnsembleSolution> {n} trajectories, {shape[-1] if len(shape) == 2 else 0} cycles "
-            f"({self.method})",
-            _line("outcomes", outcomes or "none", column),
-            _line("t_final", _span(self.t_final, "s"), column),
-        ]
-        for name, unit in CYCLE_UNITS.items():
-            lines.append(_line(name, _span(getattr(self.cycles, name), unit), column))
-        for name, unit in EXIT_UNITS.items():
-            values = getattr(self, f"exit_{name}")
-            if not np.isnan(np.asarray(values, dtype=float)).all():
-                lines.append(_line(f"exit_{name}", _span(values, unit), column))
-        return "\n".join(lines)
+        return ensemble_summary(self)

@@ -1,0 +1,158 @@
+"""How a run describes itself: its columns' units and long names, and the text of its summaries.
+
+The per-cycle table and the event log have named columns, each with its UDUNITS string and long
+name (:data:`CYCLE_COLUMNS`, :data:`EVENT_COLUMNS`), the same in a run's data frames
+(:meth:`escapement.Solution.to_dataframe`) and in the CF datasets of :mod:`escapement.io`. The
+summaries are what the results' ``repr`` shows: the outcome, counts, time span and the parameters
+with their units, a few lines whatever the length of the run.
+"""
+
+from __future__ import annotations
+
+import math
+import textwrap
+
+import numpy as np
+
+from ..model.events import EventKind
+from ..model.parameters import Parameters
+from ..model.quantities import INITIAL_STATE, PARAMETERS
+from ..model.status import Status
+
+__all__ = [
+    "CYCLE_COLUMNS",
+    "CYCLE_UNITS",
+    "EVENT_COLUMNS",
+    "EXIT_UNITS",
+    "arc_table_summary",
+    "cycle_table_summary",
+    "ensemble_summary",
+    "exit_summary",
+    "solution_summary",
+]
+
+#: the per-cycle table's columns: name: (UDUNITS string, long name)
+CYCLE_COLUMNS = {
+    "impact_time": ("s", "time of impact k at a1 (start of cycle k)"),
+    "velocity_before_impact": ("m s-1", "velocity just before impact k at a1"),
+    "period": ("s", "time from impact k to impact k+1 at a1"),
+    "amplitude": ("m", "largest displacement between impact k and impact k+1 (right turning point)"),
+}
+#: the event log's columns: name: (field of the EventLog, UDUNITS string or None for a code, long name)
+EVENT_COLUMNS = {
+    "event_time": ("t", "s", "time of the event"),
+    "event_kind": ("kind", None, "kind of event"),
+    "event_position": ("x", "m", "position of the event"),
+    "event_velocity_before": ("v_before", "m s-1", "velocity just before the event"),
+    "event_velocity_after": ("v_after", "m s-1", "velocity just after the event"),
+}
+
+#: the plain-text units of the per-cycle columns and of the exit's numbers, for the summaries
+CYCLE_UNITS = {"impact_time": "s", "velocity_before_impact": "m/s", "period": "s", "amplitude": "m"}
+EXIT_UNITS = {"turning_point": "m", "margin": "m", "t_accumulation": "s"}
+#: the width the summaries wrap the message to, and of their column of labels
+_WIDTH = 120
+_LABEL = 12
+
+
+def number(value, unit: str = "") -> str:
+    """``value`` to 6 significant digits (an mpmath number as its nearest double), with its unit."""
+    text = f"{float(value):.6g}"
+    return text if unit in ("", "1") else f"{text} {unit}"
+
+
+def span(values, unit: str) -> str:
+    """The range of ``values`` (NaN ignored): ``lo .. hi unit``, one number if they agree."""
+    finite = np.asarray(values, dtype=float)
+    finite = finite[~np.isnan(finite)]
+    if not finite.size:
+        return "none"
+    lo, hi = finite.min(), finite.max()
+    return number(lo, unit) if lo == hi else f"{number(lo)} .. {number(hi, unit)}"
+
+
+def _line(label: str, text: str, column: int = _LABEL, wrap: bool = False) -> str:
+    """One line of a summary: the label in a column ``column`` wide, ``text`` beside it (wrapped
+    with ``wrap``)."""
+    head = f"{label + ':':<{column}}"
+    if not wrap:
+        return head + text
+    return textwrap.fill(text, _WIDTH, initial_indent=head, subsequent_indent=" " * column, break_on_hyphens=False)
+
+
+def _parameters_text(params: Parameters) -> str:
+    return ", ".join(f"{name} = {number(value, PARAMETERS[name].unit_label)}"
+                     for name, value in params.as_dict().items())
+
+
+def arc_table_summary(arcs) -> str:
+    """One line on a table of harmonic arcs (:class:`~escapement.solvers.result.ArcTable`)."""
+    return (f"<ArcTable> {len(arcs)} harmonic arcs from t = {span(arcs.t_start[:1], 's')} to "
+            f"t_final = {number(arcs.t_final, 's')}, omega = {number(arcs.omega, 'rad/s')}")
+
+
+def cycle_table_summary(cycles) -> str:
+    """The range of each column of a per-cycle table, one or many trajectories."""
+    shape = np.shape(cycles.period)
+    size = f"{shape[-1]} cycles" + (f" x {shape[0]} trajectories" if len(shape) == 2 else "")
+    lines = [f"<CycleTable> {size}"]
+    for name, unit in CYCLE_UNITS.items():
+        lines.append(f"  {name:<24}{span(getattr(cycles, name), unit)}")
+    return "\n".join(lines)
+
+
+def exit_summary(exit) -> str:
+    """The numbers of a regime exit that apply, with their units (empty if none does)."""
+    return ", ".join(f"{name} = {number(getattr(exit, name), unit)}" for name, unit in EXIT_UNITS.items()
+                     if not math.isnan(getattr(exit, name)))
+
+
+def solution_summary(solution, trajectory: str) -> str:
+    """A run in a few lines: outcome, message, time span, events, cycles, initial state, parameters
+    and the exit's numbers; ``trajectory`` says whether (and how) the motion was kept."""
+    ev, cycles = solution.events, solution.cycles
+    impacts = int(np.count_nonzero(np.isin(ev.kind, [int(EventKind.IMPACT_A1), int(EventKind.IMPACT_A3)])))
+    lines = [
+        f"<escapement.Solution> {solution.status.value} ({solution.method})",
+        _line("message", solution.message, wrap=True),
+        _line("time span", f"t = 0 .. {number(solution.t_final, 's')} (t_final)"),
+    ]
+    events = f"{len(ev)} ({impacts} impacts)"
+    if len(ev):
+        events += f" from t = {number(ev.t[0], 's')} to {number(ev.t[-1], 's')}"
+    lines.append(_line("events", events))
+    text = f"{len(cycles)}"
+    if len(cycles):
+        text += (f"; the last: period {number(cycles.period[-1], 's')}, velocity before impact "
+                 f"{number(cycles.velocity_before_impact[-1], 'm/s')}, amplitude {number(cycles.amplitude[-1], 'm')}")
+    lines.append(_line("cycles", text))
+    lines.append(_line("trajectory", trajectory))
+    state = ", ".join(f"{name} = {number(value, INITIAL_STATE[name].unit_label)}"
+                      for name, value in (("x0", solution.x0), ("v0", solution.v0)))
+    lines.append(_line("initial", state))
+    lines.append(_line("parameters", _parameters_text(solution.params)))
+    if exit_summary(solution.exit):
+        lines.append(_line("exit", exit_summary(solution.exit)))
+    return "\n".join(lines)
+
+
+def ensemble_summary(runs) -> str:
+    """Many runs in a few lines: the count of each outcome and the range of each column."""
+    n = len(runs.status)
+    codes, counts = np.unique(np.asarray(runs.status), return_counts=True)
+    outcomes = ", ".join(f"{Status.from_code(code).value} {count}" for code, count in zip(codes, counts))
+    shape = np.shape(runs.cycles.period)
+    column = 25
+    lines = [
+        f"<escapement.EnsembleSolution> {n} trajectories, {shape[-1] if len(shape) == 2 else 0} cycles "
+        f"({runs.method})",
+        _line("outcomes", outcomes or "none", column),
+        _line("t_final", span(runs.t_final, "s"), column),
+    ]
+    for name, unit in CYCLE_UNITS.items():
+        lines.append(_line(name, span(getattr(runs.cycles, name), unit), column))
+    for name, unit in EXIT_UNITS.items():
+        values = getattr(runs, f"exit_{name}")
+        if not np.isnan(np.asarray(values, dtype=float)).all():
+            lines.append(_line(f"exit_{name}", span(values, unit), column))
+    return "\n".join(lines)
