@@ -1,13 +1,16 @@
 """Replication of J. Mao, Y. Fu, P. Li, "Dynamics of periodic impulsive collision in
 escapement mechanism", Shock and Vibration 20 (2013) 1001-1010, DOI 10.3233/SAV-130800.
 
-Layers, each importing only those above it in this list:
+Layers, each importing only those above it in this list (``tests/test_layers.py`` checks every
+import of the source):
 
 * :mod:`escapement.model`: parameters, the hybrid automaton, closed-form kinematics, outcomes;
 * :mod:`escapement.solvers`: the solver loop, its integrators and the one result type;
-* :mod:`escapement.paper` and :mod:`escapement.studies`: the paper's equations (as printed and
+* :mod:`escapement.paper`, then :mod:`escapement.studies`: the paper's equations (as printed and
   corrected), the Poincare measurement and the claims; the benchmark, long run, stress cases;
-* :mod:`escapement.io`: CF datasets, netCDF files, atomic writes, provenance;
+* :mod:`escapement.experiments`: each scene of the workflow run, its results returned plain;
+* :mod:`escapement.io`: CF datasets made of runs and results, netCDF files, atomic writes,
+  provenance (it imports only the model and the solvers);
 * :mod:`escapement.plotting`: the figures;
 * :mod:`escapement.pipeline`: what the workflow's rules call, and :mod:`escapement.cli`, the
   command line ``python -m escapement solve`` (neither is imported here).
