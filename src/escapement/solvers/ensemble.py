@@ -1,11 +1,11 @@
 """The exact solver for many trajectories at once, one per array element.
 
-The same automaton (:mod:`escapement.model.automaton`), rows (:func:`escapement.solvers.kernel.rows`, one
-column per trajectory) and closed forms (:func:`~escapement.model.kinematics.crossing` on arrays) as the scalar
-event loop, advanced in lock-step: each pass moves every running trajectory by one event, the trajectories in
-the same state together (all of them, in the regime, once their first events are behind them). A trajectory
-that ends (cycles done, stopped, turned back, chattering, its event bound) leaves the passes. Parameters and
-initial states broadcast to a common shape ``(N,)``.
+The same automaton (:mod:`escapement.model.automaton`) and closed forms (:func:`~escapement.model.kinematics.crossing`,
+:func:`~escapement.model.kinematics.arc_maximum` on arrays) as the scalar event loop, advanced in lock-step: the
+automaton's rows for every trajectory in one table (:func:`_rows`), and each pass moves every running
+trajectory by one event, whatever its state, with the row of that state. A trajectory that ends (cycles
+done, stopped, turned back, chattering, its event bound) leaves the passes. Parameters and initial states
+broadcast to a common shape ``(N,)``.
 """
 
 from __future__ import annotations
