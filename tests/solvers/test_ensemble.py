@@ -196,19 +196,17 @@ def test_amplitude_must_be_a_bool():
         solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2, amplitude="no")
 
 
-@pytest.mark.parametrize("path", ["per-event passes", "cycles in lock-step"])
+@pytest.mark.parametrize("path", ["arc_maximum", "hypot"])
 def test_a_completed_row_with_a_non_finite_number_is_a_bug_raised(monkeypatch, path):
     """The invariant: completed rows hold only finite numbers; if the arithmetic ever produced
-    one, the run raises instead of reporting it as completed. The amplitude made NaN on either path: in
-    the per-event passes (arc_maximum, every arc sent there by a grazing bound no arc passes), or in
-    the cycles in lock-step (the top of the free swing, c + hypot(u0, w0))."""
+    one, the run raises instead of reporting it as completed. The amplitude made NaN: the ensemble's
+    arc_maximum replaced, or NumPy's hypot (the top of an arc's circle, c + hypot(u0, w0)) made NaN."""
     import escapement.solvers.ensemble as ensemble
 
-    if path == "per-event passes":
-        monkeypatch.setattr(ensemble, "arc_maximum", lambda *args: np.full(len(args[1]), np.nan))
-        monkeypatch.setattr(ensemble, "GRAZING", np.inf)
+    if path == "arc_maximum":
+        monkeypatch.setattr(ensemble, "arc_maximum", lambda *args: np.full(np.shape(args[1]), np.nan))
     else:
-        monkeypatch.setattr(ensemble.np, "hypot", lambda u, w: np.full(np.shape(u), np.nan))
+        monkeypatch.setattr(np, "hypot", lambda u, w: np.full(np.shape(u), np.nan))
     with pytest.raises(FloatingPointError, match="^row 0: a completed run holds a non-finite amplitude"):
         solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2)
     out = solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2, amplitude=False)  # not computed: NaN

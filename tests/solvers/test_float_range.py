@@ -49,7 +49,7 @@ def _row(values: dict) -> dict:
 
 
 def test_a_release_at_1e200_m_is_refused_before_any_work():
-    with mock.patch.object(exact_module, "ClosedFormRun", wraps=exact_module.ClosedFormRun) as loop:
+    with mock.patch.object(exact_module, "EventRun", wraps=exact_module.EventRun) as loop:
         with pytest.raises(ParameterError) as err:
             solve_exact(PAPER, 1e200, n_cycles=5)
     assert not loop.called
@@ -133,7 +133,7 @@ def test_every_input_is_refused_before_any_work_or_run_to_finite_numbers(case):
         assert ens_error == (err.name, err.requirement)  # one validation for both
         event(f"refused: {err.name}")
         return
-    with mock.patch.object(exact_module, "ClosedFormRun", wraps=exact_module.ClosedFormRun) as loop:
+    with mock.patch.object(exact_module, "EventRun", wraps=exact_module.EventRun) as loop:
         try:
             run = solve_exact(params, x0, v0, n_cycles=3)
         except ParameterError as err:
