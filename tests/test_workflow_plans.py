@@ -10,7 +10,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from workflow_copies import copy_repository, edit_config, planned_jobs, snakemake
+from workflow_copies import copy_repository, edit_config, loaded_files, planned_jobs, snakemake
 
 
 # One problem of each kind the configuration check finds (a model rule, the schema, two scenes that
@@ -116,6 +116,25 @@ def test_a_pipeline_plot_edit_replans_no_simulation(touched_run):
     planned = _planned_after_an_edit(touched_run, "pipeline/plot.py")
     assert {rule: planned.get(rule) for rule in PLOTS} == PLOTS
     assert not set(planned) & {*SIMULATIONS, "run_work_precision", "run_stress", "merge_stability"}, planned
+
+
+@pytest.mark.parametrize("module, replanned", [
+    ("paper/claims.py", {"check_claims", "render_docs"}),  # the claims engine
+    ("paper/register.py", {"check_claims", "render_docs"}),  # the claims register
+    ("plotting/paper_figures.py", {"plot_fig3", "plot_fig4", "plot_fig5"}),
+    pytest.param("studies/stress.py", {"run_stress"}, marks=pytest.mark.xfail(strict=True, reason=(
+        "studies/__init__.py imports the stress cases, and the simulations import the studies package (its long "
+        "run, readings and escapement error): every simulation runs stress.py"))),
+])
+def test_an_edit_outside_the_simulations_code_replans_no_simulation(touched_run, module, replanned):
+    """The simulations replanned are those whose scripts load the module, measured in a fresh interpreter;
+    for these modules, none: the 10^6-cycle run and the stability map stay."""
+    path = f"src/escapement/{module}"
+    loading = {rule for rule in SIMULATIONS if path in loaded_files(touched_run, f"workflow/scripts/{rule}.py")[0]}
+    planned = _planned_after_an_edit(touched_run, module)
+    assert {rule for rule in planned if rule in SIMULATIONS} == loading, planned
+    assert replanned <= set(planned), planned
+    assert not loading, f"{path} is loaded by {sorted(loading)}"
 
 
 @pytest.mark.parametrize(

@@ -1,19 +1,14 @@
 """The source files a workflow script runs: a rule's code inputs, read from the import statements.
 
-Snakemake tracks a rule's script, not the modules the script imports. :func:`code_inputs` follows the
-script's imports through the import graph of the modules found under ``roots`` (the package's ``src``,
-the repository for ``benchmarks``), read with :mod:`ast`, nothing imported:
-
-* every ``import`` and ``from ... import`` of a module counts, at its top level or inside a function;
-  relative imports are resolved against the module's package;
-* importing a module runs the ``__init__.py`` of every package above it;
-* ``from pkg import name`` counts the submodule ``pkg.name`` if there is one; otherwise, if ``pkg`` re-exports
-  ``name`` on first use (its ``_EXPORTS`` table, :mod:`escapement._lazy`), the module the table maps it to,
-  and so on down; a name reached as an attribute (``pkg.name``) counts the same way. A lazy table whose names
-  are never used adds nothing;
-* a data file a module names beside itself (the figures' style sheet) counts with it.
-
-An edit of one of these files reruns the rule's jobs; an edit of any other does not.
+Snakemake tracks a rule's script, not the modules it imports. :func:`code_inputs` follows the script's
+imports through the modules found under ``roots`` (the package's ``src``; the repository, for ``benchmarks``),
+read with :mod:`ast`, nothing imported. Every ``import`` and ``from ... import`` counts, at a module's top level
+or inside a function, relative ones resolved; a module brings the ``__init__.py`` of every package above it.
+``from pkg import name`` counts the submodule ``pkg.name`` if there is one, else, if ``pkg`` re-exports ``name``
+on first use (its ``_EXPORTS`` table, :mod:`escapement._lazy`), the module the table maps it to, and so on
+down; ``pkg.name`` as an attribute counts alike, and a table's unused names add nothing. A data file a module
+names beside itself (the figures' style sheet) counts with it. An edit of one of these files reruns the
+rule's jobs; an edit of any other does not.
 """
 
 from __future__ import annotations
@@ -78,8 +73,13 @@ def _dotted(node: ast.expr) -> list[str]:
     return [node.id, *reversed(parts)] if isinstance(node, ast.Name) else []
 
 
-def _imports(roots: tuple[Path, ...], module: str, path: Path) -> set[str]:
+def _imports(roots: tuple[Path, ...], module: str, path: Path) -> frozenset[str]:
     """The modules that the statements of one module (or script: ``module`` empty) import."""
+    return _imports_of(roots, module, path, path.stat().st_mtime_ns)
+
+
+@cache
+def _imports_of(roots: tuple[Path, ...], module: str, path: Path, mtime: int) -> frozenset[str]:
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     found: set[str] = set()
     bound: dict[str, str] = {}  # local name -> module it is bound to
@@ -112,7 +112,7 @@ def _imports(roots: tuple[Path, ...], module: str, path: Path) -> set[str]:
                 if not (loaded and loaded[-1] == f"{current}.{name}"):
                     break
                 current = loaded[-1]
-    return {name for name in found if name and _find(roots, name)}
+    return frozenset(name for name in found if name and _find(roots, name))
 
 
 def module_files(roots, script) -> set[Path]:
@@ -127,14 +127,17 @@ def module_files(roots, script) -> set[Path]:
         parts = name.split(".")
         pending += [".".join(parts[:i]) for i in range(1, len(parts))]  # the packages above it
         pending += _imports(roots, name, _find(roots, name))
-    files = {_find(roots, name) for name in seen}
-    for path in list(files):
-        for node in ast.walk(_tree(path)):
-            if isinstance(node, ast.Constant) and isinstance(node.value, str) and _FILE_NAME.fullmatch(node.value):
-                data = path.parent / node.value
-                if data.suffix != ".py" and data.is_file():
-                    files.add(data)
-    return files
+    modules = {_find(roots, name) for name in seen}
+    return modules.union(*(_data_files(path, path.stat().st_mtime_ns) for path in modules))
+
+
+@cache
+def _data_files(path: Path, mtime: int) -> frozenset[Path]:
+    """The files beside the module ``path`` that it names in a string: a style sheet it loads."""
+    names = {node.value for node in ast.walk(_tree(path))
+             if isinstance(node, ast.Constant) and isinstance(node.value, str) and _FILE_NAME.fullmatch(node.value)}
+    return frozenset(path.parent / name for name in names
+                     if (path.parent / name).suffix != ".py" and (path.parent / name).is_file())
 
 
 def code_inputs(script, base=".", roots=("src", ".")) -> list[str]:
