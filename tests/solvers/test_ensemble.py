@@ -1,3 +1,6 @@
+import math
+
+import mpmath
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -13,6 +16,7 @@ from escapement.solvers.naive import solve_naive
 from escapement.solvers.reference import solve_reference
 
 NAMES = ("impact_time", "velocity_before_impact", "period", "amplitude")
+CYCLE_COLUMNS = NAMES
 
 
 def _compare(params_list, x0s, v0s, n_cycles, max_events=None, amplitude=True):
@@ -220,3 +224,44 @@ def test_the_digits_of_the_high_precision_solver_are_a_count_too(dps):
         solve_high_precision(p, 1.0, n_cycles=2, dps=dps)
     assert err.value.name == "dps" and err.value.requirement == "an integer >= 17, at most 1_000"
     assert solve_high_precision(p, 1.0, n_cycles=2, dps=17).success
+
+
+def _release_for_zone_turning_at(p: Parameters, impact: str, turn: mpmath.mpf) -> float:
+    """From rest at x0 (50 digits): the free arc reaches the impact position with v**2 = w**2 (x0**2 - a**2),
+    the impact keeps (1 - b) of it, and the zone arc about c through (a, v+) turns at ``turn``:
+    (v+ / w)**2 = (turn - c)**2 - (a - c)**2."""
+    with mpmath.workdps(50):
+        a = mpmath.mpf(getattr(p, impact))
+        c = mpmath.mpf(p.F) / mpmath.mpf(p.K) * (1 if impact == "a1" else -1)
+        w_after_sq = (turn - c) ** 2 - (a - c) ** 2
+        return float(-mpmath.sqrt(a**2 + w_after_sq / (1 - mpmath.mpf(p.b)) ** 2) if impact == "a1"
+                     else mpmath.sqrt(a**2 + w_after_sq / (1 - mpmath.mpf(p.b)) ** 2))
+
+
+
+@pytest.mark.parametrize("params, impact, end", [
+    (Parameters(M=1.0, K=1.0, F=0.02, b=0.1, a1=-0.05, a2=0.1), "a1", "a2"),
+    (Parameters(M=1.0, K=1.0, F=0.02, b=0.1, a1=-0.1, a2=0.05, a3=0.05, a4=-0.1), "a3", "a4"),
+])
+@pytest.mark.parametrize("amplitude", [True, False])
+def test_the_ensemble_follows_the_releases_around_a_turning_point_as_the_scalar_solver(params, impact, end,
+                                                                                        amplitude):
+    """Releases ulp by ulp around the one whose first zone arc turns exactly at the zone's end, mixed with
+    releases whose first zone arc turns well inside or well past it, as one ensemble: some trajectories turn
+    back, some pass; each gives the scalar solver's outcome and numbers (to rounding: NumPy's arctan2 and
+    hypot)."""
+    x0 = _release_for_zone_turning_at(params, impact, mpmath.mpf(getattr(params, end)))
+    releases = np.array([x0 + k * math.ulp(x0) for k in range(-60, 61)] + [0.9 * x0, 1.1 * x0, 2 * x0, x0 / 3])
+    ens = solve_ensemble(*(getattr(params, k) for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4")), x0=releases,
+                         n_cycles=6, amplitude=amplitude)
+    for i, release in enumerate(releases):
+        run = solve_exact(params, float(release), n_cycles=6, record_trajectory=False)
+        assert ens.outcome(i) == run.status
+        n = len(run.cycles)
+        for name in CYCLE_COLUMNS if amplitude else CYCLE_COLUMNS[:-1]:
+            got = getattr(ens.cycles, name)[i]
+            assert got[:n] == pytest.approx(getattr(run.cycles, name), rel=1e-13, abs=1e-300), name
+            assert np.isnan(got[n:]).all()
+        assert ens.t_final[i] == pytest.approx(run.t_final, rel=1e-13)
+    assert {Status(s) for s in map(lambda i: ens.outcome(i), range(len(releases)))} >= {Status.COMPLETED,
+                                                                                         Status.TURNED_BACK_IN_ZONE}

@@ -1,0 +1,324 @@
+"""The exact solver's event loop (escapement.solvers.kernel) against an independent path: the integrators'
+loop (:func:`escapement.solvers.driver.drive`) with a closed-form stepper written here, in 40-digit mpmath, by
+the phase of the harmonic motion (``acos`` of the target over the radius; the kernel uses an energy square
+root and ``atan2``). And the loop's own contract: its rows, the kinds after the first event, a run in passes
+equal to a run in one, the arcs' durations and maxima after the loop."""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+from strategies import initial_displacement, initial_velocity, parameters
+
+from escapement.model import automaton
+from escapement.model.automaton import RELEASE, Mode
+from escapement.model.events import EventKind
+from escapement.model.limits import RunLimits
+from escapement.model.parameters import Parameters
+from escapement.model.status import Status
+from escapement.solvers.driver import NO_EVENT, Step, drive
+from escapement.solvers.exact import solve_exact
+from escapement.solvers.high_precision import solve_high_precision
+from escapement.solvers.kernel import A1, PLAN, EventRun, cycle_rows, event_block, kinds_from, rows
+
+A2, A3, A4 = (int(k) for k in (EventKind.ZONE_END_A2, EventKind.IMPACT_A3, EventKind.ZONE_END_A4))
+PAPER = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+ASYMMETRIC = Parameters(M=0.7, K=3.0, F=0.4, b=0.3, a1=-0.12, a2=0.02, a3=0.09, a4=-0.04)
+CYCLE_COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
+
+
+class PhaseStepper:
+    """The next event by the phase of the motion, in 40 digits from the float state.
+
+    About the centre ``c`` the state ``(u, w) = (x - c, v / omega)`` is ``R (cos phi, sin phi)`` with ``phi``
+    decreasing at the rate ``omega``. The surface ``p`` is met moving in ``d`` at ``phi = d acos((p - c) / R)``
+    (``|p - c| < R``), after the clockwise sweep from the start, in ``(0, 2 pi]``; the velocity there is
+    ``omega R sin(phi)``. The top of the circle (``phi = 0``, ``x = c + R``) is passed where the sweep reaches it.
+    No surface reached: in free flight the escapement stopped (the radius of the swing), in a zone the mass
+    turns at the next rest, ``phi = 0`` moving right or ``-pi`` moving left."""
+
+    name = "phase stepper"
+
+    def __init__(self, params: Parameters) -> None:
+        self.params = params
+
+    def next_event(self, mode, centre, t, x, v, watched, t_stop):
+        with mpmath.workdps(40):
+            omega = mpmath.sqrt(mpmath.mpf(self.params.K) / mpmath.mpf(self.params.M))
+            c = mpmath.mpf(centre)
+            u0, w0 = mpmath.mpf(x) - c, mpmath.mpf(v) / omega
+            radius = mpmath.hypot(u0, w0)
+            phi0 = mpmath.atan2(w0, u0)
+            two_pi = 2 * mpmath.pi
+            best = None
+            for kind in watched:
+                surface = automaton.SURFACES[kind]
+                q = mpmath.mpf(automaton.position(kind, self.params)) - c
+                if abs(q) >= radius:
+                    continue
+                phi1 = surface.direction * mpmath.acos(q / radius)
+                sweep = (phi0 - phi1) % two_pi
+                sweep = two_pi if sweep == 0 else sweep
+                if best is None or sweep < best[0]:
+                    best = (sweep, kind, phi1, q)
+            if best is None:
+                if mode == Mode.FREE:
+                    return Step(NO_EVENT, math.inf, 0.0, float(radius))
+                if w0 == 0:
+                    return Step(NO_EVENT, 0.0, 0.0, float(x))
+                to_rest = phi0 if w0 > 0 else phi0 + mpmath.pi
+                return Step(NO_EVENT, float(to_rest / omega), 0.0, float(c + radius if w0 > 0 else c - radius))
+            sweep, kind, phi1, q = best
+            to_top = phi0 % two_pi
+            x_max = c + radius if sweep >= to_top else max(u0, q) + c
+            return Step(kind, float(sweep / omega), float(omega * radius * mpmath.sin(phi1)), float(x_max))
+
+    def trajectory(self, t_final):
+        return None
+
+
+def by_phase(params: Parameters, x0: float, v0: float = 0.0, **limits):
+    """The run of the integrators' loop with the phase stepper."""
+    return drive(params, x0, v0, RunLimits(**limits), PhaseStepper(params), x0=x0, v0=v0)
+
+
+def assert_agree(kernel, independent, rel: float = 1e-13) -> None:
+    """The same outcome, the same events, and every number within ``rel`` of the scale of its column."""
+    assert kernel.status == independent.status, (kernel.message, independent.message)
+    assert np.array_equal(kernel.events.kind, independent.events.kind)
+    for name in ("t", "x", "v_before", "v_after"):
+        a, b = getattr(kernel.events, name), getattr(independent.events, name)
+        scale = max(np.max(np.abs(b), initial=0.0), 1e-300)
+        assert np.max(np.abs(a - b), initial=0.0) <= rel * scale, name
+    assert len(kernel.cycles) == len(independent.cycles)
+    for name in CYCLE_COLUMNS:
+        a, b = getattr(kernel.cycles, name), getattr(independent.cycles, name)
+        scale = max(np.max(np.abs(b), initial=0.0), 1e-300)
+        assert np.max(np.abs(a - b), initial=0.0) <= rel * scale, name
+    if math.isfinite(independent.t_final):
+        assert kernel.t_final == pytest.approx(independent.t_final, rel=rel)
+    else:
+        assert kernel.t_final == independent.t_final
+    for name in ("turning_point", "margin", "t_accumulation"):
+        a, b = getattr(kernel.exit, name), getattr(independent.exit, name)
+        assert (math.isnan(a) and math.isnan(b)) or a == pytest.approx(b, rel=rel, abs=1e-15), name
+
+
+# --- the loop against the phase stepper -------------------------------------------------------------
+
+
+def test_the_phase_stepper_gives_the_hand_derived_first_events():
+    """The stepper itself, from rest at x0 = 1 (w = 1): x = cos t meets a3 = 0.1 moving left at acos(0.1) with
+    v = -sqrt(1 - 0.01); the zone (a4, a3) about -1 from there reaches a4 = -0.05 at the angle between
+    (1.1, -sqrt(0.99) 0.9) and (0.95, -) on the circle of radius sqrt(1.21 + 0.99 * 0.81)."""
+    run = by_phase(PAPER, 1.0, n_cycles=1)
+    assert run.events.kind[:2].tolist() == [A3, A4]
+    assert run.events.t[0] == pytest.approx(math.acos(0.1), rel=1e-15)
+    assert run.events.v_before[0] == pytest.approx(-math.sqrt(0.99), rel=1e-15)
+    u0, w0 = 1.1, -0.9 * math.sqrt(0.99)
+    radius = math.hypot(u0, w0)
+    sweep = math.atan2(w0, u0) + math.acos(0.95 / radius)  # clockwise from phase atan2(w0, u0) to -acos(0.95/R)
+    assert run.events.t[1] - run.events.t[0] == pytest.approx(sweep, rel=1e-13)
+    assert run.events.v_before[1] == pytest.approx(-math.sqrt(radius**2 - 0.95**2), rel=1e-14)
+
+
+@pytest.mark.parametrize("params, x0, v0", [
+    (PAPER, 1.0, 0.0),
+    (Parameters(M=1.0, K=1.0, F=0.5, b=0.1, a1=-0.1, a2=0.05), 3.0, 0.0),
+    (ASYMMETRIC, -0.8, 0.3),
+    (Parameters(M=1.0, K=1.0, F=1.0, b=0.2, a1=-0.1, a2=0.3, a3=0.1, a4=-0.2), 1.0, 0.0),  # a2 > a3
+    (Parameters(M=1.0, K=1.0, F=0.5, b=1.0, a1=-0.1, a2=0.05), 1.0, 0.0),  # at rest after each impact
+])
+def test_the_kernel_gives_the_events_and_cycles_of_the_phase_stepper(params, x0, v0):
+    assert_agree(solve_exact(params, x0, v0, n_cycles=300, record_trajectory=False),
+                 by_phase(params, x0, v0, n_cycles=300))
+
+
+@pytest.mark.parametrize("params, x0, limits, status", [
+    (PAPER, 0.05, dict(n_cycles=10), Status.STOPPED),  # below a1 and a3: no impact
+    (Parameters(M=1.0, K=1.0, F=0.0, b=0.1, a1=-0.1, a2=0.05, a3=0.3, a4=0.0), 1.0, dict(n_cycles=100),
+     Status.STOPPED),  # stops later: a3 out of reach
+    (Parameters(M=1, K=100, F=0.01, b=0.1, a1=-0.02, a2=0.1), 0.021, dict(n_cycles=3), Status.TURNED_BACK_IN_ZONE),
+    (Parameters(M=1.0, K=1.0, F=1.0, b=1.5, a1=-0.1, a2=0.05), 1.0, dict(n_cycles=5), Status.CHATTERING),
+    (PAPER, 1.0, dict(t_end=100.0), Status.COMPLETED),
+    (PAPER, 1.0, dict(n_cycles=50, max_events=33), Status.EVENT_LIMIT),
+])
+def test_every_exit_is_the_phase_steppers(params, x0, limits, status):
+    kernel = solve_exact(params, x0, **limits)
+    assert kernel.status is status
+    assert_agree(kernel, by_phase(params, x0, **limits))
+
+
+@settings(max_examples=60, deadline=None)
+@given(p=parameters(), x0=initial_displacement, v0=initial_velocity, b=st.one_of(st.none(), st.floats(0.02, 1.98)),
+       limit=st.sampled_from(["cycles", "time", "events"]))
+def test_random_runs_give_the_numbers_of_the_phase_stepper(p, x0, v0, b, limit):
+    if b is not None:
+        p = Parameters(**{**p.as_dict(), "b": b})
+    limits = {"cycles": dict(n_cycles=20), "time": dict(t_end=30.0), "events": dict(n_cycles=20, max_events=37)}[limit]
+    kernel = solve_exact(p, x0, v0, record_trajectory=False, **limits)
+    # away from grazing: an arc that arrives near its turning point amplifies the rounding of the velocity
+    v_scale = math.hypot(p.omega * max(abs(x0), abs(p.a1), abs(p.a3)), v0, p.omega * p.zone_offset)
+    assume(len(kernel.events) == 0 or np.min(np.abs(kernel.events.v_before)) > 1e-3 * v_scale)
+    assume(not (kernel.status in (Status.STOPPED, Status.TURNED_BACK_IN_ZONE)
+                and abs(kernel.exit.margin) < 1e-9 * v_scale / p.omega))
+    assert_agree(kernel, by_phase(p, x0, v0, **limits), rel=1e-11)
+
+
+def test_the_kernel_agrees_with_the_high_precision_solver_to_1e13():
+    """The third path: the 30-digit integrators' loop over 200 cycles of an asymmetric geometry."""
+    kernel = solve_exact(ASYMMETRIC, -0.8, 0.3, n_cycles=200, record_trajectory=False)
+    hp = solve_high_precision(ASYMMETRIC, -0.8, 0.3, n_cycles=200, dps=30)
+    assert np.array_equal(kernel.events.kind, hp.events.kind)
+    for name in CYCLE_COLUMNS:
+        reference = np.array([float(v) for v in getattr(hp.cycles, name)])
+        assert getattr(kernel.cycles, name) == pytest.approx(reference, rel=1e-13), name
+
+
+def _release_for_zone_turning_at(p: Parameters, impact: str, turn: mpmath.mpf) -> float:
+    """From rest at x0 (50 digits): the free arc reaches the impact position with v**2 = w**2 (x0**2 - a**2),
+    the impact keeps (1 - b) of it, and the zone arc about c through (a, v+) turns at ``turn``:
+    (v+ / w)**2 = (turn - c)**2 - (a - c)**2."""
+    with mpmath.workdps(50):
+        a = mpmath.mpf(getattr(p, impact))
+        c = mpmath.mpf(p.F) / mpmath.mpf(p.K) * (1 if impact == "a1" else -1)
+        w_after_sq = (turn - c) ** 2 - (a - c) ** 2
+        return float(-mpmath.sqrt(a**2 + w_after_sq / (1 - mpmath.mpf(p.b)) ** 2) if impact == "a1"
+                     else mpmath.sqrt(a**2 + w_after_sq / (1 - mpmath.mpf(p.b)) ** 2))
+
+
+@pytest.mark.parametrize("params, impact, end", [
+    # the zone (a1, a2) about F/K = 0.02 m, narrower than a2's distance from its centre: it turns near a2
+    (Parameters(M=1.0, K=1.0, F=0.02, b=0.1, a1=-0.05, a2=0.1), "a1", "a2"),
+    # the zone (a4, a3) about -F/K, turning near a4
+    (Parameters(M=1.0, K=1.0, F=0.02, b=0.1, a1=-0.1, a2=0.05, a3=0.05, a4=-0.1), "a3", "a4"),
+])
+def test_arcs_that_reach_their_end_at_a_turning_point_decide_as_the_phase_stepper(params, impact, end):
+    """Releases ulp by ulp around the one whose first zone arc turns exactly at the zone's end: some turn
+    back, some pass. Where the 40-digit stepper's margin (the arrival's v**2, or how far short the turning
+    point lies) is above the rounding of the kernel's v**2 = v0**2 + k, both decide alike and agree on
+    every number after; within it either outcome is right."""
+    x0 = _release_for_zone_turning_at(params, impact, mpmath.mpf(getattr(params, end)))
+    outcomes, compared = set(), 0
+    for k in range(-60, 61):
+        release = x0 + k * math.ulp(x0)
+        kernel = solve_exact(params, release, n_cycles=3, record_trajectory=False)
+        independent = by_phase(params, release, n_cycles=3)
+        outcomes.add(kernel.status)
+        # the zone arc from the impact: v**2 at its end = v+**2 + w**2 ((a - c)**2 - (p - c)**2), in 40 digits
+        with mpmath.workdps(40):
+            v_plus = mpmath.mpf(float(independent.events.v_after[0]))
+            a, p = mpmath.mpf(getattr(params, impact)), mpmath.mpf(getattr(params, end))
+            c = mpmath.mpf(params.zone_offset) * (1 if impact == "a1" else -1)
+            energy = mpmath.mpf(params.omega2) * ((a - c) ** 2 - (p - c) ** 2)
+            v_sq, scale = v_plus**2 + energy, v_plus**2 + abs(energy)
+        if abs(v_sq) > 16 * np.finfo(float).eps * scale:
+            compared += 1
+            assert kernel.status == independent.status, (k, kernel.message, independent.message)
+            if kernel.status is Status.COMPLETED:
+                assert_agree(kernel, independent, rel=1e-9)  # a slow arrival: its time amplifies the rounding
+        else:
+            assert kernel.status in (Status.COMPLETED, Status.TURNED_BACK_IN_ZONE)
+    assert {Status.TURNED_BACK_IN_ZONE, Status.COMPLETED} <= outcomes
+    assert compared >= 100, compared
+
+
+# --- the loop's own contract --------------------------------------------------------------------------
+
+
+def test_the_plan_of_a_cycle_and_the_kinds_after_the_first_event():
+    assert PLAN == (A2, A3, A4, A1)
+    assert kinds_from(A3, 0, 9).tolist() == [A3, A4, A1, A2, A3, A4, A1, A2, A3]
+    assert kinds_from(A1, 0, 5).tolist() == [A1, A2, A3, A4, A1]
+    assert kinds_from(A3, 6, 3).tolist() == [A1, A2, A3]  # events 6, 7, 8 of a run that began at a3
+    assert kinds_from(A1, 10**9 + 2, 2).tolist() == [A3, A4]
+    assert len(kinds_from(A1, 0, 0)) == 0
+
+
+def test_the_rows_are_the_arcs_from_each_surface_to_the_one_it_watches():
+    """Row ``s``: the arc from the surface of ``s`` about the centre of its mode to the surface it watches,
+    with the energy term k = w**2 (x0 - p)(x0 + p - 2 c); the release has none (it watches two)."""
+    table = rows(ASYMMETRIC)
+    assert table[RELEASE] is None and len(table) == 5
+    positions = {A1: ASYMMETRIC.a1, A2: ASYMMETRIC.a2, A3: ASYMMETRIC.a3, A4: ASYMMETRIC.a4}
+    centres = {A1: ASYMMETRIC.zone_offset, A2: 0.0, A3: -ASYMMETRIC.zone_offset, A4: 0.0}
+    following = {A1: A2, A2: A3, A3: A4, A4: A1}
+    for state in (A1, A2, A3, A4):
+        row = table[state]
+        start, target, c = positions[state], positions[following[state]], centres[state]
+        assert (row.u0, row.q) == (start - c, target - c)
+        assert row.k == pytest.approx(ASYMMETRIC.omega2 * ((start - c) ** 2 - (target - c) ** 2), rel=1e-14)
+        assert row.direction == (1.0 if following[state] in (A1, A2) else -1.0)
+        assert row.impact == (following[state] in (A1, A3)) and row.following == following[state]
+
+
+def test_the_release_row_is_the_impact_reached_first():
+    # from rest at x0 = 1 the swing goes left: a3 = 0.1 first; from x0 = -1 right: a1 = -0.1 first;
+    # moving right fast from x0 = 0.5, past the top and back: a3 again, after the top
+    assert EventRun(PAPER, 1.0, 0.0, RunLimits(n_cycles=1)).first == A3
+    assert EventRun(PAPER, -1.0, 0.0, RunLimits(n_cycles=1)).first == A1
+    assert EventRun(PAPER, 0.5, 3.0, RunLimits(n_cycles=1)).first == A3
+    assert EventRun(PAPER, 0.05, 0.0, RunLimits(n_cycles=1)).rows[RELEASE] is None  # neither is reached
+
+
+@pytest.mark.parametrize("limits", [dict(n_cycles=300), dict(t_end=500.0), dict(n_cycles=300, max_events=1001)])
+@pytest.mark.parametrize("size", [1, 3, 4, 997])
+def test_a_run_in_passes_is_the_run_in_one(limits, size):
+    """advance(n) keeps the loop's state: the columns taken after each pass, put together, are those of one
+    pass, bit for bit, and the run ends alike."""
+    one = EventRun(ASYMMETRIC, -0.8, 0.3, RunLimits(**limits))
+    one.advance(10**9)
+    whole = one.take()
+    run = EventRun(ASYMMETRIC, -0.8, 0.3, RunLimits(**limits))
+    parts, passes = [], 0
+    while run.outcome is None:
+        run.advance(size)
+        parts.append(run.take())
+        passes += 1
+        assert run.taken == run.events <= passes * size
+    for a, b in zip(whole, (np.concatenate(c) for c in zip(*parts))):
+        assert np.array_equal(a, b)
+    assert (run.outcome.status, run.outcome.message, run.outcome.t_final) == (
+        one.outcome.status, one.outcome.message, one.outcome.t_final)
+    assert run.events == one.events == len(whole[0]) and run.advance(5) is None and run.events == one.events
+
+
+def test_the_times_are_the_compensated_sums_of_the_arcs():
+    """Each stored time is the exactly rounded sum of the arcs' durations (angle / omega) before it, to an ulp:
+    the compensated sum does not drift over 40_000 events."""
+    run = EventRun(PAPER, 1.0, 0.0, RunLimits(n_cycles=10_000))
+    run.advance(10**9)
+    t, _, angle = run.take()
+    dt = angle / PAPER.omega
+    for i in (0, 1, 999, 20_000, len(t) - 1):
+        assert abs(t[i] - math.fsum(dt[: i + 1])) <= math.ulp(t[i])
+
+
+def test_the_block_derives_the_events_and_the_cycles_after_the_loop():
+    """event_block: positions, the impact law and the arcs from the automaton; cycle_rows: each period the
+    four arcs' durations summed in the order of the events, each amplitude their largest x."""
+    run = EventRun(ASYMMETRIC, -0.8, 0.3, RunLimits(n_cycles=50))
+    run.advance(10**9)
+    block = event_block(run, 0, *run.take(), before=run.release)
+    positions = np.array([math.nan, ASYMMETRIC.a1, ASYMMETRIC.a2, ASYMMETRIC.a3, ASYMMETRIC.a4])
+    assert np.array_equal(block.x, positions[block.kind])
+    impact = np.isin(block.kind, [A1, A3])
+    assert np.array_equal(block.v_after[impact], (1 - ASYMMETRIC.b) * block.v_before[impact])
+    assert np.array_equal(block.v_after[~impact], block.v_before[~impact])
+    assert np.array_equal(block.arc_x, np.concatenate(([-0.8], block.x)))
+    assert np.array_equal(block.arc_v, np.concatenate(([0.3], block.v_after)))
+    (impact_time, velocity, period, amplitude), begins = cycle_rows(block)
+    at_a1 = np.flatnonzero(block.kind == A1)
+    assert len(period) == 50 and begins == at_a1[-1] == len(block.t) - 1
+    assert np.array_equal(impact_time, block.t[at_a1[:-1]])
+    assert np.array_equal(velocity, block.v_before[at_a1[:-1]])
+    for j, i in enumerate(at_a1[:-1]):
+        d = block.dt[i + 1:i + 5]
+        assert period[j] == ((d[0] + d[1]) + d[2]) + d[3]
+        assert period[j] == pytest.approx(block.t[i + 4] - block.t[i], rel=1e-14)
+        assert amplitude[j] == max(ASYMMETRIC.a1, *block.arc_max[i + 1:i + 5])
