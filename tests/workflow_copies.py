@@ -93,8 +93,9 @@ def copy_run(run: Path, dest: Path) -> Path:
 #: what a workflow script is run with before its first line: Snakemake's object, of which the imports use only
 #: ``scriptdir``
 _STUB = "import types\nsnakemake = types.SimpleNamespace(scriptdir={scriptdir!r})\n"
-_LIST = ("\nimport json as _json, sys as _sys\nprint(_json.dumps(sorted({m.__file__ for n, m in list(_sys.modules.items())"
-         "\n    if n.partition('.')[0] in ('escapement', 'benchmarks') and getattr(m, '__file__', None)})))\n")
+_LIST = ("\nimport json as _json, sys as _sys\n"
+         "print(_json.dumps(sorted({m.__file__ for n, m in list(_sys.modules.items())\n"
+         "    if n.partition('.')[0] in ('escapement', 'benchmarks') and getattr(m, '__file__', None)})))\n")
 
 
 def loaded_files(where: Path, script: str, also: tuple[str, ...] = ()) -> tuple[set[str], set[str]]:
