@@ -1,26 +1,20 @@
-"""The one solver loop: its bookkeeping with a scripted integrator, and that every solver obeys the
-automaton, so that a change of the impact law is one edit in :mod:`escapement.model.automaton`."""
+"""The integrators' loop (escapement.solvers.driver.drive): its bookkeeping with a scripted integrator. That
+every solver follows the automaton's impact law is tested in test_impact_law.py, and the exact solver's loop
+against this one with a closed-form stepper in test_kernel.py."""
 
 from __future__ import annotations
 
 import math
 
 import mpmath
-import numpy as np
 import pytest
 
-from escapement.model import automaton
 from escapement.model.automaton import Mode
 from escapement.model.events import EventKind
 from escapement.model.limits import RunLimits
 from escapement.model.parameters import Parameters
 from escapement.model.status import Status
 from escapement.solvers.driver import HORIZON, NO_EVENT, Step, drive
-from escapement.solvers.ensemble import solve_ensemble
-from escapement.solvers.exact import solve_exact
-from escapement.solvers.high_precision import solve_high_precision
-from escapement.solvers.naive import solve_naive
-from escapement.solvers.reference import solve_reference
 
 A1, A2, A3, A4 = EventKind.IMPACT_A1, EventKind.ZONE_END_A2, EventKind.IMPACT_A3, EventKind.ZONE_END_A4
 
@@ -130,93 +124,3 @@ def test_a_reversing_impact_is_chattering_with_the_zeno_time():
     with mpmath.workdps(30):
         total = mpmath.nsum(lambda n: mpmath.atan(5 * mpmath.mpf(0.5) ** n), [0, mpmath.inf])
     assert sol.exit.t_accumulation == pytest.approx(1.0 + float(total), rel=1e-14)
-
-
-# --- every solver drives the automaton: patch the impact law and all of them follow ------------------
-
-#: the paper's case (a), symmetric, released at rest at x0 = 1 m (w = 1)
-PAPER = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-N = 6
-
-
-def patched_law(v_before, b, impact):
-    """A different restitution, v+ = (1 - 2b) v- at an impact (0.8 for b = 0.1 instead of 0.9)."""
-    return (1.0 - 2.0 * b * impact) * v_before
-
-
-def closed_form_velocities(p: Parameters, r: float, x0: float, n: int) -> np.ndarray:
-    """Velocity before each impact at a1, derived on paper from energy for v+ = r v- (symmetric case).
-
-    Per half cycle the impact multiplies v^2 by r^2, the zone adds 2 f (a2 - a1), and the spring's
-    terms cancel because a3 = -a1, a4 = -a2: v4^2 = r^2 v1^2 + 2 f (a2 - a1), and so
-    v1(k+1)^2 = r^4 v1(k)^2 + 2 f (a2 - a1)(r^2 + 1). From rest at x0 > a3 the first impact is at a3 with
-    v^2 = w^2 (x0^2 - a3^2), so v1(1)^2 = r^2 w^2 (x0^2 - a1^2) + 2 f (a2 - a1).
-    """
-    c = 2 * p.f * (p.a2 - p.a1) * (r * r + 1)
-    v2 = [r * r * p.omega2 * (x0 * x0 - p.a1 * p.a1) + 2 * p.f * (p.a2 - p.a1)]
-    for _ in range(n - 1):
-        v2.append(r**4 * v2[-1] + c)
-    return np.sqrt(v2)
-
-
-def test_the_closed_form_is_eq17_for_the_paper_law():
-    """The derivation checked against the unpatched solver: for r = 1 - b its constant is Eq. (17)'s."""
-    b = PAPER.b
-    assert 2 * PAPER.f * (PAPER.a2 - PAPER.a1) * ((1 - b) ** 2 + 1) == pytest.approx(
-        2 * (b * b - 2 * b + 2) * (PAPER.a2 - PAPER.a1) * PAPER.f, rel=1e-15)
-    v = solve_exact(PAPER, 1.0, n_cycles=N).cycles.velocity_before_impact
-    assert v == pytest.approx(closed_form_velocities(PAPER, 1 - b, 1.0, N), rel=1e-14)
-
-
-def _all_solvers(p, x0):
-    hp = solve_high_precision(p, x0, n_cycles=N, dps=30)
-    ens = solve_ensemble(p.M, p.K, p.F, p.b, p.a1, p.a2, x0=x0, n_cycles=N)
-    return {
-        "exact": (solve_exact(p, x0, n_cycles=N).cycles.velocity_before_impact, 1e-14),
-        "reference": (solve_reference(p, x0, n_cycles=N, rtol=1e-12).cycles.velocity_before_impact, 1e-9),
-        "high precision": (np.array([float(v) for v in hp.cycles.velocity_before_impact]), 1e-15),
-        # RK4 with events applied up to a step late, at a state up to |v| h past the surface: each event
-        # moves v by up to w^2 |x| h <= 1e-3 (|x| <= 1 m, w = 1, h = 1e-3); a few events' worth at most
-        "naive": (solve_naive(p, x0, n_cycles=N, step=1e-3).cycles.velocity_before_impact, 5e-3),
-        "ensemble": (ens.cycles.velocity_before_impact[0], 1e-14),
-    }
-
-
-def test_every_solver_follows_a_patched_impact_law(monkeypatch):
-    paper = _all_solvers(PAPER, 1.0)
-    monkeypatch.setattr(automaton, "velocity_after", patched_law)
-    patched = _all_solvers(PAPER, 1.0)
-    expected = closed_form_velocities(PAPER, 1 - 2 * PAPER.b, 1.0, N)
-    unpatched = closed_form_velocities(PAPER, 1 - PAPER.b, 1.0, N)
-    assert np.min(np.abs(expected - unpatched) / unpatched) > 0.05  # the two laws are far apart
-    for name, (v, rel) in patched.items():
-        assert len(v) == N, name
-        assert v == pytest.approx(expected, rel=rel), name
-        assert v == pytest.approx(patched["exact"][0], rel=rel), name
-        assert np.all(np.abs(v - paper[name][0]) > 0.05 * np.abs(paper[name][0])), name
-        assert paper[name][0] == pytest.approx(unpatched, rel=rel), name
-
-
-def test_every_solver_applies_the_patched_law_at_each_impact(monkeypatch):
-    monkeypatch.setattr(automaton, "velocity_after", patched_law)
-    def naive(p, x0, n_cycles):
-        return solve_naive(p, x0, n_cycles=n_cycles, step=1e-3)
-
-    for solve in (solve_exact, solve_reference, solve_high_precision, naive):
-        ev = solve(PAPER, 1.0, n_cycles=2).events
-        impacts = np.isin(ev.kind, [1, 3])
-        ratio = np.array([float(a / b) for a, b in zip(ev.v_after, ev.v_before)])
-        assert ratio[impacts] == pytest.approx(0.8, rel=1e-14), solve.__name__
-        assert ratio[~impacts] == pytest.approx(1.0, rel=1e-15), solve.__name__
-
-
-def test_the_zeno_time_follows_a_patched_reversing_law(monkeypatch):
-    # v+ = (1 - 1.2 b) v-: for b = 1.5 the rebound keeps 0.8 of the speed (the paper's law keeps 0.5)
-    monkeypatch.setattr(automaton, "velocity_after", lambda v, b, impact: (1.0 - 1.2 * b * impact) * v)
-    p = Parameters(M=1.0, K=1.0, F=1.0, b=1.5, a1=-0.1, a2=0.05)
-    s = solve_exact(p, 1.0, n_cycles=3)
-    assert s.status == Status.CHATTERING
-    speed, distance = abs(s.events.v_after[-1]), 0.1  # the first impact is at a3 = 0.1 m, w = 1
-    with mpmath.workdps(30):
-        rest = 2 * mpmath.nsum(lambda n: mpmath.atan(speed / distance * mpmath.mpf(0.8) ** n), [0, mpmath.inf])
-    assert s.exit.t_accumulation == pytest.approx(s.events.t[-1] + float(rest), rel=1e-12)

@@ -1,0 +1,177 @@
+"""The impact law is written once (:func:`escapement.model.automaton.velocity_after`): patch it, and every
+solver path must follow the patched law, each checked against numbers derived here from the law alone.
+
+The patched law is ``v+ = r v-`` with ``r = 1 - 1.2 b`` (0.88 for ``b = 0.1``; the paper's is 0.9). In the
+symmetric geometry (``a3 = -a1``, ``a4 = -a2``), with ``f = F/M`` and ``beta = r**2``, energy along the arcs of
+a half cycle gives, for the velocity ``V`` before an impact and ``V'`` before the next:
+
+* the impact multiplies ``V**2`` by ``beta``;
+* the zone it opens (length ``a2 - a1`` by symmetry) adds ``2 f (a2 - a1)`` beyond the spring's work, and the
+  spring's work from the impact position to the other impact position is ``w**2 (a1**2 - a3**2) = 0``;
+
+so ``V'**2 = beta V**2 + 2 f (a2 - a1)`` per half cycle, and per cycle (two impacts)
+``v_{k+1}**2 = beta**2 v_k**2 + 2 f (a2 - a1) (1 + beta)``, whose fixed point is
+``v***2 = 2 f (a2 - a1) (1 + beta) / (1 - beta**2) = 2 f (a2 - a1) / (1 - beta)``. For the paper's law,
+``beta = (1 - b)**2`` and ``1 - beta = b (2 - b)``: the known ``v***2 = 2 f (a2 - a1) / (b (2 - b))``.
+Released from rest at ``x0 > a3``, the first impact is at ``a3`` with ``V**2 = w**2 (x0**2 - a3**2)``, so the
+first impact at a1 comes with ``v_1**2 = beta w**2 (x0**2 - a1**2) + 2 f (a2 - a1)``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+from escapement.model import automaton
+from escapement.model.parameters import Parameters
+from escapement.model.status import Status
+from escapement.solvers import closed_form
+from escapement.solvers.cycles import CLOSED_FORM, iter_closed_form_cycles, solve_cycles
+from escapement.solvers.ensemble import solve_ensemble
+from escapement.solvers.exact import solve_exact
+from escapement.solvers.high_precision import solve_high_precision
+from escapement.solvers.naive import solve_naive
+from escapement.solvers.reference import solve_reference
+from escapement.solvers.stream import iter_cycles
+
+#: the paper's case (a), symmetric, released at rest at x0 = 1 m (w = 1 rad/s)
+PAPER = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+X0 = 1.0
+FACTOR = 1.2  # the patched law's r = 1 - 1.2 b
+
+
+def patched_law(v_before, b, impact):
+    """v+ = (1 - 1.2 b) v- at an impact, none elsewhere (floats, arrays with a boolean or float flag, mpmath)."""
+    return (1.0 - FACTOR * b * impact) * v_before
+
+
+def expected_velocities(p: Parameters, r: float, x0: float, n: int) -> np.ndarray:
+    """The velocities before the impacts at a1 of cycles 1 .. n for ``v+ = r v-`` (the module's docstring)."""
+    beta, zone = r * r, 2.0 * p.f * (p.a2 - p.a1)
+    v_sq = [beta * p.omega2 * (x0 * x0 - p.a1 * p.a1) + zone]
+    for _ in range(n - 1):
+        v_sq.append(beta * beta * v_sq[-1] + zone * (1.0 + beta))
+    return np.sqrt(v_sq)
+
+
+def fixed_point(p: Parameters, r: float) -> float:
+    """``v* = sqrt(2 f (a2 - a1) / (1 - r**2))``."""
+    return math.sqrt(2.0 * p.f * (p.a2 - p.a1) / (1.0 - r * r))
+
+
+def test_the_derivation_holds_for_the_papers_law():
+    """The expectation checked against the unpatched solver, and the patched law far from the paper's."""
+    r = 1.0 - PAPER.b
+    v = solve_exact(PAPER, X0, n_cycles=400, record_trajectory=False).cycles.velocity_before_impact
+    assert v == pytest.approx(expected_velocities(PAPER, r, X0, 400), rel=1e-14)
+    assert v[-1] == pytest.approx(fixed_point(PAPER, r), rel=1e-14)
+    assert fixed_point(PAPER, r) ** 2 == pytest.approx(2 * PAPER.f * 0.15 / (PAPER.b * (2 - PAPER.b)), rel=1e-15)
+    patched = expected_velocities(PAPER, 1.0 - FACTOR * PAPER.b, X0, 400)
+    assert np.min(np.abs(patched - v) / v) > 0.01  # above every path's tolerance (5e-3 at most)
+
+
+def _concatenated(chunks) -> np.ndarray:
+    return np.concatenate([np.zeros(0)] + [c.velocity_before_impact for c in chunks])
+
+
+def _floats(values) -> np.ndarray:
+    return np.array([float(v) for v in values])
+
+
+#: every path to the velocities before the impacts at a1, the event log where the path keeps one, and the
+#: relative tolerance of the path's arithmetic
+N = 60
+PATHS = {
+    "solve_exact": lambda: solve_exact(PAPER, X0, n_cycles=N),
+    "solve_exact without trajectory": lambda: solve_exact(PAPER, X0, n_cycles=N, record_trajectory=False),
+    "iter_cycles": lambda: iter_cycles(PAPER, X0, n_cycles=N, chunk=7),
+    "solve_ensemble": lambda: solve_ensemble(PAPER.M, PAPER.K, PAPER.F, [PAPER.b, PAPER.b], PAPER.a1, PAPER.a2,
+                                             x0=[X0, X0], n_cycles=N),
+    "solve_cycles": lambda: solve_cycles(PAPER, X0, n_cycles=N),
+    "iter_closed_form_cycles": lambda: iter_closed_form_cycles(PAPER, X0, n_cycles=N, chunk=7),
+    "solve_reference": lambda: solve_reference(PAPER, X0, n_cycles=N, rtol=1e-12, record_trajectory=False),
+    "solve_high_precision": lambda: solve_high_precision(PAPER, X0, n_cycles=N, dps=30),
+    "solve_naive": lambda: solve_naive(PAPER, X0, n_cycles=N, step=1e-3),
+}
+TOLERANCE = {"solve_reference": 1e-9, "solve_high_precision": 1e-15,
+             # RK4 with events applied up to a step late, at a state up to |v| h past the surface: each event
+             # moves v by up to w**2 |x| h <= 1e-3 (|x| <= 1 m, w = 1, h = 1e-3); a few events' worth at most
+             "solve_naive": 5e-3}
+#: the closed forms take v_k from the cycle map, whose multiplier is (1 - b)**4 written in model/cycle_map.py,
+#: not the automaton's law: they do not follow a patched law (reported to the solver's developer)
+CLOSED_FORM_IGNORES_THE_LAW = pytest.mark.xfail(
+    strict=True, raises=AssertionError,
+    reason="model.cycle_map.cycle_map hard-codes beta = (1 - b)**2 instead of automaton.velocity_after")
+
+
+def _velocities_and_events(name: str):
+    result = PATHS[name]()
+    if name.startswith("iter"):
+        return _concatenated(result), None, result
+    if name == "solve_ensemble":
+        rows = result.cycles.velocity_before_impact
+        assert np.array_equal(rows[0], rows[1])
+        return rows[0], None, result
+    if name == "solve_cycles":
+        return result.cycles.velocity_before_impact, None, result
+    return _floats(result.cycles.velocity_before_impact), result.events, result
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param(name, marks=CLOSED_FORM_IGNORES_THE_LAW) if name in ("solve_cycles", "iter_closed_form_cycles")
+    else name for name in PATHS])
+def test_every_path_follows_a_patched_impact_law(monkeypatch, name):
+    """The velocities before the impacts at a1 are the patched law's map, from the first cycle to its fixed
+    point; where the path keeps an event log, the jump at every impact is the patched law's ratio exactly
+    (none at the ends of the zones)."""
+    rel = TOLERANCE.get(name, 1e-14)
+    r = 1.0 - FACTOR * PAPER.b
+    monkeypatch.setattr(automaton, "velocity_after", patched_law)
+    v, events, result = _velocities_and_events(name)
+    assert len(v) == N
+    assert v == pytest.approx(expected_velocities(PAPER, r, X0, N), rel=rel)
+    assert v[-1] == pytest.approx(fixed_point(PAPER, r), rel=max(rel, 1e-12))  # (0.88**4)**59 ~ 1e-13
+    if events is not None:
+        impact = np.isin(events.kind, [1, 3])
+        ratio = _floats([a / b for a, b in zip(events.v_after, events.v_before)])
+        assert impact.sum() >= 2 * N
+        assert ratio[impact] == pytest.approx(r, rel=1e-15 if name != "solve_high_precision" else 1e-28)
+        assert np.all(ratio[~impact] == 1.0)
+    if name in ("solve_cycles", "iter_closed_form_cycles"):
+        assert result.method == CLOSED_FORM  # not the event solver's fallback
+
+
+@pytest.mark.parametrize("streamed", [False, True])
+def test_the_closed_forms_fallback_follows_a_patched_impact_law(monkeypatch, streamed):
+    """Where the closed form gives way (a grazing margin that takes every arc), the event solver makes the run,
+    under the patched law."""
+    monkeypatch.setattr(automaton, "velocity_after", patched_law)
+    monkeypatch.setattr(closed_form, "GRAZING_SPEED_SQ", 1.0)
+    if streamed:
+        chunks = iter_closed_form_cycles(PAPER, X0, n_cycles=N, chunk=7)
+        v, fallback = _concatenated(chunks), chunks.fallback
+    else:
+        run = solve_cycles(PAPER, X0, n_cycles=N)
+        v, fallback = run.cycles.velocity_before_impact, run.fallback
+    assert "grazes" in fallback
+    assert v == pytest.approx(expected_velocities(PAPER, 1.0 - FACTOR * PAPER.b, X0, N), rel=1e-14)
+
+
+def test_the_zeno_time_follows_a_patched_reversing_law(monkeypatch):
+    """v+ = (1 - 1.2 b) v-: for b = 1.5 each rebound keeps 0.8 of the speed (the paper's law keeps 0.5); the
+    flights back to a3 = 0.1 m (w = 1) last 2 atan(0.8**n v / (w a3)), summed in 30 digits."""
+    monkeypatch.setattr(automaton, "velocity_after", patched_law)
+    p = Parameters(M=1.0, K=1.0, F=1.0, b=1.5, a1=-0.1, a2=0.05)
+    s = solve_exact(p, 1.0, n_cycles=3)
+    assert s.status == Status.CHATTERING
+    assert s.events.v_after[-1] == pytest.approx(-0.8 * s.events.v_before[-1], rel=1e-15)
+    speed, distance = abs(s.events.v_after[-1]), 0.1
+    with mpmath.workdps(30):
+        rest = 2 * mpmath.nsum(lambda n: mpmath.atan(speed / distance * mpmath.mpf(0.8) ** n), [0, mpmath.inf])
+    assert s.exit.t_accumulation == pytest.approx(s.events.t[-1] + float(rest), rel=1e-12)
+    ens = solve_ensemble(p.M, p.K, p.F, p.b, p.a1, p.a2, x0=1.0, n_cycles=3)
+    assert ens.outcome(0) == Status.CHATTERING
+    assert ens.exit_t_accumulation[0] == pytest.approx(s.exit.t_accumulation, rel=1e-14)
