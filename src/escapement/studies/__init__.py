@@ -1,8 +1,5 @@
-"""Studies beyond the paper's figures: the work-precision benchmark (:mod:`.benchmark`), the
-long run against 50 digits (:mod:`.long_run`) and the stress cases (:mod:`.stress`)."""
-
-from .benchmark import METHODS, run_method, work_precision
-from .long_run import long_run
-from .stress import CASES, run_all
-
-__all__ = ["CASES", "METHODS", "long_run", "run_all", "run_method", "work_precision"]
+"""Studies beyond the paper's figures: the work-precision benchmark (:mod:`.benchmark`), the long run
+against 50 digits (:mod:`.long_run`), the readings of the printed axes (:mod:`.readings`), the escapement
+error (:mod:`.escapement_error`) and the stress cases (:mod:`.stress`). Import the module you need: the
+package imports none of them, so that a job loads only the studies it runs.
+"""
