@@ -122,9 +122,7 @@ def test_a_pipeline_plot_edit_replans_no_simulation(touched_run):
     ("paper/claims.py", {"check_claims", "render_docs"}),  # the claims engine
     ("paper/register.py", {"check_claims", "render_docs"}),  # the claims register
     ("plotting/paper_figures.py", {"plot_fig3", "plot_fig4", "plot_fig5"}),
-    pytest.param("studies/stress.py", {"run_stress"}, marks=pytest.mark.xfail(strict=True, reason=(
-        "studies/__init__.py imports the stress cases, and the simulations import the studies package (its long "
-        "run, readings and escapement error): every simulation runs stress.py"))),
+    ("studies/stress.py", {"run_stress"}),  # the stress cases
 ])
 def test_an_edit_outside_the_simulations_code_replans_no_simulation(touched_run, module, replanned):
     """The simulations replanned are those whose scripts load the module, measured in a fresh interpreter;
