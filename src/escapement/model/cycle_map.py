@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import automaton
 from .parameters import Parameters
 
 __all__ = ["CycleMap", "cycle_map"]
@@ -28,10 +29,10 @@ class CycleMap:
     (0.6561, 0.543, 1.578947368421)
     """
 
-    mu: float  #: ``(1 - b)**4``, the multiplier of ``v**2``
+    mu: float  #: ``r**4``, the multiplier of ``v**2`` (``r = 1 - b``, the impact law's factor)
     c: float  #: the constant, m**2/s**2
-    one_minus_mu: float  #: ``1 - mu = b (2 - b) (1 + (1 - b)**2)``
-    log_mu: float  #: ``ln mu = 4 log1p(-b)`` (``-inf`` at ``b = 1``)
+    one_minus_mu: float  #: ``1 - mu = (1 - r)(1 + r)(1 + r**2)``
+    log_mu: float  #: ``ln mu = 4 log1p(r - 1)`` (``-inf`` at ``r = 0``)
 
     @property
     def fixed_point_sq(self) -> float:
@@ -47,7 +48,7 @@ class CycleMap:
     def velocity_sq(self, v1: float, k) -> np.ndarray:
         """``v_k**2 = v***2 + (v1**2 - v***2) mu**(k-1)`` for the cycle numbers ``k`` (1 for the first).
 
-        ``mu**(k-1)`` as ``exp((k-1) ln mu)``, ``ln mu = 4 log1p(-b)``: the power of the rounded ``mu`` would
+        ``mu**(k-1)`` as ``exp((k-1) ln mu)``, ``ln mu = 4 log1p(r - 1)``: the power of the rounded ``mu`` would
         carry its rounding ``k - 1`` times (a relative ``4 (k-1) eps``, up to ``eps / (e b)`` of ``v**2`` on the
         transient as ``b -> 0``), the exponential only that of ``(k-1) ln mu``."""
         star = self.fixed_point_sq
@@ -62,12 +63,15 @@ def cycle_map(params: Parameters) -> CycleMap:
     A cycle runs from an impact at a1 through four harmonic arcs: a1 to a2 in the zone (a1, a2) (centre
     ``+F/K``), a2 to a3 free, a3 to a4 in the zone (a4, a3) (centre ``-F/K``), a4 to a1 free. On an arc from
     ``x`` to ``y`` about ``c`` energy gives ``v_y**2 = v_x**2 + w**2 (x - y)(x + y - 2 c)``, and each impact
-    multiplies ``v**2`` by ``beta = (1 - b)**2``. With ``f = F/M``:
+    multiplies ``v`` by the impact law's factor ``r`` (:func:`~escapement.model.automaton.velocity_after` of a
+    unit velocity: ``1 - b``, Eqs. (A-2), (A-4); the map holds for any law linear in ``v``). With ``f = F/M``
+    and ``beta = r**2``:
 
-    * ``mu = beta**2 = (1 - b)**4``, ``1 - mu = b (2 - b) (1 + (1 - b)**2)`` (no cancellation as ``b -> 0``);
-    * ``c = b (2 - b) w**2 (a3**2 - a1**2) + 2 f [(1 - b)**2 (a2 - a1) + (a3 - a4)]``;
+    * ``mu = beta**2``, ``1 - mu = (1 - r)(1 + r)(1 + r**2)`` (``1 - r`` is exact for ``r >= 1/2``: no
+      cancellation as ``b -> 0``);
+    * ``c = (1 - beta) w**2 (a3**2 - a1**2) + 2 f [beta (a2 - a1) + (a3 - a4)]``;
     * the fixed point ``v***2 = c / (1 - mu)``; in the symmetric case (``a3 = -a1``, ``a4 = -a2``)
-      ``v***2 = 2 f (a2 - a1) / (b (2 - b))``.
+      ``v***2 = 2 f (a2 - a1) / (1 - beta) = 2 f (a2 - a1) / (b (2 - b))``.
 
     Parameters
     ----------
@@ -77,12 +81,13 @@ def cycle_map(params: Parameters) -> CycleMap:
     Returns
     -------
     CycleMap
-        ``mu = (1 - b)**4``, ``c`` (m**2/s**2) and ``1 - mu``; the fixed point ``c / (1 - mu)``.
+        ``mu``, ``c`` (m**2/s**2) and ``1 - mu``; the fixed point ``c / (1 - mu)``.
     """
-    b, w2, f = params.b, params.omega2, params.f
-    beta = (1.0 - b) * (1.0 - b)
-    b2 = b * (2.0 - b)  # 1 - beta, without cancellation
-    c = (b2 * w2 * ((params.a3 - params.a1) * (params.a3 + params.a1))
+    w2, f = params.omega2, params.f
+    r = automaton.velocity_after(1.0, params.b, 1.0)
+    beta = r * r
+    one_minus_beta = (1.0 - r) * (1.0 + r)
+    c = (one_minus_beta * w2 * ((params.a3 - params.a1) * (params.a3 + params.a1))
          + 2.0 * f * (beta * (params.a2 - params.a1) + (params.a3 - params.a4)))
-    log_mu = 4.0 * math.log1p(-b) if b < 1.0 else -math.inf
-    return CycleMap(mu=beta * beta, c=c, one_minus_mu=b2 * (1.0 + beta), log_mu=log_mu)
+    log_mu = 4.0 * math.log1p(r - 1.0) if r > 0.0 else -math.inf
+    return CycleMap(mu=beta * beta, c=c, one_minus_mu=one_minus_beta * (1.0 + beta), log_mu=log_mu)
