@@ -32,6 +32,7 @@ __all__ = [
     "position",
     "rebound_distance",
     "reverses",
+    "impact_factor",
     "velocity_after",
 ]
 
@@ -123,12 +124,16 @@ def is_impact(kind: int) -> bool:
     return SURFACES[kind].impact
 
 
-def velocity_after(v_before, b, impact):
-    """The jump at an event: ``v+ = (1 - b) v-`` at an impact (``impact`` true), none otherwise.
-
-    Works on floats, arrays (``impact`` a boolean array) and mpmath numbers.
+def impact_factor(b):
+    """The impact law, Eqs. (A-2), (A-4): at an impact ``v+ = r v-`` with ``r = 1 - b``; the end of an impulse
+    zone leaves the velocity as it is. Every solver takes the jump from here (floats, arrays, mpmath numbers).
     """
-    return (1.0 - b * impact) * v_before
+    return 1.0 - b
+
+
+def velocity_after(v_before, b):
+    """The velocity just after an impact: :func:`impact_factor` times the velocity just before it."""
+    return impact_factor(b) * v_before
 
 
 def reverses(v_before, v_after):

@@ -63,8 +63,8 @@ def cycle_map(params: Parameters) -> CycleMap:
     A cycle runs from an impact at a1 through four harmonic arcs: a1 to a2 in the zone (a1, a2) (centre
     ``+F/K``), a2 to a3 free, a3 to a4 in the zone (a4, a3) (centre ``-F/K``), a4 to a1 free. On an arc from
     ``x`` to ``y`` about ``c`` energy gives ``v_y**2 = v_x**2 + w**2 (x - y)(x + y - 2 c)``, and each impact
-    multiplies ``v`` by the impact law's factor ``r`` (:func:`~escapement.model.automaton.velocity_after` of a
-    unit velocity: ``1 - b``, Eqs. (A-2), (A-4); the map holds for any law linear in ``v``). With ``f = F/M``
+    multiplies ``v`` by the impact law's factor ``r`` (:func:`~escapement.model.automaton.impact_factor`:
+    ``1 - b``, Eqs. (A-2), (A-4)). With ``f = F/M``
     and ``beta = r**2``:
 
     * ``mu = beta**2``, ``1 - mu = (1 - r)(1 + r)(1 + r**2)`` (``1 - r`` is exact for ``r >= 1/2``: no
@@ -84,7 +84,7 @@ def cycle_map(params: Parameters) -> CycleMap:
         ``mu``, ``c`` (m**2/s**2) and ``1 - mu``; the fixed point ``c / (1 - mu)``.
     """
     w2, f = params.omega2, params.f
-    r = automaton.velocity_after(1.0, params.b, 1.0)
+    r = automaton.impact_factor(params.b)
     beta = r * r
     one_minus_beta = (1.0 - r) * (1.0 + r)
     c = (one_minus_beta * w2 * ((params.a3 - params.a1) * (params.a3 + params.a1))

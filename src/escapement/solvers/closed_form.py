@@ -153,7 +153,7 @@ def _arcs(params: Parameters, prep: Prepared, v: np.ndarray):
     starts = np.empty((4, len(v)))
     speed = v
     for i, jump in enumerate(prep.jumps):
-        speed = automaton.velocity_after(speed, b, True) if jump else speed
+        speed = automaton.velocity_after(speed, b) if jump else speed
         starts[i] = speed
         speed = col["direction"][i, 0] * np.sqrt(abs(speed * speed + col["k"][i, 0]))
     reached, dt, arrival, angle = crossing(col["u0"], col["q"], col["k"], starts, params.omega, col["direction"], np)

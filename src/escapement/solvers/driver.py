@@ -171,7 +171,7 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
             t = t_sum = t_abs
         elapsed += dt
         x = positions[kind] if x_at is None else x_at
-        v_after = automaton.velocity_after(v_before, b, automaton.is_impact(kind))
+        v_after = automaton.velocity_after(v_before, b) if automaton.is_impact(kind) else v_before
         ev["t"].append(t), kinds.append(kind), ev["x"].append(x), ev["v_before"].append(v_before)
         ev["v_after"].append(v_after)
         t_final = t

@@ -243,7 +243,7 @@ def _pass(ii, flat: np.ndarray, table: dict, s: dict, n_cycles: int, max_events:
     s["x"][ii] = row["target"]
     s["events"][ii] += 1
     s["state"][ii] = row["following"]
-    v_after = automaton.velocity_after(v1, s["b"][ii], row["impact"])
+    v_after = np.where(row["impact"], automaton.velocity_after(v1, s["b"][ii]), v1)
     s["v"][ii] = v_after
     hit = row["following"] == _A1
     if hit.any():

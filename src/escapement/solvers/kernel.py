@@ -5,7 +5,7 @@ closed form :func:`~escapement.model.kinematics.crossing`: no step size, no root
 (:meth:`EventRun.advance`) reads, per event, the row of the state it is in (:func:`rows`: the centre,
 the surface it watches, the direction of crossing, whether it is an impact, the next state), asks
 ``crossing`` when the surface is reached, adds the duration to a compensated sum, applies the impact
-law (:func:`~escapement.model.automaton.velocity_after`) at impacts and stores three numbers: the
+law (:func:`~escapement.model.automaton.impact_factor`) at impacts and stores three numbers: the
 event's time, the velocity before it and the angle its arc swept. Everything else (kinds, positions,
 velocities after, the arcs, the cycle table) follows from the automaton after the loop, on arrays
 (:func:`event_block`, :func:`cycle_rows`). The run is resumable: :meth:`EventRun.advance` runs a bounded
@@ -126,7 +126,8 @@ class EventRun:
         if self.outcome is not None:
             return
         table, omega, b, t_stop = self.rows, self.omega, self.b, self.t_stop
-        law, reverses = automaton.velocity_after, automaton.reverses
+        factor = automaton.impact_factor(b)  # the impact law: v+ = factor v-
+        rebounds = automaton.reverses(1.0, factor)  # an impact reverses the velocity
         put_t, put_v, put_angle = self.t.append, self.v_before.append, self.angle.append
         state, v, t_sum, t_err, t = self.state, self.v, self.t_sum, self.t_err, self.time
         ending, v1, i = None, v, -1
@@ -149,8 +150,8 @@ class EventRun:
             put_angle(angle)
             state, v = following, v1
             if impact:
-                v = law(v1, b, 1.0)
-                if reverses(v1, v):
+                v = factor * v1
+                if rebounds:
                     ending = REBOUND
                     break
         self.state, self.v, self.t_sum, self.t_err, self.time = state, v, t_sum, t_err, t
@@ -225,7 +226,7 @@ def event_block(run: EventRun, start: int, t, v_before, angle, before: tuple[int
     n = len(t)
     kind = kinds_from(run.first, start, n) if n else np.zeros(0, dtype=np.intp)
     x = run.position[kind]
-    v_after = automaton.velocity_after(v_before, run.b, run.impact[kind])
+    v_after = np.where(run.impact[kind], automaton.velocity_after(v_before, run.b), v_before)
     state_before, x_before, v_after_before = before
     arc_centre = np.concatenate(([run.centre[state_before]], run.centre[kind]))
     arc_x = np.concatenate(([x_before], x))
