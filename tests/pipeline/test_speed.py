@@ -32,7 +32,8 @@ def test_the_speed_table_has_a_row_per_ratio(tmp_path):
     names = [r["name"] for r in rows]
     assert names[:2] == ["DOP853 rtol 1e-12 / solve_exact", "DOP853 rtol 1e-12 / closed-form cycles"]
     assert names.count("solve_exact / closed-form cycles") == 3
-    assert sum(name.startswith("solve_exact") and name.endswith("/ minimal loop") for name in names) == 3
+    assert sum(name.startswith("solve_exact") and name.endswith("/ minimal cycle loop") for name in names) == 3
+    assert sum(name.startswith("solve_exact") and name.endswith("/ minimal event loop") for name in names) == 2
     assert sum(name.startswith("solve_ensemble / numpy loop") for name in names) == 2
     assert "solve_exact streamed / closed-form cycles streamed" in names
     assert "closed-form cycles streamed, peak memory against 100 cycles" in names
