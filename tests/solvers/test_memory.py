@@ -1,65 +1,79 @@
 """The memory budget: a run whose result would not fit is refused before any work, with the estimate,
-the budget and what to do instead; the estimates bound what the solvers really allocate."""
+the budget and what to do instead; and each solver's estimate bounds what it really allocates at its peak
+(measured with tracemalloc), without being more than twice that.
+
+Measured (tracemalloc, the paper's case (a), NumPy 2, CPython 3.11) when these tests were written:
+solve_exact 109 bytes per event at its peak with or without the trajectory (about 435 per cycle), the result
+holding 42 (73 with the arcs); iter_cycles about 96 per cycle of a chunk (the chunk being built and the one
+the caller holds) plus about 0.6 MB for a pass; solve_cycles 283 per cycle where every cycle is distinct, 64
+at the fixed point; iter_closed_form_cycles 96 to 118 per cycle of a chunk; solve_ensemble 34 per cell and
+about 860 per trajectory; the integrators' loop 48 to 81 per event without a trajectory, the reference
+solver's dense output about 6_400 per event.
+"""
 
 from __future__ import annotations
 
 import gc
 import re
-import time
 import tracemalloc
+from unittest import mock
 
 import numpy as np
 import pytest
 
 from escapement.model.limits import MAX_MEMORY_BUDGET, MEMORY_BUDGET, MemoryBudgetError, RunLimits
 from escapement.model.parameters import ParameterError, Parameters
-from escapement.solvers import exact
-from escapement.solvers.driver import check_memory
-from escapement.solvers.ensemble import MAX_CELLS, ensemble_bytes, solve_ensemble
-from escapement.solvers.exact import solve_exact, solve_exact_stepwise
+from escapement.solvers import closed_form, exact, stream
+from escapement.solvers import cycles as cyc
+from escapement.solvers.ensemble import MAX_CELLS, CELL_BYTES, ensemble_bytes, solve_ensemble
+from escapement.solvers.exact import solve_exact
 from escapement.solvers.high_precision import solve_high_precision
 from escapement.solvers.naive import solve_naive
+from escapement.solvers.outcomes import check_memory
 from escapement.solvers.reference import solve_reference
 
 P = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+#: how loose an estimate may be: at most this times the measured peak
+LOOSEST = 2.0
 
 
-def _refused(run) -> tuple[MemoryBudgetError, float]:
-    start = time.perf_counter()
+def _refused(run) -> MemoryBudgetError:
     with pytest.raises(MemoryBudgetError) as err:
         run()
-    return err.value, time.perf_counter() - start
+    return err.value
 
 
 @pytest.mark.parametrize("record", [True, False])
-def test_a_billion_cycles_are_refused_within_a_second_with_the_numbers_and_the_way_out(record):
-    err, seconds = _refused(lambda: solve_exact(P, 1.0, n_cycles=10**9, record_trajectory=record))
-    assert seconds < 1.0
+def test_a_billion_cycles_are_refused_before_any_work_with_the_numbers_and_the_way_out(record):
+    with mock.patch.object(exact, "EventRun", wraps=exact.EventRun) as loop:
+        err = _refused(lambda: solve_exact(P, 1.0, n_cycles=10**9, record_trajectory=record))
+    assert not loop.called
     assert isinstance(err, ParameterError) and (err.name, err.value) == ("n_cycles", 10**9)
     assert err.budget == MEMORY_BUDGET and err.estimate > 100 * MEMORY_BUDGET
     message = str(err)
     assert message.startswith("n_cycles = 1000000000 is invalid: n_cycles must be at most ")
     assert f"{err.estimate:_} bytes" in message and f"{MEMORY_BUDGET:_} bytes" in message
     assert "iter_cycles" in message and "memory_budget" in message
-    # per cycle, the bound is the stored output: 4 events of t, x, v_before, v_after, kind, and a cycle row
-    per_cycle = err.estimate / 10**9
-    assert (4 * 33 + 32 <= per_cycle <= 300) if not record else (4 * 65 + 32 <= per_cycle <= 450)
+    assert ("record_trajectory=False" in message) == record
 
 
-@pytest.mark.parametrize("solver", ["reference", "high precision", "naive", "stepwise"])
-def test_the_solvers_of_the_generic_loop_are_refused_alike(solver):
+@pytest.mark.parametrize("solver", ["reference", "high precision", "naive"])
+def test_the_solvers_of_the_integrators_loop_are_refused_alike(solver):
     run = {"reference": lambda: solve_reference(P, 1.0, n_cycles=10**9, record_trajectory=False),
            "high precision": lambda: solve_high_precision(P, 1.0, n_cycles=10**9),
-           "naive": lambda: solve_naive(P, 1.0, n_cycles=10**9, step=1e-3),
-           "stepwise": lambda: solve_exact_stepwise(P, 1.0, n_cycles=10**9)}[solver]
-    err, seconds = _refused(run)
-    assert seconds < 1.0 and (err.name, err.value) == ("n_cycles", 10**9) and err.estimate > err.budget
+           "naive": lambda: solve_naive(P, 1.0, n_cycles=10**9, step=1e-3)}[solver]
+    import escapement.solvers.driver as driver
+
+    with mock.patch.object(driver, "no_event_outcome") as started:  # any run's end goes through an outcome
+        err = _refused(run)
+    assert not started.called
+    assert (err.name, err.value) == ("n_cycles", 10**9) and err.estimate > err.budget
 
 
 @pytest.mark.parametrize("record", [True, False])
 def test_the_largest_run_the_error_names_fits_and_one_more_does_not(record):
     budget = 1_000_000
-    err, _ = _refused(lambda: solve_exact(P, 1.0, n_cycles=10**6, record_trajectory=record, memory_budget=budget))
+    err = _refused(lambda: solve_exact(P, 1.0, n_cycles=10**6, record_trajectory=record, memory_budget=budget))
     most = int(re.search(r"at most ([\d_]+) ", err.requirement).group(1))
     run = solve_exact(P, 1.0, n_cycles=most, record_trajectory=record, memory_budget=budget)
     assert len(run.cycles) == most
@@ -68,7 +82,7 @@ def test_the_largest_run_the_error_names_fits_and_one_more_does_not(record):
 
 
 def test_a_run_to_an_end_time_is_sized_by_max_events():
-    err, _ = _refused(lambda: solve_exact(P, 1.0, t_end=1e9, max_events=10**9))
+    err = _refused(lambda: solve_exact(P, 1.0, t_end=1e9, max_events=10**9))
     assert (err.name, err.value) == ("max_events", 10**9)
     run = solve_exact(P, 1.0, t_end=50.0)  # the default bound, 10**7 events, fits
     assert run.success
@@ -87,23 +101,27 @@ def test_a_bad_memory_budget_is_refused_naming_it(budget):
 
 def test_a_larger_budget_lets_a_larger_run_through():
     with pytest.raises(MemoryBudgetError):
-        solve_exact(P, 1.0, n_cycles=20_000, memory_budget=1_000_000)
-    assert solve_exact(P, 1.0, n_cycles=20_000, memory_budget=10_000_000).success
+        solve_exact(P, 1.0, n_cycles=10_000, memory_budget=1_000_000)
+    assert solve_exact(P, 1.0, n_cycles=10_000, memory_budget=10_000_000).success
 
 
 def test_the_ensemble_budget_is_in_bytes_and_names_what_to_reduce():
-    assert MAX_CELLS * 40 == MEMORY_BUDGET
-    err, seconds = _refused(lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, np.full(10, 0.05), n_cycles=10**8))
-    assert seconds < 1.0 and (err.name, err.value) == ("n_cycles", 10**8)
-    assert "at most 4_999_999 for 10 trajectories" in err.requirement and err.estimate == ensemble_bytes(10, 10**8)
-    # each trajectory's state counts, however few its cycles: 2.5e7 single cycles were let through by the
-    # cell count alone, and would take some 14 GB
+    assert MAX_CELLS == MEMORY_BUDGET // CELL_BYTES
+    err = _refused(lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, np.full(10, 0.05), n_cycles=10**8))
+    assert (err.name, err.value) == ("n_cycles", 10**8) and err.estimate == ensemble_bytes(10, 10**8)
+    most = int(re.search(r"at most ([\d_]+) for 10 trajectories", err.requirement).group(1))
+    assert ensemble_bytes(10, most) <= MEMORY_BUDGET < ensemble_bytes(10, most + 1)
+    # each trajectory's state counts, however few its cycles
     many = np.full(4_000, 0.05)
-    err, _ = _refused(lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, many, n_cycles=1, memory_budget=2 * 10**6))
-    assert (err.name, err.value) == ("trajectories", 4000) and "at most 2_985 for n_cycles = 1" in err.requirement
-    assert ensemble_bytes(25 * 10**6, 1) > 8 * MEMORY_BUDGET and ensemble_bytes(10, 10**8) == 40 * 10 * (10**8 + 1)
+    err = _refused(lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, many, n_cycles=1, memory_budget=2 * 10**6))
+    assert err.name == "trajectories" and err.value == 4000
+    most = int(re.search(r"at most ([\d_]+) for n_cycles = 1", err.requirement).group(1))
+    assert ensemble_bytes(most, 1) <= 2 * 10**6 < ensemble_bytes(most + 1, 1)
     out = solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, np.full(10, 0.05), n_cycles=2000, memory_budget=10**7)
     assert out.cycles.period.shape == (10, 2000)
+
+
+# --- the estimates against the measured peaks ---------------------------------------------------------
 
 
 def _peak(run) -> tuple[object, int, int]:
@@ -117,41 +135,124 @@ def _peak(run) -> tuple[object, int, int]:
     return result, held - base, peak - base
 
 
+def _bounds(estimate: float, peak: int) -> None:
+    assert peak <= estimate <= LOOSEST * peak, (estimate, peak, estimate / peak)
+
+
+def _exact_estimate(limits: RunLimits, record: bool) -> int:
+    return check_memory(limits, exact.EVENT_BYTES + exact.ARC_BYTES * record, exact.CYCLE_BYTES, "", "",
+                        fixed_bytes=exact.PASS_BYTES)
+
+
+@pytest.mark.parametrize("n", [10_000, 50_000])
 @pytest.mark.parametrize("record", [False, True])
-def test_solve_exact_stays_within_its_estimate_without_a_second_copy(record):
-    n = 20_000
-    estimate = check_memory(RunLimits(n_cycles=n), exact.EVENT_BYTES + exact.ARC_BYTES * record, exact.CYCLE_BYTES,
-                            "", "", fixed_bytes=exact.PASS_BYTES)
+def test_solve_exact_stays_within_its_estimate(record, n):
     run, held, peak = _peak(lambda: solve_exact(P, 1.0, n_cycles=n, record_trajectory=record))
     stored = sum(getattr(run.events, c).nbytes for c in ("t", "kind", "x", "v_before", "v_after")) + sum(
         getattr(run.cycles, c).nbytes for c in ("impact_time", "velocity_before_impact", "period", "amplitude"))
     if record:
         stored += sum(getattr(run.trajectory, c).nbytes for c in ("t_start", "centre", "x_start", "v_start"))
-    assert stored <= held < 1.1 * stored  # the result, its buffers packed
-    assert peak < 1.25 * held  # no second copy of the result at the end
-    assert 0.6 * estimate < peak <= estimate
+    assert stored <= held < 1.1 * stored  # the result holds its columns and nothing more
+    _bounds(_exact_estimate(RunLimits(n_cycles=n), record), peak)
 
 
 @pytest.mark.parametrize("record", [False, True])
-def test_the_generic_loop_stays_within_its_estimate(record):
-    n = 8_000
-    stepper_bytes = 34 if record else 0
-    estimate = check_memory(RunLimits(n_cycles=n), 40 + stepper_bytes, 40, "", "")
-    _, held, peak = _peak(lambda: solve_exact_stepwise(P, 1.0, n_cycles=n, record_trajectory=record))
-    assert peak < 1.25 * held and 0.6 * estimate < peak <= estimate
+def test_a_run_to_an_end_time_stays_within_the_estimate_of_its_event_bound(record):
+    events = len(solve_exact(P, 1.0, t_end=100_000.0, record_trajectory=False).events)
+    limits = RunLimits(t_end=100_000.0, max_events=events + 1)
+    run, _, peak = _peak(lambda: solve_exact(P, 1.0, t_end=100_000.0, max_events=events + 1,
+                                             record_trajectory=record))
+    assert run.success and len(run.events) == events
+    _bounds(_exact_estimate(limits, record), peak)
+
+
+STREAM_CHUNK_UNDERESTIMATED = pytest.mark.xfail(
+    strict=True, raises=AssertionError,
+    reason="stream.CHUNK_BYTES_PER_CYCLE = 64, measured about 92-96 bytes a cycle of a chunk")
+
+
+@pytest.mark.parametrize("chunk", [pytest.param(50_000, marks=STREAM_CHUNK_UNDERESTIMATED)])
+def test_a_streamed_chunk_stays_within_its_estimate(chunk):
+    """The budget a chunk is checked against bounds the stream's peak: the chunk being built, the one the
+    caller holds, and a pass of the loop."""
+    _, _, peak = _peak(lambda: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=2 * chunk, chunk=chunk)])
+    _bounds(chunk * stream.CHUNK_BYTES_PER_CYCLE, peak)
+
+
+def test_a_streamed_run_takes_the_memory_of_a_chunk_whatever_its_length():
+    def drained(n):
+        return lambda: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=n, chunk=1_000)]
+
+    short, long = _peak(drained(10_000))[2], _peak(drained(100_000))[2]
+    assert long <= 1.5 * short, (short, long)  # ten times the cycles, not the memory
+    # a pass: about PASS_EVENTS events of the loop's columns and the arrays derived from them
+    assert short <= stream.PASS_EVENTS * 2 * exact.EVENT_BYTES + 1_000 * 2 * stream.CHUNK_BYTES_PER_CYCLE
+
+
+@pytest.mark.parametrize("b", [1e-3, 1e-4])
+def test_solve_cycles_stays_within_its_estimate_where_every_cycle_is_distinct(b):
+    p = Parameters(M=1.0, K=1.0, F=1.0, b=b, a1=-0.1, a2=0.05)
+    count = closed_form._transient(closed_form.prepared(p).cycle_map, closed_form.first_impact(p, 1.0, 0.0)[1], 10**8)
+    run, _, peak = _peak(lambda: cyc.solve_cycles(p, 1.0, n_cycles=count))
+    assert run.method == cyc.CLOSED_FORM and run.distinct_cycles >= 0.9 * count
+    _bounds(count * cyc.PEAK_BYTES_PER_CYCLE, peak)
+
+
+def test_solve_cycles_at_the_fixed_point_stays_below_its_estimate():
+    """A bound for the worst case: a long run at the fixed point takes about a sixth of it."""
+    run, _, peak = _peak(lambda: cyc.solve_cycles(P, 1.0, n_cycles=100_000))
+    assert run.distinct_cycles < 200 and peak <= 100_000 * cyc.PEAK_BYTES_PER_CYCLE
+
+
+@pytest.mark.parametrize("chunk", [10_000, 100_000])
+def test_a_closed_form_chunk_stays_within_its_estimate(chunk):
+    _, _, peak = _peak(lambda: [None for _ in cyc.iter_closed_form_cycles(P, 1.0, n_cycles=3 * chunk, chunk=chunk)])
+    _bounds(chunk * cyc.CHUNK_BYTES_PER_CYCLE, peak)
+
+
+ENSEMBLE_STATE_UNDERESTIMATED = pytest.mark.xfail(
+    strict=True, raises=AssertionError,
+    reason="ensemble.ROW_BYTES = 600, measured about 860 bytes a trajectory besides its cells (34 bytes each)")
+
+
+@pytest.mark.parametrize("n, n_cycles", [
+    (300, 1000), (10, 10_000), (1000, 3000),
+    pytest.param(20_000, 1, marks=ENSEMBLE_STATE_UNDERESTIMATED),
+    pytest.param(50_000, 3, marks=ENSEMBLE_STATE_UNDERESTIMATED),
+    pytest.param(2000, 60, marks=ENSEMBLE_STATE_UNDERESTIMATED),
+])
+def test_the_ensemble_stays_within_its_estimate(n, n_cycles):
+    _, _, peak = _peak(lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, np.full(n, 0.05), n_cycles=n_cycles))
+    _bounds(ensemble_bytes(n, n_cycles), peak)
 
 
 def test_the_high_precision_solver_stays_within_its_estimate():
-    limits = RunLimits(n_cycles=100)
     _, _, peak = _peak(lambda: solve_high_precision(P, 1.0, n_cycles=100, dps=50))
-    with pytest.raises(MemoryBudgetError) as err:
-        solve_high_precision(P, 1.0, n_cycles=10**7, dps=50)
-    per_cycle = err.value.estimate / 10**7  # the estimate is linear in the cycles
-    # 100 cycles take at most events_for(100) = 4 * 104 events: within 104 cycles of the linear estimate
-    assert 0.6 * per_cycle * limits.n_cycles < peak <= per_cycle * (limits.n_cycles + 4)
+    err = _refused(lambda: solve_high_precision(P, 1.0, n_cycles=10**7, dps=50))
+    per_cycle = err.estimate / 10**7  # the estimate is linear in the cycles
+    # 100 cycles take at most events_for(100) = 4 * 102 + 8 events: the estimate of 104 cycles
+    _bounds(per_cycle * 104, peak)
 
 
-@pytest.mark.parametrize("n, n_cycles", [(300, 1000), (20_000, 1), (2000, 60)])
-def test_the_ensemble_stays_within_its_estimate(n, n_cycles):
-    _, _, peak = _peak(lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, np.full(n, 0.05), n_cycles=n_cycles))
-    assert peak <= ensemble_bytes(n, n_cycles)
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="driver's 40 bytes an event and 40 a cycle; the naive solver measured 58 an event at 200 cycles")
+def test_the_naive_solver_stays_within_its_estimate():
+    n = 200
+    _, _, peak = _peak(lambda: solve_naive(P, 1.0, n_cycles=n, step=1e-2))
+    err = _refused(lambda: solve_naive(P, 1.0, n_cycles=10**9, step=1e-2))
+    _bounds(err.estimate / 10**9 * (n + 4), peak)
+
+
+@pytest.mark.parametrize("record", [
+    pytest.param(False, marks=pytest.mark.xfail(strict=True, raises=AssertionError,
+                                                reason="driver's 40 bytes an event, measured about 80")),
+    pytest.param(True, marks=pytest.mark.xfail(strict=True, raises=AssertionError,
+                                               reason="no trajectory_bytes_per_event on the reference stepper: "
+                                                      "its dense output takes about 6_400 bytes an event")),
+])
+def test_the_reference_solver_stays_within_its_estimate(record):
+    n = 300
+    solve_reference(P, 1.0, n_cycles=5, record_trajectory=record)  # SciPy's caches, filled once per process
+    _, _, peak = _peak(lambda: solve_reference(P, 1.0, n_cycles=n, record_trajectory=record))
+    err = _refused(lambda: solve_reference(P, 1.0, n_cycles=10**9, record_trajectory=record))
+    _bounds(err.estimate / 10**9 * (n + 4), peak)
