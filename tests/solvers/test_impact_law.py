@@ -1,5 +1,6 @@
-"""The impact law is written once (:func:`escapement.model.automaton.velocity_after`): patch it, and every
-solver path must follow the patched law, each checked against numbers derived here from the law alone.
+"""The impact law is written once (:func:`escapement.model.automaton.impact_factor`, ``v+ = r v-``): patch it,
+and every solver path must follow the patched law, each checked against numbers derived here from the law
+alone.
 
 The patched law is ``v+ = r v-`` with ``r = 1 - 1.2 b`` (0.88 for ``b = 0.1``; the paper's is 0.9). In the
 symmetric geometry (``a3 = -a1``, ``a4 = -a2``), with ``f = F/M`` and ``beta = r**2``, energy along the arcs of
@@ -43,9 +44,9 @@ X0 = 1.0
 FACTOR = 1.2  # the patched law's r = 1 - 1.2 b
 
 
-def patched_law(v_before, b, impact):
-    """v+ = (1 - 1.2 b) v- at an impact, none elsewhere (floats, arrays with a boolean or float flag, mpmath)."""
-    return (1.0 - FACTOR * b * impact) * v_before
+def patched_factor(b):
+    """r = 1 - 1.2 b: v+ = (1 - 1.2 b) v- at an impact (floats, arrays, mpmath numbers)."""
+    return 1.0 - FACTOR * b
 
 
 def expected_velocities(p: Parameters, r: float, x0: float, n: int) -> np.ndarray:
@@ -55,6 +56,15 @@ def expected_velocities(p: Parameters, r: float, x0: float, n: int) -> np.ndarra
     for _ in range(n - 1):
         v_sq.append(beta * beta * v_sq[-1] + zone * (1.0 + beta))
     return np.sqrt(v_sq)
+
+
+def expected_amplitudes(p: Parameters, r: float, v: np.ndarray) -> np.ndarray:
+    """The amplitude of each cycle, the top of the free swing from a2: through the zone (a1, a2) about
+    ``c = F/K`` energy gives ``v2**2 = (r v)**2 + w**2 ((a1 - c)**2 - (a2 - c)**2)``, and the swing from
+    ``(a2, v2)`` about 0 turns at ``sqrt(a2**2 + v2**2 / w**2)``."""
+    c = p.zone_offset
+    v2_sq = (r * v) ** 2 + p.omega2 * ((p.a1 - c) ** 2 - (p.a2 - c) ** 2)
+    return np.sqrt(p.a2**2 + v2_sq / p.omega2)
 
 
 def fixed_point(p: Parameters, r: float) -> float:
@@ -73,8 +83,8 @@ def test_the_derivation_holds_for_the_papers_law():
     assert np.min(np.abs(patched - v) / v) > 0.01  # above every path's tolerance (5e-3 at most)
 
 
-def _concatenated(chunks) -> np.ndarray:
-    return np.concatenate([np.zeros(0)] + [c.velocity_before_impact for c in chunks])
+def _concatenated(chunks, name: str = "velocity_before_impact") -> np.ndarray:
+    return np.concatenate([np.zeros(0)] + [getattr(c, name) for c in chunks])
 
 
 def _floats(values) -> np.ndarray:
@@ -100,39 +110,37 @@ TOLERANCE = {"solve_reference": 1e-9, "solve_high_precision": 1e-15,
              # RK4 with events applied up to a step late, at a state up to |v| h past the surface: each event
              # moves v by up to w**2 |x| h <= 1e-3 (|x| <= 1 m, w = 1, h = 1e-3); a few events' worth at most
              "solve_naive": 5e-3}
-#: the closed forms take v_k from the cycle map, whose multiplier is (1 - b)**4 written in model/cycle_map.py,
-#: not the automaton's law: they do not follow a patched law (reported to the solver's developer)
-CLOSED_FORM_IGNORES_THE_LAW = pytest.mark.xfail(
-    strict=True, raises=AssertionError,
-    reason="model.cycle_map.cycle_map hard-codes beta = (1 - b)**2 instead of automaton.velocity_after")
-
-
 def _velocities_and_events(name: str):
+    """The velocities before the impacts at a1, the amplitudes, the event log (None where the path keeps none)
+    and the path's result."""
     result = PATHS[name]()
     if name.startswith("iter"):
-        return _concatenated(result), None, result
+        tables = list(result)
+        return _concatenated(tables), _concatenated(tables, "amplitude"), None, result
     if name == "solve_ensemble":
-        rows = result.cycles.velocity_before_impact
+        rows, amplitude = result.cycles.velocity_before_impact, result.cycles.amplitude
         assert np.array_equal(rows[0], rows[1])
-        return rows[0], None, result
+        return rows[0], amplitude[0], None, result
     if name == "solve_cycles":
-        return result.cycles.velocity_before_impact, None, result
-    return _floats(result.cycles.velocity_before_impact), result.events, result
+        return result.cycles.velocity_before_impact, result.cycles.amplitude, None, result
+    return (_floats(result.cycles.velocity_before_impact), _floats(result.cycles.amplitude), result.events,
+            result)
 
 
-@pytest.mark.parametrize("name", [
-    pytest.param(name, marks=CLOSED_FORM_IGNORES_THE_LAW) if name in ("solve_cycles", "iter_closed_form_cycles")
-    else name for name in PATHS])
+@pytest.mark.parametrize("name", list(PATHS))
 def test_every_path_follows_a_patched_impact_law(monkeypatch, name):
     """The velocities before the impacts at a1 are the patched law's map, from the first cycle to its fixed
     point; where the path keeps an event log, the jump at every impact is the patched law's ratio exactly
-    (none at the ends of the zones)."""
+    (none at the ends of the zones). The closed forms take the map's multiplier from the law too (their
+    cycles, not the event solver's fallback)."""
     rel = TOLERANCE.get(name, 1e-14)
     r = 1.0 - FACTOR * PAPER.b
-    monkeypatch.setattr(automaton, "velocity_after", patched_law)
-    v, events, result = _velocities_and_events(name)
+    monkeypatch.setattr(automaton, "impact_factor", patched_factor)
+    v, amplitude, events, result = _velocities_and_events(name)
     assert len(v) == N
-    assert v == pytest.approx(expected_velocities(PAPER, r, X0, N), rel=rel)
+    expected = expected_velocities(PAPER, r, X0, N)
+    assert v == pytest.approx(expected, rel=rel)
+    assert amplitude == pytest.approx(expected_amplitudes(PAPER, r, expected), rel=rel)
     assert v[-1] == pytest.approx(fixed_point(PAPER, r), rel=max(rel, 1e-12))  # (0.88**4)**59 ~ 1e-13
     if events is not None:
         impact = np.isin(events.kind, [1, 3])
@@ -148,7 +156,7 @@ def test_every_path_follows_a_patched_impact_law(monkeypatch, name):
 def test_the_closed_forms_fallback_follows_a_patched_impact_law(monkeypatch, streamed):
     """Where the closed form gives way (a grazing margin that takes every arc), the event solver makes the run,
     under the patched law."""
-    monkeypatch.setattr(automaton, "velocity_after", patched_law)
+    monkeypatch.setattr(automaton, "impact_factor", patched_factor)
     monkeypatch.setattr(closed_form, "GRAZING_SPEED_SQ", 1.0)
     if streamed:
         chunks = iter_closed_form_cycles(PAPER, X0, n_cycles=N, chunk=7)
@@ -163,7 +171,7 @@ def test_the_closed_forms_fallback_follows_a_patched_impact_law(monkeypatch, str
 def test_the_zeno_time_follows_a_patched_reversing_law(monkeypatch):
     """v+ = (1 - 1.2 b) v-: for b = 1.5 each rebound keeps 0.8 of the speed (the paper's law keeps 0.5); the
     flights back to a3 = 0.1 m (w = 1) last 2 atan(0.8**n v / (w a3)), summed in 30 digits."""
-    monkeypatch.setattr(automaton, "velocity_after", patched_law)
+    monkeypatch.setattr(automaton, "impact_factor", patched_factor)
     p = Parameters(M=1.0, K=1.0, F=1.0, b=1.5, a1=-0.1, a2=0.05)
     s = solve_exact(p, 1.0, n_cycles=3)
     assert s.status == Status.CHATTERING
