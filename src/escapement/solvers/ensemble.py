@@ -31,9 +31,9 @@ _RUNNING = -1
 #: for the trajectory's own state from 120 cells on: the four tables of 8-byte floats (32 bytes) and the
 #: boolean masks of their shape at the end
 CELL_BYTES = 40
-#: below 120 cells, the cells at TABLE_BYTES and each trajectory's state: its rows (five states, seven numbers
-#: each) and some thirty floats of state and work arrays
-TABLE_BYTES, ROW_BYTES = 35, 600
+#: below 120 cells, the cells at TABLE_BYTES and each trajectory's state: its rows (five states, eight numbers
+#: each) and some sixty floats of state and work arrays (measured about 860 bytes)
+TABLE_BYTES, ROW_BYTES = 35, 1000
 #: the most cells the default memory budget allows: 50 million, trajectories * (n_cycles + 1)
 MAX_CELLS = MEMORY_BUDGET // CELL_BYTES
 _A1 = int(EventKind.IMPACT_A1)

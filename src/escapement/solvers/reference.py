@@ -1,14 +1,11 @@
 """Reference solver: numerical integration with scipy's ``solve_ivp`` and terminal events.
 
-It exists to check the exact solver independently, and to measure what a general-purpose
-integrator costs (the benchmark runs it with SciPy's methods and with SUNDIALS CVODE): it shares the model and the
-automaton (:mod:`escapement.model.automaton`, through the solver loop of
-:mod:`escapement.solvers.driver`) but none of the closed forms.  The motion is integrated segment by
-segment, and a segment ends at every event and at every turning point, so that
-``x`` is monotone inside each segment and a surface can be crossed at most once
-in it.  Each segment watches the surfaces the automaton watches that lie ahead in the
-direction of motion, and rest; after each event the state is put exactly on the surface,
-since scipy reports a spurious event when a segment starts on a surface it watches.
+It checks the exact solver independently and measures what a general-purpose integrator costs (SciPy's
+methods and SUNDIALS CVODE): it shares the automaton (through the loop of :mod:`escapement.solvers.driver`)
+but none of the closed forms. The motion is integrated segment by segment, a segment ending at every event
+and every turning point, so that ``x`` is monotone inside it and a surface is crossed at most once; it
+watches the surfaces ahead in the direction of motion, and rest; after each event the state is put exactly
+on the surface (SciPy reports a spurious event when a segment starts on a surface it watches).
 
 Grazing.  An integrator locates an event only where the event function has opposite signs
 at the two ends of a step.  A step that spans the crossing of a surface and the turning point
@@ -47,6 +44,8 @@ HALF_SWINGS_TO_STOP = 3
 #: the longest step, in half periods: the velocity's zeros are half a period apart, so a step
 #: shorter than that holds at most one of them and changes the velocity's sign across it
 MAX_STEP_HALF_PERIODS = 0.9
+#: the event bound of a run to an end time alone that keeps its dense output (about 7 kB an event)
+DENSE_MAX_EVENTS = 100_000
 #: relative and absolute tolerance of the root finding on a dense output (scipy's own for events)
 ROOT_TOLERANCE = 4.0 * np.finfo(float).eps
 
@@ -242,6 +241,10 @@ class IvpStepper:
         self.surfaces = {kind: Watch(automaton.position(kind, params), s.direction)
                          for kind, s in automaton.SURFACES.items()}
         self.record = record_trajectory
+        #: bytes kept per event besides the loop's: each segment's dense output where the trajectory is kept
+        #: (measured about 6_400 an event); and whatever the run's length, SciPy's work arrays (about 190 kB)
+        self.trajectory_bytes_per_event = 7_000 if record_trajectory else 0
+        self.fixed_bytes = 256_000
         self.seg_t: list[float] = []
         self.seg_sol: list = []
         self.seg_c: list[float] = []
@@ -353,7 +356,8 @@ def solve_reference(
     t_end : float, optional
         End time, s.
     max_events : int, optional
-        Bound on the number of events.
+        Bound on the number of events (default: as :func:`~escapement.solvers.exact.solve_exact`, but
+        :data:`DENSE_MAX_EVENTS` for a run to ``t_end`` alone that keeps its dense output, about 0.7 GB).
     method : str, default "DOP853"
         The integrator (see above).
     rtol : float, default 1e-12
@@ -391,6 +395,8 @@ def solve_reference(
     if not isinstance(params, Parameters):
         raise TypeError("params must be an escapement.Parameters")
     x, v = check_initial_state(x0, v0)
+    if max_events is None and n_cycles is None and record_trajectory:
+        max_events = DENSE_MAX_EVENTS
     limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events)
     if isinstance(rtol, bool) or not isinstance(rtol, float | int) or not 0 < rtol < 1:
         raise ValueError(f"rtol = {rtol!r} is invalid: rtol must be in (0, 1)")

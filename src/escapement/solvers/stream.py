@@ -34,7 +34,7 @@ DEFAULT_CHUNK = 100_000
 #: the most cycles a chunk may hold
 MAX_CHUNK = 10_000_000
 #: bytes a cycle of a chunk takes: four floats, and the parts of a chunk gathered before they are joined
-CHUNK_BYTES_PER_CYCLE = 64
+CHUNK_BYTES_PER_CYCLE = 128
 #: events per pass of the loop (about 0.5 MB of derived arrays each)
 PASS_EVENTS = 1 << 12
 
