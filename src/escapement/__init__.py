@@ -5,7 +5,9 @@ Layers, each importing only those above it in this list (``tests/test_layers.py`
 import of the source):
 
 * :mod:`escapement.model`: parameters, the hybrid automaton, closed-form kinematics, outcomes;
-* :mod:`escapement.solvers`: the solver loop, its integrators and the one result type;
+* :mod:`escapement.solvers`: the exact event loop, its streams, the ensemble, the per-cycle closed forms and
+  the one result type;
+* :mod:`escapement.integrators`: the general-purpose integrators that check them (SciPy, CVODE, mpmath, RK4);
 * :mod:`escapement.paper`, then :mod:`escapement.studies`: the paper's equations (as printed and
   corrected), the Poincare measurement and the claims; the benchmark, long run, stress cases;
 * :mod:`escapement.experiments`: each scene of the workflow run, its results returned plain;
@@ -40,9 +42,9 @@ _EXPORTS = {
     "iter_cycles": "solvers",
     "solve_ensemble": "solvers",
     "solve_exact": "solvers",
-    "solve_high_precision": "solvers",
-    "solve_naive": "solvers",
-    "solve_reference": "solvers",
+    "solve_high_precision": "integrators",
+    "solve_naive": "integrators",
+    "solve_reference": "integrators",
 }
 
 __all__ = ["__version__", *sorted(_EXPORTS)]

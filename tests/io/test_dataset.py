@@ -22,7 +22,7 @@ from escapement.io.netcdf import read_netcdf, write_netcdf
 from escapement.io.provenance import DOI
 from escapement.model.parameters import Parameters
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.high_precision import solve_high_precision
+from escapement.integrators.high_precision import solve_high_precision
 
 
 @pytest.fixture(scope="module")

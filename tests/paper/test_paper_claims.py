@@ -21,7 +21,7 @@ from escapement.paper import corrected as d
 from escapement.paper import printed as pe
 from escapement.paper.poincare import measure_cycle
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.high_precision import solve_high_precision
+from escapement.integrators.high_precision import solve_high_precision
 
 REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"
 PRINTED_4_DECIMALS = 5e-5  # half a unit of the last digit of "6.2832 s"

@@ -11,9 +11,9 @@ from escapement.model.parameters import ParameterError, Parameters
 from escapement.model.status import Status
 from escapement.solvers.ensemble import solve_ensemble
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.high_precision import solve_high_precision
-from escapement.solvers.naive import solve_naive
-from escapement.solvers.reference import solve_reference
+from escapement.integrators.high_precision import solve_high_precision
+from escapement.integrators.naive import solve_naive
+from escapement.integrators.reference import solve_reference
 
 NAMES = ("impact_time", "velocity_before_impact", "period", "amplitude")
 CYCLE_COLUMNS = NAMES

@@ -23,12 +23,12 @@ from escapement.model.limits import RunLimits
 from escapement.model.parameters import ParameterError, Parameters
 from escapement.model.quantities import INITIAL_STATE, MODEL_KEYS
 from escapement.model.status import Status
-from escapement.solvers.driver import NO_EVENT, Step, drive
+from escapement.integrators.driver import NO_EVENT, Step, drive
 from escapement.solvers.ensemble import solve_ensemble
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.high_precision import solve_high_precision
-from escapement.solvers.naive import solve_naive
-from escapement.solvers.reference import solve_reference
+from escapement.integrators.high_precision import solve_high_precision
+from escapement.integrators.naive import solve_naive
+from escapement.integrators.reference import solve_reference
 
 PAPER = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
 CYCLE_COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")

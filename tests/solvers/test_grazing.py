@@ -36,9 +36,9 @@ from escapement.model.automaton import Mode
 from escapement.model.events import EventKind
 from escapement.model.parameters import Parameters
 from escapement.model.status import Status
-from escapement.solvers.driver import NO_EVENT
+from escapement.integrators.driver import NO_EVENT
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.reference import (
+from escapement.integrators.reference import (
     CvodeIntegrator,
     Hit,
     IvpStepper,

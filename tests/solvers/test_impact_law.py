@@ -33,9 +33,9 @@ from escapement.solvers import closed_form
 from escapement.solvers.cycles import CLOSED_FORM, iter_closed_form_cycles, solve_cycles
 from escapement.solvers.ensemble import solve_ensemble
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.high_precision import solve_high_precision
-from escapement.solvers.naive import solve_naive
-from escapement.solvers.reference import solve_reference
+from escapement.integrators.high_precision import solve_high_precision
+from escapement.integrators.naive import solve_naive
+from escapement.integrators.reference import solve_reference
 from escapement.solvers.stream import iter_cycles
 
 #: the paper's case (a), symmetric, released at rest at x0 = 1 m (w = 1 rad/s)

@@ -1,5 +1,5 @@
 """The exact solver's event loop (escapement.solvers.kernel) against an independent path: the integrators'
-loop (:func:`escapement.solvers.driver.drive`) with a closed-form stepper written here, in 40-digit mpmath, by
+loop (:func:`escapement.integrators.driver.drive`) with a closed-form stepper written here, in 40-digit mpmath, by
 the phase of the harmonic motion (``acos`` of the target over the radius; the kernel uses an energy square
 root and ``atan2``). And the loop's own contract: its rows, the kinds after the first event, a run in passes
 equal to a run in one, the arcs' durations and maxima after the loop."""
@@ -21,9 +21,9 @@ from escapement.model.events import EventKind
 from escapement.model.limits import RunLimits
 from escapement.model.parameters import Parameters
 from escapement.model.status import Status
-from escapement.solvers.driver import NO_EVENT, Step, drive
+from escapement.integrators.driver import NO_EVENT, Step, drive
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.high_precision import solve_high_precision
+from escapement.integrators.high_precision import solve_high_precision
 from escapement.solvers.kernel import A1, PLAN, EventRun, cycle_rows, event_block, kinds_from, rows
 
 A2, A3, A4 = (int(k) for k in (EventKind.ZONE_END_A2, EventKind.IMPACT_A3, EventKind.ZONE_END_A4))

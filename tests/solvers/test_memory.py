@@ -27,10 +27,10 @@ from escapement.solvers import closed_form, exact, stream
 from escapement.solvers import cycles as cyc
 from escapement.solvers.ensemble import MAX_CELLS, CELL_BYTES, ensemble_bytes, solve_ensemble
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.high_precision import solve_high_precision
-from escapement.solvers.naive import solve_naive
+from escapement.integrators.high_precision import solve_high_precision
+from escapement.integrators.naive import solve_naive
 from escapement.solvers.outcomes import check_memory
-from escapement.solvers.reference import solve_reference
+from escapement.integrators.reference import solve_reference
 
 P = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 #: how loose an estimate may be: at most this times the measured peak
@@ -62,7 +62,7 @@ def test_the_solvers_of_the_integrators_loop_are_refused_alike(solver):
     run = {"reference": lambda: solve_reference(P, 1.0, n_cycles=10**9, record_trajectory=False),
            "high precision": lambda: solve_high_precision(P, 1.0, n_cycles=10**9),
            "naive": lambda: solve_naive(P, 1.0, n_cycles=10**9, step=1e-3)}[solver]
-    import escapement.solvers.driver as driver
+    import escapement.integrators.driver as driver
 
     with mock.patch.object(driver, "no_event_outcome") as started:  # any run's end goes through an outcome
         err = _refused(run)

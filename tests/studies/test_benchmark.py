@@ -4,7 +4,7 @@ import time
 import pytest
 
 from escapement.model.parameters import Parameters
-from escapement.solvers.high_precision import solve_high_precision
+from escapement.integrators.high_precision import solve_high_precision
 from escapement.studies.benchmark import (
     closed_form_map,
     headline_ratios,

@@ -1,4 +1,5 @@
-"""The solvers: one loop over the model's automaton, several integrators, one result type.
+"""The exact solvers: one event loop over the model's automaton, its streams, the ensemble and the per-cycle
+closed forms, and the one result type.
 
 The names are imported on first use (PEP 562): a job that needs only the exact solver does not
 load SciPy's integrators (the reference solver's ``solve_ivp``, about 0.7 s) or mpmath.
@@ -21,9 +22,6 @@ _EXPORTS = {
     "solve_cycles": "cycles",
     "solve_ensemble": "ensemble",
     "solve_exact": "exact",
-    "solve_high_precision": "high_precision",
-    "solve_naive": "naive",
-    "solve_reference": "reference",
 }
 
 __all__ = sorted(_EXPORTS)

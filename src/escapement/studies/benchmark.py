@@ -2,7 +2,7 @@
 
 Workload: ``n_cycles`` cycles from release at rest (the paper's Fig. 3 case (a) by default).
 Errors are relative, at the last cycle, for the velocity before impact and the impact time,
-against the 50-digit reference of :mod:`escapement.solvers.high_precision`.
+against the 50-digit reference of :mod:`escapement.integrators.high_precision`.
 
 Timing is adaptive: each setting is run again until ``min_seconds`` of runs have been measured
 (at least once, at most ``max_repeats`` times), and its wall time is the median. A fast method
@@ -30,9 +30,9 @@ from ..model.parameters import Parameters
 from ..paper import corrected as derived
 from ..solvers.cycles import CLOSED_FORM, solve_cycles
 from ..solvers.exact import solve_exact
-from ..solvers.high_precision import solve_high_precision
-from ..solvers.naive import solve_naive
-from ..solvers.reference import solve_reference
+from ..integrators.high_precision import solve_high_precision
+from ..integrators.naive import solve_naive
+from ..integrators.reference import solve_reference
 
 __all__ = ["HEADLINE_SETTINGS", "METHODS", "closed_form_map", "headline_ratios", "median_wall", "per_cycle_times",
            "run_method", "work_precision"]

@@ -1,6 +1,6 @@
 """Long runs: how the error of the impact time grows with the number of cycles.
 
-The reference is the 50-digit solution of :mod:`escapement.solvers.high_precision` until the
+The reference is the 50-digit solution of :mod:`escapement.integrators.high_precision` until the
 transient has decayed below 1e-45 (in v^2 it decays by (1-b)^4 per cycle), and from there
 on exactly periodic: t_ref(n) = t_ref(n0) + (n - n0) T*, computed in 50 digits.
 
@@ -26,8 +26,8 @@ import numpy as np
 from ..model.limits import MAX_CYCLES, check_count
 from ..model.parameters import ParameterError, Parameters
 from ..solvers.cycles import compare_tables, iter_closed_form_cycles
-from ..solvers.high_precision import solve_high_precision
-from ..solvers.reference import solve_reference
+from ..integrators.high_precision import solve_high_precision
+from ..integrators.reference import solve_reference
 from ..solvers.result import CycleTable
 from ..solvers.stream import iter_cycles
 

@@ -23,8 +23,8 @@ from ..paper import corrected as derived
 from ..paper.poincare import stability_grid
 from ..solvers.ensemble import solve_ensemble
 from ..solvers.exact import solve_exact
-from ..solvers.high_precision import solve_high_precision
-from ..solvers.reference import solve_reference
+from ..integrators.high_precision import solve_high_precision
+from ..integrators.reference import solve_reference
 from ..solvers.stream import iter_cycles
 
 __all__ = ["CASES", "StressCase", "StressResult", "run_all", "run_case"]

@@ -8,7 +8,7 @@ from escapement.model.events import EventKind
 from escapement.model.parameters import ParameterError, Parameters
 from escapement.model.status import Status
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.high_precision import solve_high_precision
+from escapement.integrators.high_precision import solve_high_precision
 
 CASES = [
     (Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0),

@@ -1,7 +1,7 @@
 """Reference solver: numerical integration with scipy's ``solve_ivp`` and terminal events.
 
 It checks the exact solver independently and measures what a general-purpose integrator costs (SciPy's
-methods and SUNDIALS CVODE): it shares the automaton (through the loop of :mod:`escapement.solvers.driver`)
+methods and SUNDIALS CVODE): it shares the automaton (through the loop of :mod:`escapement.integrators.driver`)
 but none of the closed forms. The motion is integrated segment by segment, a segment ending at every event
 and every turning point, so that ``x`` is monotone inside it and a surface is crossed at most once; it
 watches the surfaces ahead in the direction of motion, and rest; after each event the state is put exactly
@@ -25,7 +25,6 @@ no watched surface lies ahead, so that the turning point it reports lies short o
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -33,196 +32,17 @@ from ..model import automaton
 from ..model.automaton import Mode
 from ..model.limits import RunLimits
 from ..model.parameters import Parameters, check_initial_state
+from ..solvers.result import Solution
 from .driver import HORIZON, NO_EVENT, Step, drive
-from .result import Solution
+from .segments import CvodeIntegrator, DenseSegments, Hit, SciPyIntegrator, Segment, Watch
 
 __all__ = ["DenseSegments", "IvpStepper", "solve_reference"]
 
 #: free half-swings in a row without an event after which the escapement has stopped
 #: (three turning points cover more than one whole revolution from any start)
 HALF_SWINGS_TO_STOP = 3
-#: the longest step, in half periods: the velocity's zeros are half a period apart, so a step
-#: shorter than that holds at most one of them and changes the velocity's sign across it
-MAX_STEP_HALF_PERIODS = 0.9
 #: the event bound of a run to an end time alone that keeps its dense output (about 7 kB an event)
 DENSE_MAX_EVENTS = 100_000
-#: relative and absolute tolerance of the root finding on a dense output (scipy's own for events)
-ROOT_TOLERANCE = 4.0 * np.finfo(float).eps
-
-
-@dataclass(frozen=True)
-class Watch:
-    """An event a segment watches: ``x`` reaching ``position`` while moving in ``direction``
-    (``position`` None: the velocity vanishing while moving in ``direction``)."""
-
-    position: float | None
-    direction: int
-
-    def value(self, y) -> float:
-        return y[1] if self.position is None else y[0] - self.position
-
-    @property
-    def crossing(self) -> int:
-        """Sign of the slope of ``value`` at the event."""
-        return -self.direction if self.position is None else self.direction
-
-
-@dataclass(frozen=True)
-class Hit:
-    t: float
-    index: int
-    y: tuple[float, float]
-
-
-@dataclass(frozen=True)
-class Segment:
-    """One segment to integrate: ``x'' = -omega2 (x - centre)`` from ``y0`` at ``t0`` up to ``t1``
-    at most, ending at the first of ``watches``."""
-
-    omega2: float
-    centre: float
-    t0: float
-    y0: tuple[float, float]
-    t1: float
-    watches: tuple[Watch, ...]
-
-    @property
-    def max_step(self) -> float:
-        """The longest step, below half a period (see :data:`MAX_STEP_HALF_PERIODS`)."""
-        return MAX_STEP_HALF_PERIODS * math.pi / math.sqrt(self.omega2)
-
-
-class SciPyIntegrator:
-    """One segment with ``scipy.integrate.solve_ivp``."""
-
-    def __init__(self, method: str, rtol: float, atol: np.ndarray, dense: bool) -> None:
-        # SciPy's integrators are loaded here, when a reference run starts, not when the solvers are
-        # imported: a job that runs only the exact solver does not pay their import (about 0.7 s)
-        from scipy.integrate import solve_ivp
-        from scipy.optimize import brentq
-
-        self._solve_ivp, self._brentq = solve_ivp, brentq
-        self.method, self.rtol, self.atol, self.dense = method, rtol, atol, dense
-        self.name = f"solve_ivp {method} rtol={rtol:g}"
-
-    def segment(self, seg: Segment):
-        """The first event of the segment (None: none before ``t1``) and, if kept, the dense output."""
-        return self._solve(seg, self.dense)
-
-    def _solve(self, seg: Segment, dense: bool):
-        omega2, centre = seg.omega2, seg.centre
-
-        def rhs(_t, y):
-            return [y[1], -omega2 * (y[0] - centre)]
-
-        functions = []
-        for w in seg.watches:
-            def event(t, y, w=w):
-                return w.value(y)
-
-            event.terminal, event.direction = True, w.crossing
-            functions.append(event)
-        implicit = {"jac": [[0.0, 1.0], [-omega2, 0.0]]} if self.method in ("Radau", "BDF", "LSODA") else {}
-        sol = self._solve_ivp(rhs, (seg.t0, seg.t1), list(seg.y0), method=self.method, rtol=self.rtol, atol=self.atol,
-                        events=functions or None, dense_output=dense, max_step=seg.max_step, **implicit)
-        if sol.status == -1:
-            raise RuntimeError(f"solve_ivp failed at t = {seg.t0:.12g} s: {sol.message}")
-        hits = [(te[0], i, ye[0]) for i, (te, ye) in enumerate(zip(sol.t_events or [], sol.y_events or [])) if len(te)]
-        first = min(hits, key=lambda h: h[0]) if hits else None
-        hit = None if first is None else Hit(float(first[0]), first[1], (float(first[2][0]), float(first[2][1])))
-        return hit, (sol.sol if dense else None)
-
-    def crossing(self, seg: Segment, dense, end: Hit, index: int) -> Hit:
-        """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, on the segment's
-        dense output, where ``x`` is monotone from the start to ``end``; the segment is integrated
-        again with dense output if it was not kept (the same steps, so the same ``end``)."""
-        if dense is None:
-            again, dense = self._solve(seg, True)
-            if again != end:
-                raise RuntimeError(f"solve_ivp is not repeatable at t = {seg.t0:.12g} s: {again} != {end}")
-        position = seg.watches[index].position
-
-        def gap(t: float) -> float:
-            return float(dense(t)[0]) - position
-
-        t = self._brentq(gap, seg.t0, end.t, xtol=ROOT_TOLERANCE, rtol=ROOT_TOLERANCE)
-        y = dense(t)
-        return Hit(float(t), index, (float(y[0]), float(y[1])))
-
-
-class CvodeIntegrator:
-    """One segment with SUNDIALS CVODE (scikit-sundae), Adams or BDF, with its root finding."""
-
-    def __init__(self, method: str, rtol: float, atol: np.ndarray) -> None:
-        from sksundae.cvode import CVODE  # optional: only the benchmark needs it
-
-        self._cvode = CVODE
-        self.method, self.rtol, self.atol = method, rtol, atol
-        self.name = f"CVODE {method} rtol={rtol:g}"
-
-    def _solve(self, seg: Segment, watches: tuple[Watch, ...], directions: list[int], t_from: float, y_from,
-               t_to: float):
-        omega2, centre = seg.omega2, seg.centre
-
-        def rhs(_t, y, yp):
-            yp[0] = y[1]
-            yp[1] = -omega2 * (y[0] - centre)
-
-        def events(_t, y, out):
-            for i, w in enumerate(watches):
-                out[i] = w.value(y)
-
-        events.terminal = [True] * len(watches)
-        events.direction = directions
-        solver = self._cvode(rhs, method=self.method, rtol=self.rtol, atol=self.atol, eventsfn=events,
-                             num_events=len(watches), max_num_steps=1_000_000, max_step=seg.max_step)
-        result = solver.solve([t_from, t_to], np.array(y_from, dtype=float))
-        if not result.success:
-            raise RuntimeError(f"CVODE failed at t = {t_from:.12g} s: {result.message}")
-        if result.t_events is None or len(result.t_events) == 0:
-            return None
-        index = int(np.flatnonzero(result.i_events[0])[0])
-        y = result.y_events[0]
-        return Hit(float(result.t_events[0]), index, (float(y[0]), float(y[1])))
-
-    def segment(self, seg: Segment):
-        """The first event of the segment (None: none before ``t1``); CVODE keeps no dense output."""
-        return self._solve(seg, seg.watches, [w.crossing for w in seg.watches], seg.t0, seg.y0, seg.t1), None
-
-    def crossing(self, seg: Segment, dense, end: Hit, index: int) -> Hit:
-        """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, by integrating
-        back from ``end`` towards the start: ``x`` is monotone on that stretch, which holds one crossing."""
-        watch = seg.watches[index]
-        back = self._solve(seg, (watch,), [0], end.t, end.y, seg.t0)
-        if back is None:
-            raise RuntimeError(f"CVODE found no crossing of x = {watch.position!r} m between t = {seg.t0:.12g} s "
-                               f"and t = {end.t:.12g} s, where the segment passed it")
-        return Hit(back.t, index, back.y)
-
-
-@dataclass(frozen=True)
-class DenseSegments:
-    """The motion as solve_ivp's dense output, one interpolant per segment."""
-
-    t_start: np.ndarray
-    interpolants: tuple
-    centre: np.ndarray
-    omega: float
-    t_final: float
-
-    def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        t = np.asarray(t, dtype=float)
-        x = np.full(t.shape, np.nan)
-        v = np.full(t.shape, np.nan)
-        a = np.full(t.shape, np.nan)
-        idx = np.searchsorted(self.t_start, t, side="right") - 1
-        valid = (idx >= 0) & (t >= 0.0) & (t <= self.t_final)
-        for i in np.unique(idx[valid]):
-            sel = valid & (idx == i)
-            y = self.interpolants[i](t[sel])
-            x[sel], v[sel] = y[0], y[1]
-            a[sel] = -(self.omega**2) * (y[0] - self.centre[i])
-        return x, v, a
 
 
 def _heading(centre: float, x: float, v: float) -> int:

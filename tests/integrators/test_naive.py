@@ -5,7 +5,7 @@ import pytest
 from escapement.model.parameters import ParameterError, Parameters
 from escapement.model.status import Status
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.naive import solve_naive
+from escapement.integrators.naive import solve_naive
 
 P = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
 

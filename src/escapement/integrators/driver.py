@@ -43,7 +43,7 @@ from ..model.kinematics import compensated_add
 from ..model.limits import RunLimits
 from ..model.parameters import Parameters
 from ..model.status import Status, event_limit_message
-from .outcomes import (
+from ..solvers.outcomes import (
     Outcome,
     chattering_outcome,
     check_memory,
@@ -52,7 +52,7 @@ from .outcomes import (
     horizon_outcome,
     no_event_outcome,
 )
-from .result import CycleTable, Exit, Solution
+from ..solvers.result import CycleTable, Exit, Solution
 
 __all__ = ["HORIZON", "NO_EVENT", "Step", "Stepper", "drive"]
 

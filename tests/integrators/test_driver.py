@@ -1,4 +1,4 @@
-"""The integrators' loop (escapement.solvers.driver.drive): its bookkeeping with a scripted integrator. That
+"""The integrators' loop (escapement.integrators.driver.drive): its bookkeeping with a scripted integrator. That
 every solver follows the automaton's impact law is tested in test_impact_law.py, and the exact solver's loop
 against this one with a closed-form stepper in test_kernel.py."""
 
@@ -14,7 +14,7 @@ from escapement.model.events import EventKind
 from escapement.model.limits import RunLimits
 from escapement.model.parameters import Parameters
 from escapement.model.status import Status
-from escapement.solvers.driver import HORIZON, NO_EVENT, Step, drive
+from escapement.integrators.driver import HORIZON, NO_EVENT, Step, drive
 
 A1, A2, A3, A4 = EventKind.IMPACT_A1, EventKind.ZONE_END_A2, EventKind.IMPACT_A3, EventKind.ZONE_END_A4
 

@@ -2,7 +2,7 @@
 
 Classical RK4 with a fixed step ``h``; an event is noticed when ``x`` has passed its surface
 at the end of a step, and applied there, without locating it. The escapement's rules are the
-automaton's, through the solver loop of :mod:`escapement.solvers.driver`. Errors are O(h): the
+automaton's, through the solver loop of :mod:`escapement.integrators.driver`. Errors are O(h): the
 impact is applied up to one step late, at a state up to one step past the surface.
 """
 
@@ -14,8 +14,8 @@ from ..model import automaton
 from ..model.automaton import Mode
 from ..model.limits import RunLimits
 from ..model.parameters import ParameterError, Parameters, check_initial_state
+from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
-from .result import Solution
 
 __all__ = ["NaiveStepper", "solve_naive"]
 

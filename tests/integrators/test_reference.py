@@ -9,7 +9,7 @@ from escapement.model.events import EventKind
 from escapement.model.parameters import Parameters
 from escapement.model.status import Status
 from escapement.solvers.exact import solve_exact
-from escapement.solvers.reference import solve_reference
+from escapement.integrators.reference import solve_reference
 
 AGREEMENT = 1e-8
 

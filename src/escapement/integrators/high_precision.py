@@ -1,6 +1,6 @@
 """A high-precision reference in mpmath (50 significant digits by default).
 
-It drives the same automaton as the float solvers (:func:`escapement.solvers.driver.drive`)
+It drives the same automaton as the float solvers (:func:`escapement.integrators.driver.drive`)
 but computes each arc its own way, for independence from
 :func:`escapement.model.kinematics.crossing`: the speed at a surface from energy, and the time
 from the phase angles ``atan2(w, u)`` of the start and end points taken separately (the float
@@ -15,8 +15,8 @@ import mpmath
 from ..model import automaton
 from ..model.limits import MAX_DIGITS, MIN_DIGITS, RunLimits, check_count
 from ..model.parameters import Parameters, check_initial_state
+from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
-from .result import Solution
 
 __all__ = ["MpmathStepper", "solve_high_precision"]
 
