@@ -1,5 +1,4 @@
 import math
-import time
 
 import pytest
 
@@ -149,19 +148,31 @@ def test_invalid_benchmark_settings(settings, min_seconds, max_repeats, message)
         work_precision(P, 1.0, 5, settings, min_seconds, max_repeats)
 
 
-def test_timing_repeats_a_fast_call_until_the_time_is_measured_and_a_slow_one_once():
+def test_timing_repeats_a_call_until_the_time_is_measured_and_stops_at_the_cap(monkeypatch):
+    """On a clock that advances by a fixed step per reading: a call that takes one step is repeated until
+    the runs add up to the time asked for, one that takes more than that runs once, and the cap holds."""
+    from escapement.studies import benchmark
+
+    class Clock:
+        def __init__(self, step: float) -> None:
+            self.now, self.step = 0.0, step
+
+        def __call__(self) -> float:
+            self.now += self.step  # each run takes one step between its two readings
+            return self.now
+
     calls = []
 
-    def fast():
+    def call():
         calls.append(1)
-        return "fast"
+        return "done"
 
-    wall, runs, result = median_wall(fast, min_seconds=1e-3, max_repeats=10_000)
-    assert result == "fast" and runs == len(calls) > 1 and wall >= 0
+    monkeypatch.setattr(benchmark.time, "perf_counter", Clock(0.125))  # binary fractions: sums are exact
+    wall, runs, result = median_wall(call, min_seconds=1.0, max_repeats=10_000)
+    assert result == "done" and runs == len(calls) == 8 and wall == 0.125
+    monkeypatch.setattr(benchmark.time, "perf_counter", Clock(2.0))
+    assert median_wall(call, min_seconds=1.0, max_repeats=50)[1] == 1
+    monkeypatch.setattr(benchmark.time, "perf_counter", Clock(0.125))
+    assert median_wall(call, min_seconds=10.0, max_repeats=7)[1] == 7  # the cap
 
-    def slow():
-        time.sleep(0.02)
-        return "slow"
 
-    assert median_wall(slow, min_seconds=0.01, max_repeats=50)[1] == 1
-    assert median_wall(fast, min_seconds=10.0, max_repeats=7)[1] == 7  # the cap

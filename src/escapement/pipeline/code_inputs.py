@@ -51,8 +51,9 @@ def _exports(roots: tuple[Path, ...], package: str) -> dict[str, str]:
         return {}
     for node in _tree(path).body:
         if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "_EXPORTS" for t in node.targets):
-            table = ast.literal_eval(node.value)
-            return {name: f"{package}.{module}" for name, module in table.items()}
+            pairs = zip(node.value.keys, node.value.values) if isinstance(node.value, ast.Dict) else ()
+            return {key.value: f"{package}.{value.value}" for key, value in pairs
+                    if isinstance(key, ast.Constant) and isinstance(value, ast.Constant)}
     return {}
 
 
