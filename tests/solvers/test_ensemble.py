@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from releases import release_for_zone_turning_at
 from strategies import initial_displacement, initial_velocity, parameters
 
 from escapement.model.parameters import ParameterError, Parameters
@@ -226,18 +227,6 @@ def test_the_digits_of_the_high_precision_solver_are_a_count_too(dps):
     assert solve_high_precision(p, 1.0, n_cycles=2, dps=17).success
 
 
-def _release_for_zone_turning_at(p: Parameters, impact: str, turn: mpmath.mpf) -> float:
-    """From rest at x0 (50 digits): the free arc reaches the impact position with v**2 = w**2 (x0**2 - a**2),
-    the impact keeps (1 - b) of it, and the zone arc about c through (a, v+) turns at ``turn``:
-    (v+ / w)**2 = (turn - c)**2 - (a - c)**2."""
-    with mpmath.workdps(50):
-        a = mpmath.mpf(getattr(p, impact))
-        c = mpmath.mpf(p.F) / mpmath.mpf(p.K) * (1 if impact == "a1" else -1)
-        w_after_sq = (turn - c) ** 2 - (a - c) ** 2
-        return float(-mpmath.sqrt(a**2 + w_after_sq / (1 - mpmath.mpf(p.b)) ** 2) if impact == "a1"
-                     else mpmath.sqrt(a**2 + w_after_sq / (1 - mpmath.mpf(p.b)) ** 2))
-
-
 
 @pytest.mark.parametrize("params, impact, end", [
     (Parameters(M=1.0, K=1.0, F=0.02, b=0.1, a1=-0.05, a2=0.1), "a1", "a2"),
@@ -250,7 +239,7 @@ def test_the_ensemble_follows_the_releases_around_a_turning_point_as_the_scalar_
     releases whose first zone arc turns well inside or well past it, as one ensemble: some trajectories turn
     back, some pass; each gives the scalar solver's outcome and numbers (to rounding: NumPy's arctan2 and
     hypot)."""
-    x0 = _release_for_zone_turning_at(params, impact, mpmath.mpf(getattr(params, end)))
+    x0 = release_for_zone_turning_at(params, impact, mpmath.mpf(getattr(params, end)))
     releases = np.array([x0 + k * math.ulp(x0) for k in range(-60, 61)] + [0.9 * x0, 1.1 * x0, 2 * x0, x0 / 3])
     ens = solve_ensemble(*(getattr(params, k) for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4")), x0=releases,
                          n_cycles=6, amplitude=amplitude)

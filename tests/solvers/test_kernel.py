@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from releases import release_for_zone_turning_at
 from strategies import initial_displacement, initial_velocity, parameters
 
 from escapement.model import automaton
@@ -180,18 +181,6 @@ def test_the_kernel_agrees_with_the_high_precision_solver_to_1e13():
         assert getattr(kernel.cycles, name) == pytest.approx(reference, rel=1e-13), name
 
 
-def _release_for_zone_turning_at(p: Parameters, impact: str, turn: mpmath.mpf) -> float:
-    """From rest at x0 (50 digits): the free arc reaches the impact position with v**2 = w**2 (x0**2 - a**2),
-    the impact keeps (1 - b) of it, and the zone arc about c through (a, v+) turns at ``turn``:
-    (v+ / w)**2 = (turn - c)**2 - (a - c)**2."""
-    with mpmath.workdps(50):
-        a = mpmath.mpf(getattr(p, impact))
-        c = mpmath.mpf(p.F) / mpmath.mpf(p.K) * (1 if impact == "a1" else -1)
-        w_after_sq = (turn - c) ** 2 - (a - c) ** 2
-        return float(-mpmath.sqrt(a**2 + w_after_sq / (1 - mpmath.mpf(p.b)) ** 2) if impact == "a1"
-                     else mpmath.sqrt(a**2 + w_after_sq / (1 - mpmath.mpf(p.b)) ** 2))
-
-
 @pytest.mark.parametrize("params, impact, end", [
     # the zone (a1, a2) about F/K = 0.02 m, narrower than a2's distance from its centre: it turns near a2
     (Parameters(M=1.0, K=1.0, F=0.02, b=0.1, a1=-0.05, a2=0.1), "a1", "a2"),
@@ -203,7 +192,7 @@ def test_arcs_that_reach_their_end_at_a_turning_point_decide_as_the_phase_steppe
     back, some pass. Where the 40-digit stepper's margin (the arrival's v**2, or how far short the turning
     point lies) is above the rounding of the kernel's v**2 = v0**2 + k, both decide alike and agree on
     every number after; within it either outcome is right."""
-    x0 = _release_for_zone_turning_at(params, impact, mpmath.mpf(getattr(params, end)))
+    x0 = release_for_zone_turning_at(params, impact, mpmath.mpf(getattr(params, end)))
     outcomes, compared = set(), 0
     for k in range(-60, 61):
         release = x0 + k * math.ulp(x0)
