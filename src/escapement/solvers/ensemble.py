@@ -148,36 +148,39 @@ def solve_ensemble(
     status = np.full(n, _RUNNING)
     count = np.zeros(n, dtype=int)
     cycle_max = np.full(n, -np.inf)
-    times = np.full((n, n_cycles + 1), np.nan)
-    speeds = np.full((n, n_cycles + 1), np.nan)
-    periods = np.full((n, n_cycles), np.nan)
-    maxima = np.full((n, n_cycles), np.nan)
+    # the cycle tables, a row per cycle while they are filled (the trajectories at one cycle side by side), a
+    # row per trajectory once transposed at the end
+    times = np.full((n_cycles + 1, n), np.nan)
+    speeds = np.full((n_cycles + 1, n), np.nan)
+    periods = np.full((n_cycles, n), np.nan)
+    maxima = np.full((n_cycles, n), np.nan)
     t_final = np.full(n, np.nan)
     turning = np.full(n, np.nan)
     margin = np.full(n, np.nan)
     t_acc = np.full(n, np.nan)
 
-    events = np.zeros(n, dtype=np.int64)  # each trajectory's events so far
-    s = dict(x=x, v=v, t=t, t_err=t_err, elapsed=elapsed, state=state, status=status, count=count, events=events,
+    s = dict(x=x, v=v, t=t, t_err=t_err, elapsed=elapsed, state=state, status=status, count=count,
              cycle_max=cycle_max, times=times, speeds=speeds, periods=periods, maxima=maxima, t_final=t_final,
              turning=turning, margin=margin, t_acc=t_acc, omega=omega, offset=offset, b=b, positions=positions)
+    s["rebounds"] = bool(automaton.reverses(1.0, automaton.impact_factor(b)).any())
     with np.errstate(invalid="ignore", divide="ignore"):
         table = _rows(s, x, v)
         every = np.arange(n)
-        for passes in range(limits.max_events + 1):  # each pass moves every running trajectory by one event
+        # each pass moves every running trajectory by one event: after pass p, each has had p + 1 events
+        for _ in range(limits.max_events):
             running = status == _RUNNING
             ii = slice(None) if running.all() else np.flatnonzero(running)
             if not len(every[ii]):
                 break
-            # a trajectory has had at most `passes` events: the bound can end one only from this pass on
-            last = passes + 1 >= limits.max_events
-            _pass(ii, state[ii] * n + every[ii], table, s, n_cycles, limits.max_events if last else None, amplitude)
-        else:
-            raise RuntimeError("the ensemble's loop did not end within its bound of passes")
+            _pass(ii, state[ii] * n + every[ii], table, s, n_cycles, amplitude)
+        else:  # the event bound: a trajectory still running after its last event ends there
+            limited = status == _RUNNING
+            status[limited] = Status.EVENT_LIMIT.code
+            t_final[limited] = t[limited] + t_err[limited]
 
     # Like the scalar table: only complete cycles (an impact that starts an unfinished cycle is dropped).
+    times, speeds, periods, maxima = times[:n_cycles].T, speeds[:n_cycles].T, periods.T, maxima.T
     incomplete = np.arange(n_cycles)[None, :] >= (count - 1)[:, None]
-    times, speeds = times[:, :n_cycles], speeds[:, :n_cycles]
     times[incomplete] = np.nan
     speeds[incomplete] = np.nan
     _check_completed_rows(status, times, speeds, periods, maxima if amplitude else None, t_final)
@@ -193,10 +196,12 @@ def solve_ensemble(
 
 def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict[str, np.ndarray]:
     """The automaton's rows for every trajectory, each field a column per state, flattened: entry ``state * N +
-    i`` is trajectory ``i``'s. Per state the arc's terms, centre, end, direction, impact flag and next state;
-    the release's row is that of the surface reached first (where neither is, the first watched)."""
+    i`` is trajectory ``i``'s. Per state the arc's terms, centre, end, direction, next state, and the jump at its
+    end (the impact law's factor at an impact, 1 elsewhere); the release's row is that of the surface reached
+    first (where neither is, the first watched)."""
     omega, offset, positions = s["omega"], s["offset"], s["positions"]
     ones = np.ones(len(x))
+    factor = automaton.impact_factor(s["b"])
     rows = []
     for state, arc in automaton.ARCS.items():
         centre = automaton.centre(arc.mode, offset) * ones
@@ -206,7 +211,7 @@ def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict[str, np.ndarray]:
             surface = automaton.SURFACES[kind]
             u0, q, k = arc_terms(centre, start, omega, positions[kind])
             row = dict(u0=u0, q=q, k=k, direction=surface.direction * ones, target=positions[kind] * ones,
-                       impact=surface.impact * ones, following=int(kind) * ones, centre=centre)
+                       jump=factor if surface.impact else ones, following=int(kind) * ones, centre=centre)
             if best is not None:  # the earlier of the two, where both are reached
                 reached, dt, _, _ = crossing(u0, q, k, v, omega, float(surface.direction), np)
                 first, first_dt, _, _ = crossing(best["u0"], best["q"], best["k"], v, omega, best["direction"], np)
@@ -215,16 +220,13 @@ def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict[str, np.ndarray]:
             best = row
         rows.append(best)
     table = {name: np.concatenate([row[name] for row in rows]) for name in rows[0]}
-    table["impact"] = table["impact"].astype(bool)
     table["following"] = table["following"].astype(np.intp)
     return table
 
 
-def _pass(ii, flat: np.ndarray, table: dict, s: dict, n_cycles: int, max_events: int | None,
-          amplitude: bool) -> None:
+def _pass(ii, flat: np.ndarray, table: dict, s: dict, n_cycles: int, amplitude: bool) -> None:
     """One event of each running trajectory ``ii`` (a slice or indices; ``flat`` their rows in ``table``): the
-    row's closed form, the regime exits, the impact law, the cycle table at the impacts at a1, and the event
-    bound where ``max_events`` is given."""
+    row's closed form, the regime exits, the impact law, the cycle table at the impacts at a1."""
     row = {name: column.take(flat) for name, column in table.items()}
     x, v, t, t_err, omega = (s[name][ii] for name in ("x", "v", "t", "t_err", "omega"))
     reached, dt, v1, angle = crossing(row["u0"], row["q"], row["k"], v, omega, row["direction"], np)
@@ -241,38 +243,33 @@ def _pass(ii, flat: np.ndarray, table: dict, s: dict, n_cycles: int, max_events:
     s["t"][ii], s["t_err"][ii] = compensated_add(t, t_err, dt)
     s["elapsed"][ii] += dt
     s["x"][ii] = row["target"]
-    s["events"][ii] += 1
     s["state"][ii] = row["following"]
-    v_after = np.where(row["impact"], automaton.velocity_after(v1, s["b"][ii]), v1)
+    v_after = row["jump"] * v1  # the impact law at impacts (velocity_after), the velocity as it is elsewhere
     s["v"][ii] = v_after
     hit = row["following"] == _A1
     if hit.any():
         index = np.arange(len(s["x"]))[ii] if index is None else index
         _impact_a1(index[hit], v1[hit], s, n_cycles, amplitude)
-    chatter = automaton.reverses(v1, v_after)
-    if chatter.any():
+    if s["rebounds"]:  # some trajectory's impacts reverse the velocity
+        chatter = automaton.reverses(v1, v_after)
+    if s["rebounds"] and chatter.any():
         index = np.arange(len(s["x"]))[ii] if index is None else index
         chatter &= s["status"][index] == _RUNNING  # not those that completed their cycles
         for i, vb, va in zip(index[chatter], v1[chatter], v_after[chatter]):
             _chattering(i, EventKind(int(s["state"][i])), va, vb, s)
-    if max_events is not None:  # a trajectory still running after its last event ends there
-        index = np.arange(len(s["x"]))[ii] if index is None else index
-        limited = index[(s["status"][index] == _RUNNING) & (s["events"][index] >= max_events)]
-        s["status"][limited] = Status.EVENT_LIMIT.code
-        s["t_final"][limited] = s["t"][limited] + s["t_err"][limited]
 
 
 def _impact_a1(i1: np.ndarray, v_before: np.ndarray, s: dict, n_cycles: int, amplitude: bool) -> None:
     """The trajectories ``i1`` reached the impact at a1: a cycle ends (but the first) and the next begins.
-    The tables are written through flat indices (row * width + cycle)."""
+    The tables are written through flat indices (cycle * trajectories + row)."""
     c = s["count"][i1]
     now = s["t"][i1] + s["t_err"][i1]
-    cell = i1 * (n_cycles + 1) + c
+    cell = c * len(s["x"]) + i1
     s["times"].put(cell, now)
     s["speeds"].put(cell, v_before)
     later = c > 0
     ended = i1[later]
-    cell = ended * n_cycles + (c[later] - 1)  # the cycle that ends here
+    cell = (c[later] - 1) * len(s["x"]) + ended  # the cycle that ends here
     if amplitude:
         s["maxima"].put(cell, s["cycle_max"][ended])
     s["periods"].put(cell, s["elapsed"][ended])
