@@ -2,9 +2,9 @@
 
 Between events the motion is a harmonic arc about its mode's centre, so each event comes from the
 closed form :func:`~escapement.model.kinematics.crossing`: no step size, no root finding. The loop
-(:meth:`EventRun.advance`) reads, per event, the row of the state it is in (:func:`rows`: the centre,
-the surface it watches, the direction of crossing, whether it is an impact, the next state), asks
-``crossing`` when the surface is reached, adds the duration to a compensated sum, applies the impact
+(:meth:`EventRun.advance`) reads, per event, the row of the state it is in (:func:`rows`: the arc's terms
+from its start to the surface it watches, the direction of crossing, whether it is an impact, the next
+state), asks ``crossing`` when the surface is reached, adds the duration to a compensated sum, applies the impact
 law (:func:`~escapement.model.automaton.impact_factor`) at impacts and stores three numbers: the
 event's time, the velocity before it and the angle its arc swept. Everything else (kinds, positions,
 velocities after, the arcs, the cycle table) follows from the automaton after the loop, on arrays
@@ -97,7 +97,6 @@ class EventRun:
         self.t, self.v_before, self.angle = array("d"), array("d"), array("d")
         self.outcome: Outcome | None = None
         self.open_arc = False  # the run ended inside an arc (no surface reached, or the end time)
-        self.taken = 0  # the events handed over by take()
         self.rows[RELEASE] = self.release_row()
         # by event kind (the release at 0): the position, whether it is an impact, the centre of the arc after it
         states = range(len(automaton.ARCS))
@@ -199,7 +198,6 @@ class EventRun:
         columns = tuple(np.frombuffer(column, dtype=float) if len(column) else np.zeros(0)
                         for column in (self.t, self.v_before, self.angle))
         self.t, self.v_before, self.angle = array("d"), array("d"), array("d")
-        self.taken = self.events
         return columns
 
 
