@@ -230,7 +230,7 @@ def test_streamed_chunks_are_solve_cycles_number_for_number(p, x0, chunk):
 
 
 @pytest.mark.parametrize("p, x0, why", [
-    (params(b=1.5), 1.0, "outside (0, 1]"),  # chatters
+    (params(b=1.5), 1.0, "reverses the velocity"),  # chatters
     (params(), 0.05, "did not complete"),  # never reaches a1
     # a transient of 9_527 cycles; the budget holds a chunk (1_000 x 128 bytes) and 2_180 x 400 bytes besides
     (params(b=1e-3), 1.0, "more than the 2_180 cycles"),

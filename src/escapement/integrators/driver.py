@@ -159,18 +159,17 @@ def drive(params: Parameters, x: float, v: float, limits: RunLimits, stepper: St
         step = stepper.next_event(mode, c, t, x, v, watched, t_stop)
         kind = step[0]
         if kind == NO_EVENT:
-            outcome = no_event_outcome(params, state, c, t, step.dt, step.x_max)
+            outcome = no_event_outcome(params, state, c, t, step.dt, step.x_max, t_stop, impacts_a1)
             break
         _, dt, v_before, x_max, t_abs, x_at = step
-        if kind == HORIZON or t + dt > t_stop:
+        # the event's time, compared with the end time as it is stored
+        new_sum, new_err = compensated_add(t_sum, t_err, dt) if t_abs is None else (t_abs, t_err)
+        t_new = new_sum + new_err if t_abs is None else t_abs
+        if kind == HORIZON or t_new > t_stop:
             outcome = horizon_outcome(t_stop, impacts_a1)
             break
         cycle_max = max(cycle_max, x_max)
-        if t_abs is None:
-            t_sum, t_err = compensated_add(t_sum, t_err, dt)
-            t = t_sum + t_err
-        else:
-            t = t_sum = t_abs
+        t_sum, t_err, t = new_sum, new_err, t_new
         elapsed += dt
         x = positions[kind] if x_at is None else x_at
         v_after = automaton.velocity_after(v_before, b) if automaton.is_impact(kind) else v_before

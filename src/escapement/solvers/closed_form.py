@@ -87,8 +87,8 @@ class Cycles(NamedTuple):
 def first_impact(params: Parameters, x: float, v: float) -> tuple[float, float, int] | str:
     """Time and velocity of the first impact at a1 from the release, by the event loop run for one cycle,
     and the events up to it, that impact included; or why the closed form does not apply from the start."""
-    if not 0.0 < params.b <= 1.0:
-        return f"b = {params.b!r} is outside (0, 1]: the impact reverses the velocity (the run chatters)"
+    if automaton.reverses(1.0, automaton.impact_factor(params.b)):
+        return f"b = {params.b!r}: the impact reverses the velocity (the run chatters)"
     run = EventRun(params, x, v, RunLimits(n_cycles=1))
     run.advance(run.limits.max_events)
     outcome = run.outcome
@@ -150,7 +150,7 @@ def _arcs(params: Parameters, prep: Prepared, v: np.ndarray):
     times, arrival velocities, angles)``. The arrival of each arc, the start of the next, is computed as
     ``crossing`` computes it (``d sqrt(v**2 + k)``), the impact law applied where the event is an impact."""
     b, col = params.b, prep.columns
-    starts = np.empty((4, len(v)))
+    starts = np.empty((len(prep.jumps), len(v)))
     speed = v
     for i, jump in enumerate(prep.jumps):
         speed = automaton.velocity_after(speed, b) if jump else speed

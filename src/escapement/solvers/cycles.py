@@ -21,6 +21,7 @@ from ..model.parameters import Parameters, check_initial_state
 from ..model.status import Status
 from .closed_form import GRAZING_SPEED_SQ, Cycles, distinct_cycles, first_impact, prepared, table_rows
 from .exact import solve_exact
+from .kernel import PLAN
 from .outcomes import check_memory
 from .result import CycleTable, Exit, Solution
 from .stream import DEFAULT_CHUNK, ChunkIterator, CycleStream, StreamSummary, check_chunk, iter_cycles
@@ -119,7 +120,7 @@ def solve_cycles(
     Parameters
     ----------
     params : Parameters
-        The model's parameters .
+        The model's parameters.
     x0 : float
         Initial displacement at ``t = 0+``, m.
     v0 : float, default 0
@@ -223,9 +224,9 @@ class CycleChunks(ChunkIterator):
         table = CycleTable(impact_time=table.impact_time, **{
             name: getattr(table, name).copy() for name in COLUMNS if name != "impact_time"})
         self._done = stop
-        if stop == self._n:  # a cycle is four events: the impacts at a1 and a3 and the ends of their zones
+        if stop == self._n:  # a cycle is the events of the automaton's cycle plan
             self._summary = StreamSummary(Status.COMPLETED, f"completed {self._n} cycles", Exit(), t_end, self._n,
-                                          self._events_before + 4 * self._n)
+                                          self._events_before + len(PLAN) * self._n)
         return table
 
 
@@ -249,7 +250,7 @@ def iter_closed_form_cycles(
     Parameters
     ----------
     params : Parameters
-        The model's parameters .
+        The model's parameters.
     x0 : float
         Initial displacement at ``t = 0+``, m.
     v0 : float, default 0

@@ -202,7 +202,7 @@ def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict[str, np.ndarray]:
     omega, offset, positions = s["omega"], s["offset"], s["positions"]
     ones = np.ones(len(x))
     factor = automaton.impact_factor(s["b"])
-    rows = []
+    rows: list[dict] = [{} for _ in automaton.ARCS]  # by state: a row's place in the table is its state
     for state, arc in automaton.ARCS.items():
         centre = automaton.centre(arc.mode, offset) * ones
         start = x if state == RELEASE else positions[state]
@@ -218,7 +218,7 @@ def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict[str, np.ndarray]:
                 take = reached & ~(first & (first_dt <= dt))
                 row = {name: np.where(take, row[name], best[name]) for name in row}
             best = row
-        rows.append(best)
+        rows[state] = best
     table = {name: np.concatenate([row[name] for row in rows]) for name in rows[0]}
     table["following"] = table["following"].astype(np.intp)
     return table

@@ -99,13 +99,16 @@ class EventRun:
         self.open_arc = False  # the run ended inside an arc (no surface reached, or the end time)
         self.rows[RELEASE] = self.release_row()
         # by event kind (the release at 0): the position, whether it is an impact, the centre of the arc after it
-        states = range(len(automaton.ARCS))
-        self.position = np.array([math.nan, *(automaton.position(k, params) for k in states[1:])])
-        self.impact = np.array([False, *(automaton.is_impact(k) for k in states[1:])])
-        self.centre = np.array([automaton.centre(automaton.ARCS[k].mode, params.zone_offset) for k in states])
+        size = len(self.rows)
+        self.position, self.impact, self.centre = np.full(size, math.nan), np.zeros(size, bool), np.zeros(size)
+        for state, arc in automaton.ARCS.items():
+            self.centre[state] = automaton.centre(arc.mode, params.zone_offset)
+            if state != RELEASE:
+                self.position[state], self.impact[state] = automaton.position(state, params), automaton.is_impact(state)
 
     def release_row(self) -> Row | None:
-        """The row of the release: of the surfaces it watches, the one reached first (None: neither)."""
+        """The row of the release: of the surfaces it watches, the one reached first (None: neither). It sets
+        :attr:`first`, that event's kind, and :attr:`last`, the events of the whole run."""
         best = None
         for kind in automaton.ARCS[RELEASE].watched:
             row = _row(self.params, self.release[1], automaton.ARCS[RELEASE].mode, kind)
@@ -114,11 +117,14 @@ class EventRun:
                 best = (dt, row)
         if best is None:
             return None
-        first = self.first = best[1].following
+        self.first = best[1].following
         if self.limits.n_cycles is not None:  # the (n_cycles + 1)-th impact at a1 ends the run
-            to_a1 = (PLAN.index(A1) - PLAN.index(first)) % len(PLAN)
-            self.last = min(self.last, to_a1 + len(PLAN) * self.limits.n_cycles + 1)
+            self.last = min(self.last, self._before_a1() + len(PLAN) * self.limits.n_cycles + 1)
         return best[1]
+
+    def _before_a1(self) -> int:
+        """The events before the first impact at a1: the first event, then the kinds go round :data:`PLAN`."""
+        return (PLAN.index(A1) - PLAN.index(self.first)) % len(PLAN)
 
     def advance(self, n: int) -> None:
         """Run at most ``n`` more events, or until the run ends (:attr:`outcome` set)."""
@@ -139,10 +145,11 @@ class EventRun:
             if not reached:
                 ending = NO_EVENT
                 break
-            if t + dt > t_stop:
+            new_sum, new_err = compensated_add(t_sum, t_err, dt)
+            if new_sum + new_err > t_stop:  # the event's time, as it is stored, after the end time
                 ending = HORIZON
                 break
-            t_sum, t_err = compensated_add(t_sum, t_err, dt)
+            t_sum, t_err = new_sum, new_err
             t = t_sum + t_err
             put_t(t)
             put_v(v1)
@@ -165,14 +172,17 @@ class EventRun:
         elif ending == HORIZON:
             self.open_arc = True
             self.outcome = horizon_outcome(self.t_stop, self.impacts_a1())
+        elif self.completed():  # the last cycle ends here, whatever the impact does next
+            self.outcome = completed_outcome(self.limits.n_cycles, self.time)
         elif ending == REBOUND:
             self.outcome = chattering_outcome(self.params, EventKind(self.state), self.time, v1, self.v)
         elif self.events >= self.last:
-            if self.limits.n_cycles is not None and self.impacts_a1() == self.limits.n_cycles + 1:
-                self.outcome = completed_outcome(self.limits.n_cycles, self.time)
-            else:
-                message = event_limit_message(float(self.time), self.limits.max_events)
-                self.outcome = Outcome(Status.EVENT_LIMIT, message, Exit(), self.time)
+            message = event_limit_message(float(self.time), self.limits.max_events)
+            self.outcome = Outcome(Status.EVENT_LIMIT, message, Exit(), self.time)
+
+    def completed(self) -> bool:
+        """The run's cycles are done: its last event is the (n_cycles + 1)-th impact at a1."""
+        return self.limits.n_cycles is not None and self.impacts_a1() == self.limits.n_cycles + 1
 
     def _no_event(self) -> Outcome:
         """No watched surface is passed from the state after the last event: the turning point of the arc."""
@@ -183,14 +193,14 @@ class EventRun:
             return no_event_outcome(self.params, self.state, centre, self.time, math.inf,
                                     math.hypot(x - centre, self.v / self.omega))
         dt, turning_point = time_to_rest(centre, x, self.v, self.omega)
-        return no_event_outcome(self.params, self.state, centre, self.time, dt, turning_point)
+        return no_event_outcome(self.params, self.state, centre, self.time, dt, turning_point, self.t_stop,
+                                self.impacts_a1())
 
     def impacts_a1(self) -> int:
         """The impacts at a1 so far."""
-        if self.first is None or self.events == 0:
+        if self.first is None or self.events <= self._before_a1():
             return 0
-        to_a1 = (PLAN.index(A1) - PLAN.index(self.first)) % len(PLAN)
-        return 0 if self.events <= to_a1 else (self.events - to_a1 - 1) // len(PLAN) + 1
+        return (self.events - self._before_a1() - 1) // len(PLAN) + 1
 
     def take(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The events stored since the last call: times (s), velocities before (m/s) and angles swept (rad), as
@@ -204,7 +214,6 @@ class EventRun:
 class Block(NamedTuple):
     """Consecutive events of a run, each with the arc that ends at it, all on arrays."""
 
-    start: int  #: the index of the first event in the run
     kind: np.ndarray
     t: np.ndarray  #: s
     x: np.ndarray  #: m
@@ -217,8 +226,7 @@ class Block(NamedTuple):
     arc_v: np.ndarray  #: the velocity it starts with, m/s (likewise)
 
 
-def event_block(run: EventRun, start: int, t, v_before, angle, before: tuple[int, float, float],
-                amplitude: bool = True) -> Block:
+def event_block(run: EventRun, start: int, t, v_before, angle, before: tuple[int, float, float]) -> Block:
     """The events ``start ..`` of ``run`` from what the loop stored, ``before`` the state before the first of
     them (the last event's kind, or the release, and the position and velocity after it)."""
     n = len(t)
@@ -229,9 +237,8 @@ def event_block(run: EventRun, start: int, t, v_before, angle, before: tuple[int
     arc_centre = np.concatenate(([run.centre[state_before]], run.centre[kind]))
     arc_x = np.concatenate(([x_before], x))
     arc_v = np.concatenate(([v_after_before], v_after))
-    arc_max = (arc_maximum(arc_centre[:n], arc_x[:n], arc_v[:n], run.omega, angle, x, v_before) if amplitude
-               else np.full(n, math.nan))
-    return Block(start, kind.astype(np.int8), t, x, v_before, v_after, angle / run.omega, arc_max, arc_centre, arc_x, arc_v)
+    arc_max = arc_maximum(arc_centre[:n], arc_x[:n], arc_v[:n], run.omega, angle, x, v_before)
+    return Block(kind.astype(np.int8), t, x, v_before, v_after, angle / run.omega, arc_max, arc_centre, arc_x, arc_v)
 
 
 def cycle_rows(block: Block) -> tuple[tuple[np.ndarray, ...], int]:

@@ -35,12 +35,16 @@ class Outcome(NamedTuple):
     t_final: object  #: a float, or an mpmath number for the high-precision solver
 
 
-def no_event_outcome(params: Parameters, state: int, centre, t, dt, turning) -> Outcome:
+def no_event_outcome(params: Parameters, state: int, centre, t, dt, turning, t_stop: float = math.inf,
+                     impacts_a1: int = 0) -> Outcome:
     """No surface watched in ``state`` (a row of :data:`~escapement.model.automaton.ARCS`) is ever passed
-    from time ``t``: in free flight the escapement stopped (``turning`` is the radius of the swing), in a
-    zone the mass turned back at ``turning``, ``dt`` after ``t``."""
+    from time ``t``: in free flight the escapement stopped (``turning`` is the radius of the swing; known at
+    ``t``), in a zone the mass turned back at ``turning``, ``dt`` after ``t``, unless the end time ``t_stop``
+    comes first (the run then completes there, after ``impacts_a1`` impacts at a1)."""
     arc = automaton.ARCS[state]
     status = automaton.EXIT_WITHOUT_EVENT[arc.mode]
+    if status is Status.TURNED_BACK_IN_ZONE and t + dt > t_stop:
+        return horizon_outcome(t_stop, impacts_a1)
     if status is Status.STOPPED:
         missed = {automaton.SURFACES[kind].position: float(automaton.position(kind, params)) for kind in arc.watched}
         message = stopped_message(float(t), float(turning), missed)
