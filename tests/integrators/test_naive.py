@@ -53,3 +53,16 @@ def test_invalid_cycles_and_params():
         solve_naive(P, 1.0, n_cycles=0, step=0.01)
     with pytest.raises(TypeError, match="Parameters"):
         solve_naive({"M": 1.0}, 1.0, n_cycles=1, step=0.01)
+
+
+@pytest.mark.parametrize("step", [100.0, 2 * math.pi / 20 * (1 + 1e-12), math.nan, math.inf, 0.0, -1e-3, True, "0.1"])
+def test_a_step_too_large_for_rk4_or_not_a_step_is_refused_naming_it(step):
+    """RK4 on x'' = -w**2 x is unstable from w h = 2.8 and passes events unseen well before: a step is at most
+    1/20 of the natural period 2 pi / w (0.314 s here), or refused before any work, naming ``step``."""
+    with pytest.raises(ParameterError, match=r"^step = .* is invalid: step must be > 0 and at most 0\.314159 s"):
+        solve_naive(P, 1.0, n_cycles=1, step=step)
+
+
+def test_the_largest_step_allowed_runs():
+    run = solve_naive(P, 1.0, n_cycles=2, step=2 * math.pi / 20)
+    assert run.status == Status.COMPLETED and len(run.cycles) == 2

@@ -6,7 +6,7 @@ from hypothesis import assume, given
 from strategies import initial_displacement, initial_velocity, parameters
 
 from escapement.model.events import EventKind
-from escapement.model.parameters import Parameters
+from escapement.model.parameters import ParameterError, Parameters
 from escapement.model.status import Status
 from escapement.solvers.exact import solve_exact
 from escapement.integrators.reference import solve_reference
@@ -129,3 +129,16 @@ def test_a_zone_end_passed_just_before_the_turning_point_is_not_missed():
         assert ref.status == exact.status == Status.COMPLETED, ref.message
         assert list(ref.events.kind[:2]) == [EventKind.IMPACT_A1, EventKind.ZONE_END_A2]
         assert np.array_equal(ref.events.kind, exact.events.kind)
+
+
+@pytest.mark.parametrize("method", ["Euler", "dop853", "", None, 3])
+def test_a_method_outside_the_list_is_refused_naming_it(method):
+    """Before any work, and by this package's error that names the argument, not SciPy's."""
+    with pytest.raises(ParameterError, match=r"^method = .* is invalid: method must be one of RK23, RK45, DOP853"):
+        solve_reference(Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=1, method=method)
+
+
+@pytest.mark.parametrize("flag", ["no", 1, None])
+def test_a_trajectory_flag_that_is_not_a_bool_is_refused(flag):
+    with pytest.raises(ParameterError, match=r"^record_trajectory = .* is invalid: record_trajectory must be True or False"):
+        solve_reference(Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=1, record_trajectory=flag)

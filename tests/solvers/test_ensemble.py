@@ -254,3 +254,27 @@ def test_the_ensemble_follows_the_releases_around_a_turning_point_as_the_scalar_
         assert ens.t_final[i] == pytest.approx(run.t_final, rel=1e-13)
     assert {Status(s) for s in map(lambda i: ens.outcome(i), range(len(releases)))} >= {Status.COMPLETED,
                                                                                          Status.TURNED_BACK_IN_ZONE}
+
+
+def test_inputs_too_large_are_refused_from_their_shapes_before_any_array_is_made():
+    """10**8 trajectories given as a broadcast view (no memory of its own): refused naming the trajectories,
+    with no allocation at their size (tracemalloc's peak stays below 1 MB)."""
+    import tracemalloc
+
+    from escapement.model.limits import MemoryBudgetError
+
+    tracemalloc.start()
+    with pytest.raises(MemoryBudgetError, match=r"^trajectories = 100000000 is invalid: trajectories must be at most"):
+        solve_ensemble(M=1.0, K=1.0, F=np.broadcast_to(1.0, (10**8,)), b=0.1, a1=-0.1, a2=0.05, n_cycles=1)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert peak < 1_000_000, peak
+
+
+def test_a_budget_below_one_trajectory_of_one_cycle_names_the_budget():
+    from escapement.model.limits import MemoryBudgetError
+    from escapement.solvers.ensemble import ensemble_bytes
+
+    with pytest.raises(MemoryBudgetError, match=rf"^memory_budget = 10 is invalid: memory_budget must be at least "
+                                                rf"{ensemble_bytes(1, 1):_} bytes"):
+        solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, n_cycles=1, memory_budget=10)

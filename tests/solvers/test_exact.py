@@ -282,3 +282,12 @@ def test_a_run_over_its_memory_budget_is_refused_before_any_work(case_a):
     assert (err.value.name, err.value.value, err.value.budget) == ("n_cycles", 10_000, 1_000_000)
     assert err.value.estimate > 1_000_000 and isinstance(err.value, ParameterError)
     assert solve_exact(case_a, 1.0, n_cycles=10_000, record_trajectory=False, memory_budget=10_000_000).success
+
+
+@pytest.mark.parametrize("flag", ["no", "False", 0, 1, None])
+def test_a_trajectory_flag_that_is_not_a_bool_is_refused(flag):
+    """A string such as "no" is truthy: taken as a flag it would keep the trajectory the caller refused."""
+    p = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
+    with pytest.raises(ParameterError, match=r"^record_trajectory = .* is invalid: record_trajectory must be True or False"):
+        solve_exact(p, 1.0, n_cycles=2, record_trajectory=flag)
+    assert solve_exact(p, 1.0, n_cycles=2, record_trajectory=np.bool_(False)).trajectory is None

@@ -17,7 +17,10 @@ from ..model.parameters import ParameterError, Parameters, check_initial_state
 from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
 
-__all__ = ["NaiveStepper", "solve_naive"]
+__all__ = ["STEPS_PER_PERIOD", "NaiveStepper", "solve_naive"]
+
+#: the fewest steps per natural period a run may take
+STEPS_PER_PERIOD = 20
 
 #: free flight of this many natural periods without an event: the escapement has stopped
 PERIODS_TO_STOP = 2.0
@@ -82,7 +85,7 @@ def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     n_cycles : int
         Complete cycles to run.
     step : float
-        The fixed step, s (finite and > 0).
+        The fixed step, s: > 0 and at most 1/20 of the natural period (:data:`STEPS_PER_PERIOD`).
 
     Returns
     -------
@@ -109,8 +112,11 @@ def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     """
     if not isinstance(params, Parameters):
         raise TypeError("params must be an escapement.Parameters")
-    if isinstance(step, bool) or not isinstance(step, float | int) or not (step > 0 and math.isfinite(step)):
-        raise ParameterError("step", step, "finite and > 0 (s)")
+    largest = params.natural_period / STEPS_PER_PERIOD
+    if isinstance(step, bool) or not isinstance(step, float | int) or not (0 < step <= largest):
+        raise ParameterError("step", step, f"> 0 and at most {largest:.6g} s, 1/{STEPS_PER_PERIOD} of the natural "
+                             "period 2 pi / omega: a larger step passes events without seeing them, and from "
+                             "omega step = 2.8 on the RK4 step is unstable")
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles)
     return drive(params, x, v, limits, NaiveStepper(params, float(step)), x0=x, v0=v)

@@ -30,17 +30,19 @@ import numpy as np
 
 from ..model import automaton
 from ..model.automaton import Mode
-from ..model.limits import RunLimits
-from ..model.parameters import Parameters, check_initial_state
+from ..model.limits import RunLimits, check_flag
+from ..model.parameters import ParameterError, Parameters, check_initial_state
 from ..solvers.result import Solution
 from .driver import HORIZON, NO_EVENT, Step, drive
 from .segments import CvodeIntegrator, DenseSegments, Hit, SciPyIntegrator, Segment, Watch
 
-__all__ = ["DenseSegments", "IvpStepper", "solve_reference"]
+__all__ = ["METHODS", "DenseSegments", "IvpStepper", "solve_reference"]
 
 #: free half-swings in a row without an event after which the escapement has stopped
 #: (three turning points cover more than one whole revolution from any start)
 HALF_SWINGS_TO_STOP = 3
+#: the integrators a reference run may use: SciPy's solve_ivp methods and SUNDIALS CVODE's two
+METHODS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA", "CVODE-Adams", "CVODE-BDF")
 #: the event bound of a run to an end time alone that keeps its dense output (about 7 kB an event)
 DENSE_MAX_EVENTS = 100_000
 
@@ -157,8 +159,8 @@ def solve_reference(
 ) -> Solution:
     """Integrate the escapement model numerically, segment by segment.
 
-    ``method`` is a ``solve_ivp`` method ("RK45", "DOP853", "LSODA", "Radau", ...) or
-    "CVODE-Adams" / "CVODE-BDF" (SUNDIALS through scikit-sundae, no dense output).
+    ``method`` is a ``solve_ivp`` method ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA") or
+    "CVODE-Adams" / "CVODE-BDF" (SUNDIALS through scikit-sundae, no dense output): :data:`METHODS`.
     ``atol`` defaults to ``rtol`` times a length scale (the largest of |x0|, |a_i|, F/K
     and |v0|/omega) for x, and omega times that for v.  Same limits and outcomes as
     :func:`escapement.solvers.exact.solve_exact`.
@@ -215,6 +217,9 @@ def solve_reference(
     if not isinstance(params, Parameters):
         raise TypeError("params must be an escapement.Parameters")
     x, v = check_initial_state(x0, v0)
+    record_trajectory = check_flag("record_trajectory", record_trajectory)
+    if not isinstance(method, str) or method not in METHODS:
+        raise ParameterError("method", method, f"one of {', '.join(METHODS)}")
     if max_events is None and n_cycles is None and record_trajectory:
         max_events = DENSE_MAX_EVENTS
     limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events)

@@ -20,6 +20,8 @@ import math
 from dataclasses import dataclass
 from numbers import Integral, Real
 
+import numpy as np
+
 from .parameters import ParameterError
 
 __all__ = [
@@ -33,6 +35,7 @@ __all__ = [
     "MemoryBudgetError",
     "RunLimits",
     "check_count",
+    "check_flag",
 ]
 
 EVENTS_PER_CYCLE = 4
@@ -58,6 +61,14 @@ class MemoryBudgetError(ParameterError):
         super().__init__(name, value, requirement)
         self.estimate = estimate
         self.budget = budget
+
+
+def check_flag(name: str, value: object) -> bool:
+    """``value`` as a bool if it is ``True`` or ``False`` (a NumPy bool too), else raise :class:`ParameterError`
+    naming ``name``: a string such as ``"no"`` or a number is not taken for a yes or a no."""
+    if not isinstance(value, bool | np.bool_):
+        raise ParameterError(name, value, "True or False")
+    return bool(value)
 
 
 def check_count(name: str, value: object, maximum: int, minimum: int = 1) -> int:

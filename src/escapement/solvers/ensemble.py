@@ -18,7 +18,7 @@ from ..model import automaton
 from ..model.automaton import RELEASE
 from ..model.events import EventKind
 from ..model.kinematics import arc_maximum, arc_terms, compensated_add, crossing, rebound_accumulation_time
-from ..model.limits import MEMORY_BUDGET, MemoryBudgetError, RunLimits
+from ..model.limits import MEMORY_BUDGET, MemoryBudgetError, RunLimits, check_flag
 from ..model.parameters import ParameterError, validate_arrays
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
@@ -117,26 +117,19 @@ def solve_ensemble(
     array([6.2991, 6.2979])
     """
     limits = RunLimits(n_cycles=n_cycles, max_events=max_events, memory_budget=memory_budget)
-    if not isinstance(amplitude, bool | np.bool_):
-        raise ParameterError("amplitude", amplitude, "True or False")
+    amplitude = check_flag("amplitude", amplitude)
     given = {**dict(zip(MODEL_KEYS, (M, K, F, b, a1, a2, a3, a4))), "x0": x0, "v0": v0}
+    try:  # the number of trajectories from the inputs' shapes alone, before any array is made at that size
+        shape = np.broadcast_shapes(*(np.shape(value) for value in given.values() if value is not None))
+    except ValueError:  # shapes that do not broadcast: the validation below names the inputs
+        shape = None
+    if shape is not None:
+        _check_memory(math.prod(shape), limits)
     checked = validate_arrays(given, state=True)
     M, K, F, b, a1, a2, a3, a4, x, v = (checked[name].ravel() for name in (*MODEL_KEYS, "x0", "v0"))
     n = len(M)
     n_cycles = limits.n_cycles
-    budget = limits.memory_budget
-    estimate = ensemble_bytes(n, n_cycles)
-    if estimate > budget:
-        where = (f"each trajectory takes max({CELL_BYTES} (n_cycles + 1), {TABLE_BYTES} (n_cycles + 1) + {ROW_BYTES}) "
-                 f"bytes: an estimated {estimate:_} bytes, over the memory budget of {budget:_} bytes")
-        cells = (budget // n) // CELL_BYTES  # the most cells per trajectory, at CELL_BYTES each ...
-        if CELL_BYTES * cells < TABLE_BYTES * cells + ROW_BYTES:  # ... or, for fewer, at TABLE_BYTES plus the state
-            cells = (budget // n - ROW_BYTES) // TABLE_BYTES
-        if cells < 2:
-            raise MemoryBudgetError("trajectories", n, f"at most {budget // ensemble_bytes(1, n_cycles):_} for "
-                                    f"n_cycles = {n_cycles:_} ({where})", estimate, budget)
-        raise MemoryBudgetError("n_cycles", n_cycles, f"at most {cells - 1:_} for {n:_} trajectories ({where})",
-                                estimate, budget)
+    _check_memory(n, limits)
     omega, offset = np.sqrt(K / M), F / K
     values = {"a1": a1, "a2": a2, "a3": a3, "a4": a4}
     positions = {kind: values[s.position] for kind, s in automaton.SURFACES.items()}
@@ -192,6 +185,29 @@ def solve_ensemble(
         exit_margin=margin,
         exit_t_accumulation=t_acc,
     )
+
+
+def _check_memory(n: int, limits: RunLimits) -> None:
+    """Refuse ``n`` trajectories of ``limits.n_cycles`` cycles whose estimate (:func:`ensemble_bytes`) exceeds the
+    memory budget, naming what to change: the budget where one trajectory of one cycle does not fit, else the
+    trajectories or the cycles, with the most that fit."""
+    n_cycles, budget = limits.n_cycles, limits.memory_budget
+    estimate = ensemble_bytes(n, n_cycles)
+    if estimate <= budget:
+        return
+    where = (f"each trajectory takes max({CELL_BYTES} (n_cycles + 1), {TABLE_BYTES} (n_cycles + 1) + {ROW_BYTES}) "
+             f"bytes: an estimated {estimate:_} bytes, over the memory budget of {budget:_} bytes")
+    if ensemble_bytes(1, 1) > budget:
+        raise MemoryBudgetError("memory_budget", budget, f"at least {ensemble_bytes(1, 1):_} bytes, those of one "
+                                f"trajectory of one cycle ({where})", estimate, budget)
+    cells = (budget // n) // CELL_BYTES  # the most cells per trajectory, at CELL_BYTES each ...
+    if CELL_BYTES * cells < TABLE_BYTES * cells + ROW_BYTES:  # ... or, for fewer, at TABLE_BYTES plus the state
+        cells = (budget // n - ROW_BYTES) // TABLE_BYTES
+    if cells < 2:
+        raise MemoryBudgetError("trajectories", n, f"at most {budget // ensemble_bytes(1, n_cycles):_} for "
+                                f"n_cycles = {n_cycles:_} ({where})", estimate, budget)
+    raise MemoryBudgetError("n_cycles", n_cycles, f"at most {cells - 1:_} for {n:_} trajectories ({where})",
+                            estimate, budget)
 
 
 def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict[str, np.ndarray]:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.events import EventLog
-from ..model.limits import RunLimits
+from ..model.limits import RunLimits, check_flag
 from ..model.parameters import Parameters, check_initial_state
 from .kernel import Block, EventRun, cycle_rows, event_block
 from .outcomes import check_memory, finish
@@ -112,7 +112,7 @@ def solve_exact(
         raise TypeError("params must be an escapement.Parameters")
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
-    record_trajectory = bool(record_trajectory)
+    record_trajectory = check_flag("record_trajectory", record_trajectory)
     contents = "its event log, cycle table and arcs" if record_trajectory else "its event log and cycle table"
     remedy = ("pass record_trajectory=False, " if record_trajectory else "") + _REMEDY
     check_memory(limits, EVENT_BYTES + (ARC_BYTES if record_trajectory else 0), CYCLE_BYTES, contents, remedy,
