@@ -47,7 +47,7 @@ def _first_impact(p: Parameters, x0: float, v0: float):
     c = p.zone_offset
     r = 1.0 - p.b
     a1, a2, a3, a4 = p.a1, p.a2, p.a3, p.a4
-    sqrt, atan2, hypot = math.sqrt, math.atan2, math.hypot
+    sqrt, atan2 = math.sqrt, math.atan2
     t_sum = t_err = x0 * 0
     best = None
     for target, d in ((a1, 1), (a3, -1)):  # the first arc, free: a1 moving right or a3 moving left

@@ -1,7 +1,5 @@
-"""The speed floors (benchmarks/floor.py): their loops give the numbers of the escapement's periodic regime, and
-their measurements return rows of the stated form. Not timed: the sizes are tiny and no ratio is asserted.
-
-The minimal loops themselves are tested in test_minimal.py."""
+"""The speed floors' measurements (benchmarks/floor.py) return rows of the stated form. Not timed: the sizes are
+tiny and no ratio is asserted. The minimal loops themselves are tested in test_minimal.py."""
 
 from __future__ import annotations
 
@@ -11,8 +9,6 @@ import numpy as np
 import pytest
 
 from benchmarks import floor
-from escapement.model import Parameters
-from escapement.solvers import solve_ensemble, solve_exact
 
 CYCLE_COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
 

@@ -5,8 +5,6 @@ escapement written out by hand, and the cycle table of :func:`escapement.solvers
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 

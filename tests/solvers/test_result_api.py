@@ -9,7 +9,6 @@ import sys
 import numpy as np
 import pandas as pd
 import pytest
-import xarray as xr
 
 from escapement import EventKind, Parameters, Status, solve_ensemble, solve_exact, solve_high_precision
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..model.events import EventKind
 from ..model.parameters import Parameters
-from ..model.quantities import INITIAL_STATE, PARAMETERS
+from ..model.quantities import INITIAL_STATE, PARAMETERS, VARIABLES
 from ..model.status import Status
 
 __all__ = [
@@ -31,13 +31,9 @@ __all__ = [
     "solution_summary",
 ]
 
-#: the per-cycle table's columns: name: (UDUNITS string, long name)
-CYCLE_COLUMNS = {
-    "impact_time": ("s", "time of impact k at a1 (start of cycle k)"),
-    "velocity_before_impact": ("m s-1", "velocity just before impact k at a1"),
-    "period": ("s", "time from impact k to impact k+1 at a1"),
-    "amplitude": ("m", "largest displacement between impact k and impact k+1 (right turning point)"),
-}
+_CYCLE_NAMES = ("impact_time", "velocity_before_impact", "period", "amplitude")
+#: the per-cycle table's columns: name: (UDUNITS string, long name), from the quantities' table
+CYCLE_COLUMNS = {name: (VARIABLES[name].units, VARIABLES[name].long_name) for name in _CYCLE_NAMES}
 #: the event log's columns: name: (field of the EventLog, UDUNITS string or None for a code, long name)
 EVENT_COLUMNS = {
     "event_time": ("t", "s", "time of the event"),
@@ -48,7 +44,7 @@ EVENT_COLUMNS = {
 }
 
 #: the plain-text units of the per-cycle columns and of the exit's numbers, for the summaries
-CYCLE_UNITS = {"impact_time": "s", "velocity_before_impact": "m/s", "period": "s", "amplitude": "m"}
+CYCLE_UNITS = {name: VARIABLES[name].unit_label for name in _CYCLE_NAMES}
 EXIT_UNITS = {"turning_point": "m", "margin": "m", "t_accumulation": "s"}
 #: the width the summaries wrap the message to, and of their column of labels
 _WIDTH = 120

@@ -19,7 +19,7 @@ from ..model.automaton import RELEASE
 from ..model.events import EventKind
 from ..model.kinematics import arc_maximum, arc_terms, compensated_add, crossing, rebound_accumulation_time
 from ..model.limits import MEMORY_BUDGET, MemoryBudgetError, RunLimits, check_flag
-from ..model.parameters import ParameterError, validate_arrays
+from ..model.parameters import validate_arrays
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 from .result import CycleTable, EnsembleSolution
@@ -165,7 +165,7 @@ def solve_ensemble(
             ii = slice(None) if running.all() else np.flatnonzero(running)
             if not len(every[ii]):
                 break
-            _pass(ii, state[ii] * n + every[ii], table, s, n_cycles, amplitude)
+            _pass(ii, every[ii], table, s, n_cycles, amplitude)
         else:  # the event bound: a trajectory still running after its last event ends there
             limited = status == _RUNNING
             status[limited] = Status.EVENT_LIMIT.code
@@ -240,15 +240,14 @@ def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict[str, np.ndarray]:
     return table
 
 
-def _pass(ii, flat: np.ndarray, table: dict, s: dict, n_cycles: int, amplitude: bool) -> None:
-    """One event of each running trajectory ``ii`` (a slice or indices; ``flat`` their rows in ``table``): the
-    row's closed form, the regime exits, the impact law, the cycle table at the impacts at a1."""
+def _pass(ii, index: np.ndarray, table: dict, s: dict, n_cycles: int, amplitude: bool) -> None:
+    """One event of each running trajectory ``ii`` (a slice or their indices; ``index`` the indices): the row of
+    its state, its closed form, the regime exits, the impact law, the cycle table at the impacts at a1."""
+    flat = s["state"][ii] * len(s["x"]) + index  # the trajectories' rows in the table
     row = {name: column.take(flat) for name, column in table.items()}
     x, v, t, t_err, omega = (s[name][ii] for name in ("x", "v", "t", "t_err", "omega"))
     reached, dt, v1, angle = crossing(row["u0"], row["q"], row["k"], v, omega, row["direction"], np)
-    index = None
     if not reached.all():  # these leave the regime; the pass goes on with the others
-        index = np.arange(len(s["x"]))[ii]
         _exits(index[~reached], s)
         ii = index = index[reached]
         x, v, t, t_err, omega, dt, v1, angle = (a[reached] for a in (x, v, t, t_err, omega, dt, v1, angle))
@@ -264,12 +263,9 @@ def _pass(ii, flat: np.ndarray, table: dict, s: dict, n_cycles: int, amplitude: 
     s["v"][ii] = v_after
     hit = row["following"] == _A1
     if hit.any():
-        index = np.arange(len(s["x"]))[ii] if index is None else index
         _impact_a1(index[hit], v1[hit], s, n_cycles, amplitude)
-    if s["rebounds"]:  # some trajectory's impacts reverse the velocity
-        chatter = automaton.reverses(v1, v_after)
-    if s["rebounds"] and chatter.any():
-        index = np.arange(len(s["x"]))[ii] if index is None else index
+    chatter = automaton.reverses(v1, v_after) if s["rebounds"] else None  # some trajectory's impacts rebound
+    if chatter is not None and chatter.any():
         chatter &= s["status"][index] == _RUNNING  # not those that completed their cycles
         for i, vb, va in zip(index[chatter], v1[chatter], v_after[chatter]):
             _chattering(i, EventKind(int(s["state"][i])), va, vb, s)
