@@ -2,7 +2,7 @@
 
 A check, marked with :func:`check` by its name in the register, computes the replicated value of
 one kind of claim from the datasets (and the paper's closed forms where the claim is a formula) and
-decides the status: ``reproduced``, ``partially_reproduced`` or ``not_reproduced``; tolerances and
+decides the status (one of :data:`escapement.paper.vocabulary.STATUSES`); tolerances and
 the Fig. 3 case labels come from the register (``tolerance``, ``args``). Each check declares the
 scenes it reads, so that a scene that left the escapement regime gets its defined verdict
 (:func:`escapement.paper.claims.evaluate`); the checks on the runs of the checks dataset handle each
@@ -27,11 +27,10 @@ from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 from . import corrected as derived
 from . import printed as pe
+from .vocabulary import NOT, PARTIAL, REPRODUCED, STATUSES, UNDETERMINED, UNTESTABLE  # noqa: F401 (re-exported)
 
-__all__ = ["STATUSES", "Check", "Evidence", "Verdict", "check", "fmt"]
+__all__ = ["STATUSES", "Candidates", "Check", "Evidence", "Verdict", "check", "fmt"]
 
-STATUSES = ("reproduced", "partially_reproduced", "not_reproduced")
-REPRODUCED, PARTIAL, NOT = STATUSES
 COMPLETED = Status.COMPLETED.value
 
 
@@ -45,6 +44,22 @@ def fmt(x: float, digits: int = 10) -> str:
 
 
 @dataclass(frozen=True)
+class Candidates:
+    """Every candidate reading of one printed panel, scored against the panel's printed axes.
+
+    ``scores`` counts, per reading (by its name), the printed limits its values reproduce when
+    autoscaled with the printed tick step imposed; ``default_scores`` the same with the plotting
+    program's own choice of tick step; ``equivalent`` groups readings that plot the same values (a
+    mirror image read at the mirrored section, for example), which no axis can tell apart.
+    """
+
+    out_of: int
+    scores: Mapping[str, int]
+    default_scores: Mapping[str, int] = field(default_factory=dict)
+    equivalent: tuple[tuple[str, ...], ...] = ()
+
+
+@dataclass(frozen=True)
 class Evidence:
     """The datasets the claims are checked against; ``fig3`` and ``fig5`` keyed by their configured labels."""
 
@@ -55,6 +70,8 @@ class Evidence:
     #: the limits each printed panel's axes get when the outputs are autoscaled with the printed
     #: tick step, ``{(figure, panel): {"x": (low, high), "y": (low, high)}}`` (scored axes only)
     axes: Mapping[tuple[str, str], Mapping[str, tuple[float, float]]] = field(default_factory=dict)
+    #: every candidate reading of each printed panel with its score, ``{(figure, panel): Candidates}``
+    readings: Mapping[tuple[str, str], Candidates] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
