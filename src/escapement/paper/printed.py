@@ -14,12 +14,21 @@ impact at a3, ``v4p`` after it; ``v5`` the velocity at a4.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from fractions import Fraction
 
 from ..model.parameters import Parameters
 from .corrected import cycle_velocities
 
 __all__ = [
+    "Symbols",
+    "symbols_of",
+    "v5_14",
+    "zone_left_time_22e",
+    "period_terms_23",
+    "phase_jump_24",
+    "phase_jump_24_closed",
+    "zone_change_25",
     "step_velocities",
     "poincare_map_16",
     "poincare_map_17",
@@ -39,17 +48,104 @@ def _sqrt(value: float) -> float:
     return math.sqrt(value) if value >= 0.0 else math.nan
 
 
+@dataclass(frozen=True)
+class Symbols:
+    """The numbers put in for the symbols of a printed formula: the positions ``a1`` .. ``a4`` (m), the
+    force per unit mass ``f`` (m s-2) and ``w`` (rad/s). Not checked against the model's rules on
+    purpose: a convention of the paper may put in magnitudes, a mirrored position or ``-f``
+    (:mod:`escapement.paper.conventions`)."""
+
+    a1: float
+    a2: float
+    a3: float
+    a4: float
+    f: float
+    w: float
+
+    @property
+    def c(self) -> float:
+        """``f / w**2``, the centre of the impulse zone's motion."""
+        return self.f / self.w**2
+
+
+def symbols_of(p: Parameters) -> Symbols:
+    """The model's signed positions, ``f`` and ``w``: the reading under which :mod:`.corrected` derives."""
+    if not isinstance(p, Parameters):
+        raise TypeError(f"p = {p!r} must be a Parameters")
+    return Symbols(p.a1, p.a2, p.a3, p.a4, p.f, p.omega)
+
+
+def v5_14(v4p: float, s: Symbols) -> float:
+    """Eq. (14) as printed: ``v5 = -sqrt(v4p**2 + (a3**2 - a4**2) w**2 - 2 (a3 - a4) f)``."""
+    return -_sqrt(v4p**2 + (s.a3**2 - s.a4**2) * s.w**2 - 2 * (s.a3 - s.a4) * s.f)
+
+
+def zone_left_time_22e(v4p: float, s: Symbols) -> float:
+    """Eq. (22e) as printed: ``t5 - t4 = [atan(v4p / (w (a3 + c))) - acos((a4 + c) / h3)] / w``,
+    ``h3 = sqrt((a3 + c)**2 + (v4p/w)**2)``, ``c = f/w**2`` (NaN where the arccosine is undefined)."""
+    c = s.c
+    h3 = math.hypot(s.a3 + c, v4p / s.w)
+    return (math.atan(v4p / (s.w * (s.a3 + c))) - _acos((s.a4 + c) / h3)) / s.w
+
+
+def period_terms_23(velocities: dict[str, float], s: Symbols) -> dict[str, float]:
+    """The terms of Eq. (23) as printed, over ``w`` and grouped by the step whose time they give.
+
+    ``zone_right``: ``acos((c - a2)/R1) - acos((c - a1)/R1)``; ``a2_to_a3``: ``acos(a2/h2) + acos(a3/h2)``;
+    ``zone_left``: ``acos((c + a4)/R3) - acos((c + a3)/R3)``; ``a4_to_a1``: ``acos(a4/h5) + acos(a1/h5)``;
+    ``R1 = |(a1 - c, v1p/w)|``, ``h2 = |(a2, v2/w)|``, ``R3 = |(a3 + c, v4p/w)|``, ``h5 = |(a4, v5/w)|``.
+    ``velocities`` holds ``v1p``, ``v2``, ``v4p`` and ``v5`` (m/s).
+    """
+    w, c = s.w, s.c
+    r1 = math.hypot(s.a1 - c, velocities["v1p"] / w)
+    h2 = math.hypot(s.a2, velocities["v2"] / w)
+    r3 = math.hypot(s.a3 + c, velocities["v4p"] / w)
+    h5 = math.hypot(s.a4, velocities["v5"] / w)
+    return {
+        "zone_right": (_acos((c - s.a2) / r1) - _acos((c - s.a1) / r1)) / w,
+        "a2_to_a3": (_acos(s.a2 / h2) + _acos(s.a3 / h2)) / w,
+        "zone_left": (_acos((c + s.a4) / r3) - _acos((c + s.a3) / r3)) / w,
+        "a4_to_a1": (_acos(s.a4 / h5) + _acos(s.a1 / h5)) / w,
+    }
+
+
+def phase_jump_24(v_before: float, v_after: float, s: Symbols) -> float:
+    """Eq. (24), first form: ``dT1 = [atan(v_after / (a1 w)) - atan(v_before / (a1 w))] / w``."""
+    return (math.atan(v_after / (s.a1 * s.w)) - math.atan(v_before / (s.a1 * s.w))) / s.w
+
+
+def phase_jump_24_closed(v: float, b: float, s: Symbols) -> float:
+    """Eq. (24), second form: ``-(1/w) atan(a1 w b v / (a1^2 w^2 + (1 - b) v^2))``, where the paper puts in
+    ``v = x1+``, the velocity after the impact."""
+    return -math.atan(s.a1 * s.w * b * v / (s.a1**2 * s.w**2 + (1 - b) * v**2)) / s.w
+
+
+def zone_change_25(v1p: float, s: Symbols) -> float:
+    """Eq. (25) as printed, with ``v1p`` the velocity entering the zone (the paper's ``x1+``):
+    ``(1/w)[acos((c - a2)/R1) - acos((c - a1)/R1)]
+    - (1/w)[atan(sqrt((v1p/w)^2 + a1^2 - a2^2 - 2 (a1 - a2) f / w^2) / a2) - atan(v1p / (a1 w))]``."""
+    w, c = s.w, s.c
+    r1 = math.hypot(s.a1 - c, v1p / w)
+    zone_time = (_acos((c - s.a2) / r1) - _acos((c - s.a1) / r1)) / w
+    w2_exit = _sqrt((v1p / w) ** 2 + s.a1**2 - s.a2**2 - 2 * (s.a1 - s.a2) * s.f / w**2)
+    return zone_time - (math.atan(w2_exit / s.a2) - math.atan(v1p / (s.a1 * w))) / w
+
+
+def _acos(value: float) -> float:
+    return math.acos(value) if -1.0 <= value <= 1.0 else math.nan
+
+
 def step_velocities(v1: float, p: Parameters) -> dict[str, float]:
     """Eqs. (10)-(15) as printed: the velocities of one cycle from ``v1``.
 
-    Eq. (14) is printed ``v5 = -sqrt(v4p**2 + (a3**2 - a4**2) w**2 - 2 (a3 - a4) f)``.
+    Eq. (14) is printed ``v5 = -sqrt(v4p**2 + (a3**2 - a4**2) w**2 - 2 (a3 - a4) f)`` (:func:`v5_14`).
     """
     w2, f, b = p.omega2, p.f, p.b
     v1p = (1 - b) * v1  # (10)
     v2 = _sqrt(v1p**2 + (p.a1**2 - p.a2**2) * w2 - 2 * (p.a1 - p.a2) * f)  # (11)
     v4 = -_sqrt(v2**2 + (p.a2**2 - p.a3**2) * w2)  # (12)
     v4p = (1 - b) * v4  # (13)
-    v5 = -_sqrt(v4p**2 + (p.a3**2 - p.a4**2) * w2 - 2 * (p.a3 - p.a4) * f)  # (14) as printed
+    v5 = v5_14(v4p, symbols_of(p))  # (14) as printed
     v1_next = _sqrt(v5**2 + (p.a4**2 - p.a1**2) * w2)  # (15)
     return {"v1p": v1p, "v2": v2, "v4": v4, "v4p": v4p, "v5": v5, "v1_next": v1_next}
 
@@ -122,67 +218,33 @@ def step_times_22(v1: float, p: Parameters, left_amplitude: float) -> dict[str, 
     vel = cycle_velocities(v1, p)
     v1p, v2, v4p = vel["v1p"], vel["v2"], vel["v4p"]
     r1 = math.hypot(v1p / w, p.a1 - c)
-    h3 = math.hypot(p.a3 + c, v4p / w)
     return {
         "22a": math.acos(-p.a1 / left_amplitude) / w,
         "22b": (math.atan(v1p / (w * (p.a1 - c))) + math.acos((c - p.a2) / r1)) / w,
         "22c": math.atan(v2 / (w * p.a2)) / w,
         "22d": math.acos(p.a3 / math.hypot(p.a2, v2 / w)) / w,
-        "22e": (math.atan(v4p / (w * (p.a3 + c))) - math.acos((p.a4 + c) / h3)) / w,
+        "22e": zone_left_time_22e(v4p, symbols_of(p)),
     }
 
 
 def period_23(v1: float, p: Parameters) -> float:
-    """Eq. (23) as printed: the period of the cycle that starts with ``v1`` at a1.
-
-    ``T = (1/w) [acos((c - a2)/R1) - acos((c - a1)/R1) + acos(a2/h2) + acos(a3/h2)
-    + acos((c + a4)/R3) - acos((c + a3)/R3) + acos(a4/h5) + acos(a1/h5)]``, ``c = f/w^2``,
-    ``R1 = |(a1 - c, v1p/w)|``, ``h2 = |(a2, v2/w)|``, ``R3 = |(a3 + c, v4p/w)|``,
-    ``h5 = |(a4, v5/w)|``; velocities from the energy balance.
+    """Eq. (23) as printed: the period of the cycle that starts with ``v1`` at a1, the sum of
+    :func:`period_terms_23` with signed ``a1`` .. ``a4`` and the velocities from the energy balance.
     """
-    w = p.omega
-    c = p.zone_offset
-    vel = cycle_velocities(v1, p)
-    r1 = math.hypot(p.a1 - c, vel["v1p"] / w)
-    h2 = math.hypot(p.a2, vel["v2"] / w)
-    r3 = math.hypot(p.a3 + c, vel["v4p"] / w)
-    h5 = math.hypot(p.a4, vel["v5"] / w)
-    return (
-        math.acos((c - p.a2) / r1)
-        - math.acos((c - p.a1) / r1)
-        + math.acos(p.a2 / h2)
-        + math.acos(p.a3 / h2)
-        + math.acos((c + p.a4) / r3)
-        - math.acos((c + p.a3) / r3)
-        + math.acos(p.a4 / h5)
-        + math.acos(p.a1 / h5)
-    ) / w
+    return math.fsum(period_terms_23(cycle_velocities(v1, p), symbols_of(p)).values())
 
 
 def period_perturbation_24(v1: float, p: Parameters) -> float:
-    """Eq. (24), first form: ``dT1 = [atan(v1p / (a1 w)) - atan(v1 / (a1 w))] / w``."""
-    w = p.omega
-    v1p = (1 - p.b) * v1
-    return (math.atan(v1p / (p.a1 * w)) - math.atan(v1 / (p.a1 * w))) / w
+    """Eq. (24), first form (:func:`phase_jump_24`) at ``v1`` before the impact and ``(1 - b) v1`` after."""
+    return phase_jump_24(v1, (1 - p.b) * v1, symbols_of(p))
 
 
 def period_perturbation_24_closed(v1: float, p: Parameters) -> float:
-    """Eq. (24), second form as printed: ``-(1/w) atan(a1 w b v1p / (a1^2 w^2 + (1 - b) v1p^2))``."""
-    w, b = p.omega, p.b
-    v1p = (1 - b) * v1
-    return -math.atan(p.a1 * w * b * v1p / (p.a1**2 * w**2 + (1 - b) * v1p**2)) / w
+    """Eq. (24), second form as printed (:func:`phase_jump_24_closed` of ``v1p = (1 - b) v1``)."""
+    return phase_jump_24_closed((1 - p.b) * v1, p.b, symbols_of(p))
 
 
 def period_perturbation_25(v1: float, p: Parameters) -> float:
-    """Eq. (25) as printed: the period change caused by the force between a1 and a2.
-
-    ``dT2 = (1/w)[acos((c - a2)/R1) - acos((c - a1)/R1)]
-    - (1/w)[atan(sqrt((v1p/w)^2 + a1^2 - a2^2 - 2 (a1 - a2) f / w^2) / a2) - atan(v1p / (a1 w))]``.
-    """
-    w = p.omega
-    c = p.zone_offset
-    v1p = (1 - p.b) * v1
-    r1 = math.hypot(p.a1 - c, v1p / w)
-    zone_time = (math.acos((c - p.a2) / r1) - math.acos((c - p.a1) / r1)) / w
-    w2_exit = _sqrt((v1p / w) ** 2 + p.a1**2 - p.a2**2 - 2 * (p.a1 - p.a2) * p.f / w**2)
-    return zone_time - (math.atan(w2_exit / p.a2) - math.atan(v1p / (p.a1 * w))) / w
+    """Eq. (25) as printed (:func:`zone_change_25`): the period change caused by the force between a1 and
+    a2, entering the zone at ``(1 - b) v1``."""
+    return zone_change_25((1 - p.b) * v1, symbols_of(p))
