@@ -1,7 +1,9 @@
-"""The axis claims: a printed panel is reproduced only when the output autoscales to its limits.
+"""The axis claims: a printed panel's status comes from the best reading of the whole grid, and a tie
+between readings that plot different values is reported as a tie.
 
-The autoscaled limits are given as evidence (the workflow computes them with matplotlib); the
-printed limits are those of escapement.paper.printed_axes, written out here by hand.
+The autoscaled limits of the adopted output and the scores of the candidate readings are given as
+evidence (the workflow computes them with matplotlib); the printed limits are those of
+escapement.paper.printed_axes, written out here by hand.
 """
 
 from __future__ import annotations
@@ -11,7 +13,8 @@ import pytest
 import xarray as xr
 
 from escapement.paper import claims as cl
-from escapement.paper.checks import Evidence
+from escapement.paper.axis_claims import tied_readings
+from escapement.paper.checks import Candidates, Evidence
 
 
 def _ds(K: float = 1.0, outcome: str = "completed", **extra) -> xr.Dataset:
@@ -20,58 +23,96 @@ def _ds(K: float = 1.0, outcome: str = "completed", **extra) -> xr.Dataset:
     return xr.Dataset({**variables, **extra}, attrs={"outcome": outcome, "outcome_message": outcome})
 
 
-def _evidence(axes: dict, fig5_K=(0.1, 1.0, 10.0), outcome="completed") -> Evidence:
+def _evidence(axes: dict, readings: dict | None = None, fig5_K=(0.1, 1.0, 10.0), outcome="completed") -> Evidence:
     amplitude = xr.DataArray(np.ones(3), dims="amplitude_cycle", attrs={"definition": "step1"})
     fig3 = {c: _ds(outcome=outcome, amplitude=amplitude) for c in ("a", "b")}
-    return Evidence(fig3=fig3, fig4=_ds(K=0.1), fig5={f"{k:g}": _ds(K=k) for k in fig5_K}, checks=_ds(), axes=axes)
+    return Evidence(fig3=fig3, fig4=_ds(K=0.1), fig5={f"{k:g}": _ds(K=k) for k in fig5_K}, checks=_ds(), axes=axes,
+                    readings=readings or {})
 
 
-def _claim(figure: str, panel: str) -> dict:
-    return {"id": f"fig{figure}_{panel}", "source": "S", "statement": "s", "paper_value": None, "tolerance": None,
-            "check": "printed_axes", "args": {"figure": figure, "panel": panel}}
+def _claim(figure: str, panel: str, evidence: str = "fitted") -> dict:
+    return {"id": f"fig{figure}_{panel}", "source": "S", "origin": "paper", "finding": "f", "evidence": evidence,
+            "statement": "s", "paper_value": None, "tolerance": None, "check": "printed_axes",
+            "args": {"figure": figure, "panel": panel}}
+
+
+def _row(figure: str, panel: str, limits: dict, scores: dict, **candidates) -> dict:
+    out_of = 2 * len(limits)
+    ev = _evidence({(figure, panel): limits}, {(figure, panel): Candidates(out_of, scores, **candidates)})
+    return cl.evaluate([_claim(figure, panel)], ev)[0]
 
 
 @pytest.mark.parametrize(
-    "figure, panel, limits, status",
+    "figure, panel, limits, best, status",
     [
-        # Fig. 3 (a) velocity: printed cycles 0-50, velocity 0.95-1.3 by 0.05
-        ("3", "a/velocity", {"x": (0.0, 50.0), "y": (0.95, 1.3)}, "reproduced"),
-        ("3", "a/velocity", {"x": (0.0, 50.0), "y": (1.0, 1.3)}, "partially_reproduced"),
+        # Fig. 3 (a) velocity: printed cycles 0-50, velocity 0.95-1.3 by 0.05; 4 of 4 by a fitted reading
+        ("3", "a/velocity", {"x": (0.0, 50.0), "y": (0.95, 1.3)}, 4, "consistent"),
+        ("3", "a/velocity", {"x": (0.0, 50.0), "y": (1.0, 1.3)}, 3, "partially_reproduced"),
         # the cycle axis alone follows from the number of cycles plotted: not even partly
-        ("3", "a/period", {"x": (0.0, 50.0), "y": (6.2956, 6.3044)}, "not_reproduced"),
-        ("3", "b/amplitude", {"x": (0.0, 60.0), "y": (0.5, 3.0)}, "reproduced"),
-        ("3", "b/amplitude", {"x": (0.0, 50.0), "y": (0.5, 3.0)}, "partially_reproduced"),
-        # Fig. 4: only the value axes are scored (the time axes are the printed windows)
-        ("4", "velocity", {"y": (-0.1, 0.9)}, "reproduced"),
-        ("4", "velocity", {"y": (0.1, 0.9)}, "partially_reproduced"),
-        ("4", "acceleration", {"y": (-1.0, 1.0)}, "not_reproduced"),
-        # Fig. 5 (c), K = 10 N/m: displacement -1-1 by 0.5, velocity -3-4 by 1
-        ("5", "c", {"x": (-1.0, 1.0), "y": (-3.0, 4.0)}, "reproduced"),
-        ("5", "c", {"x": (-1.0, 1.0), "y": (-4.0, 3.0)}, "partially_reproduced"),
+        ("3", "a/period", {"x": (0.0, 50.0), "y": (6.2956, 6.3044)}, 2, "not_reproduced"),
+        ("3", "b/amplitude", {"x": (0.0, 50.0), "y": (0.5, 3.0)}, 3, "partially_reproduced"),
+        # Fig. 4: only the value axes are scored (the time axes are the printed windows), no cycle axis
+        ("4", "velocity", {"y": (0.1, 0.9)}, 1, "partially_reproduced"),
+        ("4", "acceleration", {"y": (-1.0, 1.0)}, 0, "not_reproduced"),
+        ("5", "c", {"x": (-1.0, 1.0), "y": (-3.0, 4.0)}, 4, "consistent"),
     ],
 )
-def test_a_panel_is_reproduced_only_when_every_limit_matches(figure, panel, limits, status):
-    row = cl.evaluate([_claim(figure, panel)], _evidence({(figure, panel): limits}))[0]
-    assert row["status"] == status
+def test_the_status_is_the_best_readings_of_the_grid_weighed_as_fitted(figure, panel, limits, best, status):
+    assert _row(figure, panel, limits, {"adopted": best, "other": 0})["status"] == status
 
 
-def test_limits_off_by_rounding_still_match_and_by_a_tick_do_not():
-    near = {("3", "a/velocity"): {"x": (0.0, 50.0), "y": (0.9500000000000001, 1.3)}}
-    assert cl.evaluate([_claim("3", "a/velocity")], _evidence(near))[0]["status"] == "reproduced"
+def test_a_better_reading_elsewhere_in_the_grid_decides_the_status_not_the_adopted_one():
+    row = _row("3", "a/velocity", {"x": (0.0, 50.0), "y": (1.0, 1.3)}, {"adopted": 3, "better": 4})
+    assert row["status"] == "consistent"
+    assert "(3 of 4 printed limits)" in row["replicated_value"] and "4 of 4, by one reading [better]" in row["replicated_value"]
+
+
+def test_an_independent_match_would_be_reproduced_and_the_fitted_one_is_only_consistent():
+    limits = {("5", "a"): {"x": (-5.0, 5.0), "y": (-1.5, 1.5)}}
+    readings = {("5", "a"): Candidates(4, {"r": 4})}
+    assert cl.evaluate([_claim("5", "a", "independent")], _evidence(limits, readings))[0]["status"] == "reproduced"
+    assert cl.evaluate([_claim("5", "a", "fitted")], _evidence(limits, readings))[0]["status"] == "consistent"
+
+
+def test_a_tie_between_different_readings_is_named_and_equivalent_readings_count_once():
+    row = _row("4", "velocity", {"y": (0.1, 0.9)}, {"A": 1, "B": 1, "C": 0, "D": 1},
+               equivalent=(("A", "D"),))
+    assert "a tie of 2 readings that plot different values, so the reading is undetermined: [A = D], [B]" in (
+        row["replicated_value"])
+    assert row["status"] == "partially_reproduced"
+    one = _row("4", "velocity", {"y": (0.1, 0.9)}, {"A": 1, "D": 1, "C": 0}, equivalent=(("A", "D"),))
+    assert "by one reading [A = D]" in one["replicated_value"] and "undetermined" not in one["replicated_value"]
+
+
+def test_tied_readings_groups_only_the_tied_members_of_an_equivalence_group():
+    best, groups = tied_readings(Candidates(4, {"A": 4, "B": 2, "C": 4}, equivalent=(("A", "B"),)))
+    assert best == 4 and groups == [("A",), ("C",)]
+
+
+def test_the_default_locators_score_is_reported_beside_the_imposed_steps():
+    row = _row("5", "a", {"x": (-5.0, 5.0), "y": (-1.5, 1.5)}, {"r": 4}, default_scores={"r": 2, "s": 3})
+    assert "with the plotting program's own tick step the best is 3 of 4" in row["note"]
 
 
 def test_the_row_gives_the_printed_and_the_autoscaled_limits_and_the_reading():
-    row = cl.evaluate([_claim("5", "a")], _evidence({("5", "a"): {"x": (-5.0, 5.0), "y": (-1.5, 1.5)}}))[0]
+    row = _row("5", "a", {"x": (-5.0, 5.0), "y": (-1.5, 1.5)}, {"r": 4})
     assert row["paper_value"] == "Displacement (m): [-5, 5]; Velocity (m/s): [-1.5, 1.5]"
-    assert row["replicated_value"] == "Displacement (m): [-5, 5]; Velocity (m/s): [-1.5, 1.5] (4 of 4 printed limits)"
+    assert row["replicated_value"].startswith(
+        "Displacement (m): [-5, 5]; Velocity (m/s): [-1.5, 1.5] (4 of 4 printed limits)")
     assert "K = 0.1 N/m" in row["note"] and "x0 = -1 m" in row["note"]
 
 
-def test_a_fig5_panel_without_its_spring_constant_and_missing_limits_fail_loudly():
+def test_missing_evidence_fails_loudly():
     with pytest.raises(cl.ClaimError, match="no Fig. 5 output has the spring constant of panel"):
         cl.evaluate([_claim("5", "c")], _evidence({}, fig5_K=(0.1, 1.0)))
     with pytest.raises(cl.ClaimError, match="no autoscaled limits for Fig. 3 panel 'a/velocity'"):
         cl.evaluate([_claim("3", "a/velocity")], _evidence({}))
+    with pytest.raises(cl.ClaimError, match="no scored candidate readings for Fig. 3 panel 'a/velocity'"):
+        cl.evaluate([_claim("3", "a/velocity")], _evidence({("3", "a/velocity"): {"x": (0, 50), "y": (1, 2)}}))
+    with pytest.raises(cl.ClaimError, match="scored out of 2 limits; the panel has 4"):
+        cl.evaluate(
+            [_claim("3", "a/velocity")],
+            _evidence({("3", "a/velocity"): {"x": (0, 50), "y": (1, 2)}}, {("3", "a/velocity"): Candidates(2, {"r": 2})}))
 
 
 def test_a_scene_that_left_the_regime_is_not_evaluated():

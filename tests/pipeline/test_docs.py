@@ -2,11 +2,12 @@ import pytest
 
 from escapement.pipeline.docs import claims_table, render, write_text
 
+WEIGHT = {"origin": "paper", "finding": "f", "evidence": "independent"}
 ROWS = [
-    {"claim_id": "x", "source": "Eq. (1)", "statement": "s", "paper_value": "1", "replicated_value": "|2|",
+    {"claim_id": "x", "source": "Eq. (1)", **WEIGHT, "statement": "s", "paper_value": "1", "replicated_value": "|2|",
      "tolerance": "0.1", "status": "not_reproduced", "note": "n"},
-    {"claim_id": "y", "source": "Fig. 2", "statement": "s", "paper_value": "3", "replicated_value": "3",
-     "tolerance": "", "status": "reproduced", "note": ""},
+    {"claim_id": "y", "source": "Fig. 2", **WEIGHT, "finding": "g", "statement": "s", "paper_value": "3",
+     "replicated_value": "3", "tolerance": "", "status": "reproduced", "note": ""},
 ]
 
 
@@ -21,6 +22,8 @@ def test_table_escapes_pipes_and_marks_failures():
     assert "\\|2\\|" in table
     assert "**not reproduced**" in table
     assert len(table.splitlines()) == 4
+    beyond = claims_table([dict(ROWS[1], origin="beyond", evidence="by_construction", status="consistent")])
+    assert beyond.splitlines()[2] == "| `y` | Fig. 2 (beyond the paper) | g | by construction | 3 | 3 | consistent |"
 
 
 @pytest.mark.parametrize("placeholder", ["{{ claim:z:paper_value }}", "{{ claim:x:colour }}", "{{ nonsense }}"])
@@ -38,12 +41,13 @@ def test_write_text_is_atomic(tmp_path):
 def test_the_verdict_html_counts_the_claims_and_escapes_every_cell():
     from escapement.pipeline.docs import verdict_html
 
-    claims = [dict(ROWS[0], claim_id="a", status="reproduced", note="x < y & z"),
+    claims = [dict(ROWS[0], claim_id="a", finding="g", status="reproduced", note="x < y & z"),
               dict(ROWS[0], claim_id="b", status="not_reproduced", note="")]
     stress = [{"case": "c1", "regime": "r", "outcome": "completed", "check": "k", "passed": "yes", "detail": "<d>"},
               {"case": "c2", "regime": "r", "outcome": "stopped", "check": "k", "passed": "no", "detail": ""}]
     text = verdict_html(claims, stress)
-    assert "2 claims of the paper checked</strong>: 1 reproduced, 0 partially reproduced, 1 not reproduced" in text
+    assert ("The paper's claims fill 2 rows of the register. The rows with an independent verdict come down to 2 "
+            "findings: 1 reproduced, 0 partially reproduced and 1 not reproduced.") in text
     assert "2 stress cases</strong>" in text and "1 pass, 1 fail: c2." in text
     assert '<table id="claims"' in text and '<table id="stress"' in text
     assert "x &lt; y &amp; z" in text and "&lt;d&gt;" in text and "<d>" not in text

@@ -55,12 +55,14 @@ def files(tmp_path) -> dict:
     for ds, path in zip((fig3, fig4, fig5, runs), paths.values()):
         write_netcdf(ds, path)
     register = tmp_path / "claims.yaml"
+    weight = {"origin": "paper", "finding": "f", "evidence": "independent"}
     claims = [
-        {"id": "fixed_point_first", "source": "Eq. (19)", "statement": "s", "paper_value": None, "tolerance": 1e-8,
+        {"id": "fixed_point_first", "source": "Eq. (19)", **weight, "statement": "s", "paper_value": None, "tolerance": 1e-8,
          "check": "fixed_point", "args": {"case": "first"}},
-        {"id": "multiplier", "source": "Eq. (21)", "statement": "s", "paper_value": 0.6561, "tolerance": 1e-8,
+        {"id": "multiplier", "source": "Eq. (21)", **weight, "statement": "s", "paper_value": 0.6561, "tolerance": 1e-8,
          "check": "multiplier_paper_cases"},
-        {"id": "fig5b_axes", "source": "Fig. 5 (b)", "statement": "s", "paper_value": None, "tolerance": None,
+        {"id": "fig5b_axes", "source": "Fig. 5 (b)", **weight, "evidence": "fitted", "statement": "s",
+         "paper_value": None, "tolerance": None,
          "check": "printed_axes", "args": {"figure": "5", "panel": "b"}},
     ]
     register.write_text(yaml.safe_dump({"version": 1, "claims": claims}))
@@ -94,9 +96,11 @@ def test_the_job_fails_naming_the_claim_when_a_check_raises(tmp_path, monkeypatc
 
 
 ROWS = [
-    {"claim_id": "x", "source": "Eq. (1)", "statement": 's, with "quotes"', "paper_value": "[0.5, 3]",
+    {"claim_id": "x", "source": "Eq. (1)", "origin": "paper", "finding": "f", "evidence": "independent",
+     "statement": 's, with "quotes"', "paper_value": "[0.5, 3]",
      "replicated_value": "a: 1, b: 2", "tolerance": "", "status": "reproduced", "note": "line\nbreak"},
-    {"claim_id": "y", "source": "Fig. 2", "statement": "s", "paper_value": "6.2832", "replicated_value": "6.2957 s",
+    {"claim_id": "y", "source": "Fig. 2", "origin": "beyond", "finding": "period", "evidence": "fitted",
+     "statement": "s", "paper_value": "6.2832", "replicated_value": "6.2957 s",
      "tolerance": "5e-05", "status": "not_reproduced", "note": ""},
 ]
 

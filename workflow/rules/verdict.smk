@@ -5,6 +5,7 @@ rule check_claims:
         fig4="results/fig4/shock.nc",
         fig5=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
         checks="results/claims/checks.nc",
+        readings="results/readings/axis_scores.csv",
         code=code("check_claims.py"),
     output:
         csv=report(

@@ -8,6 +8,7 @@ check_claims(  # noqa: F821
     snakemake.input.fig4,
     dict(zip(snakemake.params.fig5_labels, snakemake.input.fig5)),
     snakemake.input.checks,
+    snakemake.input.readings,
     snakemake.output.csv,
     snakemake.log[0],
 )

@@ -2,11 +2,18 @@
 
 A printed axis is evidence of what the paper plotted: with limits rounded out to the ticks (the
 default of the software the figures appear to be drawn in), the outermost tick labels are the
-rounded extent of the data. So an axis claim is reproduced only when the pipeline's output,
-autoscaled the same way with the printed tick step, gives exactly the printed limits, not when
-its data merely lie inside them. The autoscaled limits are computed by the workflow (with
-matplotlib, :func:`escapement.pipeline.readings.scene_axes`) and given to the check as
-``Evidence.axes``; the printed limits come from :mod:`escapement.paper.printed_axes`.
+rounded extent of the data. So an axis matches only when the values, autoscaled the same way with
+the printed tick step imposed, give exactly the printed limits, not when they merely lie inside them.
+
+The readings the paper leaves open were chosen by fitting these same axes, so a match confirms
+nothing: it shows that the choice is consistent (the register marks these rows ``fitted``, and the
+verdict weighs them so). What the axes can show is a mismatch over the whole grid of candidate
+readings: the status comes from the best candidate of the grid (``Evidence.readings``), and the row
+names every candidate tied at the best score, grouping those that plot the same values (equivalent
+readings no axis can tell apart), and the score with the plotting program's own tick step. The
+pipeline's output, the reading adopted, is reported beside it (``Evidence.axes``, autoscaled by
+:func:`escapement.pipeline.readings.scene_axes`); the printed limits come from
+:mod:`escapement.paper.printed_axes`.
 """
 
 from __future__ import annotations
@@ -16,10 +23,10 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from .checks import NOT, PARTIAL, REPRODUCED, Evidence, Verdict, check, fig3_labelled, fmt
+from .checks import NOT, PARTIAL, REPRODUCED, Candidates, Evidence, Verdict, check, fig3_labelled, fmt
 from .printed_axes import CYCLES, FIG5_PANEL_K, Panel, panel
 
-__all__ = ["panel_scenes", "printed_axes"]
+__all__ = ["panel_scenes", "printed_axes", "tied_readings"]
 
 
 def _limits(lo: float, hi: float) -> str:
@@ -54,10 +61,37 @@ def _reading(figure: str, ds: xr.Dataset) -> str:
     return ", ".join(parts)
 
 
+def tied_readings(candidates: Candidates) -> tuple[int, list[tuple[str, ...]]]:
+    """The best score of the grid and the readings tied at it, as groups of equivalent readings
+    (readings that plot the same values form one group; the others one group each), in the order of
+    ``candidates.scores``."""
+    if not candidates.scores:
+        raise ValueError("the grid of candidate readings is empty")
+    best = max(candidates.scores.values())
+    tied = [name for name, score in candidates.scores.items() if score == best]
+    group_of = {name: group for group in candidates.equivalent for name in group}
+    groups: list[tuple[str, ...]] = []
+    for name in tied:
+        group = tuple(n for n in group_of.get(name, (name,)) if n in tied)
+        if group not in groups:
+            groups.append(group)
+    return best, groups
+
+
+def _ties(best: int, out_of: int, groups: list[tuple[str, ...]], n: int) -> str:
+    named = ", ".join("[" + " = ".join(group) + "]" for group in groups)  # names may hold "; "
+    if len(groups) == 1:
+        return f"best of the {n} candidate readings: {best} of {out_of}, by one reading {named}"
+    return (f"best of the {n} candidate readings: {best} of {out_of}, a tie of {len(groups)} readings that "
+            f"plot different values, so the reading is undetermined: {named}")
+
+
 @check("printed_axes", scenes=panel_scenes, args=("figure", "panel"))
 def printed_axes(claim, ev: Evidence) -> Verdict:
-    """Reproduced when every scored axis of the panel autoscales to the printed limits, partially
-    when some limits of its quantities do (not only the cycle axis), not reproduced otherwise."""
+    """The status of the best candidate reading of the grid: reproduced (which the register's
+    ``fitted`` evidence turns into consistent) when it gives every printed limit, partially when it
+    gives some limit of a quantity axis (not only the cycle axes, which follow from the number of
+    cycles plotted), not reproduced otherwise: no reading of the grid reaches the printed axes."""
     figure, name = str(claim["args"]["figure"]), str(claim["args"]["panel"])
     printed: Panel = panel(figure, name)
     scenes = panel_scenes(claim, ev)
@@ -66,21 +100,28 @@ def printed_axes(claim, ev: Evidence) -> Verdict:
     (ds,) = scenes.values()
     if (figure, name) not in ev.axes:
         raise ValueError(f"the evidence holds no autoscaled limits for Fig. {figure} panel {name!r}")
-    limits = ev.axes[(figure, name)]
+    if (figure, name) not in ev.readings:
+        raise ValueError(f"the evidence holds no scored candidate readings for Fig. {figure} panel {name!r}")
+    limits, candidates = ev.axes[(figure, name)], ev.readings[(figure, name)]
     scored = {axis_name: axis for axis_name, axis in printed.axes.items() if axis.scored}
-    matched = sum(axis.matches(*limits[axis_name]) for axis_name, axis in scored.items())
-    # the cycle axes follow from the number of cycles plotted: they alone cannot make a panel partly reproduced
-    of_quantities = sum(axis.matches(*limits[axis_name]) for axis_name, axis in scored.items()
-                        if axis.label != CYCLES)
     out_of = 2 * len(scored)
-    status = REPRODUCED if matched == out_of else PARTIAL if of_quantities else NOT
+    if candidates.out_of != out_of:
+        raise ValueError(f"the candidate readings of Fig. {figure} panel {name!r} are scored out of "
+                         f"{candidates.out_of} limits; the panel has {out_of}")
+    matched = sum(axis.matches(*limits[axis_name]) for axis_name, axis in scored.items())
+    cycle_limits = 2 * sum(axis.label == CYCLES for axis in scored.values())
+    best, groups = tied_readings(candidates)
+    status = REPRODUCED if best == out_of else PARTIAL if best > cycle_limits else NOT
+    default = (f"; with the plotting program's own tick step the best is {max(candidates.default_scores.values())} "
+               f"of {out_of}" if candidates.default_scores else "")
     return Verdict(
         "; ".join(f"{axis.label}: {_limits(*limits[axis_name])}" for axis_name, axis in scored.items())
-        + f" ({matched} of {out_of} printed limits)",
+        + f" ({matched} of {out_of} printed limits); {_ties(best, out_of, groups, len(candidates.scores))}",
         status,
         note=(
-            f"the output ({_reading(figure, ds)}) autoscaled with the printed tick steps "
-            f"({', '.join(fmt(axis.step, 4) for axis in scored.values())}), limits rounded out to the ticks"
+            f"the output ({_reading(figure, ds)}) autoscaled with the printed tick steps imposed "
+            f"({', '.join(fmt(axis.step, 4) for axis in scored.values())}), limits rounded out to the ticks, no "
+            f"margin{default}; the readings were chosen by fitting these axes, so a match shows consistency only"
         ),
         paper_value="; ".join(f"{axis.label}: {_limits(axis.low, axis.high)}" for axis in scored.values()),
     )

@@ -4,6 +4,9 @@
 (the one list of them), which computes the replicated value and decides the status.
 :func:`evaluate` gives one row per claim:
 
+* each row carries the claim's origin, finding and kind of evidence from the register, and its
+  status is the check's weighed by that evidence (:func:`escapement.paper.vocabulary.weighed`:
+  an agreement by construction or under a fitted reading is ``consistent``);
 * a claim whose scene left the escapement regime (its ``outcome`` is not ``completed``) gets
   ``not_reproduced`` with the scene's outcome message, and its check is not run;
 * a check that raises is a defect of the code or of its inputs, never a verdict:
@@ -15,18 +18,25 @@ Tolerances and the Fig. 3 case labels come from the register, never from here.
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Mapping
 from pathlib import Path
 
 import xarray as xr
 import yaml
 
-from .checks import COMPLETED, NOT, STATUSES, Evidence, Verdict, fmt
+from .checks import COMPLETED, NOT, Evidence, Verdict, fmt
 from .registry import CHECKS
+from .vocabulary import EVIDENCE, ORIGINS, STATUSES, weighed
 
 __all__ = ["COLUMNS", "STATUSES", "CHECKS", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims"]
 
-COLUMNS = ["claim_id", "source", "statement", "paper_value", "replicated_value", "tolerance", "status", "note"]
+COLUMNS = ["claim_id", "source", "origin", "finding", "evidence", "statement", "paper_value", "replicated_value",
+           "tolerance", "status", "note"]
+#: the register's keys every claim must have
+REQUIRED = ("id", "source", "origin", "finding", "evidence", "statement", "paper_value", "tolerance", "check")
+#: the words a finding's name may use
+_FINDING = re.compile(r"[a-z][a-z0-9_]*")
 
 
 class ClaimError(RuntimeError):
@@ -37,16 +47,26 @@ class ClaimError(RuntimeError):
 
 
 def load_claims(path: str | os.PathLike) -> list[dict]:
-    """Read and check the register: unique ids, the required keys, a registered check and its args."""
+    """Read and check the register: unique ids, the required keys, an origin, a finding and a kind of
+    evidence from the vocabulary, a registered check and its args."""
     data = yaml.safe_load(Path(path).read_text())
     claims = data.get("claims") if isinstance(data, dict) else None
     if not isinstance(claims, list) or not claims:
         raise ValueError(f"{path}: expected a mapping with a non-empty list 'claims'")
     seen = set()
     for i, claim in enumerate(claims):
-        for key in ("id", "source", "statement", "paper_value", "tolerance", "check"):
+        if not isinstance(claim, dict):
+            raise ValueError(f"{path}: claim {i} is {claim!r}; it must be a mapping")
+        for key in REQUIRED:
             if key not in claim:
                 raise ValueError(f"{path}: claim {i} lacks '{key}'")
+        for key, words in (("origin", ORIGINS), ("evidence", EVIDENCE)):
+            if claim[key] not in words:
+                raise ValueError(f"{path}: claim '{claim['id']}' has {key} = {claim[key]!r}; "
+                                 f"it must be one of {', '.join(words)}")
+        if not (isinstance(claim["finding"], str) and _FINDING.fullmatch(claim["finding"])):
+            raise ValueError(f"{path}: claim '{claim['id']}' has finding = {claim['finding']!r}; it must be a "
+                             "name of lower-case letters, digits and underscores")
         if claim["id"] in seen:
             raise ValueError(f"{path}: claim id '{claim['id']}' appears twice")
         seen.add(claim["id"])
@@ -101,11 +121,14 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
             {
                 "claim_id": claim["id"],
                 "source": claim["source"],
+                "origin": claim["origin"],
+                "finding": claim["finding"],
+                "evidence": claim["evidence"],
                 "statement": claim["statement"],
                 "paper_value": fmt(paper) if not isinstance(paper, str) else paper,
                 "replicated_value": result.replicated_value,
                 "tolerance": "" if claim["tolerance"] is None else fmt(claim["tolerance"]),
-                "status": result.status,
+                "status": weighed(result.status, claim["evidence"]),
                 "note": result.note,
             }
         )

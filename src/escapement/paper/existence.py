@@ -179,10 +179,12 @@ def grazing_limit(p: Parameters) -> float:
 def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> Verdict:
     """``rows``: per offset ``delta`` of the release from the grazing one, ``above`` (released at
     ``-A (1 + delta)``: its ``outcome`` and ``v_next``, the velocity before its second impact at a1) and
-    ``below`` (at ``-A (1 - delta)``: its ``outcome``). Two continuations (the paper's uniqueness fails)
-    when the runs above continue towards ``limit`` and those below stop, whatever delta: partially
-    reproduced (unique off grazing). Reproduced when both sides agree; not reproduced when the
-    runs above do not tend to the closed-form continuation."""
+    ``below`` (at ``-A (1 - delta)``: its ``outcome``). Every state has one continuation under the
+    strict jump set x xdot < 0, so the paper's conclusion, one solution, holds; its reason does not
+    (g is not Lipschitz), nor what the reason would also give, a motion continuous in the initial
+    state: when the runs above continue towards ``limit`` and those below stop, whatever delta, the
+    motion jumps with the release: partially reproduced. Reproduced when both sides agree
+    (continuous); not reproduced when the runs above do not tend to the closed-form continuation."""
     split = all(r["above"]["outcome"] == Status.COMPLETED.value and r["below"]["outcome"] == Status.STOPPED.value
                 for r in rows)
     smallest = min(rows, key=lambda r: r["delta"])
@@ -197,13 +199,15 @@ def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> 
         status = PARTIAL
     else:
         status = NOT
-    return Verdict(text + f"; the grazing motion's two continuations: impact and impulse (next v1 = {fmt(limit)} "
-                   "m/s, closed form) or no impact (free swing of amplitude a3 for ever)", status, note=(
-        "g(t) of Eq. (2) is the force sigma f switched on and off where x crosses a1..a4: discontinuous in y, so "
-        "A y + g is not Lipschitz there and the cited theorem does not apply; off grazing every event is a transversal "
-        "crossing and the solution is unique, but a swing that touches a3 at rest has two continuations, the "
-        "one-sided limits of neighbouring solutions, an O(1) apart however small delta (the solver, like the "
-        "jump set x xdot < 0, counts the touch as no impact)"),
+    return Verdict(text + f"; one continuation from every state, but not continuous in the release: the grazing "
+                   f"release separates an impact and impulse (next v1 = {fmt(limit)} m/s, closed form) from no impact "
+                   "(a free swing of amplitude a3 for ever)", status, note=(
+        "uniqueness holds: with the strict jump set x xdot < 0 every state has exactly one continuation (a touch of "
+        "a3 at rest is no impact, in the solver as in the jump set). The reason given does not: g(t) of Eq. (2) is "
+        "the force sigma f switched on and off where x crosses a1..a4, discontinuous in y, so A y + g is not "
+        "Lipschitz and the cited theorem does not apply; and what that theorem would also give fails: releases "
+        "delta either side of the grazing one end an O(1) apart however small delta, so the motion does not "
+        "depend continuously on the release position"),
         paper_value="exactly one solution (A and g Lipschitz)")
 
 

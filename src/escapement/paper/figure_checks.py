@@ -150,20 +150,25 @@ def _panel_of(k: float) -> str:
 
 @check("fig5_impact_visible", scenes=_fig5)
 def fig5_impact_visible(claim, ev: Evidence) -> Verdict:
+    """The impact is shown in a panel when a velocity jump the panel draws (each impact at a1 of the
+    whole trajectory, b x1) is at least ``tolerance`` of the panel's printed velocity range."""
     rows = []
     for k, ds in _by_K(ev):
         name = _panel_of(k)
         axis = panel("5", name).y
-        jump = float(ds["b"]) * float(ds["velocity_before_impact"].values[-1])
-        rows.append((k, name, jump, axis.high - axis.low, jump / (axis.high - axis.low)))
-    shown = [frac >= claim["tolerance"] for *_, frac in rows]
+        span = axis.high - axis.low
+        jumps = float(ds["b"]) * np.abs(ds["velocity_before_impact"].values)
+        rows.append((k, name, float(jumps.max()), float(jumps[-1]), span))
+    shown = [largest / span >= claim["tolerance"] for _, _, largest, _, span in rows]
     return Verdict(
-        "velocity jump at the impact at a1 on the limit cycle: " + "; ".join(
-            f"({name}) K = {fmt(k, 3)}: {fmt(jump, 3)} m/s, {fmt(100 * frac, 3)} % of the printed {fmt(span, 3)} m/s"
-            for k, name, jump, span, frac in rows),
+        "largest velocity jump drawn (impacts at a1 of the whole trajectory), and on the limit cycle: " + "; ".join(
+            f"({name}) K = {fmt(k, 3)}: {fmt(largest, 3)} m/s, {fmt(100 * largest / span, 3)} % of the printed "
+            f"{fmt(span, 3)} m/s (limit cycle {fmt(100 * last / span, 3)} %)"
+            for k, name, largest, last, span in rows),
         REPRODUCED if all(shown) else PARTIAL if any(shown) else NOT,
-        note=(f"the jump b x1 against the panel's printed velocity range; 'clearly shown' taken as at least "
-              f"{fmt(100 * claim['tolerance'], 3)} % of it (about a millimetre on a panel 5 cm tall); earlier cycles "
-              "of a run released far from the limit cycle have larger jumps"),
+        note=(f"the jump b x1 at each impact at a1 against the panel's printed velocity range; 'clearly shown' "
+              f"taken as at least {fmt(100 * claim['tolerance'], 3)} % of it (about a millimetre on a panel 5 cm "
+              "tall) for some jump the panel draws; the panels draw the whole trajectory, whose early impacts, far "
+              "from the limit cycle, jump most"),
         paper_value="impact clearly shown",
     )

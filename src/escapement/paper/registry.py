@@ -23,6 +23,7 @@ from .checks import (
     stability_over_b,
 )
 from .existence import existence_sign_change, grazing_uniqueness, release_boundary
+from .model_claims import impact_matrix, impulse_sets, jump_set, state_matrix, untestable
 from .figure_checks import fig5_dimensions, fig5_impact_visible, section_crossings, window_impact
 from .period_checks import eq22_abcd, eq22e, eq23, eq24, eq25
 from .register import derivative_eq20, initial_order, map_eq17, natural_period, printed_step, stable_velocity_scaling
@@ -44,6 +45,11 @@ __all__ = ["CHECKS", "REGISTERED", "by_name"]
 
 #: every check of the register, by the paper's section
 REGISTERED: tuple[Callable, ...] = (
+    # Sec. 3.3: the model's definitions, Eqs. (3a)-(5)
+    state_matrix,
+    impact_matrix,
+    jump_set,
+    impulse_sets,
     # Sec. 3.1-3.4: the step equations, the Poincare map, its fixed point and multiplier
     printed_step,
     eq14,
@@ -88,6 +94,8 @@ REGISTERED: tuple[Callable, ...] = (
     # the clock: Airy's theorem and the daily rate
     airy_order,
     daily_rate_check,
+    # Sec. 5: what the paper's evidence cannot test
+    untestable,
 )
 
 

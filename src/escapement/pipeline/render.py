@@ -14,6 +14,7 @@ from .logs import logged
 from .scores import best_readings_table, read_scores
 from .tables import read_stress, read_timings, read_work_precision
 from .claims_csv import read_claims_csv
+from .tally import findings_table, vocabulary_table
 
 __all__ = ["render_docs"]
 
@@ -42,6 +43,8 @@ def render_docs(
         stress_rows = read_stress(stress)
         tables = {
             "stress": markdown_table(stress_rows, ["regime", "outcome", "check", "passed", "detail"]),
+            "findings": markdown_table(findings_table(rows), ["finding", "verdict", "rows"]),
+            "vocabulary": markdown_table(vocabulary_table(), ["word", "meaning"]),
             "readings": markdown_table(best_readings_table(read_scores(readings)),
                                        ["figure", "panel", "printed limits", "limits reproduced", "best-supported readings"]),
         }

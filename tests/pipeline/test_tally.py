@@ -1,0 +1,106 @@
+"""The headline counts findings, not rows: on synthetic rows, and on the committed REPLICATION.md, whose
+headline is recounted here from its own table of all claims with code of the test's own."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from escapement.pipeline.tally import findings_table, headline, tally
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def row(claim, status, finding="f", evidence="independent", origin="paper") -> dict:
+    return {"claim_id": claim, "status": status, "finding": finding, "evidence": evidence, "origin": origin}
+
+
+ROWS = [
+    row("p1", "not_reproduced", "period"),
+    row("p2", "not_reproduced", "period"),
+    row("p3", "not_reproduced", "period", evidence="fitted"),  # no reading of the grid reaches the axes
+    row("m1", "reproduced", "map"),
+    row("m2", "reproduced", "map"),
+    row("r", "partially_reproduced", "release"),
+    row("law", "consistent", "impact_law", evidence="by_construction"),
+    row("ax", "consistent", "axes", evidence="fitted"),
+    row("u", "undetermined", "matrix"),
+    row("t", "untestable", "accuracy", evidence="none"),
+    row("airy", "reproduced", "airy", origin="beyond"),
+    row("rate", "not_reproduced", "period", origin="beyond"),
+]
+
+
+def test_one_root_cause_counts_once_and_the_rest_apart():
+    t = tally(ROWS)
+    assert t.paper_rows == 10
+    assert t.findings == {"period": "not_reproduced", "map": "reproduced", "release": "partially_reproduced"}
+    assert (t.count("reproduced"), t.count("partially_reproduced"), t.count("not_reproduced")) == (1, 1, 1)
+    assert (t.by_construction, t.by_choice, t.undetermined, t.untestable) == (("law",), ("ax",), ("u",), ("t",))
+    assert t.beyond == ("airy", "rate")
+
+
+def test_the_headline_says_the_counts():
+    text = headline(ROWS)
+    assert "fill 10 rows" in text and "3 findings: 1 reproduced, 1 partially reproduced and 1 not reproduced" in text
+    assert "consistent by construction (the model is built from them): 1;" in text
+    assert "consistent only under a reading chosen from the same printed axes: 1;" in text
+    assert "give different answers): 1;" in text and "untestable from the paper's evidence: 1." in text
+    assert "Beyond the paper, and not counted: 2 rows." in text
+
+
+def test_a_finding_whose_rows_disagree_is_refused_naming_it():
+    with pytest.raises(ValueError, match=r"finding 'period' has rows of different statuses \(not_reproduced, "
+                                         r"reproduced: p1, p2, p3, x\)"):
+        tally([*ROWS, row("x", "reproduced", "period")])
+    with pytest.raises(ValueError, match="claim 'x' has status = 'maybe'"):
+        tally([row("x", "maybe")])
+
+
+def test_the_findings_table_lists_each_finding_once_with_its_rows():
+    table = findings_table(ROWS)
+    assert [r["finding"] for r in table] == ["map", "release", "period"]
+    assert table[2] == {"finding": "period", "verdict": "not reproduced", "rows": "`p1`, `p2`, `p3`"}
+
+
+def _committed_table(markdown: str) -> list[dict]:
+    """The rows of REPLICATION.md's table of all claims: | `id` | where | finding | evidence | paper | replicated |
+    verdict |, the cells split on unescaped bars."""
+    rows = []
+    for line in markdown.splitlines():
+        if line.startswith("| `"):
+            cells = [c.strip() for c in re.split(r"(?<!\\)\|", line)[1:-1]]
+            if len(cells) == 7:
+                rows.append({"id": cells[0].strip("`"), "beyond": "(beyond the paper)" in cells[1],
+                             "finding": cells[2], "evidence": cells[3], "verdict": cells[6]})
+    return rows
+
+
+def test_the_committed_headline_recounts_from_the_committed_table():
+    text = (REPO / "REPLICATION.md").read_text()
+    rows = _committed_table(text)
+    assert len(rows) >= 56
+    verdicts = {"reproduced": "r", "partially reproduced": "p", "**not reproduced**": "n"}
+    paper = [r for r in rows if not r["beyond"]]
+    findings: dict[str, set] = {}
+    for r in paper:
+        if r["verdict"] in verdicts:
+            findings.setdefault(r["finding"], set()).add(verdicts[r["verdict"]])
+    assert all(len(s) == 1 for s in findings.values()), findings
+    kinds = [next(iter(s)) for s in findings.values()]
+    consistent = [r for r in paper if r["verdict"] == "consistent"]
+    expected = (
+        f"The paper's claims fill {len(paper)} rows of the register. The rows with an independent verdict come "
+        f"down to {len(findings)} findings: {kinds.count('r')} reproduced, {kinds.count('p')} partially reproduced "
+        f"and {kinds.count('n')} not reproduced."
+    )
+    assert expected in " ".join(text.split())
+    words = " ".join(text.split())
+    by_construction = sum(r["evidence"] == "by construction" for r in consistent)
+    assert f"consistent by construction (the model is built from them): {by_construction};" in words
+    assert f"same printed axes: {len(consistent) - by_construction};" in words
+    assert f"give different answers): {sum(r['verdict'] == 'undetermined' for r in paper)};" in words
+    assert f"untestable from the paper's evidence: {sum(r['verdict'] == 'untestable' for r in paper)}." in words
+    assert f"Beyond the paper, and not counted: {len(rows) - len(paper)} rows." in words
