@@ -13,7 +13,6 @@ import pytest
 import xarray as xr
 
 from escapement.paper import claims as cl
-from escapement.paper.axis_claims import tied_readings
 from escapement.paper.checks import Candidates, Evidence
 
 
@@ -84,8 +83,8 @@ def test_a_tie_between_different_readings_is_named_and_equivalent_readings_count
     assert "by one reading [A = D]" in one["replicated_value"] and "undetermined" not in one["replicated_value"]
 
 
-def test_tied_readings_groups_only_the_tied_members_of_an_equivalence_group():
-    best, groups = tied_readings(Candidates(4, {"A": 4, "B": 2, "C": 4}, equivalent=(("A", "B"),)))
+def test_the_tie_groups_only_the_tied_members_of_an_equivalence_group():
+    best, groups = Candidates(4, {"A": 4, "B": 2, "C": 4}, equivalent=(("A", "B"),)).tied()
     assert best == 4 and groups == [("A",), ("C",)]
 
 

@@ -66,3 +66,9 @@ def test_markdown_html_renders_headings_tables_and_code_as_a_fragment():
     assert '<pre><code class="language-bash">snakemake --cores 2\n</code></pre>' in html
     assert "<!-- generated -->" in html
     assert "<html" not in html and "<body" not in html
+
+
+def test_a_verdict_placeholder_gives_the_status_in_words():
+    assert render("{{ verdict:x }}; {{ verdict:y }}", ROWS, "t.md").splitlines()[1] == "not reproduced; reproduced"
+    with pytest.raises(ValueError, match="unknown placeholder"):
+        render("{{ verdict:z }}", ROWS, "t.md")

@@ -23,10 +23,10 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from .checks import NOT, PARTIAL, REPRODUCED, Candidates, Evidence, Verdict, check, fig3_labelled, fmt
+from .checks import NOT, PARTIAL, REPRODUCED, Evidence, Verdict, check, fig3_labelled, fmt
 from .printed_axes import CYCLES, FIG5_PANEL_K, Panel, panel
 
-__all__ = ["panel_scenes", "printed_axes", "tied_readings"]
+__all__ = ["panel_scenes", "printed_axes"]
 
 
 def _limits(lo: float, hi: float) -> str:
@@ -61,23 +61,6 @@ def _reading(figure: str, ds: xr.Dataset) -> str:
     return ", ".join(parts)
 
 
-def tied_readings(candidates: Candidates) -> tuple[int, list[tuple[str, ...]]]:
-    """The best score of the grid and the readings tied at it, as groups of equivalent readings
-    (readings that plot the same values form one group; the others one group each), in the order of
-    ``candidates.scores``."""
-    if not candidates.scores:
-        raise ValueError("the grid of candidate readings is empty")
-    best = max(candidates.scores.values())
-    tied = [name for name, score in candidates.scores.items() if score == best]
-    group_of = {name: group for group in candidates.equivalent for name in group}
-    groups: list[tuple[str, ...]] = []
-    for name in tied:
-        group = tuple(n for n in group_of.get(name, (name,)) if n in tied)
-        if group not in groups:
-            groups.append(group)
-    return best, groups
-
-
 def _ties(best: int, out_of: int, groups: list[tuple[str, ...]], n: int) -> str:
     named = ", ".join("[" + " = ".join(group) + "]" for group in groups)  # names may hold "; "
     if len(groups) == 1:
@@ -110,7 +93,7 @@ def printed_axes(claim, ev: Evidence) -> Verdict:
                          f"{candidates.out_of} limits; the panel has {out_of}")
     matched = sum(axis.matches(*limits[axis_name]) for axis_name, axis in scored.items())
     cycle_limits = 2 * sum(axis.label == CYCLES for axis in scored.values())
-    best, groups = tied_readings(candidates)
+    best, groups = candidates.tied()
     status = REPRODUCED if best == out_of else PARTIAL if best > cycle_limits else NOT
     default = (f"; with the plotting program's own tick step the best is {max(candidates.default_scores.values())} "
                f"of {out_of}" if candidates.default_scores else "")

@@ -58,6 +58,22 @@ class Candidates:
     default_scores: Mapping[str, int] = field(default_factory=dict)
     equivalent: tuple[tuple[str, ...], ...] = ()
 
+    def tied(self) -> tuple[int, list[tuple[str, ...]]]:
+        """The best score and the readings tied at it, as groups of equivalent readings (readings that
+        plot the same values form one group; each other reading a group of its own), in the order of
+        ``scores``. More than one group: the axes cannot tell the readings apart."""
+        if not self.scores:
+            raise ValueError("the grid of candidate readings is empty")
+        best = max(self.scores.values())
+        tied = [name for name, score in self.scores.items() if score == best]
+        group_of = {name: group for group in self.equivalent for name in group}
+        groups: list[tuple[str, ...]] = []
+        for name in tied:
+            group = tuple(n for n in group_of.get(name, (name,)) if n in tied)
+            if group not in groups:
+                groups.append(group)
+        return best, groups
+
 
 @dataclass(frozen=True)
 class Evidence:

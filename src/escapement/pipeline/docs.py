@@ -6,6 +6,7 @@ A template is Markdown with placeholders:
 * ``{{ headline }}``: the verdict's count, by finding (:func:`escapement.pipeline.tally.headline`);
 * ``{{ claims_count:<status> }}`` and ``{{ claims_count:total }}``: rows, not findings;
 * ``{{ claim:<claim_id>:<column> }}``: one cell of ``results/claims.csv``;
+* ``{{ verdict:<claim_id> }}``: a claim's status in words;
 * ``{{ fact:<name> }}``: a number from :func:`escapement.pipeline.facts.collect_facts`; a measured one
   (a wall time, which varies from run to run) only where ``measured=True``: never in a document git
   tracks, which must come out byte-identical when the code has not changed;
@@ -142,6 +143,8 @@ def render(
             return headline(rows)
         if kind == "claims_count" and key in (*STATUSES, "total"):
             return str(len(rows) if key == "total" else sum(r["status"] == key for r in rows))
+        if kind == "verdict" and key in by_id and column is None:
+            return by_id[key]["status"].replace("_", " ")
         if kind == "claim" and key in by_id and column in COLUMNS:
             return _cell(by_id[key][column])
         if kind == "fact" and key in facts and column is None:
