@@ -1,0 +1,186 @@
+"""The paper's printed formulas under each convention the paper itself uses, against the simulation.
+
+The paper mixes conventions: Sec. 4 gives the positions as magnitudes ("a1 = 0.1 m"), Eqs. (9)-(22a)
+as signed positions (``-a1`` in (22a)); Eq. (2) writes the force as ``sigma f``, ``sigma = -1`` in the
+second half period; the second half period mirrors the first (``x -> -x``, ``a1 <-> a3``,
+``a2 <-> a4``); a formula may take the velocity before or after an impact. Before a printed formula
+is called wrong, it is evaluated here under every combination of these readings
+(:data:`AXES`) and compared with the simulated value. A formula that the reading the register
+adopts (:data:`AS_READ`: signed positions, ``f``, the second half as written, the velocity after
+the impact) reproduces is reproduced; one that only another of the paper's own readings reproduces
+shows an inconsistency between two conventions of the paper (``partially_reproduced``, finding
+``conventions``); one that no reading reproduces is a wrong formula (``not_reproduced``).
+
+The check of Eq. (14) under the conventions is here (:func:`eq14_conventions`); those of
+(22e)-(25) are in :mod:`.period_checks`.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+from ..model.events import EventKind
+from ..model.parameters import Parameters
+from . import corrected as derived
+from . import printed as pe
+from .checks import NOT, PARTIAL, REPRODUCED, Evidence, Verdict, check, events_of, fig3_case, fmt, params_of
+
+__all__ = [
+    "AS_READ", "AXES", "Reading", "Trial", "conventions_verdict", "departure", "describe", "eq14_conventions", "readings", "symbols",
+    "second_half_trials", "try_readings",
+]
+
+#: every convention the paper uses, by axis: the first of each is the reading the register adopts
+AXES: dict[str, tuple[str, ...]] = {
+    "positions": ("signed", "magnitudes"),  # Eqs. (9)-(22a) against Sec. 4
+    "force": ("f", "sigma f"),  # Eqs. (11)-(16) against Eq. (2), sigma = -1 in the second half
+    "half": ("as written", "mirrored"),  # the second half period as printed, or as the mirror of the first
+    "velocity": ("after", "before"),  # the velocity after or before the impact, where a formula takes one
+}
+
+
+@dataclass(frozen=True)
+class Reading:
+    """One choice per axis of :data:`AXES`."""
+
+    positions: str
+    force: str
+    half: str
+    velocity: str
+
+    def __post_init__(self) -> None:
+        for axis, choices in AXES.items():
+            if getattr(self, axis) not in choices:
+                raise ValueError(f"{axis} = {getattr(self, axis)!r} must be one of {', '.join(choices)}")
+
+    def __str__(self) -> str:
+        return ", ".join(f"{axis} {getattr(self, axis)}" for axis in AXES)
+
+
+#: the reading the register adopts for every printed formula
+AS_READ = Reading(*(choices[0] for choices in AXES.values()))
+
+
+def readings(axes: tuple[str, ...]) -> list[Reading]:
+    """Every reading that varies the named ``axes`` (the others as read), the adopted one first."""
+    unknown = [a for a in axes if a not in AXES]
+    if unknown:
+        raise ValueError(f"axes = {axes!r} must name axes among {', '.join(AXES)}")
+    choices = [AXES[a] if a in axes else (AXES[a][0],) for a in AXES]
+    return [Reading(*combination) for combination in itertools.product(*choices)]
+
+
+def symbols(p: Parameters, reading: Reading, second_half: bool) -> tuple[pe.Symbols, float]:
+    """The numbers for a printed formula's symbols under ``reading``, and the sign its velocities take.
+
+    On a formula of the second half period (``second_half``), ``sigma f`` puts in ``-f`` and
+    ``mirrored`` the mirror image ``x -> -x`` (every position and velocity changes sign; the force,
+    which pushes the leftward motion, pushes the mirrored one rightward: ``+f``); on one of the
+    first half both are the adopted reading. ``magnitudes`` then puts in ``|a1|`` .. ``|a4|``.
+    """
+    if not isinstance(second_half, bool):
+        raise ValueError(f"second_half = {second_half!r} must be True or False")
+    positions = [p.a1, p.a2, p.a3, p.a4]
+    f, sign = p.f, 1.0
+    if second_half and reading.half == "mirrored":
+        positions, sign = [-a for a in positions], -1.0
+    if second_half and reading.force == "sigma f":
+        f = -f
+    if reading.positions == "magnitudes":
+        positions = [abs(a) for a in positions]
+    return pe.Symbols(*positions, f, p.omega), sign
+
+
+@dataclass(frozen=True)
+class Trial:
+    """A printed formula under one reading: its value and whether it reproduces the simulated one."""
+
+    reading: Reading
+    value: float
+    relative_difference: float
+    reproduces: bool
+
+
+def try_readings(formula: Callable[[Reading], float], simulated: float, tolerance: float,
+                 axes: tuple[str, ...]) -> list[Trial]:
+    """``formula(reading)`` under every reading of ``axes`` (:func:`readings`), against ``simulated``.
+
+    A reading reproduces the simulated value when the relative difference is at most ``tolerance``
+    (a formula undefined under a reading, NaN, reproduces nothing).
+    """
+    if not (isinstance(tolerance, (int, float)) and tolerance >= 0):
+        raise ValueError(f"tolerance = {tolerance!r} must be a number >= 0")
+    if not (isinstance(simulated, float) and math.isfinite(simulated) and simulated != 0.0):
+        raise ValueError(f"simulated = {simulated!r} must be a finite non-zero float")
+    trials = []
+    for reading in readings(axes):
+        value = float(formula(reading))
+        difference = abs(value - simulated) / abs(simulated) if math.isfinite(value) else math.nan
+        trials.append(Trial(reading, value, difference, bool(difference <= tolerance)))
+    return trials
+
+
+def departure(reading: Reading) -> str:
+    """The reading's choices that differ from :data:`AS_READ` (``as read`` if none)."""
+    changed = [getattr(reading, a) for a in AXES if getattr(reading, a) != getattr(AS_READ, a)]
+    return " + ".join(changed) if changed else "as read"
+
+
+def describe(trials: list[Trial]) -> str:
+    """Every trial as ``reading: value (relative difference)``."""
+    return "; ".join(f"{departure(t.reading)}: {fmt(t.value)} ({fmt(t.relative_difference, 2)})" for t in trials)
+
+
+def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple[str, str]:
+    """The status and note of a formula's ``trials`` (:func:`try_readings`), the adopted reading first.
+
+    ``reproduced`` if the adopted reading reproduces; ``partially_reproduced`` if only other readings
+    of the paper's do (an inconsistency between two of its conventions); ``not_reproduced`` if none
+    does (a wrong formula).
+    """
+    if not trials or trials[0].reading != AS_READ:
+        raise ValueError("trials must start with the adopted reading AS_READ")
+    working = [t for t in trials if t.reproduces]
+    as_read = trials[0]
+    listing = describe(trials)
+    if as_read.reproduces:
+        return REPRODUCED, f"{what} reproduces {simulated} as read; every reading: {listing}"
+    if working:
+        return PARTIAL, (
+            f"{what} as read ({AS_READ}) gives {fmt(as_read.value)} against {simulated}; it is reproduced with "
+            f"{' or '.join(departure(t.reading) for t in working)}: an inconsistency between two conventions of the "
+            f"paper, not a wrong formula; every reading (relative difference): {listing}"
+        )
+    return NOT, f"no convention of the paper reproduces {simulated} with {what}: a wrong formula; every reading: {listing}"
+
+
+# --- Eq. (14) ----------------------------------------------------------------------------------
+
+
+@check("eq14_conventions", scenes=fig3_case, args=("case",))
+def eq14_conventions(claim, ev: Evidence) -> Verdict:
+    """Eq. (14) at the simulated last cycle under each convention: the velocity at a4 from the one after
+    the impact at a3 (by the energy balance from the simulated velocity at a1, Eqs. (10)-(13))."""
+    case = claim["args"]["case"]
+    ds = ev.fig3[case]
+    p = params_of(ds)
+    i = events_of(ds, EventKind.IMPACT_A1)[-2]
+    v1, v5 = float(ds["event_velocity_before"].values[i]), float(ds["event_velocity_before"].values[i + 3])
+    trials = second_half_trials(p, derived.cycle_velocities(v1, p), v5, claim["tolerance"], pe.v5_14)
+    status, note = conventions_verdict(trials, f"the simulated velocity at a4, {fmt(v5)} m/s", "Eq. (14)")
+    return Verdict(f"simulated velocity at a4 {fmt(v5)} m/s (case {case}, last cycle)", status, note=note,
+                   paper_value=f"{fmt(trials[0].value)} m/s as read")
+
+
+def second_half_trials(p: Parameters, velocity: Mapping[str, float], simulated: float, tolerance: float,
+                       formula: Callable[[float, pe.Symbols], float]) -> list[Trial]:
+    """A formula of the second half period, ``formula(v_at_a3, symbols)``, under every reading, with the
+    velocity after (or before) the impact at a3 from ``velocity`` (``v4p``, ``v4``)."""
+    def evaluate(reading: Reading) -> float:
+        s, sign = symbols(p, reading, second_half=True)
+        return formula(sign * velocity["v4p" if reading.velocity == "after" else "v4"], s)
+
+    return try_readings(evaluate, simulated, tolerance, ("positions", "force", "half", "velocity"))
