@@ -204,6 +204,10 @@ CHECKS_COLUMNS = {
     "multiplier_eq21": ("1", "multiplier (1 - b)**4 of Eq. (21)"),
     "fixed_point_eq16": ("m s-1", "fixed point of the map (16)"),
     "cycles_to_converge": ("1", "first cycle within 1e-9 (relative) of the last velocity; -1 if none"),
+    "first_period": ("s", "period of the first cycle"),
+    "largest_speed": ("m s-1", "largest |v| on the last cycle, exact from the harmonic arcs"),
+    "floquet_major": ("1", "larger Floquet multiplier of the flow over the last period, measured"),
+    "floquet_minor": ("1", "smaller Floquet multiplier of the flow over the last period, measured"),
     **{key: (PARAMETERS[key].units, PARAMETERS[key].long_name, MODEL_INPUT) for key in MODEL_KEYS},
 }
 
@@ -228,7 +232,9 @@ def checks_dataset(columns: Mapping[str, object], n_cycles: int) -> xr.Dataset:
     summary = (
         "This file holds one row per run of the claims register: each run, with the parameters of its row, "
         "starts from rest at x0 and lasts n_cycles cycles; its fixed point, period, amplitude and multiplier "
-        "are measured at the last cycle, beside the fixed point of Eq. (16) and the multiplier of Eq. (21)."
+        "are measured at the last cycle, beside the fixed point of Eq. (16) and the multiplier of Eq. (21); "
+        "with the first cycle's period, the largest speed on the last cycle and both Floquet multipliers of "
+        "the flow over the last period (central differences of the exact flow)."
     )
     return table_dataset(
         table, "Measured Poincare maps for the claims register", "checks", summary, solver="exact",

@@ -4,6 +4,10 @@ The multiplier is measured, not taken from Eq. (21): the exact solver is release
 from rest at the left turning point of the free swing that meets a1 with a given
 velocity v, so that its first impact is at (a1, v); one cycle later it returns
 P(v).  A central difference of P at the measured fixed point gives mu_2.
+
+Both Floquet multipliers of the limit cycle are measured apart from the return map
+(:func:`floquet_multipliers`): the Jacobian of the flow over one period, by central
+differences of the exact solver run for one period from states beside the limit cycle.
 """
 
 from __future__ import annotations
@@ -19,7 +23,8 @@ from ..model.status import Status
 from ..solvers.ensemble import solve_ensemble
 from ..solvers.exact import solve_exact
 
-__all__ = ["CycleMeasurement", "NoReturn", "ensemble_return_map", "measure_cycle", "return_map", "stability_grid"]
+__all__ = ["CycleMeasurement", "NoReturn", "ensemble_return_map", "floquet_multipliers", "largest_speed",
+           "measure_cycle", "return_map", "stability_grid"]
 
 #: relative step of the central difference: truncation ~ h**2, rounding ~ 1e-16 / h
 RELATIVE_STEP = 1e-5
@@ -54,20 +59,90 @@ class CycleMeasurement:
     amplitude: float
     multiplier: float  #: dP/dv at the measured fixed point, by a central difference
     cycles_to_converge: int  #: first cycle whose velocity is within 1e-9 (relative) of the last
+    first_period: float  #: period of the first cycle (from the first impact at a1 to the second), s
+    largest_speed: float  #: largest |v| on the last cycle, from the arcs' closed forms, m/s
+    floquet: tuple[float, float]  #: the Floquet multipliers of the flow over the last period, larger first
+
+
+def largest_speed(arcs, t_from: float, t_to: float) -> float:
+    """The largest ``|v|`` of the motion between ``t_from`` and ``t_to``, exactly, from its harmonic arcs.
+
+    On an arc about ``c`` the state ``(x - c, v/w) = R (sin phi, cos phi)`` turns with ``phi`` growing at
+    ``w``; ``|v|`` is ``w R`` where ``phi`` passes a multiple of pi (at ``x = c``), and is otherwise
+    largest at an end of the arc.
+    """
+    if not t_from < t_to:
+        raise ValueError(f"t_from = {t_from!r} must be < t_to = {t_to!r}")
+    starts = np.append(arcs.t_start, arcs.t_final)
+    w = arcs.omega
+    best = 0.0
+    for i in np.flatnonzero((starts[1:] > t_from) & (starts[:-1] < t_to)):
+        u0, w0 = arcs.x_start[i] - arcs.centre[i], arcs.v_start[i] / w
+        # the arc's state at t_from (if it starts before) and its phase span up to t_to
+        lead = max(t_from - starts[i], 0.0) * w
+        radius, phase = math.hypot(u0, w0), math.atan2(u0, w0) + lead
+        span = (min(starts[i + 1], t_to) - max(starts[i], t_from)) * w
+        ends = (abs(radius * math.cos(phase)), abs(radius * math.cos(phase + span)))
+        passes = math.floor((phase + span) / math.pi) > math.floor(phase / math.pi) or phase % math.pi == 0.0
+        best = max(best, w * (radius if passes else max(ends)))
+    return best
+
+
+def floquet_multipliers(params: Parameters, x: float, v: float, period: float,
+                        relative_step: float = 1e-6) -> tuple[float, float]:
+    """Both Floquet multipliers of the limit cycle through ``(x, v)`` of period ``period``, larger first.
+
+    The eigenvalues of the 2x2 Jacobian of the flow over ``period`` at ``(x, v)``, by central differences of
+    the exact solver run for ``period`` from ``(x +/- h, v)`` and ``(x, v +/- h w)`` (``h`` the
+    ``relative_step`` of the amplitude ``|(x, v/w)|``). ``(x, v)`` should be in free flight, away from every
+    event surface. NaN where the eigenvalues are complex or a run leaves the regime.
+    """
+    if not (period > 0 and math.isfinite(period)):
+        raise ValueError(f"period = {period!r} must be a finite number > 0")
+    w = params.omega
+    h = relative_step * math.hypot(x, v / w)
+
+    def flow(x_start: float, v_start: float) -> np.ndarray:
+        run = solve_exact(params, x_start, v_start, t_end=period)
+        if run.status != Status.COMPLETED:
+            return np.full(2, math.nan)
+        end_x, end_v, _ = run.trajectory.sample(np.array([run.t_final]))
+        return np.array([end_x[0], end_v[0] / w])
+
+    columns = [(flow(x + h, v) - flow(x - h, v)) / (2 * h), (flow(x, v + h * w) - flow(x, v - h * w)) / (2 * h)]
+    jacobian = np.column_stack(columns)  # in (x, v/w): the multipliers do not depend on the scaling
+    if not np.isfinite(jacobian).all():
+        return math.nan, math.nan
+    trace, det = float(np.trace(jacobian)), float(np.linalg.det(jacobian))
+    disc = trace * trace / 4 - det
+    if disc < 0:
+        return math.nan, math.nan
+    root = math.sqrt(disc)
+    return trace / 2 + root, trace / 2 - root
+
+
+def _free_flight_state(run) -> tuple[float, float]:
+    """The state halfway in time between the last a2 and the following impact at a3 (free flight)."""
+    kinds, times = run.events.kind, run.events.t
+    i = np.flatnonzero(kinds == EventKind.ZONE_END_A2)
+    i = i[i + 1 < len(kinds)][-1]
+    x, v, _ = run.trajectory.sample(np.array([0.5 * (times[i] + times[i + 1])]))
+    return float(x[0]), float(v[0])
 
 
 def measure_cycle(params: Parameters, x0: float, n_cycles: int = 300) -> CycleMeasurement:
     """Run ``n_cycles`` from release at ``x0`` and measure the map at where it ends."""
-    run = solve_exact(params, x0, n_cycles=n_cycles, record_trajectory=False)
+    run = solve_exact(params, x0, n_cycles=n_cycles, record_trajectory=True)
     nan = math.nan
     if run.status != Status.COMPLETED:
-        return CycleMeasurement(run.status.value, run.message, nan, nan, nan, nan, -1)
+        return CycleMeasurement(run.status.value, run.message, nan, nan, nan, nan, -1, nan, nan, (nan, nan))
     v = run.cycles.velocity_before_impact
     star = float(v[-1])
     lo_in, lo_out = return_map(params, star * (1 - RELATIVE_STEP))
     hi_in, hi_out = return_map(params, star * (1 + RELATIVE_STEP))
     close = abs(v - star) <= 1e-9 * abs(star)
     first = int(close.argmax()) + 1 if close.any() else -1
+    start, period = float(run.cycles.impact_time[-1]), float(run.cycles.period[-1])
     return CycleMeasurement(
         outcome=run.status.value,
         message=run.message,
@@ -76,6 +151,9 @@ def measure_cycle(params: Parameters, x0: float, n_cycles: int = 300) -> CycleMe
         amplitude=float(run.cycles.amplitude[-1]),
         multiplier=(hi_out - lo_out) / (hi_in - lo_in),
         cycles_to_converge=first,
+        first_period=float(run.cycles.period[0]),
+        largest_speed=largest_speed(run.trajectory, start, start + period),
+        floquet=floquet_multipliers(params, *_free_flight_state(run), period),
     )
 
 
