@@ -135,3 +135,29 @@ def test_labelled_and_rasterised_figures_are_byte_identical_across_saves(tmp_pat
         save_figure(draw(), png, pdf)
         digests.append((_digest(png), _digest(pdf)))
     assert digests[0] == digests[1]
+
+
+def test_a_drawn_fig5_panel_has_the_axes_its_claim_scores():
+    """K = 0.1 N/m, F = 1 N from -1 m: the panel (a) of the paper prints -5 to 5 m and -1.5 to 1.5 m/s."""
+    from escapement.paper.printed_axes import panel
+    from escapement.pipeline.plot import scene_axes
+
+    panels = {"0.1": phase_scene(Parameters(M=1.0, K=0.1, F=1.0, b=0.1, a1=-0.1, a2=0.05), -1.0, 60, 100)}
+    claimed = scene_axes({}, None, panels)
+    assert claimed == {("5", "a"): {"x": (-5.0, 5.0), "y": (-1.5, 1.5)}}  # the printed limits
+    ax = fig5(panels, claimed, "caption").axes[0]
+    assert (ax.get_xlim(), ax.get_ylim()) == ((-5.0, 5.0), (-1.5, 1.5))
+    assert np.diff(ax.get_yticks()) == pytest.approx(panel("5", "a").y.step)
+    assert np.diff(ax.get_xticks()) == pytest.approx(5.0)
+
+
+def test_a_drawn_fig4_keeps_the_claimed_value_axes_after_its_labels_are_placed(case_b):
+    from escapement.pipeline.plot import scene_axes
+
+    ds = shock_scene(case_b, 3.0, (80.0, 87.0), (81.0, 85.0), 50)
+    claimed = scene_axes({}, ds, {})
+    figure = fig4(ds, claimed)
+    for ax, name in zip(figure.axes[:2], ("velocity", "acceleration")):
+        assert ax.get_ylim() == claimed[("4", name)]["y"]
+        low, high = claimed[("4", name)]["y"]
+        assert round(low / 0.1, 9).is_integer() and round(high / 0.1, 9).is_integer()  # on the printed ticks

@@ -15,6 +15,8 @@ import pytest
 
 from escapement import solve_exact
 from escapement.studies.readings import (
+    Runs,
+    all_readings,
     critical_times,
     fig3_readings,
     fig4_readings,
@@ -46,8 +48,10 @@ def velocities(v1: float, n: int, w2: float = 1.0, f: float = 1.0) -> np.ndarray
     return np.array(out)
 
 
-def by_name(readings, panel: str, *words: str):
-    found = [r for r in readings if r.panel == panel and all(w in r.name for w in words)]
+def by_name(readings, panel: str, *words: str, count: str | None = None):
+    """The one reading of ``panel`` whose name holds every word (and ends with ``; count``)."""
+    found = [r for r in readings if r.panel == panel and all(w in r.name for w in words)
+             and (count is None or r.name.endswith(f"; {count}"))]
     assert len(found) == 1, [r.name for r in found]
     return found[0]
 
@@ -59,7 +63,7 @@ def fig3():
 
 def test_first_velocity_from_the_left_is_sqrt_0_99(fig3):
     """Released at -1 m: v**2 = omega**2 (x0**2 - a1**2) = 0.99 at a1."""
-    v = by_name(fig3, "a/velocity", "release -x0").y
+    v = by_name(fig3, "a/velocity", "from -x0, section a1", count="k = 1..N").y
     assert v[0] == pytest.approx(math.sqrt(0.99), rel=1e-13)
 
 
@@ -69,26 +73,26 @@ def test_first_velocity_from_the_right_passes_the_impact_at_a3(fig3):
     v4p = (1 - B) * math.sqrt(1.0 - A3**2)
     v5 = math.sqrt(v4p**2 + (A3**2 - A4**2) + 2 * 1.0 * (A3 - A4))
     expected = math.sqrt(v5**2 + A4**2 - A1**2)
-    v = by_name(fig3, "a/velocity", "release +x0").y
+    v = by_name(fig3, "a/velocity", "from +x0, section a1", count="k = 1..N").y
     assert v[0] == pytest.approx(expected, rel=1e-13)
     assert expected == pytest.approx(1.0497142, abs=1e-7)
 
 
 @pytest.mark.parametrize("case, F, x0", [("a", 1.0, 1.0), ("b", 0.5, 3.0)])
 def test_velocity_series_follows_the_energy_balance_from_the_left(fig3, case, F, x0):
-    r = by_name(fig3, f"{case}/velocity", "release -x0")
+    r = by_name(fig3, f"{case}/velocity", "from -x0, section a1", count="k = 1..N")
     expected = velocities(math.sqrt(x0**2 - A1**2), N - 1, f=F)
     np.testing.assert_allclose(r.y, expected, rtol=1e-12)
     np.testing.assert_array_equal(r.x, np.arange(1, N + 1))
 
 
 def test_step1_amplitude_from_minus_3_starts_at_3_and_has_one_more_point(fig3):
-    r = by_name(fig3, "b/amplitude", "release -x0", "Step-1")
+    r = by_name(fig3, "b/amplitude", "from -x0, section a1", "Step-1", count="k = 1..N+1")
     assert r.y[0] == pytest.approx(3.0, rel=1e-14)
     assert len(r.y) == N + 1 and r.x[-1] == N + 1
     v = velocities(math.sqrt(9.0 - A1**2), N, f=0.5)
     np.testing.assert_allclose(r.y, np.hypot(A1, v), rtol=1e-12)
-    step8 = by_name(fig3, "b/amplitude", "release -x0", "Step-8")
+    step8 = by_name(fig3, "b/amplitude", "from -x0, section a1", "Step-8", count="k = 1..N")
     np.testing.assert_allclose(step8.y, r.y[1:], rtol=0)
     assert len(step8.y) == N
 
@@ -98,9 +102,9 @@ def test_largest_displacement_and_largest_abs_per_cycle(fig3):
     v = velocities(math.sqrt(0.99), N, f=1.0)
     right = np.array([math.hypot(A2, cycle_by_energy(vk, 1.0, 1.0)["v2"]) for vk in v[:-1]])
     left = np.hypot(A1, v[1:])
-    largest = by_name(fig3, "a/amplitude", "release -x0", "largest displacement")
+    largest = by_name(fig3, "a/amplitude", "from -x0, section a1", "right turning point", count="k = 1..N")
     np.testing.assert_allclose(largest.y, right, rtol=1e-12)
-    largest_abs = by_name(fig3, "a/amplitude", "release -x0", "largest |x|")
+    largest_abs = by_name(fig3, "a/amplitude", "from -x0, section a1", "largest |x|", count="k = 1..N")
     np.testing.assert_allclose(largest_abs.y, np.maximum(right, left), rtol=1e-12)
 
 
@@ -111,8 +115,10 @@ def test_amplitude_helpers_on_a_run(case_b):
     assert len(largest_abs_per_cycle(run)) == 4
 
 
-def test_fig3_reads_every_case_release_and_quantity(fig3):
-    assert len(fig3) == 2 * 2 * 7
+def test_fig3_reads_every_case_release_section_quantity_and_count(fig3):
+    # 2 cases x 2 sides x 2 sections x 2 counts x (1 velocity + 2 periods + 5 amplitudes)
+    assert len(fig3) == 2 * 2 * 2 * 2 * 8
+    assert len({(r.panel, r.name) for r in fig3}) == len(fig3)
     assert {r.panel for r in fig3} == {f"{c}/{q}" for c in "ab" for q in ("velocity", "period", "amplitude")}
     assert all(r.outcome == "completed" for r in fig3)
 
@@ -120,17 +126,70 @@ def test_fig3_reads_every_case_release_and_quantity(fig3):
 def test_shock_window_draws_the_velocity_before_and_after_the_impact():
     """From -1 m (K = 1, F = 1): x = -cos t meets a1 at t = acos(0.1) with v = sqrt(0.99); the
     acceleration is -x = 0.1 before it and 0.1 + F/M = 1.1 after."""
-    readings = fig4_readings(MODEL, {"a": {"F": 1.0, "x0": 1.0}}, {"velocity": (0.0, 1.5)}, 100, K_values=(1.0,))
-    assert len(readings) == 2 * 2  # two release sides, two quantities
-    v = by_name(readings, "velocity", "x0 = -1 m", "velocity over")
+    windows = {"velocity": (0.0, 1.5), "acceleration": (1.0, 1.5)}
+    readings = fig4_readings(MODEL, {"a": {"F": 1.0, "x0": 1.0}}, windows, 100, K_values=(1.0,))
+    assert len(readings) == 2 * 2 * 2  # two release sides, two pairings of the windows, two panels
+    v = by_name(readings, "velocity", "x0 = -1 m", "velocity 0-1.5 s")
     t1 = math.acos(0.1)
     at_impact = v.y[np.isclose(v.x, t1, rtol=0, atol=1e-12)]
     np.testing.assert_allclose(at_impact, [math.sqrt(0.99), 0.9 * math.sqrt(0.99)], rtol=1e-12)
     assert v.y.max() == pytest.approx(math.sqrt(0.99), rel=1e-12)
     assert v.y.min() == pytest.approx(0.0, abs=1e-15)
-    a = by_name(readings, "velocity", "x0 = -1 m", "acceleration over")
+    # swapped: the acceleration over the velocity's window, under the same name in both panels
+    a = by_name(readings, "acceleration", "x0 = -1 m", "acceleration 0-1.5 s")
+    assert any(r.panel == "velocity" and r.name == a.name for r in readings)
     np.testing.assert_allclose(a.y[np.isclose(a.x, t1, rtol=0, atol=1e-12)], [0.1, 1.1], rtol=1e-12)
     assert (a.y.min(), a.y.max()) == (pytest.approx(0.1, rel=1e-12), pytest.approx(1.1, rel=1e-12))
+
+
+def test_fig4_crosses_every_force_with_every_release_magnitude():
+    cases = {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0}}
+    windows = {"velocity": (0.0, 2.0), "acceleration": (0.5, 1.5)}
+    readings = fig4_readings(MODEL, cases, windows, 20, K_values=(1.0, 10.0))
+    heads = {r.name.split(";")[0] for r in readings}
+    assert heads == {f"F = {F} N, x0 = {x0} m, K = {K} N/m" for F in ("1", "0.5") for x0 in ("+1", "-1", "+3", "-3")
+                     for K in ("1", "10")}
+    assert len(readings) == 2 * 2 * 2 * 2 * 2 * 2  # F x |x0| x side x K x pairing x panel
+
+
+def test_the_mirror_image_read_at_the_mirrored_section_plots_the_same_values(fig3):
+    """Symmetric geometry: the run from +x0 is the run from -x0 with x -> -x, a1 <-> a3, so every
+    quantity read at a3 from +x0 is the one read at a1 from -x0."""
+    for r in fig3:
+        if r.name.startswith("from +x0, section a3"):
+            twin = next(m for m in fig3 if m.panel == r.panel
+                        and m.name == r.name.replace("from +x0, section a3", "from -x0, section a1")
+                        .replace("left turning point", "RIGHT").replace("right turning point", "left turning point |x|")
+                        .replace("RIGHT |x|", "right turning point"))
+            np.testing.assert_allclose(r.y, twin.y, rtol=1e-12)
+
+
+def test_the_right_turning_point_of_cycle_n_plus_1_is_h0_of_the_mirror_run(fig3):
+    """Free flight from a2 to the right turning point is centred at 0: its amplitude is the
+    turning point, and h0 of the mirror run (from +x0, read at a1) is the same free arc's mirror."""
+    right = by_name(fig3, "b/amplitude", "from -x0, section a1", "right turning point", count="k = 1..N+1")
+    v = velocities(math.sqrt(9.0 - A1**2), N + 1, f=0.5)
+    expected = [math.hypot(A2, cycle_by_energy(vk, 1.0, 0.5)["v2"]) for vk in v[:-1]]
+    np.testing.assert_allclose(right.y, expected, rtol=1e-12)
+    assert len(right.y) == N + 1
+    mirror = by_name(fig3, "b/amplitude", "from +x0, section a1", "Step-1", count="k = 1..N+1")
+    np.testing.assert_allclose(mirror.y, right.y, rtol=1e-12)
+
+
+def test_every_run_is_made_once_for_all_figures():
+    settings = {
+        "model": MODEL,
+        "fig3": {"n_cycles": 3, "cases": {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0}}},
+        "fig4": {"velocity_window": [0.0, 4.0], "acceleration_window": [1.0, 3.0], "samples_per_second": 20},
+        "fig5": {"K": [0.1, 1.0, 10.0], "n_cycles": 2, "samples_per_period": 20},
+    }
+    runs = Runs(MODEL)
+    readings = all_readings(settings, runs)
+    # (F, K, x0): Fig. 5's 3 K x 2 F x 4 x0 hold Fig. 4's (the same F, |x0| and K) and Fig. 3's (K = 1)
+    assert runs.solved == 3 * 2 * 4
+    assert all(r.outcome == "completed" for r in readings)
+    with pytest.raises(ValueError, match="already made"):
+        runs.need(1.0, 1.0, -1.0, n_cycles=500)
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,7 @@
 rule plot_fig3:
     input:
         nc=expand("results/fig3/case_{case}.nc", case=config["fig3"]["cases"]),
+        scores="results/readings/axis_scores.csv",
         code=code("plot_fig3.py"),
     output:
         png=report(
@@ -24,6 +25,7 @@ rule plot_fig3:
 rule plot_fig4:
     input:
         nc="results/fig4/shock.nc",
+        scores="results/readings/axis_scores.csv",
         code=code("plot_fig4.py"),
     output:
         png=report(
@@ -45,6 +47,7 @@ rule plot_fig4:
 rule plot_fig5:
     input:
         nc=expand("results/fig5/K_{K}.nc", K=fig5_labels()),
+        scores="results/readings/axis_scores.csv",
         code=code("plot_fig5.py"),
     output:
         png=report(

@@ -2,4 +2,6 @@
 
 from escapement.pipeline.plot import plot_fig4
 
-plot_fig4(snakemake.input.nc, snakemake.output.png, snakemake.output.pdf, snakemake.log[0])  # noqa: F821
+plot_fig4(  # noqa: F821
+    snakemake.input.nc, snakemake.input.scores, snakemake.output.png, snakemake.output.pdf, snakemake.log[0]
+)

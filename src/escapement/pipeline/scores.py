@@ -1,74 +1,222 @@
-"""The score table of the readings of the printed axes, read back and summarised per panel for the
-documents. Imports neither the solvers nor matplotlib: the job that writes the documents reads the
-table that :mod:`escapement.pipeline.readings` wrote."""
+"""The score table of the readings of the printed axes, read back and summarised per panel: every
+reading tied at the best score, readings that plot the same values grouped as equivalent.
+
+Imports neither the solvers nor matplotlib: the jobs that write the documents and the claims read
+the table that :mod:`escapement.pipeline.readings` wrote.
+"""
 
 from __future__ import annotations
 
 import csv
+import textwrap
 from collections import defaultdict
 from collections.abc import Iterable, Mapping
 
-__all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "best_readings", "best_readings_table", "read_scores"]
+from ..paper.checks import Candidates
+from ..paper.printed_axes import PANELS
 
-COLUMNS = ["figure", "panel", "axis", "reading", "outcome", "autoscale", "data_min", "data_max", "low", "high",
-           "printed_low", "printed_high", "step", "matches"]
+__all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "DEFAULT_LOCATOR", "PRINTED_STEP", "TICKS", "best_readings",
+           "best_readings_table", "figure_caption", "joint_candidates", "panel_candidates", "read_scores", "tied", "ties_text"]
+
+#: the score table's columns: ``ticks`` says whether the printed tick step was imposed or the plotting
+#: program chose its own (``tick_step`` is the step the axis ended with); ``same_values_as`` names the
+#: first reading of the panel whose plotted values are identical (to rounding) to this one's
+COLUMNS = ["figure", "panel", "axis", "reading", "outcome", "autoscale", "ticks", "data_min", "data_max", "low",
+           "high", "tick_step", "printed_low", "printed_high", "step", "matches", "same_values_as"]
+_NUMBERS = ("data_min", "data_max", "low", "high", "tick_step", "printed_low", "printed_high", "step")
+
+#: the printed tick step imposed (a fixed locator at the step of the printed labels)
+PRINTED_STEP = "printed step"
+#: the plotting program's own tick step (matplotlib's default locator)
+DEFAULT_LOCATOR = "default locator"
+TICKS = (PRINTED_STEP, DEFAULT_LOCATOR)
 
 #: the autoscaling the axis claims use: limits rounded out to the printed ticks, no margin (the
 #: behaviour of MATLAB's automatic limits, in which the paper's figures appear to be drawn)
 CLAIM_AUTOSCALE = "round, margin 0"
 
 
-def best_readings(rows: Iterable[Mapping], autoscale: str | None = None) -> list[dict]:
-    """Per panel (in the order met), the readings that reproduce the most printed limits over the
-    panel's scored axes: ``{"figure", "panel", "score", "out_of", "best": [(reading, autoscale), ...]}``.
-    With ``autoscale`` only that variant's rows count."""
-    totals: dict[tuple[str, str], dict[tuple[str, str], int]] = defaultdict(lambda: defaultdict(int))
-    axes: dict[tuple[str, str], set[str]] = defaultdict(set)
-    for row in rows:
-        if autoscale is not None and row["autoscale"] != autoscale:
-            continue
-        key = (str(row["figure"]), str(row["panel"]))
-        totals[key][(row["reading"], row["autoscale"])] += int(row["matches"])
-        axes[key].add(row["axis"])
-    result = []
-    for key, scores in totals.items():
-        top = max(scores.values())
-        result.append({
-            "figure": key[0], "panel": key[1], "score": top, "out_of": 2 * len(axes[key]),
-            "best": [choice for choice, score in scores.items() if score == top],
-        })
-    return result
-
-
 def read_scores(path: str) -> list[dict]:
-    """The score table written by :func:`score_readings`, numbers as floats and ``matches`` as int."""
+    """The score table written by :func:`escapement.pipeline.readings.score_readings`, numbers as
+    floats and ``matches`` as int."""
     with open(path, newline="") as handle:
         rows = list(csv.DictReader(handle))
     if not rows or list(rows[0]) != COLUMNS:
-        raise ValueError(f"{path}: not a score table of the readings (columns {COLUMNS})")
+        raise ValueError(f"{path}: not a score table of the readings (columns {', '.join(COLUMNS)})")
     for row in rows:
-        for name in ("data_min", "data_max", "low", "high", "printed_low", "printed_high", "step"):
+        for name in _NUMBERS:
             row[name] = float(row[name])
         row["matches"] = int(row["matches"])
     return rows
 
 
+def _panel_scores(rows: Iterable[Mapping], autoscale: str) -> dict[tuple[str, str], dict]:
+    """Per panel (in the order met): the scored axes, and per tick mode the limits each reading matches."""
+    if not isinstance(autoscale, str):
+        raise ValueError(f"autoscale = {autoscale!r} must be the name of an autoscaling variant")
+    found: dict[tuple[str, str], dict] = {}
+    for row in rows:
+        if row["autoscale"] != autoscale:
+            continue
+        if row["ticks"] not in TICKS:
+            raise ValueError(f"a score row has ticks = {row['ticks']!r}; it must be one of {', '.join(TICKS)}")
+        key = (str(row["figure"]), str(row["panel"]))
+        panel = found.setdefault(key, {"axes": set(), "groups": {}, **{t: defaultdict(int) for t in TICKS}})
+        panel["axes"].add(row["axis"])
+        panel[row["ticks"]][row["reading"]] += int(row["matches"])
+        panel["groups"][row["reading"]] = row["same_values_as"]
+    if not found:
+        raise ValueError(f"the score rows hold no row with autoscale = {autoscale!r}")
+    return found
+
+
+def _equivalent(groups: Mapping[str, str]) -> tuple[tuple[str, ...], ...]:
+    members: dict[str, list[str]] = defaultdict(list)
+    for name, group in groups.items():
+        members[group].append(name)
+    return tuple(tuple(names) for names in members.values() if len(names) > 1)
+
+
+def panel_candidates(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> dict[tuple[str, str], Candidates]:
+    """Every candidate reading of each printed panel, keyed ``(figure, panel)``: the printed limits
+    each reproduces with the printed tick step imposed (``scores``) and with the plotting program's
+    own (``default_scores``), under the margin ``autoscale``, and the groups of readings that plot
+    the same values (``equivalent``)."""
+    found = _panel_scores(rows, autoscale)
+    return {key: Candidates(out_of=2 * len(p["axes"]), scores=dict(p[PRINTED_STEP]),
+                            default_scores=dict(p[DEFAULT_LOCATOR]), equivalent=_equivalent(p["groups"]))
+            for key, p in found.items()}
+
+
+def joint_candidates(rows: Iterable[Mapping], figure: str, autoscale: str = CLAIM_AUTOSCALE) -> Candidates:
+    """The readings of Fig. ``figure`` that every one of its panels scores under one name (a Fig. 4
+    reading names the case, K, release and windows of both panels), scored over all its panels;
+    readings are equivalent when they are in every panel."""
+    found = _panel_scores(rows, autoscale)
+    panels = [p for (fig, _), p in found.items() if fig == str(figure)]
+    if not panels:
+        raise ValueError(f"figure = {figure!r}: the score rows hold no panel of that figure")
+    names = [n for n in panels[0][PRINTED_STEP] if all(n in p[PRINTED_STEP] for p in panels)]
+    if not names:
+        raise ValueError(f"figure = {figure!r}: no reading is scored under one name in all its panels")
+    groups = {n: " | ".join(p["groups"][n] for p in panels) for n in names}
+    return Candidates(out_of=sum(2 * len(p["axes"]) for p in panels),
+                      scores={n: sum(p[PRINTED_STEP][n] for p in panels) for n in names},
+                      default_scores={n: sum(p[DEFAULT_LOCATOR][n] for p in panels) for n in names},
+                      equivalent=_equivalent(groups))
+
+
+def tied(candidates: Candidates, default: bool = False) -> tuple[int, list[tuple[str, ...]]]:
+    """The best score and the readings tied at it, as groups of equivalent readings (one group per
+    set of identical plotted values), in the order of the scores; ``default`` for the scores with
+    the plotting program's own tick step."""
+    scores = candidates.default_scores if default else candidates.scores
+    if not scores:
+        raise ValueError("the candidates hold no score" + (" with the default locator" if default else ""))
+    best = max(scores.values())
+    top = [name for name, score in scores.items() if score == best]
+    group_of = {name: group for group in candidates.equivalent for name in group}
+    groups: list[tuple[str, ...]] = []
+    for name in top:
+        group = tuple(n for n in group_of.get(name, (name,)) if n in top)
+        if group not in groups:
+            groups.append(group)
+    return best, groups
+
+
+def ties_text(candidates: Candidates, sep: str = "; ") -> str:
+    """The best score in words, with every reading tied at it (equivalent ones joined by ``=``) and
+    the best score with the default locator."""
+    best, groups = tied(candidates)
+    default, _ = tied(candidates, default=True) if candidates.default_scores else (None, None)
+    n = len(candidates.scores)
+    head = f"{best} of {candidates.out_of} printed limits (tick step imposed), the best of {n} readings"
+    if len(groups) == 1:
+        head += (", by one reading" if len(groups[0]) == 1 else
+                 f", by {len(groups[0])} equivalent readings (identical plotted values)")
+    else:
+        head += f": a tie of {len(groups)} readings that plot different values, so the reading is undetermined"
+    if default is not None:
+        head += f"; with the default locator the best is {default} of {candidates.out_of}"
+    return head + ": " + sep.join(" = ".join(group) for group in groups)
+
+
+def best_readings(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> list[dict]:
+    """Per panel (in the order met), the readings that reproduce the most printed limits over the
+    panel's scored axes with the printed tick step imposed: ``{"figure", "panel", "score", "out_of",
+    "default_score", "best": [group of equivalent readings, ...]}``."""
+    result = []
+    for (figure, name), c in panel_candidates(rows, autoscale).items():
+        best, groups = tied(c)
+        result.append({"figure": figure, "panel": name, "score": best, "out_of": c.out_of,
+                       "default_score": max(c.default_scores.values()) if c.default_scores else None,
+                       "best": groups})
+    return result
+
+
+def _cell(candidates: Candidates) -> tuple[str, str]:
+    best, groups = tied(candidates)
+    default = max(candidates.default_scores.values()) if candidates.default_scores else None
+    score = f"{best} of {candidates.out_of}" + ("" if default is None else f" ({default} with the default locator)")
+    if len(groups) == 1:
+        lead = "one reading" if len(groups[0]) == 1 else f"{len(groups[0])} equivalent readings (identical values)"
+    else:
+        lead = f"**undetermined**: {len(groups)} readings tie, plotting different values"
+    return score, f"{lead} of {len(candidates.scores)}:<br>" + "<br>".join(" = ".join(g) for g in groups)
+
+
 def best_readings_table(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> list[dict[str, str]]:
-    """One row per printed panel for the documents: its printed limits, and the readings that
-    reproduce the most of them under ``autoscale``, with how many."""
-    rows = [r for r in rows if r["autoscale"] == autoscale]
-    printed: dict[tuple[str, str], dict[str, str]] = {}
-    for r in rows:
-        printed.setdefault((str(r["figure"]), str(r["panel"])), {})[r["axis"]] = (
-            f"{r['axis']} {r['printed_low']:g} to {r['printed_high']:g}")
+    """One row per printed panel for the documents (and one for Fig. 4's two panels together, whose
+    readings are scored under one name): its printed limits, the best score with the printed tick
+    step imposed and with the default locator, and every reading tied at the best, equivalent
+    readings joined by ``=``."""
+    rows = list(rows)
     table = []
-    for best in best_readings(rows, autoscale=autoscale):
-        key = (best["figure"], best["panel"])
-        table.append({
-            "figure": best["figure"],
-            "panel": best["panel"],
-            "printed limits": "; ".join(printed[key][axis] for axis in sorted(printed[key])),
-            "limits reproduced": f"{best['score']} of {best['out_of']}",
-            "best-supported readings": "<br>".join(name for name, _ in best["best"]),  # a name may hold "; "
-        })
+    for (figure, name), c in panel_candidates(rows, autoscale).items():
+        printed = next(p for p in PANELS if (p.figure, p.name) == (figure, name))
+        limits = "; ".join(f"{axis} {a.low:g} to {a.high:g}" for axis, a in printed.axes.items() if a.scored)
+        score, readings = _cell(c)
+        table.append({"figure": figure, "panel": name, "printed limits": limits, "limits reproduced": score,
+                      "best-supported readings": readings})
+    figures = {row["figure"] for row in table}
+    if "4" in figures:
+        score, readings = _cell(joint_candidates(rows, "4", autoscale))
+        at = max(i for i, row in enumerate(table) if row["figure"] == "4") + 1
+        limits = "; ".join(f"{row['panel']}: {row['printed limits']}" for row in table if row["figure"] == "4")
+        table.insert(at, {"figure": "4", "panel": "both panels", "printed limits": limits,
+                          "limits reproduced": score, "best-supported readings": readings})
     return table
+
+
+def _representative(group: tuple[str, ...]) -> str:
+    """The member of a group of equivalent readings read at the paper's section, else the first."""
+    return next((name for name in group if "section a1" in name), group[0])
+
+
+def figure_caption(rows: Iterable[Mapping], figure: str, width: int, autoscale: str = CLAIM_AUTOSCALE) -> str:
+    """The lines a figure prints under its title: the axes imposed, and per printed panel of Fig.
+    ``figure`` the best score of the grid of readings and every reading tied at it (one of each
+    group of equivalent readings, with how many it stands for), wrapped at ``width`` characters."""
+    if not (isinstance(width, int) and width >= 40):
+        raise ValueError(f"width = {width!r} must be an integer >= 40")
+    rows = list(rows)
+    found = {key: c for key, c in panel_candidates(rows, autoscale).items() if key[0] == str(figure)}
+    if not found:
+        raise ValueError(f"figure = {figure!r}: the score rows hold no panel of that figure")
+    if str(figure) == "4":  # one reading names both panels' choices: scored together
+        found = {("4", "both panels"): joint_candidates(rows, "4", autoscale)}
+    lines = [f"Each printed panel's axes as its claim scores them: ticks at the printed step, limits the data's rounded "
+             f"out to the ticks ({autoscale}). Of the grid of readings of the choices the paper leaves open, the best "
+             f"(printed limits reproduced; with matplotlib's default locator instead):"]
+    for (_, name), c in found.items():
+        best, groups = tied(c)
+        default = f"; default locator {max(c.default_scores.values())}/{c.out_of}" if c.default_scores else ""
+        named = " | ".join(_representative(g) + (f" (+{len(g) - 1} equivalent)" if len(g) > 1 else "")
+                           for g in groups)
+        verdict = "one reading" if len(groups) == 1 else f"UNDETERMINED, {len(groups)} readings tie"
+        lines.append(f"{name}: {best}/{c.out_of} of {len(c.scores)}{default}; {verdict}: {named}")
+    return "\n".join(_wrapped(line, width) for line in lines)
+
+
+def _wrapped(text: str, width: int) -> str:
+    return "\n".join(textwrap.wrap(text, width, break_on_hyphens=False, subsequent_indent="    "))

@@ -1,12 +1,18 @@
 """Automatic axis limits as a plotting program would choose them, computed by matplotlib itself.
 
 :func:`autoscaled_limits` plots the values on an Agg canvas with ``axes.autolimit_mode:
-round_numbers`` and a fixed :class:`~matplotlib.ticker.MultipleLocator` of the given tick step,
-lets matplotlib autoscale, and reads the limits back: the data range widened by the margin on
-each side, then rounded outward to multiples of the step (no rounding of our own).
-:func:`autoscaled_limits_many` does the same for many arrays on one axes, one array at a time.
+round_numbers``, lets matplotlib autoscale, and reads the limits back: the data range widened by
+the margin on each side, then rounded outward to the ticks (no rounding of our own).
+:func:`autoscaled_limits_many` does the same for many arrays on one axes, one array at a time;
+:func:`autoscaled_axes` also returns the tick step the axis ended with.
 
-Two variants (:data:`VARIANTS`):
+The tick step is either imposed (a fixed :class:`~matplotlib.ticker.MultipleLocator` at the
+printed step) or the program's own choice (``step=None``: matplotlib's default
+:class:`~matplotlib.ticker.AutoLocator`, on the axis the values are printed on, ``"x"`` or ``"y"``,
+of a default figure of 6.4 x 4.8 in). Only the data's extent matters: a line through its minimum
+and maximum gives the same limits as the whole array.
+
+Two margins (:data:`VARIANTS`):
 
 * ``round, margin 0``: the limits round the data range itself outward to the ticks. This is the
   assumption for the paper's figures: MATLAB, the likely software of the paper (2012), chose
@@ -15,9 +21,6 @@ Two variants (:data:`VARIANTS`):
   ``round_numbers`` and zero margins.
 * ``round, margin 0.05``: matplotlib's default margins (``axes.xmargin = axes.ymargin = 0.05``
   since 2.0, whose default mode is ``data``, unrounded) added before rounding to the ticks.
-
-The tick step is the printed one, given: a program that chooses its own step from the data
-range could choose another, and would then round to other limits.
 """
 
 from __future__ import annotations
@@ -31,47 +34,70 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.ticker import MultipleLocator
 
-__all__ = ["VARIANTS", "autoscaled_limits", "autoscaled_limits_many"]
+__all__ = ["AXES", "VARIANTS", "autoscaled_axes", "autoscaled_limits", "autoscaled_limits_many"]
 
 #: the autoscaling variants by name: the margin added on each side before rounding, as a fraction of the range
 VARIANTS: dict[str, float] = {"round, margin 0": 0.0, "round, margin 0.05": 0.05}
+#: the axes a value may be printed on
+AXES = ("x", "y")
 
 
-def _finite(values) -> np.ndarray:
+def _extent(values) -> np.ndarray:
     data = np.asarray(values, dtype=float).ravel()
     data = data[np.isfinite(data)]
     if data.size == 0:
         raise ValueError("no finite values to scale an axis to")
-    return data
+    return np.array([data.min(), data.max()])
 
 
-def autoscaled_limits_many(series: Iterable, step: float, margin: float = 0.0) -> list[tuple[float, float]]:
-    """:func:`autoscaled_limits` of each array of ``series`` in turn, on one axes (each array alone
-    on it: the previous line is removed and the data limits recomputed before the next)."""
-    arrays = [_finite(values) for values in series]
-    if not (math.isfinite(step) and step > 0):
-        raise ValueError(f"step = {step!r} must be a positive finite number")
-    if not (math.isfinite(margin) and margin >= 0):
+def autoscaled_axes(series: Iterable, step: float | None, margin: float = 0.0, axis: str = "y"
+                    ) -> list[tuple[float, float, float]]:
+    """``(low, high, tick step)`` of each array of ``series`` (NaN ignored) alone on the ``axis``
+    ("x" or "y") of one matplotlib axes, limits rounded to the ticks (``round_numbers``) after a
+    margin of ``margin`` times the data range on each side; ticks every ``step``, or, with
+    ``step=None``, where matplotlib's default locator puts them."""
+    extents = [_extent(values) for values in series]
+    if step is not None and not (isinstance(step, (int, float)) and math.isfinite(step) and step > 0):
+        raise ValueError(f"step = {step!r} must be a positive finite number, or None for the default locator")
+    if not (isinstance(margin, (int, float)) and math.isfinite(margin) and margin >= 0):
         raise ValueError(f"margin = {margin!r} must be a non-negative finite number")
+    if axis not in AXES:
+        raise ValueError(f"axis = {axis!r} must be one of {', '.join(AXES)}")
     rc = {"axes.autolimit_mode": "round_numbers", "axes.xmargin": margin, "axes.ymargin": margin}
-    limits = []
+    found: dict[tuple[float, float], tuple[float, float, float]] = {}
     with matplotlib.rc_context(rc):
         figure = Figure()
         FigureCanvasAgg(figure)
         ax = figure.add_subplot()
-        ax.yaxis.set_major_locator(MultipleLocator(step))
-        for data in arrays:
-            (line,) = ax.plot(np.arange(data.size), data)
+        scaled = ax.xaxis if axis == "x" else ax.yaxis
+        if step is not None:
+            scaled.set_major_locator(MultipleLocator(step))
+        for lo, hi in extents:
+            if (lo, hi) in found:
+                continue
+            pair = np.array([lo, hi])
+            (line,) = ax.plot(pair, np.zeros(2)) if axis == "x" else ax.plot(np.zeros(2), pair)
             ax.autoscale_view()
-            low, high = ax.get_ylim()
-            limits.append((float(low), float(high)))
+            low, high = ax.get_xlim() if axis == "x" else ax.get_ylim()
+            if step is None:
+                ticks = scaled.get_majorticklocs()
+                tick_step = float(ticks[1] - ticks[0]) if len(ticks) > 1 else math.nan
+            else:
+                tick_step = float(step)
+            found[(lo, hi)] = (float(low), float(high), tick_step)
             line.remove()
             ax.relim()
-    return limits
+    return [found[(lo, hi)] for lo, hi in extents]
 
 
-def autoscaled_limits(values, step: float, margin: float = 0.0) -> tuple[float, float]:
+def autoscaled_limits_many(series: Iterable, step: float | None, margin: float = 0.0, axis: str = "y"
+                           ) -> list[tuple[float, float]]:
+    """The ``(low, high)`` of :func:`autoscaled_axes`, without the tick step."""
+    return [(low, high) for low, high, _ in autoscaled_axes(series, step, margin, axis)]
+
+
+def autoscaled_limits(values, step: float | None, margin: float = 0.0, axis: str = "y") -> tuple[float, float]:
     """The limits matplotlib gives an axis holding ``values`` (NaN ignored) with major ticks every
-    ``step``, limits rounded to the ticks (``round_numbers``) after a margin of ``margin`` times
-    the data range on each side."""
-    return autoscaled_limits_many([values], step, margin)[0]
+    ``step`` (or matplotlib's own, ``step=None``), limits rounded to the ticks (``round_numbers``)
+    after a margin of ``margin`` times the data range on each side."""
+    return autoscaled_limits_many([values], step, margin, axis)[0]

@@ -2,8 +2,10 @@
 
 Each figure names the paper's figure it reproduces (the dataset's ``title``) and states the readings
 it assumes where the paper is silent: the dataset's ``reading`` attribute if it has one, otherwise a
-sentence composed from its parameters (F, K, x0, v0) and the definitions of its variables. No label
-covers data (:mod:`escapement.plotting.labels`).
+sentence composed from its parameters (F, K, x0, v0) and the definitions of its variables. Given
+``axes`` (:mod:`escapement.plotting.panel_axes`), each printed panel is drawn with exactly the axes
+its claim scores: the printed tick step, the limits given. ``caption`` adds what was imposed and
+what the printed axes left undetermined. No label covers data (:mod:`escapement.plotting.labels`).
 """
 
 from __future__ import annotations
@@ -26,25 +28,37 @@ from .captions import (
     wrap,
 )
 from .labels import Label, finish, legend_below
+from .panel_axes import PanelAxes, apply_printed_axes, fig5_panel_of
 from .style import ACCENT, GUIDE, INK, MUTED, style
 
 __all__ = ["fig3", "fig4", "fig5"]
 
 
-def fig3(cases: dict[str, xr.Dataset]):
+def _heading(title: str, caption: str | None) -> str:
+    return title if not caption else f"{title}\n{caption}"
+
+
+def _printed(ax, axes: PanelAxes | None, figure: str, name: str | None) -> None:
+    if axes and name is not None and (figure, name) in axes:
+        apply_printed_axes(ax, figure, name, axes[(figure, name)])
+
+
+def fig3(cases: dict[str, xr.Dataset], axes: PanelAxes | None = None, caption: str | None = None):
     """Velocity before impact, period and amplitude against the cycle, one column per case."""
     rows = ("velocity_before_impact", "period", "amplitude")
+    panels = {"velocity_before_impact": "velocity", "period": "period", "amplitude": "amplitude"}
+    extra = 0.0 if not caption else 0.15 * (caption.count("\n") + 1)
     first = next(iter(cases.values()))
     definitions = "\n".join(wrap(f"{name}: {first[name].attrs['long_name']}", 100) for name in ("period", "amplitude")
                              if "long_name" in first[name].attrs)
     notes = []
     with style():
-        fig, axes = plt.subplots(3, len(cases), figsize=(3.4 * len(cases), 7.9), squeeze=False, sharex="col",
+        fig, grid = plt.subplots(3, len(cases), figsize=(3.4 * len(cases), 7.9 + extra), squeeze=False,
                                  layout="constrained")
         for col, (label, ds) in enumerate(cases.items()):
             period = natural_period(ds)
             for row, name in enumerate(rows):
-                ax = axes[row, col]
+                ax = grid[row, col]
                 ax.plot(ds[ds[name].dims[0]], ds[name], marker="o", markersize=2.5, lw=1.0, color=INK, zorder=2,
                         label="exact solution, per cycle")
                 # the guides are drawn over the points they are compared with, in colours of their own
@@ -55,18 +69,18 @@ def fig3(cases: dict[str, xr.Dataset]):
                     ax.axhline(period, ls=":", lw=1.2, color=GUIDE, zorder=3,
                                label=f"2\u03c0/\u03c9 = {period:.4f} s, the period the paper reports")
                 ax.set_ylabel(axis_label(name))
-                if row == 2:
-                    ax.set_xlabel("Number of cycles")
+                ax.set_xlabel("Number of cycles")
+                _printed(ax, axes, "3", f"{label}/{panels[name]}")
             reading = assumed_reading(ds, f"{quantity_value('F', float(ds['F']))}, {release(ds)}")
-            axes[0, col].set_title(f"({label}) {wrap(reading, 40)}")
-            notes += outcome_note(axes[0, col], ds)
-        fig.suptitle(f"{paper_source(first, 'Fig. 3')}\n{definitions}", fontsize=8.5)
-        legend_below(fig, axes, ncols=2)
+            grid[0, col].set_title(f"({label}) {wrap(reading, 40)}")
+            notes += outcome_note(grid[0, col], ds)
+        fig.suptitle(_heading(f"{paper_source(first, 'Fig. 3')}\n{definitions}", caption), fontsize=8.5)
+        legend_below(fig, grid, ncols=2)
         finish(fig, notes)
     return fig
 
 
-def fig4(ds: xr.Dataset):
+def fig4(ds: xr.Dataset, axes: PanelAxes | None = None, caption: str | None = None):
     """Velocity and acceleration around the impacts; jumps drawn as jumps, each impact labelled with
     its impulse and the energy it dissipates."""
     t = ds["t"].values
@@ -78,12 +92,14 @@ def fig4(ds: xr.Dataset):
     before, after = ds["velocity_before"].values, ds["velocity_after"].values
     labels = []
     with style():
-        fig, (ax_v, ax_a) = plt.subplots(1, 2, figsize=(7.6, 3.9), layout="constrained")
+        extra = 0.0 if not caption else 0.15 * (caption.count("\n") + 1)
+        fig, (ax_v, ax_a) = plt.subplots(1, 2, figsize=(7.6, 3.9 + extra), layout="constrained")
         sel = (t >= v_lo) & (t <= v_hi)
         ax_v.plot(*broken(t[sel], ds["velocity"].values[sel], impacts), color=INK, label="velocity")
         ax_v.plot(impacts, before, "o", mfc="white", color=ACCENT, label="velocity just before an impact")
         ax_v.plot(impacts, after, "o", color=ACCENT, label="velocity just after an impact")
         ax_v.set_xlim(v_lo, v_hi)
+        _printed(ax_v, axes, "4", "velocity")
         ax_v.set_xlabel(axis_label("t"))
         ax_v.set_ylabel(axis_label("velocity"))
         inside = (impacts >= v_lo) & (impacts <= v_hi)
@@ -94,6 +110,8 @@ def fig4(ds: xr.Dataset):
         sel = (t >= a_lo) & (t <= a_hi)
         ax_a.plot(*broken(t[sel], ds["acceleration"].values[sel], switches), color=INK,
                   label="acceleration between events")
+        ax_a.set_xlim(a_lo, a_hi)
+        _printed(ax_a, axes, "4", "acceleration")
         # a Dirac impulse has no height: its arrow spans most of the panel, pointing the way it acts,
         # inside the limits the smooth acceleration sets (which stay fixed)
         y_lo, y_hi = ax_a.get_ylim()
@@ -106,26 +124,26 @@ def fig4(ds: xr.Dataset):
             labels.append(Label(ax_a, f"impulse {signed(j, '+.4f')} {unit('impulse')}", (ti, tip),
                                  style={"fontsize": 6.5, "color": ACCENT}))
         ax_a.plot([], [], color=ACCENT, lw=1.4, label="impulse M \u0394v at an impact (Dirac, not to scale)")
-        ax_a.set_xlim(a_lo, a_hi)
         ax_a.set_xlabel(axis_label("t"))
         ax_a.set_ylabel(axis_label("acceleration"))
         params = f"{quantity_value('F', float(ds['F']))}, {quantity_value('K', float(ds['K']))}, {release(ds)}"
         reading = assumed_reading(ds, f"case assumed (the paper does not say which it shows): {params}")
-        fig.suptitle(f"{paper_source(ds, 'Fig. 4')}\n{wrap(reading, 110)}", fontsize=8.5)
+        fig.suptitle(_heading(f"{paper_source(ds, 'Fig. 4')}\n{wrap(reading, 110)}", caption), fontsize=8.5)
         legend_below(fig, (ax_v, ax_a), ncols=2)  # a column per panel
         finish(fig, labels + outcome_note(ax_v, ds))
     return fig
 
 
-def fig5(panels: dict[str, xr.Dataset]):
+def fig5(panels: dict[str, xr.Dataset], axes: PanelAxes | None = None, caption: str | None = None):
     """Phase diagrams: the transient in light colour, the last cycle in dark, impacts as vertical jumps;
     each panel states the force and the release it assumes."""
     letters = "abcdefghij"
     notes = []
     with style():
-        fig, axes = plt.subplots(1, len(panels), figsize=(3.2 * len(panels), 3.9), squeeze=False,
+        extra = 0.0 if not caption else 0.15 * (caption.count("\n") + 1)
+        fig, grid = plt.subplots(1, len(panels), figsize=(3.2 * len(panels), 3.9 + extra), squeeze=False,
                                  layout="constrained")
-        for ax, letter, (label, ds) in zip(axes[0], letters, panels.items()):
+        for ax, letter, (label, ds) in zip(grid[0], letters, panels.items()):
             t, x, v = ds["t"].values, ds["displacement"].values, ds["velocity"].values
             impacts = ds["impact_time"].values
             tb, xb = broken(t, x, impacts)
@@ -139,13 +157,14 @@ def fig5(panels: dict[str, xr.Dataset]):
                       label="impacts (velocity jumps)")
             ax.set_xlabel(axis_label("displacement"))
             ax.set_ylabel(axis_label("velocity"))
+            _printed(ax, axes, "5", fig5_panel_of(ds))
             start = "from rest" if initial_velocity(ds) == 0 else quantity_value("v0", initial_velocity(ds))
             reading = assumed_reading(ds, f"{quantity_value('F', float(ds['F']))}, {quantity_value('x0', float(ds['x0']))}, {start}")
             ax.set_title(f"({letter}) {quantity_value('K', float(ds['K']))}\n{wrap(reading, 40)}")
             notes += outcome_note(ax, ds)
         first = next(iter(panels.values()))
-        fig.suptitle(f"{paper_source(first, 'Fig. 5')}\nF and x(0) are not given by the paper: each panel states those "
-                     "assumed", fontsize=8.5)
-        legend_below(fig, axes, ncols=3, order=("transient", "last cycle"))
+        fig.suptitle(_heading(f"{paper_source(first, 'Fig. 5')}\nF and x(0) are not given by the paper: each panel "
+                              "states those assumed", caption), fontsize=8.5)
+        legend_below(fig, grid, ncols=3, order=("transient", "last cycle"))
         finish(fig, notes)
     return fig
