@@ -1,0 +1,182 @@
+"""The printed formulas under each convention of the paper (paper.conventions, paper.period_checks), on
+small synthetic Fig. 3 datasets built here (no solver run).
+
+Hand derivations for the paper's case M = K = 1 kg, N/m (w = 1), F = 1 N (f = 1, c = f/w^2 = 1), b = 0.1,
+a1 = -0.1, a2 = 0.05, a3 = 0.1, a4 = -0.05 m, and v1 = 1 m/s before the impact at a1:
+v1p^2 = 0.81; v2^2 = 0.81 + (0.01 - 0.0025) + 2 (0.15) = 1.1175; v4^2 = v2^2 + (0.0025 - 0.01) = 1.11;
+v4p^2 = 0.81 * 1.11 = 0.8991. Eq. (14) as printed: v5^2 = 0.8991 + 0.0075 - 0.3 = 0.6066; with -f for the
+force (sigma f) or the mirrored positions: 0.8991 + 0.0075 + 0.3 = 1.2066.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from escapement.paper import conventions as cv
+from escapement.paper import period_checks as pc
+from escapement.paper import printed as pe
+from escapement.paper.checks import Evidence
+from escapement.model.parameters import Parameters
+
+GEOMETRY = {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
+V4P = -math.sqrt(0.8991)
+V4 = -math.sqrt(1.11)
+
+
+def fig3(v_last: float = 1.0, zone_left: float = 1.0, period: float = 6.3, v5: float = -1.0,
+         steps: tuple = (1.0, 1.0, 1.0)) -> xr.Dataset:
+    """Three cycles, the velocity before impact ``v_last`` at each; the last cycle's steps last ``steps`` and
+    ``zone_left``; the velocity before the event at a4 is ``v5``."""
+    durations = np.ones((3, 4))
+    durations[-1] = [steps[0], steps[1], zone_left, steps[2]]
+    kinds = np.array([1, 2, 3, 4] * 3 + [1], dtype=np.int8)
+    return xr.Dataset(
+        {
+            "velocity_before_impact": ("cycle", np.full(3, v_last)),
+            "period": ("cycle", np.full(3, period)),
+            "event_time": ("event", np.concatenate([[0.0], np.cumsum(durations.ravel())])),
+            "event_kind": ("event", kinds),
+            "event_velocity_before": ("event", np.select([kinds == 1, kinds == 4], [v_last, v5], 0.0)),
+            **{k: ((), v) for k, v in GEOMETRY.items()},
+        },
+        coords={"cycle": np.arange(1, 4)},
+        attrs={"outcome": "completed", "outcome_message": "completed"},
+    )
+
+
+def verdict(check, ds: xr.Dataset, tolerance: float = 1e-9):
+    ev = Evidence(fig3={"a": ds}, fig4=None, fig5={}, checks=None)
+    return check({"args": {"case": "a"}, "tolerance": tolerance}, ev)
+
+
+# --- the readings ------------------------------------------------------------------------------
+
+
+def test_every_reading_once_the_adopted_one_first():
+    every = cv.readings(tuple(cv.AXES))
+    assert len(every) == len(set(every)) == 16 and every[0] == cv.AS_READ
+    assert cv.readings(()) == [cv.AS_READ]
+    assert {r.velocity for r in cv.readings(("velocity",))} == {"after", "before"}
+    with pytest.raises(ValueError, match="axes = .* must name axes"):
+        cv.readings(("sign",))
+    with pytest.raises(ValueError, match="positions = 'absolute' must be one of signed, magnitudes"):
+        cv.Reading("absolute", "f", "as written", "after")
+
+
+def test_the_symbols_of_each_convention():
+    p = Parameters(**GEOMETRY)
+    mirrored = cv.Reading("signed", "f", "mirrored", "after")
+    assert cv.symbols(p, mirrored, second_half=True) == (pe.Symbols(0.1, -0.05, -0.1, 0.05, 1.0, 1.0), -1.0)
+    assert cv.symbols(p, mirrored, second_half=False) == (pe.Symbols(-0.1, 0.05, 0.1, -0.05, 1.0, 1.0), 1.0)
+    sigma = cv.Reading("magnitudes", "sigma f", "as written", "after")
+    assert cv.symbols(p, sigma, second_half=True) == (pe.Symbols(0.1, 0.05, 0.1, 0.05, -1.0, 1.0), 1.0)
+    with pytest.raises(ValueError, match="second_half = 1 must be True or False"):
+        cv.symbols(p, sigma, second_half=1)
+
+
+def test_try_readings_refuses_a_bad_tolerance_or_simulated_value():
+    with pytest.raises(ValueError, match="tolerance = -1 must be a number >= 0"):
+        cv.try_readings(lambda r: 1.0, 1.0, -1, ())
+    with pytest.raises(ValueError, match="simulated = 0.0 must be a finite non-zero float"):
+        cv.try_readings(lambda r: 1.0, 0.0, 1e-6, ())
+
+
+def test_eq23_with_the_magnitudes_of_sec4_is_the_swing_through_the_left_turning_point():
+    # the swing a4 -> -h5 -> a1 takes acos(-a4/h5) + acos(-a1/h5) with signed a4, a1 < 0 (w = 1)
+    s = pe.Symbols(0.1, 0.05, 0.1, 0.05, 1.0, 1.0)  # Sec. 4's magnitudes
+    velocities = {"v1p": 0.9, "v2": 1.0, "v4p": -0.9, "v5": -1.2}
+    h5 = math.hypot(0.05, 1.2)
+    assert pe.period_terms_23(velocities, s)["a4_to_a1"] == pytest.approx(
+        math.acos(0.05 / h5) + math.acos(0.1 / h5), rel=1e-15)
+
+
+# --- Eq. (14) ----------------------------------------------------------------------------------
+
+
+def test_eq14_reproduced_as_read_by_a_convention_or_by_none():
+    as_read = verdict(cv.eq14_conventions, fig3(v5=-math.sqrt(0.6066)))
+    assert as_read.status == "reproduced"
+    other = verdict(cv.eq14_conventions, fig3(v5=-math.sqrt(1.2066)))
+    assert other.status == "partially_reproduced"
+    assert "reproduced with mirrored or sigma f" in other.note and "not a wrong formula" in other.note
+    assert verdict(cv.eq14_conventions, fig3(v5=-1.0)).status == "not_reproduced"
+
+
+# --- Eq. (22e) ---------------------------------------------------------------------------------
+
+
+def eq22e_by_hand(a3: float, a4: float, c: float, v: float) -> float:
+    """atan(v / (a3 + c)) - acos((a4 + c) / h3), h3 = |(a3 + c, v)|, at w = 1 (the printed (22e))."""
+    return math.atan(v / (a3 + c)) - math.acos((a4 + c) / math.hypot(a3 + c, v))
+
+
+def test_eq22e_as_read_by_a_convention_or_by_none():
+    assert verdict(pc.eq22e, fig3(zone_left=eq22e_by_hand(0.1, -0.05, 1.0, V4P))).status == "reproduced"
+    # mirrored positions (-a3, -a4), the mirrored velocity before the impact
+    mirrored = verdict(pc.eq22e, fig3(zone_left=eq22e_by_hand(-0.1, 0.05, 1.0, -V4)))
+    assert mirrored.status == "partially_reproduced" and "mirrored + before" in mirrored.note
+    # the left zone's true time: the mirror of the right one, [acos((c - a2)/R) - acos((c - a1)/R)]/w
+    r = math.hypot(-0.1 - 1.0, -V4P)
+    true_time = math.acos(0.95 / r) - math.acos(1.1 / r)
+    wrong = verdict(pc.eq22e, fig3(zone_left=true_time))
+    assert wrong.status == "not_reproduced" and "a wrong formula" in wrong.note
+
+
+# --- Eq. (23) ----------------------------------------------------------------------------------
+
+
+def test_eq23_whole_as_read_mixed_conventions_or_wrong():
+    c = 1.0
+    v1p, v2, v5 = 0.9, math.sqrt(1.1175), -math.sqrt(1.2066)
+    r1, h2, r3 = math.hypot(-0.1 - c, v1p), math.hypot(0.05, v2), math.hypot(0.1 + c, V4P)
+    h5 = math.hypot(-0.05, v5)
+    zone_right = math.acos((c - 0.05) / r1) - math.acos((c + 0.1) / r1)
+    a2_to_a3 = math.acos(0.05 / h2) + math.acos(0.1 / h2)
+    zone_left = math.acos((c - 0.05) / r3) - math.acos((c + 0.1) / r3)
+    printed_swing = math.acos(-0.05 / h5) + math.acos(-0.1 / h5)  # signed a4, a1 as printed
+    true_swing = math.acos(0.05 / h5) + math.acos(0.1 / h5)  # through the left turning point
+    steps = (zone_right, a2_to_a3, true_swing)
+    as_read = sum((zone_right, a2_to_a3, zone_left, printed_swing))
+    assert verdict(pc.eq23, fig3(period=as_read, zone_left=zone_left, steps=steps)).status == "reproduced"
+    true_period = sum((zone_right, a2_to_a3, zone_left, true_swing))
+    mixed = verdict(pc.eq23, fig3(period=true_period, zone_left=zone_left, steps=steps))
+    assert mixed.status == "partially_reproduced"
+    assert "a4_to_a1: mirrored or magnitudes" in mixed.note and "zone_left: as read" in mixed.note
+    wrong = verdict(pc.eq23, fig3(period=true_period, zone_left=1.0, steps=steps))
+    assert wrong.status == "not_reproduced" and "zone_left: no reading" in wrong.note
+
+
+# --- Eqs. (24), (25) ---------------------------------------------------------------------------
+
+
+def test_eq24_second_form_needs_the_velocity_before_the_impact():
+    # at v1 = 1: the sine phase atan2(a1, v) jumps from atan2(-0.1, 1) to atan2(-0.1, 0.9), a delay of
+    # atan(0.1/0.9) - atan(0.1) = 0.011111... - ... s; the second form with x1+ = 0.9 gives
+    # atan(0.1 * 0.1 * 0.9 / (0.01 + 0.9 * 0.81)) instead
+    delay = math.atan(0.1 / 0.9) - math.atan(0.1)
+    result = verdict(pc.eq24, fig3(), tolerance=1e-12)
+    assert result.status == "partially_reproduced" and "reproduced with before" in result.note
+    assert result.replicated_value.startswith(f"phase delay of the impact {delay:.10g} s")
+    second_as_printed = math.atan(0.1 * 0.1 * 0.9 / (0.01 + 0.9 * 0.81))
+    assert f"second form as read {second_as_printed:.10g} s" in result.replicated_value
+    assert verdict(pc.eq24, fig3(), tolerance=0.2).status == "reproduced"
+
+
+def eq25_by_hand(v_in: float, a1: float, a2: float) -> float:
+    """2 pi + 2 (dT1 + dT2) at w = f = c = 1, b = 0.1, v1 = 1, positions a1, a2, entering the zone at v_in."""
+    d1 = math.atan(0.9 / a1) - math.atan(1.0 / a1)
+    r1 = math.hypot(a1 - 1.0, v_in)
+    exit_ = math.sqrt(v_in**2 + a1**2 - a2**2 - 2 * (a1 - a2))
+    d2 = (math.acos((1.0 - a2) / r1) - math.acos((1.0 - a1) / r1)) - (math.atan(exit_ / a2) - math.atan(v_in / a1))
+    return 2 * math.pi + 2 * (d1 + d2)
+
+
+def test_eq25_as_read_by_a_convention_or_by_none():
+    assert verdict(pc.eq25, fig3(period=eq25_by_hand(0.9, -0.1, 0.05))).status == "reproduced"
+    magnitudes = verdict(pc.eq25, fig3(period=eq25_by_hand(1.0, 0.1, 0.05)))
+    assert magnitudes.status == "partially_reproduced" and "magnitudes + before" in magnitudes.note
+    assert verdict(pc.eq25, fig3(period=6.3)).status == "not_reproduced"

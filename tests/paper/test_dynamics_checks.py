@@ -1,0 +1,169 @@
+"""The checks on the dynamics (paper.dynamics_checks) and the Fig. 5 comparisons at one common force
+(paper.section4_checks), on small synthetic evidence built here (no solver run)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from escapement.paper import dynamics_checks as dc
+from escapement.paper import section4_checks as s4
+from escapement.paper.checks import Evidence
+
+GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
+
+
+def runs(*rows: dict) -> xr.Dataset:
+    keys = ["label", "group", "outcome", "outcome_message", "F", "x0", "velocity", "period", "amplitude",
+            "first_period", "largest_speed", "floquet_major", "floquet_minor", "multiplier_eq21", *GEOMETRY]
+    default = {"label": "run", "group": "g", "outcome": "completed", "outcome_message": "m", "F": 1.0, "x0": 1.0,
+               "velocity": 1.0, "period": 6.3, "amplitude": 1.0, "first_period": 6.3, "largest_speed": 1.0,
+               "floquet_major": 1.0, "floquet_minor": 0.6561, "multiplier_eq21": 0.6561, **GEOMETRY}
+    return xr.Dataset({k: ("case", [r.get(k, default[k]) for r in rows]) for k in keys},
+                      coords={"case": np.arange(len(rows))})
+
+
+def evidence(checks=None, fig3=None) -> Evidence:
+    return Evidence(fig3=fig3 or {}, fig4=None, fig5={}, checks=checks)
+
+
+def claim(tolerance=None, **args) -> dict:
+    return {"tolerance": tolerance, "args": args}
+
+
+# --- Fig. 5 at one common force ----------------------------------------------------------------
+
+
+def common(speeds_05, speeds_1, velocity=math.sqrt(0.15 / 0.19)) -> xr.Dataset:
+    rows = [{"group": "common_force", "K": k, "F": f, "largest_speed": v, "velocity": velocity}
+            for f, speeds in ((0.5, speeds_05), (1.0, speeds_1)) for k, v in zip((0.1, 1.0, 10.0), speeds)]
+    return runs(*rows)
+
+
+@pytest.mark.parametrize("speeds_05, speeds_1, status", [
+    ((3.0, 2.0, 1.0), (3.0, 2.0, 1.0), "reproduced"),
+    ((3.0, 2.0, 1.0), (1.0, 2.0, 3.0), "partially_reproduced"),
+    ((1.0, 2.0, 3.0), (1.0, 2.0, 2.0), "not_reproduced"),
+])
+def test_fig5_velocity_order_compares_k_at_each_common_force(speeds_05, speeds_1, status):
+    result = s4.fig5_velocity_common_force(claim(), evidence(common(speeds_05, speeds_1)))
+    assert result.status == status and "not compared with each other" in result.note
+
+
+def test_fig5_velocity_order_reports_a_run_that_left_the_regime():
+    data = runs({"group": "common_force", "K": 0.1, "outcome": "stopped"}, {"group": "common_force", "K": 1.0})
+    assert s4.fig5_velocity_common_force(claim(), evidence(data)).status == "not_reproduced"
+
+
+def test_fig5_recovery_at_one_force():
+    # M = 1, b = 0.1, a1 = -0.1: v^2 = v1p^2 + w^2 (a1^2 - x^2) + 2 f (x - a1) regains v1^2 where
+    # w^2 x^2 - 2 f x + q = 0, q = 0.19 v1^2 - 0.01 w^2 - 0.2 f. At v1^2 = 0.15/0.19 (F = 0.5 N, f = 0.5),
+    # q = 0.05 - 0.01 w^2: for K = 1 (w = 1) x^2 - x + 0.04 = 0, x = (1 - sqrt(0.84))/2 = 0.041742 m inside
+    # (a1, a2); the time from a1 follows from the arc about c = 0.5 m.
+    result = s4.fig5_recovery_common_force(claim(), evidence(common((3, 2, 1), (3, 2, 1))))
+    x = (1 - math.sqrt(0.84)) / 2
+    v1p = 0.9 * math.sqrt(0.15 / 0.19)
+    r = math.hypot(-0.1 - 0.5, v1p)
+    seconds = math.acos((0.5 - x) / r) - math.acos(0.6 / r)
+    assert f"K = 1: {seconds:.4g} s" in result.replicated_value
+    # the stiffer spring recovers sooner in seconds, later as a fraction of its cycle: partial
+    assert result.status == "partially_reproduced"
+
+
+# --- Sec. 2: the period's shares ---------------------------------------------------------------
+
+
+def limit_cycle(natural: float = 2 * math.pi) -> xr.Dataset:
+    """One cycle of the symmetric model at w = 1 built by hand: impacts at a1 = -0.1 (v 1 -> 0.9) and a3 = 0.1
+    (v -1 -> -0.9), a zone that ends at a2 = 0.05 with v = 1 after 0.15 s, the mirror zone, free flights that
+    advance the sine phase at w = 1, so that the cycle closes."""
+    phi = lambda x, v: math.atan2(x, v)  # noqa: E731
+    zone, step = 0.15, phi(0.05, 1.0) - phi(-0.1, 0.9)  # zone time and its phase advance
+    free = (phi(0.1, -1.0) - phi(0.05, 1.0))  # a2 -> a3, the phase at w = 1
+    times = np.cumsum([0.0, zone, free, zone, free])
+    kinds = np.array([1, 2, 3, 4, 1], dtype=np.int8)
+    return xr.Dataset(
+        {
+            "event_time": ("event", times), "event_kind": ("event", kinds),
+            "event_position": ("event", [-0.1, 0.05, 0.1, -0.05, -0.1]),
+            "event_velocity_before": ("event", [1.0, 1.0, -1.0, -1.0, 1.0]),
+            "event_velocity_after": ("event", [0.9, 1.0, -0.9, -1.0, 0.9]),
+            "velocity_before_impact": ("cycle", [1.0]), "period": ("cycle", [times[-1]]),
+            "F": ((), 1.0), **{k: ((), v) for k, v in GEOMETRY.items()},
+        },
+        coords={"cycle": [1]},
+        attrs={"outcome": "completed", "outcome_message": "m"},
+    )
+
+
+def test_the_period_shares_are_the_phase_jumps_and_the_zones_less_their_advance():
+    s = dc.phase_shares(limit_cycle())
+    # by hand: each impact steps the phase back by atan(0.1/0.9) - atan(0.1) = 0.0109886 (a delay); each zone
+    # lasts 0.15 s and advances the phase by atan(0.05) + atan(0.1/0.9) = 0.1606154: 0.15 - 0.1606154 s
+    delay = 2 * (math.atan(0.1 / 0.9) - math.atan(0.1))
+    advance = 2 * (0.15 - (math.atan(0.05) + math.atan(0.1 / 0.9)))
+    assert s["impacts"] == pytest.approx(delay, rel=1e-12) and delay == pytest.approx(0.0219771, rel=1e-5)
+    assert s["impulses"] == pytest.approx(advance, rel=1e-12) and advance == pytest.approx(-0.0212308, rel=1e-4)
+    assert abs(s["residual"]) < 1e-14
+    ev = evidence(fig3={"a": limit_cycle()})
+    assert dc.period_shares(claim(0.1, case="a"), ev).status == "reproduced"
+    # T - 2 pi = 0.0219771 - 0.0212308 = 7.46e-4 s, 1.19e-4 of 2 pi: not "mainly" the spring at a tolerance
+    # of 1e-4, though both shares are measured
+    assert dc.period_shares(claim(1e-4, case="a"), ev).status == "partially_reproduced"
+
+
+# --- Sec. 3.3: piecewise linear ----------------------------------------------------------------
+
+
+def fig3_map(values) -> xr.Dataset:
+    return xr.Dataset({"velocity_before_impact": ("cycle", np.asarray(values, dtype=float))})
+
+
+def test_an_affine_return_map_is_linear_and_the_escapement_map_is_not():
+    affine = [2.0 + 0.5**k for k in range(30)]  # v -> 2 + (v - 2)/2: slope 0.5 everywhere
+    assert dc.piecewise_linear(claim(1e-6), evidence(fig3={"a": fig3_map(affine)})).status == "reproduced"
+    v = [0.3]
+    for _ in range(40):  # the paper's map in v^2: v^2 -> 0.6561 v^2 + 0.543 (F = 1)
+        v.append(math.sqrt(0.6561 * v[-1] ** 2 + 0.543))
+    result = dc.piecewise_linear(claim(1e-6), evidence(fig3={"a": fig3_map(v)}))
+    assert result.status == "partially_reproduced" and "ratio in v^2 0.6561 to 0.6561" in result.replicated_value
+
+
+# --- Eq. (8): the Floquet multipliers ----------------------------------------------------------
+
+
+def test_trivial_multiplier():
+    good = runs({"group": "paper", "floquet_major": 1 + 1e-10, "floquet_minor": 0.6561 - 1e-10})
+    assert dc.trivial_multiplier(claim(1e-8, group="paper"), evidence(good)).status == "reproduced"
+    off = runs({"group": "paper", "floquet_major": 1.001})
+    assert dc.trivial_multiplier(claim(1e-8, group="paper"), evidence(off)).status == "not_reproduced"
+    complex_pair = runs({"group": "paper", "floquet_major": float("nan"), "floquet_minor": float("nan")})
+    assert dc.trivial_multiplier(claim(1e-8, group="paper"), evidence(complex_pair)).status == "not_reproduced"
+
+
+# --- Sec. 4: force and amplitude, release and transient ----------------------------------------
+
+
+@pytest.mark.parametrize("amplitudes, status", [((0.5, 1.0, 2.0), "reproduced"), ((0.5, 2.0, 1.0), "not_reproduced")])
+def test_force_amplitude(amplitudes, status):
+    rows = [{"group": "force", "F": f, "amplitude": a} for f, a in zip((0.2, 1.0, 5.0), amplitudes)]
+    other = [{"group": "force", "F": f, "a1": -0.3, "a3": 0.3, "amplitude": a} for f, a in ((0.2, 1.0), (1.0, 2.0))]
+    result = dc.force_amplitude(claim(groups=["force"]), evidence(runs(*rows, *other)))
+    assert result.status == (status if status == "reproduced" else "partially_reproduced")
+    result = dc.force_amplitude(claim(groups=["force"]), evidence(runs(*rows)))
+    assert result.status == status
+
+
+@pytest.mark.parametrize("first, last, status", [
+    ((6.28, 6.30), (6.2957, 6.2957), "reproduced"),
+    ((6.28, 6.28), (6.2957, 6.2957), "partially_reproduced"),
+    ((6.28, 6.28), (6.29, 6.30), "not_reproduced"),
+])
+def test_release_transient(first, last, status):
+    rows = [{"group": "release", "x0": x0, "first_period": a, "period": b} for x0, a, b in zip((-1.0, 3.0), first, last)]
+    assert dc.release_transient(claim(1e-9, group="release"), evidence(runs(*rows))).status == status
+    with pytest.raises(ValueError, match="no runs that differ only in x0"):
+        dc.release_transient(claim(1e-9, group="release"), evidence(runs(rows[0])))
