@@ -140,7 +140,7 @@ def test_labelled_and_rasterised_figures_are_byte_identical_across_saves(tmp_pat
 def test_a_drawn_fig5_panel_has_the_axes_its_claim_scores():
     """K = 0.1 N/m, F = 1 N from -1 m: the panel (a) of the paper prints -5 to 5 m and -1.5 to 1.5 m/s."""
     from escapement.paper.printed_axes import panel
-    from escapement.pipeline.plot import scene_axes
+    from escapement.pipeline.readings import scene_axes
 
     panels = {"0.1": phase_scene(Parameters(M=1.0, K=0.1, F=1.0, b=0.1, a1=-0.1, a2=0.05), -1.0, 60, 100)}
     claimed = scene_axes({}, None, panels)
@@ -152,7 +152,7 @@ def test_a_drawn_fig5_panel_has_the_axes_its_claim_scores():
 
 
 def test_a_drawn_fig4_keeps_the_claimed_value_axes_after_its_labels_are_placed(case_b):
-    from escapement.pipeline.plot import scene_axes
+    from escapement.pipeline.readings import scene_axes
 
     ds = shock_scene(case_b, 3.0, (80.0, 87.0), (81.0, 85.0), 50)
     claimed = scene_axes({}, ds, {})

@@ -1,6 +1,6 @@
-"""The plotting jobs: netCDF files or tables in, figures out; and the claimed axes of the printed
-panels (:func:`scene_axes`), which the axis claims score and the figures draw. Imports no solver
-and no scene."""
+"""The plotting jobs: netCDF files or tables in, figures out. Figs. 3-5 draw each printed panel with
+the axes its claim scores and print the readings the score table leaves tied. Imports no solver and
+no scene."""
 
 from __future__ import annotations
 
@@ -11,26 +11,17 @@ import xarray as xr
 from ..io.netcdf import read_netcdf
 from ..plotting import escapement_error, fig3, fig4, fig5, long_run, save_figure, stability_map, work_precision
 from ..plotting.autoscale import VARIANTS
-from ..plotting.panel_axes import PanelAxes, fig3_axes, fig4_axes, fig5_axes
+from ..plotting.panel_axes import PanelAxes, scene_axes
 from .logs import logged
 from .scores import CLAIM_AUTOSCALE, figure_caption, read_scores
 from .tables import CYCLE_VARIABLES, ESCAPEMENT_ERROR_VARIABLES, PHASE_VARIABLES, SHOCK_VARIABLES, read_work_precision
 
-__all__ = ["scene_axes", "plot_escapement_error", "plot_fig3", "plot_fig4", "plot_fig5", "plot_long_run", "plot_stability_map", "plot_work_precision"]
+__all__ = ["plot_escapement_error", "plot_fig3", "plot_fig4", "plot_fig5", "plot_long_run", "plot_stability_map", "plot_work_precision"]
 
 
-def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Mapping[str, xr.Dataset],
-               autoscale: str = CLAIM_AUTOSCALE) -> PanelAxes:
-    """The limits each printed panel's scored axes get when the pipeline's own outputs (Fig. 3 by
-    case label, Fig. 4, Fig. 5 by any label) are autoscaled with the printed tick step imposed and the
-    margin ``autoscale``: ``{(figure, panel): {"x": (low, high), "y": (low, high)}}`` (scored axes
-    only; a panel no output holds, or whose run left the regime, is left out). The claims score
-    these limits and the figures draw them."""
-    if autoscale not in VARIANTS:
-        raise ValueError(f"autoscale = {autoscale!r} must be one of {', '.join(VARIANTS)}")
-    margin = VARIANTS[autoscale]
-    return {**fig3_axes(fig3, margin), **(fig4_axes(fig4, margin) if fig4 is not None else {}),
-            **fig5_axes(fig5, margin)}
+def _claimed(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Mapping[str, xr.Dataset]) -> PanelAxes:
+    """The axes the claims score (:func:`escapement.pipeline.readings.scene_axes` at the claims' margin)."""
+    return scene_axes(fig3, fig4, fig5, VARIANTS[CLAIM_AUTOSCALE])
 
 
 def plot_fig3(labels: Sequence[str], paths: Sequence[str], scores: str, png: str, pdf: str, log: str) -> None:
@@ -39,7 +30,7 @@ def plot_fig3(labels: Sequence[str], paths: Sequence[str], scores: str, png: str
     with logged(log, "plot_fig3"):
         cases = {label: read_netcdf(path, CYCLE_VARIABLES) for label, path in zip(labels, paths)}
         caption = figure_caption(read_scores(scores), "3", 92)
-        save_figure(fig3(cases, scene_axes(cases, None, {}), caption), png, pdf)
+        save_figure(fig3(cases, _claimed(cases, None, {}), caption), png, pdf)
 
 
 def plot_fig4(path: str, scores: str, png: str, pdf: str, log: str) -> None:
@@ -47,7 +38,7 @@ def plot_fig4(path: str, scores: str, png: str, pdf: str, log: str) -> None:
     with logged(log, "plot_fig4"):
         ds = read_netcdf(path, SHOCK_VARIABLES)
         caption = figure_caption(read_scores(scores), "4", 105)
-        save_figure(fig4(ds, scene_axes({}, ds, {}), caption), png, pdf)
+        save_figure(fig4(ds, _claimed({}, ds, {}), caption), png, pdf)
 
 
 def plot_fig5(labels: Sequence[str], paths: Sequence[str], scores: str, png: str, pdf: str, log: str) -> None:
@@ -55,7 +46,7 @@ def plot_fig5(labels: Sequence[str], paths: Sequence[str], scores: str, png: str
     with logged(log, "plot_fig5"):
         panels = {label: read_netcdf(path, PHASE_VARIABLES) for label, path in zip(labels, paths)}
         caption = figure_caption(read_scores(scores), "5", 130)
-        save_figure(fig5(panels, scene_axes({}, None, panels), caption), png, pdf)
+        save_figure(fig5(panels, _claimed({}, None, panels), caption), png, pdf)
 
 
 def plot_work_precision(table: str, png: str, pdf: str, log: str) -> None:

@@ -20,10 +20,10 @@ import numpy as np
 
 from ..io.atomic import write_csv
 from ..paper.printed_axes import PANELS, Panel, limits_match
+from ..plotting import panel_axes
 from ..plotting.autoscale import VARIANTS, autoscaled_axes
 from ..studies.readings import Reading, Runs, all_readings
 from .logs import logged
-from .plot import scene_axes
 from .scores import (CLAIM_AUTOSCALE, COLUMNS, PRINTED_STEP, TICKS, best_readings, best_readings_table,
                      joint_candidates, panel_candidates, read_scores, ties_text)
 
@@ -109,6 +109,17 @@ def score_table(readings: Iterable[Reading], panels: Iterable[Panel] = PANELS,
                     "same_values_as": same[(reading.figure, reading.panel, reading.name)],
                 })
     return rows
+
+
+def scene_axes(fig3, fig4, fig5, autoscale: str = CLAIM_AUTOSCALE) -> panel_axes.PanelAxes:
+    """The limits each printed panel's scored axes get when the pipeline's own outputs (Fig. 3 by
+    case label, Fig. 4, Fig. 5 by any label) are autoscaled with the printed tick step imposed and the
+    margin ``autoscale`` (one of :data:`~escapement.plotting.autoscale.VARIANTS`):
+    ``{(figure, panel): {"x": (low, high), "y": (low, high)}}`` (scored axes only). The claims score
+    these limits; the figures draw them (:mod:`escapement.pipeline.plot`)."""
+    if autoscale not in VARIANTS:
+        raise ValueError(f"autoscale = {autoscale!r} must be one of {', '.join(VARIANTS)}")
+    return panel_axes.scene_axes(fig3, fig4, fig5, VARIANTS[autoscale])
 
 
 def _formatted(row: Mapping) -> dict:

@@ -19,7 +19,7 @@ from matplotlib.ticker import MultipleLocator
 from ..paper.printed_axes import FIG5_PANEL_K, panel, panels_of
 from .autoscale import autoscaled_limits
 
-__all__ = ["MAX_LABELS", "PanelAxes", "apply_printed_axes", "fig3_axes", "fig4_axes", "fig5_axes", "fig5_panel_of"]
+__all__ = ["MAX_LABELS", "PanelAxes", "scene_axes", "apply_printed_axes", "fig3_axes", "fig4_axes", "fig5_axes", "fig5_panel_of"]
 
 #: the most labelled tick intervals an axis gets; the multiples of the printed step labelled beyond that
 MAX_LABELS = 12
@@ -80,6 +80,16 @@ def fig5_axes(panels: Mapping[str, xr.Dataset], margin: float) -> PanelAxes:
         if name is not None and _completed(ds):
             found[("5", name)] = _limits("5", name, ds["displacement"].values, ds["velocity"].values, margin)
     return found
+
+
+def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Mapping[str, xr.Dataset],
+               margin: float) -> PanelAxes:
+    """The limits each printed panel's scored axes get when the pipeline's outputs (Fig. 3 by case
+    label, Fig. 4, Fig. 5 by any label) are autoscaled with the printed tick step imposed and the
+    margin ``margin``: ``{(figure, panel): {"x": (low, high), "y": (low, high)}}`` (scored axes only;
+    a panel no output holds, or whose run left the regime, is left out)."""
+    return {**fig3_axes(fig3, margin), **(fig4_axes(fig4, margin) if fig4 is not None else {}),
+            **fig5_axes(fig5, margin)}
 
 
 def apply_printed_axes(ax, figure: str, name: str, limits: Mapping[str, tuple[float, float]]) -> None:
