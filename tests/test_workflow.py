@@ -127,13 +127,15 @@ def test_a_second_run_does_nothing(workflow_run):
 
 VERDICT = {"check_claims": 1, "render_docs": 1, "publish": 1, "all": 1}
 DOCS = {"render_docs": 1, "publish": 1, "all": 1}
+#: a change of the readings' score table redraws the three paper figures, whose captions list its ties
+READINGS = {"score_readings": 1, "plot_fig3": 1, "plot_fig4": 1, "plot_fig5": 1}
 
 
 @pytest.mark.parametrize(
     "edit, expected",
     [
-        (lambda c: c["fig4"].update(samples_per_second=500), {"simulate_fig4": 1, "plot_fig4": 1, "score_readings": 1, **VERDICT}),
-        (lambda c: c["fig5"].update(n_cycles=61), {"simulate_fig5": 3, "plot_fig5": 1, "score_readings": 1, **VERDICT}),
+        (lambda c: c["fig4"].update(samples_per_second=500), {"simulate_fig4": 1, **READINGS, **VERDICT}),
+        (lambda c: c["fig5"].update(n_cycles=61), {"simulate_fig5": 3, **READINGS, **VERDICT}),
         (lambda c: c["checks"].update(n_cycles=301), {"simulate_checks": 1, **VERDICT}),
         (
             lambda c: c["long_run"].update(ivp_cycles=900),
@@ -145,7 +147,7 @@ DOCS = {"render_docs": 1, "publish": 1, "all": 1}
         ),
         (
             lambda c: c["fig3"]["cases"]["b"].update(F=0.6),
-            {"simulate_fig3": 1, "plot_fig3": 1, "simulate_checks": 1, "score_readings": 1, **VERDICT},
+            {"simulate_fig3": 1, "simulate_checks": 1, **READINGS, **VERDICT},
         ),
     ],
 )
@@ -182,7 +184,7 @@ EXPECTED_VERDICT = {
     "eq4_jump_set": "consistent",
     "eq5_impulse_sets": "consistent",
     "eq16_map": "reproduced",
-    "eq14_as_printed": "not_reproduced",
+    "eq14_as_printed": "partially_reproduced",
     "eq19_fixed_point_case_a": "reproduced",
     "eq19_fixed_point_case_b": "reproduced",
     "eq21_multiplier": "reproduced",
@@ -191,7 +193,7 @@ EXPECTED_VERDICT = {
     "asymmetric_convergence_depends": "not_reproduced",
     "eq22_step_times": "reproduced",
     "eq22e_step_time": "not_reproduced",
-    "eq23_period": "not_reproduced",
+    "eq23_period": "partially_reproduced",
     "eq24_impact_perturbation": "partially_reproduced",
     "eq25_force_perturbation": "not_reproduced",
     "fig3_both_converge": "reproduced",
@@ -235,6 +237,11 @@ EXPECTED_VERDICT = {
     "solution_exists_unique": "partially_reproduced",
     "fig5_dimensions_differ": "reproduced",
     "fig5_impact_shown": "reproduced",
+    "sec2_frequency_changed_by_force_and_impact": "reproduced",
+    "sec33_linear_non_homogeneous": "partially_reproduced",
+    "eq8_trivial_multiplier": "reproduced",
+    "sec4_greater_force_greater_amplitude": "reproduced",
+    "sec4_transient_periods_depend_on_release": "reproduced",
     "model_describes_system": "untestable",
     "airy_symmetric_impulse": "reproduced",
     "period_as_daily_rate": "not_reproduced",

@@ -1,5 +1,5 @@
-"""The runs that hold all but one parameter fixed (experiments.checks.added_cases) and the checks dataset's
-added columns, by value."""
+"""The runs that hold all but one parameter fixed (pipeline.config.check_cases: the configuration's checks
+and fig5 blocks expanded) and the checks dataset's added columns, by value."""
 
 from __future__ import annotations
 
@@ -7,8 +7,9 @@ import math
 
 import pytest
 
-from escapement.experiments.checks import added_cases, measure_cases
+from escapement.experiments.checks import measure_cases
 from escapement.io.scenes import checks_dataset
+from escapement.pipeline.config import check_cases
 
 MODEL = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05}
 FIG5 = {"K": [0.1, 1.0, 10.0], "F": [1.0, 0.5, 0.5], "x0": -1.0, "n_cycles": 60}
@@ -16,28 +17,20 @@ CHECKS = {"releases": {"F": 1.0, "x0": [-3.0, 1.0]}, "forces": {"F": [0.2, 5.0],
 
 
 def test_every_k_of_fig5_at_every_force_of_the_figure_then_releases_then_forces():
-    cases = added_cases(MODEL, CHECKS, FIG5)
+    config = {"model": MODEL, "fig3": {"cases": {}}, "fig5": FIG5,
+              "checks": {"F": 1.0, "x0": 1.0, "initial_conditions": [], "b": [], "symmetric": {"F": [], "positions": []},
+                         "asymmetric": {"F": [], "positions": []}, **CHECKS}}
+    cases = check_cases(config)
     labels = [c["label"] for c in cases]
     assert labels == ["K=0.1,F=0.5", "K=1,F=0.5", "K=10,F=0.5", "K=0.1,F=1", "K=1,F=1", "K=10,F=1",
                       "F=1,x0=-3", "F=1,x0=1", "F=0.2,x0=-1", "F=5,x0=-1"]
     assert [c["group"] for c in cases] == ["common_force"] * 6 + ["release"] * 2 + ["force"] * 2
     assert cases[2] == {"K": 10.0, "F": 0.5, "x0": -1.0, "M": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05,
                         "group": "common_force", "label": "K=10,F=0.5"}
-    assert list(cases[2]) == sorted(cases[2])
-    assert len(added_cases(MODEL, {}, FIG5)) == 6  # releases and forces are optional
-
-
-def test_per_panel_releases_and_bad_blocks_are_refused_by_name():
-    per_panel = added_cases(MODEL, {}, {**FIG5, "x0": [-1.0, -2.0, -3.0]})
+    per_panel = check_cases({**config, "fig5": {**FIG5, "x0": [-1.0, -2.0, -3.0]}})
     assert [c["x0"] for c in per_panel[:3]] == [-1.0, -2.0, -3.0]
-    with pytest.raises(ValueError, match=r"fig5.F = \[1.0, 0.5\] must be one number or one per K \(3\)"):
-        added_cases(MODEL, {}, {**FIG5, "F": [1.0, 0.5]})
-    with pytest.raises(ValueError, match="checks.forces.F = 'x' must be a number"):
-        added_cases(MODEL, {"forces": {"F": "x", "x0": 1.0}}, FIG5)
-    with pytest.raises(ValueError, match="checks.releases = .* must give x0"):
-        added_cases(MODEL, {"releases": {"F": 1.0}}, FIG5)
-    with pytest.raises(ValueError, match="checks.releases.F = \\[1.0, 2.0\\] must be one number"):
-        added_cases(MODEL, {"releases": {"F": [1.0, 2.0], "x0": [1.0]}}, FIG5)
+    without = {k: v for k, v in config["checks"].items() if k not in ("releases", "forces")}
+    assert len(check_cases({**config, "checks": without})) == 6  # releases and forces are optional
 
 
 def test_the_added_columns_by_value():

@@ -148,7 +148,7 @@ def status(c: dict, ev: Evidence) -> str:
 def test_the_register_names_only_registered_checks_and_uses_every_one():
     used = {c["check"] for c in yaml.safe_load(REGISTER.read_text())["claims"]}
     assert used == set(CHECKS)
-    assert len(cl.load_claims(REGISTER)) == 61
+    assert len(cl.load_claims(REGISTER)) == 66
 
 
 def test_the_register_gives_the_fig3_cases_of_the_configuration():
@@ -239,14 +239,6 @@ def test_map_eq16():
     off = fig3_ds()
     off["velocity_before_impact"][10] *= 1 + 1e-9
     assert status(claim("map_eq16", tolerance=1e-13), evidence(fig3={"a": off})) == "not_reproduced"
-
-
-def test_eq14():
-    # v1 = 1: v1p^2 = 0.81, v2^2 = 0.81 + 0.0075 + 0.3, v4^2 = v2^2 - 0.0075, v4p^2 = 0.81 * 1.11 = 0.8991;
-    # as printed v5^2 = 0.8991 + 0.0075 - 0.3 = 0.6066, with the force's work + 0.3: 1.2066
-    c = claim("eq14", tolerance=1e-6, case="a")
-    assert status(c, evidence(fig3={"a": fig3_ds(n=3, v1=1.0, v5=-math.sqrt(0.6066))})) == "reproduced"
-    assert status(c, evidence(fig3={"a": fig3_ds(n=3, v1=1.0, v5=-math.sqrt(1.2066))})) == "not_reproduced"
 
 
 @pytest.mark.parametrize("case, F", [("a", 1.0), ("b", 0.5)])
@@ -416,32 +408,3 @@ def test_fig5_converge():
     assert status(c, evidence()) == "reproduced"
     moving = fig5_ds(1.0, 0.8).assign(velocity_before_impact=("cycle", [0.8, 0.9]))
     assert status(c, evidence(fig5={"1": moving})) == "not_reproduced"
-
-
-def test_fig5_amplitude_order():
-    c = claim("fig5_amplitude_order", tolerance=None)
-    assert status(c, evidence(fig5={"x": fig5_ds(10.0, 0.8, amplitude=0.1), "y": fig5_ds(0.1, 0.8, amplitude=2.0)})) \
-        == "reproduced"
-    assert status(c, evidence(fig5={"x": fig5_ds(10.0, 0.8, amplitude=2.0), "y": fig5_ds(0.1, 0.8, amplitude=0.1)})) \
-        == "not_reproduced"
-
-
-def test_fig5_velocity_order():
-    c = claim("fig5_velocity_order", tolerance=None)
-    assert status(c, evidence(fig5={"x": fig5_ds(0.1, 0.8, vmax=2.0), "y": fig5_ds(10.0, 0.8, vmax=1.0)})) \
-        == "reproduced"
-    assert status(c, evidence(fig5={"x": fig5_ds(0.1, 0.8, vmax=1.0), "y": fig5_ds(10.0, 0.8, vmax=2.0)})) \
-        == "not_reproduced"
-
-
-def test_fig5_recovery():
-    # In the zone v^2 = v1p^2 + w^2 (a1^2 - x^2) + 2 f (x - a1) grows with x; regaining v1^2 needs a gain of
-    # (2b - b^2) v1^2, so a greater v1 (below 0.91 m/s, where the gain at a2 runs out) recovers later.
-    c = claim("fig5_recovery", tolerance=None)
-    assert status(c, evidence(fig5={"s": fig5_ds(1.0, 0.5), "t": fig5_ds(1.0, 0.8)})) == "reproduced"
-    assert status(c, evidence(fig5={"s": fig5_ds(1.0, 0.8), "t": fig5_ds(1.0, 0.5)})) == "not_reproduced"
-    # Sec. 4 parameters at their fixed points x*^2 = 0.3 f / (0.19): the stiffer spring is faster in seconds,
-    # the softer one as a fraction of its cycle
-    v = math.sqrt(0.15 / 0.19)
-    ks = {"0.1": fig5_ds(0.1, v), "1": fig5_ds(1.0, v), "10": fig5_ds(10.0, v)}
-    assert status(c, evidence(fig5=ks)) == "partially_reproduced"

@@ -53,6 +53,20 @@ def test_fig5_velocity_order_compares_k_at_each_common_force(speeds_05, speeds_1
     assert result.status == status and "not compared with each other" in result.note
 
 
+@pytest.mark.parametrize("amplitudes_05, amplitudes_1, status", [
+    ((4.0, 0.9, 0.3), (5.0, 1.2, 0.4), "reproduced"),
+    ((4.0, 0.9, 0.3), (0.4, 1.2, 5.0), "partially_reproduced"),
+    ((0.3, 0.9, 4.0), (0.3, 0.3, 4.0), "not_reproduced"),  # equal amplitudes do not decrease
+])
+def test_fig5_amplitude_order_compares_k_at_each_common_force(amplitudes_05, amplitudes_1, status):
+    rows = [{"group": "common_force", "K": k, "F": f, "amplitude": h}
+            for f, values in ((0.5, amplitudes_05), (1.0, amplitudes_1)) for k, h in zip((0.1, 1.0, 10.0), values)]
+    result = s4.fig5_amplitude_common_force(claim(), evidence(runs(*rows)))
+    assert result.status == status and "not compared with each other" in result.note
+    assert result.replicated_value.startswith(
+        f"converged amplitude: F = 0.5 N: K = 0.1: {amplitudes_05[0]:g} m, K = 1: {amplitudes_05[1]:g} m")
+
+
 def test_fig5_velocity_order_reports_a_run_that_left_the_regime():
     data = runs({"group": "common_force", "K": 0.1, "outcome": "stopped"}, {"group": "common_force", "K": 1.0})
     assert s4.fig5_velocity_common_force(claim(), evidence(data)).status == "not_reproduced"

@@ -158,7 +158,12 @@ def test_check_cases_in_order_with_their_groups_and_labels(config):
         ("b", "b=0.3"),
         ("symmetric", "F=0.2,a1=-0.3,a2=0.2"),
         ("asymmetric", "F=3,a1=-0.1,a2=0.05,a3=0.2,a4=-0.02"),
+        # every K of Fig. 5 at the figure's one force (0.5 N), from its release
+        ("common_force", "K=0.1,F=0.5"),
+        ("common_force", "K=1,F=0.5"),
+        ("common_force", "K=10,F=0.5"),
     ]
+    assert cases[7] == {**MODEL, "K": 1.0, "F": 0.5, "x0": 1.0, "group": "common_force", "label": "K=1,F=0.5"}
     assert cases[1] == {**MODEL, "F": 0.5, "x0": 3.0, "b": 0.2, "group": "paper", "label": "fig3b"}
     assert cases[2] == {**MODEL, "F": 0.5, "x0": 2.0, "group": "initial_condition", "label": "F=0.5,x0=2"}
     assert cases[3] == {**MODEL, "F": 1.0, "x0": 1.0, "b": 0.3, "group": "b", "label": "b=0.3"}

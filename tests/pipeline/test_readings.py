@@ -13,7 +13,7 @@ from escapement.paper.checks import Candidates
 from escapement.pipeline.readings import (PAPER_SETTINGS, COLUMNS, best_readings, limits_match, score_readings,
                                           score_table)
 from escapement.pipeline.scores import (DEFAULT_LOCATOR, PRINTED_STEP, best_readings_table, joint_candidates,
-                                        panel_candidates, read_scores, tied)
+                                        panel_candidates, read_scores)
 from escapement.plotting.autoscale import VARIANTS
 from escapement.studies.readings import all_readings, fig3_readings, fig4_readings, fig5_readings
 
@@ -135,8 +135,8 @@ def test_ties_reach_the_summary_as_ties_and_equivalents_group():
     assert c == Candidates(out_of=4, scores={"one": 4, "mirror of one": 4, "two": 4, "three": 3},
                            default_scores={"one": 3, "mirror of one": 3, "two": 2, "three": 4},
                            equivalent=(("one", "mirror of one"),))
-    assert tied(c) == (4, [("one", "mirror of one"), ("two",)])
-    assert tied(c, default=True) == (4, [("three",)])
+    assert c.tied() == (4, [("one", "mirror of one"), ("two",)])
+    assert c.tied(default=True) == (4, [("three",)])
     (best,) = best_readings(rows)
     assert best["best"] == [("one", "mirror of one"), ("two",)] and best["default_score"] == 4
     (row,) = best_readings_table(rows)
@@ -147,7 +147,7 @@ def test_ties_reach_the_summary_as_ties_and_equivalents_group():
 def test_one_group_of_equivalent_readings_is_not_a_tie():
     p = PRINTED_STEP
     rows = _rows([("c", "one", "one", p, "x", 2), ("c", "mirror", "one", p, "x", 2), ("c", "two", "two", p, "x", 1)])
-    best, groups = tied(panel_candidates(rows)[("5", "c")])
+    best, groups = panel_candidates(rows)[("5", "c")].tied()
     assert (best, groups) == (4 // 2, [("one", "mirror")])
     (row,) = best_readings_table(rows)
     assert "undetermined" not in row["best-supported readings"]
@@ -162,7 +162,7 @@ def test_a_joint_reading_is_scored_over_both_panels():
     ])]
     c = joint_candidates(rows, "4")
     assert c.out_of == 4 and c.scores == {"A": 2, "B": 2, "C": 2}
-    assert tied(c) == (2, [("A",), ("B",), ("C",)])
+    assert c.tied() == (2, [("A",), ("B",), ("C",)])
 
 
 @pytest.fixture(scope="module")
@@ -173,7 +173,7 @@ def paper_rows():
 
 def test_on_the_paper_grid_fig4_is_undetermined(paper_rows):
     """Several readings of Fig. 4 tie at the best joint score, and they differ in their choices."""
-    best, groups = tied(joint_candidates(paper_rows, "4"))
+    best, groups = joint_candidates(paper_rows, "4").tied()
     assert best < 4  # no reading reaches the printed -0.1 .. 0.9 on both axes
     assert len(groups) > 1
     heads = {g[0].split(";")[0] for g in groups}
@@ -187,7 +187,7 @@ def test_on_the_paper_grid_fig5_scores_depend_on_the_imposed_step(paper_rows):
     the right turning point is hypot(a2, v2 / w) = 3.9749 m (w^2 = 0.1), approached from inside: a
     step of 5 rounds it to +-5, matplotlib's own step of 1 to +-4."""
     c = panel_candidates(paper_rows)
-    assert tied(c[("5", "a")])[0] == 4
+    assert c[("5", "a")].tied()[0] == 4
     assert max(c[("5", "a")].default_scores.values()) < 4
     rows = {(r["axis"], r["ticks"]): r for r in paper_rows if r["panel"] == "a" and r["figure"] == "5"
             and r["reading"] == "F = 1 N, x0 = -1 m; whole trajectory, 60 cycles" and r["autoscale"] == "round, margin 0"}

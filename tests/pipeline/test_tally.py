@@ -51,10 +51,15 @@ def test_the_headline_says_the_counts():
     assert "Beyond the paper, and not counted: 2 rows." in text
 
 
-def test_a_finding_whose_rows_disagree_is_refused_naming_it():
-    with pytest.raises(ValueError, match=r"finding 'period' has rows of different statuses \(not_reproduced, "
-                                         r"reproduced: p1, p2, p3, x\)"):
-        tally([*ROWS, row("x", "reproduced", "period")])
+def test_a_finding_whose_rows_disagree_counts_at_its_weakest_row_and_says_so():
+    rows = [*ROWS, row("m3", "partially_reproduced", "map"), row("r2", "not_reproduced", "release")]
+    t = tally(rows)
+    assert t.findings["map"] == "partially_reproduced" and t.findings["release"] == "not_reproduced"
+    assert t.mixed == ("map", "release")
+    assert headline(rows).endswith("The rows of 2 findings disagree (map, release); each is counted at its weakest row.")
+    assert "disagree" not in headline(ROWS)
+    assert findings_table(rows)[0] == {"finding": "map", "verdict": "partially reproduced (its rows disagree)",
+                                       "rows": "`m1`, `m2`, `m3`"}
     with pytest.raises(ValueError, match="claim 'x' has status = 'maybe'"):
         tally([row("x", "maybe")])
 
@@ -88,8 +93,11 @@ def test_the_committed_headline_recounts_from_the_committed_table():
     for r in paper:
         if r["verdict"] in verdicts:
             findings.setdefault(r["finding"], set()).add(verdicts[r["verdict"]])
+    # in the paper's configuration the rows of one root cause agree: the register groups them rightly
     assert all(len(s) == 1 for s in findings.values()), findings
-    kinds = [next(iter(s)) for s in findings.values()]
+    assert "its rows disagree" not in text
+    weakest = {s: max(s, key="rpn".index) for s in map(frozenset, findings.values())}
+    kinds = [weakest[frozenset(s)] for s in findings.values()]
     consistent = [r for r in paper if r["verdict"] == "consistent"]
     expected = (
         f"The paper's claims fill {len(paper)} rows of the register. The rows with an independent verdict come "

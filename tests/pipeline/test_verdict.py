@@ -9,9 +9,13 @@ import pytest
 import xarray as xr
 import yaml
 
+from escapement.io.atomic import write_csv
 from escapement.io.netcdf import write_netcdf
 from escapement.paper.claims import CHECKS, COLUMNS, ClaimError
+from escapement.pipeline.readings import _formatted, score_table
+from escapement.pipeline.scores import COLUMNS as SCORE_COLUMNS
 from escapement.pipeline.verdict import check_claims, read_claims_csv, write_claims_csv
+from escapement.studies.readings import Reading
 
 #: the model's parameters and x0 as 0-d variables, as the scenes write them; the outcome as attributes
 MODEL = {k: ((), v) for k, v in {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1,
@@ -66,8 +70,13 @@ def files(tmp_path) -> dict:
          "check": "printed_axes", "args": {"figure": "5", "panel": "b"}},
     ]
     register.write_text(yaml.safe_dump({"version": 1, "claims": claims}))
+    # the grid of candidate readings of Fig. 5 (b): the same ellipse, and one twice as large (-2 .. 2 on both axes)
+    readings = [Reading("5", "b", "as simulated", 0.9 * np.cos(phase), -0.95 * np.sin(phase)),
+                Reading("5", "b", "twice as large", 1.8 * np.cos(phase), -1.9 * np.sin(phase))]
+    scores = tmp_path / "axis_scores.csv"
+    write_csv([_formatted(r) for r in score_table(readings)], SCORE_COLUMNS, scores)
     return {"register": str(register), "fig3": {"first": str(paths["fig3"])}, "fig4": str(paths["fig4"]),
-            "fig5": {"1": str(paths["fig5"])}, "checks": str(paths["checks"])}
+            "fig5": {"1": str(paths["fig5"])}, "checks": str(paths["checks"]), "readings": str(scores)}
 
 
 def test_the_job_writes_one_row_per_claim_with_the_configured_label(tmp_path):
@@ -75,10 +84,13 @@ def test_the_job_writes_one_row_per_claim_with_the_configured_label(tmp_path):
     check_claims(**files(tmp_path), output=str(output), log=str(tmp_path / "log"))
     rows = read_claims_csv(output)
     assert [r["claim_id"] for r in rows] == ["fixed_point_first", "multiplier", "fig5b_axes"]
-    assert [r["status"] for r in rows] == ["reproduced", "reproduced", "reproduced"]
+    # the axes were fitted: a match is consistent, not reproduced
+    assert [r["status"] for r in rows] == ["reproduced", "reproduced", "consistent"]
     assert rows[0]["replicated_value"] == "1.256561725 m/s at cycle 2"
-    # the job autoscaled the Fig. 5 output itself (matplotlib, the printed tick steps)
-    assert rows[2]["replicated_value"] == "Displacement (m): [-1, 1]; Velocity (m/s): [-1, 1] (4 of 4 printed limits)"
+    # the job autoscaled the Fig. 5 output itself (matplotlib, the printed tick steps), and read the grid's scores
+    assert rows[2]["replicated_value"].startswith(
+        "Displacement (m): [-1, 1]; Velocity (m/s): [-1, 1] (4 of 4 printed limits); best of the 2 candidate "
+        "readings: 4 of 4, by one reading [as simulated]")
 
 
 def test_the_job_fails_naming_the_claim_when_a_check_raises(tmp_path, monkeypatch):

@@ -192,6 +192,19 @@ def test_every_run_is_made_once_for_all_figures():
         runs.need(1.0, 1.0, -1.0, n_cycles=500)
 
 
+def test_a_run_that_left_the_regime_takes_its_needs_stated_again():
+    """Released inside the impact positions (|x0| < 0.1 m) the escapement never starts: the run stops at
+    once, holds no cycle, and stating the same need again is no new need."""
+    runs = Runs(MODEL)
+    runs.need(1.0, 1.0, 0.05, n_cycles=3)
+    assert runs.outcome(1.0, 1.0, 0.05, n_cycles=3).startswith("stopped")
+    runs.need(1.0, 1.0, 0.05, n_cycles=3)
+    runs.need(1.0, 1.0, 0.05, n_cycles=2)
+    with pytest.raises(ValueError, match="already made"):
+        runs.need(1.0, 1.0, 0.05, n_cycles=4)
+    assert runs.solved == 1
+
+
 @pytest.fixture(scope="module")
 def fig5():
     return fig5_readings(MODEL, {"b": 1.0, "c": 10.0}, 60, 50, forces=(0.5,), releases=(-1.0, 1.0))

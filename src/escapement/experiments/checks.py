@@ -5,8 +5,9 @@ from rest and run ``n_cycles`` cycles; its Poincare map is measured at the last 
 (:func:`escapement.paper.poincare.measure_cycle`) beside the fixed point of Eq. (16) and the
 multiplier of Eq. (21), with the first cycle's period, the largest speed on the last cycle and
 both Floquet multipliers of the flow. The result is a table of plain columns, one value per case;
-:func:`escapement.io.scenes.checks_dataset` makes the dataset of it. :func:`added_cases` gives the
-runs at common forces of Fig. 5, from several releases and over a sweep of the force.
+:func:`escapement.io.scenes.checks_dataset` makes the dataset of it. The cases, among them the runs
+at common forces of Fig. 5, from several releases and over a sweep of the force, are the
+configuration's (:func:`escapement.pipeline.config.check_cases`).
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from ..paper.poincare import measure_cycle
 from ..paper.printed import multiplier_21
 from .arguments import positive_int
 
-__all__ = ["added_cases", "measure_cases"]
+__all__ = ["measure_cases"]
 
 
 def measure_cases(cases: Sequence[Mapping], n_cycles: int) -> dict[str, list | np.ndarray]:
@@ -76,72 +77,3 @@ def measure_cases(cases: Sequence[Mapping], n_cycles: int) -> dict[str, list | n
     for key in MODEL_KEYS:
         columns[key] = [getattr(p, key) for _, p, _, _ in runs]
     return columns
-
-
-def _numbers(name: str, value) -> list[float]:
-    """``value`` as a non-empty list of numbers (one number is a list of one)."""
-    values = value if isinstance(value, list) else [value]
-    if not values or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
-        raise ValueError(f"{name} = {value!r} must be a number or a non-empty list of numbers")
-    return [float(v) for v in values]
-
-
-def _case(model: Mapping, **keys) -> dict:
-    """A case: the model block's values, then ``keys``, sorted by key (as the configuration's scenes)."""
-    return dict(sorted({**{k: v for k, v in model.items() if not isinstance(v, dict)}, **keys}.items()))
-
-
-def added_cases(model: Mapping, checks: Mapping, fig5: Mapping) -> list[dict]:
-    """The runs that hold all but one parameter fixed, for the claims that compare runs.
-
-    * ``common_force``: each spring constant of Fig. 5 (``fig5.K``, from its panel's ``x0``) at each force
-      of the figure (``fig5.F``), so that the spring constants are compared at one force;
-    * ``release``: at ``checks.releases.F``, from each ``checks.releases.x0`` (none if ``checks`` has no
-      ``releases``);
-    * ``force``: each ``checks.forces.F`` from ``checks.forces.x0``, at the model's geometry (none if
-      ``checks`` has no ``forces``).
-
-    Parameters
-    ----------
-    model, checks, fig5 : mapping
-        The configuration's ``model``, ``checks`` and ``fig5`` blocks.
-
-    Returns
-    -------
-    list of dict
-        One case per run, with ``group`` and ``label`` (the order above).
-
-    Raises
-    ------
-    ValueError
-        If a block lacks a key or gives a value that is not a number or a list of numbers, or if a
-        per-panel list of Fig. 5 is not as long as ``fig5.K``.
-    """
-    for name, block, keys in (("checks.releases", checks.get("releases", {"F": 0, "x0": 0}), ("F", "x0")),
-                              ("checks.forces", checks.get("forces", {"F": 0, "x0": 0}), ("F", "x0")),
-                              ("fig5", fig5, ("K", "F", "x0"))):
-        missing = [k for k in keys if k not in block]
-        if missing:
-            raise ValueError(f"{name} = {dict(block)!r} must give {', '.join(missing)}")
-    spring = _numbers("fig5.K", fig5["K"])
-    panels = {}
-    for key in ("F", "x0"):
-        values = _numbers(f"fig5.{key}", fig5[key])
-        if isinstance(fig5[key], list) and len(values) != len(spring):
-            raise ValueError(f"fig5.{key} = {fig5[key]!r} must be one number or one per K ({len(spring)})")
-        panels[key] = values if isinstance(fig5[key], list) else values * len(spring)
-    cases = [_case(model, K=k, F=force, x0=x0, group="common_force", label=f"K={k:g},F={force:g}")
-             for force in sorted(set(panels["F"])) for k, x0 in zip(spring, panels["x0"])]
-    if "releases" in checks:
-        force = _numbers("checks.releases.F", checks["releases"]["F"])
-        if len(force) != 1:
-            raise ValueError(f"checks.releases.F = {checks['releases']['F']!r} must be one number")
-        cases += [_case(model, F=force[0], x0=x0, group="release", label=f"F={force[0]:g},x0={x0:g}")
-                  for x0 in _numbers("checks.releases.x0", checks["releases"]["x0"])]
-    if "forces" in checks:
-        x0 = _numbers("checks.forces.x0", checks["forces"]["x0"])
-        if len(x0) != 1:
-            raise ValueError(f"checks.forces.x0 = {checks['forces']['x0']!r} must be one number")
-        cases += [_case(model, F=f, x0=x0[0], group="force", label=f"F={f:g},x0={x0[0]:g}")
-                  for f in _numbers("checks.forces.F", checks["forces"]["F"])]
-    return cases

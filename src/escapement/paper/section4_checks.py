@@ -217,48 +217,8 @@ def fig5_converge(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("fig5_amplitude_order", scenes=fig5_all)
-def fig5_amplitude_order(claim, ev: Evidence) -> Verdict:
-    amps = [(k, float(ds["amplitude"].values[-1])) for k, ds in _fig5_by_K(ev)]
-    decreasing = all(a1 > a2 for (_, a1), (_, a2) in zip(amps, amps[1:]))
-    return Verdict("; ".join(f"K = {fmt(k, 3)}: {fmt(a, 5)} m" for k, a in amps), REPRODUCED if decreasing else NOT)
-
-
-@check("fig5_velocity_order", scenes=fig5_all)
-def fig5_velocity_order(claim, ev: Evidence) -> Verdict:
-    rows = []
-    for k, ds in _fig5_by_K(ev):
-        start = float(ds["impact_time"].values[-1] - ds["period"].values[-1])
-        last = ds["velocity"].values[ds["t"].values >= start]
-        rows.append((k, float(np.nanmax(np.abs(last))), float(np.nanmax(np.abs(ds["velocity"].values)))))
-    decreasing = all(r1[1] > r2[1] for r1, r2 in zip(rows, rows[1:]))
-    return Verdict(
-        "max |v| on the limit cycle: " + "; ".join(f"K = {fmt(k, 3)}: {fmt(v, 4)} m/s" for k, v, _ in rows)
-        + "; over the whole run: " + "; ".join(f"K = {fmt(k, 3)}: {fmt(w, 4)} m/s" for k, _, w in rows),
-        REPRODUCED if decreasing else NOT,
-        note="sampled at the configured resolution; the order holds neither on the limit cycle nor over the run",
-    )
-
-
-@check("fig5_recovery", scenes=fig5_all)
-def fig5_recovery(claim, ev: Evidence) -> Verdict:
-    rows = []
-    for k, ds in _fig5_by_K(ev):
-        p = params_of(ds)
-        _, time = derived.velocity_recovery(float(ds["velocity_before_impact"].values[-1]), p)
-        rows.append((k, time, time / p.natural_period))
-    absolute = all(r1[1] < r2[1] for r1, r2 in zip(rows, rows[1:]))
-    relative = all(r1[2] < r2[2] for r1, r2 in zip(rows, rows[1:]))
-    return Verdict(
-        "time to regain the velocity before the impact at a1: "
-        + "; ".join(f"K = {fmt(k, 3)}: {fmt(t, 4)} s ({fmt(100 * r, 3)}% of 2 pi/w)" for k, t, r in rows),
-        REPRODUCED if absolute and relative else PARTIAL if absolute or relative else NOT,
-        note="in absolute time the stiffer spring recovers faster; as a fraction of its cycle the softer one does",
-    )
-
-
-# --- Sec. 4, Fig. 5 at one common force (replacing the two checks above, which compare panels run at
-# different forces) --------------------------------------------------------------------------------
+# --- Sec. 4, Fig. 5's comparisons between spring constants, at one common force (the panels are run at
+# different forces, so they are not compared with each other) -------------------------------------
 
 
 def common_force_runs(ev: Evidence) -> tuple[dict[float, list[tuple[float, xr.Dataset]]], Verdict | None]:
@@ -284,6 +244,22 @@ def _order_status(holds: list[bool]) -> str:
 _NOT_COMPARED = ("the panels of Fig. 5 run at different forces (the configuration's fig5.F), so they are not "
                  "compared with each other; each spring constant is run at each force of the figure from the "
                  "figure's release and compared at one force")
+
+
+@check("fig5_amplitude_common_force", scenes=runs_only)
+def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
+    """The converged amplitude (the largest displacement of the last cycle) decreases with K at each
+    common force."""
+    by_force, left = common_force_runs(ev)
+    if left is not None:
+        return left
+    holds, parts = [], []
+    for force, rows in by_force.items():
+        amplitudes = [float(run["amplitude"]) for _, run in rows]
+        holds.append(all(a > b for a, b in zip(amplitudes, amplitudes[1:])))
+        parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(h, 5)} m"
+                                                          for (k, _), h in zip(rows, amplitudes)))
+    return Verdict("converged amplitude: " + "; ".join(parts), _order_status(holds), note=_NOT_COMPARED)
 
 
 @check("fig5_velocity_common_force", scenes=runs_only)

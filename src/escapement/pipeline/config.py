@@ -122,6 +122,22 @@ def check_cases(config: Mapping) -> list[dict]:
                 keys = dict(zip(("a1", "a2", "a3", "a4"), positions))
                 label = f"F={force:g}," + ",".join(f"{k}={v:g}" for k, v in keys.items())
                 cases.append(_scene(base, keys, {"F": force, "group": group, "label": label}))
+    # runs that hold all but one parameter fixed: each K of Fig. 5 (from its panel's x0) at each force of
+    # the figure, so that the spring constants are compared at one force; releases at one force; forces at
+    # one release
+    panels = {label: fig5_scene(config, label) for label in fig5_labels(config)}
+    for force in sorted({panel["F"] for panel in panels.values()}):
+        for panel in panels.values():
+            cases.append(_scene(base, {"K": panel["K"], "x0": panel["x0"], "F": force, "group": "common_force",
+                                       "label": f"K={panel['K']:g},F={force:g}"}))
+    if "releases" in checks:
+        force = checks["releases"]["F"]
+        cases += [_scene(base, {"F": force, "x0": x0, "group": "release", "label": f"F={force:g},x0={x0:g}"})
+                  for x0 in checks["releases"]["x0"]]
+    if "forces" in checks:
+        x0 = checks["forces"]["x0"]
+        cases += [_scene(base, {"F": force, "x0": x0, "group": "force", "label": f"F={force:g},x0={x0:g}"})
+                  for force in checks["forces"]["F"]]
     return [{k: v for k, v in case.items() if k not in ("n_cycles", "amplitude")} for case in cases]
 
 

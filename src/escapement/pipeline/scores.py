@@ -16,7 +16,7 @@ from ..paper.checks import Candidates
 from ..paper.printed_axes import PANELS
 
 __all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "DEFAULT_LOCATOR", "PRINTED_STEP", "TICKS", "best_readings",
-           "best_readings_table", "figure_caption", "joint_candidates", "panel_candidates", "read_scores", "tied", "ties_text"]
+           "best_readings_table", "figure_caption", "joint_candidates", "panel_candidates", "read_scores", "ties_text"]
 
 #: the score table's columns: ``ticks`` says whether the printed tick step was imposed or the plotting
 #: program chose its own (``tick_step`` is the step the axis ended with); ``same_values_as`` names the
@@ -106,29 +106,11 @@ def joint_candidates(rows: Iterable[Mapping], figure: str, autoscale: str = CLAI
                       equivalent=_equivalent(groups))
 
 
-def tied(candidates: Candidates, default: bool = False) -> tuple[int, list[tuple[str, ...]]]:
-    """The best score and the readings tied at it, as groups of equivalent readings (one group per
-    set of identical plotted values), in the order of the scores; ``default`` for the scores with
-    the plotting program's own tick step."""
-    scores = candidates.default_scores if default else candidates.scores
-    if not scores:
-        raise ValueError("the candidates hold no score" + (" with the default locator" if default else ""))
-    best = max(scores.values())
-    top = [name for name, score in scores.items() if score == best]
-    group_of = {name: group for group in candidates.equivalent for name in group}
-    groups: list[tuple[str, ...]] = []
-    for name in top:
-        group = tuple(n for n in group_of.get(name, (name,)) if n in top)
-        if group not in groups:
-            groups.append(group)
-    return best, groups
-
-
 def ties_text(candidates: Candidates, sep: str = "; ") -> str:
     """The best score in words, with every reading tied at it (equivalent ones joined by ``=``) and
     the best score with the default locator."""
-    best, groups = tied(candidates)
-    default, _ = tied(candidates, default=True) if candidates.default_scores else (None, None)
+    best, groups = candidates.tied()
+    default, _ = candidates.tied(default=True) if candidates.default_scores else (None, None)
     n = len(candidates.scores)
     head = f"{best} of {candidates.out_of} printed limits (tick step imposed), the best of {n} readings"
     if len(groups) == 1:
@@ -147,7 +129,7 @@ def best_readings(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> 
     "default_score", "best": [group of equivalent readings, ...]}``."""
     result = []
     for (figure, name), c in panel_candidates(rows, autoscale).items():
-        best, groups = tied(c)
+        best, groups = c.tied()
         result.append({"figure": figure, "panel": name, "score": best, "out_of": c.out_of,
                        "default_score": max(c.default_scores.values()) if c.default_scores else None,
                        "best": groups})
@@ -155,7 +137,7 @@ def best_readings(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> 
 
 
 def _cell(candidates: Candidates) -> tuple[str, str]:
-    best, groups = tied(candidates)
+    best, groups = candidates.tied()
     default = max(candidates.default_scores.values()) if candidates.default_scores else None
     score = f"{best} of {candidates.out_of}" + ("" if default is None else f" ({default} with the default locator)")
     if len(groups) == 1:
@@ -209,7 +191,7 @@ def figure_caption(rows: Iterable[Mapping], figure: str, width: int, autoscale: 
              f"out to the ticks ({autoscale}). Of the grid of readings of the choices the paper leaves open, the best "
              f"(printed limits reproduced; with matplotlib's default locator instead):"]
     for (_, name), c in found.items():
-        best, groups = tied(c)
+        best, groups = c.tied()
         default = f"; default locator {max(c.default_scores.values())}/{c.out_of}" if c.default_scores else ""
         named = " | ".join(_representative(g) + (f" (+{len(g) - 1} equivalent)" if len(g) > 1 else "")
                            for g in groups)

@@ -5,7 +5,9 @@ Fig. 3 cases, the period axes and the natural period): the register names it onc
 ``finding``, and the headline counts it once. Only the paper's own claims (``origin`` paper) whose
 evidence is a verdict (reproduced, partially, not reproduced) are counted as findings; the rows
 consistent by construction, consistent with a reading chosen from the same axes, undetermined or
-untestable, and the rows beyond the paper, are counted apart. Reads the claims table only.
+untestable, and the rows beyond the paper, are counted apart. A finding is as strong as its weakest
+row: when its rows disagree (a configuration other than the paper's can make one of them fail), it
+takes the weakest status and the headline says so. Reads the claims table only.
 """
 
 from __future__ import annotations
@@ -26,7 +28,8 @@ class Tally:
     """The counts of the headline; each list holds claim ids, ``findings`` maps a finding to its status."""
 
     paper_rows: int
-    findings: Mapping[str, str]
+    findings: Mapping[str, str]  #: each finding's status: the weakest of its rows'
+    mixed: tuple[str, ...]  #: the findings whose rows disagree
     by_construction: tuple[str, ...]
     by_choice: tuple[str, ...]
     undetermined: tuple[str, ...]
@@ -38,6 +41,11 @@ class Tally:
         return sum(s == status for s in self.findings.values())
 
 
+def _weakest(statuses: set[str]) -> str:
+    """The weakest of ``statuses``: not reproduced before partially before reproduced."""
+    return max(statuses, key=VERDICTS.index)
+
+
 def tally(rows: Iterable[Mapping[str, str]]) -> Tally:
     """Count the rows of the claims table (``claim_id``, ``origin``, ``finding``, ``evidence`` and
     ``status`` are read).
@@ -45,8 +53,7 @@ def tally(rows: Iterable[Mapping[str, str]]) -> Tally:
     Raises
     ------
     ValueError
-        If the rows of one finding disagree in status (one root cause has one verdict: the register
-        groups them wrongly), or a row has a status outside the vocabulary.
+        If a row has a status outside the vocabulary.
     """
     statuses: dict[str, set[str]] = {}
     members: dict[str, list[str]] = {}
@@ -67,14 +74,11 @@ def tally(rows: Iterable[Mapping[str, str]]) -> Tally:
             members.setdefault(row["finding"], []).append(claim)
         else:
             raise ValueError(f"claim '{claim}' has status = {status!r}, which the vocabulary does not define")
-    mixed = {f: s for f, s in statuses.items() if len(s) > 1}
-    if mixed:
-        raise ValueError("; ".join(
-            f"finding '{f}' has rows of different statuses ({', '.join(sorted(s))}: {', '.join(members[f])})"
-            for f, s in mixed.items()) + ": one root cause has one verdict")
+    mixed = tuple(f for f, s in statuses.items() if len(s) > 1)
     return Tally(
         paper_rows=paper,
-        findings={f: next(iter(s)) for f, s in statuses.items()},
+        findings={f: _weakest(s) for f, s in statuses.items()},
+        mixed=mixed,
         by_construction=tuple(lists["construction"]),
         by_choice=tuple(lists["choice"]),
         undetermined=tuple(lists[UNDETERMINED]),
@@ -99,6 +103,8 @@ def headline(rows: Iterable[Mapping[str, str]]) -> str:
         f"same printed axes: {len(t.by_choice)}; undetermined (readings that fit equally give different "
         f"answers): {len(t.undetermined)}; untestable from the paper's evidence: {len(t.untestable)}. Beyond the "
         f"paper, and not counted: {_rows(len(t.beyond))}."
+        + (f" The rows of {len(t.mixed)} findings disagree ({', '.join(t.mixed)}); each is counted at its weakest "
+           "row." if t.mixed else "")
     )
 
 
@@ -110,7 +116,8 @@ def findings_table(rows: Iterable[Mapping[str, str]]) -> list[dict[str, str]]:
     for row in rows:
         if row["finding"] in t.findings and row["origin"] == "paper" and row["status"] in VERDICTS:
             by_finding.setdefault(row["finding"], []).append(f"`{row['claim_id']}`")
-    return [{"finding": f, "verdict": t.findings[f].replace("_", " "), "rows": ", ".join(by_finding[f])}
+    return [{"finding": f, "verdict": t.findings[f].replace("_", " ") + (" (its rows disagree)" if f in t.mixed else ""),
+             "rows": ", ".join(by_finding[f])}
             for f in sorted(t.findings, key=lambda f: (VERDICTS.index(t.findings[f]), f))]
 
 

@@ -15,7 +15,7 @@ from ..paper.claims import Evidence, evaluate, load_claims
 from .claims_csv import read_claims_csv, write_claims_csv
 from .logs import logged
 from .readings import scene_axes
-from .scores import CLAIM_AUTOSCALE, read_scores
+from .scores import panel_candidates, read_scores
 
 __all__ = ["FIG3_VARIABLES", "FIG4_VARIABLES", "FIG5_VARIABLES", "CHECKS_VARIABLES", "check_claims",
            "write_claims_csv", "read_claims_csv"]
@@ -47,25 +47,10 @@ def check_claims(
             fig5=fig5_data,
             checks=read_netcdf(checks, CHECKS_VARIABLES),
             axes=scene_axes(fig3_data, fig4_data, fig5_data),
-            readings=_candidates(read_scores(readings)),
+            readings=panel_candidates(read_scores(readings)),
         )
         rows = evaluate(load_claims(register), evidence)
         for row in rows:
             logger.info("%s: %s: %s", row["claim_id"], row["status"], row["replicated_value"])
         write_claims_csv(rows, output)
 
-
-def _candidates(rows) -> dict:
-    """Every candidate reading of each printed panel with the limits it reproduces (the claims' autoscaling)."""
-    from ..paper.checks import Candidates
-
-    scores: dict = {}
-    axes: dict = {}
-    for row in rows:
-        if row["autoscale"] != CLAIM_AUTOSCALE:
-            continue
-        key = (str(row["figure"]), str(row["panel"]))
-        scores.setdefault(key, {}).setdefault(row["reading"], 0)
-        scores[key][row["reading"]] += int(row["matches"])
-        axes.setdefault(key, set()).add(row["axis"])
-    return {key: Candidates(2 * len(axes[key]), s) for key, s in scores.items()}

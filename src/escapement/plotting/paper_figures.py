@@ -66,11 +66,13 @@ def fig3(cases: dict[str, xr.Dataset], axes: PanelAxes | None = None, caption: s
                     ax.axhline(float(ds["fixed_point_19"]), ls=(0, (5, 3)), lw=1.1, color=ACCENT, zorder=3,
                                label="fixed point of Eq. (19) as printed")
                 if name == "period":
-                    ax.axhline(period, ls=":", lw=1.2, color=GUIDE, zorder=3,
-                               label=f"2\u03c0/\u03c9 = {period:.4f} s, the period the paper reports")
+                    guide = ax.axhline(period, ls=":", lw=1.2, color=GUIDE, zorder=3,
+                                       label=f"2\u03c0/\u03c9 = {period:.4f} s, the period the paper reports")
                 ax.set_ylabel(axis_label(name))
                 ax.set_xlabel("Number of cycles")
                 _printed(ax, axes, "3", f"{label}/{panels[name]}")
+                if name == "period" and not ax.get_ylim()[0] <= period <= ax.get_ylim()[1]:
+                    guide.set_label(f"2\u03c0/\u03c9 = {period:.4f} s, the paper's period, below the axes")
             reading = assumed_reading(ds, f"{quantity_value('F', float(ds['F']))}, {release(ds)}")
             grid[0, col].set_title(f"({label}) {wrap(reading, 40)}")
             notes += outcome_note(grid[0, col], ds)

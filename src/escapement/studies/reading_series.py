@@ -53,9 +53,11 @@ class Runs:
         if not (isinstance(n_cycles, int) and n_cycles >= 0):
             raise ValueError(f"n_cycles = {n_cycles!r} must be an integer >= 0")
         key = (float(F), float(K), float(x0))
-        n, t = self._needs.get(key, (0, 0.0))
-        n, t = max(n, n_cycles), max(t, _positive("t_end", t_end))
-        if key in self._runs and not self.covers(key, n, t):
+        stated = self._needs.get(key, (0, 0.0))
+        n, t = max(stated[0], n_cycles), max(stated[1], _positive("t_end", t_end))
+        # a run is made for the needs stated before it; restating no more is fine, even when the run
+        # could not meet them (it left the regime first)
+        if key in self._runs and (n, t) != stated:
             raise ValueError(f"the run F = {F:g} N, K = {K:g} N/m, x0 = {x0:+g} m is already made; "
                              f"state every need (n_cycles = {n_cycles}, t_end = {t_end:g}) before the first get")
         self._needs[key] = (n, t)
