@@ -20,7 +20,7 @@ import yaml
 
 from escapement.paper import claims as cl
 from escapement.paper.airy import airy_verdict
-from escapement.paper.checks import Evidence
+from escapement.paper.checks import Candidates, Evidence
 from escapement.paper.existence import existence_verdict, grazing_verdict, release_verdict
 
 REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"
@@ -262,6 +262,17 @@ def test_window_impact():
     assert result.status == "reproduced" and "1 velocity jump(s) at 84.4 s" in result.replicated_value
     assert status(c, evidence(fig4=fig4(t_impact=86.0))) == "partially_reproduced"  # outside 81-85 s
     assert status(c, evidence(fig4=fig4(jump=False))) == "not_reproduced"
+    assert "tied" not in result.note  # no grid of readings in the evidence: nothing to say
+
+
+def test_window_impact_says_under_which_of_the_tied_readings_it_holds():
+    c = claim("window_impact", tolerance=None)
+    tie = {("4", "velocity"): Candidates(2, {"A": 1, "B": 1, "C": 0})}
+    note = cl.verdict(c, evidence(readings=tie)).note
+    assert note.endswith("this holds under the scene's reading (F = 1 N, K = 1 N/m, x0 = -1 m), one of 2 readings "
+                         "the printed velocity axis leaves tied (REPLICATION.md, Sec. 3)")
+    one = {("4", "velocity"): Candidates(2, {"A": 1, "B": 0})}
+    assert "tied" not in cl.verdict(c, evidence(readings=one)).note
 
 
 def test_section_crossings():

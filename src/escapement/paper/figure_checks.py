@@ -92,6 +92,20 @@ def sampled_jumps(t: np.ndarray, v: np.ndarray, a: np.ndarray) -> np.ndarray:
     return np.flatnonzero(np.abs(dv) > bound)
 
 
+def _reading_caveat(ev: Evidence, ds: xr.Dataset) -> str:
+    """What the verdict holds under: the scene's reading, and how many readings of Fig. 4's velocity
+    panel its printed axis leaves tied (none said when the evidence holds no grid)."""
+    candidates = ev.readings.get(("4", "velocity"))
+    if candidates is None:
+        return ""
+    _, groups = candidates.tied()
+    if len(groups) < 2:
+        return ""
+    return (f"; this holds under the scene's reading (F = {fmt(float(ds['F']), 3)} N, K = {fmt(float(ds['K']), 3)} "
+            f"N/m, x0 = {fmt(float(ds['x0']), 3)} m), one of {len(groups)} readings the printed velocity axis "
+            "leaves tied (REPLICATION.md, Sec. 3)")
+
+
 @check("window_impact", scenes=_fig4)
 def window_impact(claim, ev: Evidence) -> Verdict:
     ds = ev.fig4
@@ -112,7 +126,7 @@ def window_impact(claim, ev: Evidence) -> Verdict:
         text, status,
         note=(f"jumps found on the sampled velocity (a step larger than twice the sampled acceleration allows); an "
               f"impact drops the velocity by b = {fmt(b, 3)} of its value; the dataset records "
-              f"{ds.sizes.get('impact', 0)} impact(s) in the window"),
+              f"{ds.sizes.get('impact', 0)} impact(s) in the window" + _reading_caveat(ev, ds)),
         paper_value="the window holds the impact",
     )
 
