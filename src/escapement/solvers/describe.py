@@ -5,12 +5,18 @@ name (:data:`CYCLE_COLUMNS`, :data:`EVENT_COLUMNS`), the same in a run's data fr
 (:meth:`escapement.Solution.to_dataframe`) and in the CF datasets of :mod:`escapement.io`. The
 summaries are what the results' ``repr`` shows: the outcome, counts, time span and the parameters
 with their units, a few lines whatever the length of the run.
+
+Every number printed is true as printed: an input (a parameter, the initial state, an end time)
+as it can be typed back (:func:`exact`), so that it is told apart from any bound it is compared
+with; a computed value to a few significant digits, with more where two values that differ would
+otherwise print alike (:func:`texts`); zero without a sign.
 """
 
 from __future__ import annotations
 
 import math
 import textwrap
+from itertools import combinations
 
 import numpy as np
 
@@ -27,8 +33,11 @@ __all__ = [
     "arc_table_summary",
     "cycle_table_summary",
     "ensemble_summary",
+    "exact",
     "exit_summary",
+    "number",
     "solution_summary",
+    "texts",
 ]
 
 _CYCLE_NAMES = ("impact_time", "velocity_before_impact", "period", "amplitude")
@@ -51,20 +60,73 @@ _WIDTH = 120
 _LABEL = 12
 
 
-def number(value, unit: str = "") -> str:
-    """``value`` to 6 significant digits (an mpmath number as its nearest double), with its unit."""
-    text = f"{float(value):.6g}"
+#: the significant digits that tell every two doubles apart
+_ALL_DIGITS = 17
+
+
+def _unsigned_zero(value) -> float:
+    """``value`` as a double (an mpmath number as its nearest), a negative zero made positive."""
+    return float(value) + 0.0  # -0.0 + 0.0 is +0.0; every other double is unchanged
+
+
+def _with_unit(text: str, unit: str) -> str:
     return text if unit in ("", "1") else f"{text} {unit}"
 
 
+def exact(value, unit: str = "") -> str:
+    """An input as it can be typed back: the shortest text that reads as the same double (Python's
+    ``repr``), without a trailing ``.0``, zero without a sign; with its unit."""
+    text = repr(_unsigned_zero(value))
+    return _with_unit(text[:-2] if text.endswith(".0") else text, unit)
+
+
+def _order(x: float, y: float) -> int:
+    """-1, 0 or 1 as ``x`` is below, equal to or above ``y``; 0 where either is NaN."""
+    return (x > y) - (x < y)
+
+
+def texts(values, digits: int = 6) -> list[str]:
+    """``values`` to ``digits`` significant digits, or to more where fewer would misstate how two of
+    them compare (two that differ printed alike, or in the wrong order); as typed back
+    (:func:`exact`) when 16 digits are not enough; zero without a sign."""
+    floats = [_unsigned_zero(v) for v in values]
+    pairs = list(combinations(range(len(floats)), 2))
+    for width in range(digits, _ALL_DIGITS):
+        printed = [f"{x:.{width}g}" for x in floats]
+        read = [float(text) for text in printed]
+        if all(_order(read[i], read[j]) == _order(floats[i], floats[j]) for i, j in pairs):
+            return printed
+    return [exact(x) for x in floats]
+
+
+def compared(value, bounds, digits: int = 12) -> str:
+    """A computed ``value`` beside the inputs ``bounds`` it is compared with (printed by :func:`exact`):
+    to ``digits`` significant digits, or to more where fewer would misstate how it compares with one
+    of them (printed as equal to a bound it is not, or on the wrong side of it)."""
+    value = _unsigned_zero(value)
+    bounds = [_unsigned_zero(b) for b in bounds]
+    for width in range(digits, _ALL_DIGITS):
+        text = f"{value:.{width}g}"
+        if all(_order(float(text), b) == _order(value, b) for b in bounds):
+            return text
+    return exact(value)
+
+
+def number(value, unit: str = "", digits: int = 6) -> str:
+    """A computed ``value`` to ``digits`` significant digits (an mpmath number as its nearest double),
+    zero without a sign, with its unit."""
+    return _with_unit(texts([value], digits)[0], unit)
+
+
 def span(values, unit: str) -> str:
-    """The range of ``values`` (NaN ignored): ``lo .. hi unit``, one number if they agree."""
+    """The range of ``values`` (NaN ignored): ``lo .. hi unit``, one number if they agree; the two
+    with the digits that tell them apart."""
     finite = np.asarray(values, dtype=float)
     finite = finite[~np.isnan(finite)]
     if not finite.size:
         return "none"
-    lo, hi = finite.min(), finite.max()
-    return number(lo, unit) if lo == hi else f"{number(lo)} .. {number(hi, unit)}"
+    lo, hi = texts([finite.min(), finite.max()])
+    return _with_unit(lo, unit) if lo == hi else f"{lo} .. {_with_unit(hi, unit)}"
 
 
 def _line(label: str, text: str, column: int = _LABEL, wrap: bool = False) -> str:
@@ -77,14 +139,17 @@ def _line(label: str, text: str, column: int = _LABEL, wrap: bool = False) -> st
 
 
 def _parameters_text(params: Parameters) -> str:
-    return ", ".join(f"{name} = {number(value, PARAMETERS[name].unit_label)}"
+    return ", ".join(f"{name} = {exact(value, PARAMETERS[name].unit_label)}"
                      for name, value in params.as_dict().items())
 
 
 def arc_table_summary(arcs) -> str:
     """One line on a table of harmonic arcs (:class:`~escapement.solvers.result.ArcTable`)."""
-    return (f"<ArcTable> {len(arcs)} harmonic arcs from t = {span(arcs.t_start[:1], 's')} to "
-            f"t_final = {number(arcs.t_final, 's')}, omega = {number(arcs.omega, 'rad/s')}")
+    if not len(arcs):
+        return f"<ArcTable> no harmonic arcs, omega = {number(arcs.omega, 'rad/s')}"
+    start, end = texts([arcs.t_start[0], arcs.t_final])
+    arcs_ = f"{len(arcs)} harmonic arc{'' if len(arcs) == 1 else 's'}"
+    return f"<ArcTable> {arcs_} from t = {start} s to t_final = {end} s, omega = {number(arcs.omega, 'rad/s')}"
 
 
 def cycle_table_summary(cycles) -> str:
@@ -97,10 +162,12 @@ def cycle_table_summary(cycles) -> str:
     return "\n".join(lines)
 
 
-def exit_summary(exit) -> str:
-    """The numbers of a regime exit that apply, with their units (empty if none does)."""
-    return ", ".join(f"{name} = {number(getattr(exit, name), unit)}" for name, unit in EXIT_UNITS.items()
-                     if not math.isnan(getattr(exit, name)))
+def exit_summary(exit, printed: dict[str, str] | None = None) -> str:
+    """The numbers of a regime exit that apply, with their units (empty if none does); ``printed``
+    gives the text of those already printed beside other numbers."""
+    printed = printed or {}
+    return ", ".join(f"{name} = {_with_unit(printed.get(name) or number(getattr(exit, name)), unit)}"
+                     for name, unit in EXIT_UNITS.items() if not math.isnan(getattr(exit, name)))
 
 
 def solution_summary(solution, trajectory: str) -> str:
@@ -108,14 +175,19 @@ def solution_summary(solution, trajectory: str) -> str:
     and the exit's numbers; ``trajectory`` says whether (and how) the motion was kept."""
     ev, cycles = solution.events, solution.cycles
     impacts = int(np.count_nonzero(np.isin(ev.kind, [int(EventKind.IMPACT_A1), int(EventKind.IMPACT_A3)])))
+    # the times side by side, each printed so that it compares with the others as it does
+    times = [0.0, solution.t_final, solution.exit.t_accumulation, *(ev.t[[0, -1]] if len(ev) else ())]
+    zero, t_final, t_acc, *event_times = texts(times)
     lines = [
         f"<escapement.Solution> {solution.status.value} ({solution.method})",
         _line("message", solution.message, wrap=True),
-        _line("time span", f"t = 0 .. {number(solution.t_final, 's')} (t_final)"),
+        _line("time span", f"t = {zero} .. {t_final} s (t_final)"),
     ]
-    events = f"{len(ev)} ({impacts} impacts)"
-    if len(ev):
-        events += f" from t = {number(ev.t[0], 's')} to {number(ev.t[-1], 's')}"
+    events = f"{len(ev)} ({impacts} impact{'' if impacts == 1 else 's'})"
+    if len(ev) == 1:
+        events += f" at t = {event_times[0]} s"
+    elif len(ev):
+        events += f" from t = {event_times[0]} s to {event_times[1]} s"
     lines.append(_line("events", events))
     text = f"{len(cycles)}"
     if len(cycles):
@@ -123,12 +195,12 @@ def solution_summary(solution, trajectory: str) -> str:
                  f"{number(cycles.velocity_before_impact[-1], 'm/s')}, amplitude {number(cycles.amplitude[-1], 'm')}")
     lines.append(_line("cycles", text))
     lines.append(_line("trajectory", trajectory))
-    state = ", ".join(f"{name} = {number(value, INITIAL_STATE[name].unit_label)}"
+    state = ", ".join(f"{name} = {exact(value, INITIAL_STATE[name].unit_label)}"
                       for name, value in (("x0", solution.x0), ("v0", solution.v0)))
     lines.append(_line("initial", state))
     lines.append(_line("parameters", _parameters_text(solution.params)))
     if exit_summary(solution.exit):
-        lines.append(_line("exit", exit_summary(solution.exit)))
+        lines.append(_line("exit", exit_summary(solution.exit, {"t_accumulation": t_acc})))
     return "\n".join(lines)
 
 

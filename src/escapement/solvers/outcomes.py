@@ -5,6 +5,10 @@ watched surface passed (:func:`no_event_outcome`), the end time (:func:`horizon_
 that reverses the velocity (:func:`chattering_outcome`). :func:`check_memory` refuses, before any work,
 a run whose result would exceed its memory budget; :func:`finish` makes the :class:`Solution` and
 refuses a completed run that holds a non-finite number.
+
+The messages print every number true as printed (:mod:`.describe`): the inputs (b, the impact
+positions, the end time) as they can be typed back, the computed times and positions with the
+digits that tell them apart from the bounds they are compared with, zero without a sign.
 """
 
 from __future__ import annotations
@@ -19,7 +23,8 @@ from ..model.events import EventKind, EventLog
 from ..model.kinematics import rebound_accumulation_time
 from ..model.limits import EVENTS_PER_CYCLE, MemoryBudgetError, RunLimits, events_for
 from ..model.parameters import Parameters
-from ..model.status import Status, chattering_message, stopped_message, turned_back_message
+from ..model.status import Status
+from .describe import compared, exact, texts
 from .result import ArcTable, CycleTable, Exit, Solution
 
 __all__ = ["Outcome", "chattering_outcome", "check_memory", "finish", "horizon_outcome", "no_event_outcome"]
@@ -33,6 +38,56 @@ class Outcome(NamedTuple):
     message: str
     exit: Exit
     t_final: object  #: a float, or an mpmath number for the high-precision solver
+
+
+#: the direction in which the free swing would pass each impact position
+_DIRECTION = {"a1": "moving right", "a3": "moving left"}
+#: the significant digits of the computed times and positions in the messages (more where needed)
+_DIGITS = 12
+
+
+def stopped_message(t: float, radius: float, missed: dict[str, float]) -> str:
+    """``missed`` maps the name of each impact position the swing cannot reach to its value (an input);
+    the swing's turning points ``-radius`` and ``radius`` are printed unlike the positions they miss."""
+    bounds = [abs(value) for value in missed.values()]
+    names = " or ".join(f"{name} = {exact(value)} m ({_DIRECTION[name]})" for name, value in missed.items())
+    turn = compared(radius, bounds, _DIGITS)
+    left = "0" if turn == "0" else f"-{turn}"
+    return (
+        f"the escapement stopped at t = {texts([t], _DIGITS)[0]} s: the free swing turns at x = {left} m and "
+        f"x = {turn} m and never passes the next impact position, {names}; from then on the mass oscillates freely"
+    )
+
+
+def turned_back_message(t: float, zone: str, turning_point: float, centre: float, end: float) -> str:
+    """The motion turned at ``turning_point``, short of the zone's ``end`` (an input), about ``centre``."""
+    return (
+        f"the mass turned back inside the impulse zone {zone} at t = {texts([t], _DIGITS)[0]} s: about the "
+        f"zone's centre x = {compared(centre, [end], _DIGITS)} m (F/K) the motion turns at "
+        f"x = {compared(turning_point, [end, centre], _DIGITS)} m, short of the zone's end at {exact(end)} m; "
+        "the escapement model does not cover this"
+    )
+
+
+def chattering_message(t: float, position: str, b: float, ratio: float, t_accumulation: float) -> str:
+    """``ratio`` is v+/v- of the impact that reversed the velocity (printed unlike 0 and -1, its bounds);
+    ``t_accumulation`` the time at which the rebounds accumulate (printed unlike ``t``), finite whenever
+    the spring drives the mass back to the impact position (the rebound durations then shrink
+    geometrically, by ``|ratio| < 1``), and NaN where it does not (the centre of oscillation at the impact
+    position or in the direction of the rebound)."""
+    t_text, t_acc_text = texts([t, t_accumulation], _DIGITS)
+    head = (
+        f"the impact at {position} at t = {t_text} s reversed the velocity (b = {exact(b)} > 1, "
+        f"v+ = {compared(ratio, [0.0, -1.0], _DIGITS)} v-): the mass rebounds instead of entering the impulse zone"
+    )
+    if math.isnan(t_accumulation):
+        return head + (f"; the centre of oscillation lies at {position} or in the direction of the rebound, so the "
+                       f"spring does not drive the mass back to {position} (no Zeno point), and the escapement "
+                       "regime has ended")
+    return (
+        head + f"; the spring drives it back to {position} and the impacts accumulate at t = "
+        f"{t_acc_text} s (a Zeno point), past which the impulsive model has no solution"
+    )
 
 
 def no_event_outcome(params: Parameters, state: int, centre, t, dt, turning, t_stop: float = math.inf,
@@ -59,8 +114,8 @@ def no_event_outcome(params: Parameters, state: int, centre, t, dt, turning, t_s
 
 def horizon_outcome(t_stop: float, impacts_a1: int) -> Outcome:
     """The end time comes before the next event."""
-    return Outcome(Status.COMPLETED, f"reached t_end = {t_stop:.12g} s after {impacts_a1} impacts at a1", Exit(),
-                   t_stop)
+    impacts = f"{impacts_a1} impact{'' if impacts_a1 == 1 else 's'}"
+    return Outcome(Status.COMPLETED, f"reached t_end = {exact(t_stop)} s after {impacts} at a1", Exit(), t_stop)
 
 
 def completed_outcome(n_cycles: int, t) -> Outcome:
@@ -113,12 +168,22 @@ def check_memory(limits: RunLimits, event_bytes: float, cycle_bytes: float, cont
         most = int((budget - fixed_bytes) // (event_bytes + cycle_bytes / EVENTS_PER_CYCLE))
     for _ in range(2):  # the division above is within one of the answer
         most = most + 1 if fits(most + 1) else most - 1 if most > 0 and not fits(most) else most
-    requirement = (
-        f"at most {max(most, 0):_} for this run to fit its memory budget: it would store {contents}, an estimated "
-        f"{estimate:_} bytes ({estimate / 1e9:.3g} GB), over the budget of {budget:_} bytes ({budget / 1e9:.3g} GB); "
-        f"{remedy}"
-    )
+    over = f"it would store {contents}, an estimated {_sizes(estimate, budget)}"
+    if not fits(1):  # not even the smallest run fits: the budget is what to change
+        smallest, run = (size(events_for(1), 1), "one cycle") if name == "n_cycles" else (size(1, 0), "one event")
+        raise MemoryBudgetError("memory_budget", budget, f"at least {smallest:_} bytes, those of a run of {run} "
+                                f"({over})", estimate, budget)
+    requirement = f"at most {most:_} for this run to fit its memory budget: {over}; {remedy}"
     raise MemoryBudgetError(name, value, requirement, estimate, budget)
+
+
+def _sizes(estimate: int, budget: int) -> str:
+    """``estimate`` bytes over the ``budget``, in bytes and, for sizes of 10 MB or more, in GB (with
+    the digits that tell the two apart)."""
+    if budget < 10**7:
+        return f"{estimate:_} bytes, over the memory budget of {budget:_} bytes"
+    estimate_gb, budget_gb = texts([estimate / 1e9, budget / 1e9], 3)
+    return f"{estimate:_} bytes ({estimate_gb} GB), over the memory budget of {budget:_} bytes ({budget_gb} GB)"
 
 
 def finish(params: Parameters, method: str, outcome: Outcome, events: EventLog, cycles: CycleTable, trajectory, *,
