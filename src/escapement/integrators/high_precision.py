@@ -14,7 +14,7 @@ import mpmath
 
 from ..model import automaton
 from ..model.limits import MAX_DIGITS, MIN_DIGITS, RunLimits, check_count
-from ..model.parameters import Parameters, check_initial_state
+from ..model.parameters import Parameters, check_initial_state, check_parameters
 from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
 
@@ -115,8 +115,7 @@ def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cy
     >>> bool(abs(float(period) - solve_exact(p, x0=1.0, n_cycles=2).cycles.period[-1]) < 1e-13)
     True
     """
-    if not isinstance(params, Parameters):
-        raise TypeError("params must be an escapement.Parameters")
+    params = check_parameters(params)
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events)
     dps = check_count("dps", dps, MAX_DIGITS, MIN_DIGITS)

@@ -13,7 +13,8 @@ import math
 from ..model import automaton
 from ..model.automaton import Mode
 from ..model.limits import RunLimits
-from ..model.parameters import ParameterError, Parameters, check_initial_state
+from ..model.arguments import real_number
+from ..model.parameters import Parameters, check_initial_state, check_parameters
 from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
 
@@ -110,13 +111,12 @@ def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     >>> bool(error < 2e-3)  # s: of the order of the step
     True
     """
-    if not isinstance(params, Parameters):
-        raise TypeError("params must be an escapement.Parameters")
+    params = check_parameters(params)
     largest = params.natural_period / STEPS_PER_PERIOD
-    if isinstance(step, bool) or not isinstance(step, float | int) or not (0 < step <= largest):
-        raise ParameterError("step", step, f"> 0 and at most {largest:.6g} s, 1/{STEPS_PER_PERIOD} of the natural "
-                             "period 2 pi / omega: a larger step passes events without seeing them, and from "
-                             "omega step = 2.8 on the RK4 step is unstable")
+    step = real_number("step", step, lambda h: 0 < h <= largest,
+                       f"> 0 and at most {largest:.6g} s, 1/{STEPS_PER_PERIOD} of the natural period 2 pi / omega: a "
+                       "larger step passes events without seeing them, and from omega step = 2.8 on the RK4 step is "
+                       "unstable")
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles)
-    return drive(params, x, v, limits, NaiveStepper(params, float(step)), x0=x, v0=v)
+    return drive(params, x, v, limits, NaiveStepper(params, step), x0=x, v0=v)

@@ -31,7 +31,8 @@ import numpy as np
 from ..model import automaton
 from ..model.automaton import Mode
 from ..model.limits import RunLimits, check_flag
-from ..model.parameters import ParameterError, Parameters, check_initial_state
+from ..model.arguments import ParameterError, check_choice, real_number
+from ..model.parameters import Parameters, check_initial_state, check_parameters
 from ..solvers.result import Solution
 from .driver import HORIZON, NO_EVENT, Step, drive
 from .segments import CvodeIntegrator, DenseSegments, Hit, SciPyIntegrator, Segment, Watch
@@ -198,9 +199,9 @@ def solve_reference(
     ------
     TypeError
         If ``params`` is not a :class:`~escapement.Parameters`.
-    ValueError
-        If ``rtol`` is outside ``(0, 1)``, a CVODE method is asked to keep the trajectory, or (a
-        :class:`~escapement.ParameterError`) ``x0``, ``v0`` or a limit is invalid.
+    ParameterError
+        If an argument is invalid (the message names it): ``x0``, ``v0``, a limit, ``method``, ``rtol``
+        outside ``(0, 1)``, ``atol`` not > 0, or ``record_trajectory=True`` with a CVODE method.
     RuntimeError
         If the integrator fails.
 
@@ -214,17 +215,16 @@ def solve_reference(
     >>> bool(abs(ivp.cycles.period[0] - solve_exact(p, x0=1.0, n_cycles=1).cycles.period[0]) < 1e-8)  # s
     True
     """
-    if not isinstance(params, Parameters):
-        raise TypeError("params must be an escapement.Parameters")
+    params = check_parameters(params)
     x, v = check_initial_state(x0, v0)
     record_trajectory = check_flag("record_trajectory", record_trajectory)
-    if not isinstance(method, str) or method not in METHODS:
-        raise ParameterError("method", method, f"one of {', '.join(METHODS)}")
+    method = check_choice("method", method, METHODS)
     if max_events is None and n_cycles is None and record_trajectory:
         max_events = DENSE_MAX_EVENTS
     limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events)
-    if isinstance(rtol, bool) or not isinstance(rtol, float | int) or not 0 < rtol < 1:
-        raise ValueError(f"rtol = {rtol!r} is invalid: rtol must be in (0, 1)")
+    rtol = real_number("rtol", rtol, lambda r: 0 < r < 1, "in the open interval (0, 1), dimensionless")
+    if atol is not None:
+        atol = real_number("atol", atol, lambda a: a > 0, "> 0 (m), or None for rtol times the run's length scale")
     omega = params.omega
     length = max(abs(x), abs(params.a1), abs(params.a2), abs(params.a3), abs(params.a4), params.zone_offset,
                  abs(v) / omega)
@@ -232,7 +232,8 @@ def solve_reference(
     atol_vec = np.array([atol_x, atol_x * omega])
     if method.startswith("CVODE-"):
         if record_trajectory:
-            raise ValueError(f"method = {method!r} keeps no trajectory: pass record_trajectory=False")
+            raise ParameterError("record_trajectory", record_trajectory, f"False with method = {method!r}, "
+                                 "which keeps no dense output")
         integrator = CvodeIntegrator(method.removeprefix("CVODE-"), rtol, atol_vec)
     else:
         integrator = SciPyIntegrator(method, rtol, atol_vec, record_trajectory)

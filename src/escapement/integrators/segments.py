@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.arguments import sample_times
+
 __all__ = ["MAX_STEP_HALF_PERIODS", "ROOT_TOLERANCE", "CvodeIntegrator", "DenseSegments", "Hit", "SciPyIntegrator",
            "Segment", "Watch"]
 
@@ -181,7 +183,9 @@ class DenseSegments:
     t_final: float
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        t = np.asarray(t, dtype=float)
+        """Displacement, velocity and acceleration at times ``t`` (NaN outside [0, t_final]); ``t`` is checked
+        as :meth:`escapement.Solution.sample` says."""
+        t = sample_times("t", t)
         x = np.full(t.shape, np.nan)
         v = np.full(t.shape, np.nan)
         a = np.full(t.shape, np.nan)

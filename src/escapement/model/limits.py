@@ -1,8 +1,10 @@
 """How long a run goes on: a number of cycles, an end time, and a bound on events.
 
 Every count a solver takes (``n_cycles``, ``max_events``, the digits of the high-precision
-solver) is checked by :func:`check_count`: a positive integer (not a bool), at most a stated
-maximum, or a :class:`~escapement.model.parameters.ParameterError` that names it. The scalar
+solver) is checked by :func:`~escapement.model.arguments.check_count` (re-exported here with
+:func:`~escapement.model.arguments.check_flag`): a positive integer (not a bool), at most a stated
+maximum, or a :class:`~escapement.model.arguments.ParameterError` that names it; the end time by
+:func:`~escapement.model.arguments.real_number`. The scalar
 solvers and the ensemble take their limits through :class:`RunLimits`, so they refuse the same
 values with the same message.
 
@@ -16,13 +18,9 @@ not fit.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
-from numbers import Integral, Real
 
-import numpy as np
-
-from .parameters import ParameterError
+from .arguments import ParameterError, check_count, check_flag, real_number
 
 __all__ = [
     "EVENTS_PER_CYCLE",
@@ -63,23 +61,6 @@ class MemoryBudgetError(ParameterError):
         self.budget = budget
 
 
-def check_flag(name: str, value: object) -> bool:
-    """``value`` as a bool if it is ``True`` or ``False`` (a NumPy bool too), else raise :class:`ParameterError`
-    naming ``name``: a string such as ``"no"`` or a number is not taken for a yes or a no."""
-    if not isinstance(value, bool | np.bool_):
-        raise ParameterError(name, value, "True or False")
-    return bool(value)
-
-
-def check_count(name: str, value: object, maximum: int, minimum: int = 1) -> int:
-    """``value`` as an int if it is an integer in ``[minimum, maximum]`` (a bool is not), else
-    raise :class:`ParameterError` naming ``name``."""
-    if isinstance(value, bool) or not isinstance(value, Integral) or not minimum <= value <= maximum:
-        least = "a positive integer" if minimum == 1 else f"an integer >= {minimum:_}"
-        raise ParameterError(name, value, f"{least}, at most {maximum:_}")
-    return int(value)
-
-
 @dataclass(frozen=True)
 class RunLimits:
     """A run ends at the first of: ``n_cycles`` complete cycles (``n_cycles + 1``
@@ -102,11 +83,7 @@ class RunLimits:
         if self.n_cycles is not None:
             object.__setattr__(self, "n_cycles", check_count("n_cycles", self.n_cycles, MAX_CYCLES))
         if self.t_end is not None:
-            if isinstance(self.t_end, bool) or not isinstance(self.t_end, Real):
-                raise ParameterError("t_end", self.t_end, "a real number")
-            if not (math.isfinite(self.t_end) and self.t_end > 0):
-                raise ParameterError("t_end", self.t_end, "finite and > 0 (s)")
-            object.__setattr__(self, "t_end", float(self.t_end))
+            object.__setattr__(self, "t_end", real_number("t_end", self.t_end, lambda t: t > 0, "> 0 (s)"))
         if self.max_events is None:
             bound = DEFAULT_MAX_EVENTS_FOR_TIME
             if self.n_cycles is not None:

@@ -4,8 +4,16 @@ The model (Mao, Fu & Li 2013, Sec. 2-3 and Appendix A): a mass ``M`` on a spring
 ``K`` moves freely, ``x'' + omega**2 x = 0``, except at the impacts and over the impulse
 zones that :mod:`escapement.model.automaton` defines.
 
-Signs: ``a1 < 0 < a3`` (the jump set ``x * xdot < 0``); the symmetric default is
-``a3 = -a1`` and ``a4 = -a2``.
+Geometry. The impact at ``a1`` is met moving right, the one at ``a3`` moving left, and after each the
+force acts over its impulse zone, from ``a1`` to ``a2`` moving right and from ``a3`` to ``a4`` moving
+left: so ``a1 < a2`` and ``a4 < a3`` (the rules); the symmetric default is ``a3 = -a1`` and ``a4 = -a2``.
+The paper's geometry (its Fig. 2: ``a1 < a4 < a2 < a3``) has ``a1 < 0 < a3``: each impact is met moving
+towards the equilibrium, and this jump set, ``{x = a1, xdot > 0} U {x = a3, xdot < 0}``, is the paper's
+``S = {x in {a1, a3}, x * xdot < 0}``. The model reads the jump set by the direction of motion for any
+other placement of the four positions too: an impact at ``a1 >= 0`` or ``a3 <= 0`` is met moving away
+from the equilibrium or through it (``x * xdot >= 0``, outside the paper's ``S``), as in the
+escapement-error study's zone after the equilibrium (Airy's impulse after the dead point);
+:attr:`Parameters.paper_signs` says which.
 
 The rules on the parameters are written once, in :func:`rules`, and those on the initial state
 in :func:`state_rules`, on NumPy arrays: the scalar :class:`Parameters` and
@@ -46,10 +54,10 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from numbers import Real
 
 import numpy as np
 
+from .arguments import ParameterError, check_type, real_array, real_number
 from .quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS, REQUIRED_KEYS, SYMMETRIC_DEFAULTS, quantity
 
 __all__ = [
@@ -60,6 +68,7 @@ __all__ = [
     "ParameterError",
     "Parameters",
     "check_initial_state",
+    "check_parameters",
     "real_array",
     "rules",
     "state_rules",
@@ -77,45 +86,6 @@ SIGNS = {"M": "> 0", "K": "> 0", "F": ">= 0", "b": "in the open interval (0, 2)"
 
 _WHY = ("so that the squares and products the solvers form (omega**2 = K/M, F/K, v/omega, squared speeds, "
         "energies) stay normal float64 numbers")
-
-
-class ParameterError(ValueError):
-    """An input value is outside its allowed range; the message names it.
-
-    ``row`` is the index of the offending trajectory when the input is an array of them.
-
-    Parameters
-    ----------
-    name : str
-        The input's name (``"a2"``, ``"n_cycles"``, ...), kept as the attribute ``name``.
-    value : object
-        The refused value, as given (in the input's SI unit).
-    requirement : str
-        What the value must be, in words, with the unit.
-    row : int or None
-        The index of the offending trajectory for an array input (the ensemble), else None.
-
-    Examples
-    --------
-    >>> from escapement import ParameterError, Parameters
-    >>> try:
-    ...     Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=-0.2)
-    ... except ParameterError as err:
-    ...     print(err.name, err.value)
-    ...     print(err)
-    a2 -0.2
-    a2 = -0.2 is invalid: a2 must be > a1 = -0.1 (m)
-    >>> isinstance(ParameterError("b", 3.0, "in (0, 2)"), ValueError)
-    True
-    """
-
-    def __init__(self, name: str, value: object, requirement: str, row: int | None = None) -> None:
-        self.name = name
-        self.value = value
-        self.requirement = requirement
-        self.row = row
-        where = "" if row is None else f"row {row}: "
-        super().__init__(f"{where}{name} = {value!r} is invalid: {name} must be {requirement}")
 
 
 def _unit(name: str) -> str:
@@ -167,45 +137,6 @@ def state_rules(s: Mapping[str, np.ndarray]):
             yield _magnitude(name, s[name], zero=True)
 
 
-def _element(name: str, item: object, row: int | None) -> float:
-    """One element of an input as a float, or raise naming ``name`` (and the row)."""
-    if isinstance(item, bool | np.bool_) or not isinstance(item, Real):
-        raise ParameterError(name, item, "a real number", row=row)
-    try:
-        return float(item)
-    except OverflowError as err:
-        raise ParameterError(name, item, "a real number within the float64 range", row=row) from err
-
-
-def real_array(name: str, value: object) -> np.ndarray:
-    """``value`` (a real number or an array of them) as float64, or raise naming ``name`` (and,
-    for an array, the first bad element's flat index as the row).
-
-    Booleans, strings and other non-real elements are refused one by one (NumPy would turn
-    ``[0.1, True]`` into ``[0.1, 1.0]`` silently).
-    """
-    if isinstance(value, bool | np.bool_ | str | bytes):
-        raise ParameterError(name, value, "a real number")
-    if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
-        array = value.astype(np.float64)
-    elif isinstance(value, Real):
-        array = np.asarray(_element(name, value, None))
-    else:
-        try:
-            items = np.asarray(value, dtype=object)
-        except (TypeError, ValueError) as err:
-            raise ParameterError(name, value, "a real number or an array of them") from err
-        if items.ndim == 0:
-            return real_array(name, _element(name, items.item(), None))
-        flat = [_element(name, item, row) for row, item in enumerate(items.ravel())]  # one per element
-        array = np.asarray(flat, dtype=np.float64).reshape(items.shape)
-    bad = ~np.isfinite(array)
-    if bad.any():
-        row = int(np.flatnonzero(bad.ravel())[0]) if array.ndim else None
-        raise ParameterError(name, float(array.ravel()[row or 0]), "finite", row=row)
-    return array
-
-
 def _broadcast(checked: Mapping[str, np.ndarray], given: Mapping[str, object]) -> dict[str, np.ndarray]:
     """The arrays broadcast to one shape; the first that does not fit the ones before it is named."""
     shape: tuple[int, ...] = ()
@@ -240,16 +171,13 @@ def validate_arrays(values: Mapping[str, object], single: bool = False, state: b
     for key in names:
         if values.get(key) is None:
             raise ParameterError(key, None, "given")
-    checked = {name: real_array(name, values[name]) for name in REQUIRED_KEYS}
+    take = (lambda name, value: np.asarray(real_number(name, value))) if single else real_array
+    checked = {name: take(name, values[name]) for name in REQUIRED_KEYS}
     for name, mirror in SYMMETRIC_DEFAULTS.items():
-        checked[name] = -checked[mirror] if values.get(name) is None else real_array(name, values[name])
+        checked[name] = -checked[mirror] if values.get(name) is None else take(name, values[name])
     checked = {k: checked[k] for k in MODEL_KEYS}
     if state:
-        checked.update({name: real_array(name, values[name]) for name in INITIAL_STATE})
-    if single:
-        for name, array in checked.items():
-            if array.ndim:
-                raise ParameterError(name, values[name], "a single real number (use the ensemble for arrays)")
+        checked.update({name: take(name, values[name]) for name in INITIAL_STATE})
     shaped = _broadcast(checked, {k: values.get(k) for k in checked})
     _check(rules(shaped), shaped)
     if state:
@@ -334,6 +262,13 @@ class Parameters:
         return 2.0 * math.pi / self.omega
 
     @property
+    def paper_signs(self) -> bool:
+        """True for the paper's signs ``a1 < 0 < a3``: each impact met moving towards the equilibrium, on the
+        paper's jump set ``x * xdot < 0``; False where an impact is met at or after the equilibrium (the
+        model's jump set, by direction, then lies outside the paper's; see the module's docstring)."""
+        return self.a1 < 0.0 < self.a3
+
+    @property
     def symmetric(self) -> bool:
         """True for the paper's symmetric geometry a3 = -a1, a4 = -a2."""
         return self.a3 == -self.a1 and self.a4 == -self.a2
@@ -363,11 +298,12 @@ if Parameters.__doc__:  # None when docstrings are stripped (python -OO)
 
 def check_initial_state(x0: object, v0: object) -> tuple[float, float]:
     """Validate the initial displacement and velocity (:func:`state_rules`); return them as floats."""
-    state = {}
-    for name, value in zip(INITIAL_STATE, (x0, v0)):
-        array = real_array(name, value)
-        if array.ndim:
-            raise ParameterError(name, value, "a single real number")
-        state[name] = array
+    state = {name: np.asarray(real_number(name, value)) for name, value in zip(INITIAL_STATE, (x0, v0))}
     _check(state_rules(state), state)
     return float(state["x0"]), float(state["v0"])
+
+
+def check_parameters(params: object) -> Parameters:
+    """``params`` if it is a :class:`Parameters`, else raise :class:`~escapement.model.arguments.ParameterTypeError`
+    (a :class:`ParameterError` and a :class:`TypeError`) naming it: the first check of every solver."""
+    return check_type("params", params, Parameters, "an escapement.Parameters (make one with Parameters(M=..., ...))")

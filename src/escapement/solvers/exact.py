@@ -11,7 +11,7 @@ import numpy as np
 
 from ..model.events import EventLog
 from ..model.limits import RunLimits, check_flag
-from ..model.parameters import Parameters, check_initial_state
+from ..model.parameters import Parameters, check_initial_state, check_parameters
 from .kernel import Block, EventRun, cycle_rows, event_block
 from .outcomes import check_memory, finish
 from .result import ArcTable, CycleTable, Solution
@@ -83,7 +83,8 @@ def solve_exact(
     Raises
     ------
     TypeError
-        If ``params`` is not a :class:`~escapement.Parameters`.
+        If ``params`` is not a :class:`~escapement.Parameters` (a
+        :class:`~escapement.model.arguments.ParameterTypeError`, which is a :class:`ParameterError` too).
     ParameterError
         If ``x0``, ``v0`` or a limit is invalid (the message names it); a
         :class:`~escapement.model.limits.MemoryBudgetError` if the run would exceed ``memory_budget``.
@@ -108,8 +109,7 @@ def solve_exact(
     >>> solve_exact(p, x0=0.01, n_cycles=5).status
     <Status.STOPPED: 'stopped'>
     """
-    if not isinstance(params, Parameters):
-        raise TypeError("params must be an escapement.Parameters")
+    params = check_parameters(params)
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
     record_trajectory = check_flag("record_trajectory", record_trajectory)

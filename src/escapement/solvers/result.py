@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
+from ..model.arguments import ParameterError, check_choice, check_index, sample_times
 from ..model.events import EventLog
 from ..model.kinematics import sample_arcs
 from ..model.parameters import Parameters
@@ -67,7 +68,9 @@ class ArcTable:
         return arc_table_summary(self)
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Displacement, velocity and smooth acceleration at times ``t`` (NaN outside [0, t_final])."""
+        """Displacement, velocity and smooth acceleration at times ``t`` (NaN outside [0, t_final]); ``t`` is
+        checked as :meth:`Solution.sample` says."""
+        t = sample_times("t", t)
         if len(self.t_start) == 0:
             nan = np.full(np.shape(t), np.nan)
             return nan, nan.copy(), nan.copy()
@@ -227,10 +230,17 @@ class Solution:
         return solution_summary(self, kept)
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Displacement [m], velocity [m/s] and acceleration [m/s^2] at times ``t`` [s]."""
+        """Displacement [m], velocity [m/s] and acceleration [m/s^2] at times ``t`` [s] (NaN outside
+        ``[0, t_final]``), each of the shape of ``t``.
+
+        ``t`` is a real number or a 1-d array of them, finite
+        (:func:`~escapement.model.arguments.sample_times`); anything else, and a run that kept no
+        trajectory, raises :class:`~escapement.ParameterError` naming it."""
+        times = sample_times("t", t)
         if self.trajectory is None:
-            raise ValueError("this run kept no trajectory; solve again with record_trajectory=True")
-        return self.trajectory.sample(np.asarray(t, dtype=float))
+            raise ParameterError("record_trajectory", False, "True in the solve that made this run, to sample "
+                                 "its trajectory (this run kept none: solve again with record_trajectory=True)")
+        return self.trajectory.sample(times)
 
     def to_dataframe(self, table: str = "cycles") -> pd.DataFrame:
         """The run's cycles or events as a :class:`pandas.DataFrame`.
@@ -258,8 +268,8 @@ class Solution:
 
         Raises
         ------
-        ValueError
-            If ``table`` is neither ``"cycles"`` nor ``"events"``.
+        ParameterError
+            If ``table`` is neither ``"cycles"`` nor ``"events"`` (a :class:`ValueError`).
 
         Examples
         --------
@@ -274,16 +284,15 @@ class Solution:
         """
         import pandas as pd  # imported on use: a job that only solves does not load it
 
+        table = check_choice("table", table, ("cycles", "events"))
         if table == "cycles":
             index = pd.Index(self.cycles.cycle, name="cycle")
             columns = {name: (getattr(self.cycles, name), units, long_name)
                        for name, (units, long_name) in CYCLE_COLUMNS.items()}
-        elif table == "events":
+        else:  # "events", the one choice left by check_choice
             index = pd.RangeIndex(len(self.events), name="event")
             columns = {name: (getattr(self.events, field), units, long_name)
                        for name, (field, units, long_name) in EVENT_COLUMNS.items()}
-        else:
-            raise ValueError(f"table = {table!r} is invalid: table must be one of 'cycles', 'events'")
         frame = pd.DataFrame({name: np.asarray(values, dtype=np.int8 if name == "event_kind" else float)
                               for name, (values, _, _) in columns.items()}, index=index)
         frame.attrs["units"] = {name: units for name, (_, units, _) in columns.items() if units is not None}
@@ -343,8 +352,8 @@ class EnsembleSolution:
         return self.status == Status.COMPLETED.code
 
     def outcome(self, i: int) -> Status:
-        """The outcome of trajectory ``i``."""
-        return Status.from_code(int(self.status[i]))
+        """The outcome of trajectory ``i``, an integer in ``[0, N)`` (else :class:`~escapement.ParameterError`)."""
+        return Status.from_code(int(self.status[check_index("i", i, len(self.status))]))
 
     def __repr__(self) -> str:
         return ensemble_summary(self)

@@ -1,0 +1,205 @@
+"""The checks of every argument of the public entry points: one rule per kind of argument, one error.
+
+The solvers (:func:`~escapement.solve_exact`, :func:`~escapement.solve_ensemble`, the integrators), the
+parameters (:class:`~escapement.Parameters`) and the methods of the results (``Solution.sample``,
+``Solution.to_dataframe``, ``EnsembleSolution.outcome``) check each argument here, before any work, and
+refuse a bad one with a :class:`ParameterError` that names the argument, its value as given and what it
+must be. The kinds:
+
+* :func:`real_number`: a single real number (a Python or NumPy int or float, a fraction), finite. A bool,
+  a string, a complex number, ``None``, a masked value and an array of any dimension (0-d included) or a
+  sequence are refused: a scalar argument takes a plain number;
+* :func:`real_array`: a real number or an array-like of them, of any shape (the ensemble's inputs), finite.
+  Booleans, strings, complex numbers and other objects are refused element by element (NumPy would turn
+  ``[0.1, True]`` into ``[0.1, 1.0]`` or ``["1.0"]`` into ``[1.0]`` silently), and so is a masked element
+  (its value is not data: a masked array is taken only where nothing is masked), naming the first bad
+  element's flat index as the row;
+* :func:`sample_times`: times, a real number or a 1-d array of them, finite;
+* :func:`check_flag`, :func:`check_count`, :func:`check_index`, :func:`check_choice` and
+  :func:`check_type`: a yes or a no, a count, a row of an ensemble, a name from a list (a method, a table),
+  an object of a given class (:class:`ParameterTypeError`, also a :class:`TypeError`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable
+from numbers import Integral, Real
+
+import numpy as np
+
+__all__ = [
+    "ParameterError",
+    "ParameterTypeError",
+    "check_choice",
+    "check_count",
+    "check_flag",
+    "check_index",
+    "check_type",
+    "real_array",
+    "real_number",
+    "sample_times",
+]
+
+_MASKED = "a real number, not a masked element (it holds no value)"
+
+
+class ParameterError(ValueError):
+    """An input value is outside its allowed range; the message names it.
+
+    ``row`` is the index of the offending trajectory when the input is an array of them.
+
+    Parameters
+    ----------
+    name : str
+        The input's name (``"a2"``, ``"n_cycles"``, ...), kept as the attribute ``name``.
+    value : object
+        The refused value, as given (in the input's SI unit).
+    requirement : str
+        What the value must be, in words, with the unit.
+    row : int or None
+        The index of the offending trajectory for an array input (the ensemble), else None.
+
+    Examples
+    --------
+    >>> from escapement import ParameterError, Parameters
+    >>> try:
+    ...     Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=-0.2)
+    ... except ParameterError as err:
+    ...     print(err.name, err.value)
+    ...     print(err)
+    a2 -0.2
+    a2 = -0.2 is invalid: a2 must be > a1 = -0.1 (m)
+    >>> isinstance(ParameterError("b", 3.0, "in (0, 2)"), ValueError)
+    True
+    """
+
+    def __init__(self, name: str, value: object, requirement: str, row: int | None = None) -> None:
+        self.name = name
+        self.value = value
+        self.requirement = requirement
+        self.row = row
+        where = "" if row is None else f"row {row}: "
+        super().__init__(f"{where}{name} = {value!r} is invalid: {name} must be {requirement}")
+
+
+class ParameterTypeError(ParameterError, TypeError):
+    """An argument of the wrong class (``params`` not a :class:`~escapement.Parameters`): a
+    :class:`ParameterError` of the same shape that is also a :class:`TypeError`."""
+
+
+def _refuse_masked(name: str, value: object) -> object:
+    """``value`` without its mask if nothing in it is masked, else raise naming the first masked element."""
+    if not isinstance(value, np.ma.MaskedArray):
+        return value
+    mask = np.ma.getmaskarray(value)
+    if mask.any():
+        if mask.ndim == 0:
+            raise ParameterError(name, value, _MASKED)
+        raise ParameterError(name, np.ma.masked, _MASKED, row=int(np.flatnonzero(mask.ravel())[0]))
+    return np.asarray(value.data)
+
+
+def _element(name: str, item: object, row: int | None) -> float:
+    """One real number as a float, or raise naming ``name`` (and the row)."""
+    if item is np.ma.masked:
+        raise ParameterError(name, item, _MASKED, row=row)
+    if isinstance(item, bool | np.bool_) or not isinstance(item, Real):
+        raise ParameterError(name, item, "a real number", row=row)
+    try:
+        return float(item)
+    except OverflowError as err:
+        raise ParameterError(name, item, "a real number within the float64 range", row=row) from err
+
+
+def real_number(name: str, value: object, holds: Callable[[float], bool] | None = None,
+                requirement: str = "") -> float:
+    """``value`` as a float if it is a single finite real number and, when given, ``holds(value)``; else
+    raise :class:`ParameterError` naming ``name`` (``requirement`` says what ``holds`` asks)."""
+    if isinstance(_refuse_masked(name, value), np.ndarray | list | tuple):
+        raise ParameterError(name, value, "a single real number, not an array or a sequence")
+    number = _element(name, value, None)
+    if not math.isfinite(number):
+        raise ParameterError(name, value, "finite")
+    if holds is not None and not holds(number):
+        raise ParameterError(name, value, requirement)
+    return number
+
+
+def real_array(name: str, value: object) -> np.ndarray:
+    """``value`` (a real number or an array-like of them, any shape) as float64, or raise naming ``name``
+    (and, for an array, the first bad element's flat index as the row)."""
+    if isinstance(value, bool | np.bool_ | str | bytes):
+        raise ParameterError(name, value, "a real number")
+    value = _refuse_masked(name, value)
+    if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
+        with np.errstate(over="ignore"):  # a long double beyond float64 becomes inf: refused as not finite
+            array = value.astype(np.float64)
+    elif isinstance(value, Real):
+        array = np.asarray(_element(name, value, None))
+    else:
+        try:
+            items = np.asarray(value, dtype=object)
+        except (TypeError, ValueError) as err:
+            raise ParameterError(name, value, "a real number or an array of them") from err
+        if items.ndim == 0:
+            return real_array(name, _element(name, items.item(), None))
+        flat = [_element(name, item, row) for row, item in enumerate(items.ravel())]  # one per element
+        array = np.asarray(flat, dtype=np.float64).reshape(items.shape)
+    bad = ~np.isfinite(array)
+    if bad.any():
+        row = int(np.flatnonzero(bad.ravel())[0]) if array.ndim else None
+        raise ParameterError(name, float(array.ravel()[row or 0]), "finite", row=row)
+    return array
+
+
+def sample_times(name: str, value: object) -> np.ndarray:
+    """Times to sample a trajectory at: a real number or a 1-d array of them, finite (s), as float64 (0-d
+    for a number); else raise naming ``name``."""
+    if value is None:
+        raise ParameterError(name, value, "a real number or a 1-d array of them (s)")
+    times = real_array(name, value)
+    if times.ndim > 1:
+        raise ParameterError(name, value, f"a real number or a 1-d array of them (s), not of shape {times.shape}")
+    return times
+
+
+def check_flag(name: str, value: object) -> bool:
+    """``value`` as a bool if it is ``True`` or ``False`` (a NumPy bool too), else raise :class:`ParameterError`
+    naming ``name``: a string such as ``"no"`` or a number is not taken for a yes or a no."""
+    if not isinstance(value, bool | np.bool_):
+        raise ParameterError(name, value, "True or False")
+    return bool(value)
+
+
+def check_count(name: str, value: object, maximum: int, minimum: int = 1) -> int:
+    """``value`` as an int if it is an integer in ``[minimum, maximum]`` (a bool is not), else
+    raise :class:`ParameterError` naming ``name``."""
+    if isinstance(value, bool | np.bool_) or not isinstance(value, Integral) or not minimum <= value <= maximum:
+        least = "a positive integer" if minimum == 1 else f"an integer >= {minimum:_}"
+        raise ParameterError(name, value, f"{least}, at most {maximum:_}")
+    return int(value)
+
+
+def check_index(name: str, value: object, size: int) -> int:
+    """``value`` as an int if it is an integer in ``[0, size)`` (a row of an ensemble of ``size``; a bool
+    is not one, nor a negative index), else raise :class:`ParameterError` naming ``name``."""
+    if isinstance(value, bool | np.bool_) or not isinstance(value, Integral) or not 0 <= value < size:
+        raise ParameterError(name, value, f"an integer in [0, {size - 1}], a row of the {size} trajectories"
+                             if size else "a row of the trajectories, and there are none")
+    return int(value)
+
+
+def check_choice(name: str, value: object, choices: Iterable[str]) -> str:
+    """``value`` if it is one of the strings ``choices``, else raise :class:`ParameterError` naming ``name``."""
+    choices = tuple(choices)
+    if not isinstance(value, str) or value not in choices:
+        raise ParameterError(name, value, "one of " + ", ".join(repr(c) for c in choices))
+    return value
+
+
+def check_type(name: str, value: object, kind: type, requirement: str):
+    """``value`` if it is an instance of ``kind``, else raise :class:`ParameterTypeError` naming ``name``."""
+    if not isinstance(value, kind):
+        raise ParameterTypeError(name, value, requirement)
+    return value
