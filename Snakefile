@@ -3,13 +3,15 @@
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import min_version
 
-from escapement.pipeline.config import ConfigError, check_config_file
+from escapement.pipeline.config_files import ConfigError, check_config_files
 
 min_version("8.0")
 
-# Snakemake's loader names neither the line of a YAML error nor a key given twice.
+# Snakemake's loader names neither the line of a YAML error nor a key given twice: every
+# configuration file, each given with --configfile (workflow.configfiles, which Snakemake has read
+# already) and the default one, is read again strictly, before any of them is used.
 try:
-    check_config_file("config/config.yaml")
+    check_config_files([*workflow.configfiles, "config/config.yaml"])
 except ConfigError as err:
     raise WorkflowError(str(err)) from None
 

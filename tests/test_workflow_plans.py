@@ -19,7 +19,7 @@ from workflow_copies import copy_repository, edit_config, loaded_files, planned_
     "edit, words",
     [
         (lambda c: c["model"].update(M=0.0), ["model.M = 0.0 is invalid: M must be a number > 0 (kg)"]),
-        (lambda c: c["fig4"].update(colour="red"), ["fig4: unknown key 'colour'"]),
+        (lambda c: c["fig4"].update(colour="red"), ["fig4.colour = 'red' is invalid: colour is not a key of fig4"]),
         (lambda c: c["fig5"].update(K=[1.0, 1.0000001, 10.0]), ["would both write K_1.nc"]),
     ],
 )

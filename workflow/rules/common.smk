@@ -6,10 +6,14 @@ from snakemake.utils import validate
 from escapement.pipeline import config as scenes
 from escapement.pipeline.code_inputs import code_inputs
 from escapement.pipeline.config import ConfigError, check_config
+from escapement.pipeline.config_files import apply_config_overrides
 
-# The package's check first, for one clear line naming the key (the schema, the rules a schema
-# cannot state, every scene's parameters); then Snakemake's own validation against the schema.
+# A nested --config value (fig3="{n_cycles: 40}") is read by Snakemake with every scalar as text:
+# read again as YAML, it has the types a configuration file would give it. Then the package's
+# check, for one clear line naming the key (the schema, the rules a schema cannot state, every
+# scene's parameters); then Snakemake's own validation against the schema.
 try:
+    apply_config_overrides(config, workflow.config_settings.config_args, workflow.config_settings.config)
     check_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
 except ConfigError as err:
     raise WorkflowError(str(err)) from None

@@ -1,9 +1,11 @@
 """The workflow's configuration: checked in one place, and each scene built from it.
 
 :func:`config_error` (and :func:`check_config`, which raises it) gives one clear line for the
-first problem: a violation of the JSON schema (draft 2020-12, whose ``description`` says what a
-value must be), a cross-field rule, or a scene whose parameters do not make a valid model, e.g.
-``model.M = 0.0 is invalid: M must be a number > 0 (kg)``.
+first problem: a violation of the JSON schema (draft 2020-12, put in words by
+:mod:`escapement.pipeline.config_schema`), a cross-field rule, or a scene whose parameters do not
+make a valid model, e.g. ``model.M = 0.0 is invalid: M must be a number > 0 (kg)``. The files the
+configuration is read from, and the nested values of ``--config``, are read strictly by
+:mod:`escapement.pipeline.config_files`.
 
 The other functions build what each rule runs from the configuration, as plain sorted dicts
 (so that reordering the file does not make Snakemake see changed params): the common ``model``
@@ -16,10 +18,10 @@ from collections.abc import Mapping
 from pathlib import Path
 
 import yaml
-from jsonschema import Draft202012Validator
-from jsonschema.exceptions import best_match
 
 from ..model.parameters import ParameterError, Parameters, check_initial_state
+from .config_files import ConfigError, check_config_file
+from .config_schema import schema_error
 
 __all__ = [
     "ConfigError",
@@ -39,15 +41,12 @@ __all__ = [
     "fig5_scene",
     "long_run_scene",
     "scenes",
+    "schema_error",
     "stability_axes",
     "stability_chunk",
     "stability_chunks",
     "stability_model",
 ]
-
-
-class ConfigError(ValueError):
-    """The configuration is invalid; the message is one line that names the key."""
 
 
 # ---------------------------------------------------------------------------------------------
@@ -226,41 +225,6 @@ def scenes(config: Mapping) -> dict[str, dict]:
 # Checks
 
 
-def _where(parts) -> str:
-    return ".".join(str(p) for p in parts) or "the configuration"
-
-
-def _allowed_keys(schema: Mapping, root: Mapping) -> list[str]:
-    """The property names a schema allows, following a local ``$ref`` (``#/...``)."""
-    keys = set(schema.get("properties", {}))
-    ref = schema.get("$ref")
-    if ref and ref.startswith("#/"):
-        target = root
-        for part in ref[2:].split("/"):
-            target = target[part]
-        keys |= set(target.get("properties", {}))
-    return sorted(keys)
-
-
-def schema_error(config: Mapping, schema: Mapping) -> str | None:
-    """The message for the most relevant violation of ``schema``, or None if there is none."""
-    error = best_match(Draft202012Validator(schema).iter_errors(dict(config)))
-    if error is None:
-        return None
-    where = _where(error.absolute_path)
-    names = [p for p in error.absolute_path if isinstance(p, str)]
-    name = names[-1] if names else where
-    if error.validator == "required":
-        missing = [key for key in error.validator_value if key not in error.instance]
-        return f"{where}: the key {missing[0]!r} is missing: it must be given"
-    if error.validator in ("additionalProperties", "unevaluatedProperties"):
-        allowed = _allowed_keys(error.schema, schema)
-        unknown = sorted(set(error.instance) - set(allowed))
-        return f"{where}: unknown key {unknown[0]!r}; the keys allowed here are {', '.join(allowed)}"
-    requirement = error.schema.get("description", error.message)
-    return f"{where} = {error.instance!r} is invalid: {name} must be {requirement}"
-
-
 #: the most samples a sampled time series may hold (three float64 arrays: 240 MB)
 MAX_SAMPLES = 10_000_000
 
@@ -310,41 +274,6 @@ def _scene_error(config: Mapping) -> str | None:
         except ParameterError as err:
             return f"{where}: {err}"
     return None
-
-
-class _UniqueKeyLoader(yaml.SafeLoader):
-    """YAML's safe loader, refusing a key given twice in one mapping (PyYAML keeps the last
-    silently, which would drop a value the user wrote)."""
-
-    def construct_mapping(self, node, deep=False):
-        seen: dict = {}
-        for key_node, _ in node.value:
-            key = self.construct_object(key_node, deep=deep)
-            if key in seen:
-                raise yaml.constructor.ConstructorError(
-                    None, None, f"the key {key!r} is given twice (first on line {seen[key] + 1})", key_node.start_mark
-                )
-            seen[key] = key_node.start_mark.line
-        return super().construct_mapping(node, deep=deep)
-
-
-def check_config_file(path: str | Path) -> None:
-    """Raise :class:`ConfigError` naming the file, line and column if ``path`` is not valid YAML
-    or gives a key twice in one mapping; Snakemake's own loader says neither."""
-    path = Path(path)
-    try:
-        text = path.read_text()
-    except OSError as err:
-        raise ConfigError(f"{path}: cannot read the configuration ({err.strerror})") from None
-    try:
-        yaml.load(text, Loader=_UniqueKeyLoader)
-    except yaml.MarkedYAMLError as err:
-        mark = err.problem_mark or err.context_mark
-        where = "" if mark is None else f", line {mark.line + 1}, column {mark.column + 1}"
-        context = ""
-        if err.context and err.context_mark is not None and err.context_mark is not mark:
-            context = f" ({err.context} that starts on line {err.context_mark.line + 1})"
-        raise ConfigError(f"{path}{where}: not valid YAML: {err.problem}{context}") from None
 
 
 def _load(schema: Mapping | str | Path) -> Mapping:
