@@ -7,7 +7,8 @@ choose the format from it), so that a later write of the same target, or
 :func:`remove_stale_temporaries`, removes those whose writer no longer runs.
 
 A failed write raises :class:`WriteError` (an :class:`OSError`) naming the target and the cause:
-no space left on device, permission denied, read-only file system.
+no space left on device, permission denied, read-only file system. :func:`check_target` finds,
+before any work, whether a target can be written where it is named, its directory already made.
 """
 
 from __future__ import annotations
@@ -19,12 +20,13 @@ import glob
 import os
 import re
 import socket
+import stat
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 from typing import NoReturn
 
-__all__ = ["WriteError", "atomic_path", "remove_stale_temporaries", "write_csv", "write_failure"]
+__all__ = ["WriteError", "atomic_path", "check_target", "remove_stale_temporaries", "write_csv", "write_failure"]
 
 #: the random part of a temporary's name, as :func:`tempfile.mkstemp` makes it
 _RANDOM = r"[a-z0-9_]{8}"
@@ -202,6 +204,56 @@ def _remove_temporary(tmp: Path, err: BaseException) -> None:
         err.add_note(f"the temporary {tmp} could not be removed: {cleanup}")
 
 
+def _make_temporary(path: Path) -> Path:
+    """Make the empty temporary of ``path`` in its directory; raise :class:`WriteError` if it cannot be."""
+    try:
+        fd, name = tempfile.mkstemp(
+            prefix=f".{path.name}.{_host()}-{os.getpid()}.", suffix=f".partial{_suffix(path)}", dir=path.parent
+        )
+    except OSError as err:
+        _raise_write_failure(path, err)
+    os.close(fd)
+    return Path(name)
+
+
+def _mode(entry: Path, path: Path) -> int | None:
+    """The file mode of ``entry`` (symbolic links followed), None if it does not exist; a failure to look
+    raises :class:`WriteError` naming ``path``, the target."""
+    try:
+        return os.stat(entry).st_mode
+    except FileNotFoundError:
+        return None
+    except NotADirectoryError as err:  # a component above it is a file
+        raise WriteError(errno.ENOTDIR, f"a component of {entry} is not a directory", str(path)) from err
+    except PermissionError as err:
+        raise WriteError(errno.EACCES, f"permission denied (in {entry.parent})", str(path)) from err
+    except OSError as err:  # a name too long, a loop of symbolic links
+        if err.errno not in (errno.ENAMETOOLONG, errno.ELOOP):
+            raise
+        raise WriteError(err.errno, os.strerror(err.errno).lower(), str(path)) from err
+
+
+def check_target(path: str | os.PathLike) -> None:
+    """Raise :class:`WriteError` naming ``path`` and the cause if :func:`atomic_path` could not write it
+    in its directory as it stands: the directory does not exist (unlike :func:`atomic_path`, this makes
+    none), is not a directory, cannot be searched; a file cannot be made in it (permission denied,
+    read-only file system, the temporary's name too long for it); the target is a directory or other
+    than a regular file. Nothing is left behind: the probe is an empty temporary, removed at once."""
+    path = Path(path)
+    directory = path.parent
+    mode = _mode(directory, path)
+    if mode is None:
+        raise WriteError(errno.ENOENT, f"the directory {directory} does not exist", str(path))
+    if not stat.S_ISDIR(mode):
+        raise WriteError(errno.ENOTDIR, f"{directory} is not a directory", str(path))
+    mode = _mode(path, path)
+    if mode is not None and stat.S_ISDIR(mode):
+        raise WriteError(errno.EISDIR, "it is a directory", str(path))
+    if mode is not None and not stat.S_ISREG(mode):
+        raise WriteError(errno.EINVAL, "it exists and is not a regular file (a device, pipe or socket)", str(path))
+    _make_temporary(path).unlink()
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     """Yield a temporary path to write; on success it replaces ``path`` (with the umask's
@@ -216,14 +268,7 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     except OSError as err:
         _raise_write_failure(path, err)
     _remove_stale_of(path)  # an error names the temporary it could not remove
-    try:
-        fd, name = tempfile.mkstemp(
-            prefix=f".{path.name}.{_host()}-{os.getpid()}.", suffix=f".partial{_suffix(path)}", dir=path.parent
-        )
-    except OSError as err:
-        _raise_write_failure(path, err)
-    os.close(fd)
-    tmp = Path(name)
+    tmp = _make_temporary(path)
     try:
         try:
             yield tmp
