@@ -5,6 +5,7 @@ import pytest
 from hypothesis import assume, given
 from strategies import initial_displacement, initial_velocity, parameters
 
+from escapement.model.arguments import ParameterTypeError
 from escapement.model.events import EventKind
 from escapement.model.parameters import ParameterError, Parameters
 from escapement.model.status import Status
@@ -142,3 +143,33 @@ def test_a_method_outside_the_list_is_refused_naming_it(method):
 def test_a_trajectory_flag_that_is_not_a_bool_is_refused(flag):
     with pytest.raises(ParameterError, match=r"^record_trajectory = .* is invalid: record_trajectory must be True or False"):
         solve_reference(Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=1, record_trajectory=flag)
+
+
+@pytest.mark.parametrize(("name", "value", "requirement"), [
+    ("method", "dop853", "one of 'RK23'"), ("method", None, "one of 'RK23'"), ("method", 853, "one of 'RK23'"),
+    ("rtol", "1e-6", "a real number"), ("rtol", np.array(1e-6), "a single real number"), ("rtol", 1.0, "in the open"),
+    ("rtol", True, "a real number"), ("rtol", np.ma.masked, "a real number, not a masked element"),
+    ("atol", -1e-9, "> 0 (m)"), ("atol", 0.0, "> 0 (m)"), ("atol", "x", "a real number"), ("atol", [1e-9], "a single"),
+    ("record_trajectory", "no", "True or False"),
+])
+def test_the_reference_solvers_arguments_are_refused_naming_them(case_a, name, value, requirement):
+    with pytest.raises(ParameterError) as err:
+        solve_reference(case_a, 1.0, n_cycles=1, **{name: value})
+    assert err.value.name == name and err.value.value is value and err.value.requirement.startswith(requirement)
+
+
+def test_a_numpy_tolerance_is_a_real_number(case_a):
+    run = solve_reference(case_a, 1.0, n_cycles=1, rtol=np.float32(1e-9), atol=np.float64(1e-12),
+                          record_trajectory=False)
+    assert run.status.value == "completed"
+
+
+@pytest.mark.parametrize("solver", ["solve_exact", "solve_reference", "solve_naive", "solve_high_precision"])
+@pytest.mark.parametrize("params", [None, {"M": 1.0}, Parameters], ids=["None", "dict", "class"])
+def test_every_solver_names_params_that_are_not_parameters(solver, params):
+    import escapement
+
+    extra = {"step": 0.01} if solver == "solve_naive" else {}
+    with pytest.raises(ParameterTypeError) as err:
+        getattr(escapement, solver)(params, 1.0, n_cycles=1, **extra)
+    assert isinstance(err.value, TypeError) and (err.value.name, err.value.value) == ("params", params)

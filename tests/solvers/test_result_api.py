@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import math
 import subprocess
 import sys
 
@@ -10,7 +11,16 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from escapement import EventKind, Parameters, Status, solve_ensemble, solve_exact, solve_high_precision
+from escapement import (
+    EventKind,
+    ParameterError,
+    Parameters,
+    Status,
+    solve_ensemble,
+    solve_exact,
+    solve_high_precision,
+    solve_reference,
+)
 
 
 @pytest.fixture(scope="module")
@@ -143,3 +153,84 @@ def test_an_unknown_table_is_refused_by_name(run50):
 def test_a_stopped_run_gives_empty_tables(stopped):
     assert stopped.status is Status.STOPPED
     assert stopped.to_dataframe("cycles").empty and stopped.to_dataframe("events").empty
+
+
+# --- the arguments of the result's methods ---------------------------------------------------------
+
+#: times that are not real finite numbers in a scalar or a 1-d array, each with its flat index (None for a
+#: scalar) and the start of the requirement it meets
+BAD_TIMES = [
+    (None, None, "a real number or a 1-d array"),
+    ("abc", None, "a real number"),
+    ("1.0", None, "a real number"),
+    (True, None, "a real number"),
+    ([True], 0, "a real number"),
+    ([0.0, np.bool_(True)], 1, "a real number"),
+    (["1.0"], 0, "a real number"),
+    ([1.0, None], 1, "a real number"),
+    (np.ma.masked, None, "a real number, not a masked element"),
+    (np.ma.array([1.0, 2.0, 3.0], mask=[False, True, False]), 1, "a real number, not a masked element"),
+    (1.0 + 0j, None, "a real number"),
+    (np.array([1.0, 2.0], dtype=complex), 0, "a real number"),
+    (math.nan, None, "finite"),
+    ([0.0, math.inf], 1, "finite"),
+    (np.array([[0.0, 1.0]]), None, "a real number or a 1-d array of them (s), not of shape (1, 2)"),
+    ([[0.5]], None, "a real number or a 1-d array of them (s), not of shape (1, 1)"),
+    ({"t": 1.0}, None, "a real number"),
+]
+
+
+@pytest.mark.parametrize(("t", "row", "requirement"), BAD_TIMES, ids=[str(i) for i in range(len(BAD_TIMES))])
+def test_sample_times_are_real_finite_numbers_in_a_scalar_or_a_1d_array(run50, t, row, requirement):
+    with pytest.raises(ParameterError) as err:
+        run50.sample(t)
+    assert (err.value.name, err.value.row) == ("t", row) and err.value.requirement.startswith(requirement)
+    with pytest.raises(ParameterError):  # the trajectory's own sample too
+        run50.trajectory.sample(t)
+
+
+@pytest.mark.parametrize("t", [BAD_TIMES[i][0] for i in (1, 5, 8, 12)], ids=["str", "bool", "masked", "nan"])
+def test_the_reference_solvers_dense_output_refuses_the_same_times(t):
+    run = solve_reference(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=1)
+    with pytest.raises(ParameterError) as err:
+        run.sample(t)
+    assert err.value.name == "t"
+
+
+@pytest.mark.parametrize(("t", "shape"), [(1.0, ()), (1, ()), (np.float32(1.0), ()), ([1.0], (1,)), ([0, 1], (2,)),
+                                          (np.arange(3) / 2, (3,)), ([], (0,)), (np.ma.array([1.0], mask=False), (1,))])
+def test_sample_takes_real_times_of_every_plain_kind(run50, t, shape):
+    """Before the first impact (at 1.47 s) the release from 1 m at rest swings as x = cos t, v = -sin t (K = M = 1)."""
+    x, v, a = run50.sample(t)
+    assert x.shape == v.shape == a.shape == shape
+    times = np.asarray(t, dtype=float)
+    np.testing.assert_allclose(x, np.cos(times), rtol=1e-14)
+    np.testing.assert_allclose(v, -np.sin(times), rtol=1e-14, atol=1e-15)
+
+
+def test_sampling_a_run_that_kept_no_trajectory_names_record_trajectory_after_the_times():
+    run = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=2,
+                      record_trajectory=False)
+    with pytest.raises(ParameterError) as err:
+        run.sample([0.5])
+    assert (err.value.name, err.value.value) == ("record_trajectory", False)
+    with pytest.raises(ParameterError) as err:
+        run.sample("0.5")
+    assert err.value.name == "t"
+
+
+@pytest.mark.parametrize("table", ["Cycles", "event", ["cycles"], None, 0, b"events"])
+def test_to_dataframe_names_a_table_it_does_not_have(run50, table):
+    with pytest.raises(ParameterError) as err:
+        run50.to_dataframe(table)
+    assert (err.value.name, err.value.requirement) == ("table", "one of 'cycles', 'events'")
+    assert err.value.value is table
+
+
+@pytest.mark.parametrize("i", [-1, 2, 1.0, "0", True, None, np.array(0)])
+def test_an_ensemble_outcome_is_asked_by_its_row(i):
+    runs = solve_ensemble(M=1.0, K=1.0, F=[0.5, 1.0], b=0.1, a1=-0.1, a2=0.05, n_cycles=2)
+    with pytest.raises(ParameterError) as err:
+        runs.outcome(i)
+    assert err.value.name == "i" and err.value.requirement.startswith("an integer in [0, 1]")
+    assert runs.outcome(np.int64(1)) == Status.COMPLETED
