@@ -181,7 +181,7 @@ def _sizes(estimate: int, budget: int) -> str:
     """``estimate`` bytes over the ``budget``, in bytes and, for sizes of 10 MB or more, in GB (with
     the digits that tell the two apart)."""
     if budget < 10**7:
-        return f"{estimate:_} bytes, over the memory budget of {budget:_} bytes"
+        return f"{estimate:_} bytes, over the memory budget of {budget:_} byte{'' if budget == 1 else 's'}"
     estimate_gb, budget_gb = texts([estimate / 1e9, budget / 1e9], 3)
     return f"{estimate:_} bytes ({estimate_gb} GB), over the memory budget of {budget:_} bytes ({budget_gb} GB)"
 

@@ -1,0 +1,203 @@
+"""Every number a message or a summary prints is true as printed: an input reads back as itself, a
+computed value compares with its bounds and its neighbours as it does, no zero has a sign, and a
+memory budget too small for any run is named as the budget."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from escapement import Parameters, solve_ensemble, solve_exact, solve_reference
+from escapement.model.limits import MemoryBudgetError
+from escapement.solvers.cycles import solve_cycles
+from escapement.solvers.describe import compared, exact, texts
+from escapement.solvers.outcomes import stopped_message, turned_back_message
+from escapement.solvers.result import ArcTable
+
+#: a number printed with a minus sign and nothing but zeros: -0, -0.0, -0.000
+NEGATIVE_ZERO = re.compile(r"(?<![\w.])-0(?:\.0*)?(?![\w.])")
+finite = st.floats(allow_nan=False, allow_infinity=False)
+
+
+def order(x: float, y: float) -> int:
+    return (x > y) - (x < y)
+
+
+def test_the_pattern_finds_a_negative_zero_and_nothing_else():
+    assert NEGATIVE_ZERO.search("t = -0 s") and NEGATIVE_ZERO.search("x = -0.0 m,")
+    assert not any(NEGATIVE_ZERO.search(text) for text in ("x = -0.01 m", "-0.5", "a1 = -0.1", "t = 0 s", "1e-05"))
+
+
+@given(finite)
+def test_an_input_prints_as_text_that_reads_back_as_itself(x):
+    text = exact(x)
+    assert float(text) == x and not NEGATIVE_ZERO.search(text)
+
+
+@pytest.mark.parametrize("value, text", [
+    (1.999999, "1.999999"), (2 - 4.4e-16, "1.9999999999999996"), (1 + 2**-52, "1.0000000000000002"),
+    (-0.0, "0"), (1.0, "1"), (-0.1, "-0.1"), (1 / 3, "0.3333333333333333"), (1e22, "1e+22"),
+])
+def test_an_input_prints_as_it_is_typed(value, text):
+    assert exact(value) == text
+
+
+@given(st.lists(finite, min_size=1, max_size=5), st.integers(1, 12))
+def test_computed_values_print_in_their_order(values, digits):
+    printed = texts(values, digits)
+    read = [float(t) for t in printed]
+    for i in range(len(values)):
+        assert not NEGATIVE_ZERO.search(printed[i])
+        for j in range(len(values)):
+            assert order(read[i], read[j]) == order(values[i], values[j]), (values, printed)
+
+
+@given(finite, st.lists(finite, min_size=1, max_size=3), st.integers(1, 12))
+def test_a_value_prints_on_its_side_of_every_bound(value, bounds, digits):
+    read = float(compared(value, bounds, digits))
+    assert all(order(read, b) == order(value, b) for b in bounds), (value, bounds)
+
+
+def test_a_value_equal_to_its_bound_prints_as_the_bound():
+    assert compared(0.1, [0.1]) == "0.1" and compared(2 / 3, [2 / 3], digits=6) == exact(2 / 3)
+
+
+def params(**changes) -> Parameters:
+    return Parameters(**{"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, **changes})
+
+
+@pytest.mark.parametrize("b", [1 + 2**-52, 1 + 2**-50, 1.0000001, 1.5 + 2**-52, 1.999999, 2 - 2**-50, 2 - 4.4e-16])
+def test_the_chattering_message_tells_b_the_ratio_and_the_zeno_time_apart_from_their_bounds(b):
+    run = solve_exact(params(b=b), 1.0, n_cycles=3)
+    assert run.status.value == "chattering"
+    assert f"(b = {b!r} > 1," in run.message  # as typed, so never "b = 1 > 1" nor "b = 2"
+    ratio = float(re.search(r"v\+ = (\S+) v-", run.message).group(1))
+    assert -1 < ratio < 0 and ratio == pytest.approx(1 - b, rel=1e-9)  # the impact law: v+ = (1 - b) v-
+    t_hit = float(re.search(r"at t = (\S+) s reversed", run.message).group(1))
+    t_acc = float(re.search(r"accumulate at t = (\S+) s", run.message).group(1))
+    assert t_acc > t_hit  # the rebounds take time: never printed as the impact's own time
+    assert NEGATIVE_ZERO.search(run.message) is None
+
+
+@pytest.mark.parametrize("changes, x0", [
+    ({"b": 1.999999}, 1.0), ({"b": 0.1 + 2**-50, "F": 1 / 3}, 1 + 2**-52), ({"a1": -0.1000000000000001}, 0.7),
+    ({"a2": 0.05, "a3": 0.12345678901234, "a4": -0.0123456789}, 1.0),
+])
+def test_a_summary_prints_every_input_so_that_it_reads_back(changes, x0):
+    p = params(**changes)
+    run = solve_exact(p, x0, n_cycles=2)
+    lines = {line.split(":", 1)[0]: line.split(":", 1)[1] for line in repr(run).splitlines()[2:] if ":" in line}
+    printed = dict(re.findall(r"(\w+) = (\S+?)(?:,| |$)", lines["parameters"] + "," + lines["initial"]))
+    expected = {**p.as_dict(), "x0": x0, "v0": 0.0}
+    assert set(printed) == set(expected)
+    assert all(float(printed[name]) == value for name, value in expected.items()), printed
+
+
+def negative_zeros(run) -> list[str]:
+    texts_ = [run.message, repr(run)] + ([repr(run.trajectory)] if isinstance(run.trajectory, ArcTable) else [])
+    return [text for text in texts_ if NEGATIVE_ZERO.search(text)]
+
+
+@pytest.mark.parametrize("x0, v0", [(-0.01, 0.0), (-0.04, 1e-3), (-0.02, -1e-3)])
+def test_a_run_that_stops_at_once_from_the_left_prints_no_negative_zero(x0, v0):
+    run = solve_reference(params(), x0, v0, n_cycles=2)
+    assert run.status.value == "stopped"
+    assert negative_zeros(run) == []
+    assert "stopped at t = 0 s" in run.message
+
+
+@pytest.mark.parametrize("x0, v0", [(-0.0, -0.0), (-0.0, 0.0), (0.0, -0.0), (-0.03, -0.0)])
+def test_a_signed_zero_input_prints_without_its_sign(x0, v0):
+    run = solve_exact(params(), x0, v0, n_cycles=2)
+    assert negative_zeros(run) == []
+    runs = solve_ensemble(M=1.0, K=1.0, F=[1.0, 0.5], b=0.1, a1=-0.1, a2=0.05, x0=x0, v0=v0, n_cycles=2)
+    assert not NEGATIVE_ZERO.search(repr(runs))
+
+
+def test_the_stopped_message_prints_a_turning_point_short_of_its_bound_as_short():
+    text = stopped_message(-0.0, 0.09999999999999999, {"a1": -0.1, "a3": 0.1})
+    assert "stopped at t = 0 s" in text
+    turns = [float(x) for x in re.findall(r"turns at x = (\S+) m and x = (\S+) m", text)[0]]
+    assert turns[0] > -0.1 and turns[1] < 0.1 and turns[0] == -turns[1]
+    assert "x = 0 m and x = 0 m" in stopped_message(1.0, -0.0, {"a1": -0.1})
+
+
+@pytest.mark.parametrize("turning, end", [(0.05 - 2**-57, 0.05), (-0.1 + 1e-15, -0.1), (0.3, 0.3)])
+def test_the_turned_back_message_prints_the_turning_point_on_its_side_of_the_zone_end(turning, end):
+    text = turned_back_message(2.5, "(a1, a2)", turning, 0.01, end)
+    read = float(re.search(r"the motion turns at x = (\S+) m", text).group(1))
+    assert order(read, end) == order(turning, end)
+    assert f"end at {exact(end)} m" in text
+
+
+@pytest.mark.parametrize("t_end, text", [(1 / 3, "0.3333333333333333"), (0.1 + 0.2, "0.30000000000000004"),
+                                         (7.0, "7")])
+def test_the_end_time_prints_as_typed(t_end, text):
+    run = solve_exact(params(), 1.0, t_end=t_end)
+    assert run.message.startswith(f"reached t_end = {text} s after ")
+
+
+SOLVERS = {
+    "exact": lambda budget: solve_exact(params(), 1.0, n_cycles=5, memory_budget=budget),
+    "exact, no trajectory": lambda budget: solve_exact(params(), 1.0, n_cycles=5, record_trajectory=False,
+                                                       memory_budget=budget),
+    "exact to t_end": lambda budget: solve_exact(params(), 1.0, t_end=10.0, memory_budget=budget),
+    "closed-form cycles": lambda budget: solve_cycles(params(), 1.0, n_cycles=5, memory_budget=budget),
+    "ensemble": lambda budget: solve_ensemble(M=1.0, K=1.0, F=[0.5, 1.0], b=0.1, a1=-0.1, a2=0.05, x0=1.0,
+                                              n_cycles=5, memory_budget=budget),
+}
+
+
+@pytest.mark.parametrize("budget", [1, 10, 300])
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_a_budget_too_small_for_any_run_is_named_as_the_budget(solver, budget):
+    with pytest.raises(MemoryBudgetError) as caught:
+        SOLVERS[solver](budget)
+    message = str(caught.value)
+    assert caught.value.name == "memory_budget" and caught.value.value == budget
+    assert message.startswith(f"memory_budget = {budget} is invalid: memory_budget must be at least ")
+    assert "at most 0" not in message and not re.search(r"at most -", message)
+
+
+def test_the_smallest_budget_named_is_the_one_that_fits_one_cycle():
+    with pytest.raises(MemoryBudgetError) as caught:
+        solve_exact(params(), 1.0, n_cycles=1, memory_budget=10)
+    least = int(re.search(r"must be at least ([\d_]+) bytes", str(caught.value)).group(1))
+    assert len(solve_exact(params(), 1.0, n_cycles=1, memory_budget=least).cycles) == 1
+    with pytest.raises(MemoryBudgetError):
+        solve_exact(params(), 1.0, n_cycles=1, memory_budget=least - 1)
+
+
+def test_a_budget_that_fits_some_cycles_names_the_most_that_fit():
+    with pytest.raises(MemoryBudgetError) as first:
+        solve_exact(params(), 1.0, n_cycles=10, memory_budget=10)
+    least = int(re.search(r"at least ([\d_]+) bytes", str(first.value)).group(1))
+    budget = least + 2_000  # room for a few more cycles than one, not for a thousand
+    with pytest.raises(MemoryBudgetError) as caught:
+        solve_exact(params(), 1.0, n_cycles=1_000, memory_budget=budget)
+    assert caught.value.name == "n_cycles"
+    most = int(re.search(r"must be at most ([\d_]+) for", str(caught.value)).group(1))
+    assert most >= 1
+    assert len(solve_exact(params(), 1.0, n_cycles=most, memory_budget=budget).cycles) == most
+    with pytest.raises(MemoryBudgetError):
+        solve_exact(params(), 1.0, n_cycles=most + 1, memory_budget=budget)
+
+
+def test_sizes_that_differ_print_unlike_in_gigabytes():
+    estimate, budget = 2_000_000_002, 2_000_000_001  # both "2 GB" to three digits
+    printed = texts([estimate / 1e9, budget / 1e9], 3)
+    assert float(printed[0]) > float(printed[1])
+
+
+def test_a_summary_of_times_that_differ_prints_them_apart():
+    run = solve_exact(params(b=1 + 2**-52), 1.0, n_cycles=3)  # the rebounds accumulate just after the impact
+    text = repr(run)
+    t_final = float(re.search(r"t = 0 \.\. (\S+) s \(t_final\)", text).group(1))
+    t_acc = float(re.search(r"t_accumulation = (\S+) s", text).group(1))
+    assert math.isfinite(t_acc) and t_acc > t_final
+    assert not np.isnan(run.exit.t_accumulation)
