@@ -210,7 +210,7 @@ EXPECTED_VERDICT = {
     "fig3b_period_axis": "not_reproduced",
     "fig3a_amplitude_axis": "partially_reproduced",
     "fig3b_amplitude_axis": "consistent",
-    "fig4_impulse_and_energy": "reproduced",
+    "fig4_impulse_and_energy": "consistent",
     "fig4_velocity_axis": "partially_reproduced",
     "fig4_acceleration_axis": "partially_reproduced",
     "fig5_limit_cycles": "reproduced",

@@ -262,17 +262,23 @@ def test_window_impact():
     assert result.status == "reproduced" and "1 velocity jump(s) at 84.4 s" in result.replicated_value
     assert status(c, evidence(fig4=fig4(t_impact=86.0))) == "partially_reproduced"  # outside 81-85 s
     assert status(c, evidence(fig4=fig4(jump=False))) == "not_reproduced"
-    assert "tied" not in result.note  # no grid of readings in the evidence: nothing to say
 
 
-def test_window_impact_says_under_which_of_the_tied_readings_it_holds():
+def test_window_impact_counts_the_readings_of_the_grid_with_an_impact_in_both_windows():
     c = claim("window_impact", tolerance=None)
-    tie = {("4", "velocity"): Candidates(2, {"A": 1, "B": 1, "C": 0})}
-    note = cl.verdict(c, evidence(readings=tie)).note
-    assert note.endswith("this holds under the scene's reading (F = 1 N, K = 1 N/m, x0 = -1 m), one of 2 readings "
-                         "the printed velocity axis leaves tied (REPLICATION.md, Sec. 3)")
-    one = {("4", "velocity"): Candidates(2, {"A": 1, "B": 0})}
-    assert "tied" not in cl.verdict(c, evidence(readings=one)).note
+    # the paper's geometry, F of 1 and 0.5 N from 1 and 3 m, either side, K of 0.1, 1, 10 N/m: 24 exact runs;
+    # every one meets a1 or a3 within 80-87 s and within 81-85 s (found so by a separate event simulation
+    # written for the review of this check; for K = 0.1 N/m, whose impacts come about 31 s apart, it is a
+    # property of these releases, not of the geometry)
+    assert cl.verdict(c, evidence()).replicated_value.endswith("an impact in both windows under 24 of the 24 "
+                                                               "readings of the grid")
+    # a window of 0.2 s around the scene's impact: the scene holds, most readings of the grid do not
+    narrow = fig4().assign(velocity_window=("window_edge", [84.3, 84.5]),
+                           acceleration_window=("window_edge", [84.3, 84.5]))
+    result = cl.verdict(c, evidence(fig4=narrow))
+    assert result.status == "undetermined"
+    held = int(result.replicated_value.split("under ")[-1].split(" of")[0])
+    assert 0 <= held < 24
 
 
 def test_section_crossings():
@@ -282,12 +288,26 @@ def test_section_crossings():
     assert status(c, evidence(fig5={"1": fig5(skip=True)})) == "not_reproduced"  # two crossings per "cycle"
 
 
-def test_fig5_dimensions():
+def common(*sizes) -> xr.Dataset:
+    """Runs of group common_force: per (F, K), the amplitude and the largest speed given."""
+    keys = {"label": "run", "group": "common_force", "outcome": "completed", "outcome_message": "m", "F": 1.0,
+            "K": 1.0, "x0": -1.0, "amplitude": 1.0, "largest_speed": 1.0}
+    rows = [dict(zip(("F", "K", "amplitude", "largest_speed"), size)) for size in sizes]
+    return xr.Dataset({k: ("case", [r.get(k, d) for r in rows]) for k, d in keys.items()},
+                      coords={"case": np.arange(len(rows))})
+
+
+def test_fig5_dimensions_compares_the_spring_constants_at_one_force():
     c = claim("fig5_dimensions", tolerance=0.05)
-    assert status(c, evidence(fig5={"x": fig5(0.1, 3.0), "y": fig5(1.0, 1.0), "z": fig5(10.0, 0.3)})) == "reproduced"
-    assert status(c, evidence(fig5={"x": fig5(0.1, 1.0), "y": fig5(1.0, 1.0), "z": fig5(10.0, 3.0)})) \
-        == "partially_reproduced"
-    assert status(c, evidence(fig5={"x": fig5(0.1, 1.0), "y": fig5(1.0, 1.01)})) == "not_reproduced"
+    apart = common((0.5, 0.1, 2.8, 0.89), (0.5, 1.0, 0.89, 0.89), (1.0, 0.1, 4.0, 1.26), (1.0, 1.0, 1.26, 1.26))
+    result = cl.verdict(c, evidence(checks=apart))
+    assert result.status == "reproduced" and "not compared with each other" in result.note
+    assert "F = 0.5 N: K = 0.1: 2.8 m x 0.89 m/s, K = 1: 0.89 m x 0.89 m/s" in result.replicated_value
+    # equal at 1 N (within 5 %: 1.26 against 1.3 is 3 %), different at 0.5 N
+    half = common((0.5, 0.1, 2.8, 0.89), (0.5, 1.0, 0.89, 0.89), (1.0, 0.1, 1.3, 1.26), (1.0, 1.0, 1.26, 1.26))
+    assert status(c, evidence(checks=half)) == "partially_reproduced"
+    same = common((0.5, 0.1, 1.0, 1.0), (0.5, 1.0, 1.04, 0.97))
+    assert status(c, evidence(checks=same)) == "not_reproduced"
 
 
 def test_fig5_impact_visible():

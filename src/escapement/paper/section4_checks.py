@@ -241,7 +241,7 @@ def _order_status(holds: list[bool]) -> str:
     return REPRODUCED if all(holds) else PARTIAL if any(holds) else NOT
 
 
-_NOT_COMPARED = ("the panels of Fig. 5 run at different forces (the configuration's fig5.F), so they are not "
+NOT_COMPARED = ("the panels of Fig. 5 run at different forces (the configuration's fig5.F), so they are not "
                  "compared with each other; each spring constant is run at each force of the figure from the "
                  "figure's release and compared at one force")
 
@@ -259,7 +259,7 @@ def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
         holds.append(all(a > b for a, b in zip(amplitudes, amplitudes[1:])))
         parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(h, 5)} m"
                                                           for (k, _), h in zip(rows, amplitudes)))
-    return Verdict("converged amplitude: " + "; ".join(parts), _order_status(holds), note=_NOT_COMPARED)
+    return Verdict("converged amplitude: " + "; ".join(parts), _order_status(holds), note=NOT_COMPARED)
 
 
 @check("fig5_velocity_common_force", scenes=runs_only)
@@ -277,7 +277,7 @@ def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
     return Verdict(
         "largest |v| on the limit cycle: " + "; ".join(parts),
         _order_status(holds),
-        note=_NOT_COMPARED + "; the largest speed is exact, from the closed forms of the last cycle's arcs",
+        note=NOT_COMPARED + "; the largest speed is exact, from the closed forms of the last cycle's arcs",
     )
 
 
@@ -306,6 +306,6 @@ def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
         "time to regain the velocity before the impact at a1: " + "; ".join(parts),
         status,
         note=(
-            f"{_NOT_COMPARED}; smaller K faster in seconds: {in_seconds}, as a fraction of its cycle: {in_cycles}"
+            f"{NOT_COMPARED}; smaller K faster in seconds: {in_seconds}, as a fraction of its cycle: {in_cycles}"
         ),
     )

@@ -28,8 +28,8 @@ STATUSES: dict[str, str] = {
     "not_reproduced": "an independent computation disagrees with the claim",
     "consistent": ("the replication agrees with the claim, but by construction or under a reading chosen "
                    "from the same evidence: it confirms nothing"),
-    "undetermined": ("the paper's evidence admits several readings that fit equally well and lead to "
-                     "different answers: no verdict"),
+    "undetermined": ("several readings fit the paper's evidence equally well, and the claim holds under some "
+                     "and fails under others: no verdict"),
     "untestable": "the paper gives nothing the claim can be computed against",
 }
 REPRODUCED, PARTIAL, NOT, CONSISTENT, UNDETERMINED, UNTESTABLE = STATUSES

@@ -41,6 +41,7 @@ import numpy as np
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..paper.printed import period_23
+from ..paper.printed_axes import FIG5_PANEL_K
 from ..solvers.result import Solution
 from .reading_series import SECTIONS, Runs, SectionCycles, critical_times, phase_series, section_cycles, window_series
 
@@ -68,8 +69,8 @@ __all__ = [
 
 #: the release sides: +1 releases at +|x0|, -1 at -|x0| (both at rest)
 RELEASES: tuple[int, ...] = (+1, -1)
-#: the spring constants tried for Fig. 4, N/m
-FIG4_K: tuple[float, ...] = (0.1, 1.0, 10.0)
+#: the spring constants tried for Fig. 4: the paper's (those of Fig. 5's panels), N/m
+FIG4_K: tuple[float, ...] = tuple(FIG5_PANEL_K.values())
 #: which printed window goes with which quantity in Fig. 4: as the panels are named, or swapped
 PAIRINGS: tuple[str, ...] = ("as named", "swapped")
 #: the forces tried for Fig. 5, N
