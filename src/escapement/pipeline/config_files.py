@@ -15,7 +15,8 @@ text), so that a nested override is checked and used with the types a file gives
 from __future__ import annotations
 
 import json
-from collections.abc import Iterable, Mapping
+import re
+from collections.abc import Hashable, Iterable, Mapping
 from pathlib import Path
 
 import yaml
@@ -34,12 +35,19 @@ class _UniqueKeyLoader(yaml.SafeLoader):
     def construct_mapping(self, node, deep=False):
         seen: dict = {}
         for key_node, _ in node.value:
+            if key_node.tag == "tag:yaml.org,2002:merge":  # ``<<: *anchor``: keys given here override it
+                continue
             key = self.construct_object(key_node, deep=deep)
+            if not isinstance(key, Hashable):  # refused by the safe loader itself
+                continue
             if key in seen:
+                first = seen[key]
+                same_line = first.line == key_node.start_mark.line
+                at = f"at column {first.column + 1}" if same_line else f"on line {first.line + 1}"
                 raise yaml.constructor.ConstructorError(
-                    None, None, f"the key {key!r} is given twice (first on line {seen[key] + 1})", key_node.start_mark
+                    None, None, f"the key {key!r} is given twice (first {at})", key_node.start_mark
                 )
-            seen[key] = key_node.start_mark.line
+            seen[key] = key_node.start_mark
         return super().construct_mapping(node, deep=deep)
 
 
@@ -143,8 +151,8 @@ def config_overrides(entries: Iterable[str] | None, given: Mapping) -> list[tupl
             typed = _strict_yaml(text)
         except yaml.YAMLError as err:
             mark, problem = _yaml_problem(err)
-            if "\n" not in text:  # one line: its columns are those of the entry, after ``key=``
-                problem = problem.replace(" (first on line 1)", "")
+            if "\n" not in text:  # one line: columns counted in the entry, from the start of ``key=``
+                problem = re.sub(r"at column (\d+)", lambda m: f"at column {len(key) + 1 + int(m[1])}", problem)
             where = "" if mark is None else (f", column {len(key) + 2 + mark.column}" if mark.line == 0
                                              else f", line {mark.line + 1}, column {mark.column + 1}")
             raise ConfigError(f"--config {entry!r}{where}: not valid YAML: {problem}; a nested value may "

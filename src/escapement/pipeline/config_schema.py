@@ -17,12 +17,13 @@ integer is written without a decimal point (JSON Schema would take ``2.0``).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 
 from jsonschema import Draft202012Validator, validators
 from jsonschema.exceptions import best_match
 
-__all__ = ["allowed_keys", "requirement", "schema_error", "schema_node"]
+__all__ = ["allowed_keys", "keywords", "requirement", "schema_error", "schema_node"]
 
 #: draft 2020-12, but an integer is an ``int``: JSON Schema takes ``2.0`` for an integer, which the code
 #: that reads a count need not (``stability_map.chunks = 2.0`` would fail while the jobs are planned)
@@ -47,12 +48,12 @@ def _target(ref: str, root: Mapping) -> Mapping:
     return node
 
 
-def _merged(node: Mapping, root: Mapping) -> dict:
+def keywords(node: Mapping, root: Mapping) -> dict:
     """The keywords that hold at ``node``: those of the definition it refers to, its own winning (the keys
     it lists are those of both)."""
     if "$ref" not in node:
         return dict(node)
-    target = _merged(_target(node["$ref"], root), root)
+    target = keywords(_target(node["$ref"], root), root)
     merged = {**target, **{k: v for k, v in node.items() if k != "$ref"}}
     if "properties" in target and "properties" in node:
         merged["properties"] = {**target["properties"], **node["properties"]}
@@ -61,7 +62,7 @@ def _merged(node: Mapping, root: Mapping) -> dict:
 
 def _child(node: Mapping, key, root: Mapping) -> Mapping | None:
     """The schema of the value at ``key`` (a name or a list index) inside a value of schema ``node``."""
-    merged = _merged(node, root)
+    merged = keywords(node, root)
     if isinstance(key, int):
         if "items" in merged:
             return merged["items"]
@@ -89,7 +90,7 @@ def schema_node(root: Mapping, path) -> Mapping | None:
 
 def allowed_keys(node: Mapping, root: Mapping) -> list[str]:
     """The names of the keys the schema ``node`` lists (its own and its definition's), sorted."""
-    return sorted(_merged(node, root).get("properties", {}))
+    return sorted(keywords(node, root).get("properties", {}))
 
 
 def _number(x) -> str:
@@ -161,7 +162,7 @@ def requirement(node: Mapping, root: Mapping) -> str:
         return node["description"]
     if "$ref" in node and set(node) <= _ANNOTATIONS:
         return requirement(_target(node["$ref"], root), root)
-    return _words(_merged(node, root), root)
+    return _words(keywords(node, root), root)
 
 
 def _where(path) -> str:
@@ -184,17 +185,19 @@ def _shown(value) -> str:
     return text if len(text) <= 80 else text[:72] + " ... " + text[-4:]
 
 
+#: a number as it may be written in decimal (``3``, ``-0.5``, ``1e-3``, ``2E5``), which YAML may read as text
+_NUMERAL = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?")
+
+
 def _hint(value, node: Mapping, root: Mapping) -> str:
     """How to write a number that was written otherwise: as text (YAML 1.1 reads ``1e-3`` as text), or
     an integer with a decimal point."""
-    kind = _merged(node, root).get("type")
+    kind = keywords(node, root).get("type")
     if kind == "integer" and isinstance(value, float) and value.is_integer():
         return " (write it without a decimal point)"
     if not isinstance(value, str) or kind not in ("number", "integer"):
         return ""
-    try:
-        float(value)
-    except ValueError:
+    if not _NUMERAL.fullmatch(value.strip()):
         return ""
     mantissa, e, exponent = value.strip().lower().partition("e")
     if not e:
@@ -223,12 +226,12 @@ def schema_error(config: Mapping, schema: Mapping) -> str | None:
                 f"of {_where(path)}, whose keys must be among {', '.join(allowed)}")
     if "propertyNames" in error.relative_schema_path:
         key = error.instance  # the name that is refused, inside the mapping at ``path``
-        names = _merged(node, schema)["propertyNames"]
+        names = keywords(node, schema)["propertyNames"]
         value = _dict_at(config, path)[key]
         return (f"{_where([*path, key])} = {_shown(value)} is invalid: {key} is not a valid key of {_where(path)}, "
                 f"whose keys must be {requirement(names, schema)}")
-    hint = _hint(error.instance, node, schema)
-    return f"{_where(path)} = {_shown(error.instance)} is invalid: {_subject(path)} must be {requirement(node, schema)}{hint}"
+    need = requirement(node, schema) + _hint(error.instance, node, schema)
+    return f"{_where(path)} = {_shown(error.instance)} is invalid: {_subject(path)} must be {need}"
 
 
 def _dict_at(config: Mapping, path) -> Mapping:
