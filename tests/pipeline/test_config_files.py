@@ -135,6 +135,16 @@ def test_a_nested_value_has_the_types_a_file_gives_it(entries, expected):
     assert _typed(*entries) == expected
 
 
+def test_a_key_given_a_scalar_then_a_mapping_keeps_the_files_other_keys_as_in_snakemake():
+    """Snakemake merges the entries among themselves first, then into the files' configuration."""
+    config = {"fig3": {"n_cycles": 50, "amplitude": "step1"}}
+    entries = ["fig3=none", "fig3={n_cycles: 40}"]
+    given = parse_config(entries)
+    config["fig3"]["n_cycles"] = "40"  # as Snakemake merges it
+    apply_config_overrides(config, entries, given)
+    assert config == {"fig3": {"n_cycles": 40, "amplitude": "step1"}}
+
+
 def test_the_overrides_replace_what_snakemake_merged_into_the_files_and_keep_the_rest():
     config = {"fig3": {"n_cycles": 50, "amplitude": "step1", "cases": {"a": {"F": 1.0, "x0": -1.0}}}}
     entries = ["fig3={n_cycles: 40, cases: {a: {F: 0.5}}}"]
@@ -149,7 +159,7 @@ def test_values_given_as_objects_through_snakemakes_api_are_left_as_they_are():
     """Without a command line, Snakemake writes the entries from the objects (``repr``): not read again."""
     given = {"speed": {"headline": {"target": 1e-05}}, "fig3": {"n_cycles": 40}}
     entries = [f"{key}={value!r}" for key, value in given.items()]
-    assert config_overrides(entries, given) == []
+    assert config_overrides(entries, given) == {}
 
 
 @pytest.mark.parametrize(

@@ -130,14 +130,14 @@ def _text_only(value) -> bool:
     return isinstance(value, str)
 
 
-def config_overrides(entries: Iterable[str] | None, given: Mapping) -> list[tuple[str, object]]:
+def config_overrides(entries: Iterable[str] | None, given: Mapping) -> dict:
     """The ``--config`` entries (``key=value``, as on the command line) whose value Snakemake read as a
-    mapping or a list of text, each read again as YAML, in order; ``given`` is what Snakemake read from
-    them (a key given twice merged). An entry whose value Snakemake did not read so is left out: a
+    mapping or a list of text, each read again as YAML and merged in order as Snakemake merges them;
+    ``given`` is what Snakemake read from them. An entry whose value Snakemake did not read so is left out: a
     scalar (read by Snakemake as an integer, a number, a boolean or text) or a value passed as an object
     through Snakemake's API rather than typed on a command line. A value that is meant as a mapping or
     a list but is not valid YAML, or gives a key twice, raises :class:`ConfigError`."""
-    found = []
+    found: dict = {}
     for entry in entries or ():
         key, sep, text = str(entry).partition("=")
         if not sep or key not in given:
@@ -158,7 +158,7 @@ def config_overrides(entries: Iterable[str] | None, given: Mapping) -> list[tupl
             raise ConfigError(f"--config {entry!r}{where}: not valid YAML: {problem}; a nested value may "
                               "also be given in a file, with --configfile") from None
         if read_as_text:
-            found.append((key, typed))
+            _merge(found, {key: typed})
     return found
 
 
@@ -177,5 +177,4 @@ def _merge(config: dict, override: Mapping) -> None:
 def apply_config_overrides(config: dict, entries: Iterable[str] | None, given: Mapping) -> None:
     """Merge the :func:`config_overrides` of ``entries`` into ``config`` in place, last (``--config``
     overrides every file, as in Snakemake), so that their scalars have the types a file gives them."""
-    for key, value in config_overrides(entries, given):
-        _merge(config, {key: value})
+    _merge(config, config_overrides(entries, given))
