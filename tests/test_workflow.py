@@ -46,6 +46,7 @@ OUTPUTS = {
     "results/fig5/K_10.nc": ("t", ["displacement", "velocity", "velocity_before_impact", "period", "amplitude"]),
     "results/escapement_error/rate.nc": ("F", ["amplitude", "period", "period_formula", "rate", "rate_impacts",
                                                 "rate_zones"]),
+    "results/stability/existence.nc": ("a3", ["outcome", "converged", "threshold", "threshold_mirror", "F"]),
 }
 
 
@@ -75,13 +76,14 @@ def test_fig4_window_and_fig5_spring_constants(workflow_run):
 
 
 @pytest.mark.parametrize("name", ["fig3", "fig4", "fig5", "work_precision", "long_run", "stability_map",
-                                  "escapement_error"])
+                                  "escapement_error", "existence_map"])
 def test_figures_exist_as_png_and_pdf(workflow_run, name):
     assert (workflow_run / f"results/figures/{name}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert (workflow_run / f"results/figures/{name}.pdf").read_bytes()[:5] == b"%PDF-"
 
 
-TRACKED = [f"figures/{name}.{ext}" for name in ("fig3", "fig4", "fig5", "long_run", "stability_map", "escapement_error")
+TRACKED = [f"figures/{name}.{ext}" for name in ("fig3", "fig4", "fig5", "long_run", "stability_map", "escapement_error",
+                                                 "existence_map")
            for ext in ("png", "pdf")] + ["README.md", "REPLICATION.md"]
 
 

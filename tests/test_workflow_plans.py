@@ -79,9 +79,10 @@ def touched_run(tmp_path_factory):
 
 
 SIMULATIONS = {"simulate_fig3": 2, "simulate_fig4": 1, "simulate_fig5": 3, "simulate_checks": 1,
-               "simulate_long_run": 1, "simulate_stability_chunk": 2, "simulate_escapement_error": 1}
+               "simulate_long_run": 1, "simulate_stability_chunk": 2, "simulate_escapement_error": 1,
+               "simulate_existence_map": 1}
 PLOTS = {"plot_fig3": 1, "plot_fig4": 1, "plot_fig5": 1, "plot_work_precision": 1, "plot_long_run": 1,
-         "plot_stability_map": 1, "plot_escapement_error": 1}
+         "plot_stability_map": 1, "plot_escapement_error": 1, "plot_existence_map": 1}
 
 
 def _planned_after_an_edit(where: Path, module: str) -> dict[str, int]:

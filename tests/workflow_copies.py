@@ -72,6 +72,8 @@ def reduce(config: dict) -> None:
     config["benchmark"].update(n_cycles=5, min_seconds=0.01)
     config["long_run"].update(n_cycles=2000, ivp_cycles=10)
     config["escapement_error"]["F"]["n"] = 3
+    config["existence_map"]["a3"]["n"] = 10
+    config["existence_map"]["F"]["n"] = 8
     config["stability_map"].update(
         b={"start": 0.0, "stop": 2.0, "n": 12}, F={"start": 0.01, "stop": 2.0, "n": 12}, chunks=2
     )

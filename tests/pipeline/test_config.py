@@ -71,6 +71,8 @@ CONFIG = {
     "long_run": {"F": 1.0, "x0": 1.0, "n_cycles": 1000, "ivp_method": "DOP853", "ivp_rtol": 1.0e-12, "ivp_cycles": 100},
     "escapement_error": {"F": {"start": 0.1, "stop": 0.4, "n": 3}, "zones": {"paper": [-0.1, 0.05]}},
     "stability_map": {"b": {"start": 0.0, "stop": 2.0, "n": 4}, "F": {"start": 1.0, "stop": 2.0, "n": 3}, "chunks": 3},
+    "existence_map": {"a3": {"start": 0.0, "stop": 0.25, "n": 5}, "F": {"start": 0.0, "stop": 0.01, "n": 4}, "x0": -1.0,
+                      "n_cycles": 120, "tolerance": 1.0e-9},
 }
 
 

@@ -23,13 +23,23 @@ from matplotlib.transforms import Bbox
 from escapement import Parameters
 from escapement.pipeline.simulate import (
     escapement_error_scene,
+    existence_scene,
     long_run_scene,
     phase_scene,
     poincare_scene,
     shock_scene,
     stability_chunk_scene,
 )
-from escapement.plotting import escapement_error, fig3, fig4, fig5, long_run, stability_map, work_precision
+from escapement.plotting import (
+    escapement_error,
+    existence_map,
+    fig3,
+    fig4,
+    fig5,
+    long_run,
+    stability_map,
+    work_precision,
+)
 from escapement.studies.benchmark import METHODS
 from escapement.studies.benchmark import work_precision as work_precision_rows
 
@@ -242,9 +252,17 @@ def _stability_map():
     return stability_map(stability_chunk_scene(model, b, np.linspace(0.01, 2.0, 6), speed_sample=2)[0])
 
 
+def _existence_map():
+    model = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05}
+    block = {"a3": {"start": 0.0, "stop": 0.25, "n": 12}, "F": {"start": 0.0, "stop": 0.014, "n": 8}, "x0": -1.0,
+             "n_cycles": 60, "tolerance": 1e-9}
+    return existence_map(existence_scene(model, block))
+
+
 FIGURES = {"fig3": _fig3, "fig4": _fig4, "fig4 one impact": _fig4_one_impact, "escapement_error": _escapement_error,
            "fig5": _fig5, "fig5 stopped": _fig5_stopped,
-           "work_precision": _work_precision, "long_run": _long_run, "stability_map": _stability_map}
+           "work_precision": _work_precision, "long_run": _long_run, "stability_map": _stability_map,
+           "existence_map": _existence_map}
 
 
 @pytest.mark.parametrize("name", list(FIGURES))

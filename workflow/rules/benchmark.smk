@@ -205,6 +205,45 @@ rule plot_stability_map:
         "../scripts/plot_stability_map.py"
 
 
+rule simulate_existence_map:
+    input:
+        code=code("simulate_existence_map.py"),
+    output:
+        nc="results/stability/existence.nc",
+    log:
+        "results/logs/simulate_existence_map.log",
+    benchmark:
+        "results/benchmarks/simulate_existence_map.tsv"
+    conda:
+        "../../environment/environment.yml"
+    params:
+        model=scenes.stability_model(config),
+        block=config["existence_map"],
+    script:
+        "../scripts/simulate_existence_map.py"
+
+
+rule plot_existence_map:
+    input:
+        nc="results/stability/existence.nc",
+        code=code("plot_existence_map.py"),
+    output:
+        png=report(
+            "results/figures/existence_map.png",
+            caption="../report/existence_map.rst",
+            category="Beyond the paper",
+            labels={"figure": "existence map"},
+        ),
+        pdf="results/figures/existence_map.pdf",
+    log:
+        "results/logs/plot_existence_map.log",
+    localrule: True
+    conda:
+        "../../environment/environment.yml"
+    script:
+        "../scripts/plot_existence_map.py"
+
+
 rule run_stress:
     input:
         long_run="results/benchmark/long_run.nc",

@@ -61,6 +61,7 @@ PUBLISHED = {
             "long_run",
             "stability_map",
             "escapement_error",
+            "existence_map",
         )
         for ext in ("png", "pdf")
     },
@@ -80,6 +81,7 @@ def all_outputs():
         "results/benchmark/long_run.nc",
         "results/stability/map.nc",
         "results/escapement_error/rate.nc",
+        "results/stability/existence.nc",
         "results/stress/summary.csv",
         "results/figures/work_precision.png",
         "results/docs/timings.md",

@@ -1,5 +1,6 @@
-"""The datasets of the studies beyond the paper's figures: the escapement error (rate against
-amplitude), made from the experiment's results (:mod:`escapement.experiments.escapement_error`)."""
+"""The datasets of the studies beyond the paper's figures, made from the experiments' results: the
+escapement error (rate against amplitude, :mod:`escapement.experiments.escapement_error`) and the
+existence map of the limit cycle of an asymmetric escapement (:mod:`escapement.experiments.existence`)."""
 
 from __future__ import annotations
 
@@ -8,9 +9,11 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
+from ..model.quantities import PARAMETERS
+from ..model.status import flag_attributes
 from .dataset import MODEL_INPUT, QUALITY, assemble, global_attributes, parameter_variables, scalar_variable
 
-__all__ = ["ESCAPEMENT_ERROR_VARIABLES", "escapement_error_dataset"]
+__all__ = ["ESCAPEMENT_ERROR_VARIABLES", "escapement_error_dataset", "existence_dataset"]
 
 #: name (a field of escapement.studies.escapement_error.LimitCycleRate): (units, long name)
 ESCAPEMENT_ERROR_VARIABLES = {
@@ -85,4 +88,67 @@ def escapement_error_dataset(zones: Mapping[str, tuple[float, float]], forces: n
     )
     attrs = global_attributes("Escapement error of the escapement model: rate against amplitude",
                               "escapement_error", summary, solver="exact")
+    return assemble(variables, attrs)
+
+
+def existence_dataset(a3_values: np.ndarray, F_values: np.ndarray, status: np.ndarray, converged: np.ndarray,
+                      threshold: np.ndarray, threshold_mirror: np.ndarray, constants: Mapping[str, float],
+                      n_cycles: int, tolerance: float) -> xr.Dataset:
+    """The existence map of the limit cycle over (a3, F).
+
+    Parameters
+    ----------
+    a3_values, F_values : numpy.ndarray
+        The axes: impact positions a3 (m) and forces (N).
+    status : numpy.ndarray
+        How each run ended (:attr:`~escapement.model.status.Status.code`), shape ``(len(a3_values), len(F_values))``.
+    converged : numpy.ndarray
+        Where the run reached its limit cycle, of the same shape.
+    threshold, threshold_mirror : numpy.ndarray
+        ``F*`` and ``F*'`` at each a3 (N).
+    constants : mapping of str to float
+        The other parameters and the release ``x0``, ``v0``.
+    n_cycles : int
+        Cycles each run was given.
+    tolerance : float
+        The relative tolerance of ``converged``.
+
+    Returns
+    -------
+    xarray.Dataset
+        The existence map's dataset.
+    """
+    dims = ("a3", "F")
+    coords = {name: (name, np.asarray(values, dtype=float),
+                     {"long_name": PARAMETERS[name].long_name, "units": PARAMETERS[name].units})
+              for name, values in (("a3", a3_values), ("F", F_values))}
+    along = {"a3": coords["a3"]}
+    variables = {
+        "outcome": xr.DataArray(np.asarray(status, dtype=np.int8), dims=dims, coords=coords,
+                                attrs={"long_name": "how the run from the release ended", **flag_attributes()}),
+        "converged": xr.DataArray(
+            np.asarray(converged, dtype=np.int8), dims=dims, coords=coords,
+            attrs={"long_name": "whether the run reached a limit cycle (completed, last two velocities before "
+                                "the impact at a1 within the relative tolerance)",
+                   "flag_values": np.array([0, 1], dtype=np.int8), "flag_meanings": "no_limit_cycle limit_cycle"}),
+        "threshold": xr.DataArray(
+            np.asarray(threshold, dtype=float), dims="a3", coords=along,
+            attrs={"units": "N", "long_name": "force F* at which the constant C of the map (16) read at a1 is zero"}),
+        "threshold_mirror": xr.DataArray(
+            np.asarray(threshold_mirror, dtype=float), dims="a3", coords=along,
+            attrs={"units": "N", "long_name": "force F*' at which the constant of the map (16) read at a3 is zero "
+                                              "(F* of the mirror-image escapement)"}),
+        "n_cycles": scalar_variable(np.int32(n_cycles), "1", "complete cycles each run was given", MODEL_INPUT),
+        "tolerance": scalar_variable(float(tolerance), "1", "relative tolerance on the last two velocities before "
+                                     "the impact at a1 for a converged run", MODEL_INPUT),
+    }
+    variables.update(parameter_variables(constants))
+    summary = (
+        "This file holds, over a grid of the impact position a3 of the second half cycle and the force F (its "
+        "coordinates; the other parameters and the release are constants), how a run of the exact solver "
+        "(vectorised ensemble) from the release ended and whether it reached a limit cycle, beside the closed-form "
+        "forces F* and F*' below which the map (16), read at a1 or at a3, has no fixed point."
+    )
+    attrs = global_attributes("Existence of the limit cycle of an asymmetric escapement over (a3, F)",
+                              "existence_map", summary, solver="exact, vectorised ensemble")
     return assemble(variables, attrs)

@@ -9,14 +9,24 @@ from collections.abc import Mapping, Sequence
 import xarray as xr
 
 from ..io.netcdf import read_netcdf
-from ..plotting import escapement_error, fig3, fig4, fig5, long_run, save_figure, stability_map, work_precision
+from ..plotting import (
+    escapement_error,
+    existence_map,
+    fig3,
+    fig4,
+    fig5,
+    long_run,
+    save_figure,
+    stability_map,
+    work_precision,
+)
 from ..plotting.autoscale import VARIANTS
 from ..plotting.panel_axes import PanelAxes, scene_axes
 from .logs import logged
 from .scores import CLAIM_AUTOSCALE, figure_caption, read_scores
 from .tables import CYCLE_VARIABLES, ESCAPEMENT_ERROR_VARIABLES, PHASE_VARIABLES, SHOCK_VARIABLES, read_work_precision
 
-__all__ = ["plot_escapement_error", "plot_fig3", "plot_fig4", "plot_fig5", "plot_long_run", "plot_stability_map", "plot_work_precision"]
+__all__ = ["plot_escapement_error", "plot_existence_map", "plot_fig3", "plot_fig4", "plot_fig5", "plot_long_run", "plot_stability_map", "plot_work_precision"]
 
 
 def _claimed(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Mapping[str, xr.Dataset]) -> PanelAxes:
@@ -67,3 +77,9 @@ def plot_stability_map(path: str, png: str, pdf: str, log: str) -> None:
 def plot_escapement_error(path: str, png: str, pdf: str, log: str) -> None:
     with logged(log, "plot_escapement_error"):
         save_figure(escapement_error(read_netcdf(path, ESCAPEMENT_ERROR_VARIABLES)), png, pdf)
+
+
+def plot_existence_map(path: str, png: str, pdf: str, log: str) -> None:
+    with logged(log, "plot_existence_map"):
+        required = ("a3", "F", "outcome", "converged", "threshold", "threshold_mirror", "n_cycles", "tolerance", "x0")
+        save_figure(existence_map(read_netcdf(path, required)), png, pdf)

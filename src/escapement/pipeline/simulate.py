@@ -14,6 +14,7 @@ import xarray as xr
 
 from ..experiments.checks import measure_cases
 from ..experiments.escapement_error import escapement_error
+from ..experiments.existence import axis_centres, existence_map
 from ..experiments.figures import phase, poincare, shock
 from ..experiments.long_run import run_long
 from ..experiments.stability import stability_chunk
@@ -26,20 +27,23 @@ from ..io.scenes import (
     shock_dataset,
     stability_dataset,
 )
-from ..io.studies import escapement_error_dataset
+from ..io.studies import escapement_error_dataset, existence_dataset
 from ..model.parameters import Parameters, check_initial_state
+from ..model.status import Status
 from .logs import logged
 from .tables import write_timings
 
 __all__ = [
     "checks_scene",
     "escapement_error_scene",
+    "existence_scene",
     "long_run_scene",
     "phase_scene",
     "poincare_scene",
     "shock_scene",
     "simulate_checks",
     "simulate_escapement_error",
+    "simulate_existence_map",
     "simulate_long_run",
     "simulate_phase",
     "simulate_poincare",
@@ -101,6 +105,15 @@ def escapement_error_scene(base: Parameters, forces: Sequence[float], zones: Map
     result = escapement_error(base, forces, zones)
     return escapement_error_dataset(result.zones, result.forces, result.values, result.max_period_difference,
                                     result.seconds_per_day, result.model)
+
+
+def existence_scene(model: Mapping, block: Mapping) -> xr.Dataset:
+    """The existence map's dataset over the cell centres of the block's a3 and F axes
+    (:func:`escapement.experiments.existence.existence_map`)."""
+    run = existence_map(model, axis_centres(block["a3"]), axis_centres(block["F"]), float(block["x0"]),
+                        int(block["n_cycles"]), float(block["tolerance"]), float(block.get("v0", 0.0)))
+    return existence_dataset(run.a3_values, run.F_values, run.status, run.converged, run.threshold,
+                             run.threshold_mirror, run.constants, run.n_cycles, run.tolerance)
 
 
 def _x0(scene: Mapping) -> float:
@@ -180,4 +193,14 @@ def simulate_escapement_error(model: Mapping, forces: Sequence[float], zones: Ma
         ds = escapement_error_scene(Parameters.from_mapping(model), forces, zones)
         logger.info("%d zones x %d forces; corrected Eqs. (24)-(25) against the exact solver: %.1e (relative)",
                     ds.sizes["zone"], ds.sizes["F"], float(ds["max_period_difference"]))
+        write_netcdf(ds, output)
+
+
+def simulate_existence_map(model: Mapping, block: Mapping, output: str, log: str) -> None:
+    """The existence map of an asymmetric escapement over (a3, F), the configuration's ``existence_map``."""
+    with logged(log, "simulate_existence_map") as logger:
+        ds = existence_scene(dict(model), dict(block))
+        counts = {s.value: int((ds["outcome"].values == s.code).sum()) for s in Status}
+        logger.info("outcomes: %s; limit cycle reached in %d of %d runs", counts, int(ds["converged"].values.sum()),
+                    ds["converged"].size)
         write_netcdf(ds, output)

@@ -9,6 +9,7 @@ from .._lazy import lazy_exports
 #: each public name and the module that defines it
 _EXPORTS = {
     "escapement_error": "study_figures",
+    "existence_map": "study_figures",
     "fig3": "paper_figures",
     "fig4": "paper_figures",
     "fig5": "paper_figures",

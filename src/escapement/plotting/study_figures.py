@@ -1,5 +1,6 @@
 """The project's own figures, beyond the paper's: the solvers' work-precision and long-run errors,
-the stability and existence map over (b, F), and the escapement error against amplitude.
+the stability and existence map over (b, F), the existence map of an asymmetric escapement over (a3, F),
+and the escapement error against amplitude.
 
 Drawn from the studies' tables and netCDF datasets, in the style and with the label placement of
 the paper's figures.
@@ -18,7 +19,7 @@ from .captions import axis_label, quantity_value, release, unit
 from .labels import finish, legend_below
 from .style import ACCENT, GUIDE, INK, NO_CYCLE, SERIES, style
 
-__all__ = ["ERROR_FLOOR", "escapement_error", "long_run", "stability_map", "work_precision"]
+__all__ = ["ERROR_FLOOR", "escapement_error", "existence_map", "long_run", "stability_map", "work_precision"]
 
 
 #: errors below this are drawn at it on log axes (an exact zero has no logarithm)
@@ -192,5 +193,66 @@ def escapement_error(ds: xr.Dataset):
             f"first; exact solver, Eqs. (24)-(25) corrected agree to {float(ds['max_period_difference']):.0e}",
             fontsize=8.5)
         legend_below(fig, axes, ncols=2, fontsize=7.5)
+        finish(fig, [])
+    return fig
+
+
+#: fill of the cells where the run reached a limit cycle, and of those that neither converged nor stopped
+LIMIT_CYCLE = "#cfe0f1"
+UNSETTLED = "#f5cba7"
+#: the impact positions' symbols, as the axis labels write them
+A1, A2, A3, A4 = "a\u2081", "a\u2082", "a\u2083", "a\u2084"
+
+
+def existence_map(ds: xr.Dataset):
+    """Where the limit cycle of an asymmetric escapement exists over (a3, F), from simulation, with the
+    closed-form forces F* and F*' below which the map (16), read at a1 or at a3, has no fixed point."""
+    a3, F = ds["a3"].values, ds["F"].values
+    outcome = ds["outcome"].values.T
+    meanings = ds["outcome"].attrs["flag_meanings"].split()
+    cycle = ds["converged"].values.T.astype(bool)
+    stopped = outcome == meanings.index(Status.STOPPED.value)
+    x_edges, y_edges = _cell_edges(a3), _cell_edges(F) * 1e3
+    cycles = int(ds["n_cycles"])
+    regions = (
+        (cycle, dict(facecolor=LIMIT_CYCLE, edgecolor="none"),
+         f"limit cycle: all {cycles} cycles completed, the last two velocities at {A1} within "
+         f"{float(ds['tolerance']):.0e} (relative)"),
+        (stopped & ~cycle, dict(facecolor=NO_CYCLE, edgecolor=GUIDE, hatch="////", lw=0),
+         "no limit cycle: the escapement stops (a swing ends short of the next impact position)"),
+        (~cycle & ~stopped, dict(facecolor=UNSETTLED, edgecolor=ACCENT, hatch="xx", lw=0),
+         "neither: another outcome, or not settled within the cycles given"),
+    )
+    with style():
+        fig, ax = plt.subplots(figsize=(7.6, 6.0), layout="constrained")
+        handles = []
+        for mask, look, label in regions:
+            cells = _cells_path(mask, x_edges, y_edges)
+            if cells is not None:
+                ax.add_patch(PathPatch(cells, **look))
+                handles.append(Patch(**look, label=label))
+        lines = (("threshold", ACCENT, "-", f"F*: C = 0, the map (16) read at the impact at {A1} (below it the swing falls short of {A1})"),
+                 ("threshold_mirror", INK, "--",
+                  f"F*': the same map read at the impact at {A3}, F* of the mirror image (below it the swing falls short of {A3})"))
+        for name, colour, ls, label in lines:
+            handles.append(ax.plot(a3, ds[name].values * 1e3, color=colour, ls=ls, lw=1.6, label=label)[0])
+        symmetric = -float(ds["a1"])
+        if x_edges[0] <= symmetric <= x_edges[-1]:
+            handles.append(ax.axvline(symmetric, color=GUIDE, lw=0.8, ls=":",
+                                      label=f"{A3} = \u2212{A1}: F* = F*' = 0, a limit cycle for every F > 0"))
+        ax.set_xlim(x_edges[0], x_edges[-1])
+        ax.set_ylim(y_edges[0], y_edges[-1])
+        ax.set_xlabel(axis_label("a3"))
+        ax.set_ylabel(axis_label("F").replace("(N)", "(mN)"))
+        ax.grid(False)  # grid lines over a map read as cell borders
+        constants = ", ".join(quantity_value(k, float(ds[k])) for k in ("M", "K", "b", "a1", "a2", "a4"))
+        fig.suptitle(
+            f"Existence of the limit cycle without {A1} = \u2212{A3}, {A2} = \u2212{A4} (Sec. 5 of the paper), exact "
+            f"solver (vectorised ensemble)\n{constants}\neach cell {release(ds)} and run for {cycles} cycles; "
+            f"a limit cycle needs F > max(F*, F*'):\nF* = (2b \u2212 b\u00b2) K ({A1}\u00b2 \u2212 {A3}\u00b2) / "
+            f"(2 [(1 \u2212 b)\u00b2 ({A2} \u2212 {A1}) + ({A3} \u2212 {A4})]), F*' the same with "
+            f"({A1}, {A2}, {A3}, {A4}) \u2192 (\u2212{A3}, \u2212{A4}, \u2212{A1}, \u2212{A2})",
+            fontsize=8.5)
+        fig.legend(handles=handles, loc="outside lower center", ncols=1, fontsize=7.5)
         finish(fig, [])
     return fig
