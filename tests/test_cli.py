@@ -6,6 +6,7 @@ import math
 import os
 import subprocess
 import sys
+import uuid
 from pathlib import Path
 
 import pytest
@@ -114,11 +115,12 @@ def test_an_output_that_cannot_be_written_is_refused_before_solving(make_path, t
 
 
 def test_a_missing_directory_at_the_root_is_not_made(capsys, no_solving):
-    path = "/nonexistent-escapement-output/dir/out.nc"
-    assert not os.path.lexists("/nonexistent-escapement-output")
+    root = f"/nonexistent-escapement-output-{uuid.uuid4().hex}"  # unique: other runs may share the machine
+    path = f"{root}/dir/out.nc"
+    assert not os.path.lexists(root)
     assert main(["solve", "--netcdf", path]) == CANNOT_WRITE
     assert "does not exist" in one_line_refusal(capsys, "--netcdf", path)
-    assert not os.path.lexists("/nonexistent-escapement-output")
+    assert not os.path.lexists(root)
 
 
 @pytest.mark.skipif(os.geteuid() == 0, reason="the superuser writes in a directory without write permission")
@@ -181,7 +183,7 @@ def test_a_write_that_fails_after_the_checks_is_one_line_and_its_own_status(tmp_
 
 
 @pytest.mark.parametrize("args", [
-    ("--netcdf", "."), ("--netcdf", ""), ("--netcdf", "/nonexistent-escapement-output/out.nc"),
+    ("--netcdf", "."), ("--netcdf", ""), ("--netcdf", f"/nonexistent-escapement-output-{uuid.uuid4().hex}/out.nc"),
     ("--cycles", "0"), ("--cycles", "1.5"), ("--b", "two"),
 ])
 def test_a_refused_process_prints_no_traceback(args):
