@@ -8,6 +8,7 @@ outcomes from the datasets' attributes.
 from __future__ import annotations
 
 import math
+import re
 import textwrap
 
 import numpy as np
@@ -18,8 +19,17 @@ from ..model.status import Status
 from .labels import Label
 from .style import ACCENT
 
-__all__ = ["assumed_reading", "axis_label", "broken", "initial_velocity", "natural_period", "outcome_note",
-           "paper_source", "quantity_value", "release", "signed", "unit", "wrap"]
+__all__ = ["assumed_reading", "axis_label", "broken", "initial_velocity", "math_text", "natural_period",
+           "outcome_note", "paper_source", "quantity_value", "release", "signed", "unit", "wrap"]
+
+#: the datasets' plain-text spellings and how a figure writes them: accents, and formulas as mathtext
+#: without spaces (so that wrapping never splits one across lines)
+_SPELLINGS = (
+    ("Poincare", "Poincar\u00e9"),
+    ("sqrt(a1^2 + (v_k / omega)^2)", r"$\sqrt{a_1^2+(v_k/\omega)^2}$"),
+)
+#: symbols written as mathtext wherever they stand as words: the Step-1 and Step-8 amplitudes and a1
+_SYMBOLS = re.compile(r"(?<![\w$])(?:h([04])\((k(?:\+1)?)\)|a1)(?![\w$])")
 
 
 def broken(t: np.ndarray, y: np.ndarray, breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -181,6 +191,28 @@ def paper_source(ds: xr.Dataset, figure: str) -> str:
         The dataset's ``title``, which names the figure, or a citation of ``figure``.
     """
     return str(ds.attrs.get("title") or f"Mao, Fu & Li (2013), {figure}")
+
+
+def math_text(text: str) -> str:
+    """``text`` as a figure writes it: "Poincaré" with its accent, the formulas and symbols of the
+    datasets' plain-text long names (``sqrt(a1^2 + (v_k / omega)^2)``, ``h0(k)``, ``a1``) as mathtext.
+
+    Parameters
+    ----------
+    text : str
+        Plain text, as the datasets' attributes hold it.
+
+    Returns
+    -------
+    str
+        The same text with those spellings replaced.
+    """
+    for plain, written in _SPELLINGS:
+        text = text.replace(plain, written)
+    parts = text.split("$")  # the odd parts are mathtext already
+    for i in range(0, len(parts), 2):
+        parts[i] = _SYMBOLS.sub(lambda m: f"$h_{m[1]}({m[2]})$" if m[1] else "$a_1$", parts[i])
+    return "$".join(parts)
 
 
 def wrap(text: str, width: int) -> str:

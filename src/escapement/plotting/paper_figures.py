@@ -18,6 +18,7 @@ from .captions import (
     axis_label,
     broken,
     initial_velocity,
+    math_text,
     natural_period,
     outcome_note,
     paper_source,
@@ -35,7 +36,8 @@ __all__ = ["fig3", "fig4", "fig5"]
 
 
 def _heading(title: str, caption: str | None) -> str:
-    return title if not caption else f"{title}\n{caption}"
+    """The suptitle: the dataset's title and the caption, with the datasets' plain-text formulas as mathtext."""
+    return math_text(title if not caption else f"{title}\n{caption}")
 
 
 def _printed(ax, axes: PanelAxes | None, figure: str, name: str | None) -> None:
@@ -49,7 +51,7 @@ def fig3(cases: dict[str, xr.Dataset], axes: PanelAxes | None = None, caption: s
     panels = {"velocity_before_impact": "velocity", "period": "period", "amplitude": "amplitude"}
     extra = 0.0 if not caption else 0.15 * (caption.count("\n") + 1)
     first = next(iter(cases.values()))
-    definitions = "\n".join(wrap(f"{name}: {first[name].attrs['long_name']}", 100) for name in ("period", "amplitude")
+    definitions = "\n".join(wrap(math_text(f"{name}: {first[name].attrs['long_name']}"), 100) for name in ("period", "amplitude")
                              if "long_name" in first[name].attrs)
     notes = []
     with style():
