@@ -61,7 +61,9 @@ rule render_docs:
         "../scripts/render_docs.py"
 
 
-# The tracked figures and documents, copied from results/ where their content changed. Flagged
+# The tracked figures and documents, copied from results/ where what they show changed: a figure
+# beyond an RMS tolerance of its pixels (its PDF with its PNG), a document where its text or a number
+# at its printed digits differs (escapement.pipeline.publish, which logs each comparison). Flagged
 # update(): Snakemake does not delete them before the job, and restores them if it fails.
 rule publish:
     input:
