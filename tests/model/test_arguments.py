@@ -196,3 +196,15 @@ def test_a_wrong_class_is_a_type_error_of_the_same_shape():
         solve_exact(dict(GOOD), 1.0, n_cycles=2)
     assert isinstance(err.value, TypeError) and isinstance(err.value, ParameterError)
     assert err.value.name == "params" and err.value.value == GOOD
+
+
+@pytest.mark.parametrize("entry", ["solve_exact", "iter_cycles", "solve_cycles", "iter_closed_form_cycles"])
+def test_every_solver_refuses_what_is_not_parameters_with_the_same_error(entry):
+    from escapement.solvers import cycles, exact, stream
+
+    function = {"solve_exact": exact.solve_exact, "iter_cycles": stream.iter_cycles,
+                "solve_cycles": cycles.solve_cycles, "iter_closed_form_cycles": cycles.iter_closed_form_cycles}[entry]
+    with pytest.raises(ParameterTypeError) as err:
+        result = function(dict(GOOD), 1.0, n_cycles=2)
+        next(iter(result))  # the streams refuse on their first step at the latest
+    assert err.value.name == "params" and err.value.value == GOOD

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..model.cycle_map import CycleMap, cycle_map
 from ..model.limits import RunLimits
-from ..model.parameters import Parameters, check_initial_state
+from ..model.parameters import Parameters, check_initial_state, check_parameters
 from ..model.status import Status
 from .closed_form import GRAZING_SPEED_SQ, Cycles, distinct_cycles, first_impact, prepared, table_rows
 from .exact import solve_exact
@@ -166,8 +166,7 @@ def solve_cycles(
     >>> chattering.method, chattering.status.value, chattering.fell_back
     ('exact', 'chattering', True)
     """
-    if not isinstance(params, Parameters):
-        raise TypeError("params must be an escapement.Parameters")
+    params = check_parameters(params)
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles, memory_budget=memory_budget)
     n = limits.n_cycles
@@ -292,8 +291,7 @@ def iter_closed_form_cycles(
     >>> bool(np.array_equal(np.concatenate(times), solve_cycles(p, x0=1.0, n_cycles=250).cycles.impact_time))
     True
     """
-    if not isinstance(params, Parameters):
-        raise TypeError("params must be an escapement.Parameters")
+    params = check_parameters(params)
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles, memory_budget=memory_budget)
     n = limits.n_cycles

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.limits import MemoryBudgetError, RunLimits, check_count
-from ..model.parameters import Parameters, check_initial_state
+from ..model.parameters import Parameters, check_initial_state, check_parameters
 from ..model.status import Status
 from .kernel import Block, EventRun, cycle_rows, event_block
 from .result import CycleTable, Exit
@@ -186,8 +186,7 @@ def iter_cycles(
     >>> bool(np.array_equal(np.concatenate(periods), solve_exact(p, x0=1.0, n_cycles=250).cycles.period))
     True
     """
-    if not isinstance(params, Parameters):
-        raise TypeError("params must be an escapement.Parameters")
+    params = check_parameters(params)
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
     chunk, _ = check_chunk(chunk, CHUNK_BYTES_PER_CYCLE, limits.memory_budget)
