@@ -112,15 +112,14 @@ def _bounds(merged: Mapping) -> str:
 
 def _count(low, high, noun: str) -> str:
     """``2 items``, ``1 to 4 items``, ``at least 1 item``: a count of ``noun``s."""
-    plural = lambda n: noun if n == 1 else f"{noun}s"  # noqa: E731
     if low is not None and low == high:
-        return f"{low} {plural(low)}"
+        return f"{low} {noun}{'' if low == 1 else 's'}"
     if low and high is not None:
         return f"{low} to {high} {noun}s"
     if low:
-        return f"at least {low} {plural(low)}"
+        return f"at least {low} {noun}{'' if low == 1 else 's'}"
     if high is not None:
-        return f"at most {high} {plural(high)}"
+        return f"at most {high} {noun}{'' if high == 1 else 's'}"
     return ""
 
 
