@@ -71,8 +71,9 @@ def tracked_copy(drawings, folder: Path) -> tuple[Path, Path]:
 def publish_drawing(drawings, variant: str, folder: Path) -> tuple[bool, bool, str]:
     """Publish ``variant`` over the committed drawing: whether the PNG and the PDF were replaced, and the log."""
     png, pdf = tracked_copy(drawings, folder)
-    log = folder / "publish.log"
-    publish([str(p) for p in drawings[variant]], [str(png), str(pdf)], str(log))
+    log, readme = folder / "publish.log", folder / "README.md"
+    readme.write_text("text")  # a document after the figure, whose name the PDF must not take
+    publish([*map(str, drawings[variant]), str(readme)], [str(png), str(pdf), str(readme)], str(log))
     committed = drawings["committed"]
     replaced = (png.read_bytes() != committed[0].read_bytes(), pdf.read_bytes() != committed[1].read_bytes())
     if replaced[0]:
@@ -88,6 +89,7 @@ def test_a_figure_that_differs_by_rounding_is_left_in_place(drawings, variant, t
     png_replaced, pdf_replaced, log = publish_drawing(drawings, variant, tmp_path)
     assert not png_replaced and not pdf_replaced
     assert f"{tmp_path / 'figures/fig.png'}: unchanged (image RMS against {FIGURE_RMS_TOLERANCE:g}; " in log
+    assert f"{tmp_path / 'figures/fig.pdf'}: unchanged (goes with {tmp_path / 'figures/fig.png'}; " in log
 
 
 def test_a_sub_pixel_difference_is_measured_and_within_the_tolerance(drawings):

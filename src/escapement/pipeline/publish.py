@@ -179,7 +179,8 @@ def compare_tracked(names: Sequence[str], old: Sequence[str | os.PathLike | None
     for name, kind, before, after in zip(names, kinds, old, new, strict=True):
         if kind != "pdf" or name in decided:
             continue
-        by = decided[str(PurePosixPath(name).with_suffix(".png"))]
+        png = str(PurePosixPath(name).with_suffix(".png"))
+        by = decided[png]
         same = Path(before).read_bytes() == Path(after).read_bytes()
         decided[name] = Comparison(name, f"goes with {png}", by.difference, by.within,
                                    f"{by.detail}; PDF bytes {'identical' if same else 'differ'}")
