@@ -15,6 +15,7 @@ from ..model.automaton import Mode
 from ..model.limits import RunLimits
 from ..model.arguments import real_number
 from ..model.parameters import Parameters, check_initial_state, check_parameters
+from ..solvers.describe import exact
 from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
 
@@ -114,7 +115,7 @@ def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     params = check_parameters(params)
     largest = params.natural_period / STEPS_PER_PERIOD
     step = real_number("step", step, lambda h: 0 < h <= largest,
-                       f"> 0 and at most {largest:.6g} s, 1/{STEPS_PER_PERIOD} of the natural period 2 pi / omega: a "
+                       f"> 0 and at most {exact(largest)} s, 1/{STEPS_PER_PERIOD} of the natural period 2 pi / omega: a "
                        "larger step passes events without seeing them, and from omega step = 2.8 on the RK4 step is "
                        "unstable")
     x, v = check_initial_state(x0, v0)

@@ -20,6 +20,7 @@ from ..model.limits import RunLimits
 from ..model.parameters import Parameters, check_initial_state, check_parameters
 from ..model.status import Status
 from .closed_form import GRAZING_SPEED_SQ, Cycles, distinct_cycles, first_impact, prepared, table_rows
+from .describe import compared
 from .exact import solve_exact
 from .kernel import PLAN
 from .outcomes import check_memory
@@ -351,5 +352,5 @@ def cross_check(run: CycleRun, rtol: float = CROSS_CHECK_RTOL) -> dict[str, floa
                 i = int(np.argmax(np.where(np.isnan(each), np.inf, each)))
                 where, mine, theirs = f"{name} of cycle {i + 1}", column[i], reference[i]
             raise CrossCheckError(f"{run.method} and solve_exact disagree on the {where}: {float(mine)!r} against "
-                                  f"{float(theirs)!r}, a relative difference of {gap:.3g} > rtol = {rtol:g}")
+                                  f"{float(theirs)!r}, a relative difference of {compared(gap, [rtol], 3)} > rtol = {float(rtol)!r}")
     return gaps
