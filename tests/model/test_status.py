@@ -2,14 +2,8 @@
 
 import pytest
 
-from escapement.model.status import (
-    Status,
-    chattering_message,
-    event_limit_message,
-    flag_attributes,
-    stopped_message,
-    turned_back_message,
-)
+from escapement.model.status import Status, flag_attributes
+from escapement.solvers.outcomes import chattering_message, event_limit_message, stopped_message, turned_back_message
 
 #: the codes as fixed in files already written: never renumber
 STORED = {"completed": 0, "stopped": 1, "turned_back_in_zone": 2, "chattering": 3, "event_limit": 4}
@@ -60,4 +54,5 @@ def test_messages_name_the_numbers():
     # NaN: the centre of oscillation lies in the direction of the rebound, so the mass is not driven back
     text = chattering_message(3.0, "a3", 1.5, -0.5, float("nan"))
     assert "does not drive the mass back to a3 (no Zeno point)" in text and "accumulate" not in text
-    assert "max_events = 7" in event_limit_message(1.0, 7)
+    assert event_limit_message(1.0, 7) == "ended after max_events = 7 events at t = 1 s; raise max_events to go on"
+    assert "max_events = 1 event at t = 0 s" in event_limit_message(-0.0, 1)  # one event; no signed zero

@@ -42,12 +42,13 @@ from ..model.events import EventKind, EventLog
 from ..model.kinematics import compensated_add
 from ..model.limits import RunLimits
 from ..model.parameters import Parameters
-from ..model.status import Status, event_limit_message
+from ..model.status import Status
 from ..solvers.outcomes import (
     Outcome,
     chattering_outcome,
     check_memory,
     completed_outcome,
+    event_limit_message,
     finish,
     horizon_outcome,
     no_event_outcome,

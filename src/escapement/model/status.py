@@ -1,4 +1,5 @@
-"""Typed outcomes: how a run ended, with a readable message, instead of an exception.
+"""Typed outcomes: how a run ended, instead of an exception (the messages are written where the
+outcomes are decided, :mod:`escapement.solvers.outcomes`).
 
 Each outcome has a stable integer code (:attr:`Status.code`), the one written to netCDF files
 with CF ``flag_values`` and ``flag_meanings`` (:func:`flag_attributes`); the codes are fixed
@@ -117,45 +118,3 @@ def flag_attributes() -> dict:
         "flag_values": np.array([code for _, code in ordered], dtype=np.int8),
         "flag_meanings": " ".join(status.value for status, _ in ordered),
     }
-
-
-def stopped_message(t: float, radius: float, missed: dict[str, float]) -> str:
-    """``missed`` maps the name of each impact position the swing cannot reach to its value."""
-    direction = {"a1": "moving right", "a3": "moving left"}
-    names = " or ".join(f"{name} = {value:.12g} m ({direction[name]})" for name, value in missed.items())
-    return (
-        f"the escapement stopped at t = {t:.12g} s: the free swing turns at x = {-radius:.12g} m and "
-        f"x = {radius:.12g} m and never passes the next impact position, {names}; "
-        "from then on the mass oscillates freely"
-    )
-
-
-def turned_back_message(t: float, zone: str, turning_point: float, centre: float, end: float) -> str:
-    return (
-        f"the mass turned back inside the impulse zone {zone} at t = {t:.12g} s: about the zone's centre "
-        f"x = {centre:.12g} m (F/K) the motion turns at x = {turning_point:.12g} m, short of the zone's end "
-        f"at {end:.12g} m; the escapement model does not cover this"
-    )
-
-
-def chattering_message(t: float, position: str, b: float, ratio: float, t_accumulation: float) -> str:
-    """``ratio`` is v+/v- of the impact that reversed the velocity; ``t_accumulation`` the time at which
-    the rebounds accumulate, finite whenever the spring drives the mass back to the impact position
-    (the rebound durations then shrink geometrically, by ``|ratio| < 1``), and NaN where it does not
-    (the centre of oscillation at the impact position or in the direction of the rebound)."""
-    head = (
-        f"the impact at {position} at t = {t:.12g} s reversed the velocity (b = {b:.12g} > 1, "
-        f"v+ = {ratio:.12g} v-): the mass rebounds instead of entering the impulse zone"
-    )
-    if np.isnan(t_accumulation):
-        return head + (f"; the centre of oscillation lies at {position} or in the direction of the rebound, so the "
-                       f"spring does not drive the mass back to {position} (no Zeno point), and the escapement "
-                       "regime has ended")
-    return (
-        head + f"; the spring drives it back to {position} and the impacts accumulate at t = "
-        f"{t_accumulation:.12g} s (a Zeno point), past which the impulsive model has no solution"
-    )
-
-
-def event_limit_message(t: float, max_events: int) -> str:
-    return f"ended after max_events = {max_events} events at t = {t:.12g} s; raise max_events to go on"

@@ -26,8 +26,9 @@ from ..model.events import EventKind
 from ..model.kinematics import arc_maximum, arc_terms, compensated_add, crossing, time_to_rest
 from ..model.limits import RunLimits
 from ..model.parameters import Parameters
-from ..model.status import Status, event_limit_message
-from .outcomes import Outcome, chattering_outcome, completed_outcome, horizon_outcome, no_event_outcome
+from ..model.status import Status
+from .outcomes import (Outcome, chattering_outcome, completed_outcome, event_limit_message, horizon_outcome,
+                       no_event_outcome)
 from .result import Exit
 
 __all__ = ["A1", "PLAN", "Block", "EventRun", "Row", "event_block", "cycle_rows", "kinds_from", "rows"]

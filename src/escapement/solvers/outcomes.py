@@ -27,7 +27,8 @@ from ..model.status import Status
 from .describe import compared, exact, texts
 from .result import ArcTable, CycleTable, Exit, Solution
 
-__all__ = ["Outcome", "chattering_outcome", "check_memory", "finish", "horizon_outcome", "no_event_outcome"]
+__all__ = ["Outcome", "chattering_outcome", "check_memory", "event_limit_message", "finish", "horizon_outcome",
+           "no_event_outcome"]
 
 
 class Outcome(NamedTuple):
@@ -88,6 +89,13 @@ def chattering_message(t: float, position: str, b: float, ratio: float, t_accumu
         head + f"; the spring drives it back to {position} and the impacts accumulate at t = "
         f"{t_acc_text} s (a Zeno point), past which the impulsive model has no solution"
     )
+
+
+def event_limit_message(t: float, max_events: int) -> str:
+    """The run reached ``max_events`` (an input) at ``t``."""
+    events = "event" if max_events == 1 else "events"
+    return (f"ended after max_events = {max_events} {events} at t = {texts([t], _DIGITS)[0]} s; raise max_events "
+            "to go on")
 
 
 def no_event_outcome(params: Parameters, state: int, centre, t, dt, turning, t_stop: float = math.inf,
