@@ -13,7 +13,9 @@ from escapement.pipeline.config_files import apply_config_overrides
 # check, for one clear line naming the key (the schema, the rules a schema cannot state, every
 # scene's parameters); then Snakemake's own validation against the schema.
 try:
-    apply_config_overrides(config, workflow.config_settings.config_args, workflow.config_settings.config)
+    apply_config_overrides(
+        config, workflow.config_settings.config_args, workflow.config_settings.config
+    )
     check_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
 except ConfigError as err:
     raise WorkflowError(str(err)) from None
