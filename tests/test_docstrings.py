@@ -9,7 +9,6 @@ import doctest
 import enum
 import inspect
 import re
-import time
 
 import pytest
 
@@ -132,9 +131,6 @@ def test_every_documented_name_has_a_doctest():
 def test_examples_run(test):
     runner = doctest.DocTestRunner(optionflags=FLAGS)
     report: list[str] = []
-    start = time.perf_counter()
     result = runner.run(test, out=report.append)
-    elapsed = time.perf_counter() - start
     assert result.attempted == len(test.examples) > 0
     assert result.failed == 0, "".join(report)
-    assert elapsed < 10.0, f"{test.name}: the examples took {elapsed:.2f} s"  # a bound against a slow example

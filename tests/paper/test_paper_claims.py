@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
+from expectations import paper_fails
 
 from escapement.model.parameters import Parameters
 from escapement.model.status import Status
@@ -22,6 +23,7 @@ from escapement.paper import printed as pe
 from escapement.paper.poincare import measure_cycle
 from escapement.solvers.exact import solve_exact
 from escapement.integrators.high_precision import solve_high_precision
+
 
 REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"
 PRINTED_4_DECIMALS = 5e-5  # half a unit of the last digit of "6.2832 s"
@@ -140,19 +142,19 @@ def test_converged_period_replicated(case):
     assert c.period[-1] == pytest.approx(d.period(pe.fixed_point_19(p), p), rel=1e-8)
 
 
-@pytest.mark.xfail(strict=True, reason="Sec. 4 says 6.2832 s; the impacts and impulses change the period")
+@paper_fails("Sec. 4 says 6.2832 s; the impacts and impulses change the period")
 @pytest.mark.parametrize("case", ["a", "b"])
 def test_converged_period_paper(case):
     _, c = cycles(case)
     assert c.period[-1] == pytest.approx(6.2832, abs=PRINTED_4_DECIMALS)
 
 
-@pytest.mark.xfail(strict=True, reason="Sec. 4 says both periods are identical; the period depends on the force")
+@paper_fails("Sec. 4 says both periods are identical; the period depends on the force")
 def test_periods_identical_paper():
     assert cycles("a")[1].period[-1] == pytest.approx(cycles("b")[1].period[-1], abs=PRINTED_4_DECIMALS)
 
 
-@pytest.mark.xfail(strict=True, reason="Fig. 3 period axes (6.283-6.2846 s, 6.2826-6.2834 s) cannot hold the periods")
+@paper_fails("Fig. 3 period axes (6.283-6.2846 s, 6.2826-6.2834 s) cannot hold the periods")
 @pytest.mark.parametrize("case, axis", [("a", (6.283, 6.2846)), ("b", (6.2826, 6.2834))])
 def test_period_inside_the_printed_axis_paper(case, axis):
     period = cycles(case)[1].period
@@ -169,7 +171,7 @@ def test_convergence_rate_replicated_is_the_multiplier_for_both_forces():
         assert ratios == pytest.approx((1 - p.b) ** 4, rel=1e-9)
 
 
-@pytest.mark.xfail(strict=True, reason="Sec. 4: converging speed dependent on the force; the rate is (1-b)^4 for all")
+@paper_fails("Sec. 4: converging speed dependent on the force; the rate is (1-b)^4 for all")
 def test_convergence_rate_paper():
     rates = []
     for case in ("a", "b"):
@@ -187,7 +189,7 @@ def test_b_above_1_replicated_chatters(b):
     assert run.exit.t_accumulation > run.events.t[-1]
 
 
-@pytest.mark.xfail(strict=True, reason="Sec. 3.4: stable for 0 < b < 2; for b > 1 the impact reverses the velocity")
+@paper_fails("Sec. 3.4: stable for 0 < b < 2; for b > 1 the impact reverses the velocity")
 @pytest.mark.parametrize("b", [1.2, 1.5, 1.9])
 def test_b_above_1_paper(b):
     assert measure_cycle(paper(1.0, b=b), 1.0).outcome == "completed"
@@ -203,7 +205,7 @@ def test_asymmetric_multiplier_replicated_is_independent_of_force(positions):
         assert measure_cycle(paper(F, a1=a1, a2=a2, a3=a3, a4=a4), 1.0).multiplier == pytest.approx(0.6561, abs=1e-8)
 
 
-@pytest.mark.xfail(strict=True, reason="Sec. 5: convergence dependent on force and position; mu2 = (1-b)^4 regardless")
+@paper_fails("Sec. 5: convergence dependent on force and position; mu2 = (1-b)^4 regardless")
 def test_asymmetric_multiplier_paper():
     values = [measure_cycle(paper(F, a1=-0.1, a2=0.05, a3=0.2, a4=-0.02), 1.0).multiplier for F in (0.5, 3.0)]
     values += [measure_cycle(paper(1.0, a1=a1, a2=a2, a3=a3, a4=a4), 1.0).multiplier for a1, a2, a3, a4 in ASYMMETRIC]
@@ -234,7 +236,7 @@ def test_fig5_max_velocity_replicated_grows_with_K():
         assert peak == pytest.approx(v, rel=1e-9)
 
 
-@pytest.mark.xfail(strict=True, reason="Sec. 4: greater K, smaller maximum velocity; it is the other way round")
+@paper_fails("Sec. 4: greater K, smaller maximum velocity; it is the other way round")
 def test_fig5_max_velocity_paper():
     speeds = [_limit_cycle_max_speed(paper(0.5, K=k)) for k in (0.1, 1.0, 10.0)]
     assert speeds[0] > speeds[1] > speeds[2]
@@ -257,7 +259,7 @@ def test_fig5_recovery_replicated():
     assert rows[0][0] > rows[1][0] > rows[2][0]
 
 
-@pytest.mark.xfail(strict=True, reason="Sec. 4: small K recovers faster; in absolute time the stiff spring does")
+@paper_fails("Sec. 4: small K recovers faster; in absolute time the stiff spring does")
 def test_fig5_recovery_absolute_time_paper():
     times = [d.velocity_recovery(d.fixed_point(paper(0.5, K=k)), paper(0.5, K=k))[1] for k in (0.1, 1.0, 10.0)]
     assert times[0] < times[1] < times[2]
@@ -270,7 +272,7 @@ def test_fig4_velocity_swings_about_zero_replicated():
     assert abs(v.max() + v.min()) < 0.01 * v.max()
 
 
-@pytest.mark.xfail(strict=True, reason="Fig. 4 axes span -0.1 to 0.9; the velocity swings between about -0.9 and 0.9")
+@paper_fails("Fig. 4 axes span -0.1 to 0.9; the velocity swings between about -0.9 and 0.9")
 def test_fig4_velocity_axis_paper():
     p, x0 = CASE["b"]
     v = solve_exact(p, x0, t_end=87.0).sample(np.linspace(80.0, 87.0, 7001))[1]
@@ -294,7 +296,7 @@ def test_asymmetric_existence_replicated_follows_the_sign_of_C():
     assert converged.cycles.velocity_before_impact[-1] == pytest.approx(math.sqrt(0.0029 / 0.3439), rel=1e-10)
 
 
-@pytest.mark.xfail(strict=True, reason="Sec. 4: the initial amplitude has no effect; from |x0| <= |a1| nothing starts")
+@paper_fails("Sec. 4: the initial amplitude has no effect; from |x0| <= |a1| nothing starts")
 def test_initial_amplitude_inside_the_impact_positions_paper():
     assert measure_cycle(paper(1.0), 0.0999).outcome == "completed"
 
@@ -317,6 +319,6 @@ def test_period_as_daily_rate_replicated():
     assert 86_400 * (2 * math.pi / period - 1) == pytest.approx(-171.4, abs=0.05)
 
 
-@pytest.mark.xfail(strict=True, reason="Sec. 4: the period is the natural one, 6.2832 s; the impacts delay each cycle")
+@paper_fails("Sec. 4: the period is the natural one, 6.2832 s; the impacts delay each cycle")
 def test_period_is_the_natural_period_paper():
     assert cycles("a")[1].period[-1] == pytest.approx(2 * math.pi, abs=PRINTED_4_DECIMALS)

@@ -8,12 +8,14 @@ import math
 
 import numpy as np
 import pytest
+from expectations import paper_fails
 
 from escapement.model.events import EventKind
 from escapement.model.parameters import Parameters
 from escapement.paper import corrected as d
 from escapement.paper import printed as pe
 from escapement.solvers.exact import solve_exact
+
 
 CASES = {
     "fig3a": (Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0),
@@ -80,7 +82,7 @@ def test_eq14_corrected_sign_gives_the_simulated_velocity_at_a4(name):
         assert d.cycle_velocities(ev.v_before[i], p)["v5"] == pytest.approx(ev.v_before[i + 3], rel=1e-13)
 
 
-@pytest.mark.xfail(strict=True, reason="Eq. (14) as printed subtracts the work 2(a3 - a4) f that the force adds")
+@paper_fails("Eq. (14) as printed subtracts the work 2(a3 - a4) f that the force adds")
 @pytest.mark.parametrize("name", list(CASES))
 def test_eq14_as_printed(name):
     p, s = converged(name, 3)
@@ -122,7 +124,7 @@ def test_eq22e_corrected_gives_the_simulated_left_zone_time(name):
         assert corrected == pytest.approx(step_durations(s, k)["zone_left"], rel=1e-12)
 
 
-@pytest.mark.xfail(strict=True, reason="Eq. (22e) as printed subtracts the arccos term and gives a negative time")
+@paper_fails("Eq. (22e) as printed subtracts the arccos term and gives a negative time")
 @pytest.mark.parametrize("name", list(CASES))
 def test_eq22e_as_printed(name):
     p, s = converged(name, 3)
@@ -130,8 +132,8 @@ def test_eq22e_as_printed(name):
     assert times["22e"] == pytest.approx(step_durations(s, 0)["zone_left"], rel=1e-6)
 
 
-@pytest.mark.xfail(
-    strict=True, reason="Eq. (23) as printed: its last two terms need -a4 and -a1 (acos(a4/h) + acos(a1/h) is 2 pi minus the right phase)"
+@paper_fails(
+    "Eq. (23) as printed: its last two terms need -a4 and -a1 (acos(a4/h) + acos(a1/h) is 2 pi minus the right phase)"
 )
 @pytest.mark.parametrize("name", list(CASES))
 def test_eq23_as_printed(name):
@@ -146,7 +148,7 @@ def test_eq24_first_form_is_the_phase_jump_of_the_impact(name):
         assert pe.period_perturbation_24(v, p) == pytest.approx(d.impact_phase_jump(p.a1, v, p), rel=1e-13)
 
 
-@pytest.mark.xfail(strict=True, reason="Eq. (24) second form as printed uses the velocity after the impact")
+@paper_fails("Eq. (24) second form as printed uses the velocity after the impact")
 @pytest.mark.parametrize("name", list(CASES))
 def test_eq24_second_form_as_printed(name):
     p, _ = CASES[name]
@@ -154,8 +156,8 @@ def test_eq24_second_form_as_printed(name):
     assert pe.period_perturbation_24_closed(v, p) == pytest.approx(pe.period_perturbation_24(v, p), rel=1e-6)
 
 
-@pytest.mark.xfail(
-    strict=True, reason="Eq. (25) as printed takes atan of velocity over position; the phase needs position over velocity"
+@paper_fails(
+    "Eq. (25) as printed takes atan of velocity over position; the phase needs position over velocity"
 )
 @pytest.mark.parametrize("name", SYMMETRIC)
 def test_eq24_plus_25_as_printed_give_the_limit_cycle_period(name):
