@@ -61,6 +61,51 @@ def test_every_netcdf_output_holds_its_variables(workflow_run, path):
     assert ds.attrs.get("outcome", "completed") == "completed"
 
 
+#: the dimension each variable of the outputs must have, written from the physics (not read from the
+#: package): lengths in m, times in s, velocities in m/s, accelerations in m/s2, forces in N, the impulse
+#: in N s, energies in J, the daily rate in s/day; counts, ratios and relative errors dimensionless
+DIMENSIONS = {
+    **dict.fromkeys(["M"], "kg"), **dict.fromkeys(["F", "threshold", "threshold_mirror"], "N"), "K": "N/m",
+    **dict.fromkeys(["a1", "a2", "a3", "a4", "x0", "amplitude", "displacement", "event_position", "impact_position",
+                     "zone_a1", "zone_a2"], "m"),
+    **dict.fromkeys(["t", "period", "first_period", "period_formula", "fixed_point_period", "impact_time",
+                     "event_time", "drift_exact", "drift_ivp", "drift_closed_form", "velocity_window",
+                     "acceleration_window"], "s"),
+    **dict.fromkeys(["v0", "velocity", "velocity_before", "velocity_after", "velocity_before_impact",
+                     "event_velocity_before", "event_velocity_after", "largest_speed", "fixed_point",
+                     "fixed_point_19", "fixed_point_eq16", "fixed_point_velocity"], "m/s"),
+    "acceleration": "m/s2", "impulse": "N s", "energy_dissipated": "J", "samples_per_second": "1/s",
+    **dict.fromkeys(["rate", "rate_impacts", "rate_zones", "seconds_per_day"], "s/day"),
+    **dict.fromkeys(["b", "case", "cycle", "amplitude_cycle", "cycles_to_converge", "n_cycles", "zone", "tolerance",
+                     "multiplier", "multiplier_eq21", "floquet_major", "floquet_minor", "closed_form_difference",
+                     "max_period_deviation", "max_period_difference", "max_velocity_deviation", "error_time_exact",
+                     "error_time_ivp", "error_time_closed_form", "error_velocity_exact", "error_velocity_ivp",
+                     "error_velocity_closed_form"], "1"),
+}
+
+
+def test_every_variable_written_has_the_dimension_of_its_quantity(workflow_run):
+    """By value: the units of every variable of every netCDF output convert to the dimension its quantity
+    must have (cf_units), so a velocity written in m s-2 fails; a variable without units is a flag or a
+    label; a variable not in the table must be added to it with its dimension."""
+    from cf_units import Unit
+
+    checked = 0
+    for path in sorted((workflow_run / "results").rglob("*.nc")):
+        ds = read_netcdf(path)
+        for name, variable in ds.variables.items():
+            units = variable.attrs.get("units")
+            if units is None:
+                assert "flag_values" in variable.attrs or variable.dtype.kind in "OSU", f"{path.name}: {name}"
+                continue
+            assert name in DIMENSIONS, f"{path.name}: {name} ({units}) has no expected dimension in the table"
+            got, expected = Unit(units), Unit(DIMENSIONS[name])
+            assert got.is_convertible(expected) and got.convert(1.0, expected) == pytest.approx(1.0), (
+                f"{path.name}: {name} is in {units}, not in {DIMENSIONS[name]}")
+            checked += 1
+    assert checked > 100
+
+
 def test_fig3_has_the_configured_number_of_cycles(workflow_run):
     ds = read_netcdf(workflow_run / "results/fig3/case_a.nc")
     assert ds.sizes["cycle"] == REDUCED_FIG3_CYCLES and float(ds["F"]) == 1.0 and float(ds["x0"]) == -1.0
