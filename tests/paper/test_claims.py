@@ -84,11 +84,11 @@ def fig4_ds(vb=(0.8, -0.8), impulse=None, energy=None, swing=0.5) -> xr.Dataset:
     )
 
 
-def fig5_ds(K: float, v_last: float, amplitude=1.0, vmax=1.0, outcome="completed") -> xr.Dataset:
+def fig5_ds(K: float, v_last: float, amplitude=1.0, outcome="completed") -> xr.Dataset:
     t = np.linspace(0.0, 20.0, 201)
     return xr.Dataset(
         {
-            "velocity": ("t", vmax * np.sin(t)),
+            "velocity": ("t", np.sin(t)),
             "impact_time": ("impact", [4.0, 10.0]),
             "velocity_before_impact": ("cycle", [v_last, v_last]),
             "period": ("cycle", [6.0, 6.0]),

@@ -246,37 +246,42 @@ NOT_COMPARED = ("the panels of Fig. 5 run at different forces (the configuration
                  "figure's release and compared at one force")
 
 
-@check("fig5_amplitude_common_force", scenes=runs_only)
-def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
-    """The converged amplitude (the largest displacement of the last cycle) decreases with K at each
-    common force."""
+def _decreasing_in_K(ev: Evidence, column: str, digits: int, unit: str) -> tuple[str, str] | Verdict:
+    """Whether the runs' ``column`` decreases with K at every common force (a status) and the values in
+    words; or the verdict on a run that left the regime."""
     by_force, left = common_force_runs(ev)
     if left is not None:
         return left
     holds, parts = [], []
     for force, rows in by_force.items():
-        amplitudes = [float(run["amplitude"]) for _, run in rows]
-        holds.append(all(a > b for a, b in zip(amplitudes, amplitudes[1:])))
-        parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(h, 5)} m"
-                                                          for (k, _), h in zip(rows, amplitudes)))
-    return Verdict("converged amplitude: " + "; ".join(parts), _order_status(holds), note=NOT_COMPARED)
+        values = [float(run[column]) for _, run in rows]
+        holds.append(all(a > b for a, b in zip(values, values[1:])))
+        parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(x, digits)} {unit}"
+                                                          for (k, _), x in zip(rows, values)))
+    return _order_status(holds), "; ".join(parts)
+
+
+@check("fig5_amplitude_common_force", scenes=runs_only)
+def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
+    """The converged amplitude (the largest displacement of the last cycle) decreases with K at each
+    common force."""
+    found = _decreasing_in_K(ev, "amplitude", 5, "m")
+    if isinstance(found, Verdict):
+        return found
+    status, values = found
+    return Verdict("converged amplitude: " + values, status, note=NOT_COMPARED)
 
 
 @check("fig5_velocity_common_force", scenes=runs_only)
 def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
     """The largest |v| on the limit cycle (exact, from the arcs) decreases with K at each common force."""
-    by_force, left = common_force_runs(ev)
-    if left is not None:
-        return left
-    holds, parts = [], []
-    for force, rows in by_force.items():
-        speeds = [float(run["largest_speed"]) for _, run in rows]
-        holds.append(all(a > b for a, b in zip(speeds, speeds[1:])))
-        parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(v, 6)} m/s"
-                                                          for (k, _), v in zip(rows, speeds)))
+    found = _decreasing_in_K(ev, "largest_speed", 6, "m/s")
+    if isinstance(found, Verdict):
+        return found
+    status, values = found
     return Verdict(
-        "largest |v| on the limit cycle: " + "; ".join(parts),
-        _order_status(holds),
+        "largest |v| on the limit cycle: " + values,
+        status,
         note=NOT_COMPARED + "; the largest speed is exact, from the closed forms of the last cycle's arcs",
     )
 

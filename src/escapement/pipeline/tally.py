@@ -99,7 +99,7 @@ def headline(rows: Iterable[Mapping[str, str]]) -> str:
     """The verdict's count in one sentence (Markdown), from the rows of the claims table."""
     t = tally(rows)
     findings = len(t.findings)
-    fitted = [t.by_choice[c] for c in t.by_choice]
+    fitted = list(t.by_choice.values())
     return (
         f"The paper's claims fill {_rows(t.paper_rows)} of the register. The rows with an independent verdict "
         f"come down to {findings} findings: {t.count(REPRODUCED)} reproduced, {t.count(PARTIAL)} partially "
