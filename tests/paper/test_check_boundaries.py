@@ -1,0 +1,319 @@
+"""Every check of the register that compares a measured number with a tolerance, judged just inside
+and just outside the tolerance the register gives its claim (on both sides where the comparison is
+two-sided): the checks on the model and the equations of Sec. 3 here, those of Sec. 4 and beyond in
+test_check_boundaries_sec4.py, which uses the synthetic evidence built here.
+
+Each test reads a claim from the register, asserts its tolerance is the one the test was written for,
+and builds datasets shaped as the workflow writes them, with numbers chosen so that the check's measured
+quantity lies just inside or just outside that tolerance. The paper's symmetric geometry (M = K = 1,
+b = 0.1, a1 = -0.1, a2 = 0.05, a3 = 0.1, a4 = -0.05) gives by hand: the map (16)-(17)
+x1(k+1)^2 = 0.6561 x1(k)^2 + 0.543 F, its fixed point x*^2 = 0.3 F / 0.19, and the steps
+(11) v2^2 = v1+^2 + 0.0075 + 0.3 F, (12) v4^2 = v2^2 - 0.0075, (15) v1'^2 = v5^2 - 0.0075.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from escapement.paper import claims as cl
+from escapement.paper.checks import Evidence
+
+REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"
+GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
+DONE = {"outcome": "completed", "outcome_message": "completed: a message"}
+#: the relative offsets from a tolerance at which a check is judged: inside, outside
+SIDES = ((1 - 1e-6, "inside"), (1 + 1e-6, "outside"))
+
+
+def register_row(claim_id: str, tolerance: float) -> dict:
+    """The register's claim ``claim_id``, after checking that its tolerance is still ``tolerance``
+    (a tolerance changed in the register must be noticed here, and the test re-derived)."""
+    rows = [c for c in cl.load_claims(REGISTER) if c["id"] == claim_id]
+    assert len(rows) == 1, claim_id
+    assert rows[0]["tolerance"] == pytest.approx(tolerance, rel=1e-15), (claim_id, rows[0]["tolerance"])
+    return rows[0]
+
+
+def judged(row: dict, ev: Evidence) -> str:
+    """The status the row's check gives (before the register weighs it by its kind of evidence)."""
+    return cl.verdict(row, ev).status
+
+
+def scalars(**over) -> dict:
+    """The model's parameters and the release as 0-d variables, as the scenes write them."""
+    return {k: ((), float(v)) for k, v in {**GEOMETRY, "F": 1.0, "x0": -1.0, **over}.items()}
+
+
+def fig3(velocity, period=6.3, before=None, after=None, durations=None, **over) -> xr.Dataset:
+    """A Fig. 3 scene: ``velocity`` before each impact at a1 (one per cycle) and the ``period`` of each
+    cycle; events a1, a2, a3, a4 per cycle and a closing a1, with the velocities ``before`` and ``after``
+    each event (default 1 and 0.9 at the impacts, 1 elsewhere) and each step lasting 1 s unless
+    ``durations`` (four per cycle) is given."""
+    velocity = np.asarray(velocity, dtype=float)
+    n = len(velocity)
+    kinds = np.array([1, 2, 3, 4] * n + [1], dtype=np.int8)
+    steps = np.ones(4 * n) if durations is None else np.asarray(durations, dtype=float).ravel()
+    default_before = np.ones(len(kinds))
+    default_after = np.where((kinds == 1) | (kinds == 3), 0.9, 1.0)
+    return xr.Dataset(
+        {"velocity_before_impact": ("cycle", velocity), "period": ("cycle", np.broadcast_to(period, n).copy()),
+         "amplitude": ("cycle", np.ones(n)), "event_time": ("event", np.concatenate([[0.0], np.cumsum(steps)])),
+         "event_kind": ("event", kinds),
+         "event_velocity_before": ("event", default_before if before is None else np.asarray(before, dtype=float)),
+         "event_velocity_after": ("event", default_after if after is None else np.asarray(after, dtype=float)),
+         **scalars(**over)},
+        coords={"cycle": np.arange(1, n + 1)}, attrs=DONE)
+
+
+def fig5(K: float, velocity, **over) -> xr.Dataset:
+    """A Fig. 5 scene of spring constant ``K`` with ``velocity`` before each impact at a1."""
+    velocity = np.asarray(velocity, dtype=float)
+    n = len(velocity)
+    return xr.Dataset(
+        {"velocity_before_impact": ("cycle", velocity), "period": ("cycle", np.full(n, 2 * math.pi)),
+         "amplitude": ("cycle", np.ones(n)), **scalars(K=K, **over)},
+        coords={"cycle": np.arange(1, n + 1)}, attrs=DONE)
+
+
+RUN = {"label": "run", "group": "paper", "outcome": "completed", "outcome_message": "a message", "F": 1.0,
+       "x0": 1.0, "velocity": 1.0, "period": 6.3, "first_period": 6.3, "amplitude": 1.0, "largest_speed": 1.0,
+       "multiplier": 0.6561, "multiplier_eq21": 0.6561, "floquet_major": 1.0, "floquet_minor": 0.6561,
+       **GEOMETRY}
+
+
+def runs(*rows: dict) -> xr.Dataset:
+    """The checks dataset: one run per row, every column of :data:`RUN` (its value unless the row gives one)."""
+    return xr.Dataset({k: ("case", [r.get(k, d) for r in rows]) for k, d in RUN.items()},
+                      coords={"case": np.arange(len(rows))})
+
+
+def evidence(fig3s=None, fig5s=None, checks=None) -> Evidence:
+    """Evidence holding only what a check reads; the rest left empty."""
+    return Evidence(fig3=fig3s or {}, fig4=None, fig5=fig5s or {}, checks=checks)
+
+
+def g17(x: float, F: float = 1.0) -> float:
+    """The map (17) at the paper's geometry, by hand: sqrt(0.6561 x^2 + 0.543 F)."""
+    return math.sqrt(0.6561 * x * x + 0.543 * F)
+
+
+# --- the comparison every check shares ------------------------------------------------------------
+
+
+def test_within_keeps_a_value_equal_to_the_tolerance():
+    from escapement.paper.checks import within
+    assert within(0.25, 0.25) == "reproduced"  # 0.25 exact in binary: equality itself, no rounding
+    assert within(math.nextafter(0.25, 1.0), 0.25) == "not_reproduced"
+    assert within(0.0, 0.0) == "reproduced"
+
+
+def test_a_printed_reading_reproduces_up_to_its_relative_tolerance_of_the_simulated_value():
+    """try_readings, which Eqs. (14), (22e), (23), (24) and (25) go through: the relative difference from the
+    simulated value (not from the formula's), at most the tolerance; a value exactly at it reproduces."""
+    from escapement.paper.conventions import try_readings
+    simulated, tolerance = 2.5, 0.125  # 2.5 * 0.125 = 0.3125: every number exact in binary
+    for value, reproduces in ((2.5 + 0.3125, True), (2.5 - 0.3125, True),
+                              (math.nextafter(2.8125, 3.0), False), (math.nextafter(2.1875, 2.0), False)):
+        trial = try_readings(lambda r: value, simulated, tolerance, ())[0]
+        assert trial.reproduces is reproduces, value
+    # relative to the formula's value instead (0.3125 / 2.8125 = 0.111) would reproduce at 0.12: it must not
+    assert not try_readings(lambda r: 2.8125, simulated, 0.12, ())[0].reproduces
+
+
+# --- Sec. 3.3: the model's definitions -----------------------------------------------------------
+
+
+def test_the_state_matrix_is_undetermined_while_omega_and_its_square_agree_to_the_tolerance():
+    """math.isclose(w, w^2, rel_tol): |w - w^2| against the larger, w^2 (w > 1): (w - 1)/w = t for
+    w = 1/(1 - t). The tolerance is 1e-12, near the resolution of w, so the margin is 5 %."""
+    row = register_row("eq3a_state_matrix", 1e-12)
+    for factor, expected in ((0.95, "undetermined"), (1.05, "not_reproduced")):
+        w = 1.0 / (1.0 - factor * 1e-12)
+        assert judged(row, evidence({"a": fig3([1.0], K=w * w)})) == expected, factor
+
+
+def test_the_impact_matrix_holds_to_its_tolerance_on_both_sides():
+    """The jump after - before against -b before, relative to |before|: before = 2, after = 1.8 + e gives
+    e / 2. The tolerance 1e-14 is near the resolution of 1.8, so the margin is 10 %."""
+    row = register_row("eq3c_impact_matrix", 1e-14)
+    for factor, expected in ((0.9, "reproduced"), (1.1, "not_reproduced")):
+        for sign in (1.0, -1.0):
+            before, after = np.ones(5), np.array([0.9, 1.0, 0.9, 1.0, 0.9])
+            before[2], after[2] = 2.0, 1.8 + sign * factor * 2e-14
+            ds = fig3([1.0], before=before, after=after)
+            assert judged(row, evidence({"a": ds})) == expected, (factor, sign)
+
+
+# --- Sec. 3.3-3.4: the maps, the fixed point, the multipliers -----------------------------------
+
+
+@pytest.mark.parametrize("claim_id", ["eq16_map", "eq17_symmetric_map"])
+def test_the_map_holds_to_its_relative_tolerance_of_the_map_on_both_sides(claim_id):
+    """x1(2) = g(x1(1)) (1 +/- t) from x1(1) = 2 m/s (g = 1.8...: a relative and an absolute difference
+    differ by 1.8). The tolerance 1e-13 is near the resolution of g, so the margin is 10 %."""
+    row = register_row(claim_id, 1e-13)
+    for factor, expected in ((0.9, "reproduced"), (1.1, "not_reproduced")):
+        for sign in (1.0, -1.0):
+            ds = fig3([2.0, g17(2.0) * (1 + sign * factor * 1e-13)])
+            assert judged(row, evidence({"a": ds})) == expected, (factor, sign)
+
+
+@pytest.mark.parametrize("claim_id, case, F", [("eq19_fixed_point_case_a", "a", 2.0),
+                                               ("eq19_fixed_point_case_b", "b", 0.5)])
+def test_the_fixed_point_holds_to_its_relative_tolerance_on_both_sides(claim_id, case, F):
+    """The last velocity before impact x* (1 +/- t (1 +/- 1e-6)), x* = sqrt(0.3 F / 0.19) by hand."""
+    row = register_row(claim_id, 1e-8)
+    star = math.sqrt(0.3 * F / 0.19)
+    for factor, side in SIDES:
+        for sign in (1.0, -1.0):
+            ds = fig3([1.0, star * (1 + sign * factor * 1e-8)], F=F)
+            expected = "reproduced" if side == "inside" else "not_reproduced"
+            assert judged(row, evidence({case: ds})) == expected, (factor, sign)
+
+
+def test_the_multiplier_of_the_paper_cases_is_within_the_tolerance_of_the_printed_0_6561():
+    row = register_row("eq21_multiplier", 1e-8)
+    assert row["paper_value"] == 0.6561
+    for factor, side in SIDES:
+        for sign in (1.0, -1.0):
+            checks = runs({"label": "a"}, {"label": "b", "multiplier": 0.6561 + sign * factor * 1e-8})
+            expected = "reproduced" if side == "inside" else "not_reproduced"
+            assert judged(row, evidence(checks=checks)) == expected, (factor, sign)
+
+
+def test_the_multipliers_of_a_group_are_within_the_tolerance_of_eq21():
+    row = register_row("stability_symmetric_independent", 1e-8)
+    group = row["args"]["group"]
+    for factor, side in SIDES:
+        for sign in (1.0, -1.0):
+            checks = runs({"group": group}, {"group": group, "multiplier": 0.6561 + sign * factor * 1e-8})
+            expected = "reproduced" if side == "inside" else "not_reproduced"
+            assert judged(row, evidence(checks=checks)) == expected, (factor, sign)
+
+
+def test_the_asymmetric_rate_depends_on_the_force_only_beyond_the_tolerance():
+    """Inverted: a multiplier within the tolerance of (1-b)^4 in every asymmetric run refutes the claim."""
+    row = register_row("asymmetric_convergence_depends", 1e-8)
+    for factor, side in SIDES:
+        for sign in (1.0, -1.0):
+            checks = runs({"group": "asymmetric"},
+                          {"group": "asymmetric", "multiplier": 0.6561 + sign * factor * 1e-8})
+            expected = "not_reproduced" if side == "inside" else "reproduced"
+            assert judged(row, evidence(checks=checks)) == expected, (factor, sign)
+
+
+def test_stability_over_b_at_the_tolerance_and_at_b_equal_to_1():
+    """b = 0.1, 0.5, 0.9 stable with mu2 = (1-b)^4 within the tolerance: reproduced; with a run that
+    chatters at b > 1 as well: partially; a run that chatters at b = 1 exactly (not above 1): not."""
+    row = register_row("stability_iff_b", 1e-8)
+
+    def stable(offset: float) -> list[dict]:
+        return [{"group": "b", "b": b, "multiplier_eq21": (1 - b) ** 4,
+                 "multiplier": (1 - b) ** 4 + (offset if b == 0.5 else 0.0)} for b in (0.1, 0.5, 0.9)]
+
+    chatter = {"group": "b", "b": 1.5, "outcome": "chattering", "multiplier": math.nan, "multiplier_eq21": 0.0625}
+    for factor, side in SIDES:
+        for sign in (1.0, -1.0):
+            offset = sign * factor * 1e-8
+            alone, with_chatter = (judged(row, evidence(checks=runs(*stable(offset), *extra)))
+                                   for extra in ((), (chatter,)))
+            assert (alone, with_chatter) == (("reproduced", "partially_reproduced") if side == "inside" else
+                                             ("not_reproduced", "not_reproduced")), (factor, sign)
+    at_one = {**chatter, "b": 1.0, "multiplier_eq21": 0.0}
+    assert judged(row, evidence(checks=runs(*stable(0.0), at_one))) == "not_reproduced"
+    above_one = {**chatter, "b": math.nextafter(1.0, 2.0)}
+    assert judged(row, evidence(checks=runs(*stable(0.0), above_one))) == "partially_reproduced"
+
+
+def test_the_trivial_multiplier_and_the_other_within_the_tolerance_on_both_sides():
+    row = register_row("eq8_trivial_multiplier", 1e-8)
+    group = row["args"]["group"]
+    for key, centre in (("floquet_major", 1.0), ("floquet_minor", 0.6561)):
+        for factor, side in SIDES:
+            for sign in (1.0, -1.0):
+                checks = runs({"group": group}, {"group": group, key: centre + sign * factor * 1e-8})
+                expected = "reproduced" if side == "inside" else "not_reproduced"
+                assert judged(row, evidence(checks=checks)) == expected, (key, factor, sign)
+
+
+def test_the_system_is_linear_only_while_the_slopes_of_its_map_agree_to_the_tolerance():
+    """Velocities whose successive differences shrink by 0.5, then by 0.5 + s: the spread of the
+    slopes is s; within the tolerance the map is affine (reproduced), beyond it only piecewise linear.
+    The slopes are ratios of differences of 1e-2, so the margin is 1e-4."""
+    row = register_row("sec33_linear_non_homogeneous", 1e-6)
+    for factor, expected in ((1 - 1e-4, "reproduced"), (1 + 1e-4, "partially_reproduced")):
+        spread = factor * 1e-6
+        differences = [0.02, 0.01, 0.01 * (0.5 + spread)]
+        ds = fig3(1.5 + np.concatenate([[0.0], np.cumsum(differences)]))
+        assert judged(row, evidence({"a": ds})) == expected, factor
+
+
+# --- the printed step equations (10)-(15) --------------------------------------------------------
+
+#: per equation: the printed step by hand at the paper's geometry (F = 1), and where its input and output
+#: are among a cycle's events (offset from the impact at a1; before or after the event)
+STEPS = {
+    "eq10_impact_a1": (lambda v: 0.9 * v, (0, "before"), (0, "after")),
+    "eq11_velocity_a2": (lambda v: math.sqrt(v * v + 0.0075 + 0.3), (0, "after"), (1, "before")),
+    "eq12_velocity_a3": (lambda v: -math.sqrt(v * v - 0.0075), (1, "before"), (2, "before")),
+    "eq13_impact_a3": (lambda v: 0.9 * v, (2, "before"), (2, "after")),
+    "eq15_velocity_a1": (lambda v: math.sqrt(v * v - 0.0075), (3, "before"), (4, "before")),
+}
+
+
+@pytest.mark.parametrize("claim_id", list(STEPS))
+def test_a_printed_step_holds_to_its_relative_tolerance_of_the_simulated_output(claim_id):
+    """Two cycles whose velocities are all 2 m/s in magnitude but the output of the step in the first
+    cycle, set to printed(input) / (1 +/- e): the relative difference from the simulated output is e. The
+    tolerance 1e-12 is near the resolution of the velocities, so the margin is 1 %."""
+    row = register_row(claim_id, 1e-12)
+    formula, (i_in, when_in), (i_out, when_out) = STEPS[claim_id]
+    for factor, expected in ((0.99, "reproduced"), (1.01, "not_reproduced")):
+        for sign in (1.0, -1.0):
+            velocities = {"before": np.full(9, 2.0), "after": np.full(9, 2.0)}
+            for start in (0, 4):  # each cycle's step exact but the first's
+                velocities[when_out][start + i_out] = formula(velocities[when_in][start + i_in])
+            velocities[when_out][i_out] /= 1 + sign * factor * 1e-12
+            ds = fig3([2.0, 2.0], before=velocities["before"], after=velocities["after"])
+            assert judged(row, evidence({"a": ds})) == expected, (factor, sign)
+
+
+def test_eq14_as_read_holds_to_its_relative_tolerance_of_the_simulated_velocity_at_a4():
+    """From v1 = 1 m/s at the last cycle's a1 (F = 1): v4+^2 = 0.8991 and Eq. (14) as printed gives v5 = -sqrt(0.6066) (by hand,
+    see test_conventions); the simulated v5 set to that / (1 +/- e). Outside the tolerance no other reading
+    of the paper is near (1.2066 under -f or mirrored positions): not reproduced."""
+    row = register_row("eq14_as_printed", 1e-6)
+    printed = -math.sqrt(0.6066)
+    for factor, side in SIDES:
+        for sign in (1.0, -1.0):
+            before = np.ones(9)
+            before[7] = printed / (1 + sign * factor * 1e-6)  # the last cycle's a4
+            ds = fig3([1.0, 1.0], before=before)
+            expected = "reproduced" if side == "inside" else "not_reproduced"
+            assert judged(row, evidence({row["args"]["case"]: ds})) == expected, (factor, sign)
+
+
+def test_the_derivative_of_the_map_holds_to_its_relative_tolerance_of_eq20(monkeypatch):
+    """The simulated return map replaced by a linear one whose slope is Eq. (20) by hand,
+    0.6561 x / g(x), times (1 +/- e), at each velocity of the claim; the slope from central differences
+    of 1e-5 carries a rounding of about 1e-11, so the margin is 10 %."""
+    from escapement.paper import register as rg
+    row = register_row("eq20_map_derivative", 1e-8)
+    for factor, expected in ((0.9, "reproduced"), (1.1, "not_reproduced")):
+        for sign in (1.0, -1.0):
+            for off in row["args"]["velocities"]:
+                def slope(x: float) -> float:
+                    return 0.6561 * x / g17(x) * (1 + (sign * factor * 1e-8 if x == off else 0.0))
+                centres = {float(v) for v in row["args"]["velocities"]}
+
+                def linear(p, v: float) -> tuple[float, float]:
+                    centre = min(centres, key=lambda c: abs(c - v))
+                    return v, slope(centre) * v
+                monkeypatch.setattr(rg, "return_map", linear)
+                ds = fig3([1.0])
+                assert judged(row, evidence({row["args"]["case"]: ds})) == expected, (factor, sign, off)
