@@ -1,34 +1,67 @@
-"""The speed floors' measurements (benchmarks/floor.py) return rows of the stated form. Not timed: the sizes are
-tiny and no ratio is asserted. The minimal loops themselves are tested in test_minimal.py."""
+"""The speed floors' measurements (benchmarks/floor.py) on an injected clock: each timed run takes a duration
+the test sets, so every median, time and ratio of a row is known by hand. The memory rows likewise take their
+peak bytes from the test; :func:`floor.peak_bytes` itself is checked on an allocation of known size. No wall
+time is asserted. The minimal loops themselves are tested in test_minimal.py."""
 
 from __future__ import annotations
 
-import math
+import gc
+import tracemalloc
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from benchmarks import floor
 
-CYCLE_COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
+
+class DurationClock:
+    """A clock read twice per timed run (start, end): each end reading comes the next of ``durations`` after
+    the start. Durations are binary fractions, so that every difference and ratio is exact."""
+
+    def __init__(self, durations) -> None:
+        self.durations, self.now, self.readings = list(durations), 0.0, 0
+
+    def __call__(self) -> float:
+        self.readings += 1
+        if self.readings % 2 == 0:
+            self.now += self.durations.pop(0)
+        return self.now
 
 
-def test_side_by_side_runs_every_function_the_same_number_of_times():
+def _use(monkeypatch, clock) -> None:
+    monkeypatch.setattr(floor, "time", SimpleNamespace(perf_counter=clock))
+
+
+def _interleaved(*per_function):
+    """The durations read in side_by_side's order: one run of each function per round."""
+    return [d for round_ in zip(*per_function) for d in round_]
+
+
+def test_side_by_side_interleaves_the_runs_and_times_each_with_the_collector_off(monkeypatch):
+    clock = DurationClock(_interleaved([0.5, 0.25, 2.0], [1.0, 1.0, 1.0]))
+    _use(monkeypatch, clock)
     calls = []
-    times = floor.side_by_side({"a": lambda: calls.append("a"), "b": lambda: calls.append("b")}, 3)
-    assert calls == ["a", "b"] * 3  # interleaved
-    assert {name: len(t) for name, t in times.items()} == {"a": 3, "b": 3}
-    assert all(t >= 0.0 for ts in times.values() for t in ts)
+    times = floor.side_by_side({"a": lambda: calls.append(("a", gc.isenabled())),
+                                "b": lambda: calls.append(("b", gc.isenabled()))}, 3)
+    assert calls == [("a", False), ("b", False)] * 3  # interleaved, the garbage collector off while timed
+    assert gc.isenabled()  # and on again afterwards
+    assert times == {"a": [0.5, 0.25, 2.0], "b": [1.0, 1.0, 1.0]}
+    assert clock.durations == [] and clock.readings == 12
 
 
-def _assert_ratios(rows):
-    for row in rows:
-        if "bytes" in row and "peak memory" in row["name"]:
-            assert row["bytes"] > 0 and row["reference_bytes"] > 0
-            assert math.isclose(row["ratio"], row["bytes"] / row["reference_bytes"])
-        else:
-            assert row["time_s"] > 0 and row["reference_s"] > 0
-            assert math.isclose(row["ratio"], row["time_s"] / row["reference_s"])
+def test_the_exact_floor_pairs_each_way_with_its_minimal_loop_on_medians(monkeypatch):
+    # per function (in side_by_side's order), three rounds: the medians are 1, 2, 6, 3 and 1.5
+    cycle, event, storing, no_arcs, streaming = [1, 1, 1], [2, 4, 2], [8, 4, 6], [3, 5, 3], [1.5, 0.5, 2]
+    _use(monkeypatch, DurationClock(_interleaved(cycle, event, storing, no_arcs, streaming)))
+    rows = floor.exact_floor(sizes=(3,), repeats=3)
+    expected = [("solve_exact storing / minimal event loop", 6, 2), ("solve_exact storing without arcs / "
+                "minimal event loop", 3, 2), ("solve_exact storing / minimal cycle loop", 6, 1),
+                ("solve_exact storing without arcs / minimal cycle loop", 3, 1),
+                ("solve_exact streaming / minimal cycle loop", 1.5, 1)]
+    assert rows == [{"name": name, "n": 3, "ratio": time / reference, "time_s": time, "reference_s": reference,
+                     "repeats": 3} for name, time, reference in expected]
+    assert [row["ratio"] for row in rows] == [3, 1.5, 6, 3, 1.5]  # the quotients, worked out
 
 
 def test_the_exact_floor_gives_a_row_per_way_and_size():
@@ -37,19 +70,41 @@ def test_the_exact_floor_gives_a_row_per_way_and_size():
         (f"solve_exact {way} / minimal {loop} loop", n) for n in (3, 5)
         for loop, ways in (("event", ("storing", "storing without arcs")),
                            ("cycle", ("storing", "storing without arcs", "streaming"))) for way in ways]
-    assert all(set(row) == {"name", "n", "ratio", "time_s", "reference_s", "repeats"} for row in rows)
-    assert all(row["repeats"] == 2 for row in rows)
-    _assert_ratios(rows)
+    assert all(row["repeats"] == 2 and row["time_s"] > 0 and row["reference_s"] > 0 for row in rows)
 
 
-def test_the_ensemble_floor_gives_a_row_for_time_and_one_for_memory():
-    rows = floor.ensemble_floor(n_trajectories=20, n_cycles=3, repeats=2)
-    time_row, memory_row = rows
-    assert time_row["name"] == "solve_ensemble / numpy loop, 3 cycles" and time_row["n"] == 20
-    assert set(time_row) == {"name", "n", "ratio", "time_s", "reference_s", "repeats"}
-    assert memory_row["name"] == "solve_ensemble / numpy loop, peak memory per trajectory, 3 cycles"
-    assert set(memory_row) == {"name", "n", "ratio", "bytes", "reference_bytes"}
-    _assert_ratios(rows)
+def _scripted_peaks(monkeypatch, peaks):
+    """peak_bytes giving the test's numbers, in the order of the calls (each function still runs once)."""
+    remaining = list(peaks)
+
+    def peak(function):
+        function()
+        return remaining.pop(0)
+
+    monkeypatch.setattr(floor, "peak_bytes", peak)
+    return remaining
+
+
+def test_the_ensemble_floor_gives_a_row_for_time_and_one_per_trajectory_for_memory(monkeypatch):
+    _use(monkeypatch, DurationClock(_interleaved([1, 2, 1], [3, 2, 5])))  # numpy, then the ensemble: medians 1, 3
+    left = _scripted_peaks(monkeypatch, [4000, 8000])  # numpy, then the ensemble: 200 and 400 bytes a trajectory
+    time_row, memory_row = floor.ensemble_floor(n_trajectories=20, n_cycles=3, repeats=3)
+    assert time_row == {"name": "solve_ensemble / numpy loop, 3 cycles", "n": 20, "ratio": 3.0, "time_s": 3,
+                        "reference_s": 1, "repeats": 3}
+    assert memory_row == {"name": "solve_ensemble / numpy loop, peak memory per trajectory, 3 cycles", "n": 20,
+                          "ratio": 2.0, "bytes": 400.0, "reference_bytes": 200.0}
+    assert left == []
+
+
+def test_the_stream_floor_times_the_smaller_size_and_compares_the_larger_s_memory(monkeypatch):
+    # exact and closed-form streams side by side (medians 4 and 1), then the larger run once (16)
+    _use(monkeypatch, DurationClock([*_interleaved([4, 6, 2], [1, 2, 1]), 16]))
+    _scripted_peaks(monkeypatch, [300, 100, 150])  # exact and closed form at 50 cycles, closed form at 200
+    streamed, memory = floor.stream_floor(sizes=(200, 50), repeats=3)
+    assert streamed == {"name": "solve_exact streamed / closed-form cycles streamed", "n": 50, "ratio": 4.0,
+                        "time_s": 4, "reference_s": 1, "repeats": 3, "bytes": 300, "reference_bytes": 100}
+    assert memory == {"name": "closed-form cycles streamed, peak memory against 50 cycles", "n": 200, "ratio": 1.5,
+                      "time_s": 16, "reference_s": 1, "repeats": 1, "bytes": 150, "reference_bytes": 100}
 
 
 def test_the_floor_rows_are_those_of_the_three_floors_on_the_configured_sizes():
@@ -66,9 +121,13 @@ def test_the_floor_rows_are_those_of_the_three_floors_on_the_configured_sizes():
         ("solve_exact streamed / closed-form cycles streamed", 50),
         ("closed-form cycles streamed, peak memory against 50 cycles", 200),
     ]
-    assert rows[-1]["ratio"] == pytest.approx(rows[-1]["bytes"] / rows[-1]["reference_bytes"])
-    _assert_ratios(rows[:-1])
 
 
 def test_peak_bytes_counts_what_a_function_allocates():
-    assert floor.peak_bytes(lambda: np.ones(100_000)) >= 800_000
+    # 100_000 float64 are 800_000 bytes of data, and an array's header is a few hundred bytes at most
+    assert 800_000 <= floor.peak_bytes(lambda: np.ones(100_000)) < 801_000
+    kept = []
+    assert floor.peak_bytes(lambda: kept.append(0)) < 1_000  # nothing of size allocated
+    with pytest.raises(ZeroDivisionError):
+        floor.peak_bytes(lambda: 1 / 0)
+    assert not tracemalloc.is_tracing()  # stopped even when the function raises
