@@ -1,9 +1,11 @@
 import math
+from types import SimpleNamespace
 
 import pytest
 
 from escapement.model.parameters import Parameters
 from escapement.integrators.high_precision import solve_high_precision
+from escapement.studies import benchmark
 from escapement.studies.benchmark import (
     closed_form_map,
     headline_ratios,
@@ -15,6 +17,27 @@ from escapement.studies.benchmark import (
 
 P = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
 N = 5
+
+
+class DurationClock:
+    """A clock read twice per timed run (start, end): each end reading comes the next of ``durations`` after
+    the start (binary fractions: every sum and quotient is exact). Without durations, every run takes 1 s."""
+
+    def __init__(self, durations=()) -> None:
+        self.durations, self.now, self.readings = list(durations), 0.0, 0
+
+    def __call__(self) -> float:
+        self.readings += 1
+        if self.readings % 2 == 0:
+            self.now += self.durations.pop(0) if self.durations else 1.0
+        return self.now
+
+
+def use_clock(monkeypatch, durations=()) -> DurationClock:
+    """Time the benchmark's runs on a :class:`DurationClock` instead of the wall clock."""
+    clock = DurationClock(durations)
+    monkeypatch.setattr(benchmark, "time", SimpleNamespace(perf_counter=clock))
+    return clock
 
 
 @pytest.fixture(scope="module")
@@ -85,9 +108,12 @@ def test_invalid_methods_raise(method):
         run_method(method, None, P, 1.0, N)
 
 
-def test_rows_hold_the_errors_of_each_run_against_50_digits(reference):
+def test_rows_hold_the_errors_of_each_run_against_50_digits(reference, monkeypatch):
     v_ref, t_ref = reference
-    rows = work_precision(P, 1.0, N, {"exact": [], "naive-RK4": [0.1, 0.01]}, min_seconds=0.01, max_repeats=5)
+    # one run of each at 0.5 s, then 0.25 s each up to 1 s: 1, 1, 3 and 4 runs (the last at its cap of 4)
+    use_clock(monkeypatch, [1.0, 2.0, 0.5, 0.25, 0.25, 0.25, 0.25, 0.25, 0.25])
+    rows = work_precision(P, 1.0, N, {"exact": [], "naive-RK4": [0.1, 0.01]}, min_seconds=1.0, max_repeats=4)
+    assert [(r["wall_s"], r["repeats"]) for r in rows] == [(1.0, 1), (2.0, 1), (0.25, 3), (0.25, 4)]
     assert [(r["method"], r["setting"]) for r in rows] == [
         ("exact", ""), ("closed-form cycles", ""), ("naive-RK4", "0.1"), ("naive-RK4", "0.01")]
     for row, setting in zip(rows[2:], (0.1, 0.01)):
@@ -97,10 +123,10 @@ def test_rows_hold_the_errors_of_each_run_against_50_digits(reference):
     for row in rows[:2]:  # the exact solver and the per-cycle closed form
         assert row["error_velocity"] < 1e-14 and row["error_time"] < 1e-14
     assert rows[3]["error_time"] < rows[2]["error_time"]  # a smaller step is more accurate
-    assert all(r["wall_s"] > 0 and math.isfinite(r["wall_s"]) for r in rows)
 
 
-def test_the_closed_form_row_follows_exact_only_when_asked():
+def test_the_closed_form_row_follows_exact_only_when_asked(monkeypatch):
+    use_clock(monkeypatch)
     rows = work_precision(P, 1.0, N, {"map16": [], "exact": []}, min_seconds=0.01, max_repeats=2)
     assert [r["method"] for r in rows] == ["map16", "exact", "closed-form cycles"]
     rows = work_precision(P, 1.0, N, {"map16": []}, min_seconds=0.01, max_repeats=2)
@@ -109,33 +135,41 @@ def test_the_closed_form_row_follows_exact_only_when_asked():
     assert [r["method"] for r in rows] == ["exact"]
 
 
-def test_headline_ratios_pick_the_fastest_setting_that_reaches_the_target(reference):
-    settings = {"DOP853": [1e-6, 1e-10], "CVODE-Adams": [1e-9], "naive-RK4": [0.1]}  # naive-RK4 is no candidate
-    h = headline_ratios(P, 1.0, N, settings, target=1e-5, min_seconds=0.01, max_repeats=3)
+def test_headline_ratios_pick_the_fastest_setting_that_reaches_the_target(reference, monkeypatch):
+    # timed in this order, one run each (every run takes at least min_seconds): the exact solver 2 s, the
+    # per-cycle closed form 0.5 s, DOP853 4 s, CVODE-Adams 1 s, RK45 0.25 s; naive-RK4 is no candidate
+    use_clock(monkeypatch, [2.0, 0.5, 4.0, 1.0, 0.25])
+    settings = {"DOP853": [1e-10], "CVODE-Adams": [1e-9], "RK45": [1e-2], "naive-RK4": [0.1]}
+    h = headline_ratios(P, 1.0, N, settings, target=1e-5, min_seconds=0.25, max_repeats=3)
     assert h["n_cycles"] == N and h["target"] == 1e-5 and h["errors"] == ("error_velocity", "error_time")
-    assert [(r["method"], r["setting"]) for r in h["candidates"]] == [
-        ("DOP853", "1e-06"), ("DOP853", "1e-10"), ("CVODE-Adams", "1e-09")]
-    reaching = [r for r in h["candidates"] if r["error_velocity"] <= 1e-5 and r["error_time"] <= 1e-5]
-    assert h["ode"] == min(reaching, key=lambda r: r["wall_s"])
-    assert h["exact"]["method"] == "exact" and h["closed_form"]["method"] == "closed-form cycles"
-    assert h["closed_form"]["error_velocity"] < 1e-14 and h["closed_form"]["error_time"] < 1e-14
-    assert h["exact_over_closed_form"] == h["exact"]["wall_s"] / h["closed_form"]["wall_s"]
-    assert h["ode_over_closed_form"] == h["ode"]["wall_s"] / h["closed_form"]["wall_s"]
-    assert h["ode_over_exact"] == h["ode"]["wall_s"] / h["exact"]["wall_s"]
+    assert [(r["method"], r["setting"], r["wall_s"]) for r in h["candidates"]] == [
+        ("DOP853", "1e-10", 4.0), ("CVODE-Adams", "1e-09", 1.0), ("RK45", "0.01", 0.25)]
+    # DOP853 and CVODE-Adams reach 1e-5 (within 1e-7 and 1e-6, the tolerances above); RK45 at rtol 1e-2,
+    # the fastest, does not: so CVODE-Adams, 1 s, is the one compared
+    assert max(h["candidates"][2]["error_velocity"], h["candidates"][2]["error_time"]) > 1e-5
+    assert (h["exact"]["wall_s"], h["closed_form"]["wall_s"]) == (2.0, 0.5)
+    assert (h["ode"]["method"], h["ode"]["wall_s"]) == ("CVODE-Adams", 1.0)
+    assert h["exact_over_closed_form"] == 4.0  # 2 / 0.5
+    assert h["ode_over_closed_form"] == 2.0  # 1 / 0.5
+    assert h["ode_over_exact"] == 0.5  # 1 / 2
     # a target no setting reaches: no ode row, no ratio against it
-    none = headline_ratios(P, 1.0, N, {"DOP853": [1e-6]}, target=1e-30, errors=("error_time",), min_seconds=0.01,
+    none = headline_ratios(P, 1.0, N, {"DOP853": [1e-6]}, target=1e-30, errors=("error_time",), min_seconds=0.25,
                            max_repeats=2)
     assert none["ode"] is None and math.isnan(none["ode_over_closed_form"]) and math.isnan(none["ode_over_exact"])
+    assert none["exact_over_closed_form"] == 1.0  # both 1 s on the clock's default
     with pytest.raises(ValueError, match="errors"):
         headline_ratios(P, 1.0, N, {}, errors=("error_amplitude",))
 
 
-def test_per_cycle_times_compare_the_closed_form_with_the_exact_solver():
-    rows = per_cycle_times(P, 1.0, (5, 50), min_seconds=0.01, max_repeats=3)
-    assert [r["n_cycles"] for r in rows] == [5, 50]
-    for r in rows:
-        assert r["exact_s_per_cycle"] > 0 and r["closed_form_s_per_cycle"] > 0
-        assert r["ratio"] == pytest.approx(r["exact_s_per_cycle"] / r["closed_form_s_per_cycle"], rel=1e-12)
+def test_per_cycle_times_compare_the_closed_form_with_the_exact_solver(monkeypatch):
+    use_clock(monkeypatch, [2.0, 0.5, 8.0, 1.0])  # for 5 cycles, the exact solver then the closed form; for 50
+    rows = per_cycle_times(P, 1.0, (5, 50), min_seconds=0.5, max_repeats=3)
+    assert rows == [
+        {"n_cycles": 5, "exact_s_per_cycle": pytest.approx(0.4), "closed_form_s_per_cycle": pytest.approx(0.1),
+         "ratio": 4.0},
+        {"n_cycles": 50, "exact_s_per_cycle": pytest.approx(0.16), "closed_form_s_per_cycle": pytest.approx(0.02),
+         "ratio": 8.0},
+    ]
 
 
 @pytest.mark.parametrize(
@@ -149,30 +183,20 @@ def test_invalid_benchmark_settings(settings, min_seconds, max_repeats, message)
 
 
 def test_timing_repeats_a_call_until_the_time_is_measured_and_stops_at_the_cap(monkeypatch):
-    """On a clock that advances by a fixed step per reading: a call that takes one step is repeated until
-    the runs add up to the time asked for, one that takes more than that runs once, and the cap holds."""
-    from escapement.studies import benchmark
-
-    class Clock:
-        def __init__(self, step: float) -> None:
-            self.now, self.step = 0.0, step
-
-        def __call__(self) -> float:
-            self.now += self.step  # each run takes one step between its two readings
-            return self.now
-
+    """On a clock on which every run takes a set time: a call that takes 0.125 s is repeated until the runs
+    add up to the time asked for, one that takes more than that runs once, and the cap holds."""
     calls = []
 
     def call():
         calls.append(1)
         return "done"
 
-    monkeypatch.setattr(benchmark.time, "perf_counter", Clock(0.125))  # binary fractions: sums are exact
+    use_clock(monkeypatch, [0.125] * 10)
     wall, runs, result = median_wall(call, min_seconds=1.0, max_repeats=10_000)
-    assert result == "done" and runs == len(calls) == 8 and wall == 0.125
-    monkeypatch.setattr(benchmark.time, "perf_counter", Clock(2.0))
+    assert result == "done" and runs == len(calls) == 8 and wall == 0.125  # 8 * 0.125 = 1
+    use_clock(monkeypatch, [2.0])
     assert median_wall(call, min_seconds=1.0, max_repeats=50)[1] == 1
-    monkeypatch.setattr(benchmark.time, "perf_counter", Clock(0.125))
+    use_clock(monkeypatch, [0.125] * 7)
     assert median_wall(call, min_seconds=10.0, max_repeats=7)[1] == 7  # the cap
-
-
+    use_clock(monkeypatch, [0.5, 0.125, 1.0])  # the median of three, not their mean
+    assert median_wall(call, min_seconds=1.5, max_repeats=10)[:2] == (0.5, 3)
