@@ -1,4 +1,5 @@
-"""The command line, ``python -m escapement solve``: its output, its refusals and its exit statuses."""
+"""The command line, ``escapement solve`` and ``python -m escapement solve``: its output, its refusals, its
+exit statuses, its defaults (the workflow's Fig. 3 (a)) and the console script the install makes."""
 
 from __future__ import annotations
 
@@ -12,9 +13,16 @@ from pathlib import Path
 import pytest
 
 from escapement import cli
-from escapement.cli import main
 from escapement.io.atomic import WriteError
 from escapement.io.netcdf import read_netcdf
+
+#: the program's name in the messages of the in-process runs below
+PROG = "escapement"
+
+
+def main(argv: list[str]) -> int:
+    """The command line run in this process, named as the console script names it."""
+    return cli.main(argv, prog=PROG)
 
 #: the exit statuses the command documents
 COMPLETED, LEFT_REGIME, INVALID_INPUT, CANNOT_WRITE = 0, 1, 2, 3
@@ -48,6 +56,15 @@ def test_solve_prints_the_outcome_and_the_per_cycle_table(capsys):
     assert lines[0] == "# completed: completed 3 cycles"
     assert lines[1].split("\t") == ["cycle", "impact_time", "velocity_before_impact", "period", "amplitude"]
     assert len(lines) == 5
+    # by default from rest at -1 m (w = 1), a free arc to the first impact at a1 = -0.1 m:
+    # v^2 = x0^2 - a1^2 = 0.99, and it takes arccos(a1 / x0) = arccos(0.1) s
+    assert float(lines[2].split("\t")[2]) == pytest.approx(math.sqrt(0.99), rel=1e-15)
+    assert float(lines[2].split("\t")[1]) == pytest.approx(math.acos(0.1), rel=1e-15)
+
+
+def test_a_release_on_the_right_passes_both_impacts_before_the_first_cycle(capsys):
+    assert main(["solve", "--x0", "1", "--cycles", "3"]) == COMPLETED
+    lines = capsys.readouterr().out.splitlines()
     # from rest at 1 m (symmetric, w = 1): v^2 before the first impact at a1 is
     # (1 - b)^2 (x0^2 - a1^2) + 2 f (a2 - a1) = 0.81 * 0.99 + 0.3
     assert float(lines[2].split("\t")[2]) == pytest.approx(math.sqrt(0.81 * 0.99 + 0.3), rel=1e-15)
@@ -79,7 +96,7 @@ def one_line_refusal(capsys, option: str, value: str) -> str:
     out, err = capsys.readouterr()
     assert out == ""
     assert err.count("\n") == 1 and "Traceback" not in err, err
-    assert err.startswith(f"python -m escapement solve: {option} {value!r} is invalid: {option} must be "), err
+    assert err.startswith(f"{PROG} solve: {option} {value!r} is invalid: {option} must be "), err
     return err
 
 
@@ -179,7 +196,7 @@ def test_a_write_that_fails_after_the_checks_is_one_line_and_its_own_status(tmp_
     assert main(["solve", "--cycles", "2", "--netcdf", path]) == CANNOT_WRITE
     out, err = capsys.readouterr()
     assert out == "" and err.count("\n") == 1 and "Traceback" not in err
-    assert err.startswith(f"python -m escapement solve: --netcdf {path!r}: ") and "no space left" in err
+    assert err.startswith(f"{PROG} solve: --netcdf {path!r}: ") and "no space left" in err
 
 
 @pytest.mark.parametrize("args", [
@@ -201,7 +218,7 @@ def test_a_refused_cycle_count_is_named_by_its_option(value, requirement, capsys
     assert main(["solve", "--cycles", value]) == INVALID_INPUT
     out, err = capsys.readouterr()
     assert out == "" and err.count("\n") == 1
-    assert err.startswith("python -m escapement solve: --cycles ") and "n_cycles" not in err
+    assert err.startswith(f"{PROG} solve: --cycles ") and "n_cycles" not in err
     assert "--cycles must be " in err and requirement in err
 
 
@@ -214,7 +231,7 @@ def test_an_invalid_parameter_is_refused_naming_its_option(option, value, requir
     assert main(["solve", option, value, *extra]) == INVALID_INPUT
     out, err = capsys.readouterr()
     assert out == "" and err.count("\n") == 1
-    assert err.startswith(f"python -m escapement solve: {option} ") and f"{option} must be " in err
+    assert err.startswith(f"{PROG} solve: {option} ") and f"{option} must be " in err
     assert requirement in err
 
 
@@ -236,3 +253,97 @@ def test_a_closed_pipe_ends_quietly_with_the_io_status():
     stderr = process.stderr.read().decode()
     assert process.wait(timeout=120) == CANNOT_WRITE
     assert "Traceback" not in stderr and "Exception ignored" not in stderr
+
+
+# --- the defaults: the workflow's Fig. 3 (a) -------------------------------------------------------
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def workflow_fig3a() -> dict:
+    """Fig. 3 (a) as the workflow runs it: the scene its rule simulate_fig3 is given for case ``a``."""
+    import yaml
+
+    from escapement.pipeline.config import fig3_scene
+
+    with open(REPO / "config" / "config.yaml") as f:
+        return fig3_scene(yaml.safe_load(f), "a")
+
+
+def test_the_defaults_are_the_workflows_fig3a():
+    scene = workflow_fig3a()
+    args = cli._parser(PROG).parse_args(["solve"])
+    options = {name: value for name, value in vars(args).items() if name not in ("command", "netcdf")}
+    # every key of the scene is an option whose default is the scene's value; the options the scene
+    # leaves out (a3, a4, v0) keep the model's own defaults: -a1, -a2, from rest
+    cycles = scene.pop("n_cycles")
+    expected = {**scene, "cycles": cycles, "a3": None, "a4": None, "v0": 0.0}
+    assert options == expected
+    assert scene["x0"] == -1.0 and expected["amplitude"] == "step1"  # the release and amplitude the help names
+
+
+def test_the_default_netcdf_file_is_the_workflows_fig3a(tmp_path, capsys):
+    from escapement.pipeline.simulate import simulate_poincare
+
+    cycles = 6
+    ours, theirs = tmp_path / "cli.nc", tmp_path / "case_a.nc"
+    assert main(["solve", "--cycles", str(cycles), "--netcdf", str(ours)]) == COMPLETED
+    simulate_poincare({**workflow_fig3a(), "n_cycles": cycles}, str(theirs), str(tmp_path / "simulate_fig3_a.log"))
+    a, b = read_netcdf(ours), read_netcdf(theirs)
+    assert sorted(a.variables) == sorted(b.variables) and "amplitude" in a.variables
+    for name in a.variables:
+        assert a[name].identical(b[name]), name
+    assert a.attrs == b.attrs
+    assert a["amplitude"].attrs["long_name"].startswith("Step-1 amplitude")
+    assert a.sizes["cycle"] == cycles
+
+
+# --- the console script and --version ---------------------------------------------------------------
+
+SCRIPT = Path(sys.executable).parent / "escapement"
+
+
+def run_script(*args: str) -> subprocess.CompletedProcess:
+    assert SCRIPT.is_file(), f"{SCRIPT} is missing: install the package (pip install -e .) to make the console script"
+    return subprocess.run([str(SCRIPT), *args], capture_output=True, text=True)
+
+
+def test_the_install_declares_the_console_script():
+    from importlib.metadata import entry_points
+
+    (script,) = entry_points(group="console_scripts", name="escapement")
+    assert script.value == "escapement.cli:main"
+
+
+def test_the_console_script_behaves_as_the_module():
+    for args in (["solve", "--cycles", "3"], ["solve", "--x0", "0.05", "--cycles", "2"]):
+        script, module = run_script(*args), run_process(*args)
+        assert (script.returncode, script.stdout, script.stderr) == (module.returncode, module.stdout, module.stderr)
+    assert run_script("solve", "--cycles", "3").stdout.count("\n") == 5
+
+
+def test_each_program_is_named_as_typed():
+    script, module = run_script("solve", "--b", "3"), run_process("solve", "--b", "3")
+    assert script.returncode == module.returncode == INVALID_INPUT
+    assert script.stderr == "escapement solve: --b 3.0 is invalid: --b must be in the open interval (0, 2)\n"
+    assert module.stderr == "python -m escapement solve: --b 3.0 is invalid: --b must be in the open interval (0, 2)\n"
+    assert run_script("solve", "--help").stdout.startswith("usage: escapement solve ")
+    assert "Example: escapement solve" in run_script("solve", "--help").stdout
+    assert run_process("--help").stdout.startswith("usage: python -m escapement ")
+
+
+@pytest.mark.parametrize("run", [run_script, run_process], ids=["console script", "module"])
+def test_version_prints_the_installed_distributions_version(run):
+    from importlib.metadata import version
+
+    result = run("--version")
+    assert (result.returncode, result.stderr) == (0, "")
+    assert result.stdout == f"escapement {version('escapement')}\n"
+    assert version("escapement") != "0+unknown"
+
+
+def test_version_in_process(capsys):
+    from importlib.metadata import version
+
+    assert main(["--version"]) == COMPLETED
+    assert capsys.readouterr().out == f"escapement {version('escapement')}\n"

@@ -15,16 +15,16 @@ import of the source):
   provenance (it imports only the model and the solvers);
 * :mod:`escapement.plotting`: the figures;
 * :mod:`escapement.pipeline`: what the workflow's rules call, and :mod:`escapement.cli`, the
-  command line ``python -m escapement solve`` (neither is imported here).
+  command line ``escapement solve`` (or ``python -m escapement solve``; neither is imported here).
 """
 
-from importlib.metadata import PackageNotFoundError, version
+import importlib.metadata as _metadata
 
 from ._lazy import lazy_exports
 
 try:
-    __version__ = version("escapement")
-except PackageNotFoundError:  # running from a source tree that is not installed
+    __version__ = _metadata.version("escapement")
+except _metadata.PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
 #: the public names, each re-exported from the layer that defines it. They are imported on first
