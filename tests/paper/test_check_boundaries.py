@@ -284,9 +284,10 @@ def test_a_printed_step_holds_to_its_relative_tolerance_of_the_simulated_output(
 
 
 def test_eq14_as_read_holds_to_its_relative_tolerance_of_the_simulated_velocity_at_a4():
-    """From v1 = 1 m/s at the last cycle's a1 (F = 1): v4+^2 = 0.8991 and Eq. (14) as printed gives v5 = -sqrt(0.6066) (by hand,
-    see test_conventions); the simulated v5 set to that / (1 +/- e). Outside the tolerance no other reading
-    of the paper is near (1.2066 under -f or mirrored positions): not reproduced."""
+    """From v1 = 1 m/s at the last cycle's a1 (F = 1): v4+^2 = 0.8991 and Eq. (14) as printed gives
+    v5 = -sqrt(0.6066) (by hand, see test_conventions); the simulated v5 set to that / (1 +/- e). Outside
+    the tolerance no other reading of the paper is near (1.2066 under -f or mirrored positions): not
+    reproduced."""
     row = register_row("eq14_as_printed", 1e-6)
     printed = -math.sqrt(0.6066)
     for factor, side in SIDES:

@@ -1,0 +1,283 @@
+"""The checks of the register on Sec. 4 (Figs. 3-5), on the existence of the limit cycle, on Airy's
+theorem and the daily rate, each judged just inside and just outside the tolerance the register gives
+its claim (on both sides where the comparison is two-sided), and the fixed thresholds in code (strict
+orders, the jump bound of the sampled velocity, the residual of the period shares) at their boundary.
+The synthetic evidence is built with the helpers of test_check_boundaries.py.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from escapement.paper import claims as cl
+from escapement.paper import dynamics_checks as dc
+from escapement.paper.airy import airy_verdict
+from escapement.paper.existence import existence_verdict, grazing_verdict, release_verdict
+from escapement.paper.figure_checks import sampled_jumps
+from paper.test_check_boundaries import REGISTER, SIDES, evidence, fig3, fig5, judged, register_row, runs
+
+SIGNS = (1.0, -1.0)
+
+
+def expect(side: str, inside: str, outside: str) -> str:
+    return inside if side == "inside" else outside
+
+
+# --- Fig. 3: convergence, rates, periods ---------------------------------------------------------
+
+
+def test_both_motions_converge_to_the_tolerance_of_the_last_change():
+    """The last velocity before impact 1.7 (1 +/- t (1 +/- 1e-6)) against the one before, 1.7."""
+    row = register_row("fig3_both_converge", 1e-8)
+    for factor, side in SIDES:
+        for sign in SIGNS:
+            moving = fig3([1.7, 1.7 * (1 + sign * factor * 1e-8)])
+            ev = evidence({"a": fig3([2.0, 2.0]), "b": moving})
+            assert judged(row, ev) == expect(side, "reproduced", "not_reproduced"), (factor, sign)
+
+
+def test_each_spring_constant_converges_to_the_tolerance_of_the_last_change():
+    row = register_row("fig5_limit_cycles", 1e-8)
+    for factor, side in SIDES:
+        for sign in SIGNS:
+            ev = evidence(fig5s={"1": fig5(1.0, [1.7, 1.7 * (1 + sign * factor * 1e-8)]), "0.1": fig5(0.1, [3, 3])})
+            assert judged(row, ev) == expect(side, "reproduced", "not_reproduced"), (factor, sign)
+
+
+def energy_curve(rate: float, n: int = 8) -> np.ndarray:
+    """Velocities whose squares approach 1 by the factor ``rate`` per cycle: v^2 = 1 + rate^k."""
+    return np.sqrt(1.0 + rate ** np.arange(n))
+
+
+def test_the_converging_speeds_differ_only_beyond_the_tolerance():
+    """Inverted: rates of x1^2 of 0.5 and 0.5 +/- t (1 +/- 1e-4) (ratios of differences of 2e-3 or more:
+    rounding 1e-13) refute the claim inside the tolerance and reproduce it outside."""
+    row = register_row("fig3_converging_speed_depends_on_force", 1e-6)
+    for factor, side in ((1 - 1e-4, "inside"), (1 + 1e-4, "outside")):
+        for sign in SIGNS:
+            ev = evidence({"a": fig3(energy_curve(0.5)), "b": fig3(energy_curve(0.5 + sign * factor * 1e-6))})
+            assert judged(row, ev) == expect(side, "not_reproduced", "reproduced"), (factor, sign)
+
+
+def test_the_converged_period_is_the_natural_period_to_the_tolerance_in_seconds():
+    row = register_row("period_is_natural_period", 5e-5)
+    for factor, side in SIDES:
+        for sign in SIGNS:
+            ev = evidence({"a": fig3([1.0], period=2 * math.pi), "b": fig3([1.0], period=2 * math.pi + sign * factor
+                                                                            * 5e-5)})
+            assert judged(row, ev) == expect(side, "reproduced", "not_reproduced"), (factor, sign)
+
+
+def test_the_period_from_another_release_differs_by_at_most_the_tolerance_in_seconds():
+    """Periods of 6.3 s differ by 1e-10 (1 +/- 1e-4) s (the resolution of 6.3 is 9e-16 s)."""
+    row = register_row("period_independent_of_initial_condition", 1e-10)
+    for factor, side in ((1 - 1e-4, "inside"), (1 + 1e-4, "outside")):
+        for sign in SIGNS:
+            checks = runs({"group": "paper", "period": 6.3}, {"group": "paper", "F": 0.5, "period": 6.2},
+                          {"group": "initial_condition", "x0": 3.0, "period": 6.3 + sign * factor * 1e-10})
+            assert judged(row, evidence(checks=checks)) == expect(side, "reproduced", "not_reproduced"), factor
+
+
+def test_the_transient_periods_differ_beyond_the_tolerance_and_the_converged_ones_within_it():
+    """Two releases at one force: the first periods spread by s1, the converged ones by s2 (about 6.3 s,
+    resolution 9e-16 s: margin 1e-4); reproduced needs s1 > t and s2 <= t, partially one of them."""
+    row = register_row("sec4_transient_periods_depend_on_release", 1e-9)
+    group = row["args"]["group"]
+    inside, outside = (1 - 1e-4) * 1e-9, (1 + 1e-4) * 1e-9
+    for first, last, expected in ((outside, inside, "reproduced"), (outside, outside, "partially_reproduced"),
+                                  (inside, inside, "partially_reproduced"), (inside, outside, "not_reproduced")):
+        checks = runs({"group": group, "x0": 1.0}, {"group": group, "x0": 2.0, "first_period": 6.3 + first,
+                                                    "period": 6.3 + last})
+        assert judged(row, evidence(checks=checks)) == expected, (first, last)
+    # at a tolerance of 2^-30 (spreads exact in binary): a first spread equal to it is no transient, a
+    # converged spread equal to it is converged
+    exact = {**row, "tolerance": 2.0**-30}
+    for first, last, expected in ((2.0**-30, 0.0, "partially_reproduced"),
+                                  (math.nextafter(2.0**-30, 1.0), 0.0, "reproduced"),
+                                  (1.0, 2.0**-30, "reproduced"),
+                                  (1.0, math.nextafter(2.0**-30, 1.0), "partially_reproduced")):
+        checks = runs({"group": group, "x0": 1.0, "first_period": 0.0, "period": 0.0},
+                      {"group": group, "x0": 2.0, "first_period": first, "period": last})
+        assert judged(exact, evidence(checks=checks)) == expected, (first, last)
+
+
+def test_the_stable_velocity_follows_eq19_to_its_relative_tolerance():
+    """v* = sqrt(2 (a2 - a1) F / (M (2b - b^2))) = sqrt(0.3 F / 0.19) by hand; one run off by t (1 +/- 1e-6)."""
+    row = register_row("stable_velocity_determined_by_force", 1e-8)
+    star = math.sqrt(0.3 * 2.0 / 0.19)
+    groups = row["args"]["groups"]
+    for factor, side in SIDES:
+        for sign in SIGNS:
+            rows = [{"group": g, "F": 2.0, "velocity": star} for g in groups]
+            rows[-1]["velocity"] = star * (1 + sign * factor * 1e-8)
+            checks = runs(*rows)
+            assert judged(row, evidence(checks=checks)) == expect(side, "reproduced", "not_reproduced"), factor
+
+
+# --- Fig. 5 ------------------------------------------------------------------------------------
+
+
+def test_two_limit_cycles_differ_by_more_than_the_tolerance_of_the_larger():
+    """At one force, amplitudes (or largest speeds) 2.5 and 2.5 (1 - t (1 +/- 1e-6)): their difference is t
+    of the larger (of the smaller it would be 0.0526, of neither an absolute 0.125)."""
+    row = register_row("fig5_dimensions_differ", 0.05)
+    for column in ("amplitude", "largest_speed"):
+        for factor, side in SIDES:
+            for larger_k in (0.1, 1.0):
+                smaller_k = 1.1 - larger_k
+                checks = runs({"group": "common_force", "K": larger_k, column: 2.5},
+                              {"group": "common_force", "K": smaller_k, column: 2.5 * (1 - factor * 0.05)})
+                expected = expect(side, "not_reproduced", "reproduced")
+                assert judged(row, evidence(checks=checks)) == expected, (column, factor, larger_k)
+
+
+def test_the_impact_shows_when_its_jump_is_the_tolerance_of_the_printed_velocity_range():
+    """Jump b v = 0.1 v against the printed ranges 2 m/s (panel b, K = 1) and 7 m/s (panel c, K = 10):
+    v = 0.4 and 1.4 m/s give exactly the tolerance; a jump below it does not show, one above it does. The
+    largest jump of the trajectory counts (the first here), not the limit cycle's."""
+    row = register_row("fig5_impact_shown", 0.02)
+    for factor, side in SIDES:
+        shown = {"1": fig5(1.0, [0.4 * factor, 0.1]), "10": fig5(10.0, [1.4 * factor, 0.1])}
+        assert judged(row, evidence(fig5s=shown)) == expect(side, "not_reproduced", "reproduced"), factor
+        mixed = {"1": fig5(1.0, [0.4 * factor, 0.1]), "10": fig5(10.0, [2.8, 0.1])}
+        assert judged(row, evidence(fig5s=mixed)) == expect(side, "partially_reproduced", "reproduced"), factor
+    # a jump of exactly the tolerance shows: b = 0.5, v = 2^-4 against the range 2 m/s is 2^-6
+    exact = {**row, "tolerance": 2.0**-6}
+    for v, expected in ((2.0**-4, "reproduced"), (math.nextafter(2.0**-4, 0.0), "not_reproduced")):
+        assert judged(exact, evidence(fig5s={"1": fig5(1.0, [v, 0.01], b=0.5)})) == expected, v
+
+
+# --- Sec. 2: the period set by the spring --------------------------------------------------------
+
+
+def test_the_period_is_mainly_the_springs_to_its_relative_tolerance_of_2_pi_over_w(monkeypatch):
+    """The measured shares given (the phase bookkeeping is tested in test_dynamics_checks): T = 2 pi
+    (1 +/- t (1 +/- 1e-6)); both shares count when each exceeds 1000 times the residual, strictly."""
+    row = register_row("sec2_frequency_changed_by_force_and_impact", 0.01)
+    natural = 2 * math.pi
+
+    def shares(period, impacts=0.02, impulses=-0.01, residual=2.0**-30):
+        return lambda ds: {"period": period, "natural": natural, "impacts": impacts, "impulses": impulses,
+                           "drift": 0.0, "residual": residual}
+
+    ev = evidence({row["args"]["case"]: fig3([1.0])})
+    for factor, side in SIDES:
+        for sign in SIGNS:
+            monkeypatch.setattr(dc, "phase_shares", shares(natural * (1 + sign * factor * 0.01)))
+            assert judged(row, ev) == expect(side, "reproduced", "partially_reproduced"), (factor, sign)
+    for share in ("impacts", "impulses"):
+        at = {share: 1000 * 2.0**-30}  # exact in binary: equal to 1000 times the residual
+        monkeypatch.setattr(dc, "phase_shares", shares(natural, **at))
+        assert judged(row, ev) == "partially_reproduced", share
+        monkeypatch.setattr(dc, "phase_shares", shares(natural, **{share: math.nextafter(at[share], 1.0)}))
+        assert judged(row, ev) == "reproduced", share
+
+
+# --- existence, release, grazing (the verdicts of the checks that run the solver) -----------------
+
+
+def test_the_existence_runs_converge_to_the_closed_form_to_its_relative_tolerance():
+    tolerance = register_row("asymmetric_existence_depends", 1e-8)["tolerance"]
+    for factor, side in SIDES:
+        for sign in SIGNS:
+            rows = [{"F": 0.1, "C": 0.5, "fixed_point": 1.3, "outcome": "completed", "cycles": 200,
+                     "velocity": 1.3 * (1 + sign * factor * 1e-8)},
+                    {"F": 0.05, "C": -0.1, "fixed_point": math.nan, "outcome": "stopped", "cycles": 3,
+                     "velocity": math.nan}]
+            status = existence_verdict(rows, 0.07, tolerance).status
+            assert status == expect(side, "reproduced", "not_reproduced"), (factor, sign)
+
+
+def test_the_releases_converge_to_the_fixed_point_to_its_relative_tolerance_and_the_boundary_is_inside():
+    """Beyond min(-a1, a3) = 0.1 m converged within t of 1.3 m/s; a release exactly at 0.1 m is inside
+    (its swing only touches a1), one a float above it beyond."""
+    tolerance = register_row("initial_amplitude_no_effect", 1e-8)["tolerance"]
+
+    def run(x0, outcome="completed", off=0.0):
+        return {"x0": x0, "outcome": outcome, "velocity": 1.3 * (1 + off), "fixed_point": 1.3}
+
+    for factor, side in SIDES:
+        for sign in SIGNS:
+            off = sign * factor * 1e-8
+            assert release_verdict([run(-3.0, off=off), run(1.0)], 0.1, tolerance).status == expect(
+                side, "reproduced", "not_reproduced"), (factor, sign)
+            assert release_verdict([run(-3.0, off=off), run(0.1, "stopped")], 0.1, tolerance).status == expect(
+                side, "partially_reproduced", "not_reproduced"), (factor, sign)
+    beyond = math.nextafter(0.1, 1.0)
+    assert release_verdict([run(-3.0), run(beyond, "stopped")], 0.1, tolerance).status == "not_reproduced"
+
+
+def test_the_grazing_release_continues_to_the_closed_form_to_its_relative_tolerance():
+    tolerance = register_row("solution_exists_unique", 1e-8)["tolerance"]
+    for factor, side in SIDES:
+        for sign in SIGNS:
+            rows = [{"delta": d, "above": {"outcome": "completed", "v_next": 0.7 * (1 + sign * factor * 1e-8 * (
+                d == 1e-12))}, "below": {"outcome": "stopped"}} for d in (1e-4, 1e-12)]
+            status = grazing_verdict(rows, 0.7, tolerance).status
+            assert status == expect(side, "partially_reproduced", "not_reproduced"), (factor, sign)
+
+
+# --- beyond the paper: Airy's theorem and the daily rate -------------------------------------------
+
+
+def test_airy_orders_and_first_order_coefficient_to_the_tolerance():
+    """Shifts c f^(2 + e) for the symmetric zone and kappa f (f / 0.001)^e for another give the order
+    2 + e and 1 + e over the two smallest forces; kappa (1 + e) f gives dT2 / f off by e of kappa."""
+    tolerance = register_row("airy_symmetric_impulse", 0.01)["tolerance"]
+    f = [0.1, 0.01, 0.001]
+    kappa = -0.0257
+    for factor, side in SIDES:
+        for sign in SIGNS:
+            e = sign * factor * 0.01
+            zones = {
+                "symmetric": {"zone": (-0.1, 0.1), "kappa": 0.0, "f": f, "shift": [-3e-3 * x ** (2 + e) for x in f]},
+                "order": {"zone": (-0.2, -0.05), "kappa": kappa, "f": f,
+                          "shift": [kappa * x * (x / 0.001) ** e for x in f]},
+                "coefficient": {"zone": (-0.2, -0.05), "kappa": kappa, "f": f,
+                                "shift": [kappa * (1 + e) * x for x in f]},
+            }
+            for name, zone in zones.items():
+                status = airy_verdict({name: zone}, tolerance).status
+                assert status == expect(side, "reproduced", "not_reproduced"), (name, factor, sign)
+
+
+def test_the_daily_rate_of_the_replicated_period_is_within_the_tolerance_of_the_printed_one():
+    """86400 (T0/T - 1) against 86400 (T0/6.2832 - 1), T0 = 2 pi: a difference of d s/day for
+    1/T = 1/6.2832 + d / (86400 T0)."""
+    row = register_row("period_as_daily_rate", 0.69)
+    assert row["args"]["paper_period"] == 6.2832
+    t0 = 2 * math.pi
+    for factor, side in SIDES:
+        for sign in SIGNS:
+            period = 1.0 / (1.0 / 6.2832 + sign * factor * 0.69 / (86400 * t0))
+            ev = evidence({"a": fig3([1.0], period=6.2832), "b": fig3([1.0], period=period)})
+            assert judged(row, ev) == expect(side, "reproduced", "not_reproduced"), (factor, sign)
+
+
+# --- fixed thresholds in code ----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("claim_id", ["fig3_velocity_a_greater", "fig3_amplitude_a_greater"])
+def test_a_tie_between_the_fig3_cases_is_not_a_greater_value(claim_id):
+    row = next(c for c in cl.load_claims(REGISTER) if c["id"] == claim_id)
+    assert row["tolerance"] is None
+    quantity = row["args"]["quantity"]
+    first, second = row["args"]["cases"]
+    for value, expected in ((1.25, "not_reproduced"), (math.nextafter(1.25, 2.0), "reproduced")):
+        a, b = fig3([1.0]), fig3([1.0])
+        a[quantity].values[-1] = value
+        b[quantity].values[-1] = 1.25
+        assert judged(row, evidence({first: a, second: b})) == expected, value
+
+
+def test_a_velocity_jump_is_a_step_beyond_twice_what_the_sampled_acceleration_allows():
+    """Samples 1 s apart, |a| at most 0.5 m/s^2: a smooth motion moves the velocity by 0.5 m/s at most;
+    the bound is twice that plus 1e-9 of the largest |v|: a step x is a jump when x > 1 + 1e-9 x."""
+    t, a = np.array([0.0, 1.0, 2.0]), np.array([0.5, -0.5, 0.5])
+    edge = 1.0 / (1.0 - 1e-9)
+    for factor, jumps in ((1 - 1e-6, []), (1 + 1e-6, [1])):
+        v = np.array([0.0, 0.0, factor * edge])
+        assert sampled_jumps(t, v, a).tolist() == jumps, factor
