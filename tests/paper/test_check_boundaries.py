@@ -318,3 +318,41 @@ def test_the_derivative_of_the_map_holds_to_its_relative_tolerance_of_eq20(monke
                 monkeypatch.setattr(rg, "return_map", linear)
                 ds = fig3([1.0])
                 assert judged(row, evidence({row["args"]["case"]: ds})) == expected, (factor, sign, off)
+
+
+# --- the period formulas (22e), (23), (25) as read, by hand (test_conventions) ---------------------
+
+
+def period_formula_cases() -> dict:
+    """Per claim: the Fig. 3 scene of test_conventions (v1 = 1 m/s, F = 1, w = 1) with the simulated
+    value as a function of the printed one (divided by 1 + e: a relative difference e from it), and the
+    status outside the tolerance."""
+    from paper.test_conventions import V4P, eq22e_by_hand, eq25_by_hand, fig3 as scene
+    c = 1.0
+    v1p, v2, v5 = 0.9, math.sqrt(1.1175), -math.sqrt(1.2066)
+    r1, h2, r3, h5 = math.hypot(-0.1 - c, v1p), math.hypot(0.05, v2), math.hypot(0.1 + c, V4P), math.hypot(-0.05, v5)
+    zone_right = math.acos((c - 0.05) / r1) - math.acos((c + 0.1) / r1)
+    a2_to_a3 = math.acos(0.05 / h2) + math.acos(0.1 / h2)
+    zone_left = math.acos((c - 0.05) / r3) - math.acos((c + 0.1) / r3)
+    printed_swing = math.acos(-0.05 / h5) + math.acos(-0.1 / h5)
+    true_swing = math.acos(0.05 / h5) + math.acos(0.1 / h5)
+    as_read = zone_right + a2_to_a3 + zone_left + printed_swing
+    steps = (zone_right, a2_to_a3, true_swing)
+    return {
+        # no other reading near: a wrong formula outside
+        "eq22e_step_time": (lambda e: scene(zone_left=eq22e_by_hand(0.1, -0.05, 1.0, V4P) / (1 + e)), "not_reproduced"),
+        # each step's terms still reproduced under some reading: mixed conventions outside
+        "eq23_period": (lambda e: scene(period=as_read / (1 + e), zone_left=zone_left, steps=steps),
+                        "partially_reproduced"),
+        "eq25_force_perturbation": (lambda e: scene(period=eq25_by_hand(0.9, -0.1, 0.05) / (1 + e)), "not_reproduced"),
+    }
+
+
+@pytest.mark.parametrize("claim_id", ["eq22e_step_time", "eq23_period", "eq25_force_perturbation"])
+def test_a_period_formula_as_read_holds_to_its_relative_tolerance_of_the_simulated_value(claim_id):
+    row = register_row(claim_id, 1e-6)
+    build, outside = period_formula_cases()[claim_id]
+    for factor, side in SIDES:
+        for sign in (1.0, -1.0):
+            ev = evidence({row["args"]["case"]: build(sign * factor * 1e-6)})
+            assert judged(row, ev) == ("reproduced" if side == "inside" else outside), (factor, sign)
