@@ -200,6 +200,22 @@ def test_an_unknown_status_is_an_error(monkeypatch):
         cl.evaluate([claim("fixed_point", case="a")], evidence())
 
 
+def _claim_of(claims: list, claim_id: str) -> dict:
+    return next(c for c in claims if c["id"] == claim_id)
+
+
+def test_every_tolerance_of_the_register_is_published_with_its_reason():
+    """A tolerance is a decision: every claim that has one says why (half a unit of the last printed digit
+    for the printed numbers), and a claim with none gives no reason."""
+    for c in cl.load_claims(REGISTER):
+        if c["tolerance"] is None:
+            assert "tolerance_reason" not in c, c["id"]
+        else:
+            assert isinstance(c["tolerance_reason"], str) and len(c["tolerance_reason"]) > 10, c["id"]
+    printed = [c for c in cl.load_claims(REGISTER) if c["id"] in ("fig3_period_a", "fig3_period_b")]
+    assert all("half a unit of the last printed digit" in c["tolerance_reason"] for c in printed)
+
+
 @pytest.mark.parametrize(
     "mutate, message",
     [
@@ -208,6 +224,15 @@ def test_an_unknown_status_is_an_error(monkeypatch):
         (lambda c: c[0].update(check="nonsense"), "unknown check"),
         (lambda c: next(x for x in c if x["id"] == "eq19_fixed_point_case_a").pop("args"),
          "eq19_fixed_point_case_a' lacks the args case"),
+        (lambda c: _claim_of(c, "eq16_map").pop("tolerance_reason"),
+         "'eq16_map' has tolerance = 1e-13 and tolerance_reason = None; a tolerance is a decision"),
+        (lambda c: _claim_of(c, "fig3_period_a").update(tolerance_reason="  "),
+         "'fig3_period_a' has tolerance = 5e-05 and tolerance_reason = '  '"),
+        (lambda c: _claim_of(c, "eq4_jump_set").update(tolerance_reason="a reason for nothing"),
+         "'eq4_jump_set' gives a tolerance_reason but no tolerance"),
+        (lambda c: _claim_of(c, "eq16_map").update(tolerance=-1e-13), "tolerance = -1e-13; it must be a number >= 0"),
+        (lambda c: _claim_of(c, "eq16_map").update(tolerance="1e-13"), "tolerance = '1e-13'; it must be a number"),
+        (lambda c: _claim_of(c, "eq16_map").update(tolerance=True), "tolerance = True; it must be a number"),
     ],
 )
 def test_a_malformed_register_is_rejected(tmp_path, mutate, message):

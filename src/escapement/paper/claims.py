@@ -48,7 +48,7 @@ class ClaimError(RuntimeError):
 
 def load_claims(path: str | os.PathLike) -> list[dict]:
     """Read and check the register: unique ids, the required keys, an origin, a finding and a kind of
-    evidence from the vocabulary, a registered check and its args."""
+    evidence from the vocabulary, a tolerance with its reason (or neither), a registered check and its args."""
     data = yaml.safe_load(Path(path).read_text())
     claims = data.get("claims") if isinstance(data, dict) else None
     if not isinstance(claims, list) or not claims:
@@ -67,6 +67,7 @@ def load_claims(path: str | os.PathLike) -> list[dict]:
         if not (isinstance(claim["finding"], str) and _FINDING.fullmatch(claim["finding"])):
             raise ValueError(f"{path}: claim '{claim['id']}' has finding = {claim['finding']!r}; it must be a "
                              "name of lower-case letters, digits and underscores")
+        _check_tolerance(path, claim)
         if claim["id"] in seen:
             raise ValueError(f"{path}: claim id '{claim['id']}' appears twice")
         seen.add(claim["id"])
@@ -77,6 +78,21 @@ def load_claims(path: str | os.PathLike) -> list[dict]:
         if missing:
             raise ValueError(f"{path}: claim '{claim['id']}' lacks the args {', '.join(missing)} of its check")
     return claims
+
+
+def _check_tolerance(path, claim: dict) -> None:
+    """A tolerance is a number >= 0 published with its reason (``tolerance_reason``), or null with none."""
+    tolerance, reason = claim["tolerance"], claim.get("tolerance_reason")
+    if tolerance is None:
+        if reason is not None:
+            raise ValueError(f"{path}: claim '{claim['id']}' gives a tolerance_reason but no tolerance")
+        return
+    if isinstance(tolerance, bool) or not isinstance(tolerance, (int, float)) or not tolerance >= 0:
+        raise ValueError(f"{path}: claim '{claim['id']}' has tolerance = {tolerance!r}; it must be a number >= 0 "
+                         "or null")
+    if not (isinstance(reason, str) and reason.strip()):
+        raise ValueError(f"{path}: claim '{claim['id']}' has tolerance = {tolerance!r} and tolerance_reason = "
+                         f"{reason!r}; a tolerance is a decision: it must give its reason as non-empty text")
 
 
 def left_regime(scene: str, ds: xr.Dataset) -> Verdict:
