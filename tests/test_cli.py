@@ -173,7 +173,8 @@ def _fifo(tmp_path: Path) -> str:
 
 @pytest.mark.parametrize("make_path", [
     lambda tmp: "", lambda tmp: ".", lambda tmp: "..", lambda tmp: str(tmp), lambda tmp: str(tmp) + os.sep,
-    lambda tmp: str(tmp / "new_dir") + os.sep, lambda tmp: str(tmp / "a") + "\0.nc", lambda tmp: str(tmp) + os.sep + ".",
+    lambda tmp: str(tmp / "new_dir") + os.sep, lambda tmp: str(tmp / "a") + "\0.nc",
+    lambda tmp: str(tmp) + os.sep + ".",
     lambda tmp: "/dev/null", _fifo,
 ], ids=["empty", "dot", "dot-dot", "a directory", "a directory/", "a missing directory/", "NUL", "dir/.",
         "a device", "a named pipe"])

@@ -35,7 +35,8 @@ class NaiveStepper:
         self.name = f"naive RK4 h={step:g}"
         self.w2 = params.omega2
         self.h = step
-        self.surfaces = {kind: (automaton.position(kind, params), s.direction) for kind, s in automaton.SURFACES.items()}
+        self.surfaces = {kind: (automaton.position(kind, params), s.direction)
+                         for kind, s in automaton.SURFACES.items()}
         self.max_steps = int(math.ceil(PERIODS_TO_STOP * params.natural_period / step)) + 1
         self.t = 0.0
 
@@ -115,9 +116,9 @@ def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     params = check_parameters(params)
     largest = params.natural_period / STEPS_PER_PERIOD
     step = real_number("step", step, lambda h: 0 < h <= largest,
-                       f"> 0 and at most {exact(largest)} s, 1/{STEPS_PER_PERIOD} of the natural period 2 pi / omega: a "
-                       "larger step passes events without seeing them, and from omega step = 2.8 on the RK4 step is "
-                       "unstable")
+                       f"> 0 and at most {exact(largest)} s, 1/{STEPS_PER_PERIOD} of the natural period "
+                       "2 pi / omega: a larger step passes events without seeing them, and from omega step = 2.8 on "
+                       "the RK4 step is unstable")
     x, v = check_initial_state(x0, v0)
     limits = RunLimits(n_cycles=n_cycles)
     return drive(params, x, v, limits, NaiveStepper(params, step), x0=x, v0=v)

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.arguments import sample_times
+from ..solvers.describe import number, texts
 
 __all__ = ["MAX_STEP_HALF_PERIODS", "ROOT_TOLERANCE", "CvodeIntegrator", "DenseSegments", "Hit", "SciPyIntegrator",
            "Segment", "Watch"]
@@ -172,7 +173,7 @@ class CvodeIntegrator:
         return Hit(back.t, index, back.y)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class DenseSegments:
     """The motion as solve_ivp's dense output, one interpolant per segment."""
 
@@ -181,6 +182,15 @@ class DenseSegments:
     centre: np.ndarray
     omega: float
     t_final: float
+
+    def __repr__(self) -> str:
+        """One line: the number of segments and the time span, never the arrays."""
+        n = len(self.t_start)
+        if not n:
+            return f"<DenseSegments> no segments, omega = {number(self.omega, 'rad/s')}"
+        start, end = texts([self.t_start[0], self.t_final])
+        return (f"<DenseSegments> {n} segment{'' if n == 1 else 's'} of dense output from t = {start} s to "
+                f"t_final = {end} s, omega = {number(self.omega, 'rad/s')}")
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Displacement, velocity and acceleration at times ``t`` (NaN outside [0, t_final]); ``t`` is checked

@@ -277,6 +277,12 @@ class Parameters:
         """Every parameter by the paper's symbol."""
         return {n: getattr(self, n) for n in MODEL_KEYS}
 
+    def __repr__(self) -> str:
+        """The call that makes these parameters, each value as typed back (zero without a sign: ``a4``
+        of ``a2 = 0`` is stored as ``-0.0``)."""
+        values = ", ".join(f"{name}={getattr(self, name) + 0.0!r}" for name in MODEL_KEYS)
+        return f"{type(self).__name__}({values})"
+
 
 def _parameters_section() -> str:
     """The entries of the Parameters section of :class:`Parameters`' docstring, one per row of the

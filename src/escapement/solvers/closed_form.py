@@ -93,7 +93,8 @@ def first_impact(params: Parameters, x: float, v: float) -> tuple[float, float, 
     run.advance(run.limits.max_events)
     outcome = run.outcome
     if outcome.status is not Status.COMPLETED:
-        return f"the event solver's first cycle from the release did not complete ({outcome.status.value}: {outcome.message})"
+        return (f"the event solver's first cycle from the release did not complete "
+                f"({outcome.status.value}: {outcome.message})")
     t, v_before, _ = run.take()
     i = int(np.flatnonzero(kinds_from(run.first, 0, len(t)) == A1)[0])
     return float(t[i]), float(v_before[i]), i + 1

@@ -352,5 +352,6 @@ def cross_check(run: CycleRun, rtol: float = CROSS_CHECK_RTOL) -> dict[str, floa
                 i = int(np.argmax(np.where(np.isnan(each), np.inf, each)))
                 where, mine, theirs = f"{name} of cycle {i + 1}", column[i], reference[i]
             raise CrossCheckError(f"{run.method} and solve_exact disagree on the {where}: {float(mine)!r} against "
-                                  f"{float(theirs)!r}, a relative difference of {compared(gap, [rtol], 3)} > rtol = {float(rtol)!r}")
+                                  f"{float(theirs)!r}, a relative difference of {compared(gap, [rtol], 3)} "
+                                  f"> rtol = {float(rtol)!r}")
     return gaps

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..model import automaton
 from ..model.automaton import RELEASE
@@ -46,8 +47,9 @@ def ensemble_bytes(n_trajectories: int, n_cycles: int) -> int:
 
 
 def solve_ensemble(
-    M, K, F, b, a1, a2, a3=None, a4=None, x0=1.0, v0=0.0, *, n_cycles: int, max_events=None, amplitude: bool = True,
-    memory_budget: int | None = None,
+    M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: ArrayLike, a2: ArrayLike,
+    a3: ArrayLike | None = None, a4: ArrayLike | None = None, x0: ArrayLike = 1.0, v0: ArrayLike = 0.0, *,
+    n_cycles: int, max_events: int | None = None, amplitude: bool = True, memory_budget: int | None = None,
 ) -> EnsembleSolution:
     """Integrate every trajectory for ``n_cycles`` complete cycles (or until it leaves the regime).
 

@@ -142,6 +142,12 @@ class Exit:
         """The numbers that apply, with their units (empty if none does)."""
         return exit_summary(self)
 
+    def __repr__(self) -> str:
+        """The call that makes this exit, each number as typed back (zero without a sign)."""
+        values = ", ".join(f"{name}={float(getattr(self, name)) + 0.0!r}"
+                           for name in ("turning_point", "margin", "t_accumulation"))
+        return f"Exit({values})"
+
 
 @dataclass(frozen=True, repr=False)
 class Solution:
