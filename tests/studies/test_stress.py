@@ -360,6 +360,14 @@ def test_run_all_writes_one_row_per_case_with_the_case_s_own_result():
                        "check": again.check, "passed": "yes", "detail": again.detail}
 
 
+def test_run_all_writes_no_for_the_cases_a_wrong_impact_law_fails(monkeypatch):
+    monkeypatch.setattr(automaton, "impact_factor", _factor)
+    rows = {row["case"]: row for row in run_all()}
+    for name in ("b_one", "stiff_spring_paper_geometry", "b_between_one_and_two"):
+        assert (rows[name]["outcome"], rows[name]["passed"]) == ("completed", "no")
+    assert rows["stop_below_a1"]["passed"] == "yes"  # no impact: the law does not enter
+
+
 def test_a_case_that_crashes_fails_loudly_instead_of_writing_a_row(monkeypatch):
     # a case whose run the solver refuses (no cycles asked for): the ParameterError is a bug of the case, not a result
     crashing = StressCase("zero_cycles", "a case whose run raises", lambda: solve_exact(paper(), 1.0, n_cycles=0))
