@@ -8,6 +8,9 @@ P(v).  A central difference of P at the measured fixed point gives mu_2.
 Both Floquet multipliers of the limit cycle are measured apart from the return map
 (:func:`floquet_multipliers`): the Jacobian of the flow over one period, by central
 differences of the exact solver run for one period from states beside the limit cycle.
+
+:func:`stability_grid` keeps its own vectorised Newton iteration: ``scipy.optimize.newton`` on arrays
+stops on an absolute step only and takes a NaN step (an escapement that stopped) as converged.
 """
 
 from __future__ import annotations
