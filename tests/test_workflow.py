@@ -106,6 +106,137 @@ def test_every_variable_written_has_the_dimension_of_its_quantity(workflow_run):
     assert checked > 100
 
 
+#: the long name each variable must have, written from the physics and the model (the wording read once from
+#: the outputs, then fixed here as the expectation): a name with one meaning everywhere ...
+LONG_NAMES = {
+    "M": "mass", "K": "spring constant", "F": "force of the escapement over an impulse zone",
+    "b": "impact coefficient (v+ = (1 - b) v-)",
+    "a1": "impact position of the first half cycle (moving right)", "a2": "end of the first impulse zone",
+    "a3": "impact position of the second half cycle (moving left)", "a4": "end of the second impulse zone",
+    "x0": "initial displacement", "v0": "initial velocity", "t": "time since release", "cycle": "cycle number",
+    "displacement": "displacement x", "velocity": "velocity dx/dt",
+    "acceleration": "acceleration d2x/dt2 between impacts",
+    "velocity_before": "velocity just before the impact", "velocity_after": "velocity just after the impact",
+    "impact_time": "time of the impact", "impulse": "impulse of the impact force, M (v+ - v-)",
+    "energy_dissipated": "kinetic energy dissipated by the impact",
+    "impact_position": "position of the impact (a1 or a3)",
+    "event_kind": "kind of event", "event_time": "time of the event", "event_position": "position of the event",
+    "event_velocity_before": "velocity just before the event", "event_velocity_after": "velocity just after the event",
+    "velocity_before_impact": "velocity just before impact k at a1",
+    "period": "time from impact k to impact k+1 at a1",
+    "samples_per_second": "sampling rate of the uniform time grid",
+    "velocity_window": "time window [start, end] of the velocity panel",
+    "acceleration_window": "time window [start, end] of the acceleration panel",
+    "case": "case number", "label": "name of the case", "group": "claim the case serves",
+    "outcome_message": "how the run ended, in words", "n_cycles": "complete cycles each run was given",
+    "first_period": "period of the first cycle", "amplitude_cycle": "cycle number of the amplitude",
+    "largest_speed": "largest |v| on the last cycle, exact from the harmonic arcs",
+    "fixed_point": "fixed point of the simulated return map", "fixed_point_eq16": "fixed point of the map (16)",
+    "fixed_point_19": "fixed point of the map (17) by Eq. (19) as printed (velocity before impact)",
+    "fixed_point_period": "period of the limit cycle, 50-digit reference",
+    "fixed_point_velocity": "velocity before impact at a1 on the limit cycle, 50-digit reference",
+    "multiplier": "multiplier mu_2 measured from the simulated return map",
+    "multiplier_eq21": "multiplier (1 - b)**4 of Eq. (21)",
+    "floquet_major": "larger Floquet multiplier of the flow over the last period, measured",
+    "floquet_minor": "smaller Floquet multiplier of the flow over the last period, measured",
+    "cycles_to_converge": "first cycle within 1e-9 (relative) of the last velocity; -1 if none",
+    "closed_form_difference": "largest relative difference between the per-cycle closed forms and the exact solver, "
+                              "over the impact time, velocity before impact, period and amplitude of every cycle "
+                              "both ran",
+    "converged": "whether the run reached a limit cycle (completed, last two velocities before the impact at a1 "
+                 "within the relative tolerance)",
+    "tolerance": "relative tolerance on the last two velocities before the impact at a1 for a converged run",
+    "threshold": "force F* at which the constant C of the map (16) read at a1 is zero",
+    "threshold_mirror": "force F*' at which the constant of the map (16) read at a3 is zero (F* of the mirror-image "
+                        "escapement)",
+    "zone": "impulse zone number", "zone_name": "name of the impulse zone",
+    "zone_a1": "impact position a1 of the first half cycle", "zone_a2": "end a2 of the first impulse zone",
+    "period_formula": "2 pi / omega + dT1 + dT2 by the corrected Eqs. (24)-(25)",
+    "rate": "rate of a clock counting 2 pi / omega per swing: seconds gained per day",
+    "rate_impacts": "part of the rate due to the impacts' phase jumps dT1, Eq. (24)",
+    "rate_zones": "part of the rate due to the impulse zones dT2, Eq. (25)", "seconds_per_day": "seconds in a day",
+    **{f"drift_{solver}": f"impact time minus the 50-digit reference, {words}" for solver, words in
+       (("exact", "exact solver"), ("ivp", "solve_ivp DOP853 rtol=1e-12"), ("closed_form", "per-cycle closed forms"))},
+    **{f"error_time_{solver}": f"relative error of the impact time at a1, {words}" for solver, words in
+       (("exact", "exact solver"), ("ivp", "solve_ivp DOP853 rtol=1e-12"), ("closed_form", "per-cycle closed forms"))},
+    **{f"error_velocity_{solver}": f"relative error of the velocity before impact, {words}" for solver, words in
+       (("exact", "exact solver"), ("ivp", "solve_ivp DOP853 rtol=1e-12"), ("closed_form", "per-cycle closed forms"))},
+    "max_velocity_deviation": "largest relative deviation of the velocity before impact from the fixed point once "
+                              "converged, exact solver",
+    "max_period_deviation": "largest relative deviation of the period from the limit cycle's once converged, exact "
+                            "solver",
+    "max_period_difference": "largest relative difference between the corrected Eqs. (24)-(25) and the exact "
+                             "solver's period",
+}
+#: ... and the names whose meaning depends on the output (its folder and file; the stability map's chunks are
+#: parts of the map): a cycle table's impact time starts a cycle, a summary's velocity is one number per run
+LONG_NAMES_IN = {
+    "fig3/case": {
+        "impact_time": "time of impact k at a1 (start of cycle k)",
+        "amplitude": "Step-1 amplitude h0(k) = sqrt(a1^2 + (v_k / omega)^2) of the free arc that ends in impact k "
+                     "at a1 (k = 1 .. N+1; Eqs. (9b), (22a))",
+    },
+    "fig5/K": {"amplitude": "largest displacement between impact k and impact k+1 (right turning point)"},
+    "claims/checks": {
+        "x0": "initial displacement (released from rest)", "outcome": "how the run ended",
+        "velocity": "velocity before impact at the last cycle", "period": "period of the last cycle",
+        "amplitude": "amplitude of the last cycle", "multiplier": "multiplier mu_2 measured from the return map",
+    },
+    "escapement_error/rate": {
+        "velocity": "velocity before the impact at a1 on the limit cycle (fixed point of the map (16))",
+        "period": "period of the limit cycle, exact solver",
+        "amplitude": "amplitude of the limit cycle (largest displacement)",
+    },
+    "stability/map": {"period": "period of the cycle at the fixed point",
+                      "outcome": "how the cycle from the fixed point ended"},
+    "stability/existence": {"outcome": "how the run from the release ended"},
+}
+
+#: the flag variables: their codes and meanings, the model's names spelled out here. A run ends completed (0),
+#: stopped (1), turned back in a zone (2), chattering (3) or at its event limit (4); an event is an impact at
+#: a1 (1), the end of the impulse at a2 (2), an impact at a3 (3), the end of the impulse at a4 (4)
+FLAGS = {
+    "outcome": ([0, 1, 2, 3, 4], "completed stopped turned_back_in_zone chattering event_limit"),
+    "event_kind": ([1, 2, 3, 4], "impact_at_a1 end_of_impulse_at_a2 impact_at_a3 end_of_impulse_at_a4"),
+    "converged": ([0, 1], "no_limit_cycle limit_cycle"),
+}
+
+
+def _output_kind(path: Path) -> str:
+    """``fig3/case``, ``fig5/K``, ``stability/map`` (its chunks too), ... from an output's path."""
+    stem = re.sub(r"_[^_]*$", "", path.stem) if path.parent.name in ("fig3", "fig5") else path.stem
+    return f"{path.parent.name}/{'map' if stem.startswith('chunk_') else stem}"
+
+
+def test_every_variable_written_has_the_long_name_and_flags_of_its_quantity(workflow_run):
+    """By value: every variable of every netCDF output has the long name the tables above give it (a long
+    name swapped between two variables fails); every flag variable the codes and meanings of the model's
+    outcomes, event kinds or convergence, and only those codes in its data (an outcome written as text, only
+    those names); a variable not in the tables must be added to them."""
+    checked, flagged = 0, set()
+    for path in sorted((workflow_run / "results").rglob("*.nc")):
+        ds = read_netcdf(path)
+        specific = LONG_NAMES_IN.get(_output_kind(path), {})
+        for name, variable in ds.variables.items():
+            assert name in specific or name in LONG_NAMES, f"{path.name}: {name} has no expected long name"
+            expected = specific.get(name, LONG_NAMES.get(name))
+            assert variable.attrs.get("long_name") == expected, f"{path.name}: {name}"
+            checked += 1
+            if name in FLAGS or "flag_values" in variable.attrs:
+                assert name in FLAGS, f"{path.name}: {name} is a flag not in the table"
+                values, meanings = FLAGS[name]
+                written = set(variable.values.ravel().tolist())
+                if variable.dtype.kind in "OSU":  # the outcome written as its name (the claims' checks)
+                    assert written <= set(meanings.split()), f"{path.name}: {name}"
+                    continue
+                assert [int(v) for v in variable.attrs["flag_values"]] == values, f"{path.name}: {name}"
+                assert variable.attrs["flag_meanings"] == meanings, f"{path.name}: {name}"
+                assert written <= set(values), f"{path.name}: {name}"
+                flagged.add(name)
+    assert checked > 200 and flagged == set(FLAGS)
+
+
+
 def test_fig3_has_the_configured_number_of_cycles(workflow_run):
     ds = read_netcdf(workflow_run / "results/fig3/case_a.nc")
     assert ds.sizes["cycle"] == REDUCED_FIG3_CYCLES and float(ds["F"]) == 1.0 and float(ds["x0"]) == -1.0
