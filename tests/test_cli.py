@@ -348,3 +348,13 @@ def test_version_in_process(capsys):
 
     assert main(["--version"]) == COMPLETED
     assert capsys.readouterr().out == f"escapement {version('escapement')}\n"
+
+
+@pytest.mark.parametrize("argv0, name", [
+    ("/opt/env/bin/escapement", "escapement"), ("escapement-dev", "escapement-dev"),
+    (str(Path(cli.__file__).with_name("__main__.py")), "python -m escapement"), ("-c", "escapement"),
+])
+def test_without_a_name_the_program_takes_the_one_it_was_started_by(argv0, name, monkeypatch, capsys):
+    monkeypatch.setattr(sys, "argv", [argv0])
+    assert cli.main(["solve", "--b", "3"]) == INVALID_INPUT
+    assert capsys.readouterr().err.startswith(f"{name} solve: --b 3.0 is invalid")

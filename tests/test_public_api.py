@@ -1,12 +1,16 @@
 """The public API, as a user and a type checker meet it: ``dir(escapement)`` is ``__version__``, the
 exported names and the module's dunder attributes; every exported function and class, and every
 public method and property of the exported classes, has a docstring and type hints (a return
-annotation, an annotation on every parameter); the package ships ``py.typed``."""
+annotation, an annotation on every parameter), and so has every public name of the modules of the
+model, the solvers and the integrators; the package ships ``py.typed``; the results' reprs are short
+and print their inputs as typed back."""
 
 from __future__ import annotations
 
 import enum
+import importlib
 import inspect
+import pkgutil
 import math
 import re
 from collections.abc import Callable, Iterator
@@ -33,7 +37,8 @@ def own_members(cls: type) -> Iterator[tuple[str, object]]:
             seen.add(name)
             if isinstance(member, (staticmethod, classmethod)):
                 member = member.__func__
-            if isinstance(member, property) or inspect.isfunction(member):
+            function = member.fget if isinstance(member, property) else member
+            if inspect.isfunction(function) and function.__module__.startswith("escapement"):
                 yield f"{cls.__name__}.{name}", member
 
 
@@ -48,6 +53,28 @@ def public_api() -> dict[str, object]:
 
 
 API = public_api()
+#: the layers whose every module's public names are held to the same standard
+LAYERS = ("model", "solvers", "integrators")
+
+
+def layer_api() -> dict[str, object]:
+    """The functions and classes each module of the layers defines and lists in its ``__all__``, with the
+    public methods and properties of the classes."""
+    api: dict[str, object] = {}
+    for layer in LAYERS:
+        package = importlib.import_module(f"escapement.{layer}")
+        for info in pkgutil.iter_modules(package.__path__, f"{package.__name__}."):
+            module = importlib.import_module(info.name)
+            for name in module.__all__:
+                obj = getattr(module, name)
+                if (inspect.isfunction(obj) or inspect.isclass(obj)) and obj.__module__ == info.name:
+                    api[f"{info.name}.{name}"] = obj
+                    if inspect.isclass(obj):
+                        api.update((f"{info.name}.{key}", member) for key, member in own_members(obj))
+    return api
+
+
+LAYER_API = layer_api()
 
 
 def hint_problems(name: str, obj: object) -> list[str]:
@@ -92,6 +119,17 @@ def test_the_check_finds_what_is_missing():
 @pytest.mark.parametrize("name", sorted(API))
 def test_every_public_name_has_a_docstring_and_type_hints(name):
     assert hint_problems(name, API[name]) == []
+
+
+def test_the_layers_walk_reaches_every_module():
+    modules = {name.rsplit(".", 1)[0] for name in LAYER_API}
+    assert {"escapement.model.kinematics", "escapement.solvers.ensemble", "escapement.integrators.segments"} <= modules
+    assert "escapement.integrators.segments.DenseSegments.sample" in LAYER_API
+
+
+@pytest.mark.parametrize("name", sorted(LAYER_API))
+def test_every_public_name_of_the_layers_has_a_docstring_and_type_hints(name):
+    assert hint_problems(name, LAYER_API[name]) == []
 
 
 def test_dir_is_the_api():

@@ -53,7 +53,7 @@ from ..solvers.outcomes import (
     horizon_outcome,
     no_event_outcome,
 )
-from ..solvers.result import CycleTable, Exit, Solution
+from ..solvers.result import CycleTable, Exit, Solution, Trajectory
 
 __all__ = ["HORIZON", "NO_EVENT", "Step", "Stepper", "drive"]
 
@@ -91,9 +91,12 @@ class Stepper(Protocol):
     name: str
 
     def next_event(self, mode: Mode, centre: float, t: float, x: float, v: float,
-                   watched: tuple[EventKind, ...], t_stop: float) -> Step: ...
+                   watched: tuple[EventKind, ...], t_stop: float) -> Step:
+        """The next event of ``watched`` on the arc about ``centre`` in ``mode`` from ``(t, x, v)``, or none
+        before ``t_stop``."""
 
-    def trajectory(self, t_final: float): ...
+    def trajectory(self, t_final: float) -> Trajectory | None:
+        """The motion up to ``t_final``, if the integrator keeps it."""
 
 
 class _Records:

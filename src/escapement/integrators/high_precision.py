@@ -13,6 +13,9 @@ from __future__ import annotations
 import mpmath
 
 from ..model import automaton
+from ..model.automaton import Mode
+from ..model.events import EventKind
+from ..model.arguments import Numeric
 from ..model.limits import MAX_DIGITS, MIN_DIGITS, RunLimits, check_count
 from ..model.parameters import Parameters, check_initial_state, check_parameters
 from ..solvers.result import Solution
@@ -33,7 +36,10 @@ class MpmathStepper:
                         for kind, s in automaton.SURFACES.items()}
         self.two_pi = 2 * mpmath.pi
 
-    def next_event(self, mode, centre, t, x, v, watched, t_stop) -> Step:
+    def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
+                   watched: tuple[EventKind, ...], t_stop: float) -> Step:
+        """The next event of ``watched`` on the arc about ``centre`` in ``mode`` from ``(t, x, v)``, or none
+        before ``t_stop`` (the loop's :class:`~escapement.integrators.driver.Step`)."""
         w, c = self.w, automaton.CENTRE_SIGN[int(mode)] * self.offset
         x = mpmath.mpf(x)
         start = mpmath.atan2(v / w, x - c)
@@ -65,6 +71,7 @@ class MpmathStepper:
         return Step(kind, dt, v_end, x_max)
 
     def trajectory(self, t_final: float) -> None:
+        """None: this integrator keeps no trajectory to sample."""
         return None
 
 

@@ -12,8 +12,9 @@ import math
 
 from ..model import automaton
 from ..model.automaton import Mode
+from ..model.events import EventKind
 from ..model.limits import RunLimits
-from ..model.arguments import real_number
+from ..model.arguments import Numeric, real_number
 from ..model.parameters import Parameters, check_initial_state, check_parameters
 from ..solvers.describe import exact
 from ..solvers.result import Solution
@@ -40,7 +41,10 @@ class NaiveStepper:
         self.max_steps = int(math.ceil(PERIODS_TO_STOP * params.natural_period / step)) + 1
         self.t = 0.0
 
-    def next_event(self, mode, centre, t, x, v, watched, t_stop) -> Step:
+    def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
+                   watched: tuple[EventKind, ...], t_stop: float) -> Step:
+        """The next event of ``watched`` on the arc about ``centre`` in ``mode`` from ``(t, x, v)``, or none
+        before ``t_stop`` (the loop's :class:`~escapement.integrators.driver.Step`)."""
         w2, h = self.w2, self.h
         h2, h6 = h / 2.0, h / 6.0
         t_start, largest = self.t, x
@@ -68,6 +72,7 @@ class NaiveStepper:
         return Step(NO_EVENT, math.inf, 0.0, math.hypot(x, v / math.sqrt(w2)))
 
     def trajectory(self, t_final: float) -> None:
+        """None: this integrator keeps no trajectory to sample."""
         return None
 
 

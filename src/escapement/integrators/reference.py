@@ -30,8 +30,9 @@ import numpy as np
 
 from ..model import automaton
 from ..model.automaton import Mode
+from ..model.events import EventKind
 from ..model.limits import RunLimits, check_flag
-from ..model.arguments import ParameterError, check_choice, real_number
+from ..model.arguments import Numeric, ParameterError, check_choice, real_number
 from ..model.parameters import Parameters, check_initial_state, check_parameters
 from ..solvers.result import Solution
 from .driver import HORIZON, NO_EVENT, Step, drive
@@ -56,7 +57,8 @@ def _heading(centre: float, x: float, v: float) -> int:
 class IvpStepper:
     """The next event by numerical integration, segment by segment (turning points end segments)."""
 
-    def __init__(self, params: Parameters, integrator, record_trajectory: bool) -> None:
+    def __init__(self, params: Parameters, integrator: SciPyIntegrator | CvodeIntegrator,
+                 record_trajectory: bool) -> None:
         self.omega, self.omega2 = params.omega, params.omega2
         self.period = params.natural_period
         self.name = integrator.name
@@ -72,7 +74,10 @@ class IvpStepper:
         self.seg_sol: list = []
         self.seg_c: list[float] = []
 
-    def next_event(self, mode, centre, t, x, v, watched, t_stop) -> Step:
+    def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
+                   watched: tuple[EventKind, ...], t_stop: float) -> Step:
+        """The next event of ``watched`` on the arc about ``centre`` in ``mode`` from ``(t, x, v)``, or none
+        before ``t_stop`` (the loop's :class:`~escapement.integrators.driver.Step`)."""
         t_start = t
         largest = x
         rests = 0
@@ -139,7 +144,8 @@ class IvpStepper:
         return any(self.surfaces[k].direction == heading and (self.surfaces[k].position - x) * heading > 0.0
                    for k in watched)
 
-    def trajectory(self, t_final: float):
+    def trajectory(self, t_final: float) -> DenseSegments | None:
+        """The dense output of every segment up to ``t_final``, if the run keeps its trajectory."""
         if not self.record:
             return None
         return DenseSegments(np.array(self.seg_t), tuple(self.seg_sol), np.array(self.seg_c), self.omega, t_final)

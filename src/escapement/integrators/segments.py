@@ -6,7 +6,9 @@ at the first surface it watches (:class:`Watch`), and the crossing of a surface 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import TypeAlias
 
 import numpy as np
 
@@ -16,6 +18,8 @@ from ..solvers.describe import number, texts
 __all__ = ["MAX_STEP_HALF_PERIODS", "ROOT_TOLERANCE", "CvodeIntegrator", "DenseSegments", "Hit", "SciPyIntegrator",
            "Segment", "Watch"]
 
+#: a segment's dense output (SciPy's ``OdeSolution``): the state ``(x, v)`` at a time
+Dense: TypeAlias = Callable[[float], np.ndarray]
 #: the longest step, in half periods: the velocity's zeros are half a period apart, so a step
 #: shorter than that holds at most one of them and changes the velocity's sign across it
 MAX_STEP_HALF_PERIODS = 0.9
@@ -31,7 +35,8 @@ class Watch:
     position: float | None
     direction: int
 
-    def value(self, y) -> float:
+    def value(self, y: Sequence[float]) -> float:
+        """The watched quantity at the state ``y = (x, v)``: zero at the event."""
         return y[1] if self.position is None else y[0] - self.position
 
     @property
@@ -42,6 +47,8 @@ class Watch:
 
 @dataclass(frozen=True)
 class Hit:
+    """An event a segment met: its time, the index of its watch and the state ``(x, v)`` there."""
+
     t: float
     index: int
     y: tuple[float, float]
@@ -78,11 +85,11 @@ class SciPyIntegrator:
         self.method, self.rtol, self.atol, self.dense = method, rtol, atol, dense
         self.name = f"solve_ivp {method} rtol={rtol:g}"
 
-    def segment(self, seg: Segment):
+    def segment(self, seg: Segment) -> tuple[Hit | None, Dense | None]:
         """The first event of the segment (None: none before ``t1``) and, if kept, the dense output."""
         return self._solve(seg, self.dense)
 
-    def _solve(self, seg: Segment, dense: bool):
+    def _solve(self, seg: Segment, dense: bool) -> tuple[Hit | None, Dense | None]:
         omega2, centre = seg.omega2, seg.centre
 
         def rhs(_t, y):
@@ -105,7 +112,7 @@ class SciPyIntegrator:
         hit = None if first is None else Hit(float(first[0]), first[1], (float(first[2][0]), float(first[2][1])))
         return hit, (sol.sol if dense else None)
 
-    def crossing(self, seg: Segment, dense, end: Hit, index: int) -> Hit:
+    def crossing(self, seg: Segment, dense: Dense | None, end: Hit, index: int) -> Hit:
         """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, on the segment's
         dense output, where ``x`` is monotone from the start to ``end``; the segment is integrated
         again with dense output if it was not kept (the same steps, so the same ``end``)."""
@@ -158,11 +165,11 @@ class CvodeIntegrator:
         y = result.y_events[0]
         return Hit(float(result.t_events[0]), index, (float(y[0]), float(y[1])))
 
-    def segment(self, seg: Segment):
+    def segment(self, seg: Segment) -> tuple[Hit | None, None]:
         """The first event of the segment (None: none before ``t1``); CVODE keeps no dense output."""
         return self._solve(seg, seg.watches, [w.crossing for w in seg.watches], seg.t0, seg.y0, seg.t1), None
 
-    def crossing(self, seg: Segment, dense, end: Hit, index: int) -> Hit:
+    def crossing(self, seg: Segment, dense: Dense | None, end: Hit, index: int) -> Hit:
         """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, by integrating
         back from ``end`` towards the start: ``x`` is monotone on that stretch, which holds one crossing."""
         watch = seg.watches[index]

@@ -25,10 +25,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable
 from numbers import Integral, Real
+from typing import Any, TypeAlias, TypeVar
 
 import numpy as np
 
 __all__ = [
+    "Numeric",
     "ParameterError",
     "ParameterTypeError",
     "check_choice",
@@ -40,6 +42,11 @@ __all__ = [
     "real_number",
     "sample_times",
 ]
+
+#: a real number as the closed forms of the model take it: a float, a NumPy array of them (element by
+#: element) or an mpmath number (the 50-digit solver); checked by the caller, not by the type
+Numeric: TypeAlias = Any
+_T = TypeVar("_T")
 
 _MASKED = "a real number, not a masked element (it holds no value)"
 
@@ -198,7 +205,7 @@ def check_choice(name: str, value: object, choices: Iterable[str]) -> str:
     return value
 
 
-def check_type(name: str, value: object, kind: type, requirement: str):
+def check_type(name: str, value: object, kind: type[_T], requirement: str) -> _T:
     """``value`` if it is an instance of ``kind``, else raise :class:`ParameterTypeError` naming ``name``."""
     if not isinstance(value, kind):
         raise ParameterTypeError(name, value, requirement)

@@ -12,9 +12,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import IntEnum
+from typing import TYPE_CHECKING
 
+from .arguments import Numeric
 from .events import EventKind
 from .status import Status
+
+if TYPE_CHECKING:
+    from .parameters import Parameters
 
 __all__ = [
     "ARCS",
@@ -109,12 +114,12 @@ def cycle_plan() -> tuple[EventKind, ...]:
     raise RuntimeError("the automaton's rows do not return to the impact at a1")
 
 
-def centre(mode: int, zone_offset):
+def centre(mode: int, zone_offset: Numeric) -> Numeric:
     """The centre of oscillation in ``mode``; ``zone_offset`` is F/K (a number or an array), m."""
     return CENTRE_SIGN[int(mode)] * zone_offset
 
 
-def position(kind: int, params):
+def position(kind: int, params: Parameters) -> float:
     """Where the surface ``kind`` lies for these parameters, m."""
     return getattr(params, SURFACES[kind].position)
 
@@ -124,24 +129,24 @@ def is_impact(kind: int) -> bool:
     return SURFACES[kind].impact
 
 
-def impact_factor(b):
+def impact_factor(b: Numeric) -> Numeric:
     """The impact law, Eqs. (A-2), (A-4): at an impact ``v+ = r v-`` with ``r = 1 - b``; the end of an impulse
     zone leaves the velocity as it is. Every solver takes the jump from here (floats, arrays, mpmath numbers).
     """
     return 1.0 - b
 
 
-def velocity_after(v_before, b):
+def velocity_after(v_before: Numeric, b: Numeric) -> Numeric:
     """The velocity just after an impact: :func:`impact_factor` times the velocity just before it."""
     return impact_factor(b) * v_before
 
 
-def reverses(v_before, v_after):
+def reverses(v_before: Numeric, v_after: Numeric) -> Numeric:
     """True where the jump reversed the velocity (``b > 1``): the mass rebounds and chatters."""
     return v_after * v_before < 0.0
 
 
-def rebound_distance(kind: int, where):
+def rebound_distance(kind: int, where: Numeric) -> Numeric:
     """After a rebound at the impact ``kind`` at position ``where``, the distance from the free
     centre (0) to it on the side the spring pushes towards (> 0 when the spring drives the mass
     back to it)."""

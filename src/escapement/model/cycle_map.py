@@ -8,6 +8,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import automaton
 from .parameters import Parameters
@@ -45,7 +46,7 @@ class CycleMap:
         sq = self.fixed_point_sq
         return math.sqrt(sq) if sq > 0.0 else math.nan
 
-    def velocity_sq(self, v1: float, k) -> np.ndarray:
+    def velocity_sq(self, v1: float, k: ArrayLike) -> np.ndarray:
         """``v_k**2 = v***2 + (v1**2 - v***2) mu**(k-1)`` for the cycle numbers ``k`` (1 for the first).
 
         ``mu**(k-1)`` as ``exp((k-1) ln mu)``, ``ln mu = 4 log1p(r - 1)``: the power of the rounded ``mu`` would

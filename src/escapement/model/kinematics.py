@@ -19,8 +19,11 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
+from types import ModuleType
 
 import numpy as np
+
+from .arguments import Numeric
 
 __all__ = [
     "arc_terms",
@@ -35,14 +38,15 @@ __all__ = [
 TWO_PI = 2.0 * math.pi
 
 
-def arc_terms(centre, x0, omega, target):
+def arc_terms(centre: Numeric, x0: Numeric, omega: Numeric, target: Numeric) -> tuple[Numeric, Numeric, Numeric]:
     """The terms of :func:`crossing` that depend on the arc's two positions only: ``u0 = x0 - c``,
     ``q = target - c`` and ``k = omega**2 (x0 - target)(x0 + target - 2 c)`` (by energy, the arrival's
     ``v**2 = v0**2 + k``). An arc from one surface to the next has them once per parameter set."""
     return x0 - centre, target - centre, (omega * omega) * ((x0 - target) * (x0 + target - 2.0 * centre))
 
 
-def crossing(u0, q, k, v0, omega, direction, xp=math):
+def crossing(u0: Numeric, q: Numeric, k: Numeric, v0: Numeric, omega: Numeric, direction: Numeric,
+             xp: ModuleType = math) -> tuple[Numeric, Numeric, Numeric, Numeric]:
     """First arrival at the target moving in ``direction`` (+1 right, -1 left), for an arc about a centre
     ``c`` from ``x0 = c + u0`` at velocity ``v0`` to ``target = c + q``, with ``k`` from :func:`arc_terms`.
 
@@ -62,7 +66,8 @@ def crossing(u0, q, k, v0, omega, direction, xp=math):
     return v_sq > 0.0, angle / omega, v1, angle
 
 
-def arc_maximum(centre, x0, v0, omega, angle, x1, v1):
+def arc_maximum(centre: Numeric, x0: Numeric, v0: Numeric, omega: Numeric, angle: Numeric, x1: Numeric,
+                v1: Numeric) -> Numeric:
     """Largest ``x`` on the arc that starts at ``(x0, v0)``, sweeps ``angle`` (rad) and ends at ``(x1, v1)``
     (arrays or numbers): the top of its circle, ``centre + R``, if the arc passes it, else the larger end.
 
@@ -79,7 +84,7 @@ def arc_maximum(centre, x0, v0, omega, angle, x1, v1):
     return np.where(passes, centre + np.hypot(u0, v0 / omega), np.maximum(x0, x1))
 
 
-def compensated_add(total, error, term):
+def compensated_add(total: Numeric, error: Numeric, term: Numeric) -> tuple[Numeric, Numeric]:
     """Add ``term`` to the compensated sum ``total + error``; returns the new pair (floats or arrays).
 
     The rounding error of ``total + term`` is exact by Knuth's TwoSum (no branch), and carried in

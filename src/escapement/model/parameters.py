@@ -52,7 +52,7 @@ impact law's factor ``1 - b`` keeps ``b`` to 4 significant digits (for ``b`` bel
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -96,7 +96,7 @@ def _unit(name: str) -> str:
 _POSITIONS = tuple(name for name, q in PARAMETERS.items() if q.units == quantity("displacement").units)
 
 
-def _magnitude(name: str, values: np.ndarray, zero: bool):
+def _magnitude(name: str, values: np.ndarray, zero: bool) -> tuple[str, np.ndarray, str]:
     """The rule that a dimensional input's magnitude lies in [SMALLEST, LARGEST] (or is 0)."""
     size = np.abs(values)
     holds = (size >= SMALLEST) & (size <= LARGEST)
@@ -106,7 +106,7 @@ def _magnitude(name: str, values: np.ndarray, zero: bool):
     return name, holds, f"{allowed} ({_unit(name)}), {_WHY}"
 
 
-def rules(v: Mapping[str, np.ndarray]):
+def rules(v: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
     """Each rule as ``(name, holds, requirement)``, in the order they are checked.
 
     ``v`` maps every model key to a float64 array (all of one shape); ``holds`` is a boolean
@@ -129,7 +129,7 @@ def rules(v: Mapping[str, np.ndarray]):
         yield "a4", v["a4"] < v["a3"], SIGNS["a4"] + " = {a3!r} " + f"({_unit('a4')})"
 
 
-def state_rules(s: Mapping[str, np.ndarray]):
+def state_rules(s: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
     """The rules on the initial state, like :func:`rules`: ``s`` maps ``x0`` and ``v0`` to float64
     arrays of one shape."""
     with np.errstate(all="ignore"):

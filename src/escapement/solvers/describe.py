@@ -18,12 +18,19 @@ import math
 import textwrap
 from itertools import combinations
 
-import numpy as np
+from typing import TYPE_CHECKING
 
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..model.arguments import Numeric
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..model.quantities import INITIAL_STATE, PARAMETERS, VARIABLES
 from ..model.status import Status
+
+if TYPE_CHECKING:  # the results these summaries describe (they describe themselves by these functions)
+    from .result import ArcTable, CycleTable, EnsembleSolution, Exit, Solution
 
 __all__ = [
     "CYCLE_COLUMNS",
@@ -64,7 +71,7 @@ _LABEL = 12
 _ALL_DIGITS = 17
 
 
-def _unsigned_zero(value) -> float:
+def _unsigned_zero(value: Numeric) -> float:
     """``value`` as a double (an mpmath number as its nearest), a negative zero made positive."""
     return float(value) + 0.0  # -0.0 + 0.0 is +0.0; every other double is unchanged
 
@@ -73,7 +80,7 @@ def _with_unit(text: str, unit: str) -> str:
     return text if unit in ("", "1") else f"{text} {unit}"
 
 
-def exact(value, unit: str = "") -> str:
+def exact(value: Numeric, unit: str = "") -> str:
     """An input as it can be typed back: the shortest text that reads as the same double (Python's
     ``repr``), without a trailing ``.0``, zero without a sign; with its unit."""
     text = repr(_unsigned_zero(value))
@@ -85,7 +92,7 @@ def _order(x: float, y: float) -> int:
     return (x > y) - (x < y)
 
 
-def texts(values, digits: int = 6) -> list[str]:
+def texts(values: ArrayLike, digits: int = 6) -> list[str]:
     """``values`` to ``digits`` significant digits, or to more where fewer would misstate how two of
     them compare (two that differ printed alike, or in the wrong order); as typed back
     (:func:`exact`) when 16 digits are not enough; zero without a sign."""
@@ -99,7 +106,7 @@ def texts(values, digits: int = 6) -> list[str]:
     return [exact(x) for x in floats]
 
 
-def compared(value, bounds, digits: int = 12) -> str:
+def compared(value: Numeric, bounds: ArrayLike, digits: int = 12) -> str:
     """A computed ``value`` beside the inputs ``bounds`` it is compared with (printed by :func:`exact`):
     to ``digits`` significant digits, or to more where fewer would misstate how it compares with one
     of them (printed as equal to a bound it is not, or on the wrong side of it)."""
@@ -112,13 +119,13 @@ def compared(value, bounds, digits: int = 12) -> str:
     return exact(value)
 
 
-def number(value, unit: str = "", digits: int = 6) -> str:
+def number(value: Numeric, unit: str = "", digits: int = 6) -> str:
     """A computed ``value`` to ``digits`` significant digits (an mpmath number as its nearest double),
     zero without a sign, with its unit."""
     return _with_unit(texts([value], digits)[0], unit)
 
 
-def span(values, unit: str) -> str:
+def span(values: ArrayLike, unit: str) -> str:
     """The range of ``values`` (NaN ignored): ``lo .. hi unit``, one number if they agree; the two
     with the digits that tell them apart."""
     finite = np.asarray(values, dtype=float)
@@ -143,7 +150,7 @@ def _parameters_text(params: Parameters) -> str:
                      for name, value in params.as_dict().items())
 
 
-def arc_table_summary(arcs) -> str:
+def arc_table_summary(arcs: ArcTable) -> str:
     """One line on a table of harmonic arcs (:class:`~escapement.solvers.result.ArcTable`)."""
     if not len(arcs):
         return f"<ArcTable> no harmonic arcs, omega = {number(arcs.omega, 'rad/s')}"
@@ -152,7 +159,7 @@ def arc_table_summary(arcs) -> str:
     return f"<ArcTable> {arcs_} from t = {start} s to t_final = {end} s, omega = {number(arcs.omega, 'rad/s')}"
 
 
-def cycle_table_summary(cycles) -> str:
+def cycle_table_summary(cycles: CycleTable) -> str:
     """The range of each column of a per-cycle table, one or many trajectories."""
     shape = np.shape(cycles.period)
     size = f"{shape[-1]} cycles" + (f" x {shape[0]} trajectories" if len(shape) == 2 else "")
@@ -162,7 +169,7 @@ def cycle_table_summary(cycles) -> str:
     return "\n".join(lines)
 
 
-def exit_summary(exit, printed: dict[str, str] | None = None) -> str:
+def exit_summary(exit: Exit, printed: dict[str, str] | None = None) -> str:
     """The numbers of a regime exit that apply, with their units (empty if none does); ``printed``
     gives the text of those already printed beside other numbers."""
     printed = printed or {}
@@ -170,7 +177,7 @@ def exit_summary(exit, printed: dict[str, str] | None = None) -> str:
                      for name, unit in EXIT_UNITS.items() if not math.isnan(getattr(exit, name)))
 
 
-def solution_summary(solution, trajectory: str) -> str:
+def solution_summary(solution: Solution, trajectory: str) -> str:
     """A run in a few lines: outcome, message, time span, events, cycles, initial state, parameters
     and the exit's numbers; ``trajectory`` says whether (and how) the motion was kept."""
     ev, cycles = solution.events, solution.cycles
@@ -204,7 +211,7 @@ def solution_summary(solution, trajectory: str) -> str:
     return "\n".join(lines)
 
 
-def ensemble_summary(runs) -> str:
+def ensemble_summary(runs: EnsembleSolution) -> str:
     """Many runs in a few lines: the count of each outcome and the range of each column."""
     n = len(runs.status)
     codes, counts = np.unique(np.asarray(runs.status), return_counts=True)

@@ -227,7 +227,8 @@ class Block(NamedTuple):
     arc_v: np.ndarray  #: the velocity it starts with, m/s (likewise)
 
 
-def event_block(run: EventRun, start: int, t, v_before, angle, before: tuple[int, float, float]) -> Block:
+def event_block(run: EventRun, start: int, t: np.ndarray, v_before: np.ndarray, angle: np.ndarray,
+                before: tuple[int, float, float]) -> Block:
     """The events ``start ..`` of ``run`` from what the loop stored, ``before`` the state before the first of
     them (the last event's kind, or the release, and the position and velocity after it)."""
     n = len(t)

@@ -19,13 +19,14 @@ from typing import NamedTuple
 import numpy as np
 
 from ..model import automaton
+from ..model.arguments import Numeric
 from ..model.events import EventKind, EventLog
 from ..model.kinematics import rebound_accumulation_time
 from ..model.limits import EVENTS_PER_CYCLE, MemoryBudgetError, RunLimits, events_for
 from ..model.parameters import Parameters
 from ..model.status import Status
 from .describe import compared, exact, texts
-from .result import ArcTable, CycleTable, Exit, Solution
+from .result import ArcTable, CycleTable, Exit, Solution, Trajectory
 
 __all__ = ["Outcome", "chattering_outcome", "check_memory", "event_limit_message", "finish", "horizon_outcome",
            "no_event_outcome"]
@@ -98,8 +99,8 @@ def event_limit_message(t: float, max_events: int) -> str:
             "to go on")
 
 
-def no_event_outcome(params: Parameters, state: int, centre, t, dt, turning, t_stop: float = math.inf,
-                     impacts_a1: int = 0) -> Outcome:
+def no_event_outcome(params: Parameters, state: int, centre: Numeric, t: Numeric, dt: Numeric, turning: Numeric,
+                     t_stop: float = math.inf, impacts_a1: int = 0) -> Outcome:
     """No surface watched in ``state`` (a row of :data:`~escapement.model.automaton.ARCS`) is ever passed
     from time ``t``: in free flight the escapement stopped (``turning`` is the radius of the swing; known at
     ``t``), in a zone the mass turned back at ``turning``, ``dt`` after ``t``, unless the end time ``t_stop``
@@ -131,7 +132,8 @@ def completed_outcome(n_cycles: int, t) -> Outcome:
     return Outcome(Status.COMPLETED, f"completed {n_cycles} cycles", Exit(), t)
 
 
-def chattering_outcome(params: Parameters, kind: EventKind, t, v_before, v_after) -> Outcome:
+def chattering_outcome(params: Parameters, kind: EventKind, t: Numeric, v_before: Numeric, v_after: Numeric
+                       ) -> Outcome:
     """The impact ``kind`` at time ``t`` reversed the velocity: the rebounds accumulate (or not)."""
     distance = automaton.rebound_distance(kind, automaton.position(kind, params))
     t_acc = math.nan  # unless the spring drives the mass back to the impact position
@@ -194,8 +196,8 @@ def _sizes(estimate: int, budget: int) -> str:
     return f"{estimate:_} bytes ({estimate_gb} GB), over the memory budget of {budget:_} bytes ({budget_gb} GB)"
 
 
-def finish(params: Parameters, method: str, outcome: Outcome, events: EventLog, cycles: CycleTable, trajectory, *,
-           x0: float, v0: float) -> Solution:
+def finish(params: Parameters, method: str, outcome: Outcome, events: EventLog, cycles: CycleTable,
+           trajectory: Trajectory | None, *, x0: float, v0: float) -> Solution:
     """The :class:`Solution` of a run that ended with ``outcome``; a completed run holding a non-finite
     number raises :class:`FloatingPointError` (the input validation let through what it must refuse)."""
     t_final = float(outcome.t_final)

@@ -46,7 +46,8 @@ class Trajectory(Protocol):
 
     t_final: float
 
-    def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+    def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Displacement, velocity and acceleration at times ``t`` (NaN outside ``[0, t_final]``)."""
 
 
 @dataclass(frozen=True, repr=False)
