@@ -221,3 +221,27 @@ def long_run() -> escapement.Solution:
         "ArcTable at -0", "EnsembleSolution", "ensemble CycleTable", "DenseSegments", "Parameters"])
 def test_every_result_prints_short_and_without_a_negative_zero(make):
     short_and_signless(repr(make()))
+
+
+def stream(x0: float, closed_form: bool, exhausted: bool) -> object:
+    """A run's cycle stream (of the event solver or of the closed forms), before or after its end."""
+    from escapement.solvers import iter_closed_form_cycles
+
+    make = iter_closed_form_cycles if closed_form else escapement.iter_cycles
+    chunks = make(escapement.Parameters(**P), x0, n_cycles=3000, chunk=1000)
+    if exhausted:
+        for _ in chunks:
+            pass
+    return chunks
+
+
+@pytest.mark.parametrize("x0", [-1.0, -0.0])
+@pytest.mark.parametrize("closed_form", [False, True], ids=["events", "closed forms"])
+@pytest.mark.parametrize("exhausted", [False, True], ids=["fresh", "exhausted"])
+def test_a_cycle_stream_prints_its_progress_in_one_line(x0, closed_form, exhausted):
+    text = repr(stream(x0, closed_form, exhausted))
+    short_and_signless(text)
+    assert len(text.splitlines()) == 1 and "chunks of 1000 cycles" in text
+    assert ("; ended " in text) == exhausted
+    handed = 3000 if exhausted and x0 else 0  # a release at 0 stops at once, before any cycle
+    assert re.search(rf"(?<![\d.]){handed} (of 3000 )?handed over", text), text

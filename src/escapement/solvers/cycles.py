@@ -208,7 +208,13 @@ class CycleChunks(ChunkIterator):
         self.distinct_cycles = 0 if cycles is None else cycles.distinct  #: cycles whose arcs were computed
         self.map_residual = math.nan if cycles is None else cycles.residual  #: as :attr:`CycleRun.map_residual`
 
+    def _progress(self) -> str:
+        if self._fallback is not None:
+            return f"{self._fallback._progress()} by the event solver (the reason: its fallback attribute)"
+        return f"chunks of {self._chunk} cycles by the closed forms, {self._done} of {self._n} handed over"
+
     def __next__(self) -> CycleTable:
+        """The next chunk of the per-cycle table; :class:`StopIteration` once the run has ended."""
         if self._fallback is not None:
             try:
                 return next(self._fallback)

@@ -64,7 +64,17 @@ class ChunkIterator(Iterator[CycleTable]):
     _summary: StreamSummary | None = None
 
     def __iter__(self) -> ChunkIterator:
+        """The iterator itself."""
         return self
+
+    def _progress(self) -> str:
+        """What has been handed over so far (each kind of stream says it its own way)."""
+        raise NotImplementedError
+
+    def __repr__(self) -> str:
+        """One line: the chunk size, the cycles handed over and, once exhausted, how the run ended."""
+        ended = "" if self._summary is None else f"; ended {self._summary.status.value}"
+        return f"<{type(self).__name__}> {self._progress()}{ended}"
 
     @property
     def summary(self) -> StreamSummary:
@@ -86,7 +96,11 @@ class CycleStream(ChunkIterator):
         self._ready: list[tuple[np.ndarray, ...]] = []  # cycles derived, not yet handed over
         self._pending = 0
 
+    def _progress(self) -> str:
+        return f"chunks of {self._chunk} cycles, {self._cycles} handed over"
+
     def __next__(self) -> CycleTable:
+        """The next chunk of the per-cycle table; :class:`StopIteration` once the run has ended."""
         run = self._run
         while self._pending < self._chunk and run.outcome is None:
             run.advance(PASS_EVENTS)
