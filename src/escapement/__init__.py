@@ -15,7 +15,7 @@ import of the source):
   provenance (it imports only the model and the solvers);
 * :mod:`escapement.plotting`: the figures;
 * :mod:`escapement.pipeline`: what the workflow's rules call, and :mod:`escapement.cli`, the
-  command line ``escapement solve`` (or ``python -m escapement solve``; neither is imported here).
+  command line ``escapement solve`` or ``python -m escapement solve`` (neither is imported here).
 """
 
 import importlib.metadata as _metadata
