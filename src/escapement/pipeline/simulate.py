@@ -2,7 +2,8 @@
 
 Each scene is run by :mod:`escapement.experiments` and made a dataset by :mod:`escapement.io`;
 the ``*_scene`` functions do both and return the dataset in memory, the ``simulate_*`` jobs log
-the outcome and write it.
+the outcome and write it. Each job is a process of its own: the experiments that only one scene runs
+are imported by its function (the long run's and the checks' bring mpmath), not by every job.
 """
 
 from __future__ import annotations
@@ -12,12 +13,7 @@ from collections.abc import Mapping, Sequence
 
 import xarray as xr
 
-from ..experiments.checks import measure_cases
-from ..experiments.escapement_error import escapement_error
-from ..experiments.existence import axis_centres, existence_map
 from ..experiments.figures import phase, poincare, shock
-from ..experiments.long_run import run_long
-from ..experiments.stability import stability_chunk
 from ..io.netcdf import write_netcdf
 from ..io.scenes import (
     checks_dataset,
@@ -77,6 +73,7 @@ def phase_scene(params: Parameters, x0: float, n_cycles: int, samples_per_period
 
 def checks_scene(cases: Sequence[Mapping], n_cycles: int) -> xr.Dataset:
     """The checks dataset of the claims register (:func:`escapement.experiments.checks.measure_cases`)."""
+    from ..experiments.checks import measure_cases
     return checks_dataset(measure_cases(cases, n_cycles), n_cycles)
 
 
@@ -84,6 +81,7 @@ def long_run_scene(params: Parameters, x0: float, n_cycles: int, ivp_method: str
                    ivp_cycles: int) -> tuple[xr.Dataset, dict[str, float]]:
     """The long-run dataset and, apart from it, each method's wall time
     (:func:`escapement.experiments.long_run.run_long`)."""
+    from ..experiments.long_run import run_long
     run = run_long(params, x0, n_cycles, ivp_method, ivp_rtol, ivp_cycles)
     ds = long_run_dataset(run.errors, params, x0, run.n_cycles, run.ivp_method, run.ivp_rtol, run.ivp_cycles)
     return ds, run.timings
@@ -93,6 +91,7 @@ def stability_chunk_scene(model: Mapping, b_values: Sequence[float], F_values: S
                           speed_sample: int = 100) -> tuple[xr.Dataset, dict[str, float]]:
     """The dataset of one chunk of the stability map and, apart from it, the cost per trajectory of
     each solver (:func:`escapement.experiments.stability.stability_chunk`)."""
+    from ..experiments.stability import stability_chunk
     chunk = stability_chunk(model, b_values, F_values, speed_sample)
     grid = {"multiplier": chunk.multiplier, "multiplier_eq21": chunk.multiplier_eq21,
             "fixed_point": chunk.fixed_point, "period": chunk.period, "status": chunk.status}
@@ -102,6 +101,7 @@ def stability_chunk_scene(model: Mapping, b_values: Sequence[float], F_values: S
 def escapement_error_scene(base: Parameters, forces: Sequence[float], zones: Mapping[str, Sequence[float]]
                            ) -> xr.Dataset:
     """The escapement-error dataset (:func:`escapement.experiments.escapement_error.escapement_error`)."""
+    from ..experiments.escapement_error import escapement_error
     result = escapement_error(base, forces, zones)
     return escapement_error_dataset(result.zones, result.forces, result.values, result.max_period_difference,
                                     result.seconds_per_day, result.model)
@@ -110,6 +110,7 @@ def escapement_error_scene(base: Parameters, forces: Sequence[float], zones: Map
 def existence_scene(model: Mapping, block: Mapping) -> xr.Dataset:
     """The existence map's dataset over the cell centres of the block's a3 and F axes
     (:func:`escapement.experiments.existence.existence_map`)."""
+    from ..experiments.existence import axis_centres, existence_map
     run = existence_map(model, axis_centres(block["a3"]), axis_centres(block["F"]), float(block["x0"]),
                         int(block["n_cycles"]), float(block["tolerance"]), float(block.get("v0", 0.0)))
     return existence_dataset(run.a3_values, run.F_values, run.status, run.converged, run.threshold,

@@ -1,4 +1,6 @@
-"""The jobs of the studies beyond the paper: the work-precision benchmark, the speed table and the stress cases."""
+"""The jobs of the studies beyond the paper: the work-precision benchmark, the speed table and the stress cases.
+The stress job's cases are imported by it alone: the timing jobs, each a process of its own, do
+without them."""
 
 from __future__ import annotations
 
@@ -8,8 +10,6 @@ from ..io.atomic import write_csv
 from ..io.netcdf import read_netcdf
 from ..model.parameters import Parameters, check_initial_state
 from ..studies.benchmark import headline_ratios, per_cycle_times, work_precision
-from ..studies.stress import run_all
-from .edge_cases import run_edge_cases
 from .logs import logged
 from .tables import SPEED_COLUMNS, STRESS_COLUMNS, WORK_PRECISION_COLUMNS
 
@@ -78,6 +78,9 @@ def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str,
 def run_stress(long_run: str, output: str, log: str) -> None:
     """Every stress case (the solver's, then the files' and the configuration's), and the very long
     run's bounds, as one CSV row each."""
+    from ..studies.stress import run_all
+    from .edge_cases import run_edge_cases
+
     with logged(log, "run_stress") as logger:
         rows = run_all() + run_edge_cases()
         lr = read_netcdf(long_run, ("cycle", "error_time_exact", "max_velocity_deviation", "max_period_deviation"))

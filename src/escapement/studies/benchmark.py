@@ -100,7 +100,14 @@ def run_method(method: str, setting: float | None, params: Parameters, x0: float
 
 def median_wall(fn: Callable[[], object], min_seconds: float, max_repeats: int) -> tuple[float, int, object]:
     """Run ``fn`` until ``min_seconds`` of runs are measured or ``max_repeats`` runs are done (at least
-    one); return the median wall time, the number of runs and the last result."""
+    one); return the median wall time, the number of runs and the last result.
+
+    Not :mod:`timeit`: its ``autorange`` has a fixed 0.2 s budget and a mean over loops, and neither it nor
+    ``repeat`` returns the call's result, which a setting of seconds (run once) would then have to run again for.
+    """
+    if not callable(fn):
+        raise TypeError(f"fn = {fn!r} is invalid: fn must be callable with no argument")
+    _check_timing(min_seconds, max_repeats)
     walls: list[float] = []
     result = None
     while len(walls) < max_repeats and (not walls or sum(walls) < min_seconds):
