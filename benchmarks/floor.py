@@ -145,7 +145,9 @@ def stream_floor(sizes=(1_000_000, 100_000_000), repeats: int = 3, params: Param
         return lambda: _drained(iter_cycles(params, x0, n_cycles=n))
 
     times = side_by_side({"exact": exact(small), "closed": closed(small)}, repeats)
-    memory = {"exact": peak_bytes(exact(small)), "closed": peak_bytes(closed(small)), "large": peak_bytes(closed(large))}
+    memory = {
+        "exact": peak_bytes(exact(small)), "closed": peak_bytes(closed(small)), "large": peak_bytes(closed(large)),
+    }
     large_time = side_by_side({"large": closed(large)}, 1)["large"][0]
     return [
         _row("solve_exact streamed / closed-form cycles streamed", small, times["exact"], times["closed"],

@@ -17,7 +17,9 @@ SOURCE = Path(__file__).resolve().parents[1] / "src" / "escapement"
 
 #: the layers, bottom to top: each may import only those before it. ``_lazy`` holds the package
 #: root (``escapement/__init__.py`` and the helper of its lazy exports); ``cli`` the command line.
-LAYERS = ("_lazy", "model", "solvers", "integrators", "paper", "studies", "experiments", "io", "plotting", "pipeline", "cli")
+LAYERS = (
+    "_lazy", "model", "solvers", "integrators", "paper", "studies", "experiments", "io", "plotting", "pipeline", "cli",
+)
 #: the top-level modules and the layer each belongs to
 TOP_LEVEL = {"__init__": "_lazy", "_lazy": "_lazy", "cli": "cli", "__main__": "cli"}
 #: layers held to fewer imports than the order allows: io converts the experiments' results and runs

@@ -25,7 +25,8 @@ def test_the_minimal_loop_follows_the_return_map_of_the_symmetric_escapement(par
     v*^2 = 2 f (a2 - a1) / (b (2 - b)). The free swing after a2 turns at x**2 = a1**2 + v(a1, after the zone)**2 / w**2:
     the amplitude."""
     n = 400
-    times, speeds, periods, amplitudes = (np.frombuffer(column) for column in minimal.minimal_cycles(params, x0, 0.0, n))
+    columns = minimal.minimal_cycles(params, x0, 0.0, n)
+    times, speeds, periods, amplitudes = (np.frombuffer(column) for column in columns)
     w2, f, r2 = params.K / params.M, params.F / params.M, (1.0 - params.b) ** 2
     gain = 2.0 * f * (params.a2 - params.a1)
     u = [r2 * w2 * (x0**2 - params.a1**2) + gain]

@@ -18,8 +18,8 @@ CHECKS = {"releases": {"F": 1.0, "x0": [-3.0, 1.0]}, "forces": {"F": [0.2, 5.0],
 
 def test_every_k_of_fig5_at_every_force_of_the_figure_then_releases_then_forces():
     config = {"model": MODEL, "fig3": {"cases": {}}, "fig5": FIG5,
-              "checks": {"F": 1.0, "x0": 1.0, "initial_conditions": [], "b": [], "symmetric": {"F": [], "positions": []},
-                         "asymmetric": {"F": [], "positions": []}, **CHECKS}}
+              "checks": {"F": 1.0, "x0": 1.0, "initial_conditions": [], "b": [],
+                         "symmetric": {"F": [], "positions": []}, "asymmetric": {"F": [], "positions": []}, **CHECKS}}
     cases = check_cases(config)
     labels = [c["label"] for c in cases]
     assert labels == ["K=0.1,F=0.5", "K=1,F=0.5", "K=10,F=0.5", "K=0.1,F=1", "K=1,F=1", "K=10,F=1",

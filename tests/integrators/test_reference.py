@@ -135,13 +135,15 @@ def test_a_zone_end_passed_just_before_the_turning_point_is_not_missed():
 @pytest.mark.parametrize("method", ["Euler", "dop853", "", None, 3])
 def test_a_method_outside_the_list_is_refused_naming_it(method):
     """Before any work, and by this package's error that names the argument, not SciPy's."""
-    with pytest.raises(ParameterError, match=r"^method = .* is invalid: method must be one of 'RK23', 'RK45', 'DOP853'"):
+    message = r"^method = .* is invalid: method must be one of 'RK23', 'RK45', 'DOP853'"
+    with pytest.raises(ParameterError, match=message):
         solve_reference(Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=1, method=method)
 
 
 @pytest.mark.parametrize("flag", ["no", 1, None])
 def test_a_trajectory_flag_that_is_not_a_bool_is_refused(flag):
-    with pytest.raises(ParameterError, match=r"^record_trajectory = .* is invalid: record_trajectory must be True or False"):
+    message = r"^record_trajectory = .* is invalid: record_trajectory must be True or False"
+    with pytest.raises(ParameterError, match=message):
         solve_reference(Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=1, record_trajectory=flag)
 
 

@@ -17,8 +17,8 @@ from escapement.paper.checks import Candidates, Evidence
 
 
 def _ds(K: float = 1.0, outcome: str = "completed", **extra) -> xr.Dataset:
-    variables = {name: ((), value) for name, value in
-                 {"M": 1.0, "K": K, "F": 0.5, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05, "x0": -1.0}.items()}
+    values = {"M": 1.0, "K": K, "F": 0.5, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05, "x0": -1.0}
+    variables = {name: ((), value) for name, value in values.items()}
     return xr.Dataset({**variables, **extra}, attrs={"outcome": outcome, "outcome_message": outcome})
 
 
@@ -63,7 +63,8 @@ def test_the_status_is_the_best_readings_of_the_grid_weighed_as_fitted(figure, p
 def test_a_better_reading_elsewhere_in_the_grid_decides_the_status_not_the_adopted_one():
     row = _row("3", "a/velocity", {"x": (0.0, 50.0), "y": (1.0, 1.3)}, {"adopted": 3, "better": 4})
     assert row["status"] == "consistent"
-    assert "(3 of 4 printed limits)" in row["replicated_value"] and "4 of 4, by one reading [better]" in row["replicated_value"]
+    value = row["replicated_value"]
+    assert "(3 of 4 printed limits)" in value and "4 of 4, by one reading [better]" in value
 
 
 def test_an_independent_match_would_be_reproduced_and_the_fitted_one_is_only_consistent():
@@ -111,7 +112,8 @@ def test_missing_evidence_fails_loudly():
     with pytest.raises(cl.ClaimError, match="scored out of 2 limits; the panel has 4"):
         cl.evaluate(
             [_claim("3", "a/velocity")],
-            _evidence({("3", "a/velocity"): {"x": (0, 50), "y": (1, 2)}}, {("3", "a/velocity"): Candidates(2, {"r": 2})}))
+            _evidence({("3", "a/velocity"): {"x": (0, 50), "y": (1, 2)}},
+                      {("3", "a/velocity"): Candidates(2, {"r": 2})}))
 
 
 def test_a_scene_that_left_the_regime_is_not_evaluated():

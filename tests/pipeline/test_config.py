@@ -38,7 +38,8 @@ MODEL = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05}
 #: a small configuration written out here, so that the expected scenes are known by hand
 CONFIG = {
     "model": dict(MODEL),
-    "fig3": {"n_cycles": 50, "amplitude": "step1", "cases": {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0, "b": 0.2}}},
+    "fig3": {"n_cycles": 50, "amplitude": "step1",
+             "cases": {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0, "b": 0.2}}},
     "fig4": {
         "F": 0.5,
         "x0": 3.0,
@@ -219,15 +220,20 @@ def test_reordering_the_configuration_does_not_change_a_scene(config):
         (lambda c: c["model"].update(M=0.0), "model.M = 0.0 is invalid: M must be a number > 0 (kg)"),
         (lambda c: c["model"].update(K=-1.0), "model.K = -1.0 is invalid: K must be a number > 0 (N/m)"),
         (lambda c: c["model"].update(K="stiff"), "model.K = 'stiff' is invalid: K must be a number > 0 (N/m)"),
-        (lambda c: c["model"].update(b=2.0), "model.b = 2.0 is invalid: b must be a number in the open interval (0, 2)"),
+        (lambda c: c["model"].update(b=2.0),
+         "model.b = 2.0 is invalid: b must be a number in the open interval (0, 2)"),
         (lambda c: c["fig4"].update(F=-1.0), "fig4.F = -1.0 is invalid: F must be a number >= 0 (N)"),
         (lambda c: c["fig3"]["cases"]["a"].update(M=0), "fig3.cases.a.M = 0 is invalid: M must be a number > 0 (kg)"),
-        (lambda c: c["fig5"].update(K=[1.0, -2.0]), "fig5.K.1 = -2.0 is invalid: each item of K must be a number > 0 (N/m)"),
+        (lambda c: c["fig5"].update(K=[1.0, -2.0]),
+         "fig5.K.1 = -2.0 is invalid: each item of K must be a number > 0 (N/m)"),
         (lambda c: c["model"].update(a1="left"), "model.a1 = 'left' is invalid: a1 must be a number (m)"),
-        (lambda c: c["fig3"].update(n_cycles=2.5), "fig3.n_cycles = 2.5 is invalid: n_cycles must be an integer in [1, 1000000]"),
+        (lambda c: c["fig3"].update(n_cycles=2.5),
+         "fig3.n_cycles = 2.5 is invalid: n_cycles must be an integer in [1, 1000000]"),
         (lambda c: c["model"].pop("K"), "model.K is missing: K must be given, as a number > 0 (N/m)"),
-        (lambda c: c.update(extra=1), "extra = 1 is invalid: extra is not a key of the configuration, whose keys must be among"),
-        (lambda c: c["model"].update(x0=1.0), "model.x0 = 1.0 is invalid: x0 is not a key of model, whose keys must be among F, K, M, a1, a2, a3, a4, b"),
+        (lambda c: c.update(extra=1),
+         "extra = 1 is invalid: extra is not a key of the configuration, whose keys must be among"),
+        (lambda c: c["model"].update(x0=1.0),
+         "model.x0 = 1.0 is invalid: x0 is not a key of model, whose keys must be among F, K, M, a1, a2, a3, a4, b"),
         (lambda c: c["fig4"].update(colour="red"), "fig4.colour = 'red' is invalid: colour is not a key of fig4"),
         (lambda c: c["fig4"].update(velocity_window=[80.0]), "fig4.velocity_window = [80.0] is invalid"),
         # rules that the schema cannot state
@@ -374,7 +380,8 @@ def test_every_scene_override_refers_to_the_one_model_block(where):
     [
         ("model:\n  M: 1.0\n  K: [1.0, 2.0\n", "line 4, column 1", ["expected ',' or ']'", "starts on line 3"]),
         ("model:\n  M: 1.0\n\tK: 2.0\n", "line 3, column 1", ["'\\t' that cannot start any token"]),
-        ("model:\n  M: 1.0\n  K: 1.0\n  M: 2.0\n", "line 4, column 3", ["the key 'M' is given twice (first on line 2)"]),
+        ("model:\n  M: 1.0\n  K: 1.0\n  M: 2.0\n", "line 4, column 3",
+         ["the key 'M' is given twice (first on line 2)"]),
         ("fig3:\n  n_cycles: 5\nfig3:\n  n_cycles: 6\n", "line 3, column 1", ["the key 'fig3' is given twice"]),
     ],
 )

@@ -59,7 +59,8 @@ def test_a_finding_whose_rows_disagree_counts_at_its_weakest_row_and_says_so():
     t = tally(rows)
     assert t.findings["map"] == "partially_reproduced" and t.findings["release"] == "not_reproduced"
     assert t.mixed == ("map", "release")
-    assert headline(rows).endswith("The rows of 2 findings disagree (map, release); each is counted at its weakest row.")
+    assert headline(rows).endswith(
+        "The rows of 2 findings disagree (map, release); each is counted at its weakest row.")
     assert "disagree" not in headline(ROWS)
     assert findings_table(rows)[0] == {"finding": "map", "verdict": "partially reproduced (its rows disagree)",
                                        "rows": "`m1`, `m2`, `m3`"}

@@ -61,9 +61,10 @@ def files(tmp_path) -> dict:
     register = tmp_path / "claims.yaml"
     weight = {"origin": "paper", "finding": "f", "evidence": "independent"}
     claims = [
-        {"id": "fixed_point_first", "source": "Eq. (19)", **weight, "statement": "s", "paper_value": None, "tolerance": 1e-8,
-         "check": "fixed_point", "args": {"case": "first"}},
+        {"id": "fixed_point_first", "source": "Eq. (19)", **weight, "statement": "s", "paper_value": None,
+         "tolerance": 1e-8, "tolerance_reason": "r", "check": "fixed_point", "args": {"case": "first"}},
         {"id": "multiplier", "source": "Eq. (21)", **weight, "statement": "s", "paper_value": 0.6561, "tolerance": 1e-8,
+         "tolerance_reason": "r",
          "check": "multiplier_paper_cases"},
         {"id": "fig5b_axes", "source": "Fig. 5 (b)", **weight, "evidence": "fitted", "statement": "s",
          "paper_value": None, "tolerance": None,

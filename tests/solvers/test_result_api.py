@@ -84,7 +84,8 @@ def test_the_repr_of_an_ensemble_counts_the_outcomes_in_a_few_lines():
     runs = solve_ensemble(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05, x0=x0, n_cycles=20)
     text = repr(runs)
     assert len(text) < 1000
-    assert text.splitlines()[0] == "<escapement.EnsembleSolution> 1000 trajectories, 20 cycles (exact, vectorised ensemble)"
+    expected = "<escapement.EnsembleSolution> 1000 trajectories, 20 cycles (exact, vectorised ensemble)"
+    assert text.splitlines()[0] == expected
     assert "outcomes:                completed 750, stopped 250" in text
     assert "exit_turning_point:      0.01 m" in text
     assert "array(" not in text

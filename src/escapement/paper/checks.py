@@ -25,7 +25,6 @@ from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
-from . import corrected as derived
 from . import printed as pe
 from .vocabulary import NOT, PARTIAL, REPRODUCED, STATUSES, UNDETERMINED, UNTESTABLE  # noqa: F401 (re-exported)
 

@@ -29,7 +29,8 @@ from . import printed as pe
 from .checks import NOT, PARTIAL, REPRODUCED, Evidence, Verdict, check, events_of, fig3_case, fmt, params_of
 
 __all__ = [
-    "AS_READ", "AXES", "Reading", "Trial", "conventions_verdict", "departure", "describe", "eq14_conventions", "readings", "symbols",
+    "AS_READ", "AXES", "Reading", "Trial", "conventions_verdict", "departure", "describe", "eq14_conventions",
+    "readings", "symbols",
     "second_half_trials", "try_readings",
 ]
 
@@ -154,7 +155,8 @@ def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple
             f"{' or '.join(departure(t.reading) for t in working)}: an inconsistency between two conventions of the "
             f"paper, not a wrong formula; every reading (relative difference): {listing}"
         )
-    return NOT, f"no convention of the paper reproduces {simulated} with {what}: a wrong formula; every reading: {listing}"
+    return NOT, (f"no convention of the paper reproduces {simulated} with {what}: a wrong formula; "
+                 f"every reading: {listing}")
 
 
 # --- Eq. (14) ----------------------------------------------------------------------------------

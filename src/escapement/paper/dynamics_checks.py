@@ -133,7 +133,8 @@ def trivial_multiplier(claim, ev: Evidence) -> Verdict:
         within(worst, claim["tolerance"]),
         note=(
             f"eigenvalues of the Jacobian of the flow over the last period, by central differences of the exact "
-            f"solver from a state in free flight between a2 and a3; largest distance from 1 and (1-b)^4: {fmt(worst, 2)}"
+            f"solver from a state in free flight between a2 and a3; largest distance from 1 and (1-b)^4: "
+            f"{fmt(worst, 2)}"
         ),
     )
 

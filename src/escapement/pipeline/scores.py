@@ -187,9 +187,9 @@ def figure_caption(rows: Iterable[Mapping], figure: str, width: int, autoscale: 
         raise ValueError(f"figure = {figure!r}: the score rows hold no panel of that figure")
     if str(figure) == "4":  # one reading names both panels' choices: scored together
         found = {("4", "both panels"): joint_candidates(rows, "4", autoscale)}
-    lines = [f"Each printed panel's axes as its claim scores them: ticks at the printed step, limits the data's rounded "
-             f"out to the ticks ({autoscale}). Of the grid of readings of the choices the paper leaves open, the best "
-             f"(printed limits reproduced; with matplotlib's default locator instead):"]
+    lines = [f"Each printed panel's axes as its claim scores them: ticks at the printed step, limits the data's "
+             f"rounded out to the ticks ({autoscale}). Of the grid of readings of the choices the paper leaves open, "
+             f"the best (printed limits reproduced; with matplotlib's default locator instead):"]
     for (_, name), c in found.items():
         best, groups = c.tied()
         default = f"; default locator {max(c.default_scores.values())}/{c.out_of}" if c.default_scores else ""

@@ -5,8 +5,8 @@ Fig. 3 cases, the period axes and the natural period): the register names it onc
 ``finding``, and the headline counts it once. Only the paper's own claims (``origin`` paper) with independent
 evidence and a verdict (reproduced, partially, not reproduced) are counted as findings; the rows
 that hold by construction, the rows under a reading chosen from the same axes (whatever their
-status), the undetermined and untestable rows, and the rows beyond the paper, are counted apart. A finding is as strong as its weakest
-row: when its rows disagree (a configuration other than the paper's can make one of them fail), it
+status), the undetermined and untestable rows, and the rows beyond the paper, are counted apart. A finding is as
+strong as its weakest row: when its rows disagree (a configuration other than the paper's can make one of them fail), it
 takes the weakest status and the headline says so. Reads the claims table only.
 """
 
@@ -15,7 +15,17 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
-from ..paper.vocabulary import CONSISTENT, EVIDENCE, NOT, ORIGINS, PARTIAL, REPRODUCED, STATUSES, UNDETERMINED, UNTESTABLE
+from ..paper.vocabulary import (
+    CONSISTENT,
+    EVIDENCE,
+    NOT,
+    ORIGINS,
+    PARTIAL,
+    REPRODUCED,
+    STATUSES,
+    UNDETERMINED,
+    UNTESTABLE,
+)
 
 __all__ = ["Tally", "findings_table", "headline", "tally", "vocabulary_table"]
 
@@ -123,7 +133,8 @@ def findings_table(rows: Iterable[Mapping[str, str]]) -> list[dict[str, str]]:
         if (row["finding"] in t.findings and row["origin"] == "paper" and row["evidence"] == "independent"
                 and row["status"] in VERDICTS):
             by_finding.setdefault(row["finding"], []).append(f"`{row['claim_id']}`")
-    return [{"finding": f, "verdict": t.findings[f].replace("_", " ") + (" (its rows disagree)" if f in t.mixed else ""),
+    return [{"finding": f,
+             "verdict": t.findings[f].replace("_", " ") + (" (its rows disagree)" if f in t.mixed else ""),
              "rows": ", ".join(by_finding[f])}
             for f in sorted(t.findings, key=lambda f: (VERDICTS.index(t.findings[f]), f))]
 

@@ -19,7 +19,10 @@ from matplotlib.ticker import MultipleLocator
 from ..paper.printed_axes import FIG5_PANEL_K, panel, panels_of
 from .autoscale import autoscaled_limits
 
-__all__ = ["MAX_LABELS", "PanelAxes", "scene_axes", "apply_printed_axes", "fig3_axes", "fig4_axes", "fig5_axes", "fig5_panel_of"]
+__all__ = [
+    "MAX_LABELS", "PanelAxes", "scene_axes", "apply_printed_axes", "fig3_axes", "fig4_axes", "fig5_axes",
+    "fig5_panel_of",
+]
 
 #: the most labelled tick intervals an axis gets; the multiples of the printed step labelled beyond that
 MAX_LABELS = 12

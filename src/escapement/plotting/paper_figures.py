@@ -51,8 +51,8 @@ def fig3(cases: dict[str, xr.Dataset], axes: PanelAxes | None = None, caption: s
     panels = {"velocity_before_impact": "velocity", "period": "period", "amplitude": "amplitude"}
     extra = 0.0 if not caption else 0.15 * (caption.count("\n") + 1)
     first = next(iter(cases.values()))
-    definitions = "\n".join(wrap(math_text(f"{name}: {first[name].attrs['long_name']}"), 100) for name in ("period", "amplitude")
-                             if "long_name" in first[name].attrs)
+    definitions = "\n".join(wrap(math_text(f"{name}: {first[name].attrs['long_name']}"), 100)
+                             for name in ("period", "amplitude") if "long_name" in first[name].attrs)
     notes = []
     with style():
         fig, grid = plt.subplots(3, len(cases), figsize=(3.4 * len(cases), 7.9 + extra), squeeze=False,
@@ -108,8 +108,8 @@ def fig4(ds: xr.Dataset, axes: PanelAxes | None = None, caption: str | None = No
         ax_v.set_ylabel(axis_label("velocity"))
         inside = (impacts >= v_lo) & (impacts <= v_hi)
         for ti, j, e, vb, va in zip(impacts[inside], impulse[inside], energy[inside], before[inside], after[inside]):
-            labels.append(Label(ax_v, f"impulse {signed(j, '+.4f')} {unit('impulse')}\ndissipated {e:.4f} {unit('energy_dissipated')}", (ti, (vb + va) / 2),
-                                 style={"fontsize": 6.5, "color": ACCENT}))
+            text = f"impulse {signed(j, '+.4f')} {unit('impulse')}\ndissipated {e:.4f} {unit('energy_dissipated')}"
+            labels.append(Label(ax_v, text, (ti, (vb + va) / 2), style={"fontsize": 6.5, "color": ACCENT}))
 
         sel = (t >= a_lo) & (t <= a_hi)
         ax_a.plot(*broken(t[sel], ds["acceleration"].values[sel], switches), color=INK,
@@ -163,7 +163,8 @@ def fig5(panels: dict[str, xr.Dataset], axes: PanelAxes | None = None, caption: 
             ax.set_ylabel(axis_label("velocity"))
             _printed(ax, axes, "5", fig5_panel_of(ds))
             start = "from rest" if initial_velocity(ds) == 0 else quantity_value("v0", initial_velocity(ds))
-            reading = assumed_reading(ds, f"{quantity_value('F', float(ds['F']))}, {quantity_value('x0', float(ds['x0']))}, {start}")
+            release = f"{quantity_value('F', float(ds['F']))}, {quantity_value('x0', float(ds['x0']))}, {start}"
+            reading = assumed_reading(ds, release)
             ax.set_title(f"({letter}) {quantity_value('K', float(ds['K']))}\n{wrap(reading, 40)}")
             notes += outcome_note(ax, ds)
         first = next(iter(panels.values()))

@@ -44,5 +44,6 @@ def save_figure(fig, png: str | os.PathLike, pdf: str | os.PathLike) -> None:
     figure gives the same bytes on every run."""
     with style():
         _atomic_savefig(fig, Path(png), format="png", metadata={"Software": None})
-        _atomic_savefig(fig, Path(pdf), format="pdf", metadata={"Creator": None, "Producer": None, "CreationDate": None})
+        no_dates = {"Creator": None, "Producer": None, "CreationDate": None}
+        _atomic_savefig(fig, Path(pdf), format="pdf", metadata=no_dates)
     plt.close(fig)
