@@ -10,8 +10,8 @@ files can be installed together and no package is pinned twice:
 
     build.lock    the build backend of pyproject's [build-system] (for `pip install --no-build-isolation -e .`)
     runtime.lock  [project] dependencies + the `slurm` extra: what `snakemake` needs, profiles/slurm included
-    test.lock     the `test` extra: what tests/ imports beyond the runtime
-    tools.lock    the `tools` extra: the checkers CI runs (snakefmt and its black, compliance-checker)
+    test.lock     the `test` extra: what tests/ imports or runs beyond the runtime (compliance-checker included)
+    tools.lock    the `tools` extra: the checkers CI runs (snakefmt and its black, ruff)
 
 Every pin carries the sha256 of each file PyPI holds for that version (all platforms), so
 `pip install --require-hashes` accepts any of them and nothing else. The resolution is for
@@ -91,10 +91,10 @@ def compile_layer(compiler: Path, index: int, upgrade: bool, scratch: Path) -> N
     name, options, purpose = LAYERS[index]
     lower = [HERE / f"{below}.lock" for below, _, _ in LAYERS[:index]]
     target = HERE / f"{name}.lock"
-    # pip-compile keeps the versions it finds in its output file: start it from this layer's and
-    # the lower layers' pins (the lower ones bind anyway, as constraints).
+    # pip-compile keeps the versions it finds in its output file: start it from every layer's pins (the
+    # lower ones bind anyway, as constraints; a package moved from one layer to another keeps its version).
     output = scratch / f"{name}.txt"
-    output.write_text("".join(p.read_text() for p in [*lower, target] if p.exists()))
+    output.write_text("".join(p.read_text() for p in (HERE / f"{layer}.lock" for layer, _, _ in LAYERS) if p.exists()))
     command = [
         compiler,
         "--quiet",

@@ -24,8 +24,11 @@ PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
 LAYERS = ["build", "runtime", "test", "tools"]  # each installed on top of the ones before it
 QUICK_START_LAYERS = ["build", "runtime", "test"]
 HASH = re.compile(r"--hash=sha256:[0-9a-f]{64}")
-# The checkers and their heavy dependencies that the Quick start's environment leaves out.
-CI_ONLY = ["compliance-checker", "snakefmt", "black", "pyproj", "shapely", "lxml"]
+# The checkers of the code's form, which the Quick start's environment leaves out.
+CI_ONLY = ["snakefmt", "black", "ruff"]
+# What a test runs beyond its imports, which the Quick start's environment must hold: the CF-1.11 check of
+# every netCDF output (tests/test_workflow.py) and the heavy packages it brings.
+TEST_RUNS = ["compliance-checker", "pyproj", "shapely", "lxml"]
 
 
 def parse_lock(text: str) -> dict[str, tuple[Version, list[str]]]:
@@ -114,10 +117,11 @@ def test_each_layer_satisfies_its_part_of_pyproject():
     assert set(extras) == {"slurm", "test", "tools"}, "a new extra needs a layer in environment/lock.py"
 
 
-def test_the_checkers_stay_out_of_the_quick_start_environment():
+def test_the_checkers_stay_out_of_the_quick_start_environment_and_what_the_tests_run_is_in_it():
     installed = pinned_up_to("test")
     assert [name for name in CI_ONLY if name in installed] == []
     assert all(name in LOCKS["tools"] for name in CI_ONLY)
+    assert [name for name in TEST_RUNS if name not in LOCKS["test"]] == []
     assert {"pytest", "hypothesis"} <= set(LOCKS["test"]) and "pytest" not in LOCKS["runtime"]
 
 
@@ -167,7 +171,9 @@ def test_the_quick_start_installs_the_lower_layers_hash_checked_and_ci_the_tools
 def imported_by_the_tests() -> set[str]:
     """The top-level modules that tests/ imports, less the standard library and the project's own."""
     tests = ROOT / "tests"
-    own = {"escapement", "benchmarks"} | {path.stem for path in tests.rglob("*.py")}
+    # the project's own: the package, the benchmarks, and the tests' modules and folders (tests/ is on the path)
+    own = {"escapement", "benchmarks"} | {path.stem for path in tests.rglob("*.py")} | {
+        path.name for path in tests.rglob("*") if path.is_dir()}
     found: set[str] = set()
     for path in tests.rglob("*.py"):
         for node in ast.walk(ast.parse(path.read_text())):
@@ -179,7 +185,7 @@ def imported_by_the_tests() -> set[str]:
 
 
 def test_every_module_the_tests_import_comes_from_the_runtime_or_test_lock():
-    """The Quick start installs no checker (tools.lock): a test importing one would fail there."""
+    """The Quick start installs no linter (tools.lock): a test importing one would fail there."""
     providers = importlib.metadata.packages_distributions()
     installed = pinned_up_to("test")
     imported = imported_by_the_tests()
