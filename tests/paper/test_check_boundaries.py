@@ -356,3 +356,27 @@ def test_a_period_formula_as_read_holds_to_its_relative_tolerance_of_the_simulat
         for sign in (1.0, -1.0):
             ev = evidence({row["args"]["case"]: build(sign * factor * 1e-6)})
             assert judged(row, ev) == ("reproduced" if side == "inside" else outside), (factor, sign)
+
+
+def test_the_step_times_of_eq22_hold_to_their_relative_tolerance_of_the_simulated_durations():
+    """Durations by hand (w = 1, f = F = 1, c = f/w^2 = 1): the zone a1 -> a2 on the arc about c of radius
+    R1 = |(a1 - c, v1+)|, acos(0.95/R1) - acos(1.1/R1); a2 -> a3 through the right turning point h2 = |(a2, v2)|,
+    acos(0.05/h2) + acos(0.1/h2); a4 -> a1 through the left one h0 = |(a1, v1')|, acos(0.05/h0) + acos(0.1/h0).
+    One duration a2 -> a3 set to its value / (1 +/- e). The base agrees to 5e-14 (asserted), so the margin
+    to the tolerance 1e-12 is 10 %."""
+    row = register_row("eq22_step_times", 1e-12)
+    v = [2.0]
+    for _ in range(3):
+        v.append(g17(v[-1]))
+    durations = np.ones((3, 4))
+    for k in range(3):
+        v1p = 0.9 * v[k]
+        r1, h2, h0 = math.hypot(-1.1, v1p), math.hypot(0.05, math.sqrt(v1p**2 + 0.3075)), math.hypot(0.1, v[k + 1])
+        durations[k] = [math.acos(0.95 / r1) - math.acos(1.1 / r1), math.acos(0.05 / h2) + math.acos(0.1 / h2), 1.0,
+                        math.acos(0.05 / h0) + math.acos(0.1 / h0)]
+    assert judged({**row, "tolerance": 5e-14}, evidence({"a": fig3(v[:3], durations=durations)})) == "reproduced"
+    for factor, expected in ((0.9, "reproduced"), (1.1, "not_reproduced")):
+        for sign in (1.0, -1.0):
+            off = durations.copy()
+            off[1, 1] /= 1 + sign * factor * 1e-12
+            assert judged(row, evidence({"a": fig3(v[:3], durations=off)})) == expected, (factor, sign)
