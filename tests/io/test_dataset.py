@@ -173,3 +173,34 @@ def test_run_dataset_is_exported_by_io():
     import escapement.io
 
     assert escapement.io.run_dataset is run_dataset and "run_dataset" in dir(escapement.io)
+
+
+def test_samples_are_in_the_units_of_their_quantities_and_follow_the_free_swing(run50):
+    """Before the first impact (at a3 = 0.1 m, t = acos(0.1) = 1.47 s) the mass swings freely from rest at
+    1 m with w = 1 rad/s: x = cos t (m), v = -sin t (m/s), a = -cos t (m/s2), written out here."""
+    from cf_units import Unit
+
+    t = np.array([0.0, 0.5, 1.0, 1.4])
+    sampled = sample_variables(run50, t, acceleration=True)
+    expected = {"displacement": (np.cos(t), "m"), "velocity": (-np.sin(t), "m/s"), "acceleration": (-np.cos(t), "m/s2")}
+    assert set(sampled) == set(expected)
+    for name, (values, dimension) in expected.items():
+        assert sampled[name].values == pytest.approx(values, rel=1e-14, abs=1e-15), name
+        units = Unit(sampled[name].attrs["units"])
+        assert units.is_convertible(dimension) and units.convert(1.0, dimension) == pytest.approx(1.0), name
+    assert sampled["displacement"]["t"].attrs["units"] == "s"
+    assert "acceleration" not in sample_variables(run50, t)
+
+
+def test_impact_variables_are_in_the_units_of_their_quantities():
+    """The impulse M (v+ - v-) in N s, the energy dissipated in J, velocities in m/s, the impact position in m."""
+    from cf_units import Unit
+
+    run = solve_exact(Parameters(M=2.0, K=1.0, F=0.5, b=0.2, a1=-0.1, a2=0.05), 3.0, n_cycles=3)
+    dimensions = {"impulse": "N s", "energy_dissipated": "J", "velocity_before": "m/s", "velocity_after": "m/s",
+                  "impact_position": "m", "impact_time": "s"}
+    imp = impact_variables(run)
+    assert set(dimensions) <= set(imp)
+    for name, dimension in dimensions.items():
+        units = Unit(imp[name].attrs["units"])
+        assert units.is_convertible(dimension) and units.convert(1.0, dimension) == pytest.approx(1.0), name
