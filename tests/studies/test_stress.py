@@ -350,6 +350,19 @@ def test_a_case_fails_when_the_dynamics_are_wrong(monkeypatch, name, outcome):
     assert result.outcome == outcome and not result.passed
 
 
+@pytest.mark.parametrize("name", ["stop_below_a1", "graze_on_impact_position", "graze_just_inside",
+                                  "graze_just_beyond", "graze_zone_end", "scales", "near_origin"])
+def test_a_case_fails_when_the_solver_runs_from_a_release_off_by_a_part_in_1e9(monkeypatch, name):
+    """These cases check the run against closed forms of their own release: a solver that starts 1e-9 (relative)
+    away must fail them (x(100) of the free swing moves by 4e-11 m, a graze becomes an impact or none, ...)."""
+    def off(params, x0, *args, **kwargs):
+        return solve_exact(params, x0 * (1 + 1e-9), *args, **kwargs)
+
+    monkeypatch.setattr(stress, "solve_exact", off)
+    (case,) = [c for c in CASES if c.name == name]
+    assert not case.run().passed
+
+
 def test_run_all_writes_one_row_per_case_with_the_case_s_own_result():
     rows = run_all()
     assert [row["case"] for row in rows] == [c.name for c in CASES]
