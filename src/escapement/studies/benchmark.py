@@ -5,7 +5,8 @@ Errors are relative, at the last cycle, for the velocity before impact and the i
 against the 50-digit reference of :mod:`escapement.integrators.high_precision`.
 
 Timing is adaptive: each setting is run again until ``min_seconds`` of runs have been measured
-(at least once, at most ``max_repeats`` times), and its wall time is the median. A fast method
+(at least once, at most ``max_repeats`` times), and its wall time is the median. Every method first runs
+one untimed cycle, so that no row times the loading of a method's modules. A fast method
 (the exact solver: a millisecond) is repeated hundreds of times, which keeps the noise of a
 shared machine in check; a slow one (seconds per run) runs once or twice. The whole table then
 costs about ``min_seconds`` per setting, plus the slow runs.
@@ -130,6 +131,13 @@ def _check_methods(settings) -> None:
             raise ValueError(f"method = {method!r} is invalid: method must be one of {', '.join(METHODS)}")
 
 
+def _warm_up(settings: dict[str, list], params: Parameters, x0: float) -> None:
+    """One untimed cycle of every method at its first setting: the modules a method loads on first use
+    (SciPy's integrators: a third of a second) and its first call's set-up are not timed in its first row."""
+    for method, values in settings.items():
+        run_method(method, values[0] if values else None, params, x0, 1)
+
+
 def _reference(params: Parameters, x0: float, n_cycles: int) -> tuple[float, float]:
     """Velocity before impact and impact time at cycle ``n_cycles``, 50 digits, as floats."""
     ref = solve_high_precision(params, x0, n_cycles=n_cycles).cycles
@@ -174,6 +182,7 @@ def work_precision(
                 ordered[CLOSED_FORM] = []
         settings = ordered
     reference = _reference(params, x0, n_cycles)
+    _warm_up(settings, params, x0)
     return [_row(method, setting, params, x0, n_cycles, reference, min_seconds, max_repeats, log)
             for method, values in settings.items() for setting in values or [None]]
 
@@ -204,6 +213,7 @@ def headline_ratios(
     if not (isinstance(target, int | float) and target > 0):
         raise ValueError(f"target = {target!r} is invalid: target must be > 0")
     reference = _reference(params, x0, n_cycles)
+    _warm_up({"exact": [], CLOSED_FORM: [], **settings}, params, x0)
 
     def row(method, setting=None):
         return _row(method, setting, params, x0, n_cycles, reference, min_seconds, max_repeats, log)
