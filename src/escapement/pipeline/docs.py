@@ -1,28 +1,32 @@
 """README.md and REPLICATION.md, generated from templates and the claims table.
 
-A template is Markdown with placeholders:
+A template is Markdown rendered by Jinja2, every name it may use listed here:
 
 * ``{{ claims_table }}``: the verdict table;
 * ``{{ headline }}``: the verdict's count, by finding (:func:`escapement.pipeline.tally.headline`);
-* ``{{ claims_count:<status> }}`` and ``{{ claims_count:total }}``: rows, not findings;
-* ``{{ claim:<claim_id>:<column> }}``: one cell of ``results/claims.csv``;
-* ``{{ verdict:<claim_id> }}``: a claim's status in words;
-* ``{{ fact:<name> }}``: a number from :func:`escapement.pipeline.facts.collect_facts`; a measured one
+* ``{{ claims_count.<status> }}`` and ``{{ claims_count.total }}``: rows, not findings;
+* ``{{ claim.<claim_id>.<column> }}``: one cell of ``results/claims.csv``;
+* ``{{ verdict.<claim_id> }}``: a claim's status in words;
+* ``{{ fact.<name> }}``: a number from :func:`escapement.pipeline.facts.collect_facts`; a measured one
   (a wall time, which varies from run to run) only where ``measured=True``: never in a document git
   tracks, which must come out byte-identical when the code has not changed;
-* ``{{ table:<name> }}``: a Markdown table made by the caller (for example ``stress``).
+* ``{{ table.<name> }}``: a Markdown table made by the caller (for example ``stress``).
 
-An unknown placeholder, claim or column is an error, so that no stale or typed number survives.
+An unknown name, claim or column, and a malformed placeholder, is an error (Jinja2's ``StrictUndefined``
+and its parser), so that no stale or typed number survives.
 
-:func:`markdown_html` turns a rendered document into HTML for the Snakemake report.
+:func:`markdown_html` turns a rendered document into HTML for the Snakemake report. The tables are built
+here, not by pandas: ``DataFrame.to_markdown`` (tabulate) pads every cell to its column's width (the
+claims table 3.5 times longer, every row rewritten when one cell grows) and escapes no ``|``, and
+``DataFrame.to_html`` writes no caption, which the report's checks find the tables by.
 """
 
 from __future__ import annotations
 
 import html
 import os
-import re
 
+import jinja2
 import markdown
 from markdown.extensions import Extension
 from markdown.treeprocessors import Treeprocessor
@@ -34,7 +38,6 @@ from .tally import headline
 
 __all__ = ["claims_table", "html_table", "markdown_html", "markdown_table", "render", "verdict_html", "write_text"]
 
-PLACEHOLDER = re.compile(r"\{\{\s*([a-z_]+)(?::([A-Za-z0-9_]+))?(?::([a-z_]+))?\s*\}\}")
 #: how the documents' tables write each status and kind of evidence: the vocabulary's words, the paper's
 #: claim failing in bold
 STATUS_LABEL = {s: ("**not reproduced**" if s == "not_reproduced" else s.replace("_", " ")) for s in STATUSES}
@@ -127,38 +130,51 @@ def markdown_html(text: str) -> str:
     return converter.convert(text) + "\n"
 
 
+class _Names:
+    """One kind of a template's names (claims, facts, tables): looked up by key only, so that no method or
+    attribute of a mapping can stand in for a missing key; a missing key is undefined (an error)."""
+
+    def __init__(self, values: dict, refuse=None):
+        self._values, self._refuse = values, refuse
+
+    def __getitem__(self, key: str):
+        if self._refuse is not None:
+            self._refuse(key)
+        return self._values[key]
+
+
 def render(
     template: str, rows: list[dict[str, str]], template_name: str = "the template", facts=None, tables=None,
     measured: bool = False,
 ) -> str:
-    by_id = {row["claim_id"]: row for row in rows}
+    """``template`` rendered with the claims ``rows``, the ``facts`` and the ``tables``, after the comment
+    that says the file is generated from ``template_name``; a measured fact only if ``measured``."""
     facts = facts or {}
-    tables = tables or {}
 
-    def substitute(match: re.Match) -> str:
-        kind, key, column = match.groups()
-        if kind == "claims_table" and key is None:
-            return claims_table(rows)
-        if kind == "headline" and key is None:
-            return headline(rows)
-        if kind == "claims_count" and key in (*STATUSES, "total"):
-            return str(len(rows) if key == "total" else sum(r["status"] == key for r in rows))
-        if kind == "verdict" and key in by_id and column is None:
-            return by_id[key]["status"].replace("_", " ")
-        if kind == "claim" and key in by_id and column in COLUMNS:
-            return _cell(by_id[key][column])
-        if kind == "fact" and key in facts and column is None:
-            if facts[key].measured and not measured:
-                raise ValueError(
-                    f"{template_name}: {match.group(0)} is a measured value (it varies from run to run); "
-                    "a tracked document may not show it"
-                )
-            return facts[key].value
-        if kind == "table" and key in tables and column is None:
-            return tables[key]
-        raise ValueError(f"{template_name}: unknown placeholder {match.group(0)}")
+    def refuse_measured(name: str) -> None:
+        if name in facts and facts[name].measured and not measured:
+            raise ValueError(f"{template_name}: {{{{ fact.{name} }}}} is a measured value (it varies from run to "
+                             "run); a tracked document may not show it")
 
-    return GENERATED.format(template=template_name) + PLACEHOLDER.sub(substitute, template)
+    names = {
+        "claims_table": claims_table(rows),
+        "headline": headline(rows),
+        "claims_count": _Names({"total": str(len(rows)),
+                                **{s: str(sum(r["status"] == s for r in rows)) for s in STATUSES}}),
+        "verdict": _Names({r["claim_id"]: r["status"].replace("_", " ") for r in rows}),
+        "claim": _Names({r["claim_id"]: _Names({c: _cell(r[c]) for c in COLUMNS if c in r}) for r in rows}),
+        "fact": _Names({name: fact.value for name, fact in facts.items()}, refuse_measured),
+        "table": _Names(dict(tables or {})),
+    }
+    environment = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
+                                      autoescape=False)
+    try:
+        text = environment.from_string(template).render(names)
+    except jinja2.UndefinedError as error:
+        raise ValueError(f"{template_name}: unknown placeholder ({error})") from error
+    except jinja2.TemplateSyntaxError as error:
+        raise ValueError(f"{template_name}, line {error.lineno}: malformed placeholder ({error.message})") from error
+    return GENERATED.format(template=template_name) + text
 
 
 def write_text(text: str, path: str | os.PathLike) -> None:
