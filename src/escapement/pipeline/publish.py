@@ -15,16 +15,17 @@ modification time renewed, for Snakemake) when the new one shows the same thing:
   prints differs by more than :data:`DOCUMENT_DIGIT_TOLERANCE` units of its last printed digit
   (``1.30e-14`` and ``1.3e-14`` print the same number; a sign is text).
 
-Measured on the long-run figure (the finest curves the project draws): curves moved by 1e-6 (relative,
-some 1e10 times float64 rounding) give an RMS of 0.002, by 1e-4 0.9, by 1 per cent 4.1; one
-character of the legend changed gives 1.6.
+Measured on the long-run figure when it drew every cycle's error (the finest curves the project drew):
+curves moved by 1e-6 (relative, some 1e10 times float64 rounding) give an RMS of 0.002, by 1e-4 0.9, by
+1 per cent 4.1; one character of the legend changed gives 1.6.
 
 Rounding that differs from one CPU, BLAS kernel or C library to another moves a computed value by
 about 1e-16 (relative), which moves no curve by a visible fraction of a pixel and changes no printed
 digit; only a curve or number that shows rounding itself (an error near the spacing of float64) can
-change beyond the tolerance. CI applies the same rule to the files ``git status`` shows as modified
-(``python -m escapement.pipeline.publish --check PATH...``, see :func:`check`) after runs with other
-kernels.
+change beyond the tolerance, or one that an adaptive integrator's steps amplify (the long-run figure draws
+those as levels, see :mod:`escapement.plotting.study_figures`). CI applies the same rule to the files
+``git status`` shows as modified (``python -m escapement.pipeline.publish --check PATH...``, see
+:func:`check`) after runs with NumPy's baseline SIMD dispatch and with an older OpenBLAS core type.
 """
 
 from __future__ import annotations
