@@ -119,17 +119,24 @@ def test_a_pipeline_plot_edit_replans_no_simulation(touched_run):
     assert not set(planned) & {*SIMULATIONS, "run_work_precision", "run_stress", "merge_stability"}, planned
 
 
+@pytest.fixture(scope="module")
+def simulations_load(touched_run) -> dict[str, set[str]]:
+    """The files of the package that each simulation's script loads, measured once in a new interpreter."""
+    return {rule: loaded_files(touched_run, f"workflow/scripts/{rule}.py")[0] for rule in SIMULATIONS}
+
+
 @pytest.mark.parametrize("module, replanned", [
     ("paper/claims.py", {"check_claims", "render_docs"}),  # the claims engine
     ("paper/register.py", {"check_claims", "render_docs"}),  # the claims register
     ("plotting/paper_figures.py", {"plot_fig3", "plot_fig4", "plot_fig5"}),
     ("studies/stress.py", {"run_stress"}),  # the stress cases
 ])
-def test_an_edit_outside_the_simulations_code_replans_no_simulation(touched_run, module, replanned):
-    """The simulations replanned are those whose scripts load the module, measured in a fresh interpreter;
+def test_an_edit_outside_the_simulations_code_replans_no_simulation(touched_run, simulations_load, module,
+                                                                     replanned):
+    """The simulations replanned are those whose scripts load the module, measured in a new interpreter;
     for these modules, none: the 10^6-cycle run and the stability map stay."""
     path = f"src/escapement/{module}"
-    loading = {rule for rule in SIMULATIONS if path in loaded_files(touched_run, f"workflow/scripts/{rule}.py")[0]}
+    loading = {rule for rule in SIMULATIONS if path in simulations_load[rule]}
     planned = _planned_after_an_edit(touched_run, module)
     assert {rule for rule in planned if rule in SIMULATIONS} == loading, planned
     assert replanned <= set(planned), planned

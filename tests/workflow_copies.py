@@ -1,4 +1,7 @@
-"""Helpers of the end-to-end tests: copies of the repository, Snakemake in a subprocess, dry-run plans.
+"""Helpers of the end-to-end tests: copies of the repository, Snakemake runs, dry-run plans.
+
+Snakemake and the scripts whose imports are listed run in forks of an interpreter that has imported Snakemake,
+or NumPy, xarray and Matplotlib, once (:mod:`forks`): as in a new process, without the time of those imports.
 
 The copies run a reduced configuration (:func:`reduce`: few cycles, a small map, a short
 benchmark), so that every rule and every file format is exercised in seconds. The full
@@ -13,10 +16,10 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import yaml
+from forks import Forks
 
 REPO = Path(__file__).resolve().parents[1]
 PARTS = ["Snakefile", "config", "profiles", "workflow", "environment", "src", "benchmarks", "README.md",
@@ -33,10 +36,28 @@ def copy_repository(dest: Path) -> Path:
     return dest
 
 
+#: the interpreters of the forks, one for each set of modules imported once and each environment
+_FORKS: dict[tuple[tuple[str, ...], str | None], Forks] = {}
+#: what Snakemake's command line imports to read a workflow and plan it (its plugins, its report among them)
+SNAKEMAKE_MODULES = ("snakemake.cli", "snakemake.api", "snakemake.scheduling.job_scheduler", "snakemake.profiles",
+                     "snakemake.report.html_reporter", "snakemake.storage", "snakemake.assets", "snakemake.utils",
+                     "jsonschema", "nbformat", "requests", "PIL.Image", "docutils.core", "smart_open", "platformdirs")
+#: the libraries the workflow's scripts import, none of them the project's
+SCRIPT_MODULES = ("numpy", "pandas", "xarray", "netCDF4", "matplotlib", "mpmath", "yaml", "jsonschema", "markdown")
+
+
+def forks(modules: tuple[str, ...], pythonpath: str | None = None) -> Forks:
+    """The interpreter that imports ``modules`` once, in this process's environment (its ``PYTHONPATH``
+    replaced by ``pythonpath`` if given); started at its first use, it ends with this process."""
+    env = dict(os.environ) if pythonpath is None else {**os.environ, "PYTHONPATH": pythonpath}
+    key = (modules, env.get("PYTHONPATH"))
+    if key not in _FORKS:
+        _FORKS[key] = Forks(modules, env)
+    return _FORKS[key]
+
+
 def snakemake(where: Path, *args: str, check: bool = True) -> subprocess.CompletedProcess:
-    result = subprocess.run(
-        [sys.executable, "-m", "snakemake", *args], cwd=where, capture_output=True, text=True, timeout=600
-    )
+    result = forks(SNAKEMAKE_MODULES).run(where, module="snakemake", args=args)
     if check and result.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed:\n{result.stdout}\n{result.stderr}")
     return result
@@ -101,16 +122,17 @@ _LIST = ("\nimport json as _json, sys as _sys\n"
 
 
 def loaded_files(where: Path, script: str, also: tuple[str, ...] = ()) -> tuple[set[str], set[str]]:
-    """The files of the package and of the benchmarks that a fresh interpreter has loaded once it has run
+    """The files of the package and of the benchmarks that a new interpreter has loaded once it has run
     ``script``'s statements up to its last import (with a stand-in for Snakemake's object), and once it has
-    then imported the modules ``also``; relative to ``where``, whose package (``where/src``) is the one loaded."""
+    then imported the modules ``also``; relative to ``where``, whose package (``where/src``) is the one loaded.
+    The interpreter is a fork of one that has imported only libraries outside the project (``SCRIPT_MODULES``),
+    so every file of the package it loads, it loads itself."""
     path = where / script
     tree = ast.parse(path.read_text())
     last = max(i for i, node in enumerate(tree.body) if isinstance(node, (ast.Import, ast.ImportFrom)))
     code = _STUB.format(scriptdir=str(path.parent)) + ast.unparse(ast.Module(tree.body[: last + 1], [])) + _LIST
     code += "".join(f"import {name}\n" for name in also) + _LIST
-    env = {**os.environ, "PYTHONPATH": str(where / "src")}
-    result = subprocess.run([sys.executable, "-c", code], cwd=where, env=env, capture_output=True, text=True,
-                            check=True)
+    result = forks(SCRIPT_MODULES, str(where / "src")).run(where, code=code)
+    result.check_returncode()
     before, after = (json.loads(line) for line in result.stdout.splitlines()[-2:])
     return {os.path.relpath(f, where) for f in before}, {os.path.relpath(f, where) for f in after}
