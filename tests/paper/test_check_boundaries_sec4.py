@@ -303,6 +303,17 @@ def test_a_tie_between_the_fig3_cases_is_not_a_greater_value(claim_id):
         assert judged(row, evidence({first: a, second: b})) == expected, value
 
 
+def test_a_tie_at_the_start_is_not_the_smaller_first_swing():
+    """Case (a) starts smaller when its first velocity and first amplitude are strictly below case (b)'s;
+    an equal first velocity leaves only the amplitude: partially."""
+    row = next(c for c in cl.load_claims(REGISTER) if c["id"] == "fig3_a_smaller_at_start")
+    first, second = row["args"]["cases"]
+    for velocity, expected in ((1.25, "partially_reproduced"), (math.nextafter(1.25, 0.0), "reproduced")):
+        a, b = fig3([velocity, 1.0]), fig3([1.25, 1.0])
+        a["amplitude"].values[0] = 0.5
+        assert judged(row, evidence({first: a, second: b})) == expected, velocity
+
+
 def test_a_velocity_jump_is_a_step_beyond_twice_what_the_sampled_acceleration_allows():
     """Samples 1 s apart, |a| at most 0.5 m/s^2: a smooth motion moves the velocity by 0.5 m/s at most;
     the bound is twice that plus 1e-9 of the largest |v|: a step x is a jump when x > 1 + 1e-9 x."""
