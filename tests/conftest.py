@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -33,7 +34,22 @@ def case_b() -> Parameters:
     return paper_parameters(F=0.5)
 
 
+#: the files that take a worker longest, longest first (measured with ``-n 0``): under ``--dist loadfile`` each
+#: goes whole to a worker, the next file to the first worker free, so that the two workers start on the longest
+#: and the short files, run last, fill both of them to the end
+LONGEST = ("test_workflow.py", "test_workflow_plans.py", "integrators/test_reference.py", "pipeline/test_publish.py",
+           "test_workflow_config.py", "solvers/test_memory.py", "pipeline/test_readings.py", "solvers/test_grazing.py",
+           "plotting/test_paper_figures.py", "plotting/test_overlaps.py", "pipeline/test_speed.py",
+           "paper/test_claims.py", "pipeline/test_edge_cases.py", "pipeline/test_code_inputs.py")
+
+
 def pytest_collection_modifyitems(config, items):
-    """The end-to-end files first: each takes about a minute of one worker, so under ``-n 2`` they
-    start at once on their own workers and the unit tests fill the gaps."""
-    items.sort(key=lambda item: not item.path.name.startswith("test_workflow"))
+    """The longest files first (:data:`LONGEST`), the others after them in the order they were collected."""
+    rank = {name: i for i, name in enumerate(LONGEST)}
+    tests = Path(__file__).parent
+
+    def place(item) -> int:
+        name = item.path.relative_to(tests).as_posix() if item.path.is_relative_to(tests) else ""
+        return rank.get(name, len(LONGEST))
+
+    items.sort(key=place)
