@@ -341,9 +341,6 @@ def test_the_shock_readout_follows_the_velocity_jump_within_its_relative_1e_12()
     assert judged(row, shock(1e-3)) == "not_reproduced"
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="shock_readout calls np.allclose with rtol=1e-12 but the default atol=1e-8, which lets an "
-                          "impulse of 0.08 N s be off by 1e-7 of itself; atol=0 gives the relative 1e-12 it states")
 def test_the_shock_readout_refuses_an_impulse_off_by_more_than_1e_12():
     row = next(c for c in cl.load_claims(REGISTER) if c["id"] == "fig4_impulse_and_energy")
     assert judged(row, shock(1e-9)) == "not_reproduced"

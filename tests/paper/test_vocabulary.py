@@ -36,7 +36,8 @@ def test_every_weighed_status_is_a_status_and_unknown_words_are_refused():
 
 def _register(tmp_path, **over):
     claim = {"id": "c", "source": "S", "origin": "paper", "finding": "period", "evidence": "independent",
-             "statement": "s", "paper_value": None, "tolerance": 1e-8, "check": "fixed_point", "args": {"case": "a"}}
+             "statement": "s", "paper_value": None, "tolerance": 1e-8, "tolerance_reason": "r", "check": "fixed_point",
+             "args": {"case": "a"}}
     path = tmp_path / "claims.yaml"
     path.write_text(yaml.safe_dump({"version": 1, "claims": [{**claim, **over}]}))
     return path

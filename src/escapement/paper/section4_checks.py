@@ -183,8 +183,8 @@ def shock_readout(claim, ev: Evidence) -> Verdict:
     if not len(j):
         return Verdict("no impact in the window", NOT, note="the shock detail holds no impact to read off",
                        paper_value="no number given")
-    consistent = np.allclose(j, -b * m * vb, rtol=1e-12) and np.allclose(
-        e, 0.5 * m * vb**2 * (2 * b - b * b), rtol=1e-12
+    consistent = np.allclose(j, -b * m * vb, rtol=1e-12, atol=0) and np.allclose(
+        e, 0.5 * m * vb**2 * (2 * b - b * b), rtol=1e-12, atol=0
     )
     return Verdict(
         f"{len(j)} impacts in the window: |impulse| {fmt(np.min(np.abs(j)), 4)}-{fmt(np.max(np.abs(j)), 4)} N s, "
