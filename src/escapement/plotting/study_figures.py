@@ -135,7 +135,8 @@ def long_run(ds: xr.Dataset):
                 else "Fig. 3 case (a)")
         fig.suptitle(f"Long run, {case}: errors against the 50-digit reference\n"
                      f"grey band: rounding level, {ROUNDING_ULPS} ulps of the impact time t (left) and "
-                     f"{ROUNDING_ULPS} \u03b5 = {ROUNDING_ULPS * EPS:.1e} (right); an error below it is drawn on its edge\n"
+                     f"{ROUNDING_ULPS} \u03b5 = {ROUNDING_ULPS * EPS:.1e} (right); an error below it is drawn on its "
+                     "edge\n"
                      "the integrator's staircase: its largest error over the cycles 1-10, 11-100, ..., rounded up to "
                      "1, 2 or 5 times a power of ten",
                      fontsize=8.5)
