@@ -95,7 +95,7 @@ def limit_cycle(natural: float = 2 * math.pi) -> xr.Dataset:
     (v -1 -> -0.9), a zone that ends at a2 = 0.05 with v = 1 after 0.15 s, the mirror zone, free flights that
     advance the sine phase at w = 1, so that the cycle closes."""
     phi = lambda x, v: math.atan2(x, v)  # noqa: E731
-    zone, step = 0.15, phi(0.05, 1.0) - phi(-0.1, 0.9)  # zone time and its phase advance
+    zone = 0.15  # the zone time
     free = (phi(0.1, -1.0) - phi(0.05, 1.0))  # a2 -> a3, the phase at w = 1
     times = np.cumsum([0.0, zone, free, zone, free])
     kinds = np.array([1, 2, 3, 4, 1], dtype=np.int8)
@@ -177,7 +177,8 @@ def test_force_amplitude(amplitudes, status):
     ((6.28, 6.28), (6.29, 6.30), "not_reproduced"),
 ])
 def test_release_transient(first, last, status):
-    rows = [{"group": "release", "x0": x0, "first_period": a, "period": b} for x0, a, b in zip((-1.0, 3.0), first, last)]
+    rows = [{"group": "release", "x0": x0, "first_period": a, "period": b}
+            for x0, a, b in zip((-1.0, 3.0), first, last)]
     assert dc.release_transient(claim(1e-9, group="release"), evidence(runs(*rows))).status == status
     with pytest.raises(ValueError, match="no runs that differ only in x0"):
         dc.release_transient(claim(1e-9, group="release"), evidence(runs(rows[0])))

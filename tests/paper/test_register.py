@@ -20,7 +20,7 @@ import yaml
 
 from escapement.paper import claims as cl
 from escapement.paper.airy import airy_verdict
-from escapement.paper.checks import Candidates, Evidence
+from escapement.paper.checks import Evidence
 from escapement.paper.existence import existence_verdict, grazing_verdict, release_verdict
 
 REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"

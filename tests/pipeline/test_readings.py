@@ -137,7 +137,8 @@ def test_ties_reach_the_summary_as_ties_and_equivalents_group():
     assert best["best"] == [("one", "mirror of one"), ("two",)] and best["default_score"] == 4
     (row,) = best_readings_table(rows)
     assert row["limits reproduced"] == "4 of 4 (4 with the default locator)"
-    assert "undetermined" in row["best-supported readings"] and "one = mirror of one<br>two" in row["best-supported readings"]
+    readings = row["best-supported readings"]
+    assert "undetermined" in readings and "one = mirror of one<br>two" in readings
 
 
 def test_one_group_of_equivalent_readings_is_not_a_tie():
@@ -186,7 +187,8 @@ def test_on_the_paper_grid_fig5_scores_depend_on_the_imposed_step(paper_rows):
     assert c[("5", "a")].tied()[0] == 4
     assert max(c[("5", "a")].default_scores.values()) < 4
     rows = {(r["axis"], r["ticks"]): r for r in paper_rows if r["panel"] == "a" and r["figure"] == "5"
-            and r["reading"] == "F = 1 N, x0 = -1 m; whole trajectory, 60 cycles" and r["autoscale"] == "round, margin 0"}
+            and r["reading"] == "F = 1 N, x0 = -1 m; whole trajectory, 60 cycles"
+            and r["autoscale"] == "round, margin 0"}
     assert rows[("x", PRINTED_STEP)]["data_max"] == pytest.approx(3.9749, abs=2e-4)
     assert (rows[("x", PRINTED_STEP)]["low"], rows[("x", PRINTED_STEP)]["high"]) == (-5.0, 5.0)
     assert (rows[("x", DEFAULT_LOCATOR)]["low"], rows[("x", DEFAULT_LOCATOR)]["high"]) == (-4.0, 4.0)

@@ -309,6 +309,7 @@ def test_a_run_over_its_memory_budget_is_refused_before_any_work(case_a):
 def test_a_trajectory_flag_that_is_not_a_bool_is_refused(flag):
     """A string such as "no" is truthy: taken as a flag it would keep the trajectory the caller refused."""
     p = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
-    with pytest.raises(ParameterError, match=r"^record_trajectory = .* is invalid: record_trajectory must be True or False"):
+    message = r"^record_trajectory = .* is invalid: record_trajectory must be True or False"
+    with pytest.raises(ParameterError, match=message):
         solve_exact(p, 1.0, n_cycles=2, record_trajectory=flag)
     assert solve_exact(p, 1.0, n_cycles=2, record_trajectory=np.bool_(False)).trajectory is None

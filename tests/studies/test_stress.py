@@ -1,7 +1,7 @@
 """The stress cases, each checked here against an answer derived independently of the solver.
 
-Every case is run directly (``case.run()``), its outcome compared with the one the closed form predicts, and its numbers with closed forms
-derived on paper (energy balance and phase-plane geometry) or with sums computed here.
+Every case is run directly (``case.run()``), its outcome compared with the one the closed form predicts, and its
+numbers with closed forms derived on paper (energy balance and phase-plane geometry) or with sums computed here.
 """
 
 from __future__ import annotations
