@@ -26,7 +26,8 @@ from escapement.model import Parameters
 __all__ = ["PAPER_A", "TWO_PI", "Cycles", "minimal_cycles", "minimal_events", "numpy_cycles"]
 
 TWO_PI = 2.0 * math.pi
-#: the paper's Fig. 3 case (a): the workload of the scalar floors, released at rest at 1 m
+#: the model of the paper's Sec. 4 with F = 1 N: the default workload of the scalar floors (the workflow passes
+#: the scene of its benchmark instead)
 PAPER_A = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 
 

@@ -58,8 +58,7 @@ CONFIG = {
         "asymmetric": {"F": [3.0], "positions": [[-0.1, 0.05, 0.2, -0.02]]},
     },
     "benchmark": {
-        "F": 1.0,
-        "x0": 1.0,
+        "case": "a",
         "n_cycles": 50,
         "min_seconds": 0.2,
         "max_repeats": 500,
@@ -69,7 +68,7 @@ CONFIG = {
     "speed": {"headline": {"n_cycles": 20, "target": 1.0e-9, "settings": {"DOP853": [1.0e-12]}},
               "floor": {"exact_cycles": [100], "ensemble_trajectories": 10, "ensemble_cycles": 5,
                         "stream_cycles": [100, 1000]}},
-    "long_run": {"F": 1.0, "x0": 1.0, "n_cycles": 1000, "ivp_method": "DOP853", "ivp_rtol": 1.0e-12, "ivp_cycles": 100},
+    "long_run": {"case": "b", "n_cycles": 1000, "ivp_method": "DOP853", "ivp_rtol": 1.0e-12, "ivp_cycles": 100},
     "escapement_error": {"F": {"start": 0.1, "stop": 0.4, "n": 3}, "zones": {"paper": [-0.1, 0.05]}},
     "stability_map": {"b": {"start": 0.0, "stop": 2.0, "n": 4}, "F": {"start": 1.0, "stop": 2.0, "n": 3}, "chunks": 3},
     "existence_map": {"a3": {"start": 0.0, "stop": 0.25, "n": 5}, "F": {"start": 0.0, "stop": 0.01, "n": 4}, "x0": -1.0,
@@ -187,10 +186,19 @@ def test_benchmark_scene_and_settings(config):
 
 
 def test_long_run_scene(config):
+    """The long run names Fig. 3's case (b): its force, release and override of b, with the run's own keys."""
     assert long_run_scene(config) == {
-        **MODEL, "F": 1.0, "x0": 1.0, "n_cycles": 1000, "ivp_method": "DOP853", "ivp_rtol": 1.0e-12,
+        **MODEL, "F": 0.5, "x0": 3.0, "b": 0.2, "n_cycles": 1000, "ivp_method": "DOP853", "ivp_rtol": 1.0e-12,
         "ivp_cycles": 100,
     }
+
+
+@pytest.mark.parametrize("block", ["benchmark", "long_run"])
+def test_a_scene_that_names_a_case_fig3_lacks_is_refused(config, block):
+    config[block]["case"] = "c"
+    with pytest.raises(ConfigError, match=rf"^invalid configuration: {block}\.case = 'c' is invalid: case must be a case of fig3\.cases, "
+                                          r"one of a, b$"):
+        check_config(config, SCHEMA)
 
 
 def test_stability_axes_chunks_and_model(config):

@@ -3,7 +3,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from escapement.model.parameters import Parameters
+from escapement.model.parameters import ParameterError, Parameters
 from escapement.integrators.high_precision import solve_high_precision
 from escapement.studies import benchmark
 from escapement.studies.benchmark import (
@@ -47,16 +47,26 @@ def reference():
     return float(hp.velocity_before_impact[-1]), float(hp.impact_time[-1])
 
 
-def test_closed_form_map_agrees_with_the_50_digit_reference():
-    v, t = closed_form_map(P, 1.0, 50)
-    hp = solve_high_precision(P, 1.0, n_cycles=50).cycles
+@pytest.mark.parametrize("x0", [1.0, -1.0, -3.0])
+def test_closed_form_map_agrees_with_the_50_digit_reference(x0):
+    """From either side: released right of a3 the first swing meets a3 first, left of a1 it meets a1."""
+    v, t = closed_form_map(P, x0, 50)
+    hp = solve_high_precision(P, x0, n_cycles=50).cycles
     assert v == pytest.approx(float(hp.velocity_before_impact[-1]), rel=1e-14)
     assert t == pytest.approx(float(hp.impact_time[-1]), rel=1e-14)
 
 
-def test_closed_form_map_needs_release_beyond_a3():
-    with pytest.raises(ValueError, match="x0 > a3"):
-        closed_form_map(P, 0.05, 5)
+def test_the_first_impact_from_the_left_is_the_free_swing_to_a1():
+    """From rest at x0 = -1 m (w = 1): x = -cos t meets a1 = -0.1 at t = arccos(0.1), at v = sqrt(1 - 0.01)."""
+    v, t = closed_form_map(P, -1.0, 1)
+    assert v == pytest.approx(math.sqrt(0.99), rel=1e-15) and t == pytest.approx(math.acos(0.1), rel=1e-15)
+
+
+@pytest.mark.parametrize("x0", [0.05, -0.05, 0.1, -0.1])
+def test_closed_form_map_needs_a_release_beyond_an_impact_position(x0):
+    with pytest.raises(ParameterError, match=rf"^x0 = {x0!r} is invalid: x0 must be a release left of a1 = -0\.1 < 0 "
+                                             r"or right of a3 = 0\.1 > 0 \(m\)"):
+        closed_form_map(P, x0, 5)
 
 
 # Tolerances, from the error each method can make over the N = 5 cycles (about 20 events, 40 segments):

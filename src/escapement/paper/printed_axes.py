@@ -237,7 +237,7 @@ _SHOCK_LINES = (425, 427, 429, 431, 439, 441, 443, 445, 447, 449)
 _UNIT_HALVES = _ticks("-1", "-0.5", "0", "0.5", "1")
 
 PANELS: tuple[Panel, ...] = (
-    # Fig. 3 (a) F = 1 N, x(0) = 1 m
+    # Fig. 3 (a), captioned "F=1, x(0)=1" in the paper
     Panel("3", "a/velocity", "velocity before the impact at a1 against the cycle, case (a)",
           Axis(CYCLES, _CYCLES_50, (271, 273, 275, 277, 279, 291)),
           Axis("Velocity before impact (m/s)",

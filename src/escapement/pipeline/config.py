@@ -33,6 +33,7 @@ __all__ = [
     "config_error",
     "escapement_error_forces",
     "escapement_error_scenes",
+    "fig3_release",
     "fig3_scene",
     "fig4_scene",
     "FIG5_PER_PANEL",
@@ -140,9 +141,16 @@ def check_cases(config: Mapping) -> list[dict]:
     return [{k: v for k, v in case.items() if k not in ("n_cycles", "amplitude")} for case in cases]
 
 
+def fig3_release(config: Mapping, block: str) -> dict:
+    """The scene of the Fig. 3 case that ``block`` (benchmark, long_run) names by its ``case``: the model block
+    and the case's own keys (F, x0, any override), as Fig. 3 runs it; the block's other keys are its own."""
+    case = config["fig3"]["cases"][config[block]["case"]]
+    return _scene(config["model"], case, {k: v for k, v in config[block].items() if k != "case"})
+
+
 def benchmark_scene(config: Mapping) -> dict:
-    scene = {k: v for k, v in config["benchmark"].items() if "settings" not in k}
-    return _scene(config["model"], scene)
+    scene = fig3_release(config, "benchmark")
+    return {k: v for k, v in scene.items() if "settings" not in k}
 
 
 def benchmark_settings(config: Mapping, slow: bool = False) -> dict[str, list]:
@@ -171,7 +179,7 @@ def escapement_error_scenes(config: Mapping) -> dict[str, dict]:
 
 
 def long_run_scene(config: Mapping) -> dict:
-    return _scene(config["model"], config["long_run"])
+    return fig3_release(config, "long_run")
 
 
 def stability_axes(config: Mapping) -> tuple[list[float], list[float]]:
@@ -257,6 +265,11 @@ def _cross_field_error(config: Mapping) -> str | None:
             f"{fig5['n_cycles']!r} it gives {fig5['samples_per_period'] * fig5['n_cycles']:_} samples; "
             f"samples_per_period times n_cycles must be at most {MAX_SAMPLES:_}"
         )
+    cases = config["fig3"]["cases"]
+    for block in ("benchmark", "long_run"):
+        if config[block]["case"] not in cases:
+            return (f"{block}.case = {config[block]['case']!r} is invalid: case must be a case of fig3.cases, "
+                    f"one of {', '.join(sorted(cases))}")
     chunks, n = config["stability_map"]["chunks"], config["stability_map"]["b"]["n"]
     if chunks > n:
         return f"stability_map.chunks = {chunks!r} is invalid: chunks must be <= b.n = {n}"

@@ -1,6 +1,6 @@
 """Work-precision benchmark: wall time against error for every method, timed in one run.
 
-Workload: ``n_cycles`` cycles from release at rest (the paper's Fig. 3 case (a) by default).
+Workload: ``n_cycles`` cycles from release at rest (the workflow gives the Fig. 3 case its config names).
 Errors are relative, at the last cycle, for the velocity before impact and the impact time,
 against the 50-digit reference of :mod:`escapement.integrators.high_precision`.
 
@@ -27,7 +27,7 @@ import statistics
 import time
 from collections.abc import Callable
 
-from ..model.parameters import Parameters
+from ..model.parameters import ParameterError, Parameters
 from ..paper import corrected as derived
 from ..solvers.cycles import CLOSED_FORM, solve_cycles
 from ..solvers.exact import solve_exact
@@ -50,14 +50,28 @@ HEADLINE_SETTINGS = {"DOP853": [1e-12, 1e-13], "LSODA": [1e-12, 1e-13], "CVODE-A
 def closed_form_map(params: Parameters, x0: float, n_cycles: int) -> tuple[float, float]:
     """Velocity before impact and impact time at cycle ``n_cycles`` from closed forms alone.
 
-    The first impact at a1 from release at rest at ``x0 > a3``: the swing reaches a3 at
-    acos(a3/x0)/w, runs through the zone to a4 and swings to a1 (energy and arccos forms);
-    then Eq. (16) for the velocities and the corrected Eq. (23) for the periods.
+    The first impact at a1 from release at rest (energy and arccos forms): from ``x0 < a1 < 0`` the swing
+    reaches a1 at acos(a1/x0)/w; from ``x0 > a3 > 0`` it reaches a3 at acos(a3/x0)/w, runs through the zone
+    to a4 and swings to a1. Then Eq. (16) for the velocities and the corrected Eq. (23) for the periods.
     """
     p = params
     w = p.omega
-    if not x0 > p.a3 > 0:
-        raise ValueError("the closed-form map starts from release at x0 > a3 > 0")
+    if x0 < p.a1 < 0:
+        v, t = w * math.sqrt((x0 - p.a1) * (x0 + p.a1)), math.acos(p.a1 / x0) / w
+    elif x0 > p.a3 > 0:
+        v, t = _first_impact_from_the_right(p, x0)
+    else:
+        raise ParameterError("x0", x0, f"a release left of a1 = {p.a1!r} < 0 or right of a3 = {p.a3!r} > 0 (m), "
+                             "from which the first swing reaches an impact")
+    for _ in range(n_cycles - 1):
+        t += derived.period(v, p)
+        v = math.sqrt((1 - p.b) ** 4 * v * v + derived.map_constant(p))
+    return v, t
+
+
+def _first_impact_from_the_right(p: Parameters, x0: float) -> tuple[float, float]:
+    """Velocity before and time of the first impact at a1 from rest at ``x0 > a3 > 0``."""
+    w = p.omega
     v3 = -w * math.sqrt((x0 - p.a3) * (x0 + p.a3))
     v3p = (1 - p.b) * v3
     v4_sq = v3p**2 + p.omega2 * (p.a3 - p.a4) * (p.a3 + p.a4) + 2 * (p.a3 - p.a4) * p.f
@@ -67,11 +81,7 @@ def closed_form_map(params: Parameters, x0: float, n_cycles: int) -> tuple[float
         + derived._zone_time(-p.zone_offset, p.a3, p.a4, v3p, w)
         + (math.acos(-p.a4 / h) + math.acos(-p.a1 / h)) / w
     )
-    v = math.sqrt(v4_sq + p.omega2 * (p.a4 - p.a1) * (p.a4 + p.a1))
-    for _ in range(n_cycles - 1):
-        t += derived.period(v, p)
-        v = math.sqrt((1 - p.b) ** 4 * v * v + derived.map_constant(p))
-    return v, t
+    return math.sqrt(v4_sq + p.omega2 * (p.a4 - p.a1) * (p.a4 + p.a1)), t
 
 
 def run_method(method: str, setting: float | None, params: Parameters, x0: float, n_cycles: int):
