@@ -196,8 +196,9 @@ def test_long_run_scene(config):
 @pytest.mark.parametrize("block", ["benchmark", "long_run"])
 def test_a_scene_that_names_a_case_fig3_lacks_is_refused(config, block):
     config[block]["case"] = "c"
-    with pytest.raises(ConfigError, match=rf"^invalid configuration: {block}\.case = 'c' is invalid: case must be a case of fig3\.cases, "
-                                          r"one of a, b$"):
+    message = (rf"^invalid configuration: {block}\.case = 'c' is invalid: case must be a case of fig3\.cases, "
+               r"one of a, b$")
+    with pytest.raises(ConfigError, match=message):
         check_config(config, SCHEMA)
 
 

@@ -92,14 +92,16 @@ def verdict_html(claims: list[dict[str, str]], stress: list[dict[str, str]]) -> 
     stress table as HTML tables."""
     failed = [r for r in stress if r["passed"] != "yes"]
     lines = [
-        f"<p>{html.escape(headline(claims), quote=False)} The reasons are in the table's note column and in REPLICATION.md.</p>",
+        f"<p>{html.escape(headline(claims), quote=False)} The reasons are in the table's note column and in "
+        "REPLICATION.md.</p>",
         f"<p><strong>{len(stress)} stress cases</strong> at the edges of the model's regime, each against an "
         f"independent answer: {len(stress) - len(failed)} pass"
         + (f", {len(failed)} fail: {html.escape(', '.join(r['case'] for r in failed))}" if failed else "")
         + ".</p>",
         html_table(
             [{**r, "status": r["status"].replace("_", " ")} for r in claims],
-            ["claim_id", "source", "origin", "finding", "evidence", "paper_value", "replicated_value", "status", "note"],
+            ["claim_id", "source", "origin", "finding", "evidence", "paper_value", "replicated_value", "status",
+             "note"],
             "The claims register (results/claims.csv)", "claims",
         ),
         html_table(stress, ["regime", "outcome", "check", "passed", "detail"],

@@ -26,7 +26,8 @@ from .logs import logged
 from .scores import CLAIM_AUTOSCALE, figure_caption, read_scores
 from .tables import CYCLE_VARIABLES, ESCAPEMENT_ERROR_VARIABLES, PHASE_VARIABLES, SHOCK_VARIABLES, read_work_precision
 
-__all__ = ["plot_escapement_error", "plot_existence_map", "plot_fig3", "plot_fig4", "plot_fig5", "plot_long_run", "plot_stability_map", "plot_work_precision"]
+__all__ = ["plot_escapement_error", "plot_existence_map", "plot_fig3", "plot_fig4", "plot_fig5", "plot_long_run",
+           "plot_stability_map", "plot_work_precision"]
 
 
 def _claimed(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Mapping[str, xr.Dataset]) -> PanelAxes:

@@ -46,7 +46,8 @@ def render_docs(
             "findings": markdown_table(findings_table(rows), ["finding", "verdict", "rows"]),
             "vocabulary": markdown_table(vocabulary_table(), ["word", "meaning"]),
             "readings": markdown_table(best_readings_table(read_scores(readings)),
-                                       ["figure", "panel", "printed limits", "limits reproduced", "best-supported readings"]),
+                                       ["figure", "panel", "printed limits", "limits reproduced",
+                                        "best-supported readings"]),
         }
         documents = {}
         for template, output in zip(templates, outputs, strict=True):

@@ -29,7 +29,8 @@ def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str
 
 
 def _formatted(rows: list[dict], columns: list[str]) -> list[dict]:
-    return [{c: (f"{row[c]:.6e}" if isinstance(row.get(c), float) else row.get(c, "")) for c in columns} for row in rows]
+    return [{c: (f"{row[c]:.6e}" if isinstance(row.get(c), float) else row.get(c, "")) for c in columns}
+            for row in rows]
 
 
 def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str, log: str,

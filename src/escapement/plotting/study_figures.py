@@ -37,8 +37,8 @@ STEPS = (Decimal(1), Decimal(2), Decimal(5), Decimal(10))
 #: rounding noise: the long-run figure draws them at that level
 ROUNDING_ULPS = 16
 EPS = float(np.finfo(float).eps)
-MARKERS = {"exact": "*", "closed-form cycles": "X", "map16": "P", "naive-RK4": "x", "RK45": "o", "DOP853": "s", "LSODA": "^", "Radau": "v",
-           "CVODE-Adams": "D", "CVODE-BDF": "d"}
+MARKERS = {"exact": "*", "closed-form cycles": "X", "map16": "P", "naive-RK4": "x", "RK45": "o", "DOP853": "s",
+           "LSODA": "^", "Radau": "v", "CVODE-Adams": "D", "CVODE-BDF": "d"}
 #: the benchmark's methods in words, where their names are not words
 #: the legend's entry for the ringed point: the first CVODE run, timed once, with SUNDIALS' loading
 COLD_START = "first CVODE run: loads SUNDIALS"
@@ -73,9 +73,9 @@ def work_precision(rows: list[dict]):
         fig.suptitle("Work-precision, Fig. 3 case (a): errors against 50 digits (exact zero drawn at "
                      f"{ERROR_FLOOR:.0e})\n"
                      "map (16) + corrected period (23): the closed-form Poincar\u00e9 map, no integration\n"
-                     "each line joins a method's settings from the loosest rtol (or step) to the tightest; where a CVODE "
-                     "line turns back in time\nat its loosest point (ringed), that run is the first SUNDIALS run, timed "
-                     "once, and its time includes loading SUNDIALS,\nnot a tighter rtol costing less",
+                     "each line joins a method's settings from the loosest rtol (or step) to the tightest; where a "
+                     "CVODE line turns back in time\nat its loosest point (ringed), that run is the first SUNDIALS "
+                     "run, timed once, and its time includes loading SUNDIALS,\nnot a tighter rtol costing less",
                      fontsize=8.5)
         legend_below(fig, axes, ncols=5, fontsize=7)
         finish(fig, [])
@@ -248,10 +248,11 @@ def escapement_error(ds: xr.Dataset):
             ax.set_title(title)
         model = ", ".join(quantity_value(k, float(ds[k])) for k in ("M", "K", "b"))
         fig.suptitle(
-            "Escapement error (beyond the paper): rate of a clock counting 2\u03c0/\u03c9 per swing, against amplitude; "
-            "a positive rate means the clock gains (runs fast)\n"
-            f"{model}; F from {float(ds['F'][0]):g} to {float(ds['F'][-1]):g} {unit('F')}; the second half cycle mirrors the "
-            f"first; exact solver, Eqs. (24)-(25) corrected agree to {float(ds['max_period_difference']):.0e}",
+            "Escapement error (beyond the paper): rate of a clock counting 2\u03c0/\u03c9 per swing, against "
+            "amplitude; a positive rate means the clock gains (runs fast)\n"
+            f"{model}; F from {float(ds['F'][0]):g} to {float(ds['F'][-1]):g} {unit('F')}; the second half cycle "
+            f"mirrors the first; exact solver, Eqs. (24)-(25) corrected agree to "
+            f"{float(ds['max_period_difference']):.0e}",
             fontsize=8.5)
         legend_below(fig, axes, ncols=2, fontsize=7.5)
         finish(fig, [])
@@ -292,9 +293,11 @@ def existence_map(ds: xr.Dataset):
             if cells is not None:
                 ax.add_patch(PathPatch(cells, **look))
                 handles.append(Patch(**look, label=label))
-        lines = (("threshold", ACCENT, "-", f"F*: C = 0, the map (16) read at the impact at {A1} (below it the swing falls short of {A1})"),
+        lines = (("threshold", ACCENT, "-",
+                  f"F*: C = 0, the map (16) read at the impact at {A1} (below it the swing falls short of {A1})"),
                  ("threshold_mirror", INK, "--",
-                  f"F*': the same map read at the impact at {A3}, F* of the mirror image (below it the swing falls short of {A3})"))
+                  f"F*': the same map read at the impact at {A3}, F* of the mirror image "
+                  f"(below it the swing falls short of {A3})"))
         for name, colour, ls, label in lines:
             handles.append(ax.plot(a3, ds[name].values * 1e3, color=colour, ls=ls, lw=1.6, label=label)[0])
         symmetric = -float(ds["a1"])
