@@ -36,12 +36,18 @@ def _find(roots: tuple[Path, ...], name: str) -> Path | None:
 
 
 def _tree(path: Path) -> ast.Module:
-    return _parse(path, path.stat().st_mtime_ns)
+    return _parse(path, path.stat().st_mtime_ns)[0]
+
+
+def _nodes(path: Path) -> tuple[ast.AST, ...]:
+    """Every node of the module's tree, walked once for the three readings of it."""
+    return _parse(path, path.stat().st_mtime_ns)[1]
 
 
 @cache
-def _parse(path: Path, mtime: int) -> ast.Module:
-    return ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+def _parse(path: Path, mtime: int) -> tuple[ast.Module, tuple[ast.AST, ...]]:
+    tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+    return tree, tuple(ast.walk(tree))
 
 
 def _exports(roots: tuple[Path, ...], package: str) -> dict[str, str]:
@@ -84,8 +90,8 @@ def _imports_of(roots: tuple[Path, ...], module: str, path: Path, mtime: int) ->
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     found: set[str] = set()
     bound: dict[str, str] = {}  # local name -> module it is bound to
-    tree = _tree(path)
-    for node in ast.walk(tree):
+    nodes = _nodes(path)
+    for node in nodes:
         if isinstance(node, ast.Import):
             for alias in node.names:
                 found.add(alias.name)
@@ -103,7 +109,7 @@ def _imports_of(roots: tuple[Path, ...], module: str, path: Path, mtime: int) ->
                     found.update(loaded)
                     if loaded and _find(roots, loaded[-1]) and loaded[-1].endswith(f".{alias.name}"):
                         bound[alias.asname or alias.name] = loaded[-1]
-    for node in ast.walk(tree):  # names used as attributes of a bound module: pkg.name
+    for node in nodes:  # names used as attributes of a bound module: pkg.name
         parts = _dotted(node) if isinstance(node, ast.Attribute) else []
         if parts and parts[0] in bound:
             current = bound[parts[0]]
@@ -135,7 +141,7 @@ def module_files(roots, script) -> set[Path]:
 @cache
 def _data_files(path: Path, mtime: int) -> frozenset[Path]:
     """The files beside the module ``path`` that it names in a string: a style sheet it loads."""
-    names = {node.value for node in ast.walk(_tree(path))
+    names = {node.value for node in _nodes(path)
              if isinstance(node, ast.Constant) and isinstance(node.value, str) and _FILE_NAME.fullmatch(node.value)}
     return frozenset(path.parent / name for name in names
                      if (path.parent / name).suffix != ".py" and (path.parent / name).is_file())
