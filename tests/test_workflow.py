@@ -455,7 +455,8 @@ def test_the_work_precision_table_and_its_targets(workflow_run):
     rows = list(csv.DictReader(open(workflow_run / "results/benchmark/work_precision.csv")))
     assert list(rows[0]) == ["method", "setting", "wall_s", "repeats", "error_velocity", "error_time"]
     methods = {r["method"] for r in rows}
-    assert methods == {"exact", "closed-form cycles", "map16", "RK45", "DOP853", "LSODA", "Radau", "CVODE-Adams", "CVODE-BDF", "naive-RK4"}
+    assert methods == {"exact", "closed-form cycles", "map16", "RK45", "DOP853", "LSODA", "Radau", "CVODE-Adams",
+                       "CVODE-BDF", "naive-RK4"}
     exact = next(r for r in rows if r["method"] == "exact")
     assert float(exact["error_velocity"]) <= 1e-14 and float(exact["error_time"]) <= 1e-14
 

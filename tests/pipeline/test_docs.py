@@ -1,8 +1,11 @@
 import pytest
 
 from escapement.pipeline.docs import claims_table, render, write_text
+from escapement.pipeline.facts import Fact
 
 WEIGHT = {"origin": "paper", "finding": "f", "evidence": "independent"}
+#: a measured fact (refused in a tracked document) and one that is not
+FACTS = {"wall": Fact("0.28 s", measured=True), "error": Fact("1e-16")}
 ROWS = [
     {"claim_id": "x", "source": "Eq. (1)", **WEIGHT, "statement": "s", "paper_value": "1", "replicated_value": "|2|",
      "tolerance": "0.1", "status": "not_reproduced", "note": "n"},
@@ -28,10 +31,19 @@ def test_table_escapes_pipes_and_marks_failures():
 
 @pytest.mark.parametrize("placeholder", ["{{ claim.z.paper_value }}", "{{ claim.x.colour }}", "{{ nonsense }}",
                                          "{{ claim.x.items }}", "{{ claims_count.keys }}", "{{ table.stress }}",
-                                         "{{ claim.x-y.note }}"])
+                                         "{{ claim.x-y.note }}", "{{ fact._values }}", "{{ fact.__doc__ }}",
+                                         "{{ fact.kind }}", "{{ claim.x.note.upper }}", "{{ headline.upper }}",
+                                         "{{ claim['x']['_values'] }}"])
 def test_an_unknown_placeholder_is_an_error(placeholder):
+    """A placeholder names a claim, fact, table or column, never an attribute of the objects behind them: what
+    holds the measured facts (fact._values) cannot leak them past their refusal."""
     with pytest.raises(ValueError, match="unknown placeholder"):
-        render(placeholder, ROWS, "t.md")
+        render(placeholder, ROWS, "t.md", facts=FACTS)
+
+
+def test_an_unknown_placeholder_is_named_with_its_kind():
+    with pytest.raises(ValueError, match=r"unknown placeholder \(no fact is named 'colour'\)"):
+        render("{{ fact.colour }}", ROWS, "t.md", facts=FACTS)
 
 
 @pytest.mark.parametrize("placeholder", ["{{ claim:x:note }}", "{{ claim.x.note }", "{{ claim:x-y:note }}"])

@@ -133,16 +133,34 @@ def markdown_html(text: str) -> str:
 
 
 class _Names:
-    """One kind of a template's names (claims, facts, tables): looked up by key only, so that no method or
-    attribute of a mapping can stand in for a missing key; a missing key is undefined (an error)."""
+    """One kind of a template's names (claims, facts, tables), each a key of ``values``; ``refuse`` may refuse
+    a name that exists."""
 
-    def __init__(self, values: dict, refuse=None):
-        self._values, self._refuse = values, refuse
+    def __init__(self, kind: str, values: dict, refuse=None):
+        self.kind, self._values, self._refuse = kind, values, refuse
 
     def __getitem__(self, key: str):
         if self._refuse is not None:
             self._refuse(key)
         return self._values[key]
+
+
+class _KeysOnly(jinja2.Environment):
+    """Templates in which ``a.b`` and ``a[b]`` both look up the key ``b`` of the names ``a``, and nothing else:
+    no attribute or method of an object can stand in for a name (Jinja2's own lookup tries attributes too), and
+    a name that is not there is undefined, an error that says which kind lacks it."""
+
+    def getitem(self, obj, argument):
+        if not isinstance(obj, _Names):
+            return self.undefined(obj=obj, name=argument, hint=f"{argument!r}: a placeholder names a claim, a fact, "
+                                  "a table or a column, not a part of a value")
+        try:
+            return obj[argument]
+        except KeyError:
+            return self.undefined(obj=obj, name=argument, hint=f"no {obj.kind} is named {argument!r}")
+
+    def getattr(self, obj, attribute):
+        return self.getitem(obj, attribute)
 
 
 def render(
@@ -161,15 +179,15 @@ def render(
     names = {
         "claims_table": claims_table(rows),
         "headline": headline(rows),
-        "claims_count": _Names({"total": str(len(rows)),
-                                **{s: str(sum(r["status"] == s for r in rows)) for s in STATUSES}}),
-        "verdict": _Names({r["claim_id"]: r["status"].replace("_", " ") for r in rows}),
-        "claim": _Names({r["claim_id"]: _Names({c: _cell(r[c]) for c in COLUMNS if c in r}) for r in rows}),
-        "fact": _Names({name: fact.value for name, fact in facts.items()}, refuse_measured),
-        "table": _Names(dict(tables or {})),
+        "claims_count": _Names("count", {"total": str(len(rows)),
+                                         **{s: str(sum(r["status"] == s for r in rows)) for s in STATUSES}}),
+        "verdict": _Names("claim", {r["claim_id"]: r["status"].replace("_", " ") for r in rows}),
+        "claim": _Names("claim", {r["claim_id"]: _Names(f"column of claim {r['claim_id']}",
+                                                        {c: _cell(r[c]) for c in COLUMNS if c in r}) for r in rows}),
+        "fact": _Names("fact", {name: fact.value for name, fact in facts.items()}, refuse_measured),
+        "table": _Names("table", dict(tables or {})),
     }
-    environment = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
-                                      autoescape=False)
+    environment = _KeysOnly(undefined=jinja2.StrictUndefined, keep_trailing_newline=True, autoescape=False)
     try:
         text = environment.from_string(template).render(names)
     except jinja2.UndefinedError as error:
