@@ -239,7 +239,7 @@ def _work_precision():
     settings = {method: [] for method in METHODS}
     settings.update({"RK45": [1e-3, 1e-9], "DOP853": [1e-3, 1e-9], "LSODA": [1e-6], "Radau": [1e-3],
                      "CVODE-Adams": [1e-6], "CVODE-BDF": [1e-6], "naive-RK4": [0.1, 0.01]})
-    return work_precision(work_precision_rows(paper_parameters(F=1.0), 1.0, 5, settings, 0.001, 1))
+    return work_precision(work_precision_rows(paper_parameters(F=1.0), 1.0, 5, settings, 0.001, 1), "a")
 
 
 def _long_run():

@@ -118,7 +118,7 @@ def test_the_stability_map_marks_no_cycle_apart_from_the_colour_scale():
 def test_the_work_precision_legend_spells_out_the_closed_form_map(case_a):
     rows = [{"method": m, "wall_s": w, "error_velocity": 1e-10, "error_time": 1e-12}
             for m, w in (("exact", 1e-3), ("map16", 1e-5), ("DOP853", 1e-2))]
-    entries = [t.get_text() for t in work_precision(rows).legends[0].get_texts()]
+    entries = [t.get_text() for t in work_precision(rows, "a").legends[0].get_texts()]
     assert "map (16) + corrected period (23)" in entries and "map16" not in entries
 
 

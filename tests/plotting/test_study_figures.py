@@ -23,7 +23,7 @@ def _long_run_dataset(drift_ivp: list[float], error_velocity_ivp: list[float]) -
          "drift_ivp": ("cycle", drift_ivp),
          "error_velocity_exact": ("cycle", [1e-17, 4e-16, 0.0, 2e-16, 1e-16, 1e-16, 1e-16, 1e-16, 1e-16]),
          "error_velocity_ivp": ("cycle", error_velocity_ivp),
-         "fixed_point_period": PERIOD},
+         "fixed_point_period": PERIOD, "F": 1.0, "x0": -1.0},
         coords={"cycle": CYCLES}, attrs={"ivp_label": "solve_ivp DOP853 rtol=1e-12"})
 
 
@@ -33,7 +33,7 @@ VELOCITY = [1e-13, 2e-12, 3e-12, 4.02e-12, 3.6e-12, 3.1e-12, 3.3e-12, 1.7e-12, 3
 #: times a power of ten
 DRIFT_STEPS = [2e-11, 2e-11, 2e-10, 2e-10, 5e-10, 5e-10]  # 1.1e-11; 2e-10 (printed so: a level); 3e-10
 VELOCITY_STEPS = [5e-12, 5e-12, 5e-12, 5e-12, 5e-12, 5e-12]  # 4.02e-12, 3.6e-12, 3.88e-12
-IVP = "solve_ivp DOP853 rtol=1e-12, largest error per decade of cycles"
+IVP = "solve_ivp DOP853 rtol=1e-12, largest sampled error per decade of cycles"
 
 
 def _lines(fig, label, axis="y"):
@@ -50,6 +50,18 @@ def test_the_integrator_is_drawn_as_its_largest_error_per_decade_rounded_up_to_1
         np.testing.assert_array_equal(drift, DRIFT_STEPS)
         np.testing.assert_array_equal(velocity, VELOCITY_STEPS)
         assert "rounded up to 1, 2 or 5 times a power of ten" in fig._suptitle.get_text()
+    finally:
+        plt.close(fig)
+
+
+def test_a_decade_the_integrator_did_not_run_has_no_step():
+    """solve_ivp runs fewer cycles than the exact solver: its values past them are NaN, and their decade no step."""
+    fig = long_run(_long_run_dataset([*DRIFT[:-2], np.nan, np.nan], [*VELOCITY[:-2], np.nan, np.nan]))
+    try:
+        for x in _lines(fig, IVP, "x"):
+            np.testing.assert_array_equal(x, [1, 10, 10, 100])
+        for y, steps in zip(_lines(fig, IVP), (DRIFT_STEPS, VELOCITY_STEPS)):
+            np.testing.assert_array_equal(y, steps[:4])
     finally:
         plt.close(fig)
 
@@ -91,7 +103,7 @@ def _row(method, setting, wall, repeats=1):
 @pytest.mark.parametrize("repeats, ringed", [(1, True), (5, False)])
 def test_the_first_cvode_run_timed_once_is_ringed_and_explained(repeats, ringed):
     rows = [_row("CVODE-Adams", 1e-3, 3.5, repeats), _row("CVODE-Adams", 1e-6, 1.1), _row("DOP853", 1e-3, 0.9)]
-    fig = work_precision(rows)
+    fig = work_precision(rows, "a")
     try:
         assert bool(_lines(fig, COLD_START)) is ringed
         assert "loading SUNDIALS" in fig._suptitle.get_text()

@@ -47,6 +47,8 @@ rule plot_work_precision:
     localrule: True
     conda:
         "../../environment/environment.yml"
+    params:
+        case=config["benchmark"]["case"],
     script:
         "../scripts/plot_work_precision.py"
 

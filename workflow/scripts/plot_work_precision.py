@@ -2,4 +2,6 @@
 
 from escapement.pipeline.plot import plot_work_precision
 
-plot_work_precision(snakemake.input.csv, snakemake.output.png, snakemake.output.pdf, snakemake.log[0])  # noqa: F821
+plot_work_precision(
+    snakemake.input.csv, snakemake.output.png, snakemake.output.pdf, snakemake.log[0], snakemake.params.case  # noqa: F821
+)

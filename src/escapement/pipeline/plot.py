@@ -60,14 +60,15 @@ def plot_fig5(labels: Sequence[str], paths: Sequence[str], scores: str, png: str
         save_figure(fig5(panels, _claimed({}, None, panels), caption), png, pdf)
 
 
-def plot_work_precision(table: str, png: str, pdf: str, log: str) -> None:
+def plot_work_precision(table: str, png: str, pdf: str, log: str, case: str) -> None:
+    """The work-precision figure of ``table``, measured on the Fig. 3 case ``case``."""
     with logged(log, "plot_work_precision"):
-        save_figure(work_precision(read_work_precision(table)), png, pdf)
+        save_figure(work_precision(read_work_precision(table), case), png, pdf)
 
 
 def plot_long_run(path: str, png: str, pdf: str, log: str) -> None:
     with logged(log, "plot_long_run"):
-        save_figure(long_run(read_netcdf(path, ("cycle", "drift_exact", "drift_ivp"))), png, pdf)
+        save_figure(long_run(read_netcdf(path, ("cycle", "drift_exact", "drift_ivp", "F", "x0"))), png, pdf)
 
 
 def plot_stability_map(path: str, png: str, pdf: str, log: str) -> None:

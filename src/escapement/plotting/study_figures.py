@@ -47,8 +47,9 @@ METHOD_LABELS = {"exact": "exact solver", "closed-form cycles": "per-cycle close
                  "naive-RK4": "naive RK4, fixed step"}
 
 
-def work_precision(rows: list[dict]):
-    """Relative error against wall time, one curve per method, for the velocity and the impact time."""
+def work_precision(rows: list[dict], case: str):
+    """Relative error against wall time, one curve per method, for the velocity and the impact time, on the
+    Fig. 3 case ``case`` (the benchmark's)."""
     methods = list(dict.fromkeys(r["method"] for r in rows))
     # the rows are in the order they were timed: the first CVODE run of the process loads SUNDIALS
     first_cvode = next((r for r in rows if r["method"].startswith("CVODE")), None)
@@ -70,7 +71,7 @@ def work_precision(rows: list[dict]):
             ax.set_ylabel("Relative error")
             ax.set_title(title)
             ax.axhline(ERROR_FLOOR, color=GUIDE, lw=0.6, ls=":")
-        fig.suptitle("Work-precision, Fig. 3 case (a): errors against 50 digits (exact zero drawn at "
+        fig.suptitle(f"Work-precision, Fig. 3 case ({case}): errors against 50 digits (exact zero drawn at "
                      f"{ERROR_FLOOR:.0e})\n"
                      "map (16) + corrected period (23): the closed-form Poincar\u00e9 map, no integration\n"
                      "each line joins a method's settings from the loosest rtol (or step) to the tightest; where a "
@@ -92,8 +93,9 @@ def _round_up(value: float) -> float:
 
 def _decade_maxima(cycle: np.ndarray, values: np.ndarray, floor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """A staircase over the decades of cycles [1, 10], (10, 100], ... that hold a finite value: on each,
-    the largest of ``max(|values|, floor)``, rounded up to 1, 2 or 5 times a power of ten (:func:`_round_up`); each
-    step runs from the decade's first to its last cycle, clipped to the cycles given."""
+    the largest of ``max(|values|, floor)`` at the cycles given, rounded up to 1, 2 or 5 times a power of ten
+    (:func:`_round_up`); the step of decade k runs from cycle 10**(k - 1) to 10**k, clipped to the cycles given,
+    so that the steps join; a decade without a finite value has no step, and the line runs across it."""
     level = np.maximum(np.abs(values), floor)
     kept = np.isfinite(level)
     cycle, level = np.asarray(cycle)[kept].astype(np.int64), level[kept]
@@ -111,7 +113,7 @@ def long_run(ds: xr.Dataset):
     """Phase error (impact time minus the 50-digit reference) and velocity error against the number of cycles:
     the exact solver's at every sampled cycle, the integrator's as its largest per decade (:func:`_decade_maxima`)."""
     cycle = ds["cycle"].values
-    ivp_label = f"{ds.attrs['ivp_label']}, largest error per decade of cycles"
+    ivp_label = f"{ds.attrs['ivp_label']}, largest sampled error per decade of cycles"
     # below a few ulps an error is rounding noise, whose last bits vary with the CPU's kernels: drawn at the
     # band's edge, so that no such bit changes the figure
     t = float(ds["fixed_point_period"]) * cycle.astype(float)
@@ -131,14 +133,13 @@ def long_run(ds: xr.Dataset):
         ax_v.set_title("velocity before impact")
         for ax in (ax_t, ax_v):
             ax.set_xlabel("Number of cycles")
-        case = (f"{quantity_value('F', float(ds['F']))}, {release(ds)}" if {"F", "x0"} <= set(ds.variables)
-                else "Fig. 3 case (a)")
+        case = f"{quantity_value('F', float(ds['F']))}, {release(ds)}"
         fig.suptitle(f"Long run, {case}: errors against the 50-digit reference\n"
                      f"grey band: rounding level, {ROUNDING_ULPS} ulps of the impact time t (left) and "
                      f"{ROUNDING_ULPS} \u03b5 = {ROUNDING_ULPS * EPS:.1e} (right); an error below it is drawn on its "
                      "edge\n"
-                     "the integrator's staircase: its largest error over the cycles 1-10, 11-100, ..., rounded up to "
-                     "1, 2 or 5 times a power of ten",
+                     "the integrator's staircase: its largest error at the sampled cycles of 1-10, 11-100, ..., "
+                     "rounded up to 1, 2 or 5 times a power of ten",
                      fontsize=8.5)
         legend_below(fig, (ax_t, ax_v), ncols=3)
         finish(fig, [])
