@@ -3,8 +3,10 @@
 The scenes are defined in ``config/config.yaml`` only (Fig. 3's cases, Fig. 4, Fig. 5's panels). Wherever the
 project's text names one of them (the code and its docstrings, the command line's help, the configuration's
 comments, the rules, the templates and the documents rendered from them), a force, spring constant or release
-stated with the name must be that scene's; the blocks that run a scene under its name (the benchmark, the long
-run, the command line's defaults) must run exactly it.
+stated with the name, in the forms the project writes them (``F = 1 N``, ``K = 0.1 N/m``, ``x0 = -1 m``,
+``x(0) = 3 m``, ``released (from rest) at -1 m``, ``from +1 m``), up to the end of its clause, must be that
+scene's; the blocks that run a scene under its name (the benchmark, the long run, the command line's defaults)
+must run exactly it. The reader is a pattern, not a parser: its own tests show the forms it reads.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import re
 import subprocess
 from pathlib import Path
 
+import pytest
 import yaml
 
 from escapement.cli import DEFAULTS, main
@@ -26,17 +29,18 @@ NUMBER = r"([+\-−]?\d+(?:\.\d+)?)"
 STATED = {
     "F": re.compile(rf"\bF\s*=\s*{NUMBER}\s*N\b(?!\s*/)"),
     "K": re.compile(rf"\bK\s*=\s*{NUMBER}\s*N/m"),
-    "x0": re.compile(rf"\bx0\s*=\s*{NUMBER}\s*m\b|released(?: from rest)? at {NUMBER}\s*m\b"),
+    "x0": re.compile(rf"\bx(?:0|\(0\))\s*=\s*{NUMBER}\s*m\b"
+                     rf"|\breleas\w*(?: (?:from )?(?:at )?rest)?(?: at| from)? {NUMBER}\s*m\b|\bfrom {NUMBER}\s*m\b"),
 }
 #: where a statement about a scene ends: a sentence, a clause, a line, or the name of another scene
-END = re.compile(r"(?<!Fig)(?<!Eq)(?<!Sec)\.\s|;|\n|\|")
+END = re.compile(r"(?<!Fig)(?<!Eq)(?<!Sec)(?<!e\.g)(?<!i\.e)\.\s|;|\n|\|")
 
 
 def scenes() -> dict[str, tuple[re.Pattern, dict[str, float]]]:
     """Each scene's name as the project writes it, and its force, spring constant and release."""
     model, found = CONFIG["model"], {}
     for case, keys in CONFIG["fig3"]["cases"].items():
-        name = rf"Fig\. 3,? (?:case )?\({case}\)"
+        name = rf"Fig\. ?3,? ?(?:case )?\({case}\)"
         found[f"Fig. 3 ({case})"] = (re.compile(name), {"F": keys["F"], "K": keys.get("K", model["K"]),
                                                          "x0": keys["x0"]})
     fig4 = CONFIG["fig4"]
@@ -46,7 +50,7 @@ def scenes() -> dict[str, tuple[re.Pattern, dict[str, float]]]:
     for i, k in enumerate(fig5["K"]):
         letter = "abc"[i]
         per_panel = {key: fig5[key][i] if isinstance(fig5[key], list) else fig5[key] for key in ("F", "x0")}
-        found[f"Fig. 5 ({letter})"] = (re.compile(rf"Fig\. 5,? (?:panel )?\({letter}\)"), {"K": k, **per_panel})
+        found[f"Fig. 5 ({letter})"] = (re.compile(rf"Fig\. ?5,? ?(?:panel )?\({letter}\)"), {"K": k, **per_panel})
     return found
 
 
@@ -77,6 +81,18 @@ def test_the_reader_finds_what_a_text_states_with_a_scene_name():
         ("Fig. 3 (a)", "F", 1.0, 0), ("Fig. 3 (a)", "x0", 1.0, 0), ("Fig. 3 (b)", "F", 0.5, 53),
         ("Fig. 4", "K", 0.1, 123), ("Fig. 4", "x0", -3.0, 123), ("Fig. 5 (c)", "K", 10.0, 92),
     ]
+
+
+@pytest.mark.parametrize("text", [
+    "#: the paper's Fig. 3 case (a): the workload of the scalar floors, released at rest at 1 m",
+    "# Fig. 3 (a) F = 1 N, x(0) = 1 m",
+    "the Fig. 3(a) run, release at +1 m",
+    "Fig. 3 (a) from +1 m",
+    "Fig. 3, case (a), e.g. x0 = 1 m",
+])
+def test_the_reader_finds_a_release_however_it_is_written(text):
+    """Sentences in the forms the project used to call the release at +1 m Fig. 3 (a)."""
+    assert [(name, key, value) for name, key, value, _ in statements(text)][-1] == ("Fig. 3 (a)", "x0", 1.0)
 
 
 def tracked_texts() -> list[Path]:

@@ -251,7 +251,7 @@ PANELS: tuple[Panel, ...] = (
           Axis(CYCLES, _CYCLES_60, (379, 381, 383, 385, 387, 389, 401)),
           Axis("Amplitude of oscillation (m)",
                _ticks("1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3", "1.35", "1.4"), (343,))),
-    # Fig. 3 (b) F = 0.5 N, x(0) = 3 m
+    # Fig. 3 (b), captioned "F=0.5, x(0)=3" in the paper
     Panel("3", "b/velocity", "velocity before the impact at a1 against the cycle, case (b)",
           Axis(CYCLES, _CYCLES_50, (293, 295, 311, 313, 315, 317)),
           Axis("Velocity before impact (m/s)", _HALVES_3, (263, 281, 283, 285, 287, 289))),
