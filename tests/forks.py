@@ -20,6 +20,7 @@ import importlib
 import json
 import os
 import runpy
+import select
 import signal
 import subprocess
 import sys
@@ -28,14 +29,19 @@ from pathlib import Path
 
 __all__ = ["Forks"]
 
+#: how long a command may outlive its alarm (one it ignores) before its interpreter is killed (s)
+GRACE_SECONDS = 60
+
 
 class Forks:
     """An interpreter that imports ``modules`` once and runs commands in forks of itself (see the module)."""
 
     def __init__(self, modules: tuple[str, ...], env: dict[str, str] | None = None):
         read, self._answers_fd = os.pipe()
+        # a session of its own: a command that outlives its deadline is killed with every process it started
         self.process = subprocess.Popen([sys.executable, __file__, str(self._answers_fd), *modules],
-                                        stdin=subprocess.PIPE, env=env, text=True, pass_fds=(self._answers_fd,))
+                                        stdin=subprocess.PIPE, env=env, text=True, pass_fds=(self._answers_fd,),
+                                        start_new_session=True)
         os.close(self._answers_fd)
         self._answers = os.fdopen(read)
         atexit.register(self.close)
@@ -51,14 +57,21 @@ class Forks:
             timeout: int = 600) -> subprocess.CompletedProcess:
         """What ``python -m module *args`` (or ``python -c code *args``) in ``cwd`` gives: its exit status and
         output, as :func:`subprocess.run` with ``capture_output=True, text=True`` would; killed after
-        ``timeout`` seconds."""
+        ``timeout`` seconds (by an alarm in the fork; should the command outlive that by :data:`GRACE_SECONDS`, by
+        killing the interpreter and everything it started, and raising :class:`TimeoutError`)."""
         if (module is None) == (code is None):
             raise ValueError(f"module = {module!r}, code = {code!r}: exactly one of them must be given")
+        if isinstance(timeout, bool) or not isinstance(timeout, int) or timeout < 1:
+            raise ValueError(f"timeout = {timeout!r} is invalid: timeout must be an integer >= 1 (s)")
         if self.process.poll() is not None:
             raise RuntimeError(f"the interpreter of the forks has ended with status {self.process.returncode}")
         command = {"cwd": str(cwd), "module": module, "code": code, "args": list(args), "timeout": timeout}
         self.process.stdin.write(json.dumps(command) + "\n")
         self.process.stdin.flush()
+        if not select.select([self._answers], [], [], timeout + GRACE_SECONDS)[0]:
+            os.killpg(self.process.pid, signal.SIGKILL)
+            self.process.wait()
+            raise TimeoutError(f"{command} outlived its alarm of {timeout} s by {GRACE_SECONDS} s: killed")
         answer = json.loads(self._answers.readline() or "null")
         if answer is None:
             raise RuntimeError(f"the interpreter of the forks ended while running {command}")
@@ -91,6 +104,10 @@ def _command(command: dict, stdout: int, stderr: int) -> None:
 def _serve(answers_fd: int, modules: list[str]) -> None:
     for name in modules:
         importlib.import_module(name)
+    # a module of the project loaded here would be missing from the files a command is seen to load
+    project = sorted(name for name in sys.modules if name.partition(".")[0] in ("escapement", "benchmarks"))
+    if project:
+        raise SystemExit(f"importing {modules} loaded modules of the project, {project}: they must load in a fork")
     gc.freeze()  # the imported objects: never collected, never copied into a fork by the collector
     answers = os.fdopen(answers_fd, "w")
     for line in sys.stdin:

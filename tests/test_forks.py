@@ -6,6 +6,7 @@ from __future__ import annotations
 import subprocess
 import sys
 
+import forks as forks_module
 import pytest
 from forks import Forks
 
@@ -60,6 +61,31 @@ def test_each_command_starts_from_the_imports_of_the_interpreter_alone(forks, tm
     code = "import os, sys\nprint(sorted(n for n in sys.modules if n.startswith('escapement')), 'LEFT' in os.environ,"
     code += " 'json' in sys.modules)"
     assert forks.run(tmp_path, code=code).stdout == "[] False True\n"
+
+
+@pytest.mark.parametrize("timeout", [0, -1, 1.5, True, "10"])
+def test_a_timeout_is_a_whole_number_of_seconds(forks, tmp_path, timeout):
+    with pytest.raises(ValueError, match=rf"^timeout = {timeout!r} is invalid: timeout must be an integer >= 1"):
+        forks.run(tmp_path, code="pass", timeout=timeout)
+
+
+def test_a_command_that_ignores_its_alarm_is_killed_with_its_interpreter(tmp_path, monkeypatch):
+    monkeypatch.setattr(forks_module, "GRACE_SECONDS", 1)
+    interpreter = Forks(("json",))
+    code = "import signal, time\nsignal.signal(signal.SIGALRM, signal.SIG_IGN)\ntime.sleep(30)"
+    with pytest.raises(TimeoutError, match="outlived its alarm of 1 s by 1 s: killed"):
+        interpreter.run(tmp_path, code=code, timeout=1)
+    assert interpreter.process.poll() is not None
+    interpreter.close()
+
+
+def test_an_interpreter_whose_imports_load_the_project_refuses_every_command(tmp_path):
+    """The files a command is seen to load would miss a module of the project loaded before the fork."""
+    interpreter = Forks(("escapement.model",))
+    with pytest.raises(RuntimeError, match="ended"):
+        interpreter.run(tmp_path, code="pass")
+    assert interpreter.process.wait(timeout=60) == 1
+    interpreter.close()
 
 
 def test_a_command_is_exactly_one_of_a_module_or_code(forks, tmp_path):

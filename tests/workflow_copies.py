@@ -1,4 +1,4 @@
-"""Helpers of the end-to-end tests: copies of the repository, Snakemake runs, dry-run plans.
+"""What the end-to-end tests share: copies of the repository, Snakemake runs, dry-run plans.
 
 Snakemake and the scripts whose imports are listed run in forks of an interpreter that has imported Snakemake,
 or NumPy, xarray and Matplotlib, once (:mod:`forks`): as in a new process, without the time of those imports.

@@ -16,7 +16,7 @@ def lazy_exports(package: str, exports: Mapping[str, str], namespace: dict[str, 
     """``__getattr__`` and ``__dir__`` for ``package``, whose public names ``exports`` maps to the
     submodule (relative to ``package``) that defines each; a name is imported on first use and kept
     in ``namespace`` (the package's globals). ``dir(package)`` lists the exported names and the
-    module's dunder attributes, not its helpers or its submodules."""
+    module's dunder attributes, not its private names or its submodules."""
 
     def __getattr__(name: str) -> Any:
         if name not in exports:

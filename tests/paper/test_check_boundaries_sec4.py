@@ -2,7 +2,7 @@
 theorem and the daily rate, each judged just inside and just outside the tolerance the register gives
 its claim (on both sides where the comparison is two-sided), and the fixed thresholds in code (strict
 orders, the jump bound of the sampled velocity, the residual of the period shares) at their boundary.
-The synthetic evidence is built with the helpers of test_check_boundaries.py.
+The synthetic evidence is built with the functions of test_check_boundaries.py.
 """
 
 from __future__ import annotations
@@ -338,6 +338,9 @@ def test_the_shock_readout_follows_the_velocity_jump_within_its_relative_1e_12()
     row = next(c for c in cl.load_claims(REGISTER) if c["id"] == "fig4_impulse_and_energy")
     assert row["tolerance"] is None  # the threshold is the check's: relative 1e-12
     assert judged(row, shock(1e-13)) == "reproduced"
+    # at its boundary: 0.9e-12 and 1.1e-12 of 0.08 N s differ by 1.6e-14 N s, a thousand times its spacing
+    assert judged(row, shock(0.9e-12)) == "reproduced"
+    assert judged(row, shock(1.1e-12)) == "not_reproduced"
     assert judged(row, shock(1e-3)) == "not_reproduced"
 
 

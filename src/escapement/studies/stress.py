@@ -243,7 +243,7 @@ def memory_budget() -> StressResult:
     streamed = np.concatenate([c.impact_time for c in stream])
     stored = solve_exact(_paper(), 1.0, n_cycles=20_000, record_trajectory=False).cycles.impact_time
     same = np.array_equal(streamed, stored)
-    return StressResult("refused", "n_cycles = 1e9 refused before any work, naming the size; streamed in chunks, a "
+    return StressResult("refused", "n_cycles = 1e9 refused, naming the size; streamed in chunks, a "
                         "run equals the stored one bit for bit", refused and same, message)
 
 
