@@ -117,9 +117,11 @@ def eq23(claim, ev: Evidence) -> Verdict:
 
 @check("eq24", scenes=fig3_case, args=("case",))
 def eq24(claim, ev: Evidence) -> Verdict:
-    """Eq. (24) at the last cycle: the first form against the jump of the sine phase of the simulated
-    states at the impact, the second form under each reading (positions; the velocity after the impact,
-    as printed, or before it) against the first."""
+    """Eq. (24) at the last cycle: each form, under each reading (positions; for the second, the velocity after
+    the impact, as printed, or before it), against the jump of the sine phase across the impact, evaluated at
+    the simulated state before and after it (:func:`escapement.paper.corrected.impact_phase_jump`, a closed
+    form of the definition, not a timing of the run; the escapement-error study checks the corrected Eqs.
+    (24)-(25) against the exact solver's periods)."""
     ds = ev.fig3[claim["args"]["case"]]
     p = params_of(ds)
     v1 = float(ds["velocity_before_impact"].values[-1])
