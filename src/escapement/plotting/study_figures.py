@@ -41,7 +41,6 @@ MARKERS = {"exact": "*", "closed-form cycles": "X", "map16": "P", "naive-RK4": "
            "LSODA": "^", "Radau": "v", "CVODE-Adams": "D", "CVODE-BDF": "d"}
 #: the benchmark's methods in words, where their names are not words
 #: the legend's entry for the ringed point: the first CVODE run, timed once, with SUNDIALS' loading
-COLD_START = "first CVODE run: loads SUNDIALS"
 METHOD_LABELS = {"exact": "exact solver", "closed-form cycles": "per-cycle closed forms",
                  "map16": "map (16) + corrected period (23)",
                  "naive-RK4": "naive RK4, fixed step"}
@@ -51,8 +50,6 @@ def work_precision(rows: list[dict], case: str):
     """Relative error against wall time, one curve per method, for the velocity and the impact time, on the
     Fig. 3 case ``case`` (the benchmark's)."""
     methods = list(dict.fromkeys(r["method"] for r in rows))
-    # the rows are in the order they were timed: the first CVODE run of the process loads SUNDIALS
-    first_cvode = next((r for r in rows if r["method"].startswith("CVODE")), None)
     with style():
         fig, axes = plt.subplots(1, 2, figsize=(8.4, 4.1), sharex=True, layout="constrained")
         colours = plt.get_cmap("tab10")
@@ -63,9 +60,6 @@ def work_precision(rows: list[dict], case: str):
                 err = [max(float(r[key]), ERROR_FLOOR) for r in mine]
                 ax.loglog(wall, err, marker=MARKERS.get(method, "o"), color=colours(i % 10), lw=1.0, ms=5,
                           label=METHOD_LABELS.get(method, method))
-                if mine[0] is first_cvode and int(first_cvode["repeats"]) == 1:
-                    ax.loglog(wall[:1], err[:1], marker="o", ms=13, lw=0, markerfacecolor="none", color=GUIDE,
-                              markeredgewidth=1.0, label=COLD_START)
         for ax, title in zip(axes, ("velocity before impact, cycle 50", "impact time, cycle 50")):
             ax.set_xlabel("Wall time per run (s), median of repeats")
             ax.set_ylabel("Relative error")
@@ -74,9 +68,9 @@ def work_precision(rows: list[dict], case: str):
         fig.suptitle(f"Work-precision, Fig. 3 case ({case}): errors against 50 digits (exact zero drawn at "
                      f"{ERROR_FLOOR:.0e})\n"
                      "map (16) + corrected period (23): the closed-form Poincar\u00e9 map, no integration\n"
-                     "each line joins a method's settings from the loosest rtol (or step) to the tightest; where a "
-                     "CVODE line turns back in time\nat its loosest point (ringed), that run is the first SUNDIALS "
-                     "run, timed once, and its time includes loading SUNDIALS,\nnot a tighter rtol costing less",
+                     "each line joins a method's settings from the loosest rtol (or step) to the tightest; each "
+                     "method ran one untimed cycle first,\nso that no time includes loading its modules (SciPy's, "
+                     "SUNDIALS)",
                      fontsize=8.5)
         legend_below(fig, axes, ncols=5, fontsize=7)
         finish(fig, [])
@@ -113,7 +107,7 @@ def long_run(ds: xr.Dataset):
     """Phase error (impact time minus the 50-digit reference) and velocity error against the number of cycles:
     the exact solver's at every sampled cycle, the integrator's as its largest per decade (:func:`_decade_maxima`)."""
     cycle = ds["cycle"].values
-    ivp_label = f"{ds.attrs['ivp_label']}, largest sampled error per decade of cycles"
+    ivp_label = f"{ds.attrs['ivp_label']}, largest sampled error per decade"
     # below a few ulps an error is rounding noise, whose last bits vary with the CPU's kernels: drawn at the
     # band's edge, so that no such bit changes the figure
     t = float(ds["fixed_point_period"]) * cycle.astype(float)
