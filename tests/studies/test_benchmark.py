@@ -62,6 +62,12 @@ def test_the_first_impact_from_the_left_is_the_free_swing_to_a1():
     assert v == pytest.approx(math.sqrt(0.99), rel=1e-15) and t == pytest.approx(math.acos(0.1), rel=1e-15)
 
 
+@pytest.mark.parametrize("n_cycles", [0, -1, 1.5, True])
+def test_closed_form_map_needs_a_positive_number_of_cycles(n_cycles):
+    with pytest.raises(ParameterError, match=rf"^n_cycles = {n_cycles!r} is invalid: n_cycles must be a positive"):
+        closed_form_map(P, -1.0, n_cycles)
+
+
 @pytest.mark.parametrize("x0", [0.05, -0.05, 0.1, -0.1])
 def test_closed_form_map_needs_a_release_beyond_an_impact_position(x0):
     with pytest.raises(ParameterError, match=rf"^x0 = {x0!r} is invalid: x0 must be a release left of a1 = -0\.1 < 0 "

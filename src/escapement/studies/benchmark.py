@@ -27,6 +27,8 @@ import statistics
 import time
 from collections.abc import Callable
 
+from ..model.arguments import check_count
+from ..model.limits import MAX_CYCLES
 from ..model.parameters import ParameterError, Parameters
 from ..paper import corrected as derived
 from ..solvers.cycles import CLOSED_FORM, solve_cycles
@@ -56,6 +58,7 @@ def closed_form_map(params: Parameters, x0: float, n_cycles: int) -> tuple[float
     """
     p = params
     w = p.omega
+    n_cycles = check_count("n_cycles", n_cycles, MAX_CYCLES)
     if x0 < p.a1 < 0:
         v, t = w * math.sqrt((x0 - p.a1) * (x0 + p.a1)), math.acos(p.a1 / x0) / w
     elif x0 > p.a3 > 0:
