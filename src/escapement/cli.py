@@ -33,7 +33,7 @@ from . import __version__
 from .model.limits import RunLimits
 from .model.parameters import ParameterError, Parameters
 from .model.quantities import INITIAL_STATE, PARAMETERS, REQUIRED_KEYS
-from .solvers.describe import exact
+from .model.printing import exact
 from .solvers.exact import solve_exact
 from .solvers.result import Solution
 from .studies.readings import AMPLITUDES

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from escapement import Parameters, solve_ensemble, solve_exact, solve_reference
 from escapement.model.limits import MemoryBudgetError
 from escapement.solvers.cycles import solve_cycles
-from escapement.solvers.describe import compared, exact, texts
+from escapement.model.printing import compared, exact, texts
 from escapement.solvers.outcomes import stopped_message, turned_back_message
 from escapement.solvers.result import ArcTable
 

@@ -16,7 +16,7 @@ from ..model.events import EventKind
 from ..model.limits import RunLimits
 from ..model.arguments import Numeric, real_number
 from ..model.parameters import Parameters, check_initial_state, check_parameters
-from ..solvers.describe import exact
+from ..model.printing import exact
 from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
 

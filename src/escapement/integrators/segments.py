@@ -13,7 +13,7 @@ from typing import TypeAlias
 import numpy as np
 
 from ..model.arguments import sample_times
-from ..solvers.describe import number, texts
+from ..model.printing import number, texts
 
 __all__ = ["MAX_STEP_HALF_PERIODS", "ROOT_TOLERANCE", "CvodeIntegrator", "DenseSegments", "Hit", "SciPyIntegrator",
            "Segment", "Watch"]

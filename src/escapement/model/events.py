@@ -7,22 +7,14 @@ from enum import IntEnum
 
 import numpy as np
 
+from .printing import texts
+
 __all__ = ["EventKind", "EventLog"]
 
 
 def _kind_name(code: int) -> str:
     """The name of an event code, or the code itself if it is none of :class:`EventKind`'s."""
     return EventKind(code).name if code in EventKind._value2member_map_ else str(code)
-
-
-def _distinct(first: float, last: float) -> tuple[str, str]:
-    """Two times to 6 significant digits, or to as many more as tell them apart; zero without a sign."""
-    first, last = first + 0.0, last + 0.0
-    for digits in range(6, 17):
-        texts = f"{first:.{digits}g}", f"{last:.{digits}g}"
-        if (texts[0] == texts[1]) == (first == last):
-            return texts
-    return repr(first), repr(last)
 
 
 class EventKind(IntEnum):
@@ -118,7 +110,7 @@ class EventLog:
             return head
         codes, counts = np.unique(np.asarray(self.kind, dtype=int), return_counts=True)
         kinds = ", ".join(f"{_kind_name(code)} {count}" for code, count in zip(codes, counts))
-        first, last = _distinct(float(self.t[0]), float(self.t[-1]))
+        first, last = texts([self.t[0], self.t[-1]])
         at = f"at t = {first} s" if n == 1 else f"from t = {first} s to {last} s"
         return f"{head} {at}: {kinds}"
 

@@ -20,7 +20,7 @@ from ..model.limits import RunLimits
 from ..model.parameters import Parameters, check_initial_state, check_parameters
 from ..model.status import Status
 from .closed_form import GRAZING_SPEED_SQ, Cycles, distinct_cycles, first_impact, prepared, table_rows
-from .describe import compared
+from ..model.printing import compared
 from .exact import solve_exact
 from .kernel import PLAN
 from .outcomes import check_memory

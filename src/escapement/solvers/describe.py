@@ -6,26 +6,24 @@ name (:data:`CYCLE_COLUMNS`, :data:`EVENT_COLUMNS`), the same in a run's data fr
 summaries are what the results' ``repr`` shows: the outcome, counts, time span and the parameters
 with their units, a few lines whatever the length of the run.
 
-Every number printed is true as printed: an input (a parameter, the initial state, an end time)
-as it can be typed back (:func:`exact`), so that it is told apart from any bound it is compared
-with; a computed value to a few significant digits, with more where two values that differ would
-otherwise print alike (:func:`texts`); zero without a sign.
+Every number printed is true as printed (:mod:`escapement.model.printing`): an input (a parameter, the
+initial state, an end time) as it can be typed back, so that it is told apart from any bound it is compared
+with; a computed value to a few significant digits, with more where two values that differ would otherwise
+print alike; zero without a sign.
 """
 
 from __future__ import annotations
 
 import math
 import textwrap
-from itertools import combinations
 
 from typing import TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import ArrayLike
 
-from ..model.arguments import Numeric
 from ..model.events import EventKind
 from ..model.parameters import Parameters
+from ..model.printing import exact, number, span, texts, with_unit
 from ..model.quantities import INITIAL_STATE, PARAMETERS, VARIABLES
 from ..model.status import Status
 
@@ -40,11 +38,8 @@ __all__ = [
     "arc_table_summary",
     "cycle_table_summary",
     "ensemble_summary",
-    "exact",
     "exit_summary",
-    "number",
     "solution_summary",
-    "texts",
 ]
 
 _CYCLE_NAMES = ("impact_time", "velocity_before_impact", "period", "amplitude")
@@ -65,75 +60,6 @@ EXIT_UNITS = {"turning_point": "m", "margin": "m", "t_accumulation": "s"}
 #: the width the summaries wrap the message to, and of their column of labels
 _WIDTH = 120
 _LABEL = 12
-
-
-#: the significant digits that tell every two doubles apart
-_ALL_DIGITS = 17
-
-
-def _unsigned_zero(value: Numeric) -> float:
-    """``value`` as a double (an mpmath number as its nearest), a negative zero made positive."""
-    return float(value) + 0.0  # -0.0 + 0.0 is +0.0; every other double is unchanged
-
-
-def _with_unit(text: str, unit: str) -> str:
-    return text if unit in ("", "1") else f"{text} {unit}"
-
-
-def exact(value: Numeric, unit: str = "") -> str:
-    """An input as it can be typed back: the shortest text that reads as the same double (Python's
-    ``repr``), without a trailing ``.0``, zero without a sign; with its unit."""
-    text = repr(_unsigned_zero(value))
-    return _with_unit(text[:-2] if text.endswith(".0") else text, unit)
-
-
-def _order(x: float, y: float) -> int:
-    """-1, 0 or 1 as ``x`` is below, equal to or above ``y``; 0 where either is NaN."""
-    return (x > y) - (x < y)
-
-
-def texts(values: ArrayLike, digits: int = 6) -> list[str]:
-    """``values`` to ``digits`` significant digits, or to more where fewer would misstate how two of
-    them compare (two that differ printed alike, or in the wrong order); as typed back
-    (:func:`exact`) when 16 digits are not enough; zero without a sign."""
-    floats = [_unsigned_zero(v) for v in values]
-    pairs = list(combinations(range(len(floats)), 2))
-    for width in range(digits, _ALL_DIGITS):
-        printed = [f"{x:.{width}g}" for x in floats]
-        read = [float(text) for text in printed]
-        if all(_order(read[i], read[j]) == _order(floats[i], floats[j]) for i, j in pairs):
-            return printed
-    return [exact(x) for x in floats]
-
-
-def compared(value: Numeric, bounds: ArrayLike, digits: int = 12) -> str:
-    """A computed ``value`` beside the inputs ``bounds`` it is compared with (printed by :func:`exact`):
-    to ``digits`` significant digits, or to more where fewer would misstate how it compares with one
-    of them (printed as equal to a bound it is not, or on the wrong side of it)."""
-    value = _unsigned_zero(value)
-    bounds = [_unsigned_zero(b) for b in bounds]
-    for width in range(digits, _ALL_DIGITS):
-        text = f"{value:.{width}g}"
-        if all(_order(float(text), b) == _order(value, b) for b in bounds):
-            return text
-    return exact(value)
-
-
-def number(value: Numeric, unit: str = "", digits: int = 6) -> str:
-    """A computed ``value`` to ``digits`` significant digits (an mpmath number as its nearest double),
-    zero without a sign, with its unit."""
-    return _with_unit(texts([value], digits)[0], unit)
-
-
-def span(values: ArrayLike, unit: str) -> str:
-    """The range of ``values`` (NaN ignored): ``lo .. hi unit``, one number if they agree; the two
-    with the digits that tell them apart."""
-    finite = np.asarray(values, dtype=float)
-    finite = finite[~np.isnan(finite)]
-    if not finite.size:
-        return "none"
-    lo, hi = texts([finite.min(), finite.max()])
-    return _with_unit(lo, unit) if lo == hi else f"{lo} .. {_with_unit(hi, unit)}"
 
 
 def _line(label: str, text: str, column: int = _LABEL, wrap: bool = False) -> str:
@@ -173,7 +99,7 @@ def exit_summary(exit: Exit, printed: dict[str, str] | None = None) -> str:
     """The numbers of a regime exit that apply, with their units (empty if none does); ``printed``
     gives the text of those already printed beside other numbers."""
     printed = printed or {}
-    return ", ".join(f"{name} = {_with_unit(printed.get(name) or number(getattr(exit, name)), unit)}"
+    return ", ".join(f"{name} = {with_unit(printed.get(name) or number(getattr(exit, name)), unit)}"
                      for name, unit in EXIT_UNITS.items() if not math.isnan(getattr(exit, name)))
 
 

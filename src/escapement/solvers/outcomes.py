@@ -25,7 +25,7 @@ from ..model.kinematics import rebound_accumulation_time
 from ..model.limits import EVENTS_PER_CYCLE, MemoryBudgetError, RunLimits, events_for
 from ..model.parameters import Parameters
 from ..model.status import Status
-from .describe import compared, exact, texts
+from ..model.printing import compared, exact, texts
 from .result import ArcTable, CycleTable, Exit, Solution, Trajectory
 
 __all__ = ["Outcome", "chattering_outcome", "check_memory", "event_limit_message", "finish", "horizon_outcome",

@@ -1,0 +1,87 @@
+"""Numbers as text that is true as printed: an input as it can be typed back (:func:`exact`), a computed
+value to a few significant digits, with more where two values that differ would otherwise print alike or
+in the wrong order (:func:`texts`), or beside the bounds it is compared with (:func:`compared`); zero
+without a sign. The model's own texts (the event log's) and the solvers' summaries and messages
+(:mod:`escapement.solvers.describe`) print their numbers with these.
+"""
+
+from __future__ import annotations
+
+from itertools import combinations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .arguments import Numeric
+
+__all__ = ["compared", "exact", "number", "span", "texts", "with_unit"]
+
+
+#: the significant digits that tell every two doubles apart
+_ALL_DIGITS = 17
+
+
+def _unsigned_zero(value: Numeric) -> float:
+    """``value`` as a double (an mpmath number as its nearest), a negative zero made positive."""
+    return float(value) + 0.0  # -0.0 + 0.0 is +0.0; every other double is unchanged
+
+
+def with_unit(text: str, unit: str) -> str:
+    """``text`` followed by ``unit``, none for a dimensionless one."""
+    return text if unit in ("", "1") else f"{text} {unit}"
+
+
+def exact(value: Numeric, unit: str = "") -> str:
+    """An input as it can be typed back: the shortest text that reads as the same double (Python's
+    ``repr``), without a trailing ``.0``, zero without a sign; with its unit."""
+    text = repr(_unsigned_zero(value))
+    return with_unit(text[:-2] if text.endswith(".0") else text, unit)
+
+
+def _order(x: float, y: float) -> int:
+    """-1, 0 or 1 as ``x`` is below, equal to or above ``y``; 0 where either is NaN."""
+    return (x > y) - (x < y)
+
+
+def texts(values: ArrayLike, digits: int = 6) -> list[str]:
+    """``values`` to ``digits`` significant digits, or to more where fewer would misstate how two of
+    them compare (two that differ printed alike, or in the wrong order); as typed back
+    (:func:`exact`) when 16 digits are not enough; zero without a sign."""
+    floats = [_unsigned_zero(v) for v in values]
+    pairs = list(combinations(range(len(floats)), 2))
+    for width in range(digits, _ALL_DIGITS):
+        printed = [f"{x:.{width}g}" for x in floats]
+        read = [float(text) for text in printed]
+        if all(_order(read[i], read[j]) == _order(floats[i], floats[j]) for i, j in pairs):
+            return printed
+    return [exact(x) for x in floats]
+
+
+def compared(value: Numeric, bounds: ArrayLike, digits: int = 12) -> str:
+    """A computed ``value`` beside the inputs ``bounds`` it is compared with (printed by :func:`exact`):
+    to ``digits`` significant digits, or to more where fewer would misstate how it compares with one
+    of them (printed as equal to a bound it is not, or on the wrong side of it)."""
+    value = _unsigned_zero(value)
+    bounds = [_unsigned_zero(b) for b in bounds]
+    for width in range(digits, _ALL_DIGITS):
+        text = f"{value:.{width}g}"
+        if all(_order(float(text), b) == _order(value, b) for b in bounds):
+            return text
+    return exact(value)
+
+
+def number(value: Numeric, unit: str = "", digits: int = 6) -> str:
+    """A computed ``value`` to ``digits`` significant digits (an mpmath number as its nearest double),
+    zero without a sign, with its unit."""
+    return with_unit(texts([value], digits)[0], unit)
+
+
+def span(values: ArrayLike, unit: str) -> str:
+    """The range of ``values`` (NaN ignored): ``lo .. hi unit``, one number if they agree; the two
+    with the digits that tell them apart."""
+    finite = np.asarray(values, dtype=float)
+    finite = finite[~np.isnan(finite)]
+    if not finite.size:
+        return "none"
+    lo, hi = texts([finite.min(), finite.max()])
+    return with_unit(lo, unit) if lo == hi else f"{lo} .. {with_unit(hi, unit)}"
