@@ -399,16 +399,12 @@ def test_converged_period():
     assert status(c, evidence(fig3={"b": fig3_ds(period=6.2834)})) == "not_reproduced"
 
 
-def _register_row(claim_id: str) -> dict:
-    return next(c for c in cl.load_claims(REGISTER) if c["id"] == claim_id)
-
-
 @pytest.mark.parametrize("claim_id", ["fig3_period_a", "fig3_period_b"])
 def test_a_printed_period_is_judged_at_half_a_unit_of_its_last_printed_digit(claim_id):
     """The register's tolerance for a printed number is half a unit of its last printed digit: for the
     printed 6.2832 s, 5e-5 s, derived here from the printed text; a period just inside it reproduces the
     claim, one just outside does not, so a tolerance loosened in the register or applied wrongly fails."""
-    row = _register_row(claim_id)
+    row = _claim_of(cl.load_claims(REGISTER), claim_id)
     printed = "6.2832"
     assert float(row["paper_value"]) == float(printed)
     half_unit = 0.5 * 10.0 ** -len(printed.split(".")[1])
@@ -421,7 +417,7 @@ def test_a_printed_period_is_judged_at_half_a_unit_of_its_last_printed_digit(cla
 
 
 def test_identical_periods_are_judged_at_the_registers_tolerance_on_both_sides():
-    row = _register_row("fig3_periods_identical")
+    row = _claim_of(cl.load_claims(REGISTER), "fig3_periods_identical")
     tolerance = row["tolerance"]
     for offset, expected in ((0.999, "reproduced"), (1.001, "not_reproduced")):
         ev = evidence(fig3={"a": fig3_ds(period=6.3), "b": fig3_ds(period=6.3 + offset * tolerance)})
