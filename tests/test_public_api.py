@@ -13,6 +13,8 @@ import inspect
 import pkgutil
 import math
 import re
+import subprocess
+import sys
 from collections.abc import Callable, Iterator
 from importlib.resources import files
 
@@ -137,6 +139,21 @@ def test_dir_is_the_api():
     assert set(dir(escapement)) - dunders == set(EXPORTED)
     assert "__version__" in dunders and set(escapement.__all__) == set(EXPORTED) | {"__version__"}
     assert dir(escapement) == sorted(dir(escapement))
+
+
+@pytest.mark.parametrize("layer", ["io", "solvers", "integrators", "plotting"])
+def test_dir_of_a_layer_is_its_all_whether_imported_at_once_or_on_first_use(layer):
+    """``escapement.io`` imports its CSV helpers at once and its netCDF functions on first use: both kinds
+    are listed, and a name imported on first use is one of ``__all__``."""
+    package = importlib.import_module(f"escapement.{layer}")
+    dunders = {name for name in dir(package) if name.startswith("__") and name.endswith("__")}
+    assert set(dir(package)) - dunders == set(package.__all__)
+
+
+def test_the_io_layer_loads_xarray_only_for_netcdf():
+    code = ("import sys; import escapement.io.atomic; from escapement.io import write_csv; "
+            "assert 'xarray' not in sys.modules; from escapement.io import read_netcdf; assert 'xarray' in sys.modules")
+    subprocess.run([sys.executable, "-c", code], check=True)
 
 
 def test_the_enumerations_are_enumerations():

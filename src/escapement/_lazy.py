@@ -15,8 +15,9 @@ def lazy_exports(package: str, exports: Mapping[str, str], namespace: dict[str, 
                  ) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
     """``__getattr__`` and ``__dir__`` for ``package``, whose public names ``exports`` maps to the
     submodule (relative to ``package``) that defines each; a name is imported on first use and kept
-    in ``namespace`` (the package's globals). ``dir(package)`` lists the exported names and the
-    module's dunder attributes, not its private names or its submodules."""
+    in ``namespace`` (the package's globals). ``dir(package)`` lists the exported names, the other
+    names of the package's ``__all__`` and the module's dunder attributes, not its private names or
+    its submodules."""
 
     def __getattr__(name: str) -> Any:
         if name not in exports:
@@ -26,6 +27,7 @@ def lazy_exports(package: str, exports: Mapping[str, str], namespace: dict[str, 
         return value
 
     def __dir__() -> list[str]:
-        return sorted({*exports, *(name for name in namespace if name.startswith("__") and name.endswith("__"))})
+        dunders = (name for name in namespace if name.startswith("__") and name.endswith("__"))
+        return sorted({*exports, *namespace.get("__all__", ()), *dunders})
 
     return __getattr__, __dir__

@@ -1,0 +1,57 @@
+"""The three checks that run the solver themselves (``existence_sign_change``, ``release_boundary``,
+``grazing_uniqueness``) hand their verdict functions the register's tolerance and the closed-form
+reference, unchanged.
+
+The verdict functions are tested at their boundaries in ``test_check_boundaries*.py``; a tolerance scaled
+inside a wrapper, or a wrong closed form passed to it, would change no status when the runs converge to
+rounding. Here the verdict function is watched as the wrapper calls it, on the register's own rows, and
+the reference is written from the closed forms of the register's positions, by hand.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from escapement.paper import claims as cl
+from escapement.paper import existence
+from escapement.paper.checks import Evidence
+
+REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"
+
+# asymmetric_existence_depends: a1..a4 = -0.3, -0.25, 0.1, 0.05, b = 0.1, K = 1 N/m:
+# F* = (2b - b^2) K (a1^2 - a3^2) / (2 [(1 - b)^2 (a2 - a1) + (a3 - a4)]) = 0.19 * 0.08 / (2 * 0.0905)
+THRESHOLD = 0.19 * 0.08 / (2 * (0.81 * 0.05 + 0.05))
+# initial_amplitude_no_effect: the free swing from rest meets an impact position beyond min(-a1, a3) = 0.1 m
+BOUNDARY = 0.1
+# solution_exists_unique: a1 = -0.1, a3 = 0.3, a4 = -0.05 m, f = F / M = 0.1 m/s^2, w^2 = 1 s^-2:
+# v1^2 = w^2 (a3^2 - a1^2) + 2 f (a3 - a4) = 0.08 + 0.07
+LIMIT = math.sqrt(0.15)
+
+CASES = [
+    ("asymmetric_existence_depends", "existence_verdict", THRESHOLD),
+    ("initial_amplitude_no_effect", "release_verdict", BOUNDARY),
+    ("solution_exists_unique", "grazing_verdict", LIMIT),
+]
+
+
+@pytest.mark.parametrize("claim_id, verdict_function, reference", CASES)
+def test_the_wrapper_hands_its_verdict_the_registers_tolerance_and_the_closed_form(
+        monkeypatch, claim_id, verdict_function, reference):
+    row = next(c for c in cl.load_claims(REGISTER) if c["id"] == claim_id)
+    real = getattr(existence, verdict_function)
+    calls = []
+
+    def watched(rows, closed_form, tolerance):
+        calls.append((closed_form, tolerance))
+        return real(rows, closed_form, tolerance)
+
+    monkeypatch.setattr(existence, verdict_function, watched)
+    result = cl.verdict(row, Evidence(fig3={}, fig4=None, fig5={}, checks=None))
+    assert len(calls) == 1
+    closed_form, tolerance = calls[0]
+    assert tolerance == row["tolerance"]
+    assert closed_form == pytest.approx(reference, rel=1e-14)
+    assert result.status in ("reproduced", "partially_reproduced")
