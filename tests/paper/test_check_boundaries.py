@@ -30,12 +30,16 @@ DONE = {"outcome": "completed", "outcome_message": "completed: a message"}
 SIDES = ((1 - 1e-6, "inside"), (1 + 1e-6, "outside"))
 
 
-def register_row(claim_id: str, tolerance: float) -> dict:
-    """The register's claim ``claim_id``, after checking that its tolerance is still ``tolerance``
-    (a tolerance changed in the register must be noticed here, and the test re-derived)."""
+def register_row(claim_id: str, tolerance: float | None) -> dict:
+    """The register's claim ``claim_id``, after checking that its tolerance is still ``tolerance`` (None: the
+    claim has none, its threshold is the check's), so that a tolerance changed in the register is noticed
+    here and the test re-derived."""
     rows = [c for c in cl.load_claims(REGISTER) if c["id"] == claim_id]
     assert len(rows) == 1, claim_id
-    assert rows[0]["tolerance"] == pytest.approx(tolerance, rel=1e-15), (claim_id, rows[0]["tolerance"])
+    if tolerance is None:
+        assert rows[0]["tolerance"] is None, (claim_id, rows[0]["tolerance"])
+    else:
+        assert rows[0]["tolerance"] == pytest.approx(tolerance, rel=1e-15), (claim_id, rows[0]["tolerance"])
     return rows[0]
 
 

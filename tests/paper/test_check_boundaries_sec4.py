@@ -13,13 +13,12 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from escapement.paper import claims as cl
 from escapement.paper import dynamics_checks as dc
 from escapement.paper.airy import airy_verdict
 from escapement.paper.checks import Evidence
 from escapement.paper.existence import existence_verdict, grazing_verdict, release_verdict
 from escapement.paper.figure_checks import sampled_jumps
-from paper.test_check_boundaries import (DONE, REGISTER, SIDES, evidence, fig3, fig5, judged, register_row, runs,
+from paper.test_check_boundaries import (DONE, SIDES, evidence, fig3, fig5, judged, register_row, runs,
                                          scalars)
 
 SIGNS = (1.0, -1.0)
@@ -292,8 +291,7 @@ def test_the_daily_rate_of_the_replicated_period_is_within_the_tolerance_of_the_
 
 @pytest.mark.parametrize("claim_id", ["fig3_velocity_a_greater", "fig3_amplitude_a_greater"])
 def test_a_tie_between_the_fig3_cases_is_not_a_greater_value(claim_id):
-    row = next(c for c in cl.load_claims(REGISTER) if c["id"] == claim_id)
-    assert row["tolerance"] is None
+    row = register_row(claim_id, None)
     quantity = row["args"]["quantity"]
     first, second = row["args"]["cases"]
     for value, expected in ((1.25, "not_reproduced"), (math.nextafter(1.25, 2.0), "reproduced")):
@@ -306,7 +304,7 @@ def test_a_tie_between_the_fig3_cases_is_not_a_greater_value(claim_id):
 def test_a_tie_at_the_start_is_not_the_smaller_first_swing():
     """Case (a) starts smaller when its first velocity and first amplitude are strictly below case (b)'s;
     an equal first velocity leaves only the amplitude: partially."""
-    row = next(c for c in cl.load_claims(REGISTER) if c["id"] == "fig3_a_smaller_at_start")
+    row = register_row("fig3_a_smaller_at_start", None)
     first, second = row["args"]["cases"]
     for velocity, expected in ((1.25, "partially_reproduced"), (math.nextafter(1.25, 0.0), "reproduced")):
         a, b = fig3([velocity, 1.0]), fig3([1.25, 1.0])
@@ -335,8 +333,7 @@ def shock(relative_error: float) -> Evidence:
 
 
 def test_the_shock_readout_follows_the_velocity_jump_within_its_relative_1e_12():
-    row = next(c for c in cl.load_claims(REGISTER) if c["id"] == "fig4_impulse_and_energy")
-    assert row["tolerance"] is None  # the threshold is the check's: relative 1e-12
+    row = register_row("fig4_impulse_and_energy", None)  # the threshold is the check's: relative 1e-12
     assert judged(row, shock(1e-13)) == "reproduced"
     # at its boundary: 0.9e-12 and 1.1e-12 of 0.08 N s differ by 1.6e-14 N s, a thousand times its spacing
     assert judged(row, shock(0.9e-12)) == "reproduced"
@@ -345,5 +342,5 @@ def test_the_shock_readout_follows_the_velocity_jump_within_its_relative_1e_12()
 
 
 def test_the_shock_readout_refuses_an_impulse_off_by_more_than_1e_12():
-    row = next(c for c in cl.load_claims(REGISTER) if c["id"] == "fig4_impulse_and_energy")
+    row = register_row("fig4_impulse_and_energy", None)
     assert judged(row, shock(1e-9)) == "not_reproduced"

@@ -11,15 +11,13 @@ the reference is written from the closed forms of the register's positions, by h
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import pytest
+from paper.test_check_boundaries import register_row
 
 from escapement.paper import claims as cl
 from escapement.paper import existence
 from escapement.paper.checks import Evidence
-
-REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"
 
 # asymmetric_existence_depends: a1..a4 = -0.3, -0.25, 0.1, 0.05, b = 0.1, K = 1 N/m:
 # F* = (2b - b^2) K (a1^2 - a3^2) / (2 [(1 - b)^2 (a2 - a1) + (a3 - a4)]) = 0.19 * 0.08 / (2 * 0.0905)
@@ -40,7 +38,7 @@ CASES = [
 @pytest.mark.parametrize("claim_id, verdict_function, reference", CASES)
 def test_the_wrapper_hands_its_verdict_the_registers_tolerance_and_the_closed_form(
         monkeypatch, claim_id, verdict_function, reference):
-    row = next(c for c in cl.load_claims(REGISTER) if c["id"] == claim_id)
+    row = register_row(claim_id, 1e-8)
     real = getattr(existence, verdict_function)
     calls = []
 
