@@ -37,7 +37,7 @@ class Cycles(NamedTuple):
     impact_time: np.ndarray
     velocity_before_impact: np.ndarray
     period: np.ndarray
-    amplitude: np.ndarray
+    largest_displacement: np.ndarray
 
 
 def _first_impact(p: Parameters, x0: float, v0: float):
@@ -283,7 +283,7 @@ def numpy_cycles(M, K, F, b, a1, a2, a3=None, a4=None, x0=1.0, v0=0.0, *, n_cycl
         elapsed += dt
         periods[:, cycle] = elapsed
         amplitudes[:, cycle] = np.where(top > floor, top, floor)
-    return Cycles(impact_time=times, velocity_before_impact=speeds, period=periods, amplitude=amplitudes)
+    return Cycles(impact_time=times, velocity_before_impact=speeds, period=periods, largest_displacement=amplitudes)
 
 
 # --- measuring -------------------------------------------------------------------------------------------------

@@ -54,7 +54,7 @@ def test_solve_prints_the_outcome_and_the_per_cycle_table(capsys):
     assert main(["solve", "--cycles", "3"]) == COMPLETED
     lines = capsys.readouterr().out.splitlines()
     assert lines[0] == "# completed: completed 3 cycles"
-    assert lines[1].split("\t") == ["cycle", "impact_time", "velocity_before_impact", "period", "amplitude"]
+    assert lines[1].split("\t") == ["cycle", "impact_time", "velocity_before_impact", "period", "largest_displacement"]
     assert len(lines) == 5
     # by default from rest at -1 m (w = 1), a free arc to the first impact at a1 = -0.1 m:
     # v^2 = x0^2 - a1^2 = 0.99, and it takes arccos(a1 / x0) = arccos(0.1) s
@@ -78,7 +78,7 @@ def test_a_run_that_leaves_the_regime_ends_with_its_outcome(capsys):
 def test_netcdf_output_is_the_fig3_dataset(tmp_path, capsys):
     path = tmp_path / "run.nc"
     assert main(["solve", "--F", "0.5", "--x0", "3", "--cycles", "4", "--netcdf", str(path)]) == COMPLETED
-    ds = read_netcdf(path, ("cycle", "velocity_before_impact", "period", "amplitude"))
+    ds = read_netcdf(path, ("cycle", "velocity_before_impact", "period", "largest_displacement"))
     assert ds.sizes["cycle"] == 4 and ds["period"].attrs["units"] == "s"
     assert f"wrote {path}" in capsys.readouterr().out
 
@@ -280,7 +280,7 @@ def test_the_defaults_are_the_workflows_fig3a():
     cycles = scene.pop("n_cycles")
     expected = {**scene, "cycles": cycles, "a3": None, "a4": None, "v0": 0.0}
     assert options == expected
-    assert scene["x0"] == -1.0 and expected["amplitude"] == "step1"  # the release and amplitude the help names
+    assert scene["x0"] == -1.0 and expected["amplitude"] == "amplitude_h0"  # the release and amplitude the help names
 
 
 def test_the_default_netcdf_file_is_the_workflows_fig3a(tmp_path, capsys):
@@ -291,13 +291,13 @@ def test_the_default_netcdf_file_is_the_workflows_fig3a(tmp_path, capsys):
     assert main(["solve", "--cycles", str(cycles), "--netcdf", str(ours)]) == COMPLETED
     simulate_poincare({**workflow_fig3a(), "n_cycles": cycles}, str(theirs), str(tmp_path / "simulate_fig3_a.log"))
     a, b = read_netcdf(ours), read_netcdf(theirs)
-    assert sorted(a.variables) == sorted(b.variables) and "amplitude" in a.variables
+    assert sorted(a.variables) == sorted(b.variables) and "amplitude_h0" in a.variables
     for name in a.variables:
         assert a[name].identical(b[name]), name
     when = ("date_created", "history")  # the time of writing, to the second
     assert {k: v for k, v in a.attrs.items() if k not in when} == {k: v for k, v in b.attrs.items() if k not in when}
     assert a.attrs["scene"] == "fig3" and a.attrs["n_cycles"] == cycles
-    assert a["amplitude"].attrs["long_name"].startswith("Step-1 amplitude")
+    assert a["amplitude_h0"].attrs["long_name"].startswith("Step-1 amplitude")
     assert a.sizes["cycle"] == cycles
 
 

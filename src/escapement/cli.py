@@ -57,8 +57,8 @@ EXIT_STATUSES = {
 #: and fig3.amplitude): released from rest at -1 m, the Step-1 amplitude; a3 and a4 default to -a1, -a2
 DEFAULTS = {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "x0": -1.0, "v0": 0.0}
 DEFAULT_CYCLES = 50
-DEFAULT_AMPLITUDE = "step1"
-COLUMNS = ("cycle", "impact_time", "velocity_before_impact", "period", "amplitude")
+DEFAULT_AMPLITUDE = "amplitude_h0"
+COLUMNS = ("cycle", "impact_time", "velocity_before_impact", "period", "largest_displacement")
 #: the options whose name differs from the solver's argument it sets
 OPTIONS = {"n_cycles": "--cycles"}
 
@@ -151,7 +151,7 @@ def _table(run: Solution) -> str:
     c = run.cycles
     lines = ["\t".join(COLUMNS)]
     for k in range(len(c)):
-        values = (c.impact_time[k], c.velocity_before_impact[k], c.period[k], c.amplitude[k])
+        values = (c.impact_time[k], c.velocity_before_impact[k], c.period[k], c.largest_displacement[k])
         lines.append("\t".join([str(k + 1), *(repr(float(v)) for v in values)]))
     return "\n".join(lines)
 

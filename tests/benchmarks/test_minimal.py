@@ -12,7 +12,7 @@ from benchmarks import floor, minimal
 from escapement.model import Parameters
 from escapement.solvers import solve_ensemble, solve_exact
 
-CYCLE_COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
+CYCLE_COLUMNS = ("impact_time", "velocity_before_impact", "period", "largest_displacement")
 
 
 @pytest.mark.parametrize("params, x0", [(minimal.PAPER_A, 1.0), (Parameters(M=2.0, K=0.5, F=0.3, b=0.25, a1=-0.2,

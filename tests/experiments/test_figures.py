@@ -19,14 +19,14 @@ def test_the_poincare_amplitudes_by_definition(case_a):
     """From -1 m the free arc before the first impact has the Step-1 amplitude |x0| = 1 m (energy
     is conserved on it: derived on paper); Step 1 has one value more than there are cycles, Step 8
     is it shifted by one; the largest displacement is the right turning point."""
-    step1 = poincare(case_a, -1.0, 5, "step1")
-    assert len(step1.amplitude) == 6 and step1.amplitude_definition == "step1"
+    step1 = poincare(case_a, -1.0, 5, "amplitude_h0")
+    assert len(step1.amplitude) == 6 and step1.amplitude_definition == "amplitude_h0"
     assert step1.amplitude_cycle.tolist() == list(range(1, 7))
     assert float(step1.amplitude[0]) == pytest.approx(1.0, rel=1e-14)
-    step8 = poincare(case_a, -1.0, 5, "step8")
+    step8 = poincare(case_a, -1.0, 5, "amplitude_h4")
     np.testing.assert_array_equal(step8.amplitude, step1.amplitude[1:])
     largest = poincare(case_a, -1.0, 5, "largest_displacement")
-    np.testing.assert_array_equal(largest.amplitude, solve_exact(case_a, -1.0, n_cycles=5).cycles.amplitude)
+    np.testing.assert_array_equal(largest.amplitude, solve_exact(case_a, -1.0, n_cycles=5).cycles.largest_displacement)
     with pytest.raises(ParameterError, match="amplitude"):
         poincare(case_a, -1.0, 5, "peak")
 

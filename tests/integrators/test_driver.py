@@ -68,7 +68,7 @@ def test_the_loop_follows_the_automaton_and_keeps_the_books():
     assert sol.cycles.impact_time.tolist() == [3.5]
     assert sol.cycles.velocity_before_impact.tolist() == [3.0]
     assert sol.cycles.period.tolist() == [4.25]
-    assert sol.cycles.amplitude.tolist() == [0.7]
+    assert sol.cycles.largest_displacement.tolist() == [0.7]
     assert sol.t_final == 7.75 and stepper.trajectory_asked == 7.75
     # what the loop asked: mode, centre (0, +F/K, -F/K), state after the jump, watched surfaces
     modes = [(a[0], a[1], a[3], a[4], a[5]) for a in stepper.asked]

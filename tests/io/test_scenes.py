@@ -34,8 +34,9 @@ def test_poincare_scene_holds_no_trajectory(case_a):
 
 
 def test_poincare_scene_names_its_amplitude(case_a):
-    step1 = poincare_scene(case_a, -1.0, 5, "step1")["amplitude"]
-    assert step1.sizes["amplitude_cycle"] == 6 and step1.attrs["definition"] == "step1"
+    ds = poincare_scene(case_a, -1.0, 5, "amplitude_h0")
+    step1 = ds["amplitude_h0"]
+    assert step1.sizes["amplitude_cycle"] == 6 and ds.attrs["amplitude_variable"] == "amplitude_h0"
     assert step1["amplitude_cycle"].values.tolist() == list(range(1, 7)) and step1.attrs["units"] == "m"
 
 

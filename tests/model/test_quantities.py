@@ -43,7 +43,7 @@ RELATIONS = {
     "a2 is a position": lambda: (unit("a2"), unit("displacement")),
     "a3 is a position": lambda: (unit("a3"), unit("displacement")),
     "a4 is a position": lambda: (unit("a4"), unit("displacement")),
-    "the amplitude is a position": lambda: (unit("amplitude"), unit("displacement")),
+    "the amplitude is a position": lambda: (unit("largest_displacement"), unit("displacement")),
     "time is in seconds": lambda: (unit("t"), TIME),
     "the period is a time": lambda: (unit("period"), unit("t")),
     "an impact time is a time": lambda: (unit("impact_time"), unit("t")),

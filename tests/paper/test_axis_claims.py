@@ -23,8 +23,9 @@ def _ds(K: float = 1.0, outcome: str = "completed", **extra) -> xr.Dataset:
 
 
 def _evidence(axes: dict, readings: dict | None = None, fig5_K=(0.1, 1.0, 10.0), outcome="completed") -> Evidence:
-    amplitude = xr.DataArray(np.ones(3), dims="amplitude_cycle", attrs={"definition": "step1"})
-    fig3 = {c: _ds(outcome=outcome, amplitude=amplitude) for c in ("a", "b")}
+    amplitude = xr.DataArray(np.ones(3), dims="amplitude_cycle")
+    fig3 = {c: _ds(outcome=outcome, amplitude_h0=amplitude).assign_attrs(amplitude_variable="amplitude_h0")
+            for c in ("a", "b")}
     return Evidence(fig3=fig3, fig4=_ds(K=0.1), fig5={f"{k:g}": _ds(K=k) for k in fig5_K}, checks=_ds(), axes=axes,
                     readings=readings or {})
 

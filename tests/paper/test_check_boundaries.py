@@ -66,12 +66,12 @@ def fig3(velocity, period=6.3, before=None, after=None, durations=None, **over) 
     default_after = np.where((kinds == 1) | (kinds == 3), 0.9, 1.0)
     return xr.Dataset(
         {"velocity_before_impact": ("cycle", velocity), "period": ("cycle", np.broadcast_to(period, n).copy()),
-         "amplitude": ("cycle", np.ones(n)), "event_time": ("event", np.concatenate([[0.0], np.cumsum(steps)])),
+         "amplitude_h0": ("cycle", np.ones(n)), "event_time": ("event", np.concatenate([[0.0], np.cumsum(steps)])),
          "event_kind": ("event", kinds),
          "event_velocity_before": ("event", default_before if before is None else np.asarray(before, dtype=float)),
          "event_velocity_after": ("event", default_after if after is None else np.asarray(after, dtype=float)),
          **scalars(**over)},
-        coords={"cycle": np.arange(1, n + 1)}, attrs=DONE)
+        coords={"cycle": np.arange(1, n + 1)}, attrs={**DONE, "amplitude_variable": "amplitude_h0"})
 
 
 def fig5(K: float, velocity, **over) -> xr.Dataset:
@@ -80,12 +80,13 @@ def fig5(K: float, velocity, **over) -> xr.Dataset:
     n = len(velocity)
     return xr.Dataset(
         {"velocity_before_impact": ("cycle", velocity), "period": ("cycle", np.full(n, 2 * math.pi)),
-         "amplitude": ("cycle", np.ones(n)), **scalars(K=K, **over)},
+         "largest_displacement": ("cycle", np.ones(n)), **scalars(K=K, **over)},
         coords={"cycle": np.arange(1, n + 1)}, attrs=DONE)
 
 
 RUN = {"label": "run", "group": "paper", "outcome": "completed", "outcome_message": "a message", "F": 1.0,
-       "x0": 1.0, "velocity": 1.0, "period": 6.3, "first_period": 6.3, "amplitude": 1.0, "largest_speed": 1.0,
+       "x0": 1.0, "velocity": 1.0, "period": 6.3, "first_period": 6.3, "largest_displacement": 1.0,
+       "largest_speed": 1.0,
        "multiplier": 0.6561, "multiplier_eq21": 0.6561, "floquet_major": 1.0, "floquet_minor": 0.6561,
        **GEOMETRY}
 

@@ -54,14 +54,14 @@ def fig3_ds(F=1.0, v0=1.0, n=50, period=6.3, outcome="completed", durations=None
         {
             "velocity_before_impact": ("cycle", velocities(F, v0, n)),
             "period": ("cycle", np.full(n, period)),
-            "amplitude": ("cycle", np.full(n, 1.2 * F)),
+            "amplitude_h0": ("cycle", np.full(n, 1.2 * F)),
             "event_time": ("event", t),
             "event_kind": ("event", kinds),
             "event_velocity_before": ("event", np.select([kinds == 1, kinds == 4], [v1, v5], 0.0)),
             **parameters(F),
         },
         coords={"cycle": np.arange(1, n + 1)},
-        attrs=attrs(outcome),
+        attrs={**attrs(outcome), "amplitude_variable": "amplitude_h0"},
     )
 
 
@@ -92,7 +92,7 @@ def fig5_ds(K: float, v_last: float, amplitude=1.0, outcome="completed") -> xr.D
             "impact_time": ("impact", [4.0, 10.0]),
             "velocity_before_impact": ("cycle", [v_last, v_last]),
             "period": ("cycle", [6.0, 6.0]),
-            "amplitude": ("cycle", [amplitude, amplitude]),
+            "largest_displacement": ("cycle", [amplitude, amplitude]),
             **parameters(0.5, K=K),
         },
         coords={"t": t},

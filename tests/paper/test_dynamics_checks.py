@@ -17,10 +17,10 @@ GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4
 
 
 def runs(*rows: dict) -> xr.Dataset:
-    keys = ["label", "group", "outcome", "outcome_message", "F", "x0", "velocity", "period", "amplitude",
+    keys = ["label", "group", "outcome", "outcome_message", "F", "x0", "velocity", "period", "largest_displacement",
             "first_period", "largest_speed", "floquet_major", "floquet_minor", "multiplier_eq21", *GEOMETRY]
     default = {"label": "run", "group": "g", "outcome": "completed", "outcome_message": "m", "F": 1.0, "x0": 1.0,
-               "velocity": 1.0, "period": 6.3, "amplitude": 1.0, "first_period": 6.3, "largest_speed": 1.0,
+               "velocity": 1.0, "period": 6.3, "largest_displacement": 1.0, "first_period": 6.3, "largest_speed": 1.0,
                "floquet_major": 1.0, "floquet_minor": 0.6561, "multiplier_eq21": 0.6561, **GEOMETRY}
     return xr.Dataset({k: ("case", [r.get(k, default[k]) for r in rows]) for k in keys},
                       coords={"case": np.arange(len(rows))})
@@ -59,7 +59,7 @@ def test_fig5_velocity_order_compares_k_at_each_common_force(speeds_05, speeds_1
     ((0.3, 0.9, 4.0), (0.3, 0.3, 4.0), "not_reproduced"),  # equal amplitudes do not decrease
 ])
 def test_fig5_amplitude_order_compares_k_at_each_common_force(amplitudes_05, amplitudes_1, status):
-    rows = [{"group": "common_force", "K": k, "F": f, "amplitude": h}
+    rows = [{"group": "common_force", "K": k, "F": f, "largest_displacement": h}
             for f, values in ((0.5, amplitudes_05), (1.0, amplitudes_1)) for k, h in zip((0.1, 1.0, 10.0), values)]
     result = s4.fig5_amplitude_common_force(claim(), evidence(runs(*rows)))
     assert result.status == status and "not compared with each other" in result.note
@@ -163,8 +163,8 @@ def test_trivial_multiplier():
 
 @pytest.mark.parametrize("amplitudes, status", [((0.5, 1.0, 2.0), "reproduced"), ((0.5, 2.0, 1.0), "not_reproduced")])
 def test_force_amplitude(amplitudes, status):
-    rows = [{"group": "force", "F": f, "amplitude": a} for f, a in zip((0.2, 1.0, 5.0), amplitudes)]
-    other = [{"group": "force", "F": f, "a1": -0.3, "a3": 0.3, "amplitude": a} for f, a in ((0.2, 1.0), (1.0, 2.0))]
+    rows = [{"group": "force", "F": f, "largest_displacement": a} for f, a in zip((0.2, 1.0, 5.0), amplitudes)]
+    other = [{"group": "force", "F": f, "a1": -0.3, "a3": 0.3, "largest_displacement": a} for f, a in ((0.2, 1.0), (1.0, 2.0))]
     result = dc.force_amplitude(claim(groups=["force"]), evidence(runs(*rows, *other)))
     assert result.status == (status if status == "reproduced" else "partially_reproduced")
     result = dc.force_amplitude(claim(groups=["force"]), evidence(runs(*rows)))

@@ -52,10 +52,10 @@ def fig3(n=4, F=1.0, v0=1.0, period=6.3, x0=-1.0, amplitude=None, off=0.0, **ove
     h = np.hypot(0.1, np.array(v)) if amplitude is None else np.asarray(amplitude, dtype=float)
     return xr.Dataset(
         {"velocity_before_impact": ("cycle", np.array(v[:n])), "period": ("cycle", np.full(n, period)),
-         "amplitude": ("amplitude_cycle", h), "event_time": ("event", np.arange(4 * n + 1.0)),
+         "amplitude_h0": ("amplitude_cycle", h), "event_time": ("event", np.arange(4 * n + 1.0)),
          "event_kind": ("event", kinds), "event_velocity_before": ("event", np.array(before)),
          "event_velocity_after": ("event", np.array(after)), **scalars(F=F, x0=x0, **over)},
-        coords={"cycle": np.arange(1, n + 1)}, attrs=DONE)
+        coords={"cycle": np.arange(1, n + 1)}, attrs={**DONE, "amplitude_variable": "amplitude_h0"})
 
 
 def fig4(t_impact=84.4, jump=True) -> xr.Dataset:
@@ -291,8 +291,8 @@ def test_section_crossings():
 def common(*sizes) -> xr.Dataset:
     """Runs of group common_force: per (F, K), the amplitude and the largest speed given."""
     keys = {"label": "run", "group": "common_force", "outcome": "completed", "outcome_message": "m", "F": 1.0,
-            "K": 1.0, "x0": -1.0, "amplitude": 1.0, "largest_speed": 1.0}
-    rows = [dict(zip(("F", "K", "amplitude", "largest_speed"), size)) for size in sizes]
+            "K": 1.0, "x0": -1.0, "largest_displacement": 1.0, "largest_speed": 1.0}
+    rows = [dict(zip(("F", "K", "largest_displacement", "largest_speed"), size)) for size in sizes]
     return xr.Dataset({k: ("case", [r.get(k, d) for r in rows]) for k, d in keys.items()},
                       coords={"case": np.arange(len(rows))})
 

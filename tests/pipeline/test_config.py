@@ -38,7 +38,7 @@ MODEL = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05}
 #: a small configuration written out here, so that the expected scenes are known by hand
 CONFIG = {
     "model": dict(MODEL),
-    "fig3": {"n_cycles": 50, "amplitude": "step1",
+    "fig3": {"n_cycles": 50, "amplitude": "amplitude_h0",
              "cases": {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0, "b": 0.2}}},
     "fig4": {
         "F": 0.5,
@@ -96,7 +96,7 @@ def test_the_small_configuration_is_valid(config):
 
 def test_fig3_scene_merges_the_model_the_case_and_n_cycles(config):
     assert fig3_scene(config, "b") == {
-        "F": 0.5, "K": 1.0, "M": 1.0, "a1": -0.1, "a2": 0.05, "amplitude": "step1", "b": 0.2, "n_cycles": 50,
+        "F": 0.5, "K": 1.0, "M": 1.0, "a1": -0.1, "a2": 0.05, "amplitude": "amplitude_h0", "b": 0.2, "n_cycles": 50,
         "x0": 3.0,
     }
     assert list(fig3_scene(config, "a")) == ["F", "K", "M", "a1", "a2", "amplitude", "b", "n_cycles", "x0"]  # sorted
@@ -142,7 +142,7 @@ def test_the_amplitudes_the_schema_allows_are_those_the_readings_define():
 def test_an_unknown_amplitude_is_refused_naming_the_choices(config):
     config["fig3"]["amplitude"] = "peak"
     assert config_error(config, SCHEMA) == (
-        "fig3.amplitude = 'peak' is invalid: amplitude must be one of step1, step8, largest_displacement, largest_abs")
+        "fig3.amplitude = 'peak' is invalid: amplitude must be one of amplitude_h0, amplitude_h4, largest_displacement, largest_abs_displacement")
 
 
 def test_the_escapement_error_forces_are_spaced_geometrically(config):

@@ -116,7 +116,7 @@ def _typed(*entries):
     "entries, expected",
     [
         (["fig3={n_cycles: 40}"], {"fig3": {"n_cycles": 40}}),
-        (["fig3={n_cycles: 40, amplitude: step8}"], {"fig3": {"n_cycles": 40, "amplitude": "step8"}}),
+        (["fig3={n_cycles: 40, amplitude: amplitude_h4}"], {"fig3": {"n_cycles": 40, "amplitude": "amplitude_h4"}}),
         (["fig5={K: [0.1, 1.0], F: [1.0, 0.5], x0: -1.0}"], {"fig5": {"K": [0.1, 1.0], "F": [1.0, 0.5], "x0": -1.0}}),
         (["stability_map={b: {start: 0.0, stop: 2.0, n: 4}}"], {"stability_map": {"b": {"start": 0.0, "stop": 2.0,
                                                                                         "n": 4}}}),
@@ -137,22 +137,22 @@ def test_a_nested_value_has_the_types_a_file_gives_it(entries, expected):
 
 def test_a_key_given_a_scalar_then_a_mapping_keeps_the_files_other_keys_as_in_snakemake():
     """Snakemake merges the entries among themselves first, then into the files' configuration."""
-    config = {"fig3": {"n_cycles": 50, "amplitude": "step1"}}
+    config = {"fig3": {"n_cycles": 50, "amplitude": "amplitude_h0"}}
     entries = ["fig3=none", "fig3={n_cycles: 40}"]
     given = parse_config(entries)
     config["fig3"]["n_cycles"] = "40"  # as Snakemake merges it
     apply_config_overrides(config, entries, given)
-    assert config == {"fig3": {"n_cycles": 40, "amplitude": "step1"}}
+    assert config == {"fig3": {"n_cycles": 40, "amplitude": "amplitude_h0"}}
 
 
 def test_the_overrides_replace_what_snakemake_merged_into_the_files_and_keep_the_rest():
-    config = {"fig3": {"n_cycles": 50, "amplitude": "step1", "cases": {"a": {"F": 1.0, "x0": -1.0}}}}
+    config = {"fig3": {"n_cycles": 50, "amplitude": "amplitude_h0", "cases": {"a": {"F": 1.0, "x0": -1.0}}}}
     entries = ["fig3={n_cycles: 40, cases: {a: {F: 0.5}}}"]
     given = parse_config(entries)
     assert given == {"fig3": {"n_cycles": "40", "cases": {"a": {"F": "0.5"}}}}  # Snakemake's reading: text
     config["fig3"]["n_cycles"], config["fig3"]["cases"]["a"]["F"] = "40", "0.5"  # as Snakemake merges it
     apply_config_overrides(config, entries, given)
-    assert config == {"fig3": {"n_cycles": 40, "amplitude": "step1", "cases": {"a": {"F": 0.5, "x0": -1.0}}}}
+    assert config == {"fig3": {"n_cycles": 40, "amplitude": "amplitude_h0", "cases": {"a": {"F": 0.5, "x0": -1.0}}}}
 
 
 def test_values_given_as_objects_through_snakemakes_api_are_left_as_they_are():

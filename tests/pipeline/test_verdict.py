@@ -26,7 +26,7 @@ FIXED_POINT = (0.3 / 0.19) ** 0.5
 
 
 def files(tmp_path) -> dict:
-    cycles = {"velocity_before_impact": FIXED_POINT, "period": 6.3, "amplitude": 1.2}
+    cycles = {"velocity_before_impact": FIXED_POINT, "period": 6.3, "largest_displacement": 1.2}
     fig3 = xr.Dataset(
         {**{k: ("cycle", np.full(2, v)) for k, v in cycles.items()},
          "event_time": ("event", np.arange(9.0)), "event_kind": ("event", np.array([1, 2, 3, 4] * 2 + [1], np.int8)),

@@ -13,7 +13,7 @@ from escapement.solvers.cycles import CLOSED_FORM, CrossCheckError, solve_cycles
 from escapement.solvers.exact import solve_exact
 
 MODEL = dict(M=1.0, K=1.0, b=0.1, a1=-0.1, a2=0.05, a3=0.1, a4=-0.05)  # Fig. 3
-COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
+COLUMNS = ("impact_time", "velocity_before_impact", "period", "largest_displacement")
 
 
 def params(**changes) -> Parameters:

@@ -22,7 +22,7 @@ from escapement.solvers.cycles import (
 from escapement.solvers.exact import solve_exact
 
 MODEL = dict(M=1.0, K=1.0, b=0.1, a1=-0.1, a2=0.05, a3=0.1, a4=-0.05)  # Fig. 3
-COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
+COLUMNS = ("impact_time", "velocity_before_impact", "period", "largest_displacement")
 #: the configuration's asymmetric geometries (checks.asymmetric.positions)
 ASYMMETRIC = [(-0.1, 0.05, 0.2, -0.02), (-0.15, 0.0, 0.08, -0.1), (-0.1, 0.05, 0.3, 0.0)]
 
@@ -147,7 +147,7 @@ def test_long_runs_compute_the_distinct_cycles_only_and_repeat_the_fixed_point()
     k = run.distinct_cycles
     assert 50 < k < 200  # (0.6561)**k below an ulp
     c = run.cycles
-    for name in ("velocity_before_impact", "period", "amplitude"):
+    for name in ("velocity_before_impact", "period", "largest_displacement"):
         column = getattr(c, name)
         assert np.all(column[k - 1:] == column[-1])
     assert np.all(np.diff(c.impact_time) > 0)

@@ -16,13 +16,13 @@ from escapement.integrators.high_precision import solve_high_precision
 from escapement.integrators.naive import solve_naive
 from escapement.integrators.reference import solve_reference
 
-NAMES = ("impact_time", "velocity_before_impact", "period", "amplitude")
+NAMES = ("impact_time", "velocity_before_impact", "period", "largest_displacement")
 CYCLE_COLUMNS = NAMES
 
 
 def _compare(params_list, x0s, v0s, n_cycles, max_events=None, amplitude=True):
     arrays = {k: [getattr(p, k) for p in params_list] for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4")}
-    ens = solve_ensemble(**arrays, x0=x0s, v0=v0s, n_cycles=n_cycles, max_events=max_events, amplitude=amplitude)
+    ens = solve_ensemble(**arrays, x0=x0s, v0=v0s, n_cycles=n_cycles, max_events=max_events, largest_displacement=amplitude)
     for i, p in enumerate(params_list):
         run = solve_exact(p, x0s[i], v0s[i], n_cycles=n_cycles, max_events=max_events, record_trajectory=False)
         assert ens.outcome(i) == run.status
@@ -92,8 +92,8 @@ def test_every_outcome_is_reported_with_its_exit_numbers():
 
 
 def test_amplitude_can_be_skipped():
-    out = solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=3, amplitude=False)
-    assert np.isnan(out.cycles.amplitude).all() and np.isfinite(out.cycles.velocity_before_impact).all()
+    out = solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=3, largest_displacement=False)
+    assert np.isnan(out.cycles.largest_displacement).all() and np.isfinite(out.cycles.velocity_before_impact).all()
     assert out.cycles.velocity_before_impact.shape == (1, 3)
 
 
@@ -197,8 +197,8 @@ def test_the_cycle_tables_have_a_stated_size_limit():
 
 
 def test_amplitude_must_be_a_bool():
-    with pytest.raises(ParameterError, match="^amplitude = 'no' is invalid: amplitude must be True or False"):
-        solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2, amplitude="no")
+    with pytest.raises(ParameterError, match="^largest_displacement = 'no' is invalid: largest_displacement must be True or False"):
+        solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2, largest_displacement="no")
 
 
 @pytest.mark.parametrize("path", ["arc_maximum", "hypot"])
@@ -212,10 +212,10 @@ def test_a_completed_row_with_a_non_finite_number_is_a_bug_raised(monkeypatch, p
         monkeypatch.setattr(ensemble, "arc_maximum", lambda *args: np.full(np.shape(args[1]), np.nan))
     else:
         monkeypatch.setattr(np, "hypot", lambda u, w: np.full(np.shape(u), np.nan))
-    with pytest.raises(FloatingPointError, match="^row 0: a completed run holds a non-finite amplitude"):
+    with pytest.raises(FloatingPointError, match="^row 0: a completed run holds a non-finite largest_displacement"):
         solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2)
-    out = solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2, amplitude=False)  # not computed: NaN
-    assert out.success[0] and np.isnan(out.cycles.amplitude).all()
+    out = solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2, largest_displacement=False)  # not computed: NaN
+    assert out.success[0] and np.isnan(out.cycles.largest_displacement).all()
 
 
 @pytest.mark.parametrize("dps", [0, -5, 16, 1.5, True, "50", 1001])
@@ -242,7 +242,7 @@ def test_the_ensemble_follows_the_releases_around_a_turning_point_as_the_scalar_
     x0 = release_for_zone_turning_at(params, impact, mpmath.mpf(getattr(params, end)))
     releases = np.array([x0 + k * math.ulp(x0) for k in range(-60, 61)] + [0.9 * x0, 1.1 * x0, 2 * x0, x0 / 3])
     ens = solve_ensemble(*(getattr(params, k) for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4")), x0=releases,
-                         n_cycles=6, amplitude=amplitude)
+                         n_cycles=6, largest_displacement=amplitude)
     for i, release in enumerate(releases):
         run = solve_exact(params, float(release), n_cycles=6, record_trajectory=False)
         assert ens.outcome(i) == run.status

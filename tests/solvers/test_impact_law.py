@@ -116,14 +116,14 @@ def _velocities_and_events(name: str):
     result = PATHS[name]()
     if name.startswith("iter"):
         tables = list(result)
-        return _concatenated(tables), _concatenated(tables, "amplitude"), None, result
+        return _concatenated(tables), _concatenated(tables, "largest_displacement"), None, result
     if name == "solve_ensemble":
-        rows, amplitude = result.cycles.velocity_before_impact, result.cycles.amplitude
+        rows, amplitude = result.cycles.velocity_before_impact, result.cycles.largest_displacement
         assert np.array_equal(rows[0], rows[1])
         return rows[0], amplitude[0], None, result
     if name == "solve_cycles":
-        return result.cycles.velocity_before_impact, result.cycles.amplitude, None, result
-    return (_floats(result.cycles.velocity_before_impact), _floats(result.cycles.amplitude), result.events,
+        return result.cycles.velocity_before_impact, result.cycles.largest_displacement, None, result
+    return (_floats(result.cycles.velocity_before_impact), _floats(result.cycles.largest_displacement), result.events,
             result)
 
 

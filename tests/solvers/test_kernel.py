@@ -30,7 +30,7 @@ from escapement.solvers.kernel import A1, PLAN, EventRun, cycle_rows, event_bloc
 A2, A3, A4 = (int(k) for k in (EventKind.ZONE_END_A2, EventKind.IMPACT_A3, EventKind.ZONE_END_A4))
 PAPER = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 ASYMMETRIC = Parameters(M=0.7, K=3.0, F=0.4, b=0.3, a1=-0.12, a2=0.02, a3=0.09, a4=-0.04)
-CYCLE_COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
+CYCLE_COLUMNS = ("impact_time", "velocity_before_impact", "period", "largest_displacement")
 
 
 class PhaseStepper:

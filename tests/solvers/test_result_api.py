@@ -116,10 +116,10 @@ def test_the_cycles_dataframe_copies_the_cycle_table(run50):
     df = run50.to_dataframe("cycles")
     assert isinstance(df, pd.DataFrame)
     assert df.index.name == "cycle" and df.index.tolist() == list(range(1, 51))
-    for name in ("impact_time", "velocity_before_impact", "period", "amplitude"):
+    for name in ("impact_time", "velocity_before_impact", "period", "largest_displacement"):
         np.testing.assert_array_equal(df[name].to_numpy(), getattr(run50.cycles, name))
     assert df.loc[50, "period"] == run50.cycles.period[-1]
-    assert df.attrs["units"] == {"impact_time": "s", "velocity_before_impact": "m s-1", "period": "s", "amplitude": "m"}
+    assert df.attrs["units"] == {"impact_time": "s", "velocity_before_impact": "m s-1", "period": "s", "largest_displacement": "m"}
     assert set(df.attrs["long_names"]) == set(df.columns)
     assert run50.to_dataframe().equals(df)  # cycles by default
 
@@ -141,8 +141,8 @@ def test_the_dataframes_of_a_high_precision_run_hold_doubles():
     p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
     hp = solve_high_precision(p, 1.0, n_cycles=2, dps=20)
     df = hp.to_dataframe("cycles")
-    assert df["amplitude"].dtype == np.float64
-    assert df["amplitude"].tolist() == [float(x) for x in hp.cycles.amplitude]
+    assert df["largest_displacement"].dtype == np.float64
+    assert df["largest_displacement"].tolist() == [float(x) for x in hp.cycles.largest_displacement]
     assert hp.to_dataframe("events")["event_time"].tolist() == [float(x) for x in hp.events.t]
 
 

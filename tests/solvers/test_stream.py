@@ -17,7 +17,7 @@ from escapement.solvers.stream import CHUNK_BYTES_PER_CYCLE, MAX_CHUNK
 PAPER_A = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 PAPER_B = Parameters(M=1.0, K=1.0, F=0.5, b=0.1, a1=-0.1, a2=0.05)
 ASYMMETRIC = Parameters(M=0.7, K=3.0, F=0.4, b=0.3, a1=-0.12, a2=0.02, a3=0.09, a4=-0.04)
-COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
+COLUMNS = ("impact_time", "velocity_before_impact", "period", "largest_displacement")
 
 
 def _joined(chunks, name: str) -> bytes:
@@ -100,7 +100,7 @@ import resource, sys
 from escapement.model.parameters import Parameters
 from escapement.solvers import iter_cycles
 p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-largest = max(float(chunk.amplitude.max()) for chunk in iter_cycles(p, 1.0, n_cycles=int(sys.argv[1])))
+largest = max(float(chunk.largest_displacement.max()) for chunk in iter_cycles(p, 1.0, n_cycles=int(sys.argv[1])))
 print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, largest)
 """
 

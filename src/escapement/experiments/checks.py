@@ -40,7 +40,7 @@ def measure_cases(cases: Sequence[Mapping], n_cycles: int) -> dict[str, list | n
     -------
     dict
         One column per name, one value per case: ``label``, ``group``, ``outcome``,
-        ``outcome_message``, ``x0`` (m), ``velocity`` (m/s), ``period`` (s), ``amplitude`` (m),
+        ``outcome_message``, ``x0`` (m), ``velocity`` (m/s), ``period`` (s), ``largest_displacement`` (m),
         ``multiplier``, ``multiplier_eq21``, ``fixed_point_eq16`` (m/s), ``cycles_to_converge``
         (int32; -1 where none), ``first_period`` (s), ``largest_speed`` (m/s), ``floquet_major``,
         ``floquet_minor`` and each model parameter by its key.
@@ -64,7 +64,7 @@ def measure_cases(cases: Sequence[Mapping], n_cycles: int) -> dict[str, list | n
         "x0": [x0 for _, _, x0, _ in runs],
         "velocity": [m.velocity for *_, m in runs],
         "period": [m.period for *_, m in runs],
-        "amplitude": [m.amplitude for *_, m in runs],
+        "largest_displacement": [m.largest_displacement for *_, m in runs],
         "multiplier": [m.multiplier for *_, m in runs],
         "multiplier_eq21": [multiplier_21(p) for _, p, _, _ in runs],
         "fixed_point_eq16": [fixed_point(p) for _, p, _, _ in runs],

@@ -117,7 +117,7 @@ def existence_map(model: Mapping, a3_values: Sequence[float], F_values: Sequence
     F_values = np.asarray(F_values, dtype=float)
     aa, ff = np.meshgrid(a3_values, F_values, indexing="ij")
     run = solve_ensemble(geometry["M"], geometry["K"], ff.ravel(), geometry["b"], geometry["a1"], geometry["a2"],
-                         aa.ravel(), geometry["a4"], x0=x0, v0=v0, n_cycles=n_cycles, amplitude=False)
+                         aa.ravel(), geometry["a4"], x0=x0, v0=v0, n_cycles=n_cycles, largest_displacement=False)
     status = np.asarray(run.status).reshape(aa.shape)
     v = run.cycles.velocity_before_impact
     if n_cycles >= 2:

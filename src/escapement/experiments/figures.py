@@ -19,6 +19,7 @@ import numpy as np
 
 from ..model.events import EventKind
 from ..model.parameters import ParameterError, Parameters
+from ..model.quantities import quantity
 from ..paper.printed import fixed_point_19
 from ..solvers.exact import solve_exact
 from ..solvers.result import Solution
@@ -159,9 +160,9 @@ def poincare(params: Parameters, x0: float, n_cycles: int, amplitude: str = "lar
     if amplitude not in AMPLITUDES:
         raise ParameterError("amplitude", amplitude, f"one of {', '.join(AMPLITUDES)}")
     n_cycles = positive_int("n_cycles", n_cycles)
-    run = solve_exact(params, x0, n_cycles=n_cycles, record_trajectory=amplitude == "largest_abs")
+    run = solve_exact(params, x0, n_cycles=n_cycles, record_trajectory=amplitude == "largest_abs_displacement")
     cycle, values = AMPLITUDES[amplitude].values(run)
-    return PoincareRun(run, n_cycles, amplitude, AMPLITUDES[amplitude].long_name, cycle, values,
+    return PoincareRun(run, n_cycles, amplitude, quantity(amplitude).long_name, cycle, values,
                        fixed_point_19(params))
 
 

@@ -218,5 +218,5 @@ def _cycle_table(events: EventLog, maxima: np.ndarray, periods: np.ndarray) -> C
         impact_time=events.t[impacts][:n],
         velocity_before_impact=events.v_before[impacts][:n],
         period=periods,
-        amplitude=maxima,
+        largest_displacement=maxima,
     )

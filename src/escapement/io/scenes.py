@@ -78,11 +78,11 @@ def poincare_dataset(solution: Solution, n_cycles: int, amplitude_definition: st
         The Fig. 3 dataset.
     """
     variables = {**cycle_variables(solution), **event_variables(solution)}
-    variables["amplitude"] = xr.DataArray(
+    variables[amplitude_definition] = xr.DataArray(
         amplitude, dims="amplitude_cycle",
         coords={"amplitude_cycle": ("amplitude_cycle", amplitude_cycle,
                                     {"long_name": "cycle number of the amplitude", "units": "1"})},
-        attrs={"units": "m", "long_name": amplitude_long_name, "definition": amplitude_definition},
+        attrs={"units": "m", "long_name": amplitude_long_name},
     )
     variables["fixed_point_19"] = scalar_variable(
         fixed_point_19, "m s-1", "fixed point of the map (17) by Eq. (19) as printed (velocity before impact)"
@@ -99,6 +99,7 @@ def poincare_dataset(solution: Solution, n_cycles: int, amplitude_definition: st
             "Eq. (19) as printed."
         ),
         n_cycles=int(n_cycles),
+        amplitude_variable=amplitude_definition,
     )
 
 
@@ -199,7 +200,7 @@ CHECKS_COLUMNS = {
     "x0": (INITIAL_STATE["x0"].units, f"{INITIAL_STATE['x0'].long_name} (released from rest)", MODEL_INPUT),
     "velocity": ("m s-1", "velocity before impact at the last cycle"),
     "period": ("s", "period of the last cycle"),
-    "amplitude": ("m", "amplitude of the last cycle"),
+    "largest_displacement": ("m", "largest displacement of the last cycle"),
     "multiplier": ("1", "multiplier mu_2 measured from the return map"),
     "multiplier_eq21": ("1", "multiplier (1 - b)**4 of Eq. (21)"),
     "fixed_point_eq16": ("m s-1", "fixed point of the map (16)"),

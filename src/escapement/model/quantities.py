@@ -94,9 +94,16 @@ VARIABLES = _table(
     Quantity("velocity_before_impact", "", "m s-1", "m/s", "velocity just before impact k at a1",
              "velocity before impact"),
     Quantity("period", "", "s", "s", "time from impact k to impact k+1 at a1", "period"),
-    Quantity("amplitude", "", "m", "m",
+    Quantity("largest_displacement", "", "m", "m",
              "largest displacement between impact k and impact k+1 (right turning point)",
-             "amplitude of oscillation"),
+             "largest displacement"),
+    Quantity("amplitude_h0", "h\u2080", "m", "m",
+             "Step-1 amplitude h0(k) = sqrt(a1^2 + (v_k / omega)^2) of the free arc that ends in impact k at a1 "
+             "(k = 1 .. N+1; Eqs. (9b), (22a))", "amplitude h\u2080"),
+    Quantity("amplitude_h4", "h\u2084", "m", "m",
+             "Step-8 amplitude h4(k) = h0(k+1) of the free arc that ends cycle k (k = 1 .. N)", "amplitude h\u2084"),
+    Quantity("largest_abs_displacement", "", "m", "m", "largest |x| between impact k and impact k+1",
+             "largest |x|"),
 )
 
 MODEL_KEYS = tuple(PARAMETERS)

@@ -56,8 +56,8 @@ def _reading(figure: str, ds: xr.Dataset) -> str:
     """The reading of the paper's unstated choices that the output was made with."""
     parts = [f"F = {fmt(float(ds['F']), 4)} N", f"K = {fmt(float(ds['K']), 4)} N/m",
              f"released from rest at x0 = {fmt(float(ds['x0']), 4)} m"]
-    if figure == "3" and "definition" in ds["amplitude"].attrs:
-        parts.append(f"amplitude: {ds['amplitude'].attrs['definition']}")
+    if figure == "3":
+        parts.append(f"amplitude: {ds.attrs['amplitude_variable']}")
     return ", ".join(parts)
 
 

@@ -159,7 +159,7 @@ def force_amplitude(claim, ev: Evidence) -> Verdict:
             return left
         for rows in _families(runs, "F").values():
             order = sorted(rows, key=lambda i: float(runs["F"].values[i]))
-            amplitude = [float(runs["amplitude"].values[i]) for i in order]
+            amplitude = [float(runs["largest_displacement"].values[i]) for i in order]
             holds.append(all(a < b for a, b in zip(amplitude, amplitude[1:])))
             parts.append(f"{group} (a1 = {fmt(runs['a1'].values[order[0]], 3)} m): " + ", ".join(
                 f"F = {fmt(runs['F'].values[i], 3)} N: {fmt(a, 5)} m" for i, a in zip(order, amplitude)))

@@ -163,7 +163,7 @@ def fig5_dimensions(claim, ev: Evidence) -> Verdict:
         return left
     differ, parts = [], []
     for force, runs in by_force.items():
-        rows = [(k, float(run["amplitude"]), float(run["largest_speed"])) for k, run in runs]
+        rows = [(k, float(run["largest_displacement"]), float(run["largest_speed"])) for k, run in runs]
         for i, (_, x1, v1) in enumerate(rows):
             for _, x2, v2 in rows[i + 1:]:
                 differ.append(max(abs(x1 - x2) / max(x1, x2), abs(v1 - v2) / max(v1, v2)) > claim["tolerance"])

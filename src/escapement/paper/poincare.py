@@ -59,7 +59,7 @@ class CycleMeasurement:
     message: str
     velocity: float  #: velocity before impact after n_cycles (the measured fixed point)
     period: float
-    amplitude: float
+    largest_displacement: float
     multiplier: float  #: dP/dv at the measured fixed point, by a central difference
     cycles_to_converge: int  #: first cycle whose velocity is within 1e-9 (relative) of the last
     first_period: float  #: period of the first cycle (from the first impact at a1 to the second), s
@@ -151,7 +151,7 @@ def measure_cycle(params: Parameters, x0: float, n_cycles: int = 300) -> CycleMe
         message=run.message,
         velocity=star,
         period=float(run.cycles.period[-1]),
-        amplitude=float(run.cycles.amplitude[-1]),
+        largest_displacement=float(run.cycles.largest_displacement[-1]),
         multiplier=(hi_out - lo_out) / (hi_in - lo_in),
         cycles_to_converge=first,
         first_period=float(run.cycles.period[0]),
@@ -166,7 +166,7 @@ def ensemble_return_map(model: dict, b, F, v):
     omega = math.sqrt(model["K"] / model["M"])
     out = solve_ensemble(
         model["M"], model["K"], F, b, model["a1"], model["a2"], model.get("a3"), model.get("a4"),
-        x0=-np.hypot(model["a1"], np.asarray(v) / omega), n_cycles=2, amplitude=False,
+        x0=-np.hypot(model["a1"], np.asarray(v) / omega), n_cycles=2, largest_displacement=False,
     )
     c = out.cycles
     return c.velocity_before_impact[:, 0], c.velocity_before_impact[:, 1], c.period[:, 0], out.status

@@ -139,7 +139,7 @@ def initial_order(claim, ev: Evidence) -> Verdict:
     first, second = (str(c) for c in claim["args"]["cases"])
     a, b = ev.fig3[first], ev.fig3[second]
     va, vb = a["velocity_before_impact"].values, b["velocity_before_impact"].values
-    ha, hb = a["amplitude"].values, b["amplitude"].values
+    ha, hb = a[a.attrs["amplitude_variable"]].values, b[b.attrs["amplitude_variable"]].values
     smaller_v, smaller_h = va[0] < vb[0], ha[0] < hb[0]
     n = min(len(va), len(vb))
     crossing = np.flatnonzero(va[:n] >= vb[:n])
@@ -151,7 +151,7 @@ def initial_order(claim, ev: Evidence) -> Verdict:
         REPRODUCED if smaller_v and smaller_h else PARTIAL if smaller_v or smaller_h else NOT,
         note=(f"released from rest at x0 = {fmt(float(a['x0']), 4)} m and {fmt(float(b['x0']), 4)} m: the smaller "
               f"release gives the smaller first swing; amplitude as defined in the datasets "
-              f"({a['amplitude'].attrs.get('definition', 'unnamed')})"),
+              f"({a.attrs['amplitude_variable']})"),
         paper_value=f"({first}) smaller at the beginning",
     )
 

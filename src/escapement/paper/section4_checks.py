@@ -86,9 +86,12 @@ def both_converge(claim, ev: Evidence) -> Verdict:
 
 @check("compare_cases", scenes=fig3_cases, args=("cases", "quantity"))
 def compare_cases(claim, ev: Evidence) -> Verdict:
-    """The first case of ``cases`` converges to a greater ``quantity`` than the second."""
+    """The first case of ``cases`` converges to a greater ``quantity`` than the second (``amplitude``: the
+    amplitude the Fig. 3 datasets hold, named by their ``amplitude_variable``)."""
     first, second = _two_cases(claim)
-    a, b = (float(ev.fig3[c][claim["args"]["quantity"]].values[-1]) for c in (first, second))
+    quantity = claim["args"]["quantity"]
+    a, b = (float(ds[ds.attrs["amplitude_variable"] if quantity == "amplitude" else quantity].values[-1])
+            for ds in (ev.fig3[first], ev.fig3[second]))
     return Verdict(f"{first}: {fmt(a)}, {second}: {fmt(b)}", REPRODUCED if a > b else NOT)
 
 
@@ -263,7 +266,7 @@ def _decreasing_in_K(ev: Evidence, column: str, digits: int, unit: str) -> tuple
 def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
     """The converged amplitude (the largest displacement of the last cycle) decreases with K at each
     common force."""
-    found = _decreasing_in_K(ev, "amplitude", 5, "m")
+    found = _decreasing_in_K(ev, "largest_displacement", 5, "m")
     if isinstance(found, Verdict):
         return found
     status, values = found

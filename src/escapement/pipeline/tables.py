@@ -27,7 +27,7 @@ __all__ = [
     "read_work_precision",
 ]
 
-CYCLE_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude", "M", "K", "F", "x0")
+CYCLE_VARIABLES = ("cycle", "velocity_before_impact", "period", "M", "K", "F", "x0")
 #: what the escapement-error figure reads
 ESCAPEMENT_ERROR_VARIABLES = ("amplitude", "rate", "rate_impacts", "rate_zones", "zone_name", "zone_a1", "zone_a2",
                               "max_period_difference", "M", "K", "b")

@@ -21,11 +21,11 @@ __all__ = ["FIG3_VARIABLES", "FIG4_VARIABLES", "FIG5_VARIABLES", "CHECKS_VARIABL
            "write_claims_csv", "read_claims_csv"]
 
 #: The variables the checks read from each output; a file lacking one is named by read_netcdf.
-FIG3_VARIABLES = ("cycle", "velocity_before_impact", "period", "amplitude", "event_time", "event_kind",
+FIG3_VARIABLES = ("cycle", "velocity_before_impact", "period", "event_time", "event_kind",
                   "event_velocity_before", "event_velocity_after", *MODEL_KEYS, "x0")
 FIG4_VARIABLES = ("t", "velocity", "acceleration", "velocity_before", "impulse", "energy_dissipated",
                   "velocity_window", "acceleration_window", *MODEL_KEYS, "x0")
-FIG5_VARIABLES = ("t", "displacement", "velocity", "impact_time", "velocity_before_impact", "period", "amplitude",
+FIG5_VARIABLES = ("t", "displacement", "velocity", "impact_time", "velocity_before_impact", "period", "largest_displacement",
                   *MODEL_KEYS)
 CHECKS_VARIABLES = ("label", "group", "outcome", "outcome_message", "F", "b", "x0", "velocity", "period",
                     "multiplier", "multiplier_eq21")

@@ -50,7 +50,9 @@ def fig3_axes(cases: Mapping[str, xr.Dataset], margin: float) -> PanelAxes:
         case, quantity = p.name.split("/")
         if case not in cases or not _completed(cases[case]):
             continue
-        variable = cases[case][{"velocity": "velocity_before_impact"}.get(quantity, quantity)]
+        ds = cases[case]
+        variable = ds[{"velocity": "velocity_before_impact", "amplitude": ds.attrs["amplitude_variable"]}.get(quantity,
+                                                                                                          quantity)]
         found[("3", p.name)] = _limits("3", p.name, variable[variable.dims[0]].values, variable.values, margin)
     return found
 

@@ -47,12 +47,13 @@ def _printed(ax, axes: PanelAxes | None, figure: str, name: str | None) -> None:
 
 def fig3(cases: dict[str, xr.Dataset], axes: PanelAxes | None = None, caption: str | None = None):
     """Velocity before impact, period and amplitude against the cycle, one column per case."""
-    rows = ("velocity_before_impact", "period", "amplitude")
-    panels = {"velocity_before_impact": "velocity", "period": "period", "amplitude": "amplitude"}
-    extra = 0.0 if not caption else 0.15 * (caption.count("\n") + 1)
     first = next(iter(cases.values()))
+    amplitude = first.attrs["amplitude_variable"]
+    rows = ("velocity_before_impact", "period", amplitude)
+    panels = {"velocity_before_impact": "velocity", "period": "period", amplitude: "amplitude"}
+    extra = 0.0 if not caption else 0.15 * (caption.count("\n") + 1)
     definitions = "\n".join(wrap(math_text(f"{name}: {first[name].attrs['long_name']}"), 100)
-                             for name in ("period", "amplitude") if "long_name" in first[name].attrs)
+                             for name in ("period", amplitude) if "long_name" in first[name].attrs)
     notes = []
     with style():
         fig, grid = plt.subplots(3, len(cases), figsize=(3.4 * len(cases), 7.9 + extra), squeeze=False,

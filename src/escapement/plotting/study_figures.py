@@ -238,7 +238,7 @@ def escapement_error(ds: xr.Dataset):
                         label=label)
         for ax, (_, ylabel, title) in zip(axes, panels):
             ax.axhline(0.0, color=GUIDE, lw=0.6, ls=":")
-            ax.set_xlabel(f"Amplitude of the limit cycle ({unit('amplitude')})")
+            ax.set_xlabel(f"Amplitude of the limit cycle ({unit('largest_displacement')})")
             ax.set_ylabel(ylabel)
             ax.set_title(title)
         model = ", ".join(quantity_value(k, float(ds[k])) for k in ("M", "K", "b"))

@@ -54,7 +54,7 @@ PEAK_BYTES_PER_CYCLE = 400
 #: bytes per cycle of a streamed chunk: its rows and the impact times' work arrays (about 96 measured)
 CHUNK_BYTES_PER_CYCLE = 128
 #: the columns of a cycle table, in order
-COLUMNS = ("impact_time", "velocity_before_impact", "period", "amplitude")
+COLUMNS = ("impact_time", "velocity_before_impact", "period", "largest_displacement")
 
 class CrossCheckError(AssertionError):
     """The closed-form cycles and the event solver disagree beyond the tolerance (:func:`cross_check`)."""
@@ -71,7 +71,7 @@ class CycleRun:
     n_cycles: int  #: the cycles asked for
     status: Status
     message: str
-    cycles: CycleTable  #: impact time (s), velocity before impact (m/s), period (s), amplitude (m)
+    cycles: CycleTable  #: impact time (s), velocity before impact (m/s), period (s), largest displacement (m)
     t_final: float  #: time of the impact at a1 that ends the last cycle (the event solver's t_final), s
     method: str  #: ``"closed-form cycles"``, or ``"exact"`` on a fallback
     fallback: str | None  #: why the event solver made the whole run; None where the closed form did
@@ -274,7 +274,7 @@ def iter_closed_form_cycles(
     -------
     CycleChunks
         An iterator of :class:`~escapement.solvers.result.CycleTable` chunks (impact time in s, velocity
-        before impact in m/s, period in s, amplitude in m); its ``summary`` (status, message, end time)
+        before impact in m/s, period in s, largest displacement in m); its ``summary`` (status, message, end time)
         once exhausted, ``method`` and ``fallback``.
 
     Raises

@@ -42,7 +42,7 @@ __all__ = [
     "solution_summary",
 ]
 
-_CYCLE_NAMES = ("impact_time", "velocity_before_impact", "period", "amplitude")
+_CYCLE_NAMES = ("impact_time", "velocity_before_impact", "period", "largest_displacement")
 #: the per-cycle table's columns: name: (UDUNITS string, long name), from the quantities' table
 CYCLE_COLUMNS = {name: (VARIABLES[name].units, VARIABLES[name].long_name) for name in _CYCLE_NAMES}
 #: the event log's columns: name: (field of the EventLog, UDUNITS string or None for a code, long name)
@@ -125,7 +125,7 @@ def solution_summary(solution: Solution, trajectory: str) -> str:
     text = f"{len(cycles)}"
     if len(cycles):
         text += (f"; the last: period {number(cycles.period[-1], 's')}, velocity before impact "
-                 f"{number(cycles.velocity_before_impact[-1], 'm/s')}, amplitude {number(cycles.amplitude[-1], 'm')}")
+                 f"{number(cycles.velocity_before_impact[-1], 'm/s')}, largest displacement {number(cycles.largest_displacement[-1], 'm')}")
     lines.append(_line("cycles", text))
     lines.append(_line("trajectory", trajectory))
     state = ", ".join(f"{name} = {exact(value, INITIAL_STATE[name].unit_label)}"

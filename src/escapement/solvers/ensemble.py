@@ -49,7 +49,7 @@ def ensemble_bytes(n_trajectories: int, n_cycles: int) -> int:
 def solve_ensemble(
     M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: ArrayLike, a2: ArrayLike,
     a3: ArrayLike | None = None, a4: ArrayLike | None = None, x0: ArrayLike = 1.0, v0: ArrayLike = 0.0, *,
-    n_cycles: int, max_events: int | None = None, amplitude: bool = True, memory_budget: int | None = None,
+    n_cycles: int, max_events: int | None = None, largest_displacement: bool = True, memory_budget: int | None = None,
 ) -> EnsembleSolution:
     """Integrate every trajectory for ``n_cycles`` complete cycles (or until it leaves the regime).
 
@@ -59,7 +59,7 @@ def solve_ensemble(
     in the error. The run's size (:func:`ensemble_bytes`) is at most ``memory_budget`` bytes (default
     :data:`~escapement.model.limits.MEMORY_BUDGET`: ``n_cycles + 1`` times the number of trajectories at most
     :data:`MAX_CELLS`), or a :class:`~escapement.model.limits.MemoryBudgetError` says so before any work.
-    With ``amplitude=False`` the per-cycle maxima are not computed.
+    With ``largest_displacement=False`` the per-cycle maxima are not computed.
 
     The model's inputs and the initial state are numbers or arrays, broadcast to one shape; each
     element is one trajectory (the result's rows follow the flattened shape).
@@ -90,7 +90,7 @@ def solve_ensemble(
         Complete cycles to run.
     max_events : int, optional
         Bound on the number of events of each trajectory.
-    amplitude : bool, default True
+    largest_displacement : bool, default True
         Compute the per-cycle maxima of ``x`` (m); NaN without.
     memory_budget : int, optional
         The most bytes the run may take (default :data:`~escapement.model.limits.MEMORY_BUDGET`, 2 GB).
@@ -99,7 +99,7 @@ def solve_ensemble(
     -------
     EnsembleSolution
         One row per trajectory: outcomes, end times (s), the per-cycle table (impact time in s,
-        velocity before impact in m/s, period in s, amplitude in m) of shape ``(N, n_cycles)``.
+        velocity before impact in m/s, period in s, largest displacement in m) of shape ``(N, n_cycles)``.
 
     Raises
     ------
@@ -119,7 +119,7 @@ def solve_ensemble(
     array([6.2991, 6.2979])
     """
     limits = RunLimits(n_cycles=n_cycles, max_events=max_events, memory_budget=memory_budget)
-    amplitude = check_flag("amplitude", amplitude)
+    largest_displacement = check_flag("largest_displacement", largest_displacement)
     given = {**dict(zip(MODEL_KEYS, (M, K, F, b, a1, a2, a3, a4))), "x0": x0, "v0": v0}
     try:  # the number of trajectories from the inputs' shapes alone, before any array is made at that size
         shape = np.broadcast_shapes(*(np.shape(value) for value in given.values() if value is not None))
@@ -167,7 +167,7 @@ def solve_ensemble(
             ii = slice(None) if running.all() else np.flatnonzero(running)
             if not len(every[ii]):
                 break
-            _pass(ii, every[ii], table, s, n_cycles, amplitude)
+            _pass(ii, every[ii], table, s, n_cycles, largest_displacement)
         else:  # the event bound: a trajectory still running after its last event ends there
             limited = status == _RUNNING
             status[limited] = Status.EVENT_LIMIT.code
@@ -178,10 +178,10 @@ def solve_ensemble(
     incomplete = np.arange(n_cycles)[None, :] >= (count - 1)[:, None]
     times[incomplete] = np.nan
     speeds[incomplete] = np.nan
-    _check_completed_rows(status, times, speeds, periods, maxima if amplitude else None, t_final)
+    _check_completed_rows(status, times, speeds, periods, maxima if largest_displacement else None, t_final)
     return EnsembleSolution(
         status=status.astype(np.int8),
-        cycles=CycleTable(impact_time=times, velocity_before_impact=speeds, period=periods, amplitude=maxima),
+        cycles=CycleTable(impact_time=times, velocity_before_impact=speeds, period=periods, largest_displacement=maxima),
         t_final=t_final,
         exit_turning_point=turning,
         exit_margin=margin,
@@ -301,7 +301,7 @@ def _check_completed_rows(status, times, speeds, periods, maxima, t_final) -> No
     done = status == Status.COMPLETED.code
     columns = {"impact_time": times, "velocity_before_impact": speeds, "period": periods, "t_final": t_final[:, None]}
     if maxima is not None:
-        columns["amplitude"] = maxima
+        columns["largest_displacement"] = maxima
     for name, values in columns.items():
         bad = done & ~np.isfinite(values).all(axis=1)
         if bad.any():

@@ -25,7 +25,7 @@ __all__ = ["ARC_BYTES", "CYCLE_BYTES", "EVENT_BYTES", "PASS_BYTES", "solve_exact
 EVENT_BYTES = 130
 #: bytes per event of the arcs when the trajectory is kept: their start times (the rest are the derived columns)
 ARC_BYTES = 8
-#: bytes per cycle: impact time, velocity, period and amplitude, and their temporaries
+#: bytes per cycle: impact time, velocity, period and largest displacement, and their temporaries
 CYCLE_BYTES = 64
 #: bytes whatever the run's length
 PASS_BYTES = 1 << 16
@@ -77,7 +77,7 @@ def solve_exact(
     -------
     Solution
         The run: ``status`` and ``message`` (how it ended), ``events``, ``cycles`` (the Poincare
-        map: impact time in s, velocity before impact in m/s, period in s, amplitude in m),
+        map: impact time in s, velocity before impact in m/s, period in s, largest displacement in m),
         ``trajectory`` and ``t_final`` (s). Leaving the escapement regime is an outcome, not an error.
 
     Raises
@@ -122,7 +122,8 @@ def solve_exact(
     block = event_block(run, 0, *run.take(), before=run.release)
     (impact_time, velocity, period, amplitude), _ = cycle_rows(block)
     log = EventLog(t=block.t, kind=block.kind, x=block.x, v_before=block.v_before, v_after=block.v_after)
-    table = CycleTable(impact_time=impact_time, velocity_before_impact=velocity, period=period, amplitude=amplitude)
+    table = CycleTable(impact_time=impact_time, velocity_before_impact=velocity, period=period,
+                       largest_displacement=amplitude)
     t_final = float(run.outcome.t_final)
     trajectory = _arcs(params, block, run.open_arc, t_final) if record_trajectory else None
     return finish(params, "exact", run.outcome, log, table, trajectory, x0=x, v0=v)

@@ -211,7 +211,7 @@ def finish(params: Parameters, method: str, outcome: Outcome, events: EventLog, 
 def _check_finite(method: str, events: EventLog, cycles: CycleTable, trajectory, t_final: float) -> None:
     columns = {f"events.{name}": getattr(events, name) for name in ("t", "x", "v_before", "v_after")}
     columns.update({f"cycles.{name}": getattr(cycles, name)
-                    for name in ("impact_time", "velocity_before_impact", "period", "amplitude")})
+                    for name in ("impact_time", "velocity_before_impact", "period", "largest_displacement")})
     if isinstance(trajectory, ArcTable):
         columns.update({f"trajectory.{name}": getattr(trajectory, name)
                         for name in ("t_start", "centre", "x_start", "v_start")})

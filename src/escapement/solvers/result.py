@@ -86,7 +86,7 @@ class CycleTable:
     impact_time: np.ndarray  #: time of impact k at a1, s
     velocity_before_impact: np.ndarray  #: velocity just before impact k, m/s
     period: np.ndarray  #: time from impact k to impact k+1, s
-    amplitude: np.ndarray  #: largest x between impact k and impact k+1, m
+    largest_displacement: np.ndarray  #: largest x between impact k and impact k+1, m
 
     def __len__(self) -> int:
         return len(self.period)
@@ -177,7 +177,7 @@ class Solution:
         Every event in time order: time (s), kind, position (m), velocity before and after (m/s).
     cycles : CycleTable
         The Poincare map per complete cycle: impact time at a1 (s), velocity just before it (m/s),
-        period (s) and amplitude (m).
+        period (s) and largest displacement (m).
     trajectory : Trajectory or None
         The motion between the events, where kept (``record_trajectory=True``); see :meth:`sample`.
     t_final : float
@@ -201,7 +201,7 @@ class Solution:
     message:    completed 50 cycles
     time span:  t = 0 .. 319.423 s (t_final)
     events:     203 (102 impacts) from t = 1.47063 s to 319.423 s
-    cycles:     50; the last: period 6.29567 s, velocity before impact 1.25656 m/s, amplitude 1.26053 m
+    cycles:     50; the last: period 6.29567 s, velocity before impact 1.25656 m/s, largest displacement 1.26053 m
     trajectory: kept (203 harmonic arcs)
     initial:    x0 = 1 m, v0 = 0 m/s
     parameters: M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m, a3 = 0.1 m, a4 = -0.05 m
@@ -256,7 +256,7 @@ class Solution:
         same names, values and units, from :mod:`escapement.solvers.describe`), a row per cycle or per
         event: for ``"cycles"`` the index is the cycle number ``cycle`` (1 .. N)
         and the columns ``impact_time`` (s), ``velocity_before_impact`` (m s-1), ``period`` (s) and
-        ``amplitude`` (m); for ``"events"`` the index ``event`` counts from 0 and the columns are
+        ``largest_displacement`` (m); for ``"events"`` the index ``event`` counts from 0 and the columns are
         ``event_time`` (s), ``event_kind`` (the :class:`~escapement.EventKind` code, which compares
         equal to its member), ``event_position`` (m), ``event_velocity_before`` and
         ``event_velocity_after`` (m s-1). ``df.attrs["units"]`` maps each column with units to its
@@ -284,7 +284,7 @@ class Solution:
         >>> run = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=3)
         >>> cycles = run.to_dataframe("cycles")
         >>> list(cycles.columns), cycles.index.name, cycles.attrs["units"]["period"]
-        (['impact_time', 'velocity_before_impact', 'period', 'amplitude'], 'cycle', 's')
+        (['impact_time', 'velocity_before_impact', 'period', 'largest_displacement'], 'cycle', 's')
         >>> events = run.to_dataframe("events")
         >>> int((events["event_kind"] == EventKind.IMPACT_A1).sum())
         4
@@ -321,7 +321,7 @@ class EnsembleSolution:
         How each run ended, as :attr:`Status.code` values.
     cycles : CycleTable
         The per-cycle table, each column of shape ``(N, n_cycles)``: impact time at a1 (s), velocity
-        before it (m/s), period (s), amplitude (m); NaN after a trajectory ended.
+        before it (m/s), period (s), largest displacement (m); NaN after a trajectory ended.
     t_final : numpy.ndarray of float, shape (N,)
         End of each computed trajectory, s (``inf`` where the escapement stopped).
     exit_turning_point : numpy.ndarray of float, shape (N,)

@@ -118,7 +118,8 @@ class CycleStream(ChunkIterator):
         self._pending = len(rest[0])
         self._cycles += len(head[0])
         impact_time, velocity, period, amplitude = head
-        return CycleTable(impact_time=impact_time, velocity_before_impact=velocity, period=period, amplitude=amplitude)
+        return CycleTable(impact_time=impact_time, velocity_before_impact=velocity, period=period,
+                       largest_displacement=amplitude)
 
     def _derive(self, stored: tuple[np.ndarray, np.ndarray, np.ndarray]) -> None:
         """The cycles that the events of a pass complete, the events carried over from the last pass first;
@@ -178,7 +179,7 @@ def iter_cycles(
     -------
     CycleStream
         An iterator of :class:`~escapement.solvers.result.CycleTable` chunks (impact time in s,
-        velocity before impact in m/s, period in s, amplitude in m); the run goes on as it is iterated.
+        velocity before impact in m/s, period in s, largest displacement in m); the run goes on as it is iterated.
 
     Raises
     ------

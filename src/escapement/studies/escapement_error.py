@@ -83,7 +83,7 @@ def limit_cycle_rate(p: Parameters) -> LimitCycleRate:
     period = float(run.cycles.period[0])
     return LimitCycleRate(
         F=p.F,
-        amplitude=float(run.cycles.amplitude[0]),
+        amplitude=float(run.cycles.largest_displacement[0]),
         velocity=v,
         period=period,
         period_formula=t0 + impacts + zones,

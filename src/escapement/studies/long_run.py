@@ -113,7 +113,7 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
         stream = iter_cycles(params, x0, n_cycles=n_check, chunk=CHUNK)
         exact_wall = time.perf_counter() - wall
         closed_t, closed_v, sampled_t, sampled_v = (np.full(len(cycles), np.nan) for _ in range(4))
-        differences = dict.fromkeys(("impact_time", "velocity_before_impact", "period", "amplitude"), 0.0)
+        differences = dict.fromkeys(("impact_time", "velocity_before_impact", "period", "largest_displacement"), 0.0)
         max_v_dev = max_t_dev = -math.inf
         any_nan = False
         done = checked = 0  # cycles before the chunk, of each series

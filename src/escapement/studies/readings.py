@@ -152,11 +152,11 @@ def fig3_readings(model: Mapping, cases: Mapping[str, Mapping], n_cycles: int, r
 
 @dataclass(frozen=True)
 class Amplitude:
-    """One definition of Fig. 3's "amplitude of oscillation": its long name, and the values per
-    cycle with the cycle numbers they belong to."""
+    """One definition of Fig. 3's "amplitude of oscillation": a short label, and the values per cycle with the
+    cycle numbers they belong to; its name is the variable's (units and long name in
+    :data:`escapement.model.quantities.VARIABLES`)."""
 
     label: str  #: short name
-    long_name: str
     values: Callable[[Solution], tuple[np.ndarray, np.ndarray]] = field(repr=False)
 
 
@@ -182,30 +182,16 @@ def largest_abs_per_cycle(run: Solution) -> np.ndarray:
     return np.maximum(c.right, c.left)[: len(run.cycles)]
 
 
-#: The definitions of the amplitude a Fig. 3 scene may plot (the configuration's ``fig3.amplitude``),
-#: all at the section a1; the score of each on the printed axes is in the readings' score table.
+#: The definitions of the amplitude a Fig. 3 scene may plot (the configuration's ``fig3.amplitude``), by the
+#: name of the variable that holds it, all at the section a1; the score of each on the printed axes is in the
+#: readings' score table.
 AMPLITUDES: dict[str, Amplitude] = {
-    "step1": Amplitude(
-        "Step-1 amplitude h0(k), k = 1..N+1",
-        "Step-1 amplitude h0(k) = sqrt(a1^2 + (v_k / omega)^2) of the free arc that ends in impact k at a1 "
-        "(k = 1 .. N+1; Eqs. (9b), (22a))",
-        _per_cycle(lambda run: step1_amplitudes(run)),
-    ),
-    "step8": Amplitude(
-        "Step-8 amplitude h4(k) = h0(k+1), k = 1..N",
-        "Step-8 amplitude h4(k) = h0(k+1) of the free arc that ends cycle k (k = 1 .. N)",
-        _per_cycle(lambda run: step1_amplitudes(run)[1:len(run.cycles) + 1]),
-    ),
-    "largest_displacement": Amplitude(
-        "largest displacement per cycle",
-        "largest displacement between impact k and impact k+1 (right turning point)",
-        _per_cycle(lambda run: run.cycles.amplitude),
-    ),
-    "largest_abs": Amplitude(
-        "largest |x| per cycle",
-        "largest |x| between impact k and impact k+1",
-        _per_cycle(lambda run: largest_abs_per_cycle(run)),
-    ),
+    "amplitude_h0": Amplitude("Step-1 amplitude h0(k), k = 1..N+1", _per_cycle(step1_amplitudes)),
+    "amplitude_h4": Amplitude("Step-8 amplitude h4(k) = h0(k+1), k = 1..N",
+                              _per_cycle(lambda run: step1_amplitudes(run)[1:len(run.cycles) + 1])),
+    "largest_displacement": Amplitude("largest displacement per cycle",
+                                      _per_cycle(lambda run: run.cycles.largest_displacement)),
+    "largest_abs_displacement": Amplitude("largest |x| per cycle", _per_cycle(largest_abs_per_cycle)),
 }
 
 
