@@ -1,4 +1,6 @@
-"""Figures of the replication: one style sheet, deterministic files.
+"""Figures of the escapement model: the three kinds of scene figure (Poincaré map, shock detail, phase
+diagrams) for the paper's parameters or a user's, and the project's own studies; one style sheet,
+deterministic files.
 
 The names are imported on first use (PEP 562), so that a job needing only
 :mod:`escapement.plotting.autoscale` (the axis claims) does not load the figures' code.
@@ -10,11 +12,11 @@ from .._lazy import lazy_exports
 _EXPORTS = {
     "escapement_error": "study_figures",
     "existence_map": "study_figures",
-    "fig3": "paper_figures",
-    "fig4": "paper_figures",
-    "fig5": "paper_figures",
     "long_run": "study_figures",
+    "phase_diagrams": "scene_figures",
+    "poincare_map": "scene_figures",
     "save_figure": "style",
+    "shock_detail": "scene_figures",
     "stability_map": "study_figures",
     "style": "style",
     "work_precision": "study_figures",

@@ -1,13 +1,18 @@
-"""The project's own figures, beyond the paper's: the solvers' work-precision and long-run errors,
-the stability and existence map over (b, F), the existence map of an asymmetric escapement over (a3, F),
-and the escapement error against amplitude.
+"""The project's own figures, beyond the paper's three kinds: the solvers' work-precision and long-run
+errors, the stability map over (b, F), the existence map over (a3, F), and the escapement error against
+amplitude. Drawn from the studies' tables and netCDF datasets in the style of the scene figures; each
+composes a title of at most two lines from its dataset unless its caller gives one.
 
-Drawn from the studies' tables and netCDF datasets, in the style and with the label placement of
-the paper's figures. The long-run figure draws an adaptive integrator's errors per decade of cycles, as the
-decade's largest error rounded up to 1, 2 or 5 times a power of ten: its steps amplify rounding, so that its
-error at a given cycle moves by up to half with the BLAS kernels (OpenBLAS's Haswell or Sandy Bridge kernels
-against its SkylakeX ones), and its largest over a decade by up to 2 %, which moves no level unless it lies
-within 2 % of one.
+The long-run figure shows rounding for what it is. The float64 spacing of the impact time (1 ulp of t;
+of the velocity, relative) is a shaded band, and the exact solver's and the per-cycle closed forms'
+errors are drawn at every sampled cycle, inside or near that band. Those errors are bit-identical under
+NumPy's baseline SIMD dispatch and OpenBLAS's Sandy Bridge kernels (the two changes CI applies; measured
+on all 208 sampled cycles of the workflow's long run): their arithmetic is correctly rounded and their
+functions are Python's scalar ``math`` ones, not NumPy's dispatched kernels; CI's run with both changes
+would show it if that stopped holding. An adaptive integrator's error is not so: its steps amplify the
+rounding of the BLAS kernels, so that its error at a cycle moves by a few per cent. It is drawn as its
+largest error per decade of cycles rounded up to 1, 2 or 5 times a power of ten, which moves only if a
+decade's largest lies within those few per cent of a level.
 """
 
 from __future__ import annotations
@@ -17,38 +22,35 @@ from decimal import Decimal
 import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
+from matplotlib.colors import LogNorm
+from matplotlib.figure import Figure
 from matplotlib.patches import Patch, PathPatch
 from matplotlib.path import Path
 
 from ..model.status import Status
 from .captions import axis_label, quantity_value, release, unit
-from .labels import finish, legend_below
-from .style import ACCENT, GUIDE, INK, NO_CYCLE, SERIES, style
+from .style import ACCENT, GUIDE, INK, NO_CYCLE, SERIES, legend_below, style, suptitle
 
 __all__ = ["ERROR_FLOOR", "escapement_error", "existence_map", "long_run", "stability_map", "work_precision"]
 
-
 #: errors below this are drawn at it on log axes (an exact zero has no logarithm)
 ERROR_FLOOR = 1e-17
-#: the levels the long-run figure rounds the integrator's largest errors up to, times a power of ten: steps
-#: of a factor 2 to 2.5, where the largest error over a decade moves by about 2 % with the BLAS kernels
+#: the levels the long-run figure rounds the integrator's largest errors up to, times a power of ten
 STEPS = (Decimal(1), Decimal(2), Decimal(5), Decimal(10))
-#: errors below this many units in the last place (of the impact time; of 1 for a relative error) are
-#: rounding noise: the long-run figure draws them at that level
-ROUNDING_ULPS = 16
-EPS = float(np.finfo(float).eps)
+#: the long-run figure's legend for the rounding band and for the integrator's staircase
+BAND = "rounding band: 1 ulp (the float64 spacing) of the impact time; of the velocity, relative"
+STAIRCASE = "largest error per decade, rounded up to 1, 2 or 5 \u00d7 10\u207f"
 MARKERS = {"exact": "*", "closed-form cycles": "X", "map16": "P", "naive-RK4": "x", "RK45": "o", "DOP853": "s",
            "LSODA": "^", "Radau": "v", "CVODE-Adams": "D", "CVODE-BDF": "d"}
 #: the benchmark's methods in words, where their names are not words
-#: the legend's entry for the ringed point: the first CVODE run, timed once, with SUNDIALS' loading
 METHOD_LABELS = {"exact": "exact solver", "closed-form cycles": "per-cycle closed forms",
-                 "map16": "map (16) + corrected period (23)",
-                 "naive-RK4": "naive RK4, fixed step"}
+                 "map16": "map (16) + corrected period (23)", "naive-RK4": "naive RK4, fixed step"}
 
 
-def work_precision(rows: list[dict], case: str):
-    """Relative error against wall time, one curve per method, for the velocity and the impact time, on the
-    Fig. 3 case ``case`` (the benchmark's)."""
+def work_precision(rows: list[dict], title: str | None = None) -> Figure:
+    """Relative error against wall time, one line per method (its settings from the loosest to the
+    tightest), for the velocity before impact and the impact time; an exact zero is drawn at
+    :data:`ERROR_FLOOR`."""
     methods = list(dict.fromkeys(r["method"] for r in rows))
     with style():
         fig, axes = plt.subplots(1, 2, figsize=(8.4, 4.1), sharex=True, layout="constrained")
@@ -60,20 +62,15 @@ def work_precision(rows: list[dict], case: str):
                 err = [max(float(r[key]), ERROR_FLOOR) for r in mine]
                 ax.loglog(wall, err, marker=MARKERS.get(method, "o"), color=colours(i % 10), lw=1.0, ms=5,
                           label=METHOD_LABELS.get(method, method))
-        for ax, title in zip(axes, ("velocity before impact, cycle 50", "impact time, cycle 50")):
+        for ax, name in zip(axes, ("velocity before impact", "impact time")):
             ax.set_xlabel("Wall time per run (s), median of repeats")
             ax.set_ylabel("Relative error")
-            ax.set_title(title)
+            ax.set_title(name)
             ax.axhline(ERROR_FLOOR, color=GUIDE, lw=0.6, ls=":")
-        fig.suptitle(f"Work-precision, Fig. 3 case ({case}): errors against 50 digits (exact zero drawn at "
-                     f"{ERROR_FLOOR:.0e})\n"
-                     "map (16) + corrected period (23): the closed-form Poincar\u00e9 map, no integration\n"
-                     "each line joins a method's settings from the loosest rtol (or step) to the tightest; each "
-                     "method ran one untimed cycle first,\nso that no time includes loading its modules (SciPy's, "
-                     "SUNDIALS)",
-                     fontsize=8.5)
+        suptitle(fig, title or "Work-precision of the solvers: relative error against a 50-digit reference\n"
+                 "each line a method from its loosest setting to its tightest; an exact zero drawn at "
+                 f"{ERROR_FLOOR:.0e}")
         legend_below(fig, axes, ncols=5, fontsize=7)
-        finish(fig, [])
     return fig
 
 
@@ -81,19 +78,18 @@ def _round_up(value: float) -> float:
     """``value`` (> 0) rounded up to 1, 2 or 5 times a power of ten, from its shortest decimal form (Python's
     ``repr``, so that 2e-12 stays 2e-12 whichever side of it its binary value lies): 2.01e-12 -> 5e-12."""
     printed = Decimal(repr(value))
-    unit = Decimal(1).scaleb(printed.adjusted())
-    return float(next(step for step in STEPS if step >= printed / unit) * unit)
+    power = Decimal(1).scaleb(printed.adjusted())
+    return float(next(step for step in STEPS if step >= printed / power) * power)
 
 
-def _decade_maxima(cycle: np.ndarray, values: np.ndarray, floor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _decade_maxima(cycle: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """A staircase over the decades of cycles [1, 10], (10, 100], ... that hold a finite value: on each,
-    the largest of ``max(|values|, floor)`` at the cycles given, rounded up to 1, 2 or 5 times a power of ten
-    (:func:`_round_up`); the step of decade k runs from cycle 10**(k - 1) to 10**k, clipped to the cycles given,
-    so that the steps join; a decade without a finite value has no step, and the line runs across it."""
-    level = np.maximum(np.abs(values), floor)
+    the largest of ``|values|`` (at least :data:`ERROR_FLOOR`) rounded up by :func:`_round_up`; the step of
+    decade k runs from cycle 10**(k - 1) to 10**k, clipped to the cycles given, so that the steps join."""
+    level = np.maximum(np.abs(values), ERROR_FLOOR)
     kept = np.isfinite(level)
     cycle, level = np.asarray(cycle)[kept].astype(np.int64), level[kept]
-    # decade k holds the cycles in (10**(k - 1), 10**k], in integers; cycle 1 joins decade 1
+    # decade k holds the cycles in (10**(k - 1), 10**k]; cycle 1 joins decade 1
     decade = np.maximum(np.searchsorted(10 ** np.arange(19, dtype=np.int64), cycle, side="left"), 1)
     xs, ys = [], []
     for k in np.unique(decade):
@@ -103,40 +99,40 @@ def _decade_maxima(cycle: np.ndarray, values: np.ndarray, floor: np.ndarray) -> 
     return np.array(xs), np.array(ys)
 
 
-def long_run(ds: xr.Dataset):
-    """Phase error (impact time minus the 50-digit reference) and velocity error against the number of cycles:
-    the exact solver's at every sampled cycle, the integrator's as its largest per decade (:func:`_decade_maxima`)."""
+def long_run(ds: xr.Dataset, title: str | None = None) -> Figure:
+    """The phase error (impact time minus the 50-digit reference, in s) and the relative error of the
+    velocity before impact against the number of cycles: the exact solver's and the per-cycle closed
+    forms' at every sampled cycle, the integrator's as its largest per decade, over the band of float64
+    spacing (reads ``drift_*``, ``error_velocity_*``, ``fixed_point_period``, ``fixed_point_velocity``,
+    ``F``, ``x0``, the attribute ``ivp_label``)."""
     cycle = ds["cycle"].values
-    ivp_label = f"{ds.attrs['ivp_label']}, largest sampled error per decade"
-    # below a few ulps an error is rounding noise, whose last bits vary with the CPU's kernels: drawn at the
-    # band's edge, so that no such bit changes the figure
-    t = float(ds["fixed_point_period"]) * cycle.astype(float)
-    floors = {"drift": ROUNDING_ULPS * np.spacing(t), "error_velocity": np.full(cycle.shape, ROUNDING_ULPS * EPS)}
+    v_star = float(ds["fixed_point_velocity"])
+    # the band on a fine grid of cycles, so that its steps (where the impact time passes a power of two) are steps
+    fine = np.geomspace(cycle.min(), cycle.max(), 2000)
+    bands = {"drift": np.spacing(float(ds["fixed_point_period"]) * fine),
+             "error_velocity": np.full(fine.shape, np.spacing(v_star) / v_star)}
+    bottom = ERROR_FLOOR / 2
     with style():
-        fig, (ax_t, ax_v) = plt.subplots(1, 2, figsize=(8.4, 3.8), sharex=True, layout="constrained")
+        fig, (ax_t, ax_v) = plt.subplots(1, 2, figsize=(8.4, 4.4), sharex=True, layout="constrained")
         for ax, key in ((ax_t, "drift"), (ax_v, "error_velocity")):
-            ax.fill_between(cycle, ERROR_FLOOR, floors[key], color=NO_CYCLE, lw=0,
-                            label="rounding level (errors below it drawn on its edge)")
-            exact = np.abs(ds[f"{key}_exact"].values)
-            ax.loglog(cycle, np.maximum(exact, floors[key]), color=INK, lw=1.2, marker=".", ms=3, label="exact solver")
-            xs, ys = _decade_maxima(cycle, ds[f"{key}_ivp"].values, floors[key])
-            ax.loglog(xs, ys, color=ACCENT, lw=1.6, label=ivp_label)
-        ax_t.set_ylabel(f"|impact time − reference| ({unit('impact_time')})")
-        ax_t.set_title("phase error of the impact at a1")
+            ax.fill_between(fine, bottom, bands[key], color=NO_CYCLE, lw=0, label=BAND)
+            if f"{key}_closed_form" in ds:
+                ax.loglog(cycle, np.maximum(np.abs(ds[f"{key}_closed_form"].values), ERROR_FLOOR), "o", ms=4.5,
+                          mfc="none", mew=0.7, color=SERIES[2], label="per-cycle closed forms, each sampled cycle")
+            ax.loglog(cycle, np.maximum(np.abs(ds[f"{key}_exact"].values), ERROR_FLOOR), "o", ms=2.2, color=INK,
+                      label="exact solver, each sampled cycle")
+            xs, ys = _decade_maxima(cycle, ds[f"{key}_ivp"].values)
+            if xs.size:
+                ax.loglog(xs, ys, color=ACCENT, lw=1.6, label=f"{ds.attrs['ivp_label']}: {STAIRCASE}")
+            ax.set_ylim(bottom, None)
+            ax.set_xlabel("Number of cycles")
+        ax_t.set_ylabel(f"|impact time \u2212 reference| ({unit('impact_time')})")
+        ax_t.set_title("phase error of the impact at a\u2081")
         ax_v.set_ylabel("Relative error")
         ax_v.set_title("velocity before impact")
-        for ax in (ax_t, ax_v):
-            ax.set_xlabel("Number of cycles")
-        case = f"{quantity_value('F', float(ds['F']))}, {release(ds)}"
-        fig.suptitle(f"Long run, {case}: errors against the 50-digit reference\n"
-                     f"grey band: rounding level, {ROUNDING_ULPS} ulps of the impact time t (left) and "
-                     f"{ROUNDING_ULPS} \u03b5 = {ROUNDING_ULPS * EPS:.1e} (right); an error below it is drawn on its "
-                     "edge\n"
-                     "the integrator's staircase: its largest error at the sampled cycles of 1-10, 11-100, ..., "
-                     "rounded up to 1, 2 or 5 times a power of ten",
-                     fontsize=8.5)
-        legend_below(fig, (ax_t, ax_v), ncols=3)
-        finish(fig, [])
+        suptitle(fig, title or f"Long run: errors against a 50-digit reference, {quantity_value('F', float(ds['F']))}, "
+                 f"{release(ds)}")
+        legend_below(fig, (ax_t, ax_v), ncols=1)
     return fig
 
 
@@ -154,31 +150,28 @@ def _cells_path(mask: np.ndarray, x_edges: np.ndarray, y_edges: np.ndarray) -> P
     consecutive rows with the same runs merged, so that a block of cells is one rectangle."""
     runs_of_rows = []
     for row in mask:
-        padded = np.concatenate([[False], row, [False]]).astype(np.int8)
-        change = np.flatnonzero(np.diff(padded))
+        change = np.flatnonzero(np.diff(np.concatenate([[False], row, [False]]).astype(np.int8)))
         runs_of_rows.append(tuple(zip(change[::2], change[1::2])))
-    rectangles = []
+    vertices, codes = [], []
     j = 0
     while j < len(runs_of_rows):
         k = j
         while k + 1 < len(runs_of_rows) and runs_of_rows[k + 1] == runs_of_rows[j]:
             k += 1
         for i0, i1 in runs_of_rows[j]:
-            rectangles.append((x_edges[i0], y_edges[j], x_edges[i1], y_edges[k + 1]))
+            x0, y0, x1, y1 = x_edges[i0], y_edges[j], x_edges[i1], y_edges[k + 1]
+            vertices += [(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)]
+            codes += [Path.MOVETO, Path.LINETO, Path.LINETO, Path.LINETO, Path.CLOSEPOLY]
         j = k + 1
-    if not rectangles:
-        return None
-    vertices, codes = [], []
-    for x0, y0, x1, y1 in rectangles:
-        vertices += [(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)]
-        codes += [Path.MOVETO, Path.LINETO, Path.LINETO, Path.LINETO, Path.CLOSEPOLY]
-    return Path(vertices, codes)
+    return Path(vertices, codes) if vertices else None
 
 
-def stability_map(ds: xr.Dataset):
-    """Measured multiplier over (b, F), its distance from (1 - b)**4, and where no cycle exists."""
-    from matplotlib.colors import LogNorm
+def _constants(ds: xr.Dataset, names: tuple[str, ...]) -> str:
+    return ", ".join(quantity_value(k, float(ds[k])) for k in names if k in ds and ds[k].ndim == 0)
 
+
+def stability_map(ds: xr.Dataset, title: str | None = None) -> Figure:
+    """The multiplier measured over (b, F), its distance from Eq. (21)'s (1 - b)**4, and where no cycle exists."""
     b, F = ds["b"].values, ds["F"].values
     mu = ds["multiplier"].values.T
     deviation = np.abs(ds["multiplier"].values - ds["multiplier_eq21"].values).T
@@ -191,66 +184,56 @@ def stability_map(ds: xr.Dataset):
         mesh = axes[0].pcolormesh(b, F, np.where(no_cycle, np.nan, mu), shading="nearest", cmap="viridis",
                                   vmin=0, vmax=1, rasterized=True)
         fig.colorbar(mesh, ax=axes[0], label="measured multiplier \u03bc\u2082")
-        # an exact zero is drawn at the floor, below the scale: in the lowest colour, as perfect agreement;
-        # where there is no cycle there is nothing to compare, and the cell is left to the mark below
+        # an exact zero is drawn at the floor, below the scale: in the lowest colour, as perfect agreement
         dev = np.where(no_cycle, np.nan, np.where(deviation > 0, deviation, ERROR_FLOOR))
         mesh = axes[1].pcolormesh(b, F, dev, shading="nearest", cmap="magma", norm=LogNorm(vmin=1e-16, vmax=1e-8),
                                   rasterized=True)
         fig.colorbar(mesh, ax=axes[1], extend="min", label="|\u03bc\u2082 measured \u2212 (1 \u2212 b)\u2074|")
         cells = _cells_path(no_cycle, _cell_edges(b), _cell_edges(F))
         names = sorted({meanings[c] for c in np.unique(outcome[no_cycle & (outcome != completed)])})
-        label = "no cycle" + (f": {', '.join(names).replace('_', ' ')} (the impacts accumulate in finite time)"
-                              if names else "")
+        label = "no cycle" + (": " if names else "") + ", ".join(name.replace("_", " ") for name in names)
+        if Status.CHATTERING.value in names:
+            label += " (the impacts accumulate in finite time)"
+        look = {"facecolor": NO_CYCLE, "edgecolor": GUIDE, "hatch": "////", "lw": 0}
         for ax in axes:
             if cells is not None:
-                ax.add_patch(PathPatch(cells, facecolor=NO_CYCLE, edgecolor=GUIDE, hatch="////", lw=0,
-                                       label=label))
+                ax.add_patch(PathPatch(cells, **look, label=label))
             ax.set_xlabel(axis_label("b"))
             ax.grid(False)  # grid lines over a map read as cell borders
         axes[0].set_ylabel(axis_label("F"))
-        axes[0].set_title("Multiplier measured from the simulated return map")
-        axes[1].set_title("Distance from Eq. (21)")
-        constants = ", ".join(quantity_value(k, float(ds[k])) for k in ("M", "K", "a1", "a2", "a3", "a4") if k in ds)
-        fig.suptitle(f"Stability and existence map over (b, F), Sec. 3.4 and Eq. (21) of the paper\n{constants}",
-                     fontsize=8.5)
+        axes[0].set_title("multiplier measured from the simulated return map")
+        axes[1].set_title("distance from Eq. (21)")
+        suptitle(fig, title or "Stability of the limit cycle over (b, F): measured multiplier and Eq. (21)\n"
+                 + _constants(ds, ("M", "K", "a1", "a2", "a3", "a4")))
         if cells is not None:
-            handle = Patch(facecolor=NO_CYCLE, edgecolor=GUIDE, hatch="////", lw=0, label=label)
-            fig.legend(handles=[handle], loc="outside lower center")
-        finish(fig, [])
+            fig.legend(handles=[Patch(**look, label=label)], loc="outside lower center")
     return fig
 
 
-def escapement_error(ds: xr.Dataset):
+def escapement_error(ds: xr.Dataset, title: str | None = None) -> Figure:
     """The limit cycle's rate against its amplitude for each impulse zone, and its two parts: the
     impacts' phase jumps dT1 and the impulse zones' dT2 (Airy's escapement error)."""
-    names = [str(n) for n in ds["zone_name"].values]
     sign = "\n> 0: gains (runs fast), < 0: loses"
     panels = (("rate", f"Rate (s/day){sign}", "rate: impacts and impulse"),
               ("rate_impacts", f"Rate from the impacts, dT1 (s/day){sign}", "impacts' phase jumps, Eq. (24)"),
               ("rate_zones", f"Rate from the impulse, dT2 (s/day){sign}", "impulse zones, Eq. (25)"))
     with style():
         fig, axes = plt.subplots(1, 3, figsize=(10.2, 3.9), sharex=True, layout="constrained")
-        for i, name in enumerate(names):
+        for i, name in enumerate(str(n) for n in ds["zone_name"].values):
             a1, a2 = float(ds["zone_a1"][i]), float(ds["zone_a2"][i])
             label = f"{name}: impact at {quantity_value('a1', a1)}, impulse to {quantity_value('a2', a2)}"
             for ax, (variable, _, _) in zip(axes, panels):
                 ax.plot(ds["amplitude"][i], ds[variable][i], marker="o", ms=2.5, lw=1.1, color=SERIES[i % 4],
                         label=label)
-        for ax, (_, ylabel, title) in zip(axes, panels):
+        for ax, (_, ylabel, name) in zip(axes, panels):
             ax.axhline(0.0, color=GUIDE, lw=0.6, ls=":")
             ax.set_xlabel(f"Amplitude of the limit cycle ({unit('largest_displacement')})")
             ax.set_ylabel(ylabel)
-            ax.set_title(title)
-        model = ", ".join(quantity_value(k, float(ds[k])) for k in ("M", "K", "b"))
-        fig.suptitle(
-            "Escapement error (beyond the paper): rate of a clock counting 2\u03c0/\u03c9 per swing, against "
-            "amplitude; a positive rate means the clock gains (runs fast)\n"
-            f"{model}; F from {float(ds['F'][0]):g} to {float(ds['F'][-1]):g} {unit('F')}; the second half cycle "
-            f"mirrors the first; exact solver, Eqs. (24)-(25) corrected agree to "
-            f"{float(ds['max_period_difference']):.0e}",
-            fontsize=8.5)
+            ax.set_title(name)
+        forces = f"F from {float(ds['F'][0]):g} to {float(ds['F'][-1]):g} {unit('F')}"
+        suptitle(fig, title or "Escapement error: the rate of a clock counting 2\u03c0/\u03c9 per swing, against "
+                 f"amplitude\n{_constants(ds, ('M', 'K', 'b'))}, {forces}; the second half cycle mirrors the first")
         legend_below(fig, axes, ncols=2, fontsize=7.5)
-        finish(fig, [])
     return fig
 
 
@@ -261,39 +244,36 @@ UNSETTLED = "#f5cba7"
 A1, A2, A3, A4 = "a\u2081", "a\u2082", "a\u2083", "a\u2084"
 
 
-def existence_map(ds: xr.Dataset):
+def existence_map(ds: xr.Dataset, title: str | None = None) -> Figure:
     """Where the limit cycle of an asymmetric escapement exists over (a3, F), from simulation, with the
     closed-form forces F* and F*' below which the map (16), read at a1 or at a3, has no fixed point."""
     a3, F = ds["a3"].values, ds["F"].values
     outcome = ds["outcome"].values.T
-    meanings = ds["outcome"].attrs["flag_meanings"].split()
     cycle = ds["converged"].values.T.astype(bool)
-    stopped = outcome == meanings.index(Status.STOPPED.value)
+    stopped = outcome == ds["outcome"].attrs["flag_meanings"].split().index(Status.STOPPED.value)
     x_edges, y_edges = _cell_edges(a3), _cell_edges(F) * 1e3
-    cycles = int(ds["n_cycles"])
     regions = (
-        (cycle, dict(facecolor=LIMIT_CYCLE, edgecolor="none"),
-         f"limit cycle: all {cycles} cycles completed, the last two velocities at {A1} within "
+        (cycle, {"facecolor": LIMIT_CYCLE, "edgecolor": "none"},
+         f"limit cycle: all {int(ds['n_cycles'])} cycles run, the last two velocities at {A1} within "
          f"{float(ds['tolerance']):.0e} (relative)"),
-        (stopped & ~cycle, dict(facecolor=NO_CYCLE, edgecolor=GUIDE, hatch="////", lw=0),
+        (stopped & ~cycle, {"facecolor": NO_CYCLE, "edgecolor": GUIDE, "hatch": "////", "lw": 0},
          "no limit cycle: the escapement stops (a swing ends short of the next impact position)"),
-        (~cycle & ~stopped, dict(facecolor=UNSETTLED, edgecolor=ACCENT, hatch="xx", lw=0),
-         "neither: another outcome, or not settled within the cycles given"),
+        (~cycle & ~stopped, {"facecolor": UNSETTLED, "edgecolor": ACCENT, "hatch": "xx", "lw": 0},
+         "neither: another outcome, or not settled within the cycles run"),
     )
     with style():
-        fig, ax = plt.subplots(figsize=(7.6, 6.0), layout="constrained")
+        fig, ax = plt.subplots(figsize=(7.6, 5.6), layout="constrained")
         handles = []
         for mask, look, label in regions:
             cells = _cells_path(mask, x_edges, y_edges)
             if cells is not None:
                 ax.add_patch(PathPatch(cells, **look))
                 handles.append(Patch(**look, label=label))
-        lines = (("threshold", ACCENT, "-",
-                  f"F*: C = 0, the map (16) read at the impact at {A1} (below it the swing falls short of {A1})"),
-                 ("threshold_mirror", INK, "--",
-                  f"F*': the same map read at the impact at {A3}, F* of the mirror image "
-                  f"(below it the swing falls short of {A3})"))
-        for name, colour, ls, label in lines:
+        for name, colour, ls, label in (
+                ("threshold", ACCENT, "-", f"F*: below it the map (16) read at {A1} has no fixed point "
+                 f"(the swing falls short of {A1})"),
+                ("threshold_mirror", INK, "--", f"F*': the same read at {A3}, F* of the mirror image "
+                 f"(the swing falls short of {A3})")):
             handles.append(ax.plot(a3, ds[name].values * 1e3, color=colour, ls=ls, lw=1.6, label=label)[0])
         symmetric = -float(ds["a1"])
         if x_edges[0] <= symmetric <= x_edges[-1]:
@@ -302,16 +282,9 @@ def existence_map(ds: xr.Dataset):
         ax.set_xlim(x_edges[0], x_edges[-1])
         ax.set_ylim(y_edges[0], y_edges[-1])
         ax.set_xlabel(axis_label("a3"))
-        ax.set_ylabel(axis_label("F").replace("(N)", "(mN)"))
+        ax.set_ylabel(axis_label("F").replace(f"({unit('F')})", f"(m{unit('F')})"))
         ax.grid(False)  # grid lines over a map read as cell borders
-        constants = ", ".join(quantity_value(k, float(ds[k])) for k in ("M", "K", "b", "a1", "a2", "a4"))
-        fig.suptitle(
-            f"Existence of the limit cycle without {A1} = \u2212{A3}, {A2} = \u2212{A4} (Sec. 5 of the paper), exact "
-            f"solver (vectorised ensemble)\n{constants}\neach cell {release(ds)} and run for {cycles} cycles; "
-            f"a limit cycle needs F > max(F*, F*'):\nF* = (2b \u2212 b\u00b2) K ({A1}\u00b2 \u2212 {A3}\u00b2) / "
-            f"(2 [(1 \u2212 b)\u00b2 ({A2} \u2212 {A1}) + ({A3} \u2212 {A4})]), F*' the same with "
-            f"({A1}, {A2}, {A3}, {A4}) \u2192 (\u2212{A3}, \u2212{A4}, \u2212{A1}, \u2212{A2})",
-            fontsize=8.5)
+        suptitle(fig, title or f"Existence of the limit cycle over ({A3}, F) with {A1} \u2260 \u2212{A3}, each run "
+                 f"{release(ds)}\n{_constants(ds, ('M', 'K', 'b', 'a1', 'a2', 'a4'))}")
         fig.legend(handles=handles, loc="outside lower center", ncols=1, fontsize=7.5)
-        finish(fig, [])
     return fig

@@ -1,29 +1,36 @@
-"""The project's style sheet and deterministic saving."""
+"""How every figure looks and is saved: the style sheet, the colours by role, the title (at most two
+lines), one legend below the axes, and files that are byte-identical from run to run.
+
+Nothing is placed by searching for free space: a figure's text sits where matplotlib's constrained
+layout puts titles, axis labels and a legend outside the axes, so that no label can cover data.
+"""
 
 from __future__ import annotations
 
 import contextlib
 import os
 from importlib.resources import as_file, files
-from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
-from ..io.atomic import atomic_path  # noqa: E402
+from ..io.netcdf import replaced  # noqa: E402
 
-__all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "SERIES", "save_figure", "style"]
+__all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "SERIES", "legend_below", "save_figure", "style",
+           "suptitle"]
 
 #: colours of the figures, named by role
 INK = "#1f4e79"
 ACCENT = "#c0392b"
 MUTED = "#b8b8b8"
 GUIDE = "#666666"
-#: fill of the cells of a map where no cycle exists: a light grey, in neither viridis nor magma
+#: fill of the cells of a map where no cycle exists, and of the rounding band: a light grey, in neither
+#: viridis nor magma
 NO_CYCLE = "#dcdcdc"
-#: colours of up to four series of equal standing (the impulse zones of the escapement-error figure)
+#: colours of up to four series of equal standing
 SERIES = (INK, ACCENT, "#d68910", GUIDE)
 
 
@@ -34,16 +41,29 @@ def style():
         yield
 
 
-def _atomic_savefig(fig, path: Path, **kwargs) -> None:
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, **kwargs)
+def suptitle(fig, title: str) -> None:
+    """The figure's title: ``title``, one or two lines saying what the figure shows."""
+    if not title.strip() or title.count("\n") > 1:
+        raise ValueError(f"title = {title!r} must be one or two lines of text")
+    fig.suptitle(title, fontsize=9.5)
+
+
+def legend_below(fig, axes, ncols: int, **kwargs):
+    """One legend for the whole figure, below its axes: every labelled artist of ``axes``, each label
+    once, in the order drawn; ``kwargs`` go to :meth:`matplotlib.figure.Figure.legend`."""
+    entries: dict[str, object] = {}
+    for ax in np.ravel(axes):
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            entries.setdefault(label, handle)
+    return fig.legend(list(entries.values()), list(entries), loc="outside lower center", ncols=ncols, **kwargs)
 
 
 def save_figure(fig, png: str | os.PathLike, pdf: str | os.PathLike) -> None:
-    """Save as PNG and PDF with no software stamp or creation date, so that the same
-    figure gives the same bytes on every run."""
+    """Save as PNG and PDF with no software stamp or creation date, so that the same figure gives the
+    same bytes on every run, each file written beside its target and renamed into place."""
     with style():
-        _atomic_savefig(fig, Path(png), format="png", metadata={"Software": None})
-        no_dates = {"Creator": None, "Producer": None, "CreationDate": None}
-        _atomic_savefig(fig, Path(pdf), format="pdf", metadata=no_dates)
+        with replaced(png) as tmp:
+            fig.savefig(tmp, format="png", metadata={"Software": None})
+        with replaced(pdf) as tmp:
+            fig.savefig(tmp, format="pdf", metadata={"Creator": None, "Producer": None, "CreationDate": None})
     plt.close(fig)

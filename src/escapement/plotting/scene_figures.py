@@ -1,0 +1,213 @@
+"""The three figures of a scene of the escapement model, for the paper's parameters or a user's: the
+Poincaré map per cycle, the shock detail around the impacts, and phase diagrams.
+
+Each draws from the netCDF datasets (never from the solver), takes its title from the caller (one or
+two lines: which figure of which paper, or which parameter study) and states each panel's own
+parameters in its panel title. Given ``axes`` (:mod:`escapement.plotting.panel_axes`), a panel is drawn
+with exactly those limits and tick step (the paper's printed axes, as its claims score them); without,
+matplotlib autoscales. Guides (a fixed point, the natural period) are drawn only where they fall inside
+the axes, so the legend lists only what a panel shows; text stays outside the axes.
+"""
+
+from __future__ import annotations
+
+import math
+import string
+from collections.abc import Mapping
+
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+
+from .captions import axis_label, outcome, panel_parameters, release, signed, unit
+from .panel_axes import DrawnAxes, apply_axes
+from .style import ACCENT, GUIDE, INK, MUTED, legend_below, style, suptitle
+
+__all__ = ["MAX_IMPACTS_LISTED", "broken", "phase_diagrams", "poincare_map", "shock_detail"]
+
+#: the most impacts the shock detail's legend lists with their impulse and energy
+MAX_IMPACTS_LISTED = 6
+#: the rows of the Poincaré map: the key of its printed axes and the variable (None: the dataset's amplitude)
+_ROWS = (("velocity", "velocity_before_impact"), ("period", "period"), ("amplitude", None))
+
+
+def broken(t: np.ndarray, y: np.ndarray, breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``t`` and ``y`` as floats with NaN inserted at each break time, so that a line is not drawn across a jump."""
+    idx = np.searchsorted(t, breaks)
+    return np.insert(t.astype(float), idx, np.nan), np.insert(y.astype(float), idx, np.nan)
+
+
+def _letter(i: int) -> str:
+    return string.ascii_lowercase[i] if i < 26 else str(i + 1)
+
+
+def _panel_title(i: int, ds: xr.Dataset, datasets) -> str:
+    """``(a) F = 1 N, K = 1 N/m`` / ``released from rest at x(0) = -1 m`` / how the run ended, if it did not
+    complete (no letter for a figure of one panel)."""
+    letter = f"({_letter(i)}) " if len(datasets) > 1 else ""
+    lines = [letter + panel_parameters(ds, datasets), release(ds), outcome(ds)]
+    return "\n".join(line for line in lines if line)
+
+
+def _axes(ax, axes: DrawnAxes | None, key: str) -> None:
+    """The panel's given axes, else matplotlib's autoscaling; either way the limits are fixed from here on."""
+    if axes and key in axes:
+        apply_axes(ax, axes[key])
+    ax.set_xlim(ax.get_xlim())
+    ax.set_ylim(ax.get_ylim())
+
+
+def _guide(ax, y: float, **look) -> None:
+    """A horizontal guide at ``y``, drawn only if it falls inside the panel's y limits."""
+    low, high = ax.get_ylim()
+    if low <= y <= high:
+        ax.axhline(y, zorder=3, **look)
+
+
+def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | None = None) -> Figure:
+    """The velocity before impact, the period and the amplitude against the cycle number, one column per case.
+
+    Parameters
+    ----------
+    cases : mapping of str to xarray.Dataset
+        Each case's Poincaré-map dataset (``velocity_before_impact``, ``period``, the variable its attribute
+        ``amplitude_variable`` names, the parameters, ``x0``; ``fixed_point_19`` drawn if present), in the
+        order of the columns, lettered (a), (b), ...
+    title : str
+        The figure's title, one or two lines.
+    axes : DrawnAxes, optional
+        Limits and tick steps keyed ``"<case label>/velocity"``, ``".../period"``, ``".../amplitude"``
+        (:func:`~escapement.plotting.panel_axes.poincare_axes`); a panel not given is autoscaled.
+    """
+    datasets = list(cases.values())
+    with style():
+        fig, grid = plt.subplots(3, len(cases), figsize=(max(3.4 * len(cases), 6.0), 8.4), squeeze=False,
+                                 layout="constrained")
+        for col, (label, ds) in enumerate(cases.items()):
+            for row, (key, name) in enumerate(_ROWS):
+                ax, values = grid[row, col], ds[name or ds.attrs["amplitude_variable"]]
+                if values.size:
+                    ax.plot(values[values.dims[0]], values, marker="o", markersize=2.5, lw=1.0, color=INK,
+                            label="exact solution, per cycle")
+                ax.set_xlabel("Number of cycles")
+                ax.set_ylabel(axis_label(values.name))
+                _axes(ax, axes, f"{label}/{key}")
+                if key == "velocity" and "fixed_point_19" in ds:
+                    _guide(ax, float(ds["fixed_point_19"]), ls=(0, (5, 3)), lw=1.1, color=ACCENT,
+                           label="fixed point of Eq. (19) as printed")
+                if key == "period":
+                    _guide(ax, 2 * math.pi * math.sqrt(float(ds["M"]) / float(ds["K"])), ls=":", lw=1.2,
+                           color=GUIDE, label="natural period 2\u03c0/\u03c9")
+            grid[0, col].set_title(_panel_title(col, ds, datasets))
+        suptitle(fig, title)
+        legend_below(fig, grid, ncols=3)
+    return fig
+
+
+def _impact_entry(t: float, impulse: float, energy: float) -> str:
+    return (f"impact at t\u00a0=\u00a0{signed(t, '.5g')}\u00a0s: impulse {signed(impulse, '.3g')}\u00a0"
+            f"{unit('impulse')}, {signed(energy, '.3g')}\u00a0{unit('energy_dissipated')} dissipated")
+
+
+def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> Figure:
+    """The velocity and the acceleration around the impacts, each over its window; jumps drawn as jumps, an
+    impact's impulse as an arrow, and each impact of the velocity window listed in the legend with its
+    impulse and the energy it dissipates.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A shock-detail dataset: ``t``, ``velocity``, ``acceleration``, ``velocity_window``,
+        ``acceleration_window``, ``impact_time``, ``velocity_before``, ``velocity_after``, ``impulse``,
+        ``energy_dissipated``, ``event_time``.
+    title : str
+        The figure's title, one or two lines.
+    axes : DrawnAxes, optional
+        Limits and tick steps keyed ``"velocity"`` and ``"acceleration"``
+        (:func:`~escapement.plotting.panel_axes.shock_axes`); a panel not given is autoscaled.
+    """
+    t, impacts = ds["t"].values, ds["impact_time"].values
+    impulse, energy = ds["impulse"].values, ds["energy_dissipated"].values
+    with style():
+        fig, (ax_v, ax_a) = plt.subplots(1, 2, figsize=(7.6, 4.4), layout="constrained")
+        for ax, name, jumps, label in ((ax_v, "velocity", impacts, "velocity"),
+                                       (ax_a, "acceleration", ds["event_time"].values, "acceleration between events")):
+            lo, hi = ds[f"{name}_window"].values
+            inside = (t >= lo) & (t <= hi)
+            ax.plot(*broken(t[inside], ds[name].values[inside], jumps), color=INK, label=label)
+            ax.set_xlim(lo, hi)
+            ax.set_xlabel(axis_label("t"))
+            ax.set_ylabel(axis_label(name))
+        lo, hi = ds["velocity_window"].values
+        shown = (impacts >= lo) & (impacts <= hi)
+        if shown.any():
+            ax_v.plot(impacts[shown], ds["velocity_before"].values[shown], "o", mfc="white", color=ACCENT,
+                      label="velocity just before an impact")
+            ax_v.plot(impacts[shown], ds["velocity_after"].values[shown], "o", color=ACCENT,
+                      label="velocity just after an impact")
+        _axes(ax_v, axes, "velocity")
+        _axes(ax_a, axes, "acceleration")
+        # a Dirac impulse has no height: its arrow spans most of the panel, pointing the way it acts
+        lo, hi = ds["acceleration_window"].values
+        y_lo, y_hi = ax_a.get_ylim()
+        arrows = [(ti, j) for ti, j in zip(impacts, impulse) if lo <= ti <= hi]
+        for ti, j in arrows:
+            base, tip = (y_lo + 0.85 * (y_hi - y_lo), y_lo + 0.12 * (y_hi - y_lo))[:: 1 if j < 0 else -1]
+            ax_a.annotate("", xy=(ti, tip), xytext=(ti, base),
+                          arrowprops={"arrowstyle": "-|>", "color": ACCENT, "lw": 1.4})
+        if arrows:
+            ax_a.plot([], [], color=ACCENT, lw=1.4, label="impulse M\u0394v at an impact (Dirac, not to scale)")
+        # the legend: a column per panel, the impacts of the velocity window listed under the acceleration panel
+        left, right = ([(label, h) for h, label in zip(*ax.get_legend_handles_labels())] for ax in (ax_v, ax_a))
+        listed = np.flatnonzero(shown)
+        right += [(_impact_entry(impacts[i], impulse[i], energy[i]), None) for i in listed[:MAX_IMPACTS_LISTED]]
+        if len(listed) > MAX_IMPACTS_LISTED:
+            right.append((f"and {len(listed) - MAX_IMPACTS_LISTED} more impacts in the velocity window", None))
+        rows = max(len(left), len(right))
+        entries = [*left, *[("", None)] * (rows - len(left)), *right, *[("", None)] * (rows - len(right))]
+        fig.legend([h or Line2D([], [], ls="none") for _, h in entries], [label for label, _ in entries],
+                   loc="outside lower center", ncols=2)
+        suptitle(fig, title)
+    return fig
+
+
+def phase_diagrams(panels: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | None = None) -> Figure:
+    """Phase diagrams, one panel per dataset: the trajectory from release in light colour, the last cycle
+    in dark, the impacts as vertical jumps.
+
+    Parameters
+    ----------
+    panels : mapping of str to xarray.Dataset
+        Each panel's phase-diagram dataset (``t``, ``displacement``, ``velocity``, ``impact_time``,
+        ``impact_position``, ``velocity_before``, ``velocity_after``, ``period``, the parameters, ``x0``),
+        in the order of the panels, lettered (a), (b), ...
+    title : str
+        The figure's title, one or two lines.
+    axes : DrawnAxes, optional
+        Limits and tick steps keyed by the panel's label in ``panels``
+        (:func:`~escapement.plotting.panel_axes.phase_axes`); a panel not given is autoscaled.
+    """
+    datasets = list(panels.values())
+    with style():
+        fig, grid = plt.subplots(1, len(panels), figsize=(max(3.2 * len(panels), 6.0), 4.3), squeeze=False,
+                                 layout="constrained")
+        for col, (ax, (label, ds)) in enumerate(zip(grid[0], panels.items())):
+            impacts = ds["impact_time"].values
+            t, x = broken(ds["t"].values, ds["displacement"].values, impacts)
+            _, v = broken(ds["t"].values, ds["velocity"].values, impacts)
+            ax.plot(x, v, color=MUTED, lw=0.7, label="trajectory from release")
+            if ds.sizes.get("cycle", 0):
+                last = t >= impacts[-1] - ds["period"].values[-1]
+                ax.plot(x[last], v[last], color=INK, lw=1.4, label="last cycle")
+            if impacts.size:
+                ax.vlines(ds["impact_position"], ds["velocity_after"], ds["velocity_before"], color=ACCENT, lw=0.8,
+                          label="impacts (velocity jumps)")
+            ax.set_xlabel(axis_label("displacement"))
+            ax.set_ylabel(axis_label("velocity"))
+            _axes(ax, axes, label)
+            ax.set_title(_panel_title(col, ds, datasets))
+        suptitle(fig, title)
+        legend_below(fig, grid, ncols=3)
+    return fig

@@ -1,0 +1,85 @@
+"""Every figure: no text over another or outside the figure, none inside an axes (where it could cover
+data), a title of at most two lines; and the same figure saves to the same bytes."""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+
+import matplotlib.pyplot as plt
+import pytest
+
+from escapement.plotting import (
+    escapement_error,
+    existence_map,
+    long_run,
+    phase_diagrams,
+    poincare_map,
+    save_figure,
+    shock_detail,
+    stability_map,
+    work_precision,
+)
+
+#: two boxes must share more than this (pixels, each way) to count as overlapping
+TOLERANCE = 0.5
+TITLE = "A figure of the escapement model (a paper, Fig. 9)\nM = 1 kg, b = 0.1, a\u2081 = \u22120.1 m, a\u2082 = 0.05 m"
+
+FIGURES = {
+    "poincare_map": lambda d: poincare_map({"a": d.poincare(), "b": d.poincare(F=0.5, x0=-3.0),
+                                            "c": d.poincare(outcome="stopped", x0=0.05)}, TITLE),
+    "shock_detail": lambda d: shock_detail(d.shock(impacts=(82.0, 84.4, 86.0)), TITLE),
+    "phase_diagrams": lambda d: phase_diagrams({f"{K:g}": d.phase(K=K) for K in (0.1, 1.0, 10.0)}, TITLE),
+    "one phase diagram": lambda d: phase_diagrams({"mine": d.phase(outcome="stopped")}, TITLE),
+    "long_run": lambda d: long_run(d.long_run([1e-13] * 9, [1e-12] * 9)),
+    "stability_map": lambda d: stability_map(d.stability()),
+    "existence_map": lambda d: existence_map(d.existence()),
+    "escapement_error": lambda d: escapement_error(d.escapement_error()),
+    "work_precision": lambda d: work_precision(d.work_precision()),
+}
+
+
+def _overlap(a, b) -> bool:
+    return min(a.x1, b.x1) - max(a.x0, b.x0) > TOLERANCE and min(a.y1, b.y1) - max(a.y0, b.y0) > TOLERANCE
+
+
+def collisions(fig) -> list[str]:
+    """Texts and legends over each other or outside the figure, and texts inside an axes."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    texts = [("title", fig._suptitle)] + [(f"axes {i} {kind}", text) for i, ax in enumerate(fig.axes)
+                                          for kind, text in (("title", ax.title), ("x label", ax.xaxis.label),
+                                                             ("y label", ax.yaxis.label))]
+    boxes = [(f"{name} {text.get_text()[:30]!r}", text.get_window_extent(renderer)) for name, text in texts
+             if text.get_visible() and text.get_text().strip()]
+    boxes += [(f"legend {k}", legend.get_window_extent(renderer)) for k, legend in enumerate(fig.legends)]
+    found = [f"{a} overlaps {b}" for (a, box_a), (b, box_b) in itertools.combinations(boxes, 2)
+             if _overlap(box_a, box_b)]
+    found += [f"{name} reaches outside the figure" for name, box in boxes
+              if not (fig.bbox.padded(TOLERANCE).contains(box.x0, box.y0)
+                      and fig.bbox.padded(TOLERANCE).contains(box.x1, box.y1))]
+    found += [f"axes {i} holds the text {t.get_text()[:30]!r}" for i, ax in enumerate(fig.axes) for t in ax.texts
+              if t.get_text().strip()]
+    return found
+
+
+@pytest.mark.parametrize("name", list(FIGURES))
+def test_no_text_covers_another_or_data_and_the_title_has_at_most_two_lines(datasets, name):
+    fig = FIGURES[name](datasets)
+    try:
+        found = collisions(fig)
+        assert fig.get_suptitle().count("\n") <= 1
+    finally:
+        plt.close(fig)
+    assert not found, "\n".join(found)
+
+
+@pytest.mark.parametrize("name", ["poincare_map", "stability_map"])
+def test_a_figure_saves_to_the_same_bytes_every_time(tmp_path, datasets, name):
+    digests = []
+    for i in range(2):
+        png, pdf = tmp_path / f"f{i}.png", tmp_path / f"f{i}.pdf"
+        save_figure(FIGURES[name](datasets), png, pdf)
+        digests.append([hashlib.sha256(p.read_bytes()).hexdigest() for p in (png, pdf)])
+    assert digests[0] == digests[1]
+    assert b"CreationDate" not in (tmp_path / "f0.pdf").read_bytes()

@@ -1,0 +1,102 @@
+"""The scene figures draw any number of panels, the caller's title, each panel's own parameters, the
+given axes exactly, and a legend of only what is drawn."""
+
+from __future__ import annotations
+
+import math
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+from escapement.plotting import phase_diagrams, poincare_map, shock_detail
+
+
+def _legend(fig) -> list[str]:
+    return [t.get_text() for legend in fig.legends for t in legend.get_texts() if t.get_text().strip()]
+
+
+def _plain(text: str) -> str:
+    return text.replace("\u00a0", " ").replace("\u2212", "-")
+
+
+@pytest.mark.parametrize("n", [1, 4])
+def test_a_poincare_map_has_a_column_per_case_each_titled_by_its_own_force(datasets, n):
+    forces = [0.2, 0.7, 1.5, 3.0][:n]
+    fig = poincare_map({f"case {F}": datasets.poincare(F=F) for F in forces}, "A study of the force\nsecond line")
+    try:
+        assert len(fig.axes) == 3 * n
+        titles = [_plain(ax.get_title()) for ax in fig.axes[:n]]  # the first row
+        assert all(f"F = {F:g} N" in title for F, title in zip(forces, titles))
+        assert fig.get_suptitle() == "A study of the force\nsecond line"
+    finally:
+        plt.close(fig)
+
+
+def test_a_title_of_more_than_two_lines_is_refused(datasets):
+    with pytest.raises(ValueError, match="two lines"):
+        poincare_map({"a": datasets.poincare()}, "one\ntwo\nthree")
+    plt.close("all")
+
+
+def test_the_natural_period_is_drawn_and_listed_only_where_it_falls_inside_the_axes(datasets):
+    inside = poincare_map({"a": datasets.poincare(period_offset=-0.004)}, "t")
+    outside = poincare_map({"a": datasets.poincare(period_offset=0.0125)}, "t")
+    try:
+        natural = 2 * math.pi  # M = K = 1
+        assert any(line.get_ydata()[0] == natural for line in inside.axes[1].lines)
+        assert any("2\u03c0/\u03c9" in entry for entry in _legend(inside))
+        assert all(line.get_ydata()[0] != natural for line in outside.axes[1].lines)
+        assert not any("2\u03c0/\u03c9" in entry for entry in _legend(outside))
+    finally:
+        plt.close(inside)
+        plt.close(outside)
+
+
+def test_given_axes_are_drawn_exactly_and_the_others_autoscaled(datasets):
+    fig = poincare_map({"a": datasets.poincare()}, "t", {"a/velocity": {"y": (0.5, 3.0, 0.5), "x": (0.0, 50.0, 10.0)}})
+    try:
+        velocity, period = fig.axes[0], fig.axes[1]
+        assert velocity.get_ylim() == (0.5, 3.0) and velocity.get_xlim() == (0.0, 50.0)
+        assert np.diff(velocity.get_yticks()) == pytest.approx(0.5)
+        low, high = period.get_ylim()
+        assert low < 2 * math.pi + 0.0125 < high < 2 * math.pi + 0.03  # around the data, not the given axes
+    finally:
+        plt.close(fig)
+
+
+def test_a_run_that_did_not_complete_says_so_in_its_panel_title(datasets):
+    fig = phase_diagrams({"ran": datasets.phase(), "stopped": datasets.phase(outcome="stopped", x0=0.05)}, "t")
+    try:
+        assert "stopped after 0 of 6 cycles" in fig.axes[1].get_title()
+        assert "stopped" not in fig.axes[0].get_title()
+        assert _legend(fig) == ["trajectory from release", "last cycle", "impacts (velocity jumps)"]
+    finally:
+        plt.close(fig)
+
+
+def test_phase_diagrams_state_each_panels_parameters_and_only_what_differs_besides_f_and_k(datasets):
+    panels = {f"{K:g}": datasets.phase(K=K, M=M) for K, M in ((0.1, 1.0), (1.0, 2.0), (10.0, 1.0))}
+    fig = phase_diagrams(panels, "Phase diagrams")
+    try:
+        titles = [_plain(ax.get_title()) for ax in fig.axes]
+        assert titles[1].startswith("(b) F = 1 N, K = 1 N/m, M = 2 kg\nreleased from rest at x(0) = -1 m")
+        assert all("b = " not in title for title in titles)  # b is the same in every panel
+    finally:
+        plt.close(fig)
+
+
+def test_the_shock_detail_breaks_the_velocity_at_each_impact_and_lists_each_impact(datasets):
+    ds = datasets.shock(impacts=(82.0, 84.4, 86.0))
+    fig = shock_detail(ds, "Shock detail")
+    try:
+        velocity, acceleration = fig.axes
+        assert np.isnan(velocity.lines[0].get_ydata()).sum() == 3
+        arrows = [a for a in acceleration.texts if a.arrow_patch is not None]
+        assert len(arrows) == 2  # the impacts inside the acceleration window, 81-85 s
+        listed = [_plain(entry) for entry in _legend(fig) if entry.startswith("impact at")]
+        assert len(listed) == 3
+        for t, j in zip(ds["impact_time"].values, ds["impulse"].values):
+            assert any(f"t = {t:g} s" in entry and f"impulse {j:.3g} N s" in entry for entry in listed)
+    finally:
+        plt.close(fig)
