@@ -34,13 +34,11 @@ def case_b() -> Parameters:
     return paper_parameters(F=0.5)
 
 
-#: the files that take a worker longest, longest first (measured with ``-n 0``): under ``--dist loadfile`` each
-#: goes whole to a worker, the next file to the first worker free, so that the two workers start on the longest
-#: and the short files, run last, fill both of them to the end
-LONGEST = ("test_workflow.py", "test_workflow_plans.py", "integrators/test_reference.py", "pipeline/test_publish.py",
-           "test_workflow_config.py", "solvers/test_memory.py", "pipeline/test_readings.py", "solvers/test_grazing.py",
-           "plotting/test_paper_figures.py", "plotting/test_overlaps.py", "pipeline/test_speed.py",
-           "paper/test_claims.py", "pipeline/test_edge_cases.py", "pipeline/test_code_inputs.py")
+#: the files that take a worker longest, longest first: under ``--dist loadfile`` each goes whole to a worker, the
+#: next file to the first worker free, so that the two workers start on the longest and the short files, run last,
+#: fill both of them to the end
+LONGEST = ("test_workflow.py", "integrators/test_reference.py", "solvers/test_memory.py", "pipeline/test_readings.py",
+           "solvers/test_grazing.py", "plotting/test_paper_figures.py", "paper/test_claims.py")
 
 
 def pytest_collection_modifyitems(config, items):

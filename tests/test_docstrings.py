@@ -13,13 +13,13 @@ import re
 import pytest
 
 import escapement
-import escapement.io
+import escapement.scenes
 from escapement.model.quantities import INITIAL_STATE, PARAMETERS
 
 EXPORTED = {name: getattr(escapement, name) for name in escapement.__all__ if name != "__version__"}
 METHODS = {
     "Solution.to_dataframe": escapement.Solution.to_dataframe,
-    "io.run_dataset": escapement.io.run_dataset,
+    "scenes.run_dataset": escapement.scenes.run_dataset,
 }
 DOCUMENTED = {**EXPORTED, **METHODS}
 #: the unit each quantity's entry names: the plain-text label of escapement.model.quantities

@@ -1,13 +1,12 @@
-import errno
+"""netCDF files as written and read: compressed, checksummed, renamed into place, refused by name when damaged."""
+
 import os
-import subprocess
 
 import netCDF4
 import numpy as np
 import pytest
 import xarray as xr
 
-from escapement.io.atomic import WriteError
 from escapement.io.netcdf import DatasetError, read_netcdf, write_netcdf
 
 
@@ -20,13 +19,13 @@ def small_dataset():
 
 
 def test_round_trip_compressed_without_fill_value_on_coordinates(tmp_path):
-    path = write_netcdf(small_dataset(), tmp_path / "sub" / "x.nc")
+    path = write_netcdf(small_dataset(), tmp_path / "x.nc", history="a test")
     with netCDF4.Dataset(path) as nc:
         assert "_FillValue" not in nc["t"].ncattrs()
         assert nc["v"].filters()["zlib"] is True
     back = read_netcdf(path, required=("v", "t"))
     assert back["v"].values.tolist() == [0, 1, 2, 3, 4]
-    assert back.attrs["title"] == "test"
+    assert back.attrs["title"] == "test" and back.attrs["history"].endswith(": a test")
 
 
 def test_written_file_respects_the_umask(tmp_path):
@@ -93,7 +92,7 @@ def test_flipped_bit_in_an_uncompressed_variable_fails_its_checksum(tmp_path):
     ds = xr.Dataset({"v": ("t", np.arange(5.0))}, coords={"t": ("t", TIMES)})
     path = write_netcdf(ds, tmp_path / "x.nc")
     flip_bit(path, TIMES.tobytes())
-    with pytest.raises(DatasetError, match=r"x\.nc: .*the data of t \(Fletcher-32 checksum failed\) is corrupted"):
+    with pytest.raises(DatasetError, match=r"x\.nc: not a readable netCDF file"):
         read_netcdf(path)
     # The same file without the checksum: the flipped bit is read back as data.
     bare = tmp_path / "bare.nc"
@@ -113,43 +112,11 @@ def test_flipped_bit_in_a_compressed_variable_is_detected(tmp_path):
         assert nc["v"].filters()["zlib"] and nc["v"].filters()["shuffle"]
     shuffled = np.frombuffer(values.tobytes(), np.uint8).reshape(-1, 8).T.tobytes()
     flip_bit(path, shuffled[2000:2064])
-    with pytest.raises(DatasetError, match=r"x\.nc: .*the data of v \(Fletcher-32 checksum or decompression failed\)"):
+    with pytest.raises(DatasetError, match=r"x\.nc: not a readable netCDF file"):
         read_netcdf(path)
 
 
-# -- failures of the file system ---------------------------------------------------------------------------------------
-
-
-@pytest.fixture
-def full_disk(tmp_path):
-    """A 64 kB tmpfs (root only), unmounted at the end."""
-    if os.geteuid() != 0:
-        pytest.skip("mounting a tmpfs needs root")
-    point = tmp_path / "mnt"
-    point.mkdir()
-    try:
-        subprocess.run(["mount", "-t", "tmpfs", "-o", "size=64k", "tmpfs", str(point)], check=True, capture_output=True)
-    except (OSError, subprocess.CalledProcessError) as err:
-        pytest.skip(f"cannot mount a tmpfs here: {err}")
-    try:
-        yield point
-    finally:
-        # Lazily: netCDF leaves a file open when a full disk makes its closing fail.
-        subprocess.run(["umount", "--lazy", str(point)], check=True)
-
-
-def test_full_disk_names_the_file_and_the_cause(full_disk):
-    values = np.random.default_rng(2).integers(-(2**62), 2**62, size=40_000, dtype=np.int64)  # 320 kB, random
-    target = full_disk / "big.nc"
-    with pytest.raises(WriteError) as info:
-        write_netcdf(xr.Dataset({"v": ("n", values)}), target)
-    assert info.value.errno == errno.ENOSPC
-    message = str(info.value)
-    assert message.startswith(f"{target}: cannot write: no space left on device (")
-    assert "320000 bytes to write" in message and "NetCDF: HDF error" in message
-    assert list(full_disk.iterdir()) == []
-    stat = os.statvfs(full_disk)
-    assert stat.f_bfree * stat.f_frsize > 32_000  # the temporary's space is given back, though netCDF keeps it open
+# -- failures of the netCDF library --------------------------------------------------------------------------------
 
 
 def test_other_netcdf_failure_names_the_file(tmp_path, monkeypatch):

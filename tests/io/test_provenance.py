@@ -1,50 +1,73 @@
-"""Provenance: the commit, marked dirty only when a source file differs from it."""
+"""Where a file came from: the commit of an archive as git archive stamps it, and of a clone as git tells it (and
+only about the repository this package is the source of: a copy inside another repository's work tree is
+``unknown``, never that repository's commit)."""
 
 from __future__ import annotations
 
+import shutil
 import subprocess
+from pathlib import Path
 
 import pytest
 
-from escapement.io.provenance import SOURCES, git_commit
+from escapement.io import provenance
+from escapement.io.provenance import git_commit, provenance_attributes
+
+HASH = "0123456789abcdef0123456789abcdef01234567"
+needs_git = pytest.mark.skipif(shutil.which("git") is None, reason="the git program is not installed")
 
 
-def _git(where, *args):
-    return subprocess.run(["git", "-C", str(where), *args], capture_output=True, text=True, check=True).stdout
+def git(where: Path, *args: str) -> str:
+    return subprocess.run(["git", "-C", str(where), *args], check=True, capture_output=True, text=True).stdout.strip()
 
 
-@pytest.fixture
-def repository(tmp_path):
-    _git(tmp_path, "init", "-q")
-    _git(tmp_path, "config", "user.email", "test@example.org")
-    _git(tmp_path, "config", "user.name", "test")
-    (tmp_path / "src/pkg").mkdir(parents=True)
-    (tmp_path / "src/pkg/model.py").write_text("x = 1\n")
-    (tmp_path / "figures").mkdir()
-    (tmp_path / "figures/fig.png").write_bytes(b"png")
-    (tmp_path / "README.md").write_text("readme\n")
-    _git(tmp_path, "add", ".")
-    _git(tmp_path, "commit", "-q", "-m", "first")
-    return tmp_path
+def test_an_archive_gives_the_commit_git_stamped_into_it_whatever_git_says():
+    assert git_commit(HASH) == f"{HASH} (archive)"
 
 
-def test_a_clean_tree_gives_the_bare_commit(repository):
-    head = _git(repository, "rev-parse", "HEAD").strip()
-    assert git_commit(repository / "src/pkg") == head
+def test_the_stamp_is_the_placeholder_git_archive_substitutes():
+    """``.gitattributes`` names the module for export-subst, whose placeholder is ``$Format:%H$``."""
+    text = Path(provenance.__file__).read_text()
+    assert 'ARCHIVE_COMMIT = "$Format:%H$"' in text
+    attributes = (provenance.ROOT / ".gitattributes").read_text().splitlines()
+    assert "src/escapement/io/provenance.py export-subst" in attributes
 
 
-def test_documents_and_figures_the_workflow_writes_do_not_make_it_dirty(repository):
-    (repository / "README.md").write_text("regenerated\n")
-    (repository / "figures/fig.png").write_bytes(b"other png")
-    assert not git_commit(repository / "src/pkg").endswith("+dirty")
+def test_without_git_or_a_repository_the_commit_is_unknown(monkeypatch, tmp_path):
+    monkeypatch.setenv("PATH", str(tmp_path))  # no git program on PATH
+    assert git_commit() == "unknown"
 
 
-def test_an_edited_source_file_makes_it_dirty_from_any_folder(repository):
-    (repository / "src/pkg/model.py").write_text("x = 2\n")
-    for start in (repository, repository / "src/pkg", repository / "figures"):
-        assert git_commit(start).endswith("+dirty")
+@needs_git
+def test_a_clone_gives_its_commit_and_dirty_when_a_source_differs(monkeypatch, tmp_path):
+    root = tmp_path / "repo"
+    (root / "src").mkdir(parents=True)
+    (root / "src" / "a.py").write_text("x = 1\n")
+    (root / "README.md").write_text("generated\n")
+    git(root, "init", "-q")
+    git(root, "-c", "user.name=t", "-c", "user.email=t@t", "add", ".")
+    git(root, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "one")
+    head = git(root, "rev-parse", "HEAD")
+    monkeypatch.setattr(provenance, "ROOT", root.resolve())
+    assert git_commit() == head
+    (root / "README.md").write_text("regenerated\n")  # a document the workflow writes: not a source
+    assert git_commit() == head
+    (root / "src" / "a.py").write_text("x = 2\n")
+    assert git_commit() == f"{head}+dirty"
 
 
-def test_the_sources_are_the_inputs_of_the_workflow():
-    assert {"src", "workflow", "config", "Snakefile"} <= set(SOURCES)
-    assert not {"README.md", "REPLICATION.md", "figures"} & set(SOURCES)
+@needs_git
+def test_a_copy_inside_another_repository_is_not_that_repository(monkeypatch, tmp_path):
+    outer = tmp_path / "outer"
+    inner = outer / "archive"
+    inner.mkdir(parents=True)
+    git(outer, "init", "-q")
+    git(outer, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-q", "--allow-empty", "-m", "outer")
+    monkeypatch.setattr(provenance, "ROOT", inner.resolve())
+    assert git_commit() == "unknown"
+
+
+def test_the_attributes_name_the_version_the_commit_and_what_wrote_the_file():
+    a = provenance_attributes("rule poincare_map: results/x.nc")
+    assert a["source"].startswith("escapement ") and "(commit " in a["source"]
+    assert a["history"] == f"{a['date_created']}: rule poincare_map: results/x.nc"

@@ -1,4 +1,4 @@
-"""The configured sampling of Fig. 5 (config/config.yaml, ``fig5.samples_per_period``) resolves the impulse zones.
+"""The configured sampling of Fig. 5 (config/paper.yaml, ``fig5.samples_per_period``) resolves the impulse zones.
 
 Fig. 5 draws the velocity against time; its rise across an impulse zone is only drawn if the uniform time grid
 puts at least two samples inside each zone crossing. The bound on the crossing time is derived here by hand,
@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-CONFIG = Path(__file__).resolve().parents[2] / "config" / "config.yaml"
+CONFIG = Path(__file__).resolve().parents[2] / "config" / "paper.yaml"
 
 
 def _panels() -> list[dict]:

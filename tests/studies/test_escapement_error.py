@@ -75,7 +75,7 @@ def test_the_limit_cycle_period_is_the_natural_one_plus_the_impacts_and_zones():
 
 def test_more_force_more_amplitude():
     rates = rate_against_amplitude(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), [0.25, 0.5, 1.0, 2.0])
-    amplitudes = [r.amplitude for r in rates]
+    amplitudes = [r.largest_displacement for r in rates]
     assert amplitudes == sorted(amplitudes)
 
 

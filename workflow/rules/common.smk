@@ -1,109 +1,87 @@
-from pathlib import Path
-
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
-from escapement.pipeline import config as scenes
-from escapement.pipeline.code_inputs import code_inputs
-from escapement.pipeline.config import ConfigError, check_config
-from escapement.pipeline.config_files import apply_config_overrides
+from escapement.pipeline import config as settings
+from escapement.pipeline.publish import PUBLISHED
 
-# A nested --config value (fig3="{n_cycles: 40}") is read by Snakemake with every scalar as text:
-# read again as YAML, it has the types a configuration file would give it. Then the package's
-# check, for one clear line naming the key (the schema, the rules a schema cannot state, every
-# scene's parameters); then Snakemake's own validation against the schema.
+
+def checked(data, schema, source):
+    """Snakemake's validation against the JSON schema, its error in one line naming the key."""
+    try:
+        validate(data, schema, set_default=False)
+    except WorkflowError as err:
+        raise WorkflowError(settings.refusal(err.__context__, source)) from None
+
+
+# Every file read strictly (a key given twice is refused with its line), nested --config values with the
+# types a file gives them; then each source against its schema; then every scene built and checked.
 try:
-    apply_config_overrides(
-        config, workflow.config_settings.config_args, workflow.config_settings.config
-    )
-    check_config(config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
-except ConfigError as err:
+    for path in dict.fromkeys([*workflow.configfiles, "config/config.yaml"]):
+        settings.read_yaml(path)
+    settings.typed_overrides(config, workflow.config_settings.config_args)
+    PAPER = settings.read_yaml("config/paper.yaml")
+    checked(config, "../schemas/config.schema.yaml", "the configuration")
+    checked(PAPER, "../schemas/paper.schema.yaml", "config/paper.yaml")
+    NAME = config.get("name", "own")
+    STUDIES = {"replication": settings.study_scenes("replication", PAPER)}
+    OWN = settings.own_blocks(config, PAPER)
+    if len(OWN) > 1:
+        STUDIES[NAME] = settings.study_scenes(NAME, OWN)
+    RUNS = settings.replication_scenes(PAPER)
+except settings.ConfigError as err:
     raise WorkflowError(str(err)) from None
-validate(config, "../schemas/config.schema.yaml")
 
 
-def fig3_scene(wildcards):
-    """The scene of Fig. 3's case ``{case}``."""
-    return scenes.fig3_scene(config, wildcards.case)
+wildcard_constraints:
+    study="|".join(STUDIES),
 
 
-def fig5_labels():
-    return scenes.fig5_labels(config)
-
-
-def fig5_scene(wildcards):
-    """The scene of Fig. 5's panel ``{K}``."""
-    return scenes.fig5_scene(config, wildcards.K)
-
-
-def stability_chunk(wildcards):
-    """The (b, F) values of the stability map's chunk ``{chunk}``."""
-    return scenes.stability_chunk(config, wildcards.chunk)
-
-
-def code(script):
-    """The source files that ``script`` (under workflow/scripts/) imports, transitively: the package's
-    modules, the benchmarks' and the data files they load (escapement.pipeline.code_inputs reads the
-    import statements). Snakemake tracks only the rule's own script: these inputs make an edit of the
-    code rerun the jobs that run it, and only those. The paths are relative to the working directory,
-    as Snakemake records them: a clone that is moved or copied keeps its outputs up to date.
-    """
-    return code_inputs(f"workflow/scripts/{script}", base=workflow.basedir)
-
-
-#: the figures and documents git tracks, each with the file under results/ it is copied from. The
-#: work-precision figure is not among them: it is drawn from wall times, which vary from run to run.
-PUBLISHED = {
-    **{
-        f"figures/{fig}.{ext}": f"results/figures/{fig}.{ext}"
-        for fig in (
-            "fig3",
-            "fig4",
-            "fig5",
-            "long_run",
-            "stability_map",
-            "escapement_error",
-            "existence_map",
-        )
-        for ext in ("png", "pdf")
-    },
-    "README.md": "results/docs/README.md",
-    "REPLICATION.md": "results/docs/REPLICATION.md",
+#: the layers of the package each kind of job runs: their sources' digest is a param of its rules, so that an
+#: edit reruns the jobs that run the edited code (Snakemake follows a rule's own script only)
+LAYERS = {
+    "simulate": ["model", "solvers", "integrators", "paper", "studies", "scenes", "io"],
+    "plot": ["model", "io", "paper", "plotting"],
+    "verdict": ["model", "solvers", "integrators", "paper", "studies", "io", "plotting"],
+    "docs": ["model", "io", "paper"],
 }
+CODE = {
+    job: settings.code_digest(
+        workflow.basedir,
+        *(f"src/escapement/{layer}" for layer in layers),
+        f"src/escapement/pipeline/{'simulate' if job == 'simulate' else job}.py",
+        "src/escapement/pipeline/config.py",
+    )
+    for job, layers in LAYERS.items()
+}
+
+
+def scene(block, key=None):
+    """The params of the scene of ``block`` that the job's wildcards name: its study and, for a kind with several
+    scenes, the wildcard ``key`` (a Fig. 3 case, a spring constant, a chunk)."""
+    return lambda w: STUDIES[w.study][block][w[key] if key else ""]
+
+
+def study_outputs(study):
+    """The datasets and figures of one study."""
+    scenes, found = STUDIES[study], []
+    kinds = {"fig3": "poincare_map", "fig4": "shock_detail", "fig5": "phase_diagrams"}
+    if "fig3" in scenes:
+        found += expand("results/{study}/poincare_map/case_{case}.nc", study=study, case=scenes["fig3"])
+    if "fig5" in scenes:
+        found += expand("results/{study}/phase_diagrams/K_{K}.nc", study=study, K=scenes["fig5"])
+    for block, name in {**kinds, "escapement_error": "escapement_error", "stability_map": "stability_map",
+                        "existence_map": "existence_map"}.items():
+        if block in scenes:
+            found.append(f"results/{study}/figures/{name}.png")
+    return found
 
 
 def all_outputs():
     return [
-        *expand("results/fig3/case_{case}.nc", case=config["fig3"]["cases"]),
-        "results/fig4/shock.nc",
-        *expand("results/fig5/K_{K}.nc", K=fig5_labels()),
-        "results/claims/checks.nc",
-        "results/claims.csv",
-        "results/benchmark/work_precision.csv",
-        "results/benchmark/long_run.nc",
-        "results/stability/map.nc",
-        "results/escapement_error/rate.nc",
-        "results/stability/existence.nc",
-        "results/stress/summary.csv",
-        "results/figures/work_precision.png",
-        "results/docs/timings.md",
-        "results/readings/axis_scores.csv",
-        *PUBLISHED,
+        *(path for study in STUDIES for path in study_outputs(study)),
+        "results/replication/claims.csv",
+        "results/replication/stress.csv",
+        "results/replication/figures/long_run.png",
+        "results/replication/figures/work_precision.png",
+        "results/replication/docs/README.md",
     ]
-
-
-onstart:
-    # A run killed outright leaves the temporaries of its atomic writes: those of ended writers go.
-    from escapement.io.atomic import remove_stale_temporaries
-
-    remove_stale_temporaries(".")
-    remove_stale_temporaries("figures")
-    remove_stale_temporaries("results", recursive=True)
-
-
-onerror:
-    # A failed job may leave a tracked file restored by Snakemake with a new modification time:
-    # dated back, it is published again by the next run.
-    from escapement.pipeline.publish import mark_stale
-
-    mark_stale(list(PUBLISHED))

@@ -2,7 +2,7 @@
 
 from escapement.pipeline.verdict import check_claims
 
-check_claims(  # noqa: F821
+check_claims(
     snakemake.input.register,
     dict(zip(snakemake.params.fig3_labels, snakemake.input.fig3)),
     snakemake.input.fig4,

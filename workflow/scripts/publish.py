@@ -2,4 +2,4 @@
 
 from escapement.pipeline.publish import publish
 
-publish(list(snakemake.input.published), list(snakemake.output.tracked), snakemake.log[0])  # noqa: F821
+publish(snakemake.params.published, snakemake.log[0])

@@ -1,86 +1,101 @@
-"""Writing and reading the netCDF files: compressed, checksummed, atomic, with clear errors."""
+"""Writing and reading the files: netCDF (compressed, checksummed, stamped with their provenance), CSV and
+text, each written to a temporary file beside its target and renamed into place, so that a reader never
+sees a partial file (Snakemake removes the outputs of a job that fails)."""
 
 from __future__ import annotations
 
+import csv
 import os
+import tempfile
+from collections.abc import Iterable, Mapping
+from contextlib import contextmanager
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import netCDF4
-import xarray as xr
+from .provenance import command_line, provenance_attributes
 
-from .atomic import atomic_path, write_failure
+if TYPE_CHECKING:  # xarray is imported where a netCDF file is read or written: a CSV job does without it
+    import xarray as xr
 
-__all__ = ["DatasetError", "write_netcdf", "read_netcdf"]
+__all__ = ["DatasetError", "read_csv", "read_netcdf", "replaced", "write_csv", "write_netcdf", "write_text"]
 
 
 class DatasetError(RuntimeError):
-    """A netCDF file is missing, truncated, corrupted or lacks what it should hold."""
+    """A file is missing, damaged, or lacks what it should hold; the message names it."""
 
 
-def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
-    """Write ``ds`` to ``path`` atomically: to a temporary file beside it, then renamed.
+@contextmanager
+def replaced(path: str | os.PathLike):
+    """A temporary path beside ``path`` (its folder made if missing), renamed to ``path`` when the block ends
+    without an error (removed if it raises)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    handle, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".partial")
+    os.close(handle)
+    try:
+        yield Path(tmp)
+        mask = os.umask(0)  # mkstemp makes a private file: give it the permissions a new file gets
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)
+        os.replace(tmp, path)
+    finally:
+        Path(tmp).unlink(missing_ok=True)
 
-    Data variables are compressed (zlib level 4); coordinates get no ``_FillValue``. Every variable
-    carries a Fletcher-32 checksum, which :func:`read_netcdf` checks. HDF5 can neither chunk nor
-    filter a variable with no dimension: a 0-d variable is stored without one.
 
-    A failure of the file system raises :class:`~escapement.io.atomic.WriteError` naming ``path`` and
-    the cause (no space left on device, permission denied, read-only file system), where netCDF
-    reports only ``NetCDF: HDF error``; any other failure of netCDF, :class:`DatasetError`.
-    """
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, history: str | None = None) -> Path:
+    """Write ``ds`` to ``path`` with its provenance (``history``: what wrote it, by default this process's
+    command line): data variables compressed (zlib level 4), every variable with a Fletcher-32 checksum that
+    :func:`read_netcdf` checks, coordinates without ``_FillValue``."""
+    ds = ds.copy()
+    ds.attrs.update(provenance_attributes(history or command_line()))
     encoding = {name: {"zlib": True, "complevel": 4, "fletcher32": True} for name in ds.data_vars}
     encoding.update({name: {"_FillValue": None, "fletcher32": True} for name in ds.coords})
-    with atomic_path(path) as tmp:
+    with replaced(path) as tmp:
         try:
             ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)
         except (OSError, RuntimeError) as err:  # what netCDF4 raises when the library fails
-            # Found while the temporary still takes its space: a full disk shows no free byte.
-            failure = write_failure(path, err, needed=ds.nbytes)
-            if failure is not None:
-                raise failure from err
             raise DatasetError(f"{path}: cannot write the netCDF file ({type(err).__name__}: {err})") from err
     return Path(path)
 
 
-#: the filters of a variable that check its data on reading, and what their failure is called
-_CHECKS = (("fletcher32", "Fletcher-32 checksum"), ("zlib", "decompression"))
+def read_netcdf(path: str | os.PathLike, required: Iterable[str] = ()) -> xr.Dataset:
+    """The dataset of ``path``, loaded into memory with its checksums checked; :class:`DatasetError` naming the
+    file if it cannot be read or lacks a ``required`` variable."""
+    import xarray as xr
 
-
-def _damaged_variables(path: Path) -> str:
-    """Which variables of ``path`` cannot be read, and which of their filters failed: a sentence to
-    append to an error message, or nothing if that cannot be found."""
-    try:
-        nc = netCDF4.Dataset(path)
-    except (OSError, RuntimeError):  # the file does not open: the first error says it
-        return ""
-    damaged = []
-    with nc:
-        for name, variable in nc.variables.items():  # one read of each variable of the file
-            variable.set_auto_maskandscale(False)
-            try:
-                variable[...]
-            except (OSError, RuntimeError):
-                filters = variable.filters() or {}
-                checks = [label for key, label in _CHECKS if filters.get(key)]
-                damaged.append(f"{name} ({' or '.join(checks)} failed)" if checks else name)
-    if not damaged:
-        return ""
-    return f"; the data of {', '.join(damaged)} is corrupted"
-
-
-def read_netcdf(path: str | os.PathLike, required: tuple[str, ...] = ()) -> xr.Dataset:
-    """Load a dataset fully into memory, checking the checksums; raise :class:`DatasetError` naming
-    the file if it cannot be read, fails a checksum or lacks a ``required`` variable."""
-    path = Path(path)
     try:
         with xr.open_dataset(path, engine="netcdf4") as ds:
             loaded = ds.load()
     except FileNotFoundError as err:
         raise DatasetError(f"{path}: no such netCDF file") from err
-    except Exception as err:  # netCDF4 raises OSError or RuntimeError for damaged files
-        detail = _damaged_variables(path)
-        raise DatasetError(f"{path}: not a readable netCDF file ({type(err).__name__}: {err}){detail}") from err
+    except (OSError, RuntimeError, ValueError) as err:  # netCDF4 and xarray on a damaged file
+        raise DatasetError(f"{path}: not a readable netCDF file ({type(err).__name__}: {err})") from err
     missing = [name for name in required if name not in loaded.variables]
     if missing:
         raise DatasetError(f"{path}: lacks the variable(s) {', '.join(missing)}")
     return loaded
+
+
+def write_text(text: str, path: str | os.PathLike) -> None:
+    with replaced(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+
+
+def write_csv(rows: Iterable[Mapping], columns: list[str], path: str | os.PathLike) -> None:
+    with replaced(path) as tmp, open(tmp, "w", newline="", encoding="utf-8") as handle:
+        writer = csv.DictWriter(handle, fieldnames=columns, lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)
+
+
+def read_csv(path: str | os.PathLike, columns: list[str]) -> list[dict[str, str]]:
+    """The rows of ``path``, whose header must be ``columns``; :class:`DatasetError` naming the file if not."""
+    try:
+        with open(path, newline="", encoding="utf-8") as handle:
+            reader = csv.DictReader(handle)
+            rows = list(reader)
+    except OSError as err:
+        raise DatasetError(f"{path}: cannot be read ({err})") from err
+    if list(reader.fieldnames or ()) != columns:
+        raise DatasetError(f"{path}: not a table with the columns {', '.join(columns)}")
+    return rows

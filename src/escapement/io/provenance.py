@@ -1,68 +1,59 @@
-"""Where a dataset came from: package version, git commit, time of creation."""
+"""Where a file came from: the package's version, the commit of the source it was made from, and what wrote it.
+
+The commit is found where the source is: in a clone, the commit of the repository that holds this package,
+``+dirty`` when a source file differs from it (git is asked, and only about this repository: a copy inside
+another repository's work tree is not that repository's); in an archive of the repository (``git archive``, as
+a DOI archive holds it), the commit git stamped into :data:`ARCHIVE_COMMIT` when it made the archive
+(``export-subst`` in ``.gitattributes``); ``unknown`` where neither is found.
+"""
 
 from __future__ import annotations
 
 import datetime as _dt
+import shlex
 import subprocess
+import sys
 from pathlib import Path
 
-__all__ = ["git_commit", "history_line", "package_version", "provenance_attributes", "source_string"]
+__all__ = ["ARCHIVE_COMMIT", "command_line", "git_commit", "provenance_attributes"]
 
-DOI = "10.3233/SAV-130800"
-REFERENCE = (
-    'J. Mao, Y. Fu, P. Li, "Dynamics of periodic impulsive collision in escapement mechanism", '
-    f"Shock and Vibration 20 (2013) 1001-1010, doi:{DOI}"
-)
-
-
-def package_version() -> str:
-    from .. import __version__
-
-    return __version__
-
-
-#: what makes the results: a difference from the commit in any of these marks a run ``+dirty``.
-#: The files the workflow itself writes (README.md, REPLICATION.md, figures/) are not among them.
+#: the commit of an archive, written by ``git archive`` (export-subst); as committed it is the placeholder
+ARCHIVE_COMMIT = "$Format:%H$"
+#: the repository's top folder, if this package is its source (src/escapement/io/provenance.py)
+ROOT = Path(__file__).resolve().parents[3]
+#: what makes the results: a difference from the commit in any of these marks a run ``+dirty``
 SOURCES = ("src", "workflow", "Snakefile", "config", "environment", "pyproject.toml")
 
 
-def _top(names: tuple[str, ...]) -> list[str]:
-    """Pathspecs from the top of the working tree, whatever folder git runs in."""
-    return [f":(top){name}" for name in names]
+def _git(*args: str) -> str:
+    return subprocess.run(["git", "-C", str(ROOT), *args], capture_output=True, text=True, timeout=10,
+                          check=True).stdout.strip()
 
 
-def git_commit(start: Path | None = None) -> str:
-    """The commit of the working tree that holds this package (``unknown`` outside git),
-    with ``+dirty`` when a tracked source file (:data:`SOURCES`) differs from it."""
-    where = str(start or Path(__file__).resolve().parent)
+def git_commit(archive_commit: str = ARCHIVE_COMMIT) -> str:
+    """The commit the source was made from: ``<hash> (archive)``, ``<hash>[+dirty]`` in a clone, or ``unknown``."""
+    if not archive_commit.startswith("$Format"):
+        return f"{archive_commit} (archive)"
     try:
-        commit = subprocess.run(
-            ["git", "-C", where, "rev-parse", "HEAD"], capture_output=True, text=True, timeout=10, check=True
-        ).stdout.strip()
-        dirty = subprocess.run(
-            ["git", "-C", where, "status", "--porcelain", "--untracked-files=no", "--", *_top(SOURCES)],
-            capture_output=True, text=True, timeout=10, check=True,
-        ).stdout.strip()
-    except (OSError, subprocess.SubprocessError):
+        if Path(_git("rev-parse", "--show-toplevel")).resolve() != ROOT:
+            return "unknown"  # this folder lies inside another repository's work tree
+        commit = _git("rev-parse", "HEAD")
+        dirty = _git("status", "--porcelain", "--untracked-files=no", "--", *SOURCES)
+    except (OSError, subprocess.SubprocessError):  # no git program, or not a repository
         return "unknown"
     return commit + ("+dirty" if dirty else "")
 
 
-def source_string() -> str:
-    return f"escapement {package_version()} (git commit {git_commit()})"
+def command_line() -> str:
+    """The command this process runs, as typed (the program's name without its folder)."""
+    return shlex.join([Path(sys.argv[0]).name, *sys.argv[1:]]) if sys.argv and sys.argv[0] else "python"
 
 
-def history_line(what: str) -> str:
+def provenance_attributes(history: str) -> dict:
+    """``source`` (version and commit), ``history`` (time: what wrote the file), ``date_created`` (ISO 8601)
+    and ``product_version``."""
+    from .. import __version__
+
     now = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat()
-    return f"{now}: {what}"
-
-
-def provenance_attributes(what: str) -> dict:
-    """Where and when a file was made: ``source`` (version and commit), ``history``, ``date_created``
-    (ISO 8601) and ``product_version`` (the package version)."""
-    return {
-        "source": source_string(),
-        "history": history_line(what),
-        "date_created": _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat(),
-        "product_version": package_version(),
-    }
+    return {"source": f"escapement {__version__} (commit {git_commit()})", "history": f"{now}: {history}",
+            "date_created": now, "product_version": __version__}

@@ -6,7 +6,7 @@ from __future__ import annotations
 import csv
 import os
 
-from ..io.atomic import write_csv
+from ..io.netcdf import write_csv
 from ..paper.claims import COLUMNS
 
 __all__ = ["read_claims_csv", "write_claims_csv"]

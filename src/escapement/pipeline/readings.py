@@ -18,7 +18,7 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 
-from ..io.atomic import write_csv
+from ..io.netcdf import write_csv
 from ..paper.printed_axes import PANELS, Panel, limits_match
 from ..plotting import panel_axes
 from ..plotting.autoscale import VARIANTS, autoscaled_axes

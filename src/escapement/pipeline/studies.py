@@ -1,13 +1,11 @@
-"""The jobs of the studies beyond the paper: the work-precision benchmark, the speed table and the stress cases.
-The stress job's cases are imported by it alone: the timing jobs, each a process of its own, do
-without them."""
+"""The jobs of the studies beyond the paper: the work-precision benchmark, the speed table and the stress cases
+(imported by their job alone: the timing jobs, each a process of its own, do without them)."""
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 
-from ..io.atomic import write_csv
-from ..io.netcdf import read_netcdf
+from ..io.netcdf import read_netcdf, write_csv
 from ..model.parameters import Parameters, check_initial_state
 from ..studies.benchmark import headline_ratios, per_cycle_times, work_precision
 from .logs import logged
@@ -77,13 +75,11 @@ def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str,
 
 
 def run_stress(long_run: str, output: str, log: str) -> None:
-    """Every stress case (the solver's, then the files' and the configuration's), and the very long
-    run's bounds, as one CSV row each."""
+    """Every stress case of the solver, and the very long run's bounds, as one CSV row each."""
     from ..studies.stress import run_all
-    from .edge_cases import run_edge_cases
 
     with logged(log, "run_stress") as logger:
-        rows = run_all() + run_edge_cases()
+        rows = run_all()
         lr = read_netcdf(long_run, ("cycle", "error_time_exact", "max_velocity_deviation", "max_period_deviation"))
         velocity, period = float(lr["max_velocity_deviation"]), float(lr["max_period_deviation"])
         bounded = (velocity <= 1e-12 and period <= 1e-12

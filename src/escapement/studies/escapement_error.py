@@ -50,7 +50,7 @@ class LimitCycleRate:
     """The limit cycle of one configuration: its amplitude, period and rate, and the decomposition."""
 
     F: float  #: force, N
-    amplitude: float  #: largest displacement of the limit cycle, m
+    largest_displacement: float  #: largest displacement of the limit cycle (its amplitude), m
     velocity: float  #: fixed point of the map (16): velocity before the impact at a1, m/s
     period: float  #: period measured by the exact solver from the fixed point, s
     period_formula: float  #: 2 pi / w + dT1 + dT2 (corrected Eqs. (24)-(25)), s
@@ -83,7 +83,7 @@ def limit_cycle_rate(p: Parameters) -> LimitCycleRate:
     period = float(run.cycles.period[0])
     return LimitCycleRate(
         F=p.F,
-        amplitude=float(run.cycles.largest_displacement[0]),
+        largest_displacement=float(run.cycles.largest_displacement[0]),
         velocity=v,
         period=period,
         period_formula=t0 + impacts + zones,

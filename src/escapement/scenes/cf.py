@@ -1,0 +1,287 @@
+"""CF-1.11 and ACDD-1.3 datasets from runs: per-cycle table, samples, impacts, the model's parameters, and
+attributes; :func:`run_dataset` holds one run, the scenes' datasets are built of the same parts.
+
+Every file describes itself: the model's parameters and initial state are 0-d variables with their
+units and long names (from :mod:`escapement.model.quantities`), never global attributes; counts
+(``n_cycles``, ``samples_per_period``, ...) and text (``solver``, ``outcome``) stay global
+attributes. The global ``summary`` states the model once (:data:`MODEL_SUMMARY`), then what the
+file holds. No CF standard name exists for the quantities of this model, so none is given.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import xarray as xr
+
+from ..model.events import EventKind
+from ..model.quantities import quantity
+from ..solvers.describe import CYCLE_COLUMNS, EVENT_COLUMNS
+from ..solvers.result import Solution
+
+__all__ = [
+    "MODEL_SUMMARY",
+    "cycle_variables",
+    "sample_variables",
+    "impact_variables",
+    "event_variables",
+    "parameter_variables",
+    "scalar_variable",
+    "global_attributes",
+    "assemble",
+    "dataset",
+    "run_dataset",
+    "table_dataset",
+]
+
+#: The model and its impact law, in the ``summary`` of every file (each file adds what it holds).
+MODEL_SUMMARY = (
+    "The escapement model of Mao, Fu & Li (2013): a mass M on a linear spring of constant K moves "
+    "freely, M x'' + K x = 0, between two impact positions a1 < 0 < a3. Moving right it strikes the "
+    "escapement at x = a1, moving left at x = a3; the impact law v+ = (1 - b) v- gives the velocity "
+    "just after each impact from the velocity just before it (impact coefficient b). After the impact "
+    "at a1 a constant force F pushes the mass in +x over the impulse zone [a1, a2]; after the impact at "
+    "a3 it pushes in -x over [a4, a3]. The motion is computed exactly from event to event (closed-form "
+    "harmonic arcs between the impacts and the ends of the impulse zones), in SI units; cycle k starts "
+    "at the k-th impact at a1."
+)
+
+DOI = "10.3233/SAV-130800"
+REFERENCE = (
+    'J. Mao, Y. Fu, P. Li, "Dynamics of periodic impulsive collision in escapement mechanism", '
+    f"Shock and Vibration 20 (2013) 1001-1010, doi:{DOI}"
+)
+
+#: ACDD-1.3 discovery attributes common to every file
+KEYWORDS = (
+    "vibro-impact, escapement mechanism, impact oscillator, impulsive differential equations, "
+    "Poincare map, non-smooth dynamics, replication"
+)
+LICENSE = "CC-BY-4.0"
+CREATOR = "escapement replication contributors"
+INSTITUTION = "escapement replication project"
+
+#: ISO 19115-1 coverage content types (ACDD-1.3) used here
+MODEL_RESULT = "modelResult"
+MODEL_INPUT = "auxiliaryInformation"
+CLASSIFICATION = "thematicClassification"
+QUALITY = "qualityInformation"
+
+def cycle_variables(solution: Solution) -> dict[str, xr.DataArray]:
+    """The Poincare map per cycle, on the coordinate ``cycle`` = 1 .. N, each column with the units
+    and long name of :data:`escapement.solvers.describe.CYCLE_COLUMNS`."""
+    cycles = solution.cycles
+    coords = {"cycle": ("cycle", cycles.cycle.astype(np.int32), {"long_name": "cycle number", "units": "1"})}
+    return {
+        name: xr.DataArray(getattr(cycles, name), dims="cycle", coords=coords, attrs={"units": u, "long_name": ln})
+        for name, (u, ln) in CYCLE_COLUMNS.items()
+    }
+
+
+def _attrs(name: str) -> dict:
+    """The units and long name of the quantity ``name``."""
+    q = quantity(name)
+    return {"units": q.units, "long_name": q.long_name}
+
+
+def time_coordinate(t: np.ndarray) -> dict:
+    return {"t": ("t", np.asarray(t, dtype=float), _attrs("t"))}
+
+
+def sample_variables(solution: Solution, t: np.ndarray, acceleration: bool = False) -> dict[str, xr.DataArray]:
+    """Displacement, velocity (and the smooth part of the acceleration) at times ``t`` (the experiment
+    chooses them: :func:`escapement.experiments.figures.sample_times`)."""
+    x, v, a = solution.sample(t)
+    coords = time_coordinate(t)
+    names = ("displacement", "velocity", "acceleration")[:2 + acceleration]
+    out = {name: xr.DataArray(values, dims="t", coords=coords, attrs=_attrs(name)) for name, values in zip(names, (x, v, a))}
+    if acceleration:
+        out["acceleration"].attrs["comment"] = "the impulsive part at each impact is the variable impulse divided by M"
+    return out
+
+
+def impact_variables(solution: Solution, window: tuple[float, float] | None = None) -> dict[str, xr.DataArray]:
+    """Every impact (optionally those inside ``window``) with its impulse and dissipated energy."""
+    ev = solution.events
+    keep = (ev.kind == int(EventKind.IMPACT_A1)) | (ev.kind == int(EventKind.IMPACT_A3))
+    if window is not None:
+        keep &= (ev.t >= window[0]) & (ev.t <= window[1])
+    m = solution.params.M
+    vb, va = ev.v_before[keep], ev.v_after[keep]
+    dims = "impact"
+    table = {
+        "impact_time": (ev.t[keep], "s", "time of the impact"),
+        "impact_position": (ev.x[keep], "m", "position of the impact (a1 or a3)"),
+        "velocity_before": (vb, "m s-1", "velocity just before the impact"),
+        "velocity_after": (va, "m s-1", "velocity just after the impact"),
+        "impulse": (m * (va - vb), *_attrs("impulse").values()),
+        "energy_dissipated": (0.5 * m * (vb**2 - va**2), *_attrs("energy_dissipated").values()),
+    }
+    return {
+        name: xr.DataArray(values, dims=dims, attrs={"units": u, "long_name": ln})
+        for name, (values, u, ln) in table.items()
+    }
+
+
+def event_variables(solution: Solution, window: tuple[float, float] | None = None) -> dict[str, xr.DataArray]:
+    """Every event (impacts and ends of the impulse), optionally inside ``window``, each column with
+    the units and long name of :data:`escapement.solvers.describe.EVENT_COLUMNS`; the kind as CF
+    flags."""
+    ev = solution.events
+    keep = np.ones(len(ev), dtype=bool)
+    if window is not None:
+        keep = (ev.t >= window[0]) & (ev.t <= window[1])
+    flags = {"flag_values": np.array([int(k) for k in EventKind], dtype=np.int8),
+             "flag_meanings": " ".join(k.name.lower() for k in EventKind)}
+    out = {}
+    for name, (field, units, long_name) in EVENT_COLUMNS.items():
+        values = getattr(ev, field)[keep]
+        if units is None:
+            out[name] = xr.DataArray(values.astype(np.int8), dims="event", attrs={"long_name": long_name, **flags})
+        else:
+            out[name] = xr.DataArray(values, dims="event", attrs={"units": units, "long_name": long_name})
+    return out
+
+
+def scalar_variable(value, units: str, long_name: str, content: str = MODEL_RESULT, **attrs) -> xr.DataArray:
+    """A 0-d variable with its units, long name and ACDD coverage content type."""
+    return xr.DataArray(
+        value, attrs={"units": units, "long_name": long_name, "coverage_content_type": content, **attrs}
+    )
+
+
+def parameter_variables(values: Mapping[str, float]) -> dict[str, xr.DataArray]:
+    """One 0-d variable per model parameter or initial-state component in ``values`` (by the
+    paper's symbol), with the units and long name of :mod:`escapement.model.quantities`."""
+    out = {}
+    for name, value in values.items():
+        q = quantity(name)
+        out[name] = scalar_variable(float(value), q.units, q.long_name, MODEL_INPUT)
+    return out
+
+
+def global_attributes(title: str, scene: str, summary: str, **extra) -> dict:
+    """CF-1.11 and ACDD-1.3 global attributes. ``summary`` says what the file holds (after
+    :data:`MODEL_SUMMARY`); ``extra`` adds counts or text (never a quantity with units: those are variables)."""
+    attrs = {
+        "Conventions": "CF-1.11, ACDD-1.3",
+        "title": title,
+        "summary": f"{MODEL_SUMMARY} {summary}",
+        "keywords": KEYWORDS,
+        "license": LICENSE,
+        "creator_name": CREATOR,
+        "creator_type": "group",
+        "institution": INSTITUTION,
+        "references": f"{REFERENCE} (https://doi.org/{DOI})",
+        "comment": "replication with new code: exact event-driven solution of the piecewise-linear model",
+        "scene": scene,
+    }
+    attrs.update(extra)
+    return attrs
+
+
+def assemble(variables: Mapping[str, xr.DataArray], attrs: dict, coords: Mapping | None = None) -> xr.Dataset:
+    """The dataset of ``variables``, each with an ACDD ``coverage_content_type``: ``coordinate`` for
+    the coordinates, ``thematicClassification`` for flags, and ``modelResult`` where a variable
+    does not give its own."""
+    ds = xr.Dataset(dict(variables), coords=coords, attrs=attrs)
+    for name, variable in ds.variables.items():
+        if "coverage_content_type" not in variable.attrs:
+            if name in ds.coords:
+                content = "coordinate"
+            elif "flag_values" in variable.attrs:
+                content = CLASSIFICATION
+            else:
+                content = MODEL_RESULT
+            variable.attrs["coverage_content_type"] = content
+    return ds
+
+
+def dataset(
+    solution: Solution, variables: dict[str, xr.DataArray], title: str, scene: str, summary: str, **extra
+) -> xr.Dataset:
+    """Assemble a dataset with the run's parameters and initial state as 0-d variables, its outcome
+    as global attributes (its provenance is added when it is written)."""
+    attrs = global_attributes(
+        title, scene, summary, solver=solution.method, outcome=solution.status.value,
+        outcome_message=solution.message,
+    )
+    attrs.update(extra)
+    state = {"x0": solution.x0, "v0": solution.v0}
+    return assemble({**variables, **parameter_variables({**solution.params.as_dict(), **state})}, attrs)
+
+
+def run_dataset(solution: Solution) -> xr.Dataset:
+    """One run as a CF-1.11 / ACDD-1.3 dataset.
+
+    The per-cycle table (:func:`cycle_variables`) on the coordinate ``cycle``, every event
+    (:func:`event_variables`), the end time ``t_final`` and the numbers behind a regime exit (NaN
+    where they do not apply), each with its ``units`` and ``long_name``; the parameters and initial
+    state as 0-d variables, the outcome and the solver as global attributes
+    (:func:`dataset`). The high-precision solver's mpmath numbers become their nearest doubles.
+    Write it with :func:`escapement.io.write_netcdf`, which adds where and when it was written.
+
+    Parameters
+    ----------
+    solution : Solution
+        A run of any solver.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset, in memory.
+
+    Examples
+    --------
+    >>> from escapement import Parameters, solve_exact
+    >>> from escapement.scenes import run_dataset
+    >>> run = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=3)
+    >>> ds = run_dataset(run)
+    >>> ds.sizes["cycle"], ds.sizes["event"], ds.attrs["outcome"]
+    (3, 15, 'completed')
+    >>> ds["period"].attrs["units"], bool(ds["period"][0] == run.cycles.period[0])
+    ('s', True)
+    """
+    variables = {**cycle_variables(solution), **event_variables(solution)}
+    variables = {name: da.astype(float) if da.dtype == object else da for name, da in variables.items()}
+    variables["t_final"] = scalar_variable(
+        float(solution.t_final), "s", "end of the computed trajectory (inf: the free oscillation goes on for ever)"
+    )
+    exit_numbers = {
+        "exit_turning_point": ("m", "where the motion turns at a regime exit (radius of the free swing when stopped)"),
+        "exit_margin": ("m", "how far short of the awaited position the motion turns at a regime exit"),
+        "exit_t_accumulation": ("s", "time at which the rebounds of a chattering run accumulate"),
+    }
+    for name, (units, long_name) in exit_numbers.items():
+        value = float(getattr(solution.exit, name.removeprefix("exit_")))
+        variables[name] = scalar_variable(value, units, f"{long_name}; NaN where it does not apply")
+    return dataset(
+        solution,
+        variables,
+        title=f"One run of the escapement model, solver {solution.method}",
+        scene="run",
+        summary=(
+            "This file holds one run released at x0 with velocity v0: per cycle (the Poincare map on the section "
+            "x = a1, v > 0), the time of the impact at a1, the velocity just before it, the period and the "
+            "largest displacement; every event of the run (impacts and ends of the impulse zones); the end of the computed "
+            "trajectory; and the numbers behind a regime exit, if the run left the escapement regime."
+        ),
+        n_cycles=len(solution.cycles),
+        n_events=len(solution.events),
+    )
+
+
+def table_dataset(columns: dict[str, tuple], title: str, scene: str, summary: str, **extra) -> xr.Dataset:
+    """A table with one row per case: ``columns`` maps a name to ``(values, units, long_name)`` or
+    ``(values, units, long_name, coverage_content_type)``; ``units`` None marks a text column."""
+    n = len(next(iter(columns.values()))[0])
+    variables = {}
+    for name, (values, units, long_name, *content) in columns.items():
+        attrs = {"long_name": long_name} if units is None else {"units": units, "long_name": long_name}
+        if content:
+            attrs["coverage_content_type"] = content[0]
+        dtype = object if units is None else None
+        variables[name] = xr.DataArray(np.array(values, dtype=dtype), dims="case", attrs=attrs)
+    coords = {"case": ("case", np.arange(n, dtype=np.int32), {"long_name": "case number", "units": "1"})}
+    return assemble(variables, global_attributes(title, scene, summary, **extra), coords)

@@ -1,0 +1,127 @@
+"""The scenes of the paper's kinds of figure, each from its settings to its dataset in one function.
+
+* :func:`poincare_map` (Fig. 3's kind): events only (per cycle, and the event log), the amplitude by the
+  definition the settings name, and Eq. (19)'s fixed point as printed; no trajectory is sampled.
+* :func:`shock_detail` (Fig. 4's kind): one run up to the end of its windows, sampled only inside them.
+* :func:`phase_diagram` (a panel of Fig. 5's kind): one run of ``n_cycles``, sampled uniformly.
+
+A sampled run is sampled, besides its uniform grid, on each side of every jump it shows
+(:func:`sample_times`), so that the values just before and just after each impact are kept.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import xarray as xr
+
+from ..model.events import EventKind
+from ..model.quantities import quantity
+from ..paper.printed import fixed_point_19
+from ..solvers.exact import solve_exact
+from .cf import (
+    MODEL_INPUT,
+    cycle_variables,
+    dataset,
+    event_variables,
+    impact_variables,
+    sample_variables,
+    scalar_variable,
+)
+from .settings import PhaseScene, PoincareScene, ShockScene
+
+__all__ = ["phase_diagram", "poincare_map", "sample_times", "shock_detail"]
+
+
+def sample_times(grid: np.ndarray, jumps: np.ndarray) -> np.ndarray:
+    """The times ``grid`` and, for each jump time inside ``(grid[0], grid[-1]]``, the jump and the largest
+    float below it: one sample on each side. The result increases strictly, as CF requires of a coordinate."""
+    grid = np.asarray(grid, dtype=float)
+    jumps = np.asarray(jumps, dtype=float)
+    jumps = jumps[(jumps > grid[0]) & (jumps <= grid[-1])]
+    return np.union1d(grid, np.concatenate([np.nextafter(jumps, -np.inf), jumps]))
+
+
+def poincare_map(settings: Mapping | PoincareScene) -> xr.Dataset:
+    """The Poincare map of one release: velocity before impact, period and largest displacement per cycle,
+    the amplitude its settings name (on a coordinate ``amplitude_cycle`` of its own: the Step-1 amplitude has
+    one more value than there are cycles), every event, and the fixed point of Eq. (19) as printed."""
+    from ..studies.readings import AMPLITUDES  # the definitions of the amplitude, with the readings
+
+    scene = settings if isinstance(settings, PoincareScene) else PoincareScene.from_mapping(settings)
+    run = solve_exact(scene.params, scene.release.x0, scene.release.v0, n_cycles=scene.n_cycles,
+                      record_trajectory=scene.amplitude == "largest_abs_displacement")
+    variables = {**cycle_variables(run), **event_variables(run)}
+    cycle, values = AMPLITUDES[scene.amplitude].values(run)
+    if scene.amplitude not in variables:
+        coordinate = ("amplitude_cycle", cycle, {"long_name": "cycle number of the amplitude", "units": "1"})
+        q = quantity(scene.amplitude)
+        variables[scene.amplitude] = xr.DataArray(values, dims="amplitude_cycle",
+                                                  coords={"amplitude_cycle": coordinate},
+                                                  attrs={"units": q.units, "long_name": q.long_name})
+    variables["fixed_point_19"] = scalar_variable(
+        fixed_point_19(scene.params), "m s-1", "fixed point of the map (17) by Eq. (19) as printed (velocity before "
+        "impact)")
+    return dataset(
+        run, variables, title=scene.study.title("fig3"), scene="poincare_map",
+        summary=("This file holds the Poincare map of one run released at x0 with velocity v0: per cycle, the "
+                 "velocity just before the impact at a1, the period and the largest displacement, for n_cycles "
+                 "cycles, and the amplitude named by amplitude_variable; every event of the run (impacts and ends "
+                 "of the impulse zones); and the fixed point of Eq. (19) as printed."),
+        study=scene.study.name, n_cycles=scene.n_cycles, amplitude_variable=scene.amplitude,
+    )
+
+
+def shock_detail(settings: Mapping | ShockScene) -> xr.Dataset:
+    """The motion sampled over the union of the velocity and acceleration windows (a sample on each side of
+    every event: the velocity jumps at the impacts, the acceleration at every event), the impacts and events
+    inside it, and the windows."""
+    scene = settings if isinstance(settings, ShockScene) else ShockScene.from_mapping(settings)
+    (v_lo, v_hi), (a_lo, a_hi) = scene.velocity_window, scene.acceleration_window
+    lo, hi = min(v_lo, a_lo), max(v_hi, a_hi)
+    run = solve_exact(scene.params, scene.release.x0, scene.release.v0, t_end=hi)
+    grid = np.linspace(lo, hi, int(round((hi - lo) * scene.samples_per_second)) + 1)
+    variables = sample_variables(run, sample_times(grid, run.events.t), acceleration=True)
+    variables.update(impact_variables(run, window=(lo, hi)))
+    variables.update(event_variables(run, window=(lo, hi)))
+    for name, window in (("velocity", scene.velocity_window), ("acceleration", scene.acceleration_window)):
+        variables[f"{name}_window"] = xr.DataArray(
+            np.array(window), dims="window_edge",
+            attrs={"units": "s", "long_name": f"time window [start, end] of the {name} panel",
+                   "coverage_content_type": MODEL_INPUT})
+    variables["samples_per_second"] = scalar_variable(
+        float(scene.samples_per_second), "s-1", "sampling rate of the uniform time grid", MODEL_INPUT)
+    return dataset(
+        run, variables, title=scene.study.title("fig4"), scene="shock_detail",
+        summary=("This file holds the shock detail of one run released at x0 with velocity v0: displacement, "
+                 "velocity and the smooth part of the acceleration sampled over the union of the velocity and "
+                 "acceleration windows, on a uniform grid of samples_per_second with, at each event, a sample at "
+                 "the largest float below its time and one at its time; the impacts in the window with their "
+                 "impulse and dissipated energy; and every event in the window."),
+        study=scene.study.name,
+    )
+
+
+def phase_diagram(settings: Mapping | PhaseScene) -> xr.Dataset:
+    """The phase trajectory from release to the end of cycle ``n_cycles``, sampled ``samples_per_period`` times
+    per natural period (and on each side of every impact), the per-cycle map and every impact."""
+    scene = settings if isinstance(settings, PhaseScene) else PhaseScene.from_mapping(settings)
+    run = solve_exact(scene.params, scene.release.x0, scene.release.v0, n_cycles=scene.n_cycles)
+    period = scene.params.natural_period
+    end = run.t_final if np.isfinite(run.t_final) else (scene.n_cycles + 1) * period
+    ev = run.events
+    impacts = ev.t[(ev.kind == int(EventKind.IMPACT_A1)) | (ev.kind == int(EventKind.IMPACT_A3))]
+    grid = np.linspace(0.0, end, int(np.ceil(end / period * scene.samples_per_period)) + 1)
+    variables = sample_variables(run, sample_times(grid, impacts))
+    variables.update(cycle_variables(run))
+    variables.update(impact_variables(run))
+    return dataset(
+        run, variables, title=scene.study.title("fig5"), scene="phase_diagram",
+        summary=("This file holds one phase diagram: one run released at x0 with velocity v0, from t = 0 to the "
+                 "end of cycle n_cycles, its displacement and velocity sampled samples_per_period times per "
+                 "natural period 2 pi sqrt(M/K) with, at each impact, a sample at the largest float below its time "
+                 "and one at its time; the per-cycle Poincare map; and every impact with its impulse and "
+                 "dissipated energy."),
+        study=scene.study.name, n_cycles=scene.n_cycles, samples_per_period=scene.samples_per_period,
+    )

@@ -1,0 +1,190 @@
+"""The scenes over grids of parameters, each from its settings to its dataset (and, apart from the numbers,
+the wall times it measured, which vary from run to run and never enter a dataset).
+
+* :func:`stability_chunk`: over ``(b, F)``, the fixed point of the simulated return map (Newton on the
+  vectorised ensemble), the period there, the measured multiplier beside Eq. (21)'s and how the cycle from the
+  fixed point ended; with the cost per trajectory of the ensemble against the scalar solver in a loop.
+* :func:`existence_map`: over ``(a3, F)`` of an asymmetric escapement (Sec. 5), whether a release settles on a
+  limit cycle, beside the closed-form forces ``F*`` (the map (16) read at a1) and ``F*'`` (read at a3: the
+  mirror image's ``F*``) below which no limit cycle exists.
+* :func:`escapement_error`: the limit cycle's rate against its amplitude for each impulse zone and force, split
+  as Airy did into the impacts' and the zones' parts (the corrected Eqs. (24)-(25)).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+
+import numpy as np
+import xarray as xr
+
+from ..model.parameters import Parameters, validate_arrays
+from ..model.quantities import MODEL_KEYS, PARAMETERS
+from ..model.status import Status, flag_attributes
+from ..paper.existence import existence_threshold
+from ..paper.poincare import ensemble_return_map, return_map, stability_grid
+from ..paper.printed import multiplier_21_of
+from ..solvers.ensemble import solve_ensemble
+from ..studies.escapement_error import SECONDS_PER_DAY, rate_against_amplitude
+from .cf import MODEL_INPUT, QUALITY, assemble, global_attributes, parameter_variables, scalar_variable
+from .settings import EscapementErrorScene, ExistenceMapScene, StabilityChunk
+
+__all__ = ["escapement_error", "existence_map", "mirror_image", "stability_chunk"]
+
+
+def _coords(**axes: np.ndarray) -> dict:
+    return {name: (name, np.asarray(values, dtype=float),
+                   {"long_name": PARAMETERS[name].long_name, "units": PARAMETERS[name].units})
+            for name, values in axes.items()}
+
+
+def _grid(values, coords: dict, units: str, long_name: str, **attrs) -> xr.DataArray:
+    return xr.DataArray(np.asarray(values), dims=tuple(coords), coords=coords,
+                        attrs={"units": units, "long_name": long_name, **attrs})
+
+
+def stability_chunk(settings: Mapping | StabilityChunk, speed_sample: int = 100) -> tuple[xr.Dataset, dict]:
+    """One chunk of the stability map and, apart from it, the cost per trajectory of the ensemble and of the
+    scalar solver looped over an even sample of ``speed_sample`` cells, both at the fixed points."""
+    scene = settings if isinstance(settings, StabilityChunk) else StabilityChunk.from_mapping(settings)
+    model = {k: v for k, v in scene.params.as_dict().items() if k not in ("b", "F")}
+    bb, ff = np.meshgrid(np.array(scene.b_values), np.array(scene.F_values), indexing="ij")
+    grid = stability_grid(model, bb.ravel(), ff.ravel())
+    v = np.where(np.isfinite(grid["fixed_point"]), grid["fixed_point"], 1.0)
+    start = time.perf_counter()
+    ensemble_return_map(model, bb.ravel(), ff.ravel(), v)
+    ensemble = (time.perf_counter() - start) / bb.size
+    pick = np.linspace(0, bb.size - 1, min(speed_sample, bb.size)).astype(int)
+    start = time.perf_counter()
+    for i in pick:
+        return_map(Parameters(**{**model, "F": ff.ravel()[i], "b": bb.ravel()[i]}), v[i], strict=False)
+    scalar = (time.perf_counter() - start) / len(pick)
+    coords = _coords(b=scene.b_values, F=scene.F_values)
+    values, index = np.unique(bb, return_inverse=True)  # Eq. (21) once per b: the same float on every machine
+    variables = {
+        "multiplier": _grid(grid["multiplier"].reshape(bb.shape), coords, "1",
+                            "multiplier mu_2 measured from the simulated return map"),
+        "multiplier_eq21": _grid(np.array([multiplier_21_of(float(b)) for b in values])[index].reshape(bb.shape),
+                                 coords, "1", "multiplier (1 - b)**4 of Eq. (21)"),
+        "fixed_point": _grid(grid["fixed_point"].reshape(bb.shape), coords, "m s-1",
+                             "fixed point of the simulated return map"),
+        "period": _grid(grid["period"].reshape(bb.shape), coords, "s", "period of the cycle at the fixed point"),
+        "outcome": xr.DataArray(np.asarray(grid["status"], dtype=np.int8).reshape(bb.shape), dims=("b", "F"),
+                                coords=coords, attrs={"long_name": "how the cycle from the fixed point ended",
+                                                      **flag_attributes()}),
+    }
+    resolved = validate_arrays({**model, "b": bb.ravel(), "F": ff.ravel()})
+    variables.update(parameter_variables({k: np.ravel(resolved[k])[0] for k in MODEL_KEYS if k not in ("b", "F")}))
+    attrs = global_attributes(
+        scene.study.title("stability_map"), "stability_map",
+        "This file holds, over a grid of the impact coefficient b and the force F (its coordinates; the other "
+        "parameters are constants), the fixed point of the simulated return map of the velocity before the impact "
+        "at a1, found by Newton's method, the period of the cycle there, the multiplier mu_2 measured by central "
+        "differences of the map beside (1 - b)**4 of Eq. (21), and how the cycle from the fixed point ended.",
+        solver="exact, vectorised ensemble", study=scene.study.name)
+    timings = {"ensemble_seconds_per_trajectory": ensemble, "scalar_seconds_per_trajectory": scalar}
+    return assemble(variables, attrs), timings
+
+
+def mirror_image(p: Parameters) -> Parameters:
+    """The escapement reflected by ``x -> -x``: the impact at a3 becomes the first half cycle's."""
+    return Parameters(M=p.M, K=p.K, F=p.F, b=p.b, a1=-p.a3, a2=-p.a4, a3=-p.a1, a4=-p.a2)
+
+
+def existence_map(settings: Mapping | ExistenceMapScene) -> xr.Dataset:
+    """Every ``(a3, F)`` run from the release for ``n_cycles`` cycles (the vectorised ensemble), how it ended
+    and whether it reached a limit cycle, beside the thresholds ``F*`` and ``F*'`` at each a3."""
+    scene = settings if isinstance(settings, ExistenceMapScene) else ExistenceMapScene.from_mapping(settings)
+    p = scene.params
+    aa, ff = np.meshgrid(np.array(scene.a3_values), np.array(scene.F_values), indexing="ij")
+    run = solve_ensemble(p.M, p.K, ff.ravel(), p.b, p.a1, p.a2, aa.ravel(), p.a4, x0=scene.release.x0,
+                         v0=scene.release.v0, n_cycles=scene.n_cycles, largest_displacement=False)
+    status = np.asarray(run.status).reshape(aa.shape)
+    v = run.cycles.velocity_before_impact
+    settled = (np.abs(v[:, -1] - v[:, -2]) <= scene.tolerance * np.abs(v[:, -1])).reshape(aa.shape)
+    converged = (status == Status.COMPLETED.code) & settled
+    thresholds = np.array([(existence_threshold(q), existence_threshold(mirror_image(q)))
+                           for q in (Parameters(**{**p.as_dict(), "a3": a3, "F": 0.0}) for a3 in scene.a3_values)])
+    coords = _coords(a3=scene.a3_values, F=scene.F_values)
+    along = {"a3": coords["a3"]}
+    variables = {
+        "outcome": xr.DataArray(status.astype(np.int8), dims=("a3", "F"), coords=coords,
+                                attrs={"long_name": "how the run from the release ended", **flag_attributes()}),
+        "converged": xr.DataArray(
+            converged.astype(np.int8), dims=("a3", "F"), coords=coords,
+            attrs={"long_name": "whether the run reached a limit cycle (completed, last two velocities before "
+                                "the impact at a1 within the relative tolerance)",
+                   "flag_values": np.array([0, 1], dtype=np.int8), "flag_meanings": "no_limit_cycle limit_cycle"}),
+        "threshold": xr.DataArray(thresholds[:, 0], dims="a3", coords=along, attrs={
+            "units": "N", "long_name": "force F* at which the constant C of the map (16) read at a1 is zero"}),
+        "threshold_mirror": xr.DataArray(thresholds[:, 1], dims="a3", coords=along, attrs={
+            "units": "N", "long_name": "force F*' at which the constant of the map (16) read at a3 is zero (F* of "
+                                       "the mirror-image escapement)"}),
+        "n_cycles": scalar_variable(np.int32(scene.n_cycles), "1", "complete cycles each run was given",
+                                    MODEL_INPUT),
+        "tolerance": scalar_variable(scene.tolerance, "1", "relative tolerance on the last two velocities before "
+                                     "the impact at a1 for a converged run", MODEL_INPUT),
+    }
+    constants = {k: getattr(p, k) for k in ("M", "K", "b", "a1", "a2", "a4")}
+    variables.update(parameter_variables({**constants, "x0": scene.release.x0, "v0": scene.release.v0}))
+    attrs = global_attributes(
+        scene.study.title("existence_map"), "existence_map",
+        "This file holds, over a grid of the impact position a3 of the second half cycle and the force F (its "
+        "coordinates; the other parameters and the release are constants), how a run of the exact solver "
+        "(vectorised ensemble) from the release ended and whether it reached a limit cycle, beside the closed-form "
+        "forces F* and F*' below which the map (16), read at a1 or at a3, has no fixed point.",
+        solver="exact, vectorised ensemble", study=scene.study.name)
+    return assemble(variables, attrs)
+
+
+#: each field of a limit cycle's rate (escapement.studies.escapement_error.LimitCycleRate) kept: (units, long name)
+RATE_VARIABLES = {
+    "largest_displacement": ("m", "largest displacement of the limit cycle (its amplitude)"),
+    "velocity": ("m s-1", "velocity before the impact at a1 on the limit cycle (fixed point of the map (16))"),
+    "period": ("s", "period of the limit cycle, exact solver"),
+    "period_formula": ("s", "2 pi / omega + dT1 + dT2 by the corrected Eqs. (24)-(25)"),
+    "rate": ("s day-1", "rate of a clock counting 2 pi / omega per swing: seconds gained per day"),
+    "rate_impacts": ("s day-1", "part of the rate due to the impacts' phase jumps dT1, Eq. (24)"),
+    "rate_zones": ("s day-1", "part of the rate due to the impulse zones dT2, Eq. (25)"),
+}
+
+
+def escapement_error(settings: Mapping | EscapementErrorScene) -> xr.Dataset:
+    """The limit cycle's rate for every impulse zone and force, with the largest relative difference between
+    the corrected Eqs. (24)-(25) and the exact solver's period."""
+    scene = settings if isinstance(settings, EscapementErrorScene) else EscapementErrorScene.from_mapping(settings)
+    forces = np.array(scene.forces)
+    values = {name: np.empty((len(scene.zones), len(forces))) for name in RATE_VARIABLES}
+    for i, (_, a1, a2) in enumerate(scene.zones):
+        p = Parameters(**{**scene.params.as_dict(), "a1": a1, "a2": a2, "a3": -a1, "a4": -a2})
+        for j, cycle in enumerate(rate_against_amplitude(p, forces)):
+            for name in RATE_VARIABLES:
+                values[name][i, j] = getattr(cycle, name)
+    worst = float(np.max(np.abs(values["period_formula"] - values["period"]) / values["period"]))
+    zone = ("zone", np.arange(len(scene.zones), dtype=np.int32), {"long_name": "impulse zone number", "units": "1"})
+    coords = {"zone": zone, **_coords(F=forces)}
+    variables = {name: xr.DataArray(values[name], dims=("zone", "F"), coords=coords,
+                                    attrs={"units": u, "long_name": ln}) for name, (u, ln) in RATE_VARIABLES.items()}
+    variables["zone_name"] = xr.DataArray(np.array([z[0] for z in scene.zones], dtype=object), dims="zone",
+                                          coords={"zone": zone}, attrs={"long_name": "name of the impulse zone",
+                                                                        "coverage_content_type": MODEL_INPUT})
+    for index, (end, long_name) in enumerate((("a1", "impact position a1 of the first half cycle"),
+                                              ("a2", "end a2 of the first impulse zone")), start=1):
+        variables[f"zone_{end}"] = xr.DataArray(np.array([z[index] for z in scene.zones]), dims="zone",
+                                                coords={"zone": zone}, attrs={"units": "m", "long_name": long_name,
+                                                                              "coverage_content_type": MODEL_INPUT})
+    variables["max_period_difference"] = scalar_variable(
+        worst, "1", "largest relative difference between the corrected Eqs. (24)-(25) and the exact solver's period",
+        QUALITY)
+    variables["seconds_per_day"] = scalar_variable(SECONDS_PER_DAY, "s day-1", "seconds in a day", MODEL_INPUT)
+    variables.update(parameter_variables({k: getattr(scene.params, k) for k in ("M", "K", "b")}))
+    attrs = global_attributes(
+        scene.study.title("escapement_error"), "escapement_error",
+        "This file holds the escapement error of the limit cycle: for each impulse zone (the first half cycle's "
+        "impact position a1 and zone end a2; the second half cycle mirrors them) and each force F, the limit "
+        "cycle's largest displacement, its period measured by the exact solver from the fixed point of the map "
+        "(16), the period by the corrected Eqs. (24)-(25), and the rate of a clock counting the natural period per "
+        "swing, split into the impacts' part dT1 and the impulse zones' part dT2.",
+        solver="exact", study=scene.study.name)
+    return assemble(variables, attrs)

@@ -1,0 +1,290 @@
+"""The settings of each scene, checked once: frozen dataclasses made from a flat mapping of the configuration.
+
+A scene is one run (or one grid of runs) and the dataset it makes. Its settings come to it as a flat mapping
+(the model's keys merged with the scene's own, as the workflow's configuration builds it and Snakemake passes
+it as the rule's params), and :meth:`from_mapping` checks them all before any work: the model by
+:class:`~escapement.model.parameters.Parameters`, the release by ``check_initial_state``, counts, windows and
+axes here, each refusal a :class:`~escapement.model.parameters.ParameterError` naming the key and its value.
+
+:data:`KINDS` names each kind of scene once: the configuration's block, the files' and figures' name, what it
+shows, and the paper's figure it reproduces where it has one.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..model.parameters import ParameterError, Parameters, check_initial_state
+
+__all__ = ["KINDS", "REPLICATION", "EscapementErrorScene", "ExistenceMapScene", "Kind", "LongRunScene",
+           "PhaseScene", "PoincareScene", "Release", "ShockScene", "StabilityChunk", "Study", "positive_int",
+           "time_window"]
+
+#: the study of the paper's scenes (the others are the user's own, by their name)
+REPLICATION = "replication"
+
+
+@dataclass(frozen=True)
+class Kind:
+    """A kind of scene: its configuration block, its name in files, what it shows and the paper's figure."""
+
+    block: str
+    name: str
+    shows: str
+    figure: str | None = None
+    label: str = "{}"  #: how a scene's label reads in a title
+
+
+#: every kind of scene a study may hold, by its configuration block
+KINDS = {k.block: k for k in (
+    Kind("fig3", "poincare_map", "Poincare map", "Fig. 3", "case {}"),
+    Kind("fig4", "shock_detail", "shock detail", "Fig. 4"),
+    Kind("fig5", "phase_diagrams", "phase diagram", "Fig. 5", "K = {} N/m"),
+    Kind("escapement_error", "escapement_error", "escapement error: rate against amplitude"),
+    Kind("stability_map", "stability_map", "stability and existence map over (b, F)"),
+    Kind("existence_map", "existence_map", "existence map of the limit cycle over (a3, F)"),
+)}
+
+
+@dataclass(frozen=True)
+class Study:
+    """Where a scene belongs: the study (``replication``, or the user's own by its name) and the scene's label
+    within its kind (a Fig. 3 case, a spring constant), which name its files and title its dataset."""
+
+    name: str
+    label: str = ""
+
+    def title(self, block: str) -> str:
+        """The dataset's title: what it shows, and the paper's figure for the replication's scenes."""
+        kind = KINDS[block]
+        label = f", {kind.label.format(self.label)}" if self.label else ""
+        if self.name == REPLICATION and kind.figure:
+            return f"{kind.shows[:1].upper()}{kind.shows[1:]} of the escapement model{label} " \
+                   f"({kind.figure} of Mao, Fu & Li 2013)"
+        return f"{kind.shows[:1].upper()}{kind.shows[1:]} of the escapement model{label}, study {self.name}"
+
+    @classmethod
+    def from_mapping(cls, values: Mapping) -> Study:
+        return cls(str(values.get("study", REPLICATION)), str(values.get("label", "")))
+
+
+def positive_int(name: str, value: object, most: int | None = None) -> int:
+    """``value`` as an int if it is an integer >= 1 (and <= ``most``), not a bool; else ParameterError."""
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1 or (most and value > most):
+        raise ParameterError(name, value, "a positive integer" + (f" <= {most:_}" if most else ""))
+    return int(value)
+
+
+def time_window(name: str, window: object) -> tuple[float, float]:
+    """The window ``[start, end]`` (s) with ``0 <= start < end < inf``; else ParameterError naming ``name``."""
+    try:
+        lo, hi = (float(w) for w in window)  # type: ignore[union-attr]
+    except (TypeError, ValueError) as err:
+        raise ParameterError(name, window, "a pair [start, end] of times in s") from err
+    if not 0 <= lo < hi < np.inf:
+        raise ParameterError(name, window, "a pair [start, end] with 0 <= start < end (s)")
+    return lo, hi
+
+
+def _axis(name: str, axis: Mapping) -> tuple[float, float, int]:
+    """``(start, stop, n)`` of a configured axis, with ``start < stop`` (or one point)."""
+    start, stop, n = float(axis["start"]), float(axis["stop"]), positive_int(f"{name}.n", axis["n"], 2000)
+    if not (np.isfinite(start) and np.isfinite(stop) and (start < stop or n == 1)):
+        raise ParameterError(name, dict(axis), "an axis {start, stop, n} with finite start < stop")
+    return start, stop, n
+
+
+#: the definitions of Fig. 3's amplitude, by the name of the variable that holds it (their values:
+#: escapement.studies.readings.AMPLITUDES, with the readings of the printed axes)
+AMPLITUDES = ("amplitude_h0", "amplitude_h4", "largest_displacement", "largest_abs_displacement")
+
+#: the most samples a sampled time series may hold (three float64 arrays: 240 MB)
+MAX_SAMPLES = 10_000_000
+
+
+@dataclass(frozen=True)
+class Release:
+    """The state at ``t = 0+`` (after any jump, as the paper's Eq. (2) writes it): displacement and velocity."""
+
+    x0: float
+    v0: float = 0.0
+
+    @classmethod
+    def from_mapping(cls, values: Mapping) -> Release:
+        if "x0" not in values:
+            raise ParameterError("x0", None, "given (it is missing)")
+        return cls(*check_initial_state(values["x0"], values.get("v0", 0.0)))
+
+
+@dataclass(frozen=True)
+class PoincareScene:
+    """A Poincare map (Fig. 3's kind): one release run ``n_cycles`` cycles, its amplitude by ``amplitude``."""
+
+    study: Study
+    params: Parameters
+    release: Release
+    n_cycles: int
+    amplitude: str
+
+    @classmethod
+    def from_mapping(cls, values: Mapping) -> PoincareScene:
+        if values["amplitude"] not in AMPLITUDES:
+            raise ParameterError("amplitude", values["amplitude"], f"one of {', '.join(AMPLITUDES)}")
+        return cls(Study.from_mapping(values), Parameters.from_mapping(values), Release.from_mapping(values),
+                   positive_int("n_cycles", values["n_cycles"], 1_000_000), str(values["amplitude"]))
+
+
+@dataclass(frozen=True)
+class ShockScene:
+    """A shock detail (Fig. 4's kind): the motion sampled over two windows, velocity and acceleration."""
+
+    study: Study
+    params: Parameters
+    release: Release
+    velocity_window: tuple[float, float]
+    acceleration_window: tuple[float, float]
+    samples_per_second: int
+
+    @classmethod
+    def from_mapping(cls, values: Mapping) -> ShockScene:
+        windows = {name: time_window(name, values[name]) for name in ("velocity_window", "acceleration_window")}
+        rate = positive_int("samples_per_second", values["samples_per_second"], 100_000)
+        for name, (lo, hi) in windows.items():
+            if (hi - lo) * rate > MAX_SAMPLES:
+                raise ParameterError("samples_per_second", rate, f"at most {MAX_SAMPLES:_} samples over the "
+                                     f"{name} of {hi - lo:g} s ({(hi - lo) * rate:.3g} asked)")
+        return cls(Study.from_mapping(values), Parameters.from_mapping(values), Release.from_mapping(values),
+                   windows["velocity_window"], windows["acceleration_window"], rate)
+
+
+@dataclass(frozen=True)
+class PhaseScene:
+    """One phase diagram (a panel of Fig. 5's kind): a release run ``n_cycles`` cycles, sampled uniformly."""
+
+    study: Study
+    params: Parameters
+    release: Release
+    n_cycles: int
+    samples_per_period: int
+
+    @classmethod
+    def from_mapping(cls, values: Mapping) -> PhaseScene:
+        n_cycles = positive_int("n_cycles", values["n_cycles"], 10_000)
+        per_period = positive_int("samples_per_period", values["samples_per_period"], 100_000)
+        if n_cycles * per_period > MAX_SAMPLES:
+            raise ParameterError("samples_per_period", per_period, f"at most {MAX_SAMPLES:_} samples with "
+                                 f"n_cycles = {n_cycles} ({n_cycles * per_period:_} asked)")
+        return cls(Study.from_mapping(values), Parameters.from_mapping(values), Release.from_mapping(values),
+                   n_cycles, per_period)
+
+
+@dataclass(frozen=True)
+class EscapementErrorScene:
+    """The limit cycle's rate for ``forces`` (spaced geometrically) in each impulse zone ``[a1, a2]`` (the
+    second half cycle mirrored: ``a3 = -a1``, ``a4 = -a2``); ``params`` gives M, K and b."""
+
+    study: Study
+    params: Parameters
+    forces: tuple[float, ...]
+    zones: tuple[tuple[str, float, float], ...]
+
+    @classmethod
+    def from_mapping(cls, values: Mapping) -> EscapementErrorScene:
+        start, stop, n = _axis("F", values["F"])
+        if start <= 0:
+            raise ParameterError("F.start", start, "a number > 0 (N): the forces are spaced geometrically")
+        forces = tuple(start * (stop / start) ** (i / (n - 1)) if n > 1 else start for i in range(n))
+        zones = []
+        for name, (a1, a2) in values["zones"].items():
+            Parameters(**{**_model(values), "F": 0.0, "a1": a1, "a2": a2, "a3": -a1, "a4": -a2})  # a1 < a2 checked
+            zones.append((str(name), float(a1), float(a2)))
+        return cls(Study.from_mapping(values), Parameters.from_mapping({**values, "F": forces[0]}), forces,
+                   tuple(zones))
+
+
+def _model(values: Mapping) -> dict:
+    return {k: values[k] for k in ("M", "K", "b", "a1", "a2", "a3", "a4") if values.get(k) is not None}
+
+
+def cell_centres(start: float, stop: float, n: int) -> tuple[float, ...]:
+    """The ``n`` cell centres of ``(start, stop)``."""
+    step = (stop - start) / n
+    return tuple(start + (i + 0.5) * step for i in range(n))
+
+
+@dataclass(frozen=True)
+class StabilityChunk:
+    """One chunk of the stability map: every ``(b, F)`` of ``b_values x F_values``; ``params`` gives the rest."""
+
+    study: Study
+    params: Parameters
+    b_values: tuple[float, ...]
+    F_values: tuple[float, ...]
+
+    @classmethod
+    def from_mapping(cls, values: Mapping) -> StabilityChunk:
+        b_values, F_values = tuple(float(b) for b in values["b_values"]), tuple(float(f) for f in values["F_values"])
+        for b in (min(b_values), max(b_values)):  # every cell's model is valid if the corners' are
+            for force in (min(F_values), max(F_values)):
+                Parameters(**{**_model(values), "b": b, "F": force})
+        return cls(Study.from_mapping(values), Parameters.from_mapping({**values, "F": F_values[0],
+                                                                        "b": b_values[0]}), b_values, F_values)
+
+    @staticmethod
+    def axes(block: Mapping) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        """The map's b values (cell centres of (start, stop)) and F values (start to stop, ends included)."""
+        b_values = cell_centres(*_axis("b", block["b"]))
+        start, stop, n = _axis("F", block["F"])
+        return b_values, tuple(start + (stop - start) * j / max(n - 1, 1) for j in range(n))
+
+
+@dataclass(frozen=True)
+class ExistenceMapScene:
+    """The existence map over ``(a3, F)`` (cell centres of each axis), each cell released at ``release`` and
+    run ``n_cycles``; converged where the last two velocities agree within ``tolerance`` (relative)."""
+
+    study: Study
+    params: Parameters
+    release: Release
+    a3_values: tuple[float, ...]
+    F_values: tuple[float, ...]
+    n_cycles: int
+    tolerance: float
+
+    @classmethod
+    def from_mapping(cls, values: Mapping) -> ExistenceMapScene:
+        a3_values, F_values = cell_centres(*_axis("a3", values["a3"])), cell_centres(*_axis("F", values["F"]))
+        for a3 in (a3_values[0], a3_values[-1]):
+            for force in (F_values[0], F_values[-1]):
+                Parameters(**{**_model(values), "a3": a3, "F": force})
+        tolerance = float(values["tolerance"])
+        if not 0 < tolerance < 1:
+            raise ParameterError("tolerance", values["tolerance"], "a relative tolerance in (0, 1)")
+        n_cycles = positive_int("n_cycles", values["n_cycles"], 10_000)
+        if n_cycles < 2:
+            raise ParameterError("n_cycles", n_cycles, "at least 2: convergence compares the last two cycles")
+        params = Parameters.from_mapping({**values, "a3": a3_values[0], "F": F_values[0]})
+        return cls(Study.from_mapping(values), params, Release.from_mapping(values), a3_values, F_values,
+                   n_cycles, tolerance)
+
+
+@dataclass(frozen=True)
+class LongRunScene:
+    """The long run: the exact solver and the closed forms over ``n_cycles``, ``solve_ivp`` over
+    ``ivp_cycles``, each against 50 digits."""
+
+    params: Parameters
+    release: Release
+    n_cycles: int
+    ivp_method: str
+    ivp_rtol: float
+    ivp_cycles: int
+
+    @classmethod
+    def from_mapping(cls, values: Mapping) -> LongRunScene:
+        return cls(Parameters.from_mapping(values), Release.from_mapping(values),
+                   positive_int("n_cycles", values["n_cycles"], 100_000_000), str(values["ivp_method"]),
+                   float(values["ivp_rtol"]), positive_int("ivp_cycles", values["ivp_cycles"], 20_000))

@@ -1,0 +1,167 @@
+# The replication's own jobs: the runs that check the paper's claims, the readings of its printed axes,
+# the verdict, the documents, and the explicit publish step that updates the tracked files.
+
+
+rule checks:
+    output:
+        nc="results/replication/checks.nc",
+    log:
+        "results/logs/replication/checks.log",
+    params:
+        kind="checks",
+        scene=RUNS["checks"],
+        code=CODE["simulate"],
+    script:
+        "../scripts/simulate.py"
+
+
+rule long_run:
+    output:
+        nc="results/replication/long_run.nc",
+        timing="results/replication/long_run_timing.csv",
+    log:
+        "results/logs/replication/long_run.log",
+    priority: 10  # the longest job, at the head of a chain (stress table, its figure): started first
+    params:
+        kind="long_run",
+        scene=RUNS["long_run"],
+        code=CODE["simulate"],
+    script:
+        "../scripts/simulate.py"
+
+
+# The paper's unstated choices read from its printed axes: every candidate reading simulated and
+# autoscaled to the printed tick steps, scored by the printed limits it reproduces.
+rule readings:
+    output:
+        csv=report(
+            "results/replication/readings.csv",
+            caption="../report/readings.rst",
+            category="Verdict",
+            labels={"table": "axis readings"},
+        ),
+    log:
+        "results/logs/replication/readings.log",
+    params:
+        settings={
+            "model": PAPER["model"],
+            "fig3": PAPER["fig3"],
+            "fig4": {
+                k: PAPER["fig4"][k]
+                for k in ("velocity_window", "acceleration_window", "samples_per_second")
+            },
+            "fig5": {k: PAPER["fig5"][k] for k in ("K", "n_cycles", "samples_per_period")},
+        },
+        code=CODE["simulate"],
+    script:
+        "../scripts/readings.py"
+
+
+rule check_claims:
+    input:
+        register="workflow/claims.yaml",
+        fig3=expand(
+            "results/replication/poincare_map/case_{case}.nc",
+            case=STUDIES["replication"]["fig3"],
+        ),
+        fig4="results/replication/shock_detail.nc",
+        fig5=expand(
+            "results/replication/phase_diagrams/K_{K}.nc",
+            K=STUDIES["replication"]["fig5"],
+        ),
+        checks="results/replication/checks.nc",
+        readings="results/replication/readings.csv",
+    output:
+        csv=report(
+            "results/replication/claims.csv",
+            caption="../report/claims.rst",
+            category="Verdict",
+            labels={"table": "claims register"},
+        ),
+    log:
+        "results/logs/replication/check_claims.log",
+    localrule: True
+    params:
+        fig3_labels=list(STUDIES["replication"]["fig3"]),
+        fig5_labels=list(STUDIES["replication"]["fig5"]),
+        code=CODE["verdict"],
+    script:
+        "../scripts/check_claims.py"
+
+
+rule run_stress:
+    input:
+        long_run="results/replication/long_run.nc",
+    output:
+        csv=report(
+            "results/replication/stress.csv",
+            caption="../report/stress.rst",
+            category="Speed and accuracy",
+            labels={"table": "stress cases"},
+        ),
+    log:
+        "results/logs/replication/stress.log",
+    params:
+        code=CODE["simulate"],
+    script:
+        "../scripts/stress.py"
+
+
+rule render_docs:
+    input:
+        claims="results/replication/claims.csv",
+        benchmark="results/replication/work_precision.csv",
+        long_run="results/replication/long_run.nc",
+        long_run_timing="results/replication/long_run_timing.csv",
+        stability="results/replication/stability_map.nc",
+        stability_timing="results/replication/stability_map_timing.csv",
+        stress="results/replication/stress.csv",
+        readings="results/replication/readings.csv",
+        readme="workflow/templates/README.md",
+        replication="workflow/templates/REPLICATION.md",
+        timings="workflow/templates/timings.md",
+    output:
+        readme="results/replication/docs/README.md",
+        replication="results/replication/docs/REPLICATION.md",
+        timings=report(
+            "results/replication/docs/timings.md",
+            caption="../report/timings.rst",
+            category="Speed and accuracy",
+            labels={"document": "measured times"},
+        ),
+        # the verdict and REPLICATION.md as HTML, for the report's landing page (workflow/report/workflow.rst)
+        verdict="results/replication/docs/verdict.html",
+        replication_html="results/replication/docs/replication.html",
+    log:
+        "results/logs/replication/render_docs.log",
+    localrule: True
+    params:
+        code=CODE["docs"],
+    script:
+        "../scripts/render_docs.py"
+
+
+def publish_inputs(wildcards):
+    """What publish copies from; refused, before any job, when the configuration holds a study of your own."""
+    if len(STUDIES) > 1:
+        raise WorkflowError(
+            f"publish updates the tracked figures and documents from the replication alone: run it without a "
+            f"configuration of your own (this one makes the study '{NAME}' of {', '.join(OWN)})"
+        )
+    return list(PUBLISHED.values())
+
+
+# The tracked figures and documents (figures/, README.md, REPLICATION.md), copied from results/replication/
+# where what they show changed (escapement.pipeline.publish: a figure beyond an RMS tolerance of its pixels,
+# its PDF with its PNG, a document where its text or a number at its printed digits differs). Only this
+# target writes a tracked file: `snakemake --cores 2 publish`.
+rule publish:
+    input:
+        publish_inputs,
+    log:
+        "results/logs/replication/publish.log",
+    localrule: True
+    params:
+        published=PUBLISHED,
+    script:
+        "../scripts/publish.py"

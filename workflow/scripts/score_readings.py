@@ -1,5 +1,0 @@
-"""Glue: rule score_readings -> escapement.pipeline.readings.score_readings."""
-
-from escapement.pipeline.readings import score_readings
-
-score_readings(snakemake.output.csv, snakemake.log[0], snakemake.params.settings)  # noqa: F821
