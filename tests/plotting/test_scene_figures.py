@@ -65,6 +65,12 @@ def test_given_axes_are_drawn_exactly_and_the_others_autoscaled(datasets):
         plt.close(fig)
 
 
+def test_axes_for_a_panel_the_figure_does_not_have_are_refused(datasets):
+    with pytest.raises(ValueError, match="no panel"):
+        phase_diagrams({"0.1": datasets.phase(K=0.1)}, "t", {("5", "a"): {"x": (-5.0, 5.0, 5.0)}})
+    plt.close("all")
+
+
 def test_a_run_that_did_not_complete_says_so_in_its_panel_title(datasets):
     fig = phase_diagrams({"ran": datasets.phase(), "stopped": datasets.phase(outcome="stopped", x0=0.05)}, "t")
     try:

@@ -51,6 +51,14 @@ def _panel_title(i: int, ds: xr.Dataset, datasets) -> str:
     return "\n".join(line for line in lines if line)
 
 
+def _check(axes: DrawnAxes | None, keys) -> None:
+    """Refuse axes for panels the figure does not have (a key mistyped, or keyed as the claims key them)."""
+    unknown = set(axes or ()) - set(keys)
+    if unknown:
+        raise ValueError(f"axes names no panel of this figure: {', '.join(sorted(map(repr, unknown)))}; its panels are "
+                         f"{', '.join(sorted(keys))}")
+
+
 def _axes(ax, axes: DrawnAxes | None, key: str) -> None:
     """The panel's given axes, else matplotlib's autoscaling; either way the limits are fixed from here on."""
     if axes and key in axes:
@@ -82,6 +90,7 @@ def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | 
         (:func:`~escapement.plotting.panel_axes.poincare_axes`); a panel not given is autoscaled.
     """
     datasets = list(cases.values())
+    _check(axes, [f"{label}/{key}" for label in cases for key, _ in _ROWS])
     with style():
         fig, grid = plt.subplots(3, len(cases), figsize=(max(3.4 * len(cases), 6.0), 8.4), squeeze=False,
                                  layout="constrained")
@@ -128,6 +137,7 @@ def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> F
         Limits and tick steps keyed ``"velocity"`` and ``"acceleration"``
         (:func:`~escapement.plotting.panel_axes.shock_axes`); a panel not given is autoscaled.
     """
+    _check(axes, ("velocity", "acceleration"))
     t, impacts = ds["t"].values, ds["impact_time"].values
     impulse, energy = ds["impulse"].values, ds["energy_dissipated"].values
     with style():
@@ -190,6 +200,7 @@ def phase_diagrams(panels: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes
         (:func:`~escapement.plotting.panel_axes.phase_axes`); a panel not given is autoscaled.
     """
     datasets = list(panels.values())
+    _check(axes, panels)
     with style():
         fig, grid = plt.subplots(1, len(panels), figsize=(max(3.2 * len(panels), 6.0), 4.3), squeeze=False,
                                  layout="constrained")
