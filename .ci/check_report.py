@@ -1,7 +1,7 @@
 """Open the Snakemake report in headless Chromium and check, in the rendered DOM, that its landing
-page shows the verdict: the claims table with one visible row per claim of results/claims.csv, and
-the stress table with one per row of results/stress/summary.csv; and that it shows REPLICATION.md
-(results/docs/REPLICATION.md) rendered as HTML: every heading of the document as a heading, each of
+page shows the verdict: the claims table with one visible row per claim of results/replication/claims.csv, and
+the stress table with one per row of results/replication/stress.csv; and that it shows REPLICATION.md
+(results/replication/docs/REPLICATION.md) rendered as HTML: every heading of the document as a heading, each of
 its tables as a table and each fenced code block as a <pre> block. The text of the report's
 scripts (which embed the same HTML as data) and hidden elements do not count.
 
@@ -126,20 +126,21 @@ def main(report: str) -> None:
     ).stdout
     tables = Tables()
     tables.feed(dom)
-    with open("results/claims.csv", newline="") as handle:
+    with open("results/replication/claims.csv", newline="") as handle:
         claims = [row["claim_id"] for row in csv.DictReader(handle)]
-    with open("results/stress/summary.csv", newline="") as handle:
+    with open("results/replication/stress.csv", newline="") as handle:
         stress = [row["regime"] for row in csv.DictReader(handle)]
     shown_claims = [row[0] for row in tables.rows.get("claims", [])]
     shown_stress = [row[0] for row in tables.rows.get("stress", [])]
     problems = []
     if shown_claims != claims:
-        problems.append(f"claims table: {len(shown_claims)} rows rendered, {len(claims)} claims in results/claims.csv")
+        problems.append(f"claims table: {len(shown_claims)} rows rendered, {len(claims)} claims in "
+                        "results/replication/claims.csv")
     if shown_stress != stress:
         problems.append(f"stress table: {len(shown_stress)} rows rendered, {len(stress)} cases in the summary")
     if problems:
         sys.exit("the report's landing page does not show the verdict: " + "; ".join(problems))
-    headings, md_tables, md_fences = markdown_outline(Path("results/docs/REPLICATION.md").read_text())
+    headings, md_tables, md_fences = markdown_outline(Path("results/replication/docs/REPLICATION.md").read_text())
     missing = [heading for heading in headings if heading not in tables.headings]
     if missing:
         problems.append(f"{len(missing)} of its {len(headings)} headings not shown as headings: {missing}")

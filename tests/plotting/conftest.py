@@ -120,7 +120,7 @@ def escapement_error() -> xr.Dataset:
     F = np.array([0.1, 0.5, 1.0, 2.0])
     amplitude = np.array([[0.4, 0.8, 1.2, 1.8], [0.45, 0.85, 1.3, 2.0]])
     return xr.Dataset(
-        {"amplitude": (("zone", "F"), amplitude), "rate": (("zone", "F"), -300 / amplitude),
+        {"largest_displacement": (("zone", "F"), amplitude), "rate": (("zone", "F"), -300 / amplitude),
          "rate_impacts": (("zone", "F"), -400 / amplitude), "rate_zones": (("zone", "F"), 100 / amplitude),
          "zone_name": ("zone", ["paper", "wide"]), "zone_a1": ("zone", [-0.1, -0.2]), "zone_a2": ("zone", [0.05, 0.1]),
          **{k: v for k, v in _parameters().items() if k != "F"}},

@@ -51,7 +51,6 @@ rule plot_work_precision:
         "results/logs/replication/plot_work_precision.log",
     localrule: True
     params:
-        case=PAPER["benchmark"]["case"],
         code=CODE["plot"],
     script:
         "../scripts/plot.py"

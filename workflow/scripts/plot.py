@@ -12,5 +12,4 @@ plot(
     snakemake.output.png,
     snakemake.output.pdf,
     snakemake.log[0],
-    case=snakemake.params.get("case", None),
 )

@@ -1,7 +1,7 @@
 """The plotting jobs: netCDF files or tables in, a figure out (PNG and PDF), titled by the study.
 
 The replication's paper figures are drawn with each printed panel's axes as the claims score them (the limits
-the data's rounded out to the printed ticks, :func:`escapement.plotting.panel_axes.scene_axes`); a study of
+the data's rounded out to the printed ticks, :mod:`escapement.plotting.panel_axes`); a study of
 the user's own gets matplotlib's own axes and a title that names the study, never the paper's figure. Imports
 no solver and no scene."""
 
@@ -30,7 +30,7 @@ def title(figure: str, study: str) -> str:
 
 
 def plot(figure: str, study: str, inputs: Sequence[str], labels: Sequence[str] | None, png: str, pdf: str,
-         log: str, case: str | None = None) -> None:
+         log: str) -> None:
     """Draw ``figure`` (a file name: poincare_map, long_run, ...) of ``study`` from ``inputs`` (netCDF files,
     one per label of ``labels`` for the figures of several scenes; the work-precision table) to ``png`` and
     ``pdf``."""
@@ -38,22 +38,22 @@ def plot(figure: str, study: str, inputs: Sequence[str], labels: Sequence[str] |
 
     with logged(log, f"plot {figure}"):
         if figure == "work_precision":
-            fig = plotting.work_precision(read_work_precision(inputs[0]), case)
+            fig = plotting.work_precision(read_work_precision(inputs[0]))
         elif figure == "long_run":
             fig = plotting.long_run(read_netcdf(inputs[0]))
         elif figure in ("poincare_map", "shock_detail", "phase_diagrams"):
             data = {label: read_netcdf(path) for label, path in zip(labels, inputs, strict=True)}
+            data = data[""] if figure == "shock_detail" else data
             axes = None
-            if study == REPLICATION:
+            if study == REPLICATION:  # each printed panel's axes as its claims score them
+                from ..plotting import panel_axes
                 from ..plotting.autoscale import VARIANTS
-                from ..plotting.panel_axes import scene_axes
                 from .scores import CLAIM_AUTOSCALE
 
-                split = {"poincare_map": (data, None, {}), "shock_detail": ({}, data.get(""), {}),
-                         "phase_diagrams": ({}, None, data)}[figure]
-                axes = scene_axes(*split, VARIANTS[CLAIM_AUTOSCALE])
-            draw = getattr(plotting, figure)
-            fig = draw(data[""] if figure == "shock_detail" else data, title(figure, study), axes)
+                measure = {"poincare_map": panel_axes.poincare_axes, "shock_detail": panel_axes.shock_axes,
+                           "phase_diagrams": panel_axes.phase_axes}[figure]
+                axes = measure(data, VARIANTS[CLAIM_AUTOSCALE])
+            fig = getattr(plotting, figure)(data, title(figure, study), axes)
         else:
             fig = getattr(plotting, figure)(read_netcdf(inputs[0]), title(figure, study))
         plotting.save_figure(fig, png, pdf)

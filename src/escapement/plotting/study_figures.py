@@ -223,7 +223,7 @@ def escapement_error(ds: xr.Dataset, title: str | None = None) -> Figure:
             a1, a2 = float(ds["zone_a1"][i]), float(ds["zone_a2"][i])
             label = f"{name}: impact at {quantity_value('a1', a1)}, impulse to {quantity_value('a2', a2)}"
             for ax, (variable, _, _) in zip(axes, panels):
-                ax.plot(ds["amplitude"][i], ds[variable][i], marker="o", ms=2.5, lw=1.1, color=SERIES[i % 4],
+                ax.plot(ds["largest_displacement"][i], ds[variable][i], marker="o", ms=2.5, lw=1.1, color=SERIES[i % 4],
                         label=label)
         for ax, (_, ylabel, name) in zip(axes, panels):
             ax.axhline(0.0, color=GUIDE, lw=0.6, ls=":")
