@@ -10,9 +10,9 @@ import of the source):
 * :mod:`escapement.integrators`: the general-purpose integrators that check them (SciPy, CVODE, mpmath, RK4);
 * :mod:`escapement.paper`, then :mod:`escapement.studies`: the paper's equations (as printed and
   corrected), the Poincare measurement and the claims; the benchmark, long run, stress cases;
-* :mod:`escapement.experiments`: each scene of the workflow run, its results returned plain;
-* :mod:`escapement.io`: CF datasets made of runs and results, netCDF files, atomic writes,
-  provenance (it imports only the model and the solvers);
+* :mod:`escapement.scenes`: each scene from its checked settings to its CF dataset, in one function;
+* :mod:`escapement.io`: netCDF, CSV and text files written atomically, with their provenance (it imports
+  nothing of the package but its version);
 * :mod:`escapement.plotting`: the figures;
 * :mod:`escapement.pipeline`: what the workflow's rules call, and :mod:`escapement.cli`, the
   command line ``escapement solve`` or ``python -m escapement solve`` (neither is imported here).

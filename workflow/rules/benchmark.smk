@@ -26,7 +26,8 @@ use rule work_precision as work_precision_full with:
         scene=RUNS["benchmark"],
         settings={
             method: sorted(
-                {*PAPER["benchmark"]["settings"].get(method, []), *values}, reverse=True
+                {*PAPER["benchmark"]["settings"].get(method, []), *values},
+                reverse=True,
             )
             for method, values in {
                 **PAPER["benchmark"]["settings"],

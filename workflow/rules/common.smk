@@ -3,6 +3,7 @@ from snakemake.utils import validate
 
 from escapement.pipeline import config as settings
 from escapement.pipeline.publish import PUBLISHED
+from escapement.scenes.settings import KINDS
 
 
 def checked(data, schema, source):
@@ -41,7 +42,15 @@ wildcard_constraints:
 LAYERS = {
     "simulate": ["model", "solvers", "integrators", "paper", "studies", "scenes", "io"],
     "plot": ["model", "io", "paper", "plotting"],
-    "verdict": ["model", "solvers", "integrators", "paper", "studies", "io", "plotting"],
+    "verdict": [
+        "model",
+        "solvers",
+        "integrators",
+        "paper",
+        "studies",
+        "io",
+        "plotting",
+    ],
     "docs": ["model", "io", "paper"],
 }
 CODE = {
@@ -62,18 +71,10 @@ def scene(block, key=None):
 
 
 def study_outputs(study):
-    """The datasets and figures of one study."""
-    scenes, found = STUDIES[study], []
-    kinds = {"fig3": "poincare_map", "fig4": "shock_detail", "fig5": "phase_diagrams"}
-    if "fig3" in scenes:
-        found += expand("results/{study}/poincare_map/case_{case}.nc", study=study, case=scenes["fig3"])
-    if "fig5" in scenes:
-        found += expand("results/{study}/phase_diagrams/K_{K}.nc", study=study, K=scenes["fig5"])
-    for block, name in {**kinds, "escapement_error": "escapement_error", "stability_map": "stability_map",
-                        "existence_map": "existence_map"}.items():
-        if block in scenes:
-            found.append(f"results/{study}/figures/{name}.png")
-    return found
+    """The figures of one study (each needs its datasets)."""
+    return [
+        f"results/{study}/figures/{KINDS[block].name}.png" for block in STUDIES[study]
+    ]
 
 
 def all_outputs():

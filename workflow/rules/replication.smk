@@ -48,9 +48,15 @@ rule readings:
             "fig3": PAPER["fig3"],
             "fig4": {
                 k: PAPER["fig4"][k]
-                for k in ("velocity_window", "acceleration_window", "samples_per_second")
+                for k in (
+                    "velocity_window",
+                    "acceleration_window",
+                    "samples_per_second",
+                )
             },
-            "fig5": {k: PAPER["fig5"][k] for k in ("K", "n_cycles", "samples_per_period")},
+            "fig5": {
+                k: PAPER["fig5"][k] for k in ("K", "n_cycles", "samples_per_period")
+            },
         },
         code=CODE["simulate"],
     script:

@@ -158,7 +158,9 @@ rule plot_shock_detail:
 rule plot_phase_diagrams:
     input:
         nc=lambda w: expand(
-            "results/{study}/phase_diagrams/K_{K}.nc", study=w.study, K=STUDIES[w.study]["fig5"]
+            "results/{study}/phase_diagrams/K_{K}.nc",
+            study=w.study,
+            K=STUDIES[w.study]["fig5"],
         ),
     output:
         png=report(

@@ -99,11 +99,16 @@ VARIABLES = _table(
              "largest displacement"),
     Quantity("amplitude_h0", "h\u2080", "m", "m",
              "Step-1 amplitude h0(k) = sqrt(a1^2 + (v_k / omega)^2) of the free arc that ends in impact k at a1 "
-             "(k = 1 .. N+1; Eqs. (9b), (22a))", "amplitude h\u2080"),
+             "(k = 1 .. N+1; Eqs. (9b), (22a))", "amplitude"),
     Quantity("amplitude_h4", "h\u2084", "m", "m",
-             "Step-8 amplitude h4(k) = h0(k+1) of the free arc that ends cycle k (k = 1 .. N)", "amplitude h\u2084"),
+             "Step-8 amplitude h4(k) = h0(k+1) of the free arc that ends cycle k (k = 1 .. N)", "amplitude"),
     Quantity("largest_abs_displacement", "", "m", "m", "largest |x| between impact k and impact k+1",
              "largest |x|"),
+    Quantity("event_time", "", "s", "s", "time of the event", "event time"),
+    Quantity("event_kind", "", "1", "1", "kind of event"),
+    Quantity("event_position", "", "m", "m", "position of the event"),
+    Quantity("event_velocity_before", "", "m s-1", "m/s", "velocity just before the event"),
+    Quantity("event_velocity_after", "", "m s-1", "m/s", "velocity just after the event"),
 )
 
 MODEL_KEYS = tuple(PARAMETERS)

@@ -8,7 +8,6 @@ the table that :mod:`escapement.pipeline.readings` wrote.
 from __future__ import annotations
 
 import csv
-import textwrap
 from collections import defaultdict
 from collections.abc import Iterable, Mapping
 
@@ -16,7 +15,7 @@ from ..paper.checks import Candidates
 from ..paper.printed_axes import PANELS
 
 __all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "DEFAULT_LOCATOR", "PRINTED_STEP", "TICKS", "best_readings",
-           "best_readings_table", "figure_caption", "joint_candidates", "panel_candidates", "read_scores", "ties_text"]
+           "best_readings_table", "joint_candidates", "panel_candidates", "read_scores", "ties_text"]
 
 #: the score table's columns: ``ticks`` says whether the printed tick step was imposed or the plotting
 #: program chose its own (``tick_step`` is the step the axis ended with); ``same_values_as`` names the
@@ -168,37 +167,3 @@ def best_readings_table(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCAL
         table.insert(at, {"figure": "4", "panel": "both panels", "printed limits": limits,
                           "limits reproduced": score, "best-supported readings": readings})
     return table
-
-
-def _representative(group: tuple[str, ...]) -> str:
-    """The member of a group of equivalent readings read at the paper's section, else the first."""
-    return next((name for name in group if "section a1" in name), group[0])
-
-
-def figure_caption(rows: Iterable[Mapping], figure: str, width: int, autoscale: str = CLAIM_AUTOSCALE) -> str:
-    """The lines a figure prints under its title: the axes imposed, and per printed panel of Fig.
-    ``figure`` the best score of the grid of readings and every reading tied at it (one of each
-    group of equivalent readings, with how many it stands for), wrapped at ``width`` characters."""
-    if not (isinstance(width, int) and width >= 40):
-        raise ValueError(f"width = {width!r} must be an integer >= 40")
-    rows = list(rows)
-    found = {key: c for key, c in panel_candidates(rows, autoscale).items() if key[0] == str(figure)}
-    if not found:
-        raise ValueError(f"figure = {figure!r}: the score rows hold no panel of that figure")
-    if str(figure) == "4":  # one reading names both panels' choices: scored together
-        found = {("4", "both panels"): joint_candidates(rows, "4", autoscale)}
-    lines = [f"Each printed panel's axes as its claim scores them: ticks at the printed step, limits the data's "
-             f"rounded out to the ticks ({autoscale}). Of the grid of readings of the choices the paper leaves open, "
-             f"the best (printed limits reproduced; with matplotlib's default locator instead):"]
-    for (_, name), c in found.items():
-        best, groups = c.tied()
-        default = f"; default locator {max(c.default_scores.values())}/{c.out_of}" if c.default_scores else ""
-        named = " | ".join(_representative(g) + (f" (+{len(g) - 1} equivalent)" if len(g) > 1 else "")
-                           for g in groups)
-        verdict = "one reading" if len(groups) == 1 else f"UNDETERMINED, {len(groups)} readings tie"
-        lines.append(f"{name}: {best}/{c.out_of} of {len(c.scores)}{default}; {verdict}: {named}")
-    return "\n".join(_wrapped(line, width) for line in lines)
-
-
-def _wrapped(text: str, width: int) -> str:
-    return "\n".join(textwrap.wrap(text, width, break_on_hyphens=False, subsequent_indent="    "))

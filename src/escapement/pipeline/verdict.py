@@ -25,7 +25,8 @@ FIG3_VARIABLES = ("cycle", "velocity_before_impact", "period", "event_time", "ev
                   "event_velocity_before", "event_velocity_after", *MODEL_KEYS, "x0")
 FIG4_VARIABLES = ("t", "velocity", "acceleration", "velocity_before", "impulse", "energy_dissipated",
                   "velocity_window", "acceleration_window", *MODEL_KEYS, "x0")
-FIG5_VARIABLES = ("t", "displacement", "velocity", "impact_time", "velocity_before_impact", "period", "largest_displacement",
+FIG5_VARIABLES = ("t", "displacement", "velocity", "impact_time", "velocity_before_impact", "period",
+                  "largest_displacement",
                   *MODEL_KEYS)
 CHECKS_VARIABLES = ("label", "group", "outcome", "outcome_message", "F", "b", "x0", "velocity", "period",
                     "multiplier", "multiplier_eq21")

@@ -91,11 +91,12 @@ def time_coordinate(t: np.ndarray) -> dict:
 
 def sample_variables(solution: Solution, t: np.ndarray, acceleration: bool = False) -> dict[str, xr.DataArray]:
     """Displacement, velocity (and the smooth part of the acceleration) at times ``t`` (the experiment
-    chooses them: :func:`escapement.experiments.figures.sample_times`)."""
+    chooses them: :func:`escapement.scenes.figures.sample_times`)."""
     x, v, a = solution.sample(t)
     coords = time_coordinate(t)
     names = ("displacement", "velocity", "acceleration")[:2 + acceleration]
-    out = {name: xr.DataArray(values, dims="t", coords=coords, attrs=_attrs(name)) for name, values in zip(names, (x, v, a))}
+    out = {name: xr.DataArray(values, dims="t", coords=coords, attrs=_attrs(name))
+           for name, values in zip(names, (x, v, a))}
     if acceleration:
         out["acceleration"].attrs["comment"] = "the impulsive part at each impact is the variable impulse divided by M"
     return out
@@ -264,7 +265,8 @@ def run_dataset(solution: Solution) -> xr.Dataset:
         summary=(
             "This file holds one run released at x0 with velocity v0: per cycle (the Poincare map on the section "
             "x = a1, v > 0), the time of the impact at a1, the velocity just before it, the period and the "
-            "largest displacement; every event of the run (impacts and ends of the impulse zones); the end of the computed "
+            "largest displacement; every event of the run (impacts and ends of the impulse zones); the end of the "
+            "computed "
             "trajectory; and the numbers behind a regime exit, if the run left the escapement regime."
         ),
         n_cycles=len(solution.cycles),
