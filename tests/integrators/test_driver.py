@@ -11,7 +11,7 @@ import pytest
 
 from escapement.model.automaton import Mode
 from escapement.model.events import EventKind
-from escapement.model.limits import RunLimits
+from escapement.model.limits import RunLimits, RunSpec
 from escapement.model.parameters import Parameters
 from escapement.model.status import Status
 from escapement.integrators.driver import HORIZON, NO_EVENT, Step, drive
@@ -43,7 +43,7 @@ class Scripted:
 
 def _drive(script, params=P, **limits):
     stepper = Scripted(script)
-    sol = drive(params, 1.0, 0.0, RunLimits(**limits), stepper, x0=1.0, v0=0.0)
+    sol = drive(RunSpec(params, 1.0, 0.0, RunLimits(**limits)), stepper)
     return sol, stepper
 
 

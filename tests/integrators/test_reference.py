@@ -2,12 +2,11 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import assume, given
+from hypothesis import assume, given, settings
 from strategies import initial_displacement, initial_velocity, parameters
 
-from escapement.model.arguments import ParameterTypeError
 from escapement.model.events import EventKind
-from escapement.model.parameters import ParameterError, Parameters
+from escapement.model.parameters import Parameters
 from escapement.model.status import Status
 from escapement.solvers.exact import solve_exact
 from escapement.integrators.reference import solve_reference
@@ -20,6 +19,7 @@ def _scales(p: Parameters, x0: float, v0: float) -> tuple[float, float]:
     return p.natural_period, length * p.omega
 
 
+@settings(max_examples=40, deadline=None)
 @given(p=parameters(), x0=initial_displacement, v0=initial_velocity)
 def test_exact_and_reference_agree_to_1e8(p, x0, v0):
     """Same outcome, same events; times and velocities within 1e-8 of their scales."""
@@ -83,14 +83,7 @@ def test_reference_event_order(case_a):
     ]
 
 
-def test_invalid_rtol_is_rejected(case_a):
-    with pytest.raises(ValueError, match="rtol"):
-        solve_reference(case_a, 1.0, n_cycles=1, rtol=0.0)
-
-
-def test_cvode_needs_no_trajectory_and_agrees(case_a):
-    with pytest.raises(ValueError, match="record_trajectory must be False with method"):
-        solve_reference(case_a, 1.0, n_cycles=2, method="CVODE-BDF")
+def test_cvode_agrees_and_keeps_no_trajectory(case_a):
     exact = solve_exact(case_a, 1.0, n_cycles=5)
     ref = solve_reference(case_a, 1.0, n_cycles=5, method="CVODE-Adams", rtol=1e-10, record_trajectory=False)
     assert ref.status == Status.COMPLETED and ref.trajectory is None
@@ -132,46 +125,7 @@ def test_a_zone_end_passed_just_before_the_turning_point_is_not_missed():
         assert np.array_equal(ref.events.kind, exact.events.kind)
 
 
-@pytest.mark.parametrize("method", ["Euler", "dop853", "", None, 3])
-def test_a_method_outside_the_list_is_refused_naming_it(method):
-    """Before any work, and by this package's error that names the argument, not SciPy's."""
-    message = r"^method = .* is invalid: method must be one of 'RK23', 'RK45', 'DOP853'"
-    with pytest.raises(ParameterError, match=message):
-        solve_reference(Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=1, method=method)
-
-
-@pytest.mark.parametrize("flag", ["no", 1, None])
-def test_a_trajectory_flag_that_is_not_a_bool_is_refused(flag):
-    message = r"^record_trajectory = .* is invalid: record_trajectory must be True or False"
-    with pytest.raises(ParameterError, match=message):
-        solve_reference(Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=1, record_trajectory=flag)
-
-
-@pytest.mark.parametrize(("name", "value", "requirement"), [
-    ("method", "dop853", "one of 'RK23'"), ("method", None, "one of 'RK23'"), ("method", 853, "one of 'RK23'"),
-    ("rtol", "1e-6", "a real number"), ("rtol", np.array(1e-6), "a single real number"), ("rtol", 1.0, "in the open"),
-    ("rtol", True, "a real number"), ("rtol", np.ma.masked, "a real number, not a masked element"),
-    ("atol", -1e-9, "> 0 (m)"), ("atol", 0.0, "> 0 (m)"), ("atol", "x", "a real number"), ("atol", [1e-9], "a single"),
-    ("record_trajectory", "no", "True or False"),
-])
-def test_the_reference_solvers_arguments_are_refused_naming_them(case_a, name, value, requirement):
-    with pytest.raises(ParameterError) as err:
-        solve_reference(case_a, 1.0, n_cycles=1, **{name: value})
-    assert err.value.name == name and err.value.value is value and err.value.requirement.startswith(requirement)
-
-
-def test_a_numpy_tolerance_is_a_real_number(case_a):
+def test_numpy_tolerances_are_real_numbers(case_a):
     run = solve_reference(case_a, 1.0, n_cycles=1, rtol=np.float32(1e-9), atol=np.float64(1e-12),
                           record_trajectory=False)
     assert run.status.value == "completed"
-
-
-@pytest.mark.parametrize("solver", ["solve_exact", "solve_reference", "solve_naive", "solve_high_precision"])
-@pytest.mark.parametrize("params", [None, {"M": 1.0}, Parameters], ids=["None", "dict", "class"])
-def test_every_solver_names_params_that_are_not_parameters(solver, params):
-    import escapement
-
-    extra = {"step": 0.01} if solver == "solve_naive" else {}
-    with pytest.raises(ParameterTypeError) as err:
-        getattr(escapement, solver)(params, 1.0, n_cycles=1, **extra)
-    assert isinstance(err.value, TypeError) and (err.value.name, err.value.value) == ("params", params)

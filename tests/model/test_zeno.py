@@ -8,7 +8,7 @@ References at 30 digits, computed by mpmath without the code under test:
   feasible for r up to 0.999;
 * for r >= 0.99, mpmath's own Euler-Maclaurin summation (``mpmath.sumem``: endpoint derivatives by numerical
   differentiation) with the integral ``int_0^inf atan(x e^(-lam t)) dt = Ti2(x) / lam``, ``lam = -ln r``, and
-  ``Ti2(x) = Im Li2(i x)`` from mpmath's polylogarithm. The two agree where both apply (checked below).
+  ``Ti2(x) = Im Li2(i x)`` from mpmath's polylogarithm.
 """
 
 import math
@@ -56,14 +56,14 @@ def relative_error(value: float, reference) -> float:
 
 
 @pytest.mark.parametrize("x", ARGUMENTS)
-@pytest.mark.parametrize("r", [1e-10, 0.1, 0.5, 0.9, 0.9048, 0.9049, 0.95, 0.99, 0.999])
+@pytest.mark.parametrize("r", [1e-10, 0.5, 0.9048, 0.9049, 0.99])
 def test_against_a_direct_30_digit_sum(r, x):
     # 0.9048 and 0.9049 bracket exp(-0.1), where the Euler-Maclaurin branch takes over
     assert relative_error(computed(x, r), direct_reference(x, r)) < 1e-15
 
 
-@pytest.mark.parametrize("x", ARGUMENTS + (1e100, 1e300))
-@pytest.mark.parametrize("r", [0.99, 0.999, 0.9999, 1 - 1e-5, 1 - 1e-6, 1 - 1e-9, 1 - 1e-12])
+@pytest.mark.parametrize("x", (1e-3, 0.26, 1.0, 3.0, 1e300))
+@pytest.mark.parametrize("r", [0.999, 1 - 1e-6, 1 - 1e-12])
 def test_against_mpmath_euler_maclaurin(r, x):
     assert relative_error(computed(x, r), euler_maclaurin_reference(x, r)) < 1e-15
 
@@ -73,13 +73,6 @@ def test_against_mpmath_euler_maclaurin(r, x):
 def test_huge_arguments_against_a_direct_sum(r, x):
     # up to ln(1e300 / 1e-6) / -ln(0.9) = 6700 terms in the reference, 60 operations in the code
     assert relative_error(computed(x, r), direct_reference(x, r)) < 1e-15
-
-
-@pytest.mark.parametrize("x, r", [(0.3, 0.99), (1e3, 0.99), (0.3, 0.999), (1e3, 0.999)])
-def test_the_two_references_agree(x, r):
-    assert relative_error(float(direct_reference(x, r)), euler_maclaurin_reference(x, r)) < 1e-16
-    with mpmath.workdps(30):
-        assert abs(direct_reference(x, r) / euler_maclaurin_reference(x, r) - 1) < mpmath.mpf("1e-25")
 
 
 def test_ratio_zero_and_speed_zero():
@@ -174,8 +167,8 @@ class _CountingMath:
         return counted
 
 
-@pytest.mark.parametrize("r", [0.0, 1e-10, 0.5, 0.9, 0.9048, 0.95, 0.999999, 1 - 1e-12, math.nextafter(1.0, 0.0)])
-@pytest.mark.parametrize("x", [1e-3, 0.3, 1.0, 1e3, 1e300])
+@pytest.mark.parametrize("r", [0.0, 1e-10, 0.5, 0.9048, 0.999999, math.nextafter(1.0, 0.0)])
+@pytest.mark.parametrize("x", [1e-3, 0.3, 1e3, 1e300])
 def test_a_bounded_number_of_elementary_functions(monkeypatch, r, x):
     counter = _CountingMath()
     monkeypatch.setattr(kinematics, "math", counter)

@@ -1,14 +1,12 @@
-"""The memory budget: a run whose result would not fit is refused before any work, with the estimate,
-the budget and what to do instead; and each solver's estimate bounds what it really allocates at its peak
-(measured with tracemalloc), without being more than twice that.
+"""The memory budget: a run whose result would not fit is refused before any work, with the estimate, the budget
+and what to do instead; the most the refusal names fits and one more does not; and each solver's estimate
+bounds what it really allocates at its peak (measured with tracemalloc), without being more than twice that.
 
-Measured (tracemalloc, the paper's case (a), NumPy 2, CPython 3.11) when these tests were written:
-solve_exact 109 bytes per event at its peak with or without the trajectory (about 435 per cycle), the result
-holding 42 (73 with the arcs); iter_cycles about 96 per cycle of a chunk (the chunk being built and the one
-the caller holds) plus about 0.6 MB for a pass; solve_cycles 283 per cycle where every cycle is distinct, 64
-at the fixed point; iter_closed_form_cycles 96 to 118 per cycle of a chunk; solve_ensemble 34 per cell and
-about 860 per trajectory; the integrators' loop 48 to 81 per event without a trajectory, the reference
-solver's dense output about 6_400 per event.
+Measured (tracemalloc, the paper's case (a), NumPy 2, CPython 3.11) when these tests were written: solve_exact
+109 bytes per event at its peak, the result holding 42 (73 with the arcs); iter_cycles about 96 per cycle of a
+chunk plus about 0.6 MB for a pass; solve_cycles 283 per cycle where every cycle is distinct; solve_ensemble 40
+per cell and about 700 per trajectory; the integrators' loop 48 to 81 per event, the reference solver's dense
+output about 6_400 per event.
 """
 
 from __future__ import annotations
@@ -21,16 +19,16 @@ from unittest import mock
 import numpy as np
 import pytest
 
-from escapement.model.limits import MAX_MEMORY_BUDGET, MEMORY_BUDGET, MemoryBudgetError, RunLimits
-from escapement.model.parameters import ParameterError, Parameters
-from escapement.solvers import closed_form, exact, stream
-from escapement.solvers import cycles as cyc
-from escapement.solvers.ensemble import MAX_CELLS, CELL_BYTES, ensemble_bytes, solve_ensemble
-from escapement.solvers.exact import solve_exact
+from escapement.integrators import driver
 from escapement.integrators.high_precision import solve_high_precision
 from escapement.integrators.naive import solve_naive
-from escapement.solvers.outcomes import check_memory
 from escapement.integrators.reference import solve_reference
+from escapement.model.limits import MEMORY_BUDGET, MemoryBudgetError, RunLimits
+from escapement.model.parameters import ParameterError, Parameters
+from escapement.solvers import cycles as cyc
+from escapement.solvers import exact, stream
+from escapement.solvers.ensemble import ensemble_bytes, solve_ensemble
+from escapement.solvers.exact import solve_exact
 
 P = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 #: how loose an estimate may be: at most this times the measured peak
@@ -50,75 +48,59 @@ def test_a_billion_cycles_are_refused_before_any_work_with_the_numbers_and_the_w
     assert not loop.called
     assert isinstance(err, ParameterError) and (err.name, err.value) == ("n_cycles", 10**9)
     assert err.budget == MEMORY_BUDGET and err.estimate > 100 * MEMORY_BUDGET
-    message = str(err)
-    assert message.startswith("n_cycles = 1000000000 is invalid: n_cycles must be at most ")
-    assert f"{err.estimate:_} bytes" in message and f"{MEMORY_BUDGET:_} bytes" in message
-    assert "iter_cycles" in message and "memory_budget" in message
-    assert ("record_trajectory=False" in message) == record
+    assert str(err).startswith("n_cycles = 1000000000 is invalid: n_cycles must be at most ")
+    assert f"{err.estimate:_} bytes" in str(err) and f"{MEMORY_BUDGET:_} bytes (2 GB)" in str(err)
+    assert "iter_cycles" in str(err) and "memory_budget" in str(err)
+    assert ("record_trajectory=False" in str(err)) == record
 
 
 @pytest.mark.parametrize("solver", ["reference", "high precision", "naive"])
-def test_the_solvers_of_the_integrators_loop_are_refused_alike(solver):
+def test_the_solvers_of_the_integrators_loop_are_refused_before_any_work(solver):
     run = {"reference": lambda: solve_reference(P, 1.0, n_cycles=10**9, record_trajectory=False),
            "high precision": lambda: solve_high_precision(P, 1.0, n_cycles=10**9),
            "naive": lambda: solve_naive(P, 1.0, n_cycles=10**9, step=1e-3)}[solver]
-    import escapement.integrators.driver as driver
-
-    with mock.patch.object(driver, "no_event_outcome") as started:  # any run's end goes through an outcome
+    with mock.patch.object(driver, "finish") as ended:
         err = _refused(run)
-    assert not started.called
-    assert (err.name, err.value) == ("n_cycles", 10**9) and err.estimate > err.budget
+    assert not ended.called and (err.name, err.value) == ("n_cycles", 10**9) and err.estimate > err.budget
 
 
-@pytest.mark.parametrize("record", [True, False])
-def test_the_largest_run_the_error_names_fits_and_one_more_does_not(record):
-    budget = 1_000_000
-    err = _refused(lambda: solve_exact(P, 1.0, n_cycles=10**6, record_trajectory=record, memory_budget=budget))
-    most = int(re.search(r"at most ([\d_]+) ", err.requirement).group(1))
-    run = solve_exact(P, 1.0, n_cycles=most, record_trajectory=record, memory_budget=budget)
-    assert len(run.cycles) == most
+#: runs whose refusal names a count: the run for a value of it, the budget, the count's name
+RUNS = [
+    (lambda n, budget: solve_exact(P, 1.0, n_cycles=n, memory_budget=budget), 1_000_000, "n_cycles"),
+    (lambda n, budget: solve_exact(P, 1.0, n_cycles=n, record_trajectory=False, memory_budget=budget), 1_000_000,
+     "n_cycles"),
+    (lambda n, budget: solve_exact(P, 1.0, t_end=1e9, max_events=n, memory_budget=budget), 1_000_000, "max_events"),
+    (lambda n, budget: cyc.solve_cycles(P, 1.0, n_cycles=n, memory_budget=budget), 100_000, "n_cycles"),
+    (lambda n, budget: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, [0.05] * 3, n_cycles=n, memory_budget=budget),
+     100_000, "n_cycles"),
+    (lambda n, budget: solve_ensemble(1.0, 1.0, np.full(n, 1.0), 0.1, -0.1, 0.05, n_cycles=10, memory_budget=budget),
+     1_000_000, "trajectories"),
+    (lambda n, budget: stream.iter_cycles(P, 1.0, n_cycles=5, chunk=n, memory_budget=budget), 1_000_000, "chunk"),
+]
+
+
+@pytest.mark.parametrize("run, budget, name", RUNS, ids=[f"{i}-{name}" for i, (_, _, name) in enumerate(RUNS)])
+def test_the_largest_run_the_error_names_fits_and_one_more_does_not(run, budget, name):
+    err = _refused(lambda: run(10**6, budget))
+    most = int(re.search(r"at most ([\d_]+) for the run", err.requirement).group(1))
+    assert err.name == name and 1 <= most < 10**6
+    run(most, budget)
     with pytest.raises(MemoryBudgetError):
-        solve_exact(P, 1.0, n_cycles=most + 1, record_trajectory=record, memory_budget=budget)
+        run(most + 1, budget)
+    assert run(most, 10 * budget) is not None  # a larger budget lets the larger run through
 
 
-def test_a_run_to_an_end_time_is_sized_by_max_events():
-    err = _refused(lambda: solve_exact(P, 1.0, t_end=1e9, max_events=10**9))
-    assert (err.name, err.value) == ("max_events", 10**9)
-    run = solve_exact(P, 1.0, t_end=50.0)  # the default bound, 10**7 events, fits
-    assert run.success
-
-
-@pytest.mark.parametrize("budget", [0, -1, 1.5, True, "2e9", 2e9, MAX_MEMORY_BUDGET + 1])
-def test_a_bad_memory_budget_is_refused_naming_it(budget):
-    for run in (lambda: solve_exact(P, 1.0, n_cycles=5, memory_budget=budget),
-                lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, n_cycles=5, memory_budget=budget),
-                lambda: RunLimits(n_cycles=5, memory_budget=budget)):
-        with pytest.raises(ParameterError) as err:
-            run()
-        assert (err.value.name, err.value.value) == ("memory_budget", budget)
-        assert not isinstance(err.value, MemoryBudgetError)
-
-
-def test_a_larger_budget_lets_a_larger_run_through():
+@pytest.mark.parametrize("run", [
+    lambda budget: solve_exact(P, 1.0, n_cycles=1, memory_budget=budget),
+    lambda budget: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, n_cycles=1, memory_budget=budget),
+])
+def test_a_budget_too_small_for_the_smallest_run_is_named_as_the_budget(run):
+    err = _refused(lambda: run(10))
+    least = int(re.search(r"must be at least ([\d_]+) bytes", str(err)).group(1))
+    assert (err.name, err.value) == ("memory_budget", 10) and str(err).startswith("memory_budget = 10 is invalid")
+    run(least)
     with pytest.raises(MemoryBudgetError):
-        solve_exact(P, 1.0, n_cycles=10_000, memory_budget=1_000_000)
-    assert solve_exact(P, 1.0, n_cycles=10_000, memory_budget=10_000_000).success
-
-
-def test_the_ensemble_budget_is_in_bytes_and_names_what_to_reduce():
-    assert MAX_CELLS == MEMORY_BUDGET // CELL_BYTES
-    err = _refused(lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, np.full(10, 0.05), n_cycles=10**8))
-    assert (err.name, err.value) == ("n_cycles", 10**8) and err.estimate == ensemble_bytes(10, 10**8)
-    most = int(re.search(r"at most ([\d_]+) for 10 trajectories", err.requirement).group(1))
-    assert ensemble_bytes(10, most) <= MEMORY_BUDGET < ensemble_bytes(10, most + 1)
-    # each trajectory's state counts, however few its cycles
-    many = np.full(4_000, 0.05)
-    err = _refused(lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, many, n_cycles=1, memory_budget=2 * 10**6))
-    assert err.name == "trajectories" and err.value == 4000
-    most = int(re.search(r"at most ([\d_]+) for n_cycles = 1", err.requirement).group(1))
-    assert ensemble_bytes(most, 1) <= 2 * 10**6 < ensemble_bytes(most + 1, 1)
-    out = solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, np.full(10, 0.05), n_cycles=2000, memory_budget=10**7)
-    assert out.cycles.period.shape == (10, 2000)
+        run(least - 1)
 
 
 # --- the estimates against the measured peaks ---------------------------------------------------------
@@ -147,111 +129,67 @@ def _bounds(estimate: float, peak: int) -> None:
     assert peak <= estimate <= LOOSEST * peak, (estimate, peak, estimate / peak)
 
 
-def _exact_estimate(limits: RunLimits, record: bool) -> int:
-    return check_memory(limits, exact.EVENT_BYTES + exact.ARC_BYTES * record, exact.CYCLE_BYTES, "", "",
-                        fixed_bytes=exact.PASS_BYTES)
-
-
-#: two lengths five times apart: the columns, linear in the cycles, dominate the result and the peak from about
-#: a thousand cycles on (held/stored 1.04 at 2_000 cycles, estimate/peak 1.40, as at 50_000)
-@pytest.mark.parametrize("n", [2_000, 10_000])
 @pytest.mark.parametrize("record", [False, True])
-def test_solve_exact_stays_within_its_estimate(record, n):
-    run, held, peak = _peak(lambda: solve_exact(P, 1.0, n_cycles=n, record_trajectory=record))
+def test_solve_exact_stays_within_its_estimate_and_holds_its_columns_alone(record):
+    """10_000 cycles: the columns, linear in the cycles, dominate the result and the peak from about a thousand
+    cycles on."""
+    run, held, peak = _peak(lambda: solve_exact(P, 1.0, n_cycles=10_000, record_trajectory=record))
     stored = sum(getattr(run.events, c).nbytes for c in ("t", "kind", "x", "v_before", "v_after")) + sum(
-        getattr(run.cycles, c).nbytes for c in ("impact_time", "velocity_before_impact", "period", "largest_displacement"))
+        a.nbytes for a in vars(run.cycles).values())
     if record:
         stored += sum(getattr(run.trajectory, c).nbytes for c in ("t_start", "centre", "x_start", "v_start"))
     assert stored <= held < 1.1 * stored  # the result holds its columns and nothing more
-    _bounds(_exact_estimate(RunLimits(n_cycles=n), record), peak)
+    _bounds(_estimate_of(lambda n: solve_exact(P, 1.0, n_cycles=n, record_trajectory=record), 10_000), peak)
 
 
-@pytest.mark.parametrize("record", [False, True])
-def test_a_run_to_an_end_time_stays_within_the_estimate_of_its_event_bound(record):
+def test_a_run_to_an_end_time_stays_within_the_estimate_of_its_event_bound():
     events = len(solve_exact(P, 1.0, t_end=100_000.0, record_trajectory=False).events)
-    limits = RunLimits(t_end=100_000.0, max_events=events + 1)
-    run, _, peak = _peak(lambda: solve_exact(P, 1.0, t_end=100_000.0, max_events=events + 1,
-                                             record_trajectory=record))
+    run, _, peak = _peak(lambda: solve_exact(P, 1.0, t_end=100_000.0, max_events=events + 1))
     assert run.success and len(run.events) == events
-    _bounds(_exact_estimate(limits, record), peak)
-
-
-@pytest.mark.parametrize("chunk", [20_000])
-def test_a_streamed_chunk_stays_within_its_estimate(chunk):
-    """The budget a chunk is checked against bounds the stream's peak: the chunk being built, the one the
-    caller holds, and a pass of the loop. The chunk is large enough for its cycles to outweigh the pass (about
-    0.6 MB, which the estimate of a chunk of 10_000 cycles barely covers): estimate/peak 1.31, as at 50_000."""
-    _, _, peak = _peak(lambda: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=2 * chunk, chunk=chunk)])
-    _bounds(chunk * stream.CHUNK_BYTES_PER_CYCLE, peak)
+    estimate = RunLimits(t_end=100_000.0, max_events=events + 1).check_memory(
+        exact.EVENT_BYTES + exact.ARC_BYTES, exact.CYCLE_BYTES, "", "", fixed_bytes=exact.PASS_BYTES)
+    _bounds(estimate, peak)
 
 
 def test_a_streamed_run_takes_the_memory_of_a_chunk_whatever_its_length():
-    def drained(n):
-        return lambda: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=n, chunk=1_000)]
-
-    # 5_000 cycles are some twenty thousand events, five passes of the loop: the short run has reached its peak
-    short, long = _peak(drained(5_000))[2], _peak(drained(50_000))[2]
-    assert long <= 1.5 * short, (short, long)  # ten times the cycles, not the memory
-    # a pass: about PASS_EVENTS events of the loop's columns and the arrays derived from them
-    assert short <= stream.PASS_EVENTS * 2 * exact.EVENT_BYTES + 1_000 * 2 * stream.CHUNK_BYTES_PER_CYCLE
-
-
-@pytest.mark.parametrize("b", [1e-3, 1e-4])
-def test_solve_cycles_stays_within_its_estimate_where_every_cycle_is_distinct(b):
-    p = Parameters(M=1.0, K=1.0, F=1.0, b=b, a1=-0.1, a2=0.05)
-    count = closed_form._transient(closed_form.prepared(p).cycle_map, closed_form.first_impact(p, 1.0, 0.0)[1], 10**8)
-    run, _, peak = _peak(lambda: cyc.solve_cycles(p, 1.0, n_cycles=count))
-    assert run.method == cyc.CLOSED_FORM and run.distinct_cycles >= 0.9 * count
-    _bounds(count * cyc.PEAK_BYTES_PER_CYCLE, peak)
+    """The budget a chunk is checked against bounds the stream's peak: the chunk being built, the one the caller
+    holds, and a pass of the loop (the chunk large enough for its cycles to outweigh the pass); five times the
+    cycles take no more memory."""
+    _, _, peak = _peak(lambda: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=20_000, chunk=10_000)])
+    _bounds(10_000 * stream.CHUNK_BYTES_PER_CYCLE, peak)
+    short, long = (_peak(lambda n=n: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=n, chunk=500)])[2]
+                   for n in (2_000, 10_000))
+    assert long <= 1.5 * short, (short, long)
 
 
-def test_solve_cycles_at_the_fixed_point_stays_below_its_estimate():
-    """A bound for the worst case: a long run at the fixed point takes about a sixth of it."""
-    run, _, peak = _peak(lambda: cyc.solve_cycles(P, 1.0, n_cycles=100_000))
-    assert run.distinct_cycles < 200 and peak <= 100_000 * cyc.PEAK_BYTES_PER_CYCLE
+def test_the_closed_forms_stay_within_their_estimates():
+    """Where every cycle is distinct (b = 1e-3: a transient of some 9_500 cycles) and in a streamed chunk."""
+    p = Parameters(M=1.0, K=1.0, F=1.0, b=1e-3, a1=-0.1, a2=0.05)
+    run, _, peak = _peak(lambda: cyc.solve_cycles(p, 1.0, n_cycles=9_000))
+    assert run.method == cyc.CLOSED_FORM and run.distinct_cycles == 9_000
+    _bounds(9_000 * cyc.PEAK_BYTES_PER_CYCLE, peak)
+    _, _, peak = _peak(lambda: [None for _ in cyc.iter_closed_form_cycles(P, 1.0, n_cycles=30_000, chunk=10_000)])
+    _bounds(10_000 * cyc.CHUNK_BYTES_PER_CYCLE, peak)
 
 
-@pytest.mark.parametrize("chunk", [10_000, 100_000])
-def test_a_closed_form_chunk_stays_within_its_estimate(chunk):
-    _, _, peak = _peak(lambda: [None for _ in cyc.iter_closed_form_cycles(P, 1.0, n_cycles=3 * chunk, chunk=chunk)])
-    _bounds(chunk * cyc.CHUNK_BYTES_PER_CYCLE, peak)
-
-
-#: long and narrow, square, large, wide and short: the cells outweigh the state of the trajectories from a few
-#: thousand cycles of ten trajectories on (estimate/peak 1.15 at 10 x 3000 as at 10 x 10_000; 0.97 at 10 x 2000,
-#: where the estimate's per-trajectory part is below the fixed work arrays)
-@pytest.mark.parametrize("n, n_cycles", [
-    (300, 1000), (10, 3000), (1000, 1000),
-    (20_000, 1), (50_000, 3), (2000, 60),
-])
+#: long and narrow, large, wide and short: the cells outweigh the trajectories' state from a few thousand cycles
+#: of ten trajectories on
+@pytest.mark.parametrize("n, n_cycles", [(10, 1000), (100, 300), (20_000, 1)])
 def test_the_ensemble_stays_within_its_estimate(n, n_cycles):
     _, _, peak = _peak(lambda: solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, np.full(n, 0.05), n_cycles=n_cycles))
     _bounds(ensemble_bytes(n, n_cycles), peak)
 
 
-def test_the_high_precision_solver_stays_within_its_estimate():
-    _, _, peak = _peak(lambda: solve_high_precision(P, 1.0, n_cycles=100, dps=50))
-    err = _refused(lambda: solve_high_precision(P, 1.0, n_cycles=10**7, dps=50))
-    per_cycle = err.estimate / 10**7  # the estimate is linear in the cycles
-    # 100 cycles take at most events_for(100) = 4 * 102 + 8 events: the estimate of 104 cycles
-    _bounds(per_cycle * 104, peak)
-
-
-def test_the_naive_solver_stays_within_its_estimate():
-    """200 cycles, for the events and cycles to outweigh the loop's fixed part (estimate/peak 0.80 at 50 cycles,
-    1.31 at 200); the step does not count, no trajectory being kept (1.31 at steps of 0.01 s and 0.05 s)."""
-    n = 200
-    _, _, peak = _peak(lambda: solve_naive(P, 1.0, n_cycles=n, step=5e-2))
-    _bounds(_estimate_of(lambda cycles: solve_naive(P, 1.0, n_cycles=cycles, step=5e-2), n + 4), peak)
-
-
-@pytest.mark.parametrize("record", [False, True])
-def test_the_reference_solver_stays_within_its_estimate(record):
-    """50 cycles, some 200 events: with the trajectory, the dense output (7 kB an event) outweighs SciPy's
-    fixed part several times; without it, the fixed part is most of the estimate at any length (estimate/peak
-    1.38 and 1.37 at 40 cycles, 1.14 and 1.30 at 300)."""
-    n = 50
-    solve_reference(P, 1.0, n_cycles=5, record_trajectory=record)  # SciPy's caches, filled once per process
-    _, _, peak = _peak(lambda: solve_reference(P, 1.0, n_cycles=n, record_trajectory=record))
-    _bounds(_estimate_of(lambda cycles: solve_reference(P, 1.0, n_cycles=cycles, record_trajectory=record), n + 4),
-            peak)
+@pytest.mark.parametrize("solver", ["high precision", "naive", "reference", "reference without its trajectory"])
+def test_the_integrators_stay_within_their_estimates(solver):
+    """Enough cycles for the events to outweigh the loop's fixed part (the reference's dense output, 7 kB an
+    event, several times SciPy's fixed part; without it the fixed part is most of the estimate at any length)."""
+    run = {"high precision": lambda n: solve_high_precision(P, 1.0, n_cycles=n, dps=50),
+           "naive": lambda n: solve_naive(P, 1.0, n_cycles=n, step=0.1),
+           "reference": lambda n: solve_reference(P, 1.0, n_cycles=n),
+           "reference without its trajectory": lambda n: solve_reference(P, 1.0, n_cycles=n, record_trajectory=False),
+           }[solver]
+    n = {"high precision": 100, "naive": 200}.get(solver, 20)
+    run(5)  # SciPy's caches, filled once per process
+    _, _, peak = _peak(lambda: run(n))
+    _bounds(_estimate_of(run, n + 4), peak)  # n cycles take at most events_for(n): the events of n + 4 cycles

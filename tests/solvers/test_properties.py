@@ -10,7 +10,7 @@ from escapement.solvers.exact import solve_exact
 CYCLE = [int(k) for k in (EventKind.IMPACT_A1, EventKind.ZONE_END_A2, EventKind.IMPACT_A3, EventKind.ZONE_END_A4)]
 
 
-@settings(max_examples=300)
+@settings(max_examples=100)
 @given(p=parameters(), x0=initial_displacement, v0=initial_velocity)
 def test_event_order_is_impact_then_zone_end_then_the_other_impact(p, x0, v0):
     kinds = list(solve_exact(p, x0, v0, n_cycles=5).events.kind)
@@ -20,7 +20,7 @@ def test_event_order_is_impact_then_zone_end_then_the_other_impact(p, x0, v0):
         assert kinds == [CYCLE[(start + i) % 4] for i in range(len(kinds))]
 
 
-@settings(max_examples=300)
+@settings(max_examples=100)
 @given(p=parameters(), x0=initial_displacement, v0=initial_velocity)
 def test_energy_balance_per_half_cycle(p, x0, v0):
     ev = solve_exact(p, x0, v0, n_cycles=5).events

@@ -1,6 +1,5 @@
-"""Every number a message or a summary prints is true as printed: an input reads back as itself, a
-computed value compares with its bounds and its neighbours as it does, no zero has a sign, and a
-memory budget too small for any run is named as the budget."""
+"""Every number a message or a summary prints is true as printed: an input reads back as itself, a computed value
+compares with its bounds and its neighbours as it does, no zero has a sign."""
 
 from __future__ import annotations
 
@@ -13,11 +12,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from escapement import Parameters, solve_ensemble, solve_exact, solve_reference
-from escapement.model.limits import MemoryBudgetError
-from escapement.solvers.cycles import solve_cycles
 from escapement.model.printing import compared, exact, texts
 from escapement.solvers.outcomes import stopped_message, turned_back_message
-from escapement.solvers.result import ArcTable
+from escapement.solvers.describe import ArcTable
 
 #: a number printed with a minus sign and nothing but zeros: -0, -0.0, -0.000
 NEGATIVE_ZERO = re.compile(r"(?<![\w.])-0(?:\.0*)?(?![\w.])")
@@ -26,11 +23,6 @@ finite = st.floats(allow_nan=False, allow_infinity=False)
 
 def order(x: float, y: float) -> int:
     return (x > y) - (x < y)
-
-
-def test_the_pattern_finds_a_negative_zero_and_nothing_else():
-    assert NEGATIVE_ZERO.search("t = -0 s") and NEGATIVE_ZERO.search("x = -0.0 m,")
-    assert not any(NEGATIVE_ZERO.search(text) for text in ("x = -0.01 m", "-0.5", "a1 = -0.1", "t = 0 s", "1e-05"))
 
 
 @given(finite)
@@ -71,7 +63,7 @@ def params(**changes) -> Parameters:
     return Parameters(**{"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, **changes})
 
 
-@pytest.mark.parametrize("b", [1 + 2**-52, 1 + 2**-50, 1.0000001, 1.5 + 2**-52, 1.999999, 2 - 2**-50, 2 - 4.4e-16])
+@pytest.mark.parametrize("b", [1 + 2**-52, 1.0000001, 1.5 + 2**-52, 2 - 4.4e-16])
 def test_the_chattering_message_tells_b_the_ratio_and_the_zeno_time_apart_from_their_bounds(b):
     run = solve_exact(params(b=b), 1.0, n_cycles=3)
     assert run.status.value == "chattering"
@@ -140,52 +132,6 @@ def test_the_turned_back_message_prints_the_turning_point_on_its_side_of_the_zon
 def test_the_end_time_prints_as_typed(t_end, text):
     run = solve_exact(params(), 1.0, t_end=t_end)
     assert run.message.startswith(f"reached t_end = {text} s after ")
-
-
-SOLVERS = {
-    "exact": lambda budget: solve_exact(params(), 1.0, n_cycles=5, memory_budget=budget),
-    "exact, no trajectory": lambda budget: solve_exact(params(), 1.0, n_cycles=5, record_trajectory=False,
-                                                       memory_budget=budget),
-    "exact to t_end": lambda budget: solve_exact(params(), 1.0, t_end=10.0, memory_budget=budget),
-    "closed-form cycles": lambda budget: solve_cycles(params(), 1.0, n_cycles=5, memory_budget=budget),
-    "ensemble": lambda budget: solve_ensemble(M=1.0, K=1.0, F=[0.5, 1.0], b=0.1, a1=-0.1, a2=0.05, x0=1.0,
-                                              n_cycles=5, memory_budget=budget),
-}
-
-
-@pytest.mark.parametrize("budget", [1, 10, 300])
-@pytest.mark.parametrize("solver", SOLVERS)
-def test_a_budget_too_small_for_any_run_is_named_as_the_budget(solver, budget):
-    with pytest.raises(MemoryBudgetError) as caught:
-        SOLVERS[solver](budget)
-    message = str(caught.value)
-    assert caught.value.name == "memory_budget" and caught.value.value == budget
-    assert message.startswith(f"memory_budget = {budget} is invalid: memory_budget must be at least ")
-    assert "at most 0" not in message and not re.search(r"at most -", message)
-
-
-def test_the_smallest_budget_named_is_the_one_that_fits_one_cycle():
-    with pytest.raises(MemoryBudgetError) as caught:
-        solve_exact(params(), 1.0, n_cycles=1, memory_budget=10)
-    least = int(re.search(r"must be at least ([\d_]+) bytes", str(caught.value)).group(1))
-    assert len(solve_exact(params(), 1.0, n_cycles=1, memory_budget=least).cycles) == 1
-    with pytest.raises(MemoryBudgetError):
-        solve_exact(params(), 1.0, n_cycles=1, memory_budget=least - 1)
-
-
-def test_a_budget_that_fits_some_cycles_names_the_most_that_fit():
-    with pytest.raises(MemoryBudgetError) as first:
-        solve_exact(params(), 1.0, n_cycles=10, memory_budget=10)
-    least = int(re.search(r"at least ([\d_]+) bytes", str(first.value)).group(1))
-    budget = least + 2_000  # room for a few more cycles than one, not for a thousand
-    with pytest.raises(MemoryBudgetError) as caught:
-        solve_exact(params(), 1.0, n_cycles=1_000, memory_budget=budget)
-    assert caught.value.name == "n_cycles"
-    most = int(re.search(r"must be at most ([\d_]+) for", str(caught.value)).group(1))
-    assert most >= 1
-    assert len(solve_exact(params(), 1.0, n_cycles=most, memory_budget=budget).cycles) == most
-    with pytest.raises(MemoryBudgetError):
-        solve_exact(params(), 1.0, n_cycles=most + 1, memory_budget=budget)
 
 
 def test_sizes_that_differ_print_unlike_in_gigabytes():

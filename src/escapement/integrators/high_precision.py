@@ -1,10 +1,10 @@
-"""A high-precision reference in mpmath (50 significant digits by default).
+"""A high-precision reference in mpmath (50 significant digits by default), hand-written because no library
+integrates an impulsive system with events in arbitrary precision.
 
-It drives the same automaton as the float solvers (:func:`escapement.integrators.driver.drive`)
-but computes each arc its own way, for independence from
-:func:`escapement.model.kinematics.crossing`: the speed at a surface from energy, and the time
-from the phase angles ``atan2(w, u)`` of the start and end points taken separately (the float
-solver uses the angle between them), all in ``dps``-digit arithmetic. Its per-cycle arrays
+It drives the same automaton as the float solvers (:func:`escapement.integrators.driver.drive`) but computes
+each arc its own way, for independence from :func:`escapement.model.kinematics.crossing`: the speed at a
+surface from energy, the time from the phase angles ``atan2(w, u)`` of the start and end points taken
+separately (the float solver uses the angle between them), in ``dps``-digit arithmetic. Its per-cycle arrays
 hold mpmath numbers (object arrays); ``float`` gives their nearest doubles.
 """
 
@@ -16,8 +16,9 @@ from ..model import automaton
 from ..model.automaton import Mode
 from ..model.events import EventKind
 from ..model.arguments import Numeric
-from ..model.limits import MAX_DIGITS, MIN_DIGITS, RunLimits, check_count
-from ..model.parameters import Parameters, check_initial_state, check_parameters
+from ..model.kinematics import time_to_rest
+from ..model.limits import MAX_DIGITS, MIN_DIGITS, check_count, run_spec
+from ..model.parameters import Parameters
 from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
 
@@ -60,11 +61,8 @@ class MpmathStepper:
         if best is None:
             if mode == automaton.Mode.FREE:
                 return Step(NO_EVENT, mpmath.inf, 0, radius)
-            if v == 0:
-                return Step(NO_EVENT, mpmath.mpf(0), 0, x)
-            # the next rest: the top of the circle (phase 0) moving right, the bottom (-pi) moving left
-            to_rest = start if v > 0 else start + mpmath.pi
-            return Step(NO_EVENT, to_rest / w, 0, c + radius if v > 0 else c - radius)
+            dt, turning = time_to_rest(c, x, v, w, mpmath)  # the next rest, in the zone
+            return Step(NO_EVENT, dt, 0, turning)
         kind, dt, v_end, angle, target = best
         to_top = start % self.two_pi
         x_max = c + radius if to_top <= angle else max(x, target)
@@ -122,10 +120,7 @@ def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cy
     >>> bool(abs(float(period) - solve_exact(p, x0=1.0, n_cycles=2).cycles.period[-1]) < 1e-13)
     True
     """
-    params = check_parameters(params)
-    x, v = check_initial_state(x0, v0)
-    limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events)
+    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events)
     dps = check_count("dps", dps, MAX_DIGITS, MIN_DIGITS)
     with mpmath.workdps(dps + 10):
-        return drive(params, mpmath.mpf(x), mpmath.mpf(v), limits, MpmathStepper(params, dps), x0=x, v0=v,
-                     floats=False)
+        return drive(spec, MpmathStepper(spec.params, dps), mpmath.mpf)

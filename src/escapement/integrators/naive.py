@@ -1,4 +1,5 @@
-"""A naive fixed-step integrator, to show what not locating events costs.
+"""A naive fixed-step integrator, to show what not locating events costs (hand-written: a library's RK4 locates
+its events or is not this simple).
 
 Classical RK4 with a fixed step ``h``; an event is noticed when ``x`` has passed its surface
 at the end of a step, and applied there, without locating it. The escapement's rules are the
@@ -13,9 +14,9 @@ import math
 from ..model import automaton
 from ..model.automaton import Mode
 from ..model.events import EventKind
-from ..model.limits import RunLimits
 from ..model.arguments import Numeric, real_number
-from ..model.parameters import Parameters, check_initial_state, check_parameters
+from ..model.limits import run_spec
+from ..model.parameters import Parameters
 from ..model.printing import exact
 from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
@@ -118,12 +119,10 @@ def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     >>> bool(error < 2e-3)  # s: of the order of the step
     True
     """
-    params = check_parameters(params)
-    largest = params.natural_period / STEPS_PER_PERIOD
+    spec = run_spec(params, x0, v0, n_cycles=n_cycles)
+    largest = spec.params.natural_period / STEPS_PER_PERIOD
     step = real_number("step", step, lambda h: 0 < h <= largest,
                        f"> 0 and at most {exact(largest)} s, 1/{STEPS_PER_PERIOD} of the natural period "
                        "2 pi / omega: a larger step passes events without seeing them, and from omega step = 2.8 on "
                        "the RK4 step is unstable")
-    x, v = check_initial_state(x0, v0)
-    limits = RunLimits(n_cycles=n_cycles)
-    return drive(params, x, v, limits, NaiveStepper(params, step), x0=x, v0=v)
+    return drive(spec, NaiveStepper(spec.params, step))

@@ -31,9 +31,9 @@ import numpy as np
 from ..model import automaton
 from ..model.automaton import Mode
 from ..model.events import EventKind
-from ..model.limits import RunLimits, check_flag
 from ..model.arguments import Numeric, ParameterError, check_choice, real_number
-from ..model.parameters import Parameters, check_initial_state, check_parameters
+from ..model.limits import check_flag, run_spec
+from ..model.parameters import Parameters
 from ..solvers.result import Solution
 from .driver import HORIZON, NO_EVENT, Step, drive
 from .segments import CvodeIntegrator, DenseSegments, Hit, SciPyIntegrator, Segment, Watch
@@ -221,19 +221,16 @@ def solve_reference(
     >>> bool(abs(ivp.cycles.period[0] - solve_exact(p, x0=1.0, n_cycles=1).cycles.period[0]) < 1e-8)  # s
     True
     """
-    params = check_parameters(params)
-    x, v = check_initial_state(x0, v0)
     record_trajectory = check_flag("record_trajectory", record_trajectory)
-    method = check_choice("method", method, METHODS)
     if max_events is None and n_cycles is None and record_trajectory:
         max_events = DENSE_MAX_EVENTS
-    limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events)
+    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events)
+    method = check_choice("method", method, METHODS)
     rtol = real_number("rtol", rtol, lambda r: 0 < r < 1, "in the open interval (0, 1), dimensionless")
     if atol is not None:
         atol = real_number("atol", atol, lambda a: a > 0, "> 0 (m), or None for rtol times the run's length scale")
-    omega = params.omega
-    length = max(abs(x), abs(params.a1), abs(params.a2), abs(params.a3), abs(params.a4), params.zone_offset,
-                 abs(v) / omega)
+    p, omega = spec.params, spec.params.omega
+    length = max(abs(spec.x0), abs(p.a1), abs(p.a2), abs(p.a3), abs(p.a4), p.zone_offset, abs(spec.v0) / omega)
     atol_x = rtol * length if atol is None else atol
     atol_vec = np.array([atol_x, atol_x * omega])
     if method.startswith("CVODE-"):
@@ -243,4 +240,4 @@ def solve_reference(
         integrator = CvodeIntegrator(method.removeprefix("CVODE-"), rtol, atol_vec)
     else:
         integrator = SciPyIntegrator(method, rtol, atol_vec, record_trajectory)
-    return drive(params, x, v, limits, IvpStepper(params, integrator, record_trajectory), x0=x, v0=v)
+    return drive(spec, IvpStepper(p, integrator, record_trajectory))

@@ -1,8 +1,8 @@
-"""The model layer: parameters, the hybrid automaton, closed-form kinematics, events, outcomes."""
+"""The model layer: parameters, the hybrid automaton, closed-form kinematics, events, outcomes, run specs."""
 
 from .automaton import Mode, Surface
 from .events import EventKind, EventLog
-from .limits import RunLimits
+from .limits import RunLimits, RunSpec, run_spec
 from .parameters import ParameterError, Parameters, check_initial_state
 from .quantities import INITIAL_STATE, PARAMETERS, Quantity
 from .status import Status
@@ -17,7 +17,9 @@ __all__ = [
     "Parameters",
     "Quantity",
     "RunLimits",
+    "RunSpec",
     "Status",
     "Surface",
     "check_initial_state",
+    "run_spec",
 ]

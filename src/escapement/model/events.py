@@ -1,4 +1,4 @@
-"""Event kinds and the event log shared by the exact and reference solvers."""
+"""Event kinds and the event log that the exact and the integrating solvers share."""
 
 from __future__ import annotations
 
@@ -9,12 +9,7 @@ import numpy as np
 
 from .printing import texts
 
-__all__ = ["EventKind", "EventLog"]
-
-
-def _kind_name(code: int) -> str:
-    """The name of an event code, or the code itself if it is none of :class:`EventKind`'s."""
-    return EventKind(code).name if code in EventKind._value2member_map_ else str(code)
+__all__ = ["EVENT_COLUMNS", "EventKind", "EventLog"]
 
 
 class EventKind(IntEnum):
@@ -47,10 +42,10 @@ class EventKind(IntEnum):
     True
     """
 
-    IMPACT_A1 = 1  #: impact at a1 moving right; the impulse zone (a1, a2) begins
-    ZONE_END_A2 = 2  #: the impulse ends at a2 moving right; free flight begins
-    IMPACT_A3 = 3  #: impact at a3 moving left; the impulse zone (a4, a3) begins
-    ZONE_END_A4 = 4  #: the impulse ends at a4 moving left; free flight begins
+    IMPACT_A1 = 1
+    ZONE_END_A2 = 2
+    IMPACT_A3 = 3
+    ZONE_END_A4 = 4
 
     @property
     def is_impact(self) -> bool:
@@ -109,10 +104,10 @@ class EventLog:
         if not n:
             return head
         codes, counts = np.unique(np.asarray(self.kind, dtype=int), return_counts=True)
-        kinds = ", ".join(f"{_kind_name(code)} {count}" for code, count in zip(codes, counts))
+        names = {int(k): k.name for k in EventKind}
+        kinds = ", ".join(f"{names.get(int(code), code)} {count}" for code, count in zip(codes, counts))
         first, last = texts([self.t[0], self.t[-1]])
-        at = f"at t = {first} s" if n == 1 else f"from t = {first} s to {last} s"
-        return f"{head} {at}: {kinds}"
+        return f"{head} {f'at t = {first} s' if n == 1 else f'from t = {first} s to {last} s'}: {kinds}"
 
     def of_kind(self, kind: EventKind) -> np.ndarray:
         """Indices of the events of one kind.
@@ -128,3 +123,9 @@ class EventLog:
             Their indices into the log's arrays, in time order.
         """
         return np.flatnonzero(self.kind == int(kind))
+
+
+#: the event log's columns in tables and datasets, by the field of :class:`EventLog` each holds; their units and
+#: long names are those of :data:`escapement.model.quantities.VARIABLES`
+EVENT_COLUMNS = {"t": "event_time", "kind": "event_kind", "x": "event_position", "v_before": "event_velocity_before",
+                 "v_after": "event_velocity_after"}

@@ -1,18 +1,13 @@
-"""Closed-form kinematics of one harmonic arc.
+"""Closed-form kinematics of one harmonic arc, written once for floats, NumPy arrays and (where said) mpmath.
 
-Between events the motion obeys ``x'' = -omega**2 (x - c)`` with a constant centre
-``c`` (0 in free flight, ``+F/K`` or ``-F/K`` in an impulse zone).  In the phase
-plane ``(u, w) = (x - c, v / omega)`` the state turns clockwise on a circle at
-angular rate ``omega``.  Every event is the arrival at a position ``p`` with a
-given direction of motion, so
-
-* the speed there follows from energy, ``v**2 = v0**2 + omega**2 (x0 - p)(x0 + p - 2c)``;
-* the time is the clockwise angle between the start and end points divided by
-  ``omega``, taken with ``atan2`` of their cross and dot products (no ``arccos``,
-  which loses accuracy near a turning point).
-
-No step size and no root finding: each event costs a square root and an ``atan2``.
-Each formula is written once for floats and NumPy arrays alike.
+Between events the motion obeys ``x'' = -omega**2 (x - c)`` with a constant centre ``c`` (0 in free flight,
+``+F/K`` or ``-F/K`` in an impulse zone). In the phase plane ``(u, w) = (x - c, v / omega)`` the state turns
+clockwise on a circle at the rate ``omega``. An event is the arrival at a position ``p`` moving in a given
+direction: its speed follows from energy, ``v**2 = v0**2 + omega**2 (x0 - p)(x0 + p - 2c)``, and its time is the
+clockwise angle between the start and the end divided by ``omega``, by ``atan2`` of their cross and dot products
+(no ``arccos``, which loses accuracy near a turning point): no step size, no root finding. Times are summed
+with Knuth's TwoSum (:func:`two_sum`). The rebounds of a chattering impact sum to a closed form
+(:func:`rebound_accumulation_time`), hand-written because no library sums ``atan(x r**n)`` in bounded time.
 """
 
 from __future__ import annotations
@@ -31,6 +26,7 @@ __all__ = [
     "arc_maximum",
     "compensated_add",
     "time_to_rest",
+    "two_sum",
     "rebound_accumulation_time",
     "sample_arcs",
 ]
@@ -84,29 +80,32 @@ def arc_maximum(centre: Numeric, x0: Numeric, v0: Numeric, omega: Numeric, angle
     return np.where(passes, centre + np.hypot(u0, v0 / omega), np.maximum(x0, x1))
 
 
+def two_sum(a: Numeric, b: Numeric) -> tuple[Numeric, Numeric]:
+    """Knuth's TwoSum, without a branch (floats or arrays): ``s = fl(a + b)`` and its rounding error ``e``,
+    ``s + e == a + b`` exactly."""
+    s = a + b
+    part = s - a
+    return s, (a - (s - part)) + (b - part)
+
+
 def compensated_add(total: Numeric, error: Numeric, term: Numeric) -> tuple[Numeric, Numeric]:
-    """Add ``term`` to the compensated sum ``total + error``; returns the new pair (floats or arrays).
-
-    The rounding error of ``total + term`` is exact by Knuth's TwoSum (no branch), and carried in
-    ``error``: the time of an event, the sum of every duration before it, stays within an ulp or so
-    of the exact sum however many events there are.
-    """
-    new = total + term
-    part = new - total
-    return new, error + ((total - (new - part)) + (term - part))
+    """Add ``term`` to the compensated sum ``total + error`` (:func:`two_sum`); returns the new pair. The time of
+    an event, the sum of every duration before it, stays within an ulp or so of the exact sum however many
+    events there are."""
+    total, rounding = two_sum(total, term)
+    return total, error + rounding
 
 
-def time_to_rest(centre: float, x0: float, v0: float, omega: float) -> tuple[float, float]:
-    """Time until the velocity next vanishes, and the position there (a turning point)."""
-    u0 = x0 - centre
-    w0 = v0 / omega
-    radius = math.hypot(u0, w0)
-    if w0 == 0.0:
-        return 0.0, x0
-    start = math.atan2(w0, u0)
-    if w0 > 0.0:  # moving right: the next rest is the top of the circle, phase 0
-        return start / omega, centre + radius
-    return (start + math.pi) / omega, centre - radius  # moving left: phase -pi
+def time_to_rest(centre: Numeric, x0: Numeric, v0: Numeric, omega: Numeric,
+                 xp: ModuleType = math) -> tuple[Numeric, Numeric]:
+    """Time until the velocity next vanishes, and the position there: the top of the circle (phase 0) moving
+    right, its bottom (phase -pi) moving left, ``(0, x0)`` at rest. ``xp`` is :mod:`math`, :mod:`numpy` or
+    :mod:`mpmath`, as the numbers are."""
+    u0, w0 = x0 - centre, v0 / omega
+    radius = xp.hypot(u0, w0)
+    right, left, rest = w0 > 0.0, w0 < 0.0, w0 == 0.0
+    angle = (xp.atan2(w0, u0) + xp.pi * left) * (right | left)  # arithmetic, not a branch: any of the three
+    return angle / omega, (centre + radius) * right + (centre - radius) * left + x0 * rest
 
 
 def _bernoulli_numbers(n_max: int) -> list[Fraction]:

@@ -1,26 +1,24 @@
-"""How long a run goes on: a number of cycles, an end time, and a bound on events.
+"""What a run is asked to do, checked once before any work: its parameters, release and limits (:class:`RunSpec`,
+made by :func:`run_spec`, the first step of every solver entry point), and the memory its result may take.
 
-Every count a solver takes (``n_cycles``, ``max_events``, the digits of the high-precision
-solver) is checked by :func:`~escapement.model.arguments.check_count` (re-exported here with
-:func:`~escapement.model.arguments.check_flag`): a positive integer (not a bool), at most a stated
-maximum, or a :class:`~escapement.model.arguments.ParameterError` that names it; the end time by
-:func:`~escapement.model.arguments.real_number`. The scalar
-solvers and the ensemble take their limits through :class:`RunLimits`, so they refuse the same
-values with the same message.
-
-A run also has a memory budget (:attr:`RunLimits.memory_budget`, by default
-:data:`MEMORY_BUDGET` bytes): a solver estimates, before any work, the bytes its result will
-hold (events, cycle table, trajectory) from the limits alone, and refuses a run whose estimate
-exceeds the budget with a :class:`MemoryBudgetError` that states both. The exact solver streams
-its cycles in constant memory (:func:`escapement.solvers.stream.iter_cycles`) for runs that do
-not fit.
+A run ends at the first of ``n_cycles`` cycles, the time ``t_end`` and ``max_events`` events (:class:`RunLimits`).
+Each entry point estimates, from the limits alone, the bytes its result will hold, and :func:`check_budget`
+refuses a run over its memory budget (:data:`MEMORY_BUDGET` unless the caller says otherwise) with a
+:class:`MemoryBudgetError` that names the count which sets the size and the most of it that fits.
 """
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
+import numpy as np
+
 from .arguments import ParameterError, check_count, check_flag, real_number
+from .parameters import ParameterArrays, Parameters, check_initial_state, check_parameters, validate_arrays
+from .printing import texts
+from .quantities import MODEL_KEYS
 
 __all__ = [
     "EVENTS_PER_CYCLE",
@@ -32,8 +30,12 @@ __all__ = [
     "MIN_DIGITS",
     "MemoryBudgetError",
     "RunLimits",
+    "RunSpec",
+    "check_budget",
     "check_count",
     "check_flag",
+    "events_for",
+    "run_spec",
 ]
 
 EVENTS_PER_CYCLE = 4
@@ -51,8 +53,8 @@ MAX_MEMORY_BUDGET = 1_000_000_000_000
 
 
 class MemoryBudgetError(ParameterError):
-    """A run whose stored output would exceed its memory budget; a :class:`ParameterError` that names
-    the count which sets the size (``n_cycles``, ``max_events`` or the number of trajectories), with the
+    """A run whose stored output would exceed its memory budget; a :class:`ParameterError` that names the count
+    which sets the size (``n_cycles``, ``max_events``, ``chunk``, the trajectories) or the budget, with the
     estimate and the budget in bytes."""
 
     def __init__(self, name: str, value: object, requirement: str, estimate: int, budget: int) -> None:
@@ -61,15 +63,19 @@ class MemoryBudgetError(ParameterError):
         self.budget = budget
 
 
+def events_for(n_cycles: int) -> int:
+    """The events of ``n_cycles`` cycles with a margin for the first ones (the default ``max_events``)."""
+    return EVENTS_PER_CYCLE * (n_cycles + 2) + 8
+
+
 @dataclass(frozen=True)
 class RunLimits:
-    """A run ends at the first of: ``n_cycles`` complete cycles (``n_cycles + 1``
-    impacts at a1), the time ``t_end``, or ``max_events`` events.
+    """A run ends at the first of: ``n_cycles`` complete cycles (``n_cycles + 1`` impacts at a1), the time
+    ``t_end``, or ``max_events`` events.
 
-    ``n_cycles`` is at most :data:`MAX_CYCLES` and ``max_events`` at most :data:`MAX_EVENTS`;
-    ``max_events`` defaults to the events of ``n_cycles`` cycles with a margin, or to
-    10**7 for a run to ``t_end`` alone. ``memory_budget`` (bytes, at most :data:`MAX_MEMORY_BUDGET`)
-    defaults to :data:`MEMORY_BUDGET`.
+    ``n_cycles`` is at most :data:`MAX_CYCLES` and ``max_events`` at most :data:`MAX_EVENTS`; ``max_events``
+    defaults to the events of ``n_cycles`` cycles with a margin, or to 10**7 for a run to ``t_end`` alone.
+    ``memory_budget`` (bytes, at most :data:`MAX_MEMORY_BUDGET`) defaults to :data:`MEMORY_BUDGET`.
     """
 
     n_cycles: int | None = None
@@ -85,30 +91,96 @@ class RunLimits:
         if self.t_end is not None:
             object.__setattr__(self, "t_end", real_number("t_end", self.t_end, lambda t: t > 0, "> 0 (s)"))
         if self.max_events is None:
-            bound = DEFAULT_MAX_EVENTS_FOR_TIME
-            if self.n_cycles is not None:
-                bound = events_for(self.n_cycles)
+            bound = DEFAULT_MAX_EVENTS_FOR_TIME if self.n_cycles is None else events_for(self.n_cycles)
             object.__setattr__(self, "max_events", bound)
         else:
             object.__setattr__(self, "max_events", check_count("max_events", self.max_events, MAX_EVENTS))
         budget = MEMORY_BUDGET if self.memory_budget is None else self.memory_budget
         object.__setattr__(self, "memory_budget", check_count("memory_budget", budget, MAX_MEMORY_BUDGET))
 
-    @property
-    def stored_events(self) -> int:
-        """The most events the run can take: ``max_events``, or fewer for ``n_cycles`` cycles."""
-        if self.n_cycles is None:
-            return self.max_events
-        return min(self.max_events, events_for(self.n_cycles))
+    def check_memory(self, event_bytes: float, cycle_bytes: float, stores: str, remedy: str,
+                     fixed_bytes: int = 0) -> int:
+        """The bytes a run of these limits stores at most: ``event_bytes`` an event, ``cycle_bytes`` a cycle,
+        ``fixed_bytes`` whatever their number (:func:`check_budget`, which names ``n_cycles``, or
+        ``max_events`` where it binds)."""
+        if self.n_cycles is not None and events_for(self.n_cycles) <= self.max_events:
+            count = ("n_cycles", self.n_cycles,
+                     lambda n: fixed_bytes + events_for(n) * event_bytes + n * cycle_bytes)
+        else:
+            count = ("max_events", self.max_events,
+                     lambda n: fixed_bytes + n * event_bytes + n // EVENTS_PER_CYCLE * cycle_bytes)
+        return check_budget(self.memory_budget, stores, [count], remedy)
 
-    @property
-    def stored_cycles(self) -> int:
-        """The most complete cycles the run can hold: ``n_cycles``, or the cycles that ``stored_events``
-        events make (each takes :data:`EVENTS_PER_CYCLE` of them)."""
-        most = self.stored_events // EVENTS_PER_CYCLE
-        return most if self.n_cycles is None else min(self.n_cycles, most)
+
+@dataclass(frozen=True)
+class RunSpec:
+    """A run as asked, every part checked (:func:`run_spec` makes it): the parameters, the release at ``t = 0+``
+    and the limits. For an ensemble the parameters are :class:`ParameterArrays` and the release arrays, a row
+    per trajectory."""
+
+    params: Parameters | ParameterArrays
+    x0: float | np.ndarray  #: m
+    v0: float | np.ndarray  #: m/s
+    limits: RunLimits
 
 
-def events_for(n_cycles: int) -> int:
-    """The events of ``n_cycles`` cycles with a margin for the first ones (the default ``max_events``)."""
-    return EVENTS_PER_CYCLE * (n_cycles + 2) + 8
+def run_spec(params: Parameters | Mapping[str, object], x0: object, v0: object = 0.0, *,
+             n_cycles: int | None = None, t_end: float | None = None, max_events: int | None = None,
+             memory_budget: int | None = None, rows: Callable[[int, int], float] | None = None) -> RunSpec:
+    """The checked run, or the first invalid argument refused, named: ``params`` (a :class:`Parameters`), the
+    release ``x0``, ``v0`` (:func:`~escapement.model.parameters.check_initial_state`), then the limits.
+
+    With ``rows`` (the ensemble's bytes for a number of trajectories and of cycles), ``params`` maps the model
+    keys to numbers or arrays and ``x0``, ``v0`` may be arrays, all broadcast to one shape: the counts are
+    checked first, then the memory of the trajectories from the inputs' shapes alone (before any array is made
+    at their size), then every row by the rules of :class:`Parameters`.
+    """
+    if rows is None:
+        params = check_parameters(params)
+        x, v = check_initial_state(x0, v0)
+        return RunSpec(params, x, v, RunLimits(n_cycles, t_end, max_events, memory_budget))
+    limits = RunLimits(n_cycles, t_end, max_events, memory_budget)
+    given = {**params, "x0": x0, "v0": v0}
+    try:
+        n = math.prod(np.broadcast_shapes(*(np.shape(value) for value in given.values() if value is not None)))
+    except ValueError:  # shapes that do not broadcast: the validation names the input
+        n = None
+    if n is not None:
+        cycles = limits.n_cycles
+        check_budget(limits.memory_budget, f"the cycle tables of {n:_} trajectories", [
+            ("n_cycles", cycles, lambda k: rows(n, k)), ("trajectories", n, lambda m: rows(m, cycles))])
+    flat = {name: array.ravel() for name, array in validate_arrays(given, state=True).items()}
+    return RunSpec(ParameterArrays(**{k: flat[k] for k in MODEL_KEYS}), flat["x0"], flat["v0"], limits)
+
+
+def check_budget(budget: int, stores: str, counts: Sequence[tuple[str, int, Callable[[int], float]]],
+                 remedy: str = "") -> int:
+    """The bytes of a run, ``size(value)`` of the first of ``counts`` (each ``(name, value, size)``: a count of
+    the run and its bytes as a function of that count, the others as asked), if within ``budget``. Otherwise a
+    :class:`MemoryBudgetError` names the first count that fits at 1 with the most that fits, or else the budget
+    with the least that the last count needs; ``stores`` says what the run stores, ``remedy`` what to do."""
+    estimate = int(math.ceil(counts[0][2](counts[0][1])))
+    if estimate <= budget:
+        return estimate
+    over = f"it would store {stores}, an estimated {_sizes(estimate, budget)}"
+    for name, value, size in counts:
+        if size(1) <= budget:
+            fits, too_many = 1, value
+            while too_many - fits > 1:  # bisection: size grows with the count
+                middle = (fits + too_many) // 2
+                fits, too_many = (middle, too_many) if size(middle) <= budget else (fits, middle)
+            remedy = f"; {remedy}" if remedy else ""
+            raise MemoryBudgetError(name, value, f"at most {fits:_} for the run to fit its memory budget: "
+                                    f"{over}{remedy}", estimate, budget)
+    least = int(math.ceil(size(1)))
+    raise MemoryBudgetError("memory_budget", budget, f"at least {least:_} bytes, those of a run of {name} = 1 "
+                            f"({over})", estimate, budget)
+
+
+def _sizes(estimate: int, budget: int) -> str:
+    """``estimate`` bytes over the ``budget``, in bytes and, for 10 MB or more, in GB (with the digits that tell
+    the two apart)."""
+    if budget < 10**7:
+        return f"{estimate:_} bytes, over the memory budget of {budget:_} byte{'' if budget == 1 else 's'}"
+    estimate_gb, budget_gb = texts([estimate / 1e9, budget / 1e9], 3)
+    return f"{estimate:_} bytes ({estimate_gb} GB), over the memory budget of {budget:_} bytes ({budget_gb} GB)"

@@ -1,52 +1,12 @@
-"""Model parameters of the escapement oscillator, validated when they are made.
+"""The model's parameters, validated when they are made: :class:`Parameters` for one run, :class:`ParameterArrays`
+for many (the ensemble), both by the one rule set of :func:`rules` and :func:`state_rules`.
 
-The model (Mao, Fu & Li 2013, Sec. 2-3 and Appendix A): a mass ``M`` on a spring
-``K`` moves freely, ``x'' + omega**2 x = 0``, except at the impacts and over the impulse
-zones that :mod:`escapement.model.automaton` defines.
-
-Geometry. The impact at ``a1`` is met moving right, the one at ``a3`` moving left, and after each the
-force acts over its impulse zone, from ``a1`` to ``a2`` moving right and from ``a3`` to ``a4`` moving
-left: so ``a1 < a2`` and ``a4 < a3`` (the rules); the symmetric default is ``a3 = -a1`` and ``a4 = -a2``.
-The paper's geometry (its Fig. 2: ``a1 < a4 < a2 < a3``) has ``a1 < 0 < a3``: each impact is met moving
-towards the equilibrium, and this jump set, ``{x = a1, xdot > 0} U {x = a3, xdot < 0}``, is the paper's
-``S = {x in {a1, a3}, x * xdot < 0}``. The model reads the jump set by the direction of motion for any
-other placement of the four positions too: an impact at ``a1 >= 0`` or ``a3 <= 0`` is met moving away
-from the equilibrium or through it (``x * xdot >= 0``, outside the paper's ``S``), as in the
-escapement-error study's zone after the equilibrium (Airy's impulse after the dead point);
-:attr:`Parameters.paper_signs` says which.
-
-The rules on the parameters are written once, in :func:`rules`, and those on the initial state
-in :func:`state_rules`, on NumPy arrays: the scalar :class:`Parameters` and
-:func:`check_initial_state` and the ensemble solver (one row per trajectory) apply the same ones.
-
-Floating-point range
---------------------
-The solvers compute, from the inputs: ``omega**2 = K/M`` and ``omega``, the zone centre
-``F/K``, the force per unit mass ``F/M``, the scaled velocity ``v/omega``, squared speeds
-``v**2 + omega**2 (x - c)**2`` (the energy relation of :func:`escapement.model.kinematics.crossing`),
-products of two phase-plane lengths (the ``atan2`` arguments), the work terms ``f (a2 - a1)``,
-the energies ``M v**2 / 2`` and ``K x**2 / 2``, and times ``angle / omega`` summed over the
-events. Every dimensional input (``M``, ``K``, ``F``, ``a1`` .. ``a4``, ``x0``, ``v0``) must
-therefore be 0 (where zero has a meaning: not ``M`` or ``K``) or of magnitude in
-``[SMALLEST, LARGEST] = [1e-50, 1e50]`` in SI units. Then:
-
-* ``omega``, ``F/K``, ``F/M`` and ``v0/omega`` lie within ``[1e-100, 1e100]``;
-* the largest squares at the start are ``omega**2 x**2 <= 1e200`` and ``F**2 / (K M) <= 1e200``;
-* an impact only takes energy away (``|1 - b| < 1``) and each passage through a zone adds
-  ``2 f (a2 - a1) <= 4e150`` to ``v**2``; with at most
-  :data:`escapement.model.limits.MAX_EVENTS` (5e9) events a run keeps ``v**2 <= ~1e200``,
-  ``(v / omega)**2 <= ~1e260`` and the energies ``<= ~1e250``;
-* the smallest non-zero products (``omega**2`` times a length squared, ``1e-200``) stay normal.
-
-So every quantity stays a normal float64 number (2.2e-308 to 1.8e308), with a margin of at least
-1e40 at both ends. The bounds are absolute, not relative to the geometry: what overflows is a
-product of absolute values (``0.5 K x0**2`` with ``x0 = 1e200 m`` overflows whatever the
-geometry), and an absolute bound on each factor bounds every product at once; a ratio bound
-would need a second, absolute one anyway. The paper's values (``M = 1 kg``, ``K`` from 0.1 to
-10 N/m, ``F`` up to 5 N, positions 0.01 to 0.3 m, ``x0`` up to 3 m) lie some 48 orders of
-magnitude inside. The impact coefficient is at least :data:`B_SMALLEST` (1e-12), so that the
-impact law's factor ``1 - b`` keeps ``b`` to 4 significant digits (for ``b`` below about 1e-16,
-``1 - b`` rounds to 1: the refused ``b = 0``).
+The model (Mao, Fu & Li 2013, Sec. 2-3 and Appendix A): a mass ``M`` on a spring ``K`` moves freely,
+``x'' + omega**2 x = 0``, except at the impacts and over the impulse zones of :mod:`escapement.model.automaton`.
+The impact at ``a1`` is met moving right, the one at ``a3`` moving left, and the force acts from ``a1`` to ``a2``
+and from ``a3`` to ``a4``: so ``a1 < a2`` and ``a4 < a3``. The paper's geometry has ``a1 < 0 < a3`` (its jump set
+``x * xdot < 0``); the model reads the jump set by the direction of motion for any other placement too
+(:attr:`Parameters.paper_signs` says which).
 """
 
 from __future__ import annotations
@@ -65,6 +25,7 @@ __all__ = [
     "LARGEST",
     "SIGNS",
     "SMALLEST",
+    "ParameterArrays",
     "ParameterError",
     "Parameters",
     "check_initial_state",
@@ -75,7 +36,7 @@ __all__ = [
     "validate_arrays",
 ]
 
-#: the smallest and largest magnitude of a non-zero dimensional input, in SI units (see above)
+#: the smallest and largest magnitude of a non-zero dimensional input, in SI units (see :func:`rules`)
 SMALLEST = 1e-50
 LARGEST = 1e50
 #: the smallest impact coefficient: 1 - b keeps b to 4 significant digits
@@ -109,9 +70,19 @@ def _magnitude(name: str, values: np.ndarray, zero: bool) -> tuple[str, np.ndarr
 def rules(v: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
     """Each rule as ``(name, holds, requirement)``, in the order they are checked.
 
-    ``v`` maps every model key to a float64 array (all of one shape); ``holds`` is a boolean
-    array of that shape; ``requirement`` may name other parameters as ``{a1}`` (filled with the
-    offending row's values).
+    ``v`` maps every model key to a float64 array (all of one shape); ``holds`` is a boolean array of that
+    shape; ``requirement`` may name other parameters as ``{a1}`` (filled with the offending row's values).
+
+    The range. The solvers form ``omega**2 = K/M``, ``F/K``, ``F/M``, ``v/omega``, squared speeds (the energy
+    relation of :func:`~escapement.model.kinematics.crossing`), products of two phase-plane lengths, the work
+    ``f (a2 - a1)``, the energies and sums of times. With every dimensional input 0 (where zero means
+    something: not ``M`` or ``K``) or of magnitude in ``[1e-50, 1e50]`` (SI units), ``omega``, ``F/K``, ``F/M``
+    and ``v0/omega`` lie in ``[1e-100, 1e100]``; an impact only takes energy away (``|1 - b| < 1``), each zone
+    adds at most ``4e150`` to ``v**2``, so over :data:`~escapement.model.limits.MAX_EVENTS` events every square
+    stays below about ``1e260`` and every non-zero product above ``1e-200``: normal float64 numbers, with a
+    margin of 1e40 at both ends. The bounds are absolute, not relative to the geometry: what overflows is a
+    product of absolute values. The paper's values lie some 48 orders of magnitude inside. ``b`` is at least
+    :data:`B_SMALLEST`, so that ``1 - b`` keeps it to 4 digits (below about 1e-16, ``1 - b`` rounds to 1).
     """
     with np.errstate(all="ignore"):
         yield "M", v["M"] > 0, f"{SIGNS['M']} ({_unit('M')})"
@@ -130,8 +101,7 @@ def rules(v: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
 
 
 def state_rules(s: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
-    """The rules on the initial state, like :func:`rules`: ``s`` maps ``x0`` and ``v0`` to float64
-    arrays of one shape."""
+    """The rules on the initial state, like :func:`rules`: ``s`` maps ``x0`` and ``v0`` to float64 arrays."""
     with np.errstate(all="ignore"):
         for name in INITIAL_STATE:
             yield _magnitude(name, s[name], zero=True)
@@ -160,13 +130,10 @@ def _check(checks: Iterable, shaped: Mapping[str, np.ndarray]) -> None:
 
 
 def validate_arrays(values: Mapping[str, object], single: bool = False, state: bool = False) -> dict[str, np.ndarray]:
-    """Check every model key (``a3``, ``a4`` None: the symmetric default) and, with ``state``, the
-    initial state ``x0`` and ``v0``, and return float64 arrays broadcast to one shape; the first
-    violation raises, naming the row for arrays.
-
-    One rule set (:func:`rules`, :func:`state_rules`) serves a single model (``single``: every value
-    a number) and an ensemble (one row per element of the broadcast shape).
-    """
+    """Check every model key (``a3``, ``a4`` None: the symmetric default) and, with ``state``, the initial
+    state ``x0`` and ``v0``; return float64 arrays broadcast to one shape. The first violation raises, naming
+    the row for arrays. One rule set serves a single model (``single``: every value a number) and an
+    ensemble (one row per element of the broadcast shape)."""
     names = REQUIRED_KEYS + (tuple(INITIAL_STATE) if state else ())
     for key in names:
         if values.get(key) is None:
@@ -189,9 +156,9 @@ def validate_arrays(values: Mapping[str, object], single: bool = False, state: b
 class Parameters:
     """Physical parameters of the escapement model, in the units of :mod:`escapement.model.quantities`.
 
-    ``a3`` and ``a4`` default to the symmetric geometry ``a3 = -a1``,
-    ``a4 = -a2``; give them to study the paper's asymmetric map, Eq. (16).
-    Every value is checked when the parameters are made (:func:`rules`) and stored as a float.
+    ``a3`` and ``a4`` default to the symmetric geometry ``a3 = -a1``, ``a4 = -a2``; give them to study the
+    paper's asymmetric map, Eq. (16). Every value is checked when the parameters are made (:func:`rules`) and
+    stored as a float.
 
     Parameters
     ----------
@@ -264,8 +231,7 @@ class Parameters:
     @property
     def paper_signs(self) -> bool:
         """True for the paper's signs ``a1 < 0 < a3``: each impact met moving towards the equilibrium, on the
-        paper's jump set ``x * xdot < 0``; False where an impact is met at or after the equilibrium (the
-        model's jump set, by direction, then lies outside the paper's; see the module's docstring)."""
+        paper's jump set ``x * xdot < 0``; False where an impact is met at or after the equilibrium."""
         return self.a1 < 0.0 < self.a3
 
     @property
@@ -278,15 +244,15 @@ class Parameters:
         return {n: getattr(self, n) for n in MODEL_KEYS}
 
     def __repr__(self) -> str:
-        """The call that makes these parameters, each value as typed back (zero without a sign: ``a4``
-        of ``a2 = 0`` is stored as ``-0.0``)."""
+        """The call that makes these parameters, each value as typed back (zero without a sign: ``a4`` of
+        ``a2 = 0`` is stored as ``-0.0``)."""
         values = ", ".join(f"{name}={getattr(self, name) + 0.0!r}" for name in MODEL_KEYS)
         return f"{type(self).__name__}({values})"
 
 
 def _parameters_section() -> str:
-    """The entries of the Parameters section of :class:`Parameters`' docstring, one per row of the
-    parameters table: long name, units, sign rule (:data:`SIGNS`) and default."""
+    """The entries of the Parameters section of :class:`Parameters`' docstring, one per row of the parameters
+    table: long name, units, sign rule (:data:`SIGNS`) and default."""
     lines = []
     for name, q in PARAMETERS.items():
         mirror = SYMMETRIC_DEFAULTS.get(name)
@@ -302,6 +268,32 @@ if Parameters.__doc__:  # None when docstrings are stripped (python -OO)
     Parameters.__doc__ = Parameters.__doc__.replace("{parameters}", _parameters_section())
 
 
+@dataclass(frozen=True)
+class ParameterArrays:
+    """The parameters of many runs, one per element of each flat float64 array (the ensemble's), checked row by
+    row by the rules of :class:`Parameters` (:func:`validate_arrays`); what the automaton's rows read of a
+    :class:`Parameters`, on arrays."""
+
+    M: np.ndarray
+    K: np.ndarray
+    F: np.ndarray
+    b: np.ndarray
+    a1: np.ndarray
+    a2: np.ndarray
+    a3: np.ndarray
+    a4: np.ndarray
+
+    @property
+    def omega(self) -> np.ndarray:
+        """sqrt(K/M) of each run, rad/s."""
+        return np.sqrt(self.K / self.M)
+
+    @property
+    def zone_offset(self) -> np.ndarray:
+        """F/K of each run, m."""
+        return self.F / self.K
+
+
 def check_initial_state(x0: object, v0: object) -> tuple[float, float]:
     """Validate the initial displacement and velocity (:func:`state_rules`); return them as floats."""
     state = {name: np.asarray(real_number(name, value)) for name, value in zip(INITIAL_STATE, (x0, v0))}
@@ -311,5 +303,5 @@ def check_initial_state(x0: object, v0: object) -> tuple[float, float]:
 
 def check_parameters(params: object) -> Parameters:
     """``params`` if it is a :class:`Parameters`, else raise :class:`~escapement.model.arguments.ParameterTypeError`
-    (a :class:`ParameterError` and a :class:`TypeError`) naming it: the first check of every solver."""
+    (a :class:`ParameterError` and a :class:`TypeError`) naming it."""
     return check_type("params", params, Parameters, "an escapement.Parameters (make one with Parameters(M=..., ...))")

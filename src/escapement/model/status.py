@@ -1,9 +1,8 @@
-"""Typed outcomes: how a run ended, instead of an exception (the messages are written where the
-outcomes are decided, :mod:`escapement.solvers.outcomes`).
+"""How a run ended, as a typed outcome instead of an exception, with the integer code written to files.
 
-Each outcome has a stable integer code (:attr:`Status.code`), the one written to netCDF files
-with CF ``flag_values`` and ``flag_meanings`` (:func:`flag_attributes`); the codes are fixed
-here, not taken from the order of the members.
+The codes are fixed in :data:`CODES`, not taken from the order of the members, and written to netCDF with CF
+``flag_values`` and ``flag_meanings`` (:func:`flag_attributes`). The messages are written where the outcomes
+are decided (:mod:`escapement.solvers.outcomes`).
 """
 
 from __future__ import annotations
@@ -11,8 +10,9 @@ from __future__ import annotations
 from enum import Enum
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-__all__ = ["Status", "flag_attributes"]
+__all__ = ["CODES", "Status", "flag_attributes", "succeeded"]
 
 
 class Status(str, Enum):
@@ -29,11 +29,13 @@ class Status(str, Enum):
     COMPLETED : str
         Code 0: the requested number of cycles, or the requested end time (s), was reached.
     STOPPED : str
-        Code 1: the free swing never reaches the next impact position; the mass oscillates freely.
+        Code 1: the free swing never passes the next impact position (its turning point lies short of it, or
+        exactly on it): no further impact, the mass oscillates freely from then on.
     TURNED_BACK_IN_ZONE : str
-        Code 2: the velocity vanished inside an impulse zone, outside the model.
+        Code 2: the velocity vanished inside an impulse zone before its end, outside the model.
     CHATTERING : str
-        Code 3: an impact reversed the velocity (``b > 1``).
+        Code 3: an impact reversed the velocity (``b > 1``); where the spring drives the mass back, the
+        impacts accumulate in finite time (a Zeno point), past which the impulsive model has no solution.
     EVENT_LIMIT : str
         Code 4: the bound on the number of events was reached first.
 
@@ -47,24 +49,10 @@ class Status(str, Enum):
     """
 
     COMPLETED = "completed"
-    """The requested number of cycles, or the requested end time, was reached."""
-
     STOPPED = "stopped"
-    """The escapement stopped: the free swing never reaches the next impact
-    position (its turning point lies short of it, or exactly on it), so no further
-    impact and no further impulse occur; the mass oscillates freely from then on."""
-
     TURNED_BACK_IN_ZONE = "turned_back_in_zone"
-    """The velocity vanished inside an impulse zone before its end (a2 or a4) was
-    reached, which the escapement model does not cover."""
-
     CHATTERING = "chattering"
-    """An impact reversed the velocity (b > 1): the mass rebounds from the impact
-    position; where the spring pushes it back, the impacts accumulate in finite
-    time (a Zeno point), past which the impulsive model has no solution."""
-
     EVENT_LIMIT = "event_limit"
-    """The bound on the number of events was reached before the run ended."""
 
     @property
     def code(self) -> int:
@@ -73,28 +61,12 @@ class Status(str, Enum):
 
     @property
     def success(self) -> bool:
-        """True when the requested cycles or end time were reached."""
+        """True when the requested cycles or end time were reached: the one outcome that is a success."""
         return self is Status.COMPLETED
 
     @classmethod
     def from_code(cls, code: int) -> Status:
-        """The outcome whose :attr:`code` is ``code``.
-
-        Parameters
-        ----------
-        code : int
-            A stored code, 0 to 4.
-
-        Returns
-        -------
-        Status
-            The outcome.
-
-        Raises
-        ------
-        ValueError
-            If no outcome has that code.
-        """
+        """The outcome whose :attr:`code` is ``code`` (0 to 4); :class:`ValueError` if none has it."""
         for status, value in CODES.items():
             if value == int(code):
                 return status
@@ -102,13 +74,13 @@ class Status(str, Enum):
 
 
 #: The stored codes. Never renumber: files written before would change meaning.
-CODES = {
-    Status.COMPLETED: 0,
-    Status.STOPPED: 1,
-    Status.TURNED_BACK_IN_ZONE: 2,
-    Status.CHATTERING: 3,
-    Status.EVENT_LIMIT: 4,
-}
+CODES = {Status.COMPLETED: 0, Status.STOPPED: 1, Status.TURNED_BACK_IN_ZONE: 2, Status.CHATTERING: 3,
+         Status.EVENT_LIMIT: 4}
+
+
+def succeeded(codes: ArrayLike) -> np.ndarray:
+    """True where a stored code is that of an outcome that is a :attr:`Status.success`."""
+    return np.isin(codes, [status.code for status in Status if status.success])
 
 
 def flag_attributes() -> dict:

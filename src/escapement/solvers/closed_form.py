@@ -29,14 +29,15 @@ import numpy as np
 
 from ..model import automaton
 from ..model.cycle_map import CycleMap, cycle_map
-from ..model.limits import RunLimits
+from ..model.kinematics import arc_maximum, crossing, two_sum
+from ..model.limits import RunLimits, RunSpec
 from ..model.parameters import Parameters
-from ..model.kinematics import arc_maximum, crossing
 from ..model.status import Status
+from .describe import CycleTable
 from .kernel import A1, PLAN, EventRun, kinds_from, rows
-from .result import CycleTable
 
-__all__ = ["GRAZING_SPEED_SQ", "Cycles", "Prepared", "distinct_cycles", "first_impact", "prepared", "table_rows"]
+__all__ = ["GRAZING_SPEED_SQ", "Cycles", "Prepared", "closed_form_cycles", "distinct_cycles", "first_impact",
+           "prepared", "table_rows"]
 
 #: an arc grazes where it arrives with ``v**2`` at most this times its largest, ``w**2 (x - c)**2 + v0**2``
 GRAZING_SPEED_SQ = 1e-3
@@ -82,6 +83,7 @@ class Cycles(NamedTuple):
     lo: np.ndarray
     residual: float
     distinct: int
+    events_before: int = 0  #: the events up to the first impact at a1, that impact included
 
 
 def first_impact(params: Parameters, x: float, v: float) -> tuple[float, float, int] | str:
@@ -89,7 +91,7 @@ def first_impact(params: Parameters, x: float, v: float) -> tuple[float, float, 
     and the events up to it, that impact included; or why the closed form does not apply from the start."""
     if automaton.reverses(1.0, automaton.impact_factor(params.b)):
         return f"b = {params.b!r}: the impact reverses the velocity (the run chatters)"
-    run = EventRun(params, x, v, RunLimits(n_cycles=1))
+    run = EventRun(RunSpec(params, x, v, RunLimits(n_cycles=1)))
     run.advance(run.limits.max_events)
     outcome = run.outcome
     if outcome.status is not Status.COMPLETED:
@@ -114,13 +116,6 @@ def _transient(cmap: CycleMap, v1: float, n: int) -> int:
     return min(n, k + 3)
 
 
-def _two_sum(a, b):
-    """Knuth's TwoSum on arrays: ``s + e == a + b`` exactly, ``s = fl(a + b)``."""
-    s = a + b
-    bb = s - a
-    return s, (a - (s - bb)) + (b - bb)
-
-
 def _prefix_sums(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Exclusive prefix sums ``D_i = sum_{j<i} d_j``, ``i = 0 .. len(d)``, as ``hi + lo``, compensated: ``hi`` is
     ``cumsum``, and with ``r_j = hi_j + d_j - hi_{j+1}`` exactly (TwoSum of ``hi_j + d_j``, less ``hi_{j+1}``,
@@ -128,7 +123,7 @@ def _prefix_sums(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     hi = np.zeros(len(d) + 1)
     np.cumsum(d, out=hi[1:])
     before, after = hi[:-1], hi[1:]
-    s, e = _two_sum(before, d)
+    s, e = two_sum(before, d)
     lo = np.zeros_like(hi)
     np.cumsum((s - after) + e, out=lo[1:])
     return hi, lo
@@ -231,11 +226,22 @@ def table_rows(c: Cycles, start: int, stop: int) -> tuple[CycleTable, float]:
     at a1 that ends cycle ``stop``. Impact times: ``t_k = t1 + (k - 1) T + D_{k-1}``, ``D`` the prefix sums of
     ``T_j - T``; each entry from its own ``k`` alone, so that any window of cycles is the same numbers."""
     k = np.arange(start, stop + 1, dtype=float)  # k - 1 for cycles start + 1 .. stop, and stop for the end
-    s, e1 = _two_sum(k * c.big_hi, c.t1)
-    s, e2 = _two_sum(s, _window(c.hi, start, stop + 1))
+    s, e1 = two_sum(k * c.big_hi, c.t1)
+    s, e2 = two_sum(s, _window(c.hi, start, stop + 1))
     t = s + (((e1 + e2) + k * (c.big - c.big_hi)) + _window(c.lo, start, stop + 1))
     table = CycleTable(impact_time=t[:-1], velocity_before_impact=_window(c.v, start, stop),
                        period=_window(c.period, start, stop), largest_displacement=_window(c.largest_displacement, start, stop))
     return table, float(t[-1])
 
 
+
+
+def closed_form_cycles(spec: RunSpec, most: int | None = None) -> Cycles | str:
+    """The distinct cycles of the run ``spec`` from its first impact at a1 (:func:`first_impact`,
+    :func:`distinct_cycles`, at most ``most`` at once), or why the closed form does not apply."""
+    first = first_impact(spec.params, spec.x0, spec.v0)
+    if isinstance(first, str):
+        return first
+    with np.errstate(all="ignore"):  # a NaN is a decision here, not a warning
+        done = distinct_cycles(spec.params, prepared(spec.params), first[0], first[1], spec.limits.n_cycles, most)
+    return done if isinstance(done, str) else done._replace(events_before=first[2])

@@ -1,159 +1,161 @@
-"""How a run describes itself: its columns' units and long names, and the text of its summaries.
+"""The tables a run is made of and how they describe themselves: the per-cycle table, the harmonic arcs and the
+numbers of a regime exit, with their columns' names (the fields), units and long names (from
+:mod:`escapement.model.quantities`), the same in a run's data frames and datasets.
 
-The per-cycle table and the event log have named columns, each with its UDUNITS string and long
-name (:data:`CYCLE_COLUMNS`, :data:`EVENT_COLUMNS`), the same in a run's data frames
-(:meth:`escapement.Solution.to_dataframe`) and in the CF datasets of :mod:`escapement.io`. The
-summaries are what the results' ``repr`` shows: the outcome, counts, time span and the parameters
-with their units, a few lines whatever the length of the run.
-
-Every number printed is true as printed (:mod:`escapement.model.printing`): an input (a parameter, the
-initial state, an end time) as it can be typed back, so that it is told apart from any bound it is compared
-with; a computed value to a few significant digits, with more where two values that differ would otherwise
-print alike; zero without a sign.
+Their ``repr`` and the summary lines of :mod:`escapement.solvers.result` print every number true as printed
+(:mod:`escapement.model.printing`): an input as it can be typed back, a computed value to a few significant
+digits, with more where two values that differ would otherwise print alike; zero without a sign.
 """
 
 from __future__ import annotations
 
 import math
 import textwrap
-
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, fields
+from typing import Protocol
 
 import numpy as np
 
-from ..model.events import EventKind
-from ..model.parameters import Parameters
-from ..model.printing import exact, number, span, texts, with_unit
-from ..model.quantities import INITIAL_STATE, PARAMETERS, VARIABLES
-from ..model.status import Status
+from ..model.arguments import sample_times
+from ..model.events import EVENT_COLUMNS as EVENT_NAMES
+from ..model.kinematics import sample_arcs
+from ..model.printing import number, span, texts, with_unit
+from ..model.quantities import VARIABLES
 
-if TYPE_CHECKING:  # the results these summaries describe (they describe themselves by these functions)
-    from .result import ArcTable, CycleTable, EnsembleSolution, Exit, Solution
+__all__ = ["CYCLE_COLUMNS", "EVENT_COLUMNS", "EXIT_UNITS", "ArcTable", "CycleTable", "Exit", "Trajectory", "line"]
 
-__all__ = [
-    "CYCLE_COLUMNS",
-    "CYCLE_UNITS",
-    "EVENT_COLUMNS",
-    "EXIT_UNITS",
-    "arc_table_summary",
-    "cycle_table_summary",
-    "ensemble_summary",
-    "exit_summary",
-    "solution_summary",
-]
 
-_CYCLE_NAMES = ("impact_time", "velocity_before_impact", "period", "largest_displacement")
-#: the per-cycle table's columns: name: (UDUNITS string, long name), from the quantities' table
-CYCLE_COLUMNS = {name: (VARIABLES[name].units, VARIABLES[name].long_name) for name in _CYCLE_NAMES}
-#: the event log's columns: name: (field of the EventLog, UDUNITS string or None for a code, long name)
-EVENT_COLUMNS = {
-    "event_time": ("t", "s", "time of the event"),
-    "event_kind": ("kind", None, "kind of event"),
-    "event_position": ("x", "m", "position of the event"),
-    "event_velocity_before": ("v_before", "m s-1", "velocity just before the event"),
-    "event_velocity_after": ("v_after", "m s-1", "velocity just after the event"),
-}
+class Trajectory(Protocol):
+    """Anything that evaluates the motion at given times."""
 
+    t_final: float
+
+    def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Displacement, velocity and acceleration at times ``t`` (NaN outside ``[0, t_final]``)."""
+
+
+@dataclass(frozen=True, repr=False)
+class CycleTable:
+    """One entry per complete cycle ``k = 1 .. N`` (arrays; mpmath numbers in an object array for the
+    high-precision solver; a row per trajectory for the ensemble). The fields are the columns' names."""
+
+    impact_time: np.ndarray  #: time of impact k at a1, s
+    velocity_before_impact: np.ndarray  #: velocity just before impact k, m/s
+    period: np.ndarray  #: time from impact k to impact k+1, s
+    largest_displacement: np.ndarray  #: largest x between impact k and impact k+1, m
+
+    def __len__(self) -> int:
+        return len(self.period)
+
+    def __repr__(self) -> str:
+        shape = np.shape(self.period)
+        size = f"{shape[-1]} cycles" + (f" x {shape[0]} trajectories" if len(shape) == 2 else "")
+        return "\n".join([f"<CycleTable> {size}", *(f"  {name:<24}{span(getattr(self, name), unit)}"
+                                                      for name, unit in CYCLE_UNITS.items())])
+
+    @property
+    def cycle(self) -> np.ndarray:
+        """Cycle numbers 1 .. N."""
+        return np.arange(1, len(self) + 1)
+
+
+#: the per-cycle table's columns, the fields of :class:`CycleTable`: name: (UDUNITS string, long name)
+CYCLE_COLUMNS = {f.name: (VARIABLES[f.name].units, VARIABLES[f.name].long_name) for f in fields(CycleTable)}
+#: the event log's columns: name: (field of the EventLog, UDUNITS string or None for the kind, a code, long name)
+EVENT_COLUMNS = {name: (field, None if VARIABLES[name].dimensionless else VARIABLES[name].units,
+                        VARIABLES[name].long_name) for field, name in EVENT_NAMES.items()}
 #: the plain-text units of the per-cycle columns and of the exit's numbers, for the summaries
-CYCLE_UNITS = {name: VARIABLES[name].unit_label for name in _CYCLE_NAMES}
+CYCLE_UNITS = {name: VARIABLES[name].unit_label for name in CYCLE_COLUMNS}
 EXIT_UNITS = {"turning_point": "m", "margin": "m", "t_accumulation": "s"}
-#: the width the summaries wrap the message to, and of their column of labels
-_WIDTH = 120
-_LABEL = 12
 
 
-def _line(label: str, text: str, column: int = _LABEL, wrap: bool = False) -> str:
-    """One line of a summary: the label in a column ``column`` wide, ``text`` beside it (wrapped
-    with ``wrap``)."""
+@dataclass(frozen=True, repr=False)
+class ArcTable:
+    """The motion as a table of harmonic arcs: arc i starts at t_start[i] from (x_start[i], v_start[i]) and
+    turns about centre[i] until the next arc starts."""
+
+    t_start: np.ndarray
+    centre: np.ndarray
+    x_start: np.ndarray
+    v_start: np.ndarray
+    omega: float
+    t_final: float
+
+    def __len__(self) -> int:
+        return len(self.t_start)
+
+    def __repr__(self) -> str:
+        omega = number(self.omega, "rad/s")
+        if not len(self):
+            return f"<ArcTable> no harmonic arcs, omega = {omega}"
+        start, end = texts([self.t_start[0], self.t_final])
+        arcs = f"{len(self)} harmonic arc{'' if len(self) == 1 else 's'}"
+        return f"<ArcTable> {arcs} from t = {start} s to t_final = {end} s, omega = {omega}"
+
+    def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Displacement, velocity and smooth acceleration at times ``t`` (NaN outside [0, t_final]); ``t`` is
+        checked as :meth:`escapement.Solution.sample` says."""
+        t = sample_times("t", t)
+        if len(self.t_start) == 0:
+            nan = np.full(np.shape(t), np.nan)
+            return nan, nan.copy(), nan.copy()
+        return sample_arcs(t, self.t_start, self.centre, self.x_start, self.v_start, self.omega, self.t_final)
+
+
+@dataclass(frozen=True)
+class Exit:
+    """The numbers behind a regime exit; NaN where they do not apply to the outcome.
+
+    * ``stopped``: ``turning_point`` is the radius of the free swing (it turns at ``-turning_point`` and
+      ``+turning_point``), ``margin`` how far short of the awaited impact position it turns (0 when it grazes).
+    * ``turned_back_in_zone``: ``turning_point`` is where the motion turns inside the zone, ``margin`` its
+      distance from the zone's end.
+    * ``chattering``: ``t_accumulation`` is the time at which the rebounds accumulate (NaN when they do not).
+
+    Parameters
+    ----------
+    turning_point : float
+        Where the motion turns, m (see above); NaN if it does not apply.
+    margin : float
+        How far short of the awaited position the motion turns, m; NaN if it does not apply.
+    t_accumulation : float
+        Time at which the rebounds of a chattering run accumulate (a Zeno point), s; NaN if they do not, or if
+        the run did not chatter.
+
+    Examples
+    --------
+    A release at 0.01 m swings freely inside ``[-0.01, 0.01]`` m and never reaches ``a1 = -0.1`` m:
+
+    >>> from escapement import Parameters, solve_exact
+    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    >>> run = solve_exact(p, x0=0.01, n_cycles=5)
+    >>> run.status
+    <Status.STOPPED: 'stopped'>
+    >>> run.exit.turning_point, round(run.exit.margin, 12), run.exit.t_accumulation
+    (0.01, 0.09, nan)
+    """
+
+    turning_point: float = math.nan
+    margin: float = math.nan
+    t_accumulation: float = math.nan
+
+    def summary(self, printed: dict[str, str] | None = None) -> str:
+        """The numbers that apply, with their units (empty if none does); ``printed`` gives the text of those
+        already printed beside other numbers."""
+        printed = printed or {}
+        return ", ".join(f"{name} = {with_unit(printed.get(name) or number(getattr(self, name)), unit)}"
+                         for name, unit in EXIT_UNITS.items() if not math.isnan(getattr(self, name)))
+
+    def __repr__(self) -> str:
+        """The call that makes this exit, each number as typed back (zero without a sign)."""
+        values = ", ".join(f"{name}={float(getattr(self, name)) + 0.0!r}" for name in EXIT_UNITS)
+        return f"Exit({values})"
+
+
+def line(label: str, text: str, column: int = 12, wrap: bool = False) -> str:
+    """One line of a summary: the label in a column ``column`` wide, ``text`` beside it (wrapped at 120
+    columns with ``wrap``)."""
     head = f"{label + ':':<{column}}"
     if not wrap:
         return head + text
-    return textwrap.fill(text, _WIDTH, initial_indent=head, subsequent_indent=" " * column, break_on_hyphens=False)
-
-
-def _parameters_text(params: Parameters) -> str:
-    return ", ".join(f"{name} = {exact(value, PARAMETERS[name].unit_label)}"
-                     for name, value in params.as_dict().items())
-
-
-def arc_table_summary(arcs: ArcTable) -> str:
-    """One line on a table of harmonic arcs (:class:`~escapement.solvers.result.ArcTable`)."""
-    if not len(arcs):
-        return f"<ArcTable> no harmonic arcs, omega = {number(arcs.omega, 'rad/s')}"
-    start, end = texts([arcs.t_start[0], arcs.t_final])
-    arcs_ = f"{len(arcs)} harmonic arc{'' if len(arcs) == 1 else 's'}"
-    return f"<ArcTable> {arcs_} from t = {start} s to t_final = {end} s, omega = {number(arcs.omega, 'rad/s')}"
-
-
-def cycle_table_summary(cycles: CycleTable) -> str:
-    """The range of each column of a per-cycle table, one or many trajectories."""
-    shape = np.shape(cycles.period)
-    size = f"{shape[-1]} cycles" + (f" x {shape[0]} trajectories" if len(shape) == 2 else "")
-    lines = [f"<CycleTable> {size}"]
-    for name, unit in CYCLE_UNITS.items():
-        lines.append(f"  {name:<24}{span(getattr(cycles, name), unit)}")
-    return "\n".join(lines)
-
-
-def exit_summary(exit: Exit, printed: dict[str, str] | None = None) -> str:
-    """The numbers of a regime exit that apply, with their units (empty if none does); ``printed``
-    gives the text of those already printed beside other numbers."""
-    printed = printed or {}
-    return ", ".join(f"{name} = {with_unit(printed.get(name) or number(getattr(exit, name)), unit)}"
-                     for name, unit in EXIT_UNITS.items() if not math.isnan(getattr(exit, name)))
-
-
-def solution_summary(solution: Solution, trajectory: str) -> str:
-    """A run in a few lines: outcome, message, time span, events, cycles, initial state, parameters
-    and the exit's numbers; ``trajectory`` says whether (and how) the motion was kept."""
-    ev, cycles = solution.events, solution.cycles
-    impacts = int(np.count_nonzero(np.isin(ev.kind, [int(EventKind.IMPACT_A1), int(EventKind.IMPACT_A3)])))
-    # the times side by side, each printed so that it compares with the others as it does
-    times = [0.0, solution.t_final, solution.exit.t_accumulation, *(ev.t[[0, -1]] if len(ev) else ())]
-    zero, t_final, t_acc, *event_times = texts(times)
-    lines = [
-        f"<escapement.Solution> {solution.status.value} ({solution.method})",
-        _line("message", solution.message, wrap=True),
-        _line("time span", f"t = {zero} .. {t_final} s (t_final)"),
-    ]
-    events = f"{len(ev)} ({impacts} impact{'' if impacts == 1 else 's'})"
-    if len(ev) == 1:
-        events += f" at t = {event_times[0]} s"
-    elif len(ev):
-        events += f" from t = {event_times[0]} s to {event_times[1]} s"
-    lines.append(_line("events", events))
-    text = f"{len(cycles)}"
-    if len(cycles):
-        text += (f"; the last: period {number(cycles.period[-1], 's')}, velocity before impact "
-                 f"{number(cycles.velocity_before_impact[-1], 'm/s')}, largest displacement {number(cycles.largest_displacement[-1], 'm')}")
-    lines.append(_line("cycles", text))
-    lines.append(_line("trajectory", trajectory))
-    state = ", ".join(f"{name} = {exact(value, INITIAL_STATE[name].unit_label)}"
-                      for name, value in (("x0", solution.x0), ("v0", solution.v0)))
-    lines.append(_line("initial", state))
-    lines.append(_line("parameters", _parameters_text(solution.params)))
-    if exit_summary(solution.exit):
-        lines.append(_line("exit", exit_summary(solution.exit, {"t_accumulation": t_acc})))
-    return "\n".join(lines)
-
-
-def ensemble_summary(runs: EnsembleSolution) -> str:
-    """Many runs in a few lines: the count of each outcome and the range of each column."""
-    n = len(runs.status)
-    codes, counts = np.unique(np.asarray(runs.status), return_counts=True)
-    outcomes = ", ".join(f"{Status.from_code(code).value} {count}" for code, count in zip(codes, counts))
-    shape = np.shape(runs.cycles.period)
-    column = 25
-    lines = [
-        f"<escapement.EnsembleSolution> {n} trajectories, {shape[-1] if len(shape) == 2 else 0} cycles "
-        f"({runs.method})",
-        _line("outcomes", outcomes or "none", column),
-        _line("t_final", span(runs.t_final, "s"), column),
-    ]
-    for name, unit in CYCLE_UNITS.items():
-        lines.append(_line(name, span(getattr(runs.cycles, name), unit), column))
-    for name, unit in EXIT_UNITS.items():
-        values = getattr(runs, f"exit_{name}")
-        if not np.isnan(np.asarray(values, dtype=float)).all():
-            lines.append(_line(f"exit_{name}", span(values, unit), column))
-    return "\n".join(lines)
+    return textwrap.fill(text, 120, initial_indent=head, subsequent_indent=" " * column, break_on_hyphens=False)

@@ -1,16 +1,17 @@
-"""The exact solver for many trajectories at once, one per array element.
+"""The exact solver for many trajectories at once, one per array element, in lock-step: each pass moves every
+running trajectory by one event, with the automaton's rows (:func:`~escapement.solvers.kernel.rows`, on arrays)
+and the closed forms of the scalar event loop.
 
-The same automaton (:mod:`escapement.model.automaton`) and closed forms (:func:`~escapement.model.kinematics.crossing`,
-:func:`~escapement.model.kinematics.arc_maximum` on arrays) as the scalar event loop, advanced in lock-step: the
-automaton's rows for every trajectory in one table (:func:`_rows`), and each pass moves every running
-trajectory by one event, whatever its state, with the row of that state. A trajectory that ends (cycles
-done, stopped, turned back, chattering, its event bound) leaves the passes. Parameters and initial states
-broadcast to a common shape ``(N,)``.
+After its first event a trajectory's state goes round the automaton's cycle, so the trajectories whose first
+event is the same share their state at every pass. They are put side by side (sorted by their first event, and
+put back in the order of the inputs at the end), and each pass moves such a group as one slice of the arrays,
+with its row's direction and jump as numbers. A trajectory that ends (its cycles done, stopped, turned back,
+chattering) leaves its group; the event bound ends them all.
 """
 
 from __future__ import annotations
 
-import math
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,32 +19,69 @@ from numpy.typing import ArrayLike
 from ..model import automaton
 from ..model.automaton import RELEASE
 from ..model.events import EventKind
-from ..model.kinematics import arc_maximum, arc_terms, compensated_add, crossing, rebound_accumulation_time
-from ..model.limits import MEMORY_BUDGET, MemoryBudgetError, RunLimits, check_flag
-from ..model.parameters import validate_arrays
+from ..model.kinematics import arc_maximum, compensated_add, crossing, rebound_accumulation_time, time_to_rest
+from ..model.limits import RunSpec, check_flag, run_spec
+from ..model.parameters import ParameterArrays
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
-from .result import CycleTable, EnsembleSolution
+from .describe import CYCLE_COLUMNS, CycleTable
+from .kernel import A1, row, rows
+from .result import EnsembleSolution
 
-__all__ = ["CELL_BYTES", "MAX_CELLS", "ROW_BYTES", "TABLE_BYTES", "ensemble_bytes", "solve_ensemble"]
+__all__ = ["CELL_BYTES", "ROW_BYTES", "ensemble_bytes", "solve_ensemble"]
 
+#: bytes per trajectory and cycle: the four tables of 8-byte floats, a fifth while each is put back in the order
+#: of the inputs, and a margin (measured 40)
+CELL_BYTES = 48
+#: bytes per trajectory whatever its cycles: its rows (four states, five numbers each), its state and the work
+#: arrays of a pass (measured about 700)
+ROW_BYTES = 1000
 _RUNNING = -1
-#: bytes per trajectory and cycle (a cell of the tables, n_cycles + 1 of them per trajectory), with a margin
-#: for the trajectory's own state from 120 cells on: the four tables of 8-byte floats (32 bytes) and the
-#: boolean masks of their shape at the end
-CELL_BYTES = 40
-#: below 120 cells, the cells at TABLE_BYTES and each trajectory's state: its rows (five states, eight numbers
-#: each) and some sixty floats of state and work arrays (measured about 860 bytes)
-TABLE_BYTES, ROW_BYTES = 35, 1000
-#: the most cells the default memory budget allows: 50 million, trajectories * (n_cycles + 1)
-MAX_CELLS = MEMORY_BUDGET // CELL_BYTES
-_A1 = int(EventKind.IMPACT_A1)
 
 
 def ensemble_bytes(n_trajectories: int, n_cycles: int) -> int:
     """The bytes :func:`solve_ensemble` takes at most for ``n_trajectories`` runs of ``n_cycles`` cycles."""
-    cells = n_cycles + 1
-    return n_trajectories * max(CELL_BYTES * cells, TABLE_BYTES * cells + ROW_BYTES)
+    return n_trajectories * (CELL_BYTES * n_cycles + ROW_BYTES)
+
+
+@dataclass
+class _Group:
+    """Trajectories whose states agree at every pass: ``members`` (a slice while each of them runs, else their
+    indices), the state after their last event, their first event and their impacts at a1 so far."""
+
+    members: slice | np.ndarray
+    state: int
+    first: int
+    impacts: int = 0
+
+    def indices(self) -> np.ndarray:
+        """The members' indices."""
+        m = self.members
+        return np.arange(m.start, m.stop) if isinstance(m, slice) else m
+
+
+@dataclass
+class _State:
+    """The trajectories, a row each in the order of their first event: their numbers, how each ended and the
+    cycle tables, a row per cycle while they are filled."""
+
+    omega: np.ndarray  #: rad/s
+    factor: np.ndarray  #: the impact law's factor 1 - b
+    x: np.ndarray  #: position at the release, m (after it, each event's surface gives it)
+    v: np.ndarray  #: velocity after the last event, m/s
+    t: np.ndarray  #: time of the last event, t + t_err compensated, s
+    t_err: np.ndarray
+    elapsed: np.ndarray  #: time since the last impact at a1, s
+    cycle_max: np.ndarray  #: largest x since the last impact at a1, m
+    status: np.ndarray  #: Status codes, _RUNNING while running
+    t_final: np.ndarray
+    turning: np.ndarray
+    margin: np.ndarray
+    t_acc: np.ndarray
+    impact_time: np.ndarray  #: shape (n_cycles, N), as the fields of CycleTable
+    velocity_before_impact: np.ndarray
+    period: np.ndarray
+    largest_displacement: np.ndarray
 
 
 def solve_ensemble(
@@ -53,16 +91,12 @@ def solve_ensemble(
 ) -> EnsembleSolution:
     """Integrate every trajectory for ``n_cycles`` complete cycles (or until it leaves the regime).
 
-    Inputs are validated by the rules of :class:`escapement.Parameters` and
-    :func:`escapement.model.parameters.check_initial_state`, row by row, and the counts by
-    :class:`~escapement.model.limits.RunLimits`, before any work; the first invalid row is named
-    in the error. The run's size (:func:`ensemble_bytes`) is at most ``memory_budget`` bytes (default
-    :data:`~escapement.model.limits.MEMORY_BUDGET`: ``n_cycles + 1`` times the number of trajectories at most
-    :data:`MAX_CELLS`), or a :class:`~escapement.model.limits.MemoryBudgetError` says so before any work.
-    With ``largest_displacement=False`` the per-cycle maxima are not computed.
-
-    The model's inputs and the initial state are numbers or arrays, broadcast to one shape; each
-    element is one trajectory (the result's rows follow the flattened shape).
+    The model's inputs and the initial state are numbers or arrays, broadcast to one shape; each element is one
+    trajectory (the result's rows follow the flattened shape). They are checked by the rules of
+    :class:`escapement.Parameters` row by row, and the counts as the scalar solvers check them
+    (:func:`~escapement.model.limits.run_spec`), before any work; the first invalid row is named. The run's size,
+    :func:`ensemble_bytes`, is at most ``memory_budget`` bytes, or a
+    :class:`~escapement.model.limits.MemoryBudgetError` says so before any array is made at that size.
 
     Parameters
     ----------
@@ -98,8 +132,8 @@ def solve_ensemble(
     Returns
     -------
     EnsembleSolution
-        One row per trajectory: outcomes, end times (s), the per-cycle table (impact time in s,
-        velocity before impact in m/s, period in s, largest displacement in m) of shape ``(N, n_cycles)``.
+        One row per trajectory: outcomes, end times (s), the per-cycle table (impact time in s, velocity before
+        impact in m/s, period in s, largest displacement in m) of shape ``(N, n_cycles)``.
 
     Raises
     ------
@@ -118,240 +152,172 @@ def solve_ensemble(
     >>> runs.cycles.period[:, -1].round(4)  # s
     array([6.2991, 6.2979])
     """
-    limits = RunLimits(n_cycles=n_cycles, max_events=max_events, memory_budget=memory_budget)
+    given = dict(zip(MODEL_KEYS, (M, K, F, b, a1, a2, a3, a4)))
+    spec = run_spec(given, x0, v0, n_cycles=n_cycles, max_events=max_events, memory_budget=memory_budget,
+                    rows=ensemble_bytes)
     largest_displacement = check_flag("largest_displacement", largest_displacement)
-    given = {**dict(zip(MODEL_KEYS, (M, K, F, b, a1, a2, a3, a4))), "x0": x0, "v0": v0}
-    try:  # the number of trajectories from the inputs' shapes alone, before any array is made at that size
-        shape = np.broadcast_shapes(*(np.shape(value) for value in given.values() if value is not None))
-    except ValueError:  # shapes that do not broadcast: the validation below names the inputs
-        shape = None
-    if shape is not None:
-        _check_memory(math.prod(shape), limits)
-    checked = validate_arrays(given, state=True)
-    M, K, F, b, a1, a2, a3, a4, x, v = (checked[name].ravel() for name in (*MODEL_KEYS, "x0", "v0"))
-    n = len(M)
-    n_cycles = limits.n_cycles
-    _check_memory(n, limits)
-    omega, offset = np.sqrt(K / M), F / K
-    values = {"a1": a1, "a2": a2, "a3": a3, "a4": a4}
-    positions = {kind: values[s.position] for kind, s in automaton.SURFACES.items()}
-
-    t = np.zeros(n)  # compensated sum of the durations: t + t_err
-    t_err = np.zeros(n)
-    elapsed = np.zeros(n)  # time since the last impact at a1
-    state = np.full(n, RELEASE)
-    status = np.full(n, _RUNNING)
-    count = np.zeros(n, dtype=int)
-    cycle_max = np.full(n, -np.inf)
-    # the cycle tables, a row per cycle while they are filled (the trajectories at one cycle side by side), a
-    # row per trajectory once transposed at the end
-    times = np.full((n_cycles + 1, n), np.nan)
-    speeds = np.full((n_cycles + 1, n), np.nan)
-    periods = np.full((n_cycles, n), np.nan)
-    maxima = np.full((n_cycles, n), np.nan)
-    t_final = np.full(n, np.nan)
-    turning = np.full(n, np.nan)
-    margin = np.full(n, np.nan)
-    t_acc = np.full(n, np.nan)
-
-    s = dict(x=x, v=v, t=t, t_err=t_err, elapsed=elapsed, state=state, status=status, count=count,
-             cycle_max=cycle_max, times=times, speeds=speeds, periods=periods, maxima=maxima, t_final=t_final,
-             turning=turning, margin=margin, t_acc=t_acc, omega=omega, offset=offset, b=b, positions=positions)
-    s["rebounds"] = bool(automaton.reverses(1.0, automaton.impact_factor(b)).any())
     with np.errstate(invalid="ignore", divide="ignore"):
-        table = _rows(s, x, v)
-        every = np.arange(n)
-        # each pass moves every running trajectory by one event: after pass p, each has had p + 1 events
-        for _ in range(limits.max_events):
-            running = status == _RUNNING
-            ii = slice(None) if running.all() else np.flatnonzero(running)
-            if not len(every[ii]):
+        return _Ensemble(spec, largest_displacement).run()
+
+
+class _Ensemble:
+    """One ensemble run: its trajectories (:class:`_State`) sorted by their first event, its groups, its rows."""
+
+    def __init__(self, spec: RunSpec, amplitude: bool) -> None:
+        self.n_cycles, self.max_events, self.amplitude = spec.limits.n_cycles, spec.limits.max_events, amplitude
+        first = _first_events(spec)
+        self.order = np.argsort(first, kind="stable")
+        p = ParameterArrays(**{k: getattr(spec.params, k)[self.order] for k in MODEL_KEYS})
+        n, cells = len(first), (self.n_cycles, len(first))
+        self.s = _State(omega=p.omega, factor=automaton.impact_factor(p.b), x=spec.x0[self.order],
+                        v=spec.v0[self.order], t=np.zeros(n), t_err=np.zeros(n), elapsed=np.zeros(n),
+                        cycle_max=np.zeros(n), status=np.full(n, _RUNNING, dtype=np.int8),
+                        t_final=np.full(n, np.nan), turning=np.full(n, np.nan), margin=np.full(n, np.nan),
+                        t_acc=np.full(n, np.nan), **{name: np.full(cells, np.nan) for name in CYCLE_COLUMNS})
+        self.rebounds = bool(automaton.reverses(1.0, self.s.factor).any())  # some impacts reverse the velocity
+        # the rows of the arcs after each state (after the release, by the impact reached first), where each arc
+        # starts and the centre it turns about; each event kind's position
+        self.rows = rows(p)
+        release = automaton.ARCS[RELEASE]
+        self.release_rows = {kind: row(p, self.s.x, release.mode, kind) for kind in release.watched}
+        self.position = {kind: automaton.position(kind, p) * np.ones(n) for kind in EventKind}
+        self.start = {state: self.s.x if state == RELEASE else self.position[state] for state in automaton.ARCS}
+        self.centre = {state: automaton.centre(arc.mode, p.zone_offset) * np.ones(n)
+                       for state, arc in automaton.ARCS.items()}
+        ranked, self.groups = first[self.order], []
+        for kind in np.unique(ranked).tolist():
+            members = slice(*np.searchsorted(ranked, [kind, kind + 1]).tolist())
+            group = _Group(members, RELEASE, kind)
+            if kind:
+                self.groups.append(group)
+            else:  # neither impact is reached from the release
+                self._exit(group, np.ones(members.stop - members.start, dtype=bool))
+
+    def run(self) -> EnsembleSolution:
+        """Every pass, then the cycle tables put back in the order of the inputs."""
+        for _ in range(self.max_events):
+            self.groups = [g for g in self.groups if self._pass(g)]
+            if not self.groups:
                 break
-            _pass(ii, every[ii], table, s, n_cycles, largest_displacement)
-        else:  # the event bound: a trajectory still running after its last event ends there
-            limited = status == _RUNNING
-            status[limited] = Status.EVENT_LIMIT.code
-            t_final[limited] = t[limited] + t_err[limited]
+        s = self.s
+        for g in self.groups:  # the event bound: those still running end at their last event
+            self._leave(g, np.ones(len(g.indices()), dtype=bool), Status.EVENT_LIMIT)
+        done = s.status == Status.COMPLETED.code
+        checked = [name for name in CYCLE_COLUMNS if self.amplitude or name != "largest_displacement"]
+        for name, values in [*((name, getattr(s, name)) for name in checked), ("t_final", s.t_final[None, :])]:
+            bad = done & ~np.isfinite(values).all(axis=0)
+            if bad.any():  # a bug, not an outcome: the input validation let through what it must refuse
+                raise FloatingPointError(f"row {int(self.order[np.flatnonzero(bad)[0]])}: a completed run holds a "
+                                         f"non-finite {name}; the input validation (escapement.model.parameters) "
+                                         "must refuse the inputs that lead to it")
+        back = np.empty_like(self.order)
+        back[self.order] = np.arange(len(back))
+        tables = {}
+        for name in CYCLE_COLUMNS:  # one at a time: at most one table more than the four at once
+            tables[name] = getattr(s, name).T[back]
+            setattr(s, name, None)
+        return EnsembleSolution(status=s.status[back], cycles=CycleTable(**tables), t_final=s.t_final[back],
+                                exit_turning_point=s.turning[back], exit_margin=s.margin[back],
+                                exit_t_accumulation=s.t_acc[back])
 
-    # Like the scalar table: only complete cycles (an impact that starts an unfinished cycle is dropped).
-    times, speeds, periods, maxima = times[:n_cycles].T, speeds[:n_cycles].T, periods.T, maxima.T
-    incomplete = np.arange(n_cycles)[None, :] >= (count - 1)[:, None]
-    times[incomplete] = np.nan
-    speeds[incomplete] = np.nan
-    _check_completed_rows(status, times, speeds, periods, maxima if largest_displacement else None, t_final)
-    return EnsembleSolution(
-        status=status.astype(np.int8),
-        cycles=CycleTable(impact_time=times, velocity_before_impact=speeds, period=periods, largest_displacement=maxima),
-        t_final=t_final,
-        exit_turning_point=turning,
-        exit_margin=margin,
-        exit_t_accumulation=t_acc,
-    )
+    def _pass(self, g: _Group) -> bool:
+        """One event of each trajectory of ``g``: the closed form of its row, the regime exits, the impact law,
+        the cycle tables at the impacts at a1. False once none of the group runs on."""
+        s, m, state = self.s, g.members, g.state
+        arc = self.release_rows[g.first] if state == RELEASE else self.rows[state]
+        v, omega = s.v[m], s.omega[m]
+        reached, dt, v1, angle = crossing(arc.u0[m], arc.q[m], arc.k[m], v, omega, arc.direction, np)
+        if not reached.all():  # these leave the regime; the pass goes on with the others
+            if not self._exit(g, ~reached):
+                return False
+            m = g.members
+            v, omega, dt, v1, angle = v[reached], omega[reached], dt[reached], v1[reached], angle[reached]
+        if self.amplitude:
+            reach = arc_maximum(self.centre[state][m], self.start[state][m], v, omega, angle,
+                                self.position[arc.following][m], v1)
+            s.cycle_max[m] = np.maximum(s.cycle_max[m], reach)
+        s.t[m], s.t_err[m] = compensated_add(s.t[m], s.t_err[m], dt)
+        s.elapsed[m] = s.elapsed[m] + dt
+        v_after = s.factor[m] * v1 if arc.impact else v1  # the impact law at impacts (velocity_after)
+        s.v[m] = v_after
+        g.state = arc.following
+        if g.state == A1:
+            self._impact_a1(g, v1)
+            if g.impacts == self.n_cycles + 1:
+                s.status[m] = Status.COMPLETED.code
+                s.t_final[m] = s.t[m] + s.t_err[m]
+                return False
+        if self.rebounds and arc.impact:
+            chatter = automaton.reverses(v1, v_after)
+            if chatter.any():
+                return self._chattering(g, chatter, v1, v_after)
+        return True
 
+    def _impact_a1(self, g: _Group, v_before: np.ndarray) -> None:
+        """The impact at a1 of the group's trajectories: the cycle it ends (but the first) and the next begins."""
+        s, m, c = self.s, g.members, g.impacts
+        if c >= 1:
+            s.period[c - 1, m] = s.elapsed[m]
+            if self.amplitude:
+                s.largest_displacement[c - 1, m] = s.cycle_max[m]
+        if c < self.n_cycles:
+            s.impact_time[c, m] = s.t[m] + s.t_err[m]
+            s.velocity_before_impact[c, m] = v_before
+        s.elapsed[m] = 0.0
+        s.cycle_max[m] = self.position[EventKind.IMPACT_A1][m]
+        g.impacts = c + 1
 
-def _check_memory(n: int, limits: RunLimits) -> None:
-    """Refuse ``n`` trajectories of ``limits.n_cycles`` cycles whose estimate (:func:`ensemble_bytes`) exceeds the
-    memory budget, naming what to change: the budget where one trajectory of one cycle does not fit, else the
-    trajectories or the cycles, with the most that fit."""
-    n_cycles, budget = limits.n_cycles, limits.memory_budget
-    estimate = ensemble_bytes(n, n_cycles)
-    if estimate <= budget:
-        return
-    where = (f"each trajectory takes max({CELL_BYTES} (n_cycles + 1), {TABLE_BYTES} (n_cycles + 1) + {ROW_BYTES}) "
-             f"bytes: an estimated {estimate:_} bytes, over the memory budget of {budget:_} bytes")
-    if ensemble_bytes(1, 1) > budget:
-        raise MemoryBudgetError("memory_budget", budget, f"at least {ensemble_bytes(1, 1):_} bytes, those of one "
-                                f"trajectory of one cycle ({where})", estimate, budget)
-    cells = (budget // n) // CELL_BYTES  # the most cells per trajectory, at CELL_BYTES each ...
-    if CELL_BYTES * cells < TABLE_BYTES * cells + ROW_BYTES:  # ... or, for fewer, at TABLE_BYTES plus the state
-        cells = (budget // n - ROW_BYTES) // TABLE_BYTES
-    if cells < 2:
-        raise MemoryBudgetError("trajectories", n, f"at most {budget // ensemble_bytes(1, n_cycles):_} for "
-                                f"n_cycles = {n_cycles:_} ({where})", estimate, budget)
-    raise MemoryBudgetError("n_cycles", n_cycles, f"at most {cells - 1:_} for {n:_} trajectories ({where})",
-                            estimate, budget)
+    def _leave(self, g: _Group, gone: np.ndarray, status: Status) -> bool:
+        """The members ``gone`` (a mask over them) end with ``status``; the cycle their last impact at a1 began
+        is no cycle. True while others run."""
+        ids, s = g.indices(), self.s
+        left = ids[gone]
+        s.status[left] = status.code
+        if status is Status.EVENT_LIMIT:
+            s.t_final[left] = s.t[left] + s.t_err[left]
+        if 1 <= g.impacts <= self.n_cycles:
+            s.impact_time[g.impacts - 1, left] = np.nan
+            s.velocity_before_impact[g.impacts - 1, left] = np.nan
+        g.members = ids[~gone]
+        return bool(len(g.members))
 
+    def _exit(self, g: _Group, gone: np.ndarray) -> bool:
+        """Members that pass no surface watched in the group's state: the escapement stopped (free flight), or
+        the mass turned back in a zone. True while others run."""
+        s, state = self.s, g.state
+        ids = g.indices()[gone]
+        arc = automaton.ARCS[state]
+        centre, x, v, omega = self.centre[state][ids], self.start[state][ids], s.v[ids], s.omega[ids]
+        if automaton.EXIT_WITHOUT_EVENT[arc.mode] is Status.STOPPED:  # the swing misses every watched position
+            radius = np.hypot(x - centre, v / omega)
+            missed = np.min([np.abs(self.position[kind][ids]) for kind in arc.watched], axis=0)
+            s.t_final[ids], s.turning[ids], s.margin[ids] = np.inf, radius, missed - radius
+            return self._leave(g, gone, Status.STOPPED)
+        dt, point = time_to_rest(centre, x, v, omega, np)
+        end = self.position[automaton.ZONE_OF[arc.mode][1]][ids]
+        s.t_final[ids], s.turning[ids], s.margin[ids] = s.t[ids] + s.t_err[ids] + dt, point, np.abs(end - point)
+        return self._leave(g, gone, Status.TURNED_BACK_IN_ZONE)
 
-def _rows(s: dict, x: np.ndarray, v: np.ndarray) -> dict[str, np.ndarray]:
-    """The automaton's rows for every trajectory, each field a column per state, flattened: entry ``state * N +
-    i`` is trajectory ``i``'s. Per state the arc's terms, centre, end, direction, next state, and the jump at its
-    end (the impact law's factor at an impact, 1 elsewhere); the release's row is that of the surface reached
-    first (where neither is, the first watched)."""
-    omega, offset, positions = s["omega"], s["offset"], s["positions"]
-    ones = np.ones(len(x))
-    factor = automaton.impact_factor(s["b"])
-    rows: list[dict] = [{} for _ in automaton.ARCS]  # by state: a row's place in the table is its state
-    for state, arc in automaton.ARCS.items():
-        centre = automaton.centre(arc.mode, offset) * ones
-        start = x if state == RELEASE else positions[state]
-        best = None
-        for kind in arc.watched:
-            surface = automaton.SURFACES[kind]
-            u0, q, k = arc_terms(centre, start, omega, positions[kind])
-            row = dict(u0=u0, q=q, k=k, direction=surface.direction * ones, target=positions[kind] * ones,
-                       jump=factor if surface.impact else ones, following=int(kind) * ones, centre=centre)
-            if best is not None:  # the earlier of the two, where both are reached
-                reached, dt, _, _ = crossing(u0, q, k, v, omega, float(surface.direction), np)
-                first, first_dt, _, _ = crossing(best["u0"], best["q"], best["k"], v, omega, best["direction"], np)
-                take = reached & ~(first & (first_dt <= dt))
-                row = {name: np.where(take, row[name], best[name]) for name in row}
-            best = row
-        rows[state] = best
-    table = {name: np.concatenate([row[name] for row in rows]) for name in rows[0]}
-    table["following"] = table["following"].astype(np.intp)
-    return table
-
-
-def _pass(ii, index: np.ndarray, table: dict, s: dict, n_cycles: int, amplitude: bool) -> None:
-    """One event of each running trajectory ``ii`` (a slice or their indices; ``index`` the indices): the row of
-    its state, its closed form, the regime exits, the impact law, the cycle table at the impacts at a1."""
-    flat = s["state"][ii] * len(s["x"]) + index  # the trajectories' rows in the table
-    row = {name: column.take(flat) for name, column in table.items()}
-    x, v, t, t_err, omega = (s[name][ii] for name in ("x", "v", "t", "t_err", "omega"))
-    reached, dt, v1, angle = crossing(row["u0"], row["q"], row["k"], v, omega, row["direction"], np)
-    if not reached.all():  # these leave the regime; the pass goes on with the others
-        _exits(index[~reached], s)
-        ii = index = index[reached]
-        x, v, t, t_err, omega, dt, v1, angle = (a[reached] for a in (x, v, t, t_err, omega, dt, v1, angle))
-        row = {name: value[reached] for name, value in row.items()}
-    if amplitude:
-        s["cycle_max"][ii] = np.maximum(s["cycle_max"][ii], arc_maximum(row["centre"], x, v, omega, angle,
-                                                                        row["target"], v1))
-    s["t"][ii], s["t_err"][ii] = compensated_add(t, t_err, dt)
-    s["elapsed"][ii] += dt
-    s["x"][ii] = row["target"]
-    s["state"][ii] = row["following"]
-    v_after = row["jump"] * v1  # the impact law at impacts (velocity_after), the velocity as it is elsewhere
-    s["v"][ii] = v_after
-    hit = row["following"] == _A1
-    if hit.any():
-        _impact_a1(index[hit], v1[hit], s, n_cycles, amplitude)
-    chatter = automaton.reverses(v1, v_after) if s["rebounds"] else None  # some trajectory's impacts rebound
-    if chatter is not None and chatter.any():
-        chatter &= s["status"][index] == _RUNNING  # not those that completed their cycles
-        for i, vb, va in zip(index[chatter], v1[chatter], v_after[chatter]):
-            _chattering(i, EventKind(int(s["state"][i])), va, vb, s)
-
-
-def _impact_a1(i1: np.ndarray, v_before: np.ndarray, s: dict, n_cycles: int, amplitude: bool) -> None:
-    """The trajectories ``i1`` reached the impact at a1: a cycle ends (but the first) and the next begins.
-    The tables are written through flat indices (cycle * trajectories + row)."""
-    c = s["count"][i1]
-    now = s["t"][i1] + s["t_err"][i1]
-    cell = c * len(s["x"]) + i1
-    s["times"].put(cell, now)
-    s["speeds"].put(cell, v_before)
-    later = c > 0
-    ended = i1[later]
-    cell = (c[later] - 1) * len(s["x"]) + ended  # the cycle that ends here
-    if amplitude:
-        s["maxima"].put(cell, s["cycle_max"][ended])
-    s["periods"].put(cell, s["elapsed"][ended])
-    s["elapsed"][i1] = 0.0
-    s["cycle_max"][i1] = s["x"][i1]
-    s["count"][i1] = c + 1
-    done = i1[c + 1 >= n_cycles + 1]
-    s["status"][done] = Status.COMPLETED.code
-    s["t_final"][done] = s["t"][done] + s["t_err"][done]
+    def _chattering(self, g: _Group, chatter: np.ndarray, v_before: np.ndarray, v_after: np.ndarray) -> bool:
+        """Members whose impact reversed the velocity: the time at which their rebounds accumulate."""
+        s, kind = self.s, EventKind(g.state)
+        for i, vb, va in zip(g.indices()[chatter], v_before[chatter], v_after[chatter]):
+            distance = automaton.rebound_distance(kind, self.position[kind][i])
+            s.t_final[i] = s.t[i] + s.t_err[i]
+            if distance > 0.0:
+                s.t_acc[i] = s.t_final[i] + rebound_accumulation_time(float(s.omega[i]), float(distance),
+                                                                      abs(float(va)), abs(float(va / vb)))
+        return self._leave(g, chatter, Status.CHATTERING)
 
 
-def _check_completed_rows(status, times, speeds, periods, maxima, t_final) -> None:
-    """A completed row holds only finite numbers; otherwise the input validation let through a
-    value whose arithmetic leaves the float64 range: raise, naming the row (a bug, not an outcome)."""
-    done = status == Status.COMPLETED.code
-    columns = {"impact_time": times, "velocity_before_impact": speeds, "period": periods, "t_final": t_final[:, None]}
-    if maxima is not None:
-        columns["largest_displacement"] = maxima
-    for name, values in columns.items():
-        bad = done & ~np.isfinite(values).all(axis=1)
-        if bad.any():
-            raise FloatingPointError(
-                f"row {int(np.flatnonzero(bad)[0])}: a completed run holds a non-finite {name}; the input "
-                "validation (escapement.model.parameters) must refuse the inputs that lead to it"
-            )
-
-
-
-def _exits(rows: np.ndarray, s: dict) -> None:
-    """Trajectories that pass no surface watched in their state, a state at a time."""
-    for st in np.unique(s["state"][rows]):
-        _exit(rows[s["state"][rows] == st], int(st), s)
-
-
-def _exit(rows: np.ndarray, st: int, s: dict) -> None:
-    """Trajectories that pass no surface watched in state ``st``: the escapement stopped (free flight), or the
-    mass turned back in a zone."""
-    arc = automaton.ARCS[st]
-    centre = automaton.centre(arc.mode, s["offset"][rows])
-    x, v, omega = s["x"][rows], s["v"][rows], s["omega"][rows]
-    w = v / omega
-    radius = np.hypot(x - centre, w)
-    now = s["t"][rows] + s["t_err"][rows]
-    if automaton.EXIT_WITHOUT_EVENT[arc.mode] is Status.STOPPED:  # the swing misses every watched position
-        missed = np.min([np.abs(s["positions"][kind][rows]) for kind in arc.watched], axis=0)
-        s["status"][rows] = Status.STOPPED.code
-        s["t_final"][rows] = np.inf
-        s["turning"][rows] = radius
-        s["margin"][rows] = missed - radius
-        return
-    # a zone: the motion turns at centre + R moving right, centre - R moving left
-    right = v > 0
-    start = np.arctan2(w, x - centre)
-    to_rest = np.where(v == 0, 0.0, np.where(right, start, start + math.pi)) / omega
-    point = np.where(v == 0, x, centre + np.where(right, radius, -radius))
-    end = s["positions"][automaton.ZONE_OF[arc.mode][1]][rows]
-    s["status"][rows] = Status.TURNED_BACK_IN_ZONE.code
-    s["t_final"][rows] = now + to_rest
-    s["turning"][rows] = point
-    s["margin"][rows] = np.abs(end - point)
-
-
-def _chattering(i: int, kind: EventKind, v_after: float, v_before: float, s: dict) -> None:
-    """A trajectory whose impact reversed the velocity: the time at which the rebounds accumulate."""
-    distance = automaton.rebound_distance(kind, s["positions"][kind][i])
-    now = s["t"][i] + s["t_err"][i]
-    s["status"][i] = Status.CHATTERING.code
-    s["t_final"][i] = now
-    if distance > 0.0:
-        s["t_acc"][i] = now + rebound_accumulation_time(float(s["omega"][i]), float(distance), abs(float(v_after)),
-                                                        abs(float(v_after / v_before)))
+def _first_events(spec: RunSpec) -> np.ndarray:
+    """The kind of each trajectory's first event: of the impacts the release watches, the one reached first (the
+    first watched where both are reached at once), 0 where neither is."""
+    p, x, v, release = spec.params, spec.x0, spec.v0, automaton.ARCS[RELEASE]
+    first, earliest = np.zeros(len(x), dtype=np.intp), np.full(len(x), np.inf)
+    for kind in release.watched:
+        arc = row(p, x, release.mode, kind)
+        reached, dt, _, _ = crossing(arc.u0, arc.q, arc.k, v, p.omega, arc.direction, np)
+        sooner = reached & (dt < earliest)
+        first, earliest = np.where(sooner, int(kind), first), np.where(sooner, dt, earliest)
+    return first

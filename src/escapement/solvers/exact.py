@@ -10,11 +10,12 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.events import EventLog
-from ..model.limits import RunLimits, check_flag
-from ..model.parameters import Parameters, check_initial_state, check_parameters
+from ..model.limits import check_flag, run_spec
+from ..model.parameters import Parameters
+from .describe import ArcTable, CycleTable
 from .kernel import Block, EventRun, cycle_rows, event_block
-from .outcomes import check_memory, finish
-from .result import ArcTable, CycleTable, Solution
+from .outcomes import finish
+from .result import Solution
 
 __all__ = ["ARC_BYTES", "CYCLE_BYTES", "EVENT_BYTES", "PASS_BYTES", "solve_exact"]
 
@@ -109,24 +110,20 @@ def solve_exact(
     >>> solve_exact(p, x0=0.01, n_cycles=5).status
     <Status.STOPPED: 'stopped'>
     """
-    params = check_parameters(params)
-    x, v = check_initial_state(x0, v0)
-    limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
+    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events,
+                    memory_budget=memory_budget)
     record_trajectory = check_flag("record_trajectory", record_trajectory)
     contents = "its event log, cycle table and arcs" if record_trajectory else "its event log and cycle table"
     remedy = ("pass record_trajectory=False, " if record_trajectory else "") + _REMEDY
-    check_memory(limits, EVENT_BYTES + (ARC_BYTES if record_trajectory else 0), CYCLE_BYTES, contents, remedy,
-                 fixed_bytes=PASS_BYTES)
-    run = EventRun(params, x, v, limits)
-    run.advance(limits.max_events)
+    spec.limits.check_memory(EVENT_BYTES + (ARC_BYTES if record_trajectory else 0), CYCLE_BYTES, contents, remedy,
+                             fixed_bytes=PASS_BYTES)
+    run = EventRun(spec)
+    run.advance(spec.limits.max_events)
     block = event_block(run, 0, *run.take(), before=run.release)
-    (impact_time, velocity, period, amplitude), _ = cycle_rows(block)
+    cycles, _ = cycle_rows(block)
     log = EventLog(t=block.t, kind=block.kind, x=block.x, v_before=block.v_before, v_after=block.v_after)
-    table = CycleTable(impact_time=impact_time, velocity_before_impact=velocity, period=period,
-                       largest_displacement=amplitude)
-    t_final = float(run.outcome.t_final)
-    trajectory = _arcs(params, block, run.open_arc, t_final) if record_trajectory else None
-    return finish(params, "exact", run.outcome, log, table, trajectory, x0=x, v0=v)
+    trajectory = _arcs(spec.params, block, run.open_arc, float(run.outcome.t_final)) if record_trajectory else None
+    return finish(spec, "exact", run.outcome, log, CycleTable(*cycles), trajectory)
 
 
 def _arcs(params: Parameters, block: Block, open_arc: bool, t_final: float) -> ArcTable:

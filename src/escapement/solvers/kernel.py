@@ -1,15 +1,13 @@
-"""The exact solver's event loop: the automaton's rows, one closed form per arc, one plain loop.
+"""The exact solver's event loop: the automaton's rows in numbers, one closed form per arc, one plain loop.
 
-Between events the motion is a harmonic arc about its mode's centre, so each event comes from the
-closed form :func:`~escapement.model.kinematics.crossing`: no step size, no root finding. The loop
-(:meth:`EventRun.advance`) reads, per event, the row of the state it is in (:func:`rows`: the arc's terms
-from its start to the surface it watches, the direction of crossing, whether it is an impact, the next
-state), asks ``crossing`` when the surface is reached, adds the duration to a compensated sum, applies the impact
-law (:func:`~escapement.model.automaton.impact_factor`) at impacts and stores three numbers: the
-event's time, the velocity before it and the angle its arc swept. Everything else (kinds, positions,
-velocities after, the arcs, the cycle table) follows from the automaton after the loop, on arrays
-(:func:`event_block`, :func:`cycle_rows`). The run is resumable: :meth:`EventRun.advance` runs a bounded
-number of events and keeps its state, so a run in several passes gives the numbers of a run in one.
+Per event the loop (:meth:`EventRun.advance`) reads the row of the state it is in (:func:`rows`: the arc's
+terms from its start to the surface it watches, the direction of crossing, whether it is an impact, the next
+state; the same rows, on arrays, serve the closed forms and the ensemble), asks
+:func:`~escapement.model.kinematics.crossing` when the surface is reached, adds the duration to a compensated sum,
+applies the impact law at impacts and stores three numbers: the event's time, the velocity before it and the
+angle its arc swept. Everything else (kinds, positions, velocities after, the arcs, the cycle table) follows
+after the loop, on arrays (:func:`event_block`, :func:`cycle_rows`). The run is resumable: a run in several
+passes gives the numbers of a run in one.
 """
 
 from __future__ import annotations
@@ -24,14 +22,15 @@ from ..model import automaton
 from ..model.automaton import RELEASE, Mode
 from ..model.events import EventKind
 from ..model.kinematics import arc_maximum, arc_terms, compensated_add, crossing, time_to_rest
-from ..model.limits import RunLimits
-from ..model.parameters import Parameters
+from ..model.arguments import Numeric
+from ..model.limits import RunSpec
+from ..model.parameters import ParameterArrays, Parameters
 from ..model.status import Status
+from .describe import Exit
 from .outcomes import (Outcome, chattering_outcome, completed_outcome, event_limit_message, horizon_outcome,
                        no_event_outcome)
-from .result import Exit
 
-__all__ = ["A1", "PLAN", "Block", "EventRun", "Row", "event_block", "cycle_rows", "kinds_from", "rows"]
+__all__ = ["A1", "PLAN", "Block", "EventRun", "Row", "event_block", "cycle_rows", "kinds_from", "row", "rows"]
 
 A1 = int(EventKind.IMPACT_A1)
 #: the events of a cycle after the impact at a1, the last that impact
@@ -42,28 +41,28 @@ NO_EVENT, HORIZON, REBOUND = "no event", "end time", "rebound"
 
 
 class Row(NamedTuple):
-    """The arc that follows a state, in numbers for one parameter set: from the state's surface (or the
-    release) about the centre of its mode, to the surface it watches."""
+    """The arc that follows a state, in numbers for one parameter set (or arrays, one per run): from the state's
+    surface (or the release) about the centre of its mode, to the surface it watches."""
 
-    u0: float  #: where the arc starts, from its centre, m
-    q: float  #: where it ends, from its centre, m
-    k: float  #: the change of v**2 on the way, m2 s-2 (:func:`~escapement.model.kinematics.arc_terms`)
+    u0: Numeric  #: where the arc starts, from its centre, m
+    q: Numeric  #: where it ends, from its centre, m
+    k: Numeric  #: the change of v**2 on the way, m2 s-2 (:func:`~escapement.model.kinematics.arc_terms`)
     direction: float  #: the direction of motion at its end, +1.0 or -1.0
     impact: bool  #: reaching its end is an impact
     following: int  #: the event it ends at: the next state
 
 
-def rows(params: Parameters) -> list[Row | None]:
+def rows(params: Parameters | ParameterArrays) -> list[Row | None]:
     """The rows of :data:`~escapement.model.automaton.ARCS` for ``params``, by state; ``None`` for the release,
     which watches two surfaces (:meth:`EventRun.release_row` picks the one reached first)."""
     table: list[Row | None] = [None] * (len(automaton.SURFACES) + 1)
     for state, arc in automaton.ARCS.items():
         if len(arc.watched) == 1:
-            table[state] = _row(params, automaton.position(state, params), arc.mode, arc.watched[0])
+            table[state] = row(params, automaton.position(state, params), arc.mode, arc.watched[0])
     return table
 
 
-def _row(params: Parameters, start: float, mode: Mode, kind: EventKind) -> Row:
+def row(params: Parameters | ParameterArrays, start: Numeric, mode: Mode, kind: EventKind) -> Row:
     """The arc from ``start`` in ``mode`` to the surface ``kind``."""
     surface = automaton.SURFACES[kind]
     target = automaton.position(kind, params)
@@ -83,7 +82,8 @@ class EventRun:
     the state for the next call. The events are stored in :attr:`t`, :attr:`v_before` and :attr:`angle`
     until :meth:`take` hands them over; :attr:`outcome` is set when the run ends."""
 
-    def __init__(self, params: Parameters, x: float, v: float, limits: RunLimits) -> None:
+    def __init__(self, spec: RunSpec) -> None:
+        params, x, v, limits = spec.params, spec.x0, spec.v0, spec.limits
         self.params, self.limits = params, limits
         self.omega, self.b = params.omega, params.b
         self.release = (RELEASE, x, v)  # the state before the first event
@@ -112,10 +112,10 @@ class EventRun:
         :attr:`first`, that event's kind, and :attr:`last`, the events of the whole run."""
         best = None
         for kind in automaton.ARCS[RELEASE].watched:
-            row = _row(self.params, self.release[1], automaton.ARCS[RELEASE].mode, kind)
-            reached, dt, _, _ = crossing(row.u0, row.q, row.k, self.v, self.omega, row.direction)
+            arc = row(self.params, self.release[1], automaton.ARCS[RELEASE].mode, kind)
+            reached, dt, _, _ = crossing(arc.u0, arc.q, arc.k, self.v, self.omega, arc.direction)
             if reached and (best is None or dt < best[0]):
-                best = (dt, row)
+                best = (dt, arc)
         if best is None:
             return None
         self.first = best[1].following

@@ -1,14 +1,10 @@
-"""How a run ends, and the checks every solver makes before and after it.
+"""How a run ends, shared by the exact event loop and the integrators' loop: the outcomes (:class:`Outcome`) of
+the automaton's exits, with their messages, and :func:`finish`, which makes the :class:`Solution` and refuses a
+completed run that holds a non-finite number.
 
-The outcomes (:class:`Outcome`) of the automaton's exits, from :mod:`escapement.model.automaton`: no
-watched surface passed (:func:`no_event_outcome`), the end time (:func:`horizon_outcome`), an impact
-that reverses the velocity (:func:`chattering_outcome`). :func:`check_memory` refuses, before any work,
-a run whose result would exceed its memory budget; :func:`finish` makes the :class:`Solution` and
-refuses a completed run that holds a non-finite number.
-
-The messages print every number true as printed (:mod:`.describe`): the inputs (b, the impact
-positions, the end time) as they can be typed back, the computed times and positions with the
-digits that tell them apart from the bounds they are compared with, zero without a sign.
+The messages print every number true as printed (:mod:`escapement.model.printing`): the inputs (b, the impact
+positions, the end time) as they can be typed back, the computed times and positions with the digits that tell
+them apart from the bounds they are compared with, zero without a sign.
 """
 
 from __future__ import annotations
@@ -22,13 +18,14 @@ from ..model import automaton
 from ..model.arguments import Numeric
 from ..model.events import EventKind, EventLog
 from ..model.kinematics import rebound_accumulation_time
-from ..model.limits import EVENTS_PER_CYCLE, MemoryBudgetError, RunLimits, events_for
+from ..model.limits import RunSpec
 from ..model.parameters import Parameters
 from ..model.status import Status
 from ..model.printing import compared, exact, texts
-from .result import ArcTable, CycleTable, Exit, Solution, Trajectory
+from .describe import CYCLE_COLUMNS, EVENT_COLUMNS, ArcTable, CycleTable, Exit, Trajectory
+from .result import Solution
 
-__all__ = ["Outcome", "chattering_outcome", "check_memory", "event_limit_message", "finish", "horizon_outcome",
+__all__ = ["Outcome", "chattering_outcome", "completed_outcome", "event_limit_message", "finish", "horizon_outcome",
            "no_event_outcome"]
 
 
@@ -127,7 +124,7 @@ def horizon_outcome(t_stop: float, impacts_a1: int) -> Outcome:
     return Outcome(Status.COMPLETED, f"reached t_end = {exact(t_stop)} s after {impacts} at a1", Exit(), t_stop)
 
 
-def completed_outcome(n_cycles: int, t) -> Outcome:
+def completed_outcome(n_cycles: int, t: Numeric) -> Outcome:
     """The run's last cycle ended at ``t``."""
     return Outcome(Status.COMPLETED, f"completed {n_cycles} cycles", Exit(), t)
 
@@ -145,80 +142,27 @@ def chattering_outcome(params: Parameters, kind: EventKind, t: Numeric, v_before
     return Outcome(Status.CHATTERING, message, Exit(t_accumulation=t_acc), t)
 
 
-def check_memory(limits: RunLimits, event_bytes: float, cycle_bytes: float, contents: str, remedy: str,
-                 fixed_bytes: int = 0) -> int:
-    """The bytes a run's result will hold at most, from its limits: ``event_bytes`` for each of its
-    :attr:`~RunLimits.stored_events` events, ``cycle_bytes`` for each of its
-    :attr:`~RunLimits.stored_cycles` cycles, and ``fixed_bytes`` whatever their number. Raise
-    :class:`MemoryBudgetError` when that exceeds ``limits.memory_budget``, naming the count that sets the
-    size (``n_cycles``, or ``max_events`` when it binds) with its largest value within the budget, what the
-    run stores (``contents``) and what to do instead (``remedy``)."""
-    budget = limits.memory_budget
-
-    def size(n_events: int, n_cycles: int) -> int:
-        return int(math.ceil(n_events * event_bytes + n_cycles * cycle_bytes)) + fixed_bytes
-
-    estimate = size(limits.stored_events, limits.stored_cycles)
-    if estimate <= budget:
-        return estimate
-    if limits.n_cycles is not None and events_for(limits.n_cycles) <= limits.max_events:
-        name, value = "n_cycles", limits.n_cycles
-
-        def fits(n: int) -> bool:
-            return size(events_for(n), n) <= budget
-
-        per_cycle = events_for(1) - events_for(0)
-        most = int((budget - fixed_bytes - events_for(0) * event_bytes) // (per_cycle * event_bytes + cycle_bytes))
-    else:
-        name, value = "max_events", limits.max_events
-
-        def fits(n: int) -> bool:
-            return size(n, n // EVENTS_PER_CYCLE) <= budget
-
-        most = int((budget - fixed_bytes) // (event_bytes + cycle_bytes / EVENTS_PER_CYCLE))
-    for _ in range(2):  # the division above is within one of the answer
-        most = most + 1 if fits(most + 1) else most - 1 if most > 0 and not fits(most) else most
-    over = f"it would store {contents}, an estimated {_sizes(estimate, budget)}"
-    if not fits(1):  # not even the smallest run fits: the budget is what to change
-        smallest, run = (size(events_for(1), 1), "one cycle") if name == "n_cycles" else (size(1, 0), "one event")
-        raise MemoryBudgetError("memory_budget", budget, f"at least {smallest:_} bytes, those of a run of {run} "
-                                f"({over})", estimate, budget)
-    requirement = f"at most {most:_} for this run to fit its memory budget: {over}; {remedy}"
-    raise MemoryBudgetError(name, value, requirement, estimate, budget)
-
-
-def _sizes(estimate: int, budget: int) -> str:
-    """``estimate`` bytes over the ``budget``, in bytes and, for sizes of 10 MB or more, in GB (with
-    the digits that tell the two apart)."""
-    if budget < 10**7:
-        return f"{estimate:_} bytes, over the memory budget of {budget:_} byte{'' if budget == 1 else 's'}"
-    estimate_gb, budget_gb = texts([estimate / 1e9, budget / 1e9], 3)
-    return f"{estimate:_} bytes ({estimate_gb} GB), over the memory budget of {budget:_} bytes ({budget_gb} GB)"
-
-
-def finish(params: Parameters, method: str, outcome: Outcome, events: EventLog, cycles: CycleTable,
-           trajectory: Trajectory | None, *, x0: float, v0: float) -> Solution:
-    """The :class:`Solution` of a run that ended with ``outcome``; a completed run holding a non-finite
+def finish(spec: RunSpec, method: str, outcome: Outcome, events: EventLog, cycles: CycleTable,
+           trajectory: Trajectory | None) -> Solution:
+    """The :class:`Solution` of the run ``spec`` that ended with ``outcome``; a completed run holding a non-finite
     number raises :class:`FloatingPointError` (the input validation let through what it must refuse)."""
     t_final = float(outcome.t_final)
     if outcome.status is Status.COMPLETED:
         _check_finite(method, events, cycles, trajectory, t_final)
-    return Solution(params=params, x0=float(x0), v0=float(v0), method=method, status=outcome.status,
+    return Solution(params=spec.params, x0=spec.x0, v0=spec.v0, method=method, status=outcome.status,
                     message=outcome.message, events=events, cycles=cycles, trajectory=trajectory, t_final=t_final,
                     exit=outcome.exit)
 
 
 def _check_finite(method: str, events: EventLog, cycles: CycleTable, trajectory, t_final: float) -> None:
-    columns = {f"events.{name}": getattr(events, name) for name in ("t", "x", "v_before", "v_after")}
-    columns.update({f"cycles.{name}": getattr(cycles, name)
-                    for name in ("impact_time", "velocity_before_impact", "period", "largest_displacement")})
+    columns = {f"events.{field}": getattr(events, field) for field, units, _ in EVENT_COLUMNS.values() if units}
+    columns.update({f"cycles.{name}": getattr(cycles, name) for name in CYCLE_COLUMNS})
     if isinstance(trajectory, ArcTable):
-        columns.update({f"trajectory.{name}": getattr(trajectory, name)
-                        for name in ("t_start", "centre", "x_start", "v_start")})
-        columns["trajectory.omega"] = np.array([trajectory.omega])
-    columns["t_final"] = np.array([t_final])
+        columns.update({f"trajectory.{name}": getattr(trajectory, name) for name in ("t_start", "centre", "x_start",
+                                                                                    "v_start", "omega")})
+    columns["t_final"] = t_final
     for name, values in columns.items():
-        doubles = np.asarray(values, dtype=float)  # mpmath numbers as their nearest doubles
+        doubles = np.atleast_1d(np.asarray(values, dtype=float))  # mpmath numbers as their nearest doubles
         finite = np.isfinite(doubles)
         if not finite.all():
             index = int(np.flatnonzero(~finite)[0])

@@ -1,163 +1,51 @@
 """The result of every solver: :class:`Solution` for one run, :class:`EnsembleSolution` for many.
 
-Both carry the same fields (the ensemble's as arrays with one row per trajectory): how the
-run ended (``status``, ``message``, ``success``), the numbers behind a regime exit
-(:class:`Exit`), the events, the per-cycle table of the Poincare map on the section
-``x = a1, v > 0`` (cycle ``k`` runs from the ``k``-th impact at a1 to the next) and, where
-kept, the trajectory.
-
-Their ``repr`` is a short summary (outcome, counts, time span, parameters with units), whatever the
-length of the run (written by :mod:`.describe`); the arrays are in the fields.
-:meth:`Solution.to_dataframe` gives its cycles or events as a table, and
-:func:`escapement.io.run_dataset` the run as the CF dataset the workflow writes.
+Both carry how the run ended (``status``, ``message``, ``success``), the numbers behind a regime exit
+(:class:`~escapement.solvers.describe.Exit`) and the per-cycle table of the Poincare map on the section
+``x = a1, v > 0`` (cycle ``k`` runs from the ``k``-th impact at a1 to the next); a single run also its events and,
+where kept, its trajectory. Their ``repr`` is a summary of a few lines, whatever the length of the run;
+:meth:`Solution.to_dataframe` gives the cycles or events as a table.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..model.arguments import ParameterError, check_choice, check_index, sample_times
-from ..model.events import EventLog
-from ..model.kinematics import sample_arcs
+from ..model.events import EventKind, EventLog
 from ..model.parameters import Parameters
-from ..model.status import Status
-from .describe import (
-    CYCLE_COLUMNS,
-    EVENT_COLUMNS,
-    arc_table_summary,
-    cycle_table_summary,
-    ensemble_summary,
-    exit_summary,
-    solution_summary,
-)
+from ..model.printing import exact, number, span, texts
+from ..model.quantities import INITIAL_STATE, PARAMETERS
+from ..model.status import Status, succeeded
+from .describe import CYCLE_COLUMNS, CYCLE_UNITS, EVENT_COLUMNS, EXIT_UNITS, ArcTable, CycleTable, Exit, Trajectory, line
 
 if TYPE_CHECKING:  # pandas is imported on use (see Solution.to_dataframe)
     import pandas as pd
 
-__all__ = ["ArcTable", "CycleTable", "EnsembleSolution", "Exit", "Solution", "Trajectory"]
+__all__ = ["ArcTable", "CycleTable", "EnsembleSolution", "Ended", "Exit", "Solution", "Trajectory"]
 
 
-class Trajectory(Protocol):
-    """Anything that evaluates the motion at given times."""
+class Ended:
+    """What a run's ``status`` says of it (the base of every result with a :class:`Status`)."""
 
-    t_final: float
-
-    def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Displacement, velocity and acceleration at times ``t`` (NaN outside ``[0, t_final]``)."""
-
-
-@dataclass(frozen=True, repr=False)
-class ArcTable:
-    """The motion as a table of harmonic arcs: arc i starts at t_start[i] from
-    (x_start[i], v_start[i]) and turns about centre[i] until the next arc starts."""
-
-    t_start: np.ndarray
-    centre: np.ndarray
-    x_start: np.ndarray
-    v_start: np.ndarray
-    omega: float
-    t_final: float
-
-    def __len__(self) -> int:
-        return len(self.t_start)
-
-    def __repr__(self) -> str:
-        return arc_table_summary(self)
-
-    def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Displacement, velocity and smooth acceleration at times ``t`` (NaN outside [0, t_final]); ``t`` is
-        checked as :meth:`Solution.sample` says."""
-        t = sample_times("t", t)
-        if len(self.t_start) == 0:
-            nan = np.full(np.shape(t), np.nan)
-            return nan, nan.copy(), nan.copy()
-        return sample_arcs(t, self.t_start, self.centre, self.x_start, self.v_start, self.omega, self.t_final)
-
-
-@dataclass(frozen=True, repr=False)
-class CycleTable:
-    """One entry per complete cycle ``k = 1 .. N`` (arrays; mpmath numbers in an object array
-    for the high-precision solver)."""
-
-    impact_time: np.ndarray  #: time of impact k at a1, s
-    velocity_before_impact: np.ndarray  #: velocity just before impact k, m/s
-    period: np.ndarray  #: time from impact k to impact k+1, s
-    largest_displacement: np.ndarray  #: largest x between impact k and impact k+1, m
-
-    def __len__(self) -> int:
-        return len(self.period)
-
-    def __repr__(self) -> str:
-        return cycle_table_summary(self)
+    status: Status
 
     @property
-    def cycle(self) -> np.ndarray:
-        """Cycle numbers 1 .. N."""
-        return np.arange(1, len(self) + 1)
-
-
-@dataclass(frozen=True)
-class Exit:
-    """The numbers behind a regime exit; NaN where they do not apply to the outcome.
-
-    * ``stopped``: ``turning_point`` is the radius of the free swing (it turns at
-      ``-turning_point`` and ``+turning_point``), ``margin`` how far short of the awaited impact
-      position it turns (0 when it grazes it).
-    * ``turned_back_in_zone``: ``turning_point`` is where the motion turns inside the zone,
-      ``margin`` its distance from the zone's end.
-    * ``chattering``: ``t_accumulation`` is the time at which the rebounds accumulate (NaN when
-      they do not).
-
-    Parameters
-    ----------
-    turning_point : float
-        Where the motion turns, m (see above); NaN if it does not apply.
-    margin : float
-        How far short of the awaited position the motion turns, m; NaN if it does not apply.
-    t_accumulation : float
-        Time at which the rebounds of a chattering run accumulate (a Zeno point), s; NaN if they do
-        not, or if the run did not chatter.
-
-    Examples
-    --------
-    A release at 0.01 m swings freely inside ``[-0.01, 0.01]`` m and never reaches ``a1 = -0.1`` m:
-
-    >>> from escapement import Parameters, solve_exact
-    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-    >>> run = solve_exact(p, x0=0.01, n_cycles=5)
-    >>> run.status
-    <Status.STOPPED: 'stopped'>
-    >>> run.exit.turning_point, round(run.exit.margin, 12), run.exit.t_accumulation
-    (0.01, 0.09, nan)
-    """
-
-    turning_point: float = math.nan
-    margin: float = math.nan
-    t_accumulation: float = math.nan
-
-    def summary(self) -> str:
-        """The numbers that apply, with their units (empty if none does)."""
-        return exit_summary(self)
-
-    def __repr__(self) -> str:
-        """The call that makes this exit, each number as typed back (zero without a sign)."""
-        values = ", ".join(f"{name}={float(getattr(self, name)) + 0.0!r}"
-                           for name in ("turning_point", "margin", "t_accumulation"))
-        return f"Exit({values})"
+    def success(self) -> bool:
+        """True when the requested cycles or end time were reached (:attr:`Status.success`)."""
+        return self.status.success
 
 
 @dataclass(frozen=True, repr=False)
-class Solution:
+class Solution(Ended):
     """A run: how it ended, its events, its cycles and its trajectory.
 
     Every solver (:func:`~escapement.solve_exact`, :func:`~escapement.solve_reference`,
-    :func:`~escapement.solve_high_precision`, :func:`~escapement.solve_naive`) returns one; a run that
-    leaves the escapement regime is not an error but an outcome (``status``, ``message``, ``exit``).
-    Its ``repr`` is a summary of a few lines, whatever the length of the run.
+    :func:`~escapement.solve_high_precision`, :func:`~escapement.solve_naive`) returns one; a run that leaves the
+    escapement regime is not an error but an outcome (``status``, ``message``, ``exit``).
 
     Parameters
     ----------
@@ -176,20 +64,15 @@ class Solution:
     events : EventLog
         Every event in time order: time (s), kind, position (m), velocity before and after (m/s).
     cycles : CycleTable
-        The Poincare map per complete cycle: impact time at a1 (s), velocity just before it (m/s),
-        period (s) and largest displacement (m).
+        The Poincare map per complete cycle: impact time at a1 (s), velocity just before it (m/s), period (s)
+        and largest displacement (m).
     trajectory : Trajectory or None
         The motion between the events, where kept (``record_trajectory=True``); see :meth:`sample`.
     t_final : float
-        End of the computed trajectory, s (``inf`` when the escapement stopped and the free
-        oscillation goes on for ever).
+        End of the computed trajectory, s (``inf`` when the escapement stopped and the free oscillation goes on
+        for ever).
     exit : Exit
         The numbers behind a regime exit (NaN where they do not apply).
-
-    See Also
-    --------
-    Solution.to_dataframe : its cycles or events as a :class:`pandas.DataFrame`.
-    escapement.io.run_dataset : the run as a CF dataset.
 
     Examples
     --------
@@ -221,28 +104,49 @@ class Solution:
     t_final: float
     exit: Exit = Exit()
 
-    @property
-    def success(self) -> bool:
-        """True when the requested cycles or end time were reached."""
-        return self.status.success
-
     def __repr__(self) -> str:
+        ev, cycles = self.events, self.cycles
+        impacts = int(np.count_nonzero(np.isin(ev.kind, [k for k in EventKind if k.is_impact])))
+        # the times side by side, each printed so that it compares with the others as it does
+        zero, t_final, t_acc, *event_times = texts([0.0, self.t_final, self.exit.t_accumulation,
+                                                    *(ev.t[[0, -1]] if len(ev) else ())])
+        events = f"{len(ev)} ({impacts} impact{'' if impacts == 1 else 's'})"
+        if len(ev):
+            events += f" at t = {event_times[0]} s" if len(ev) == 1 else \
+                f" from t = {event_times[0]} s to {event_times[1]} s"
+        counted = f"{len(cycles)}"
+        if len(cycles):
+            counted += (f"; the last: period {number(cycles.period[-1], 's')}, velocity before impact "
+                        f"{number(cycles.velocity_before_impact[-1], 'm/s')}, largest displacement "
+                        f"{number(cycles.largest_displacement[-1], 'm')}")
         if self.trajectory is None:
             kept = "not kept"
         elif isinstance(self.trajectory, ArcTable):
-            n = len(self.trajectory)
-            kept = f"kept ({n} harmonic arc{'' if n == 1 else 's'})"
+            kept = f"kept ({len(self.trajectory)} harmonic arc{'' if len(self.trajectory) == 1 else 's'})"
         else:
             kept = "kept"
-        return solution_summary(self, kept)
+        state = {"x0": self.x0, "v0": self.v0}
+        lines = [
+            f"<escapement.Solution> {self.status.value} ({self.method})",
+            line("message", self.message, wrap=True),
+            line("time span", f"t = {zero} .. {t_final} s (t_final)"),
+            line("events", events),
+            line("cycles", counted),
+            line("trajectory", kept),
+            line("initial", ", ".join(f"{k} = {exact(v, INITIAL_STATE[k].unit_label)}" for k, v in state.items())),
+            line("parameters", ", ".join(f"{name} = {exact(value, PARAMETERS[name].unit_label)}"
+                                         for name, value in self.params.as_dict().items())),
+        ]
+        if self.exit.summary():
+            lines.append(line("exit", self.exit.summary({"t_accumulation": t_acc})))
+        return "\n".join(lines)
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Displacement [m], velocity [m/s] and acceleration [m/s^2] at times ``t`` [s] (NaN outside
         ``[0, t_final]``), each of the shape of ``t``.
 
-        ``t`` is a real number or a 1-d array of them, finite
-        (:func:`~escapement.model.arguments.sample_times`); anything else, and a run that kept no
-        trajectory, raises :class:`~escapement.ParameterError` naming it."""
+        ``t`` is a real number or a 1-d array of them, finite (:func:`~escapement.model.arguments.sample_times`);
+        anything else, and a run that kept no trajectory, raises :class:`~escapement.ParameterError` naming it."""
         times = sample_times("t", t)
         if self.trajectory is None:
             raise ParameterError("record_trajectory", False, "True in the solve that made this run, to sample "
@@ -252,16 +156,15 @@ class Solution:
     def to_dataframe(self, table: str = "cycles") -> pd.DataFrame:
         """The run's cycles or events as a :class:`pandas.DataFrame`.
 
-        The columns are the variables of the run's CF dataset (:func:`escapement.io.run_dataset`: the
-        same names, values and units, from :mod:`escapement.solvers.describe`), a row per cycle or per
-        event: for ``"cycles"`` the index is the cycle number ``cycle`` (1 .. N)
-        and the columns ``impact_time`` (s), ``velocity_before_impact`` (m s-1), ``period`` (s) and
-        ``largest_displacement`` (m); for ``"events"`` the index ``event`` counts from 0 and the columns are
-        ``event_time`` (s), ``event_kind`` (the :class:`~escapement.EventKind` code, which compares
-        equal to its member), ``event_position`` (m), ``event_velocity_before`` and
-        ``event_velocity_after`` (m s-1). ``df.attrs["units"]`` maps each column with units to its
-        UDUNITS string, ``df.attrs["long_names"]`` each column to its description. The high-precision
-        solver's mpmath numbers become their nearest doubles.
+        The columns are the variables of the run's CF dataset (the same names, values and units, from
+        :mod:`escapement.solvers.describe`), a row per cycle or per event: for ``"cycles"`` the index is the
+        cycle number ``cycle`` (1 .. N) and the columns are the fields of the cycle table, ``impact_time`` (s),
+        ``velocity_before_impact`` (m s-1), ``period`` (s) and ``largest_displacement`` (m); for ``"events"``
+        the index ``event`` counts from 0 and the columns are ``event_time`` (s), ``event_kind`` (the
+        :class:`~escapement.EventKind` code, which compares equal to its member), ``event_position`` (m),
+        ``event_velocity_before`` and ``event_velocity_after`` (m s-1). ``df.attrs["units"]`` maps each column
+        with units to its UDUNITS string, ``df.attrs["long_names"]`` each column to its description. The
+        high-precision solver's mpmath numbers become their nearest doubles.
 
         Parameters
         ----------
@@ -291,12 +194,10 @@ class Solution:
         """
         import pandas as pd  # imported on use: a job that only solves does not load it
 
-        table = check_choice("table", table, ("cycles", "events"))
-        if table == "cycles":
+        if check_choice("table", table, ("cycles", "events")) == "cycles":
             index = pd.Index(self.cycles.cycle, name="cycle")
-            columns = {name: (getattr(self.cycles, name), units, long_name)
-                       for name, (units, long_name) in CYCLE_COLUMNS.items()}
-        else:  # "events", the one choice left by check_choice
+            columns = {name: (getattr(self.cycles, name), *described) for name, described in CYCLE_COLUMNS.items()}
+        else:
             index = pd.RangeIndex(len(self.events), name="event")
             columns = {name: (getattr(self.events, field), units, long_name)
                        for name, (field, units, long_name) in EVENT_COLUMNS.items()}
@@ -311,17 +212,17 @@ class Solution:
 class EnsembleSolution:
     """Many runs at once: the fields of :class:`Solution` with one row per trajectory.
 
-    Per-cycle arrays have shape ``(N, n_cycles)``, NaN where a trajectory ended earlier;
-    ``status`` holds :attr:`Status.code` values. Events and trajectories are not kept. Its ``repr``
-    is a summary of a few lines, whatever the number of trajectories.
+    Per-cycle arrays have shape ``(N, n_cycles)``, NaN where a trajectory ended earlier; ``status`` holds
+    :attr:`Status.code` values. Events and trajectories are not kept. Its ``repr`` is a summary of a few lines,
+    whatever the number of trajectories.
 
     Parameters
     ----------
     status : numpy.ndarray of int, shape (N,)
         How each run ended, as :attr:`Status.code` values.
     cycles : CycleTable
-        The per-cycle table, each column of shape ``(N, n_cycles)``: impact time at a1 (s), velocity
-        before it (m/s), period (s), largest displacement (m); NaN after a trajectory ended.
+        The per-cycle table, each column of shape ``(N, n_cycles)``: impact time at a1 (s), velocity before it
+        (m/s), period (s), largest displacement (m); NaN after a trajectory ended.
     t_final : numpy.ndarray of float, shape (N,)
         End of each computed trajectory, s (``inf`` where the escapement stopped).
     exit_turning_point : numpy.ndarray of float, shape (N,)
@@ -355,12 +256,23 @@ class EnsembleSolution:
 
     @property
     def success(self) -> np.ndarray:
-        """True for each run that reached the requested cycles."""
-        return self.status == Status.COMPLETED.code
+        """True for each run that reached the requested cycles (:func:`~escapement.model.status.succeeded`)."""
+        return succeeded(self.status)
 
     def outcome(self, i: int) -> Status:
         """The outcome of trajectory ``i``, an integer in ``[0, N)`` (else :class:`~escapement.ParameterError`)."""
         return Status.from_code(int(self.status[check_index("i", i, len(self.status))]))
 
     def __repr__(self) -> str:
-        return ensemble_summary(self)
+        codes, counts = np.unique(np.asarray(self.status), return_counts=True)
+        outcomes = ", ".join(f"{Status.from_code(code).value} {count}" for code, count in zip(codes, counts))
+        shape = np.shape(self.cycles.period)
+        lines = [f"<escapement.EnsembleSolution> {len(self.status)} trajectories, "
+                 f"{shape[-1] if len(shape) == 2 else 0} cycles ({self.method})",
+                 line("outcomes", outcomes or "none", 25), line("t_final", span(self.t_final, "s"), 25)]
+        lines += [line(name, span(getattr(self.cycles, name), unit), 25) for name, unit in CYCLE_UNITS.items()]
+        for name, unit in EXIT_UNITS.items():
+            values = getattr(self, f"exit_{name}")
+            if not np.isnan(np.asarray(values, dtype=float)).all():
+                lines.append(line(f"exit_{name}", span(values, unit), 25))
+        return "\n".join(lines)

@@ -20,11 +20,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..model.limits import MemoryBudgetError, RunLimits, check_count
-from ..model.parameters import Parameters, check_initial_state, check_parameters
+from ..model.limits import check_budget, check_count, run_spec
+from ..model.parameters import Parameters
 from ..model.status import Status
+from .describe import CycleTable, Exit
 from .kernel import Block, EventRun, cycle_rows, event_block
-from .result import CycleTable, Exit
+from .result import Ended
 
 __all__ = ["CHUNK_BYTES_PER_CYCLE", "DEFAULT_CHUNK", "MAX_CHUNK", "PASS_EVENTS", "ChunkIterator", "CycleStream",
            "StreamSummary", "check_chunk", "iter_cycles"]
@@ -33,14 +34,15 @@ __all__ = ["CHUNK_BYTES_PER_CYCLE", "DEFAULT_CHUNK", "MAX_CHUNK", "PASS_EVENTS",
 DEFAULT_CHUNK = 100_000
 #: the most cycles a chunk may hold
 MAX_CHUNK = 10_000_000
-#: bytes a cycle of a chunk takes: four floats, and the parts of a chunk gathered before they are joined
+#: bytes a cycle of a chunk takes: its four floats, and the parts of a chunk gathered before they are joined (the
+#: closed forms' chunks take as much: their rows and the impact times' work arrays)
 CHUNK_BYTES_PER_CYCLE = 128
 #: events per pass of the loop (about 0.5 MB of derived arrays each)
 PASS_EVENTS = 1 << 12
 
 
 @dataclass(frozen=True)
-class StreamSummary:
+class StreamSummary(Ended):
     """How a streamed run ended: the fields of :class:`~escapement.solvers.result.Solution` that do not
     grow with the run."""
 
@@ -50,11 +52,6 @@ class StreamSummary:
     t_final: float
     n_cycles: int  #: complete cycles handed over, all chunks together
     n_events: int  #: events of the run
-
-    @property
-    def success(self) -> bool:
-        """True when the requested cycles or end time were reached."""
-        return self.status.success
 
 
 class ChunkIterator(Iterator[CycleTable]):
@@ -117,9 +114,7 @@ class CycleStream(ChunkIterator):
         self._ready = [tuple(rest)] if len(rest[0]) else []
         self._pending = len(rest[0])
         self._cycles += len(head[0])
-        impact_time, velocity, period, amplitude = head
-        return CycleTable(impact_time=impact_time, velocity_before_impact=velocity, period=period,
-                       largest_displacement=amplitude)
+        return CycleTable(*head)
 
     def _derive(self, stored: tuple[np.ndarray, np.ndarray, np.ndarray]) -> None:
         """The cycles that the events of a pass complete, the events carried over from the last pass first;
@@ -201,22 +196,15 @@ def iter_cycles(
     >>> bool(np.array_equal(np.concatenate(periods), solve_exact(p, x0=1.0, n_cycles=250).cycles.period))
     True
     """
-    params = check_parameters(params)
-    x, v = check_initial_state(x0, v0)
-    limits = RunLimits(n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
-    chunk, _ = check_chunk(chunk, CHUNK_BYTES_PER_CYCLE, limits.memory_budget)
-    return CycleStream(EventRun(params, x, v, limits), chunk)
+    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events,
+                    memory_budget=memory_budget)
+    chunk, _ = check_chunk(chunk, spec.limits.memory_budget)
+    return CycleStream(EventRun(spec), chunk)
 
 
-def check_chunk(chunk: int, bytes_per_cycle: int, memory_budget: int) -> tuple[int, int]:
-    """``chunk`` checked (an integer in [1, :data:`MAX_CHUNK`]) and the bytes a chunk of it takes at
-    ``bytes_per_cycle``; :class:`~escapement.model.limits.MemoryBudgetError` naming ``chunk`` and the most that
-    fits where that exceeds ``memory_budget``."""
+def check_chunk(chunk: int, memory_budget: int) -> tuple[int, int]:
+    """``chunk`` checked (an integer in [1, :data:`MAX_CHUNK`]) and the bytes a chunk of it takes
+    (:data:`CHUNK_BYTES_PER_CYCLE` a cycle), within ``memory_budget`` (:func:`~escapement.model.limits.check_budget`)."""
     chunk = check_count("chunk", chunk, MAX_CHUNK)
-    estimate = chunk * bytes_per_cycle
-    if estimate > memory_budget:
-        most = memory_budget // bytes_per_cycle
-        requirement = (f"at most {most:_} for a chunk of {bytes_per_cycle} bytes a cycle ({estimate:_} bytes) "
-                       f"to fit the memory budget of {memory_budget:_} bytes")
-        raise MemoryBudgetError("chunk", chunk, requirement, estimate, memory_budget)
-    return chunk, estimate
+    return chunk, check_budget(memory_budget, f"chunks of {CHUNK_BYTES_PER_CYCLE} bytes a cycle",
+                               [("chunk", chunk, lambda n: n * CHUNK_BYTES_PER_CYCLE)])

@@ -1,9 +1,9 @@
 """Stress cases: the solver at the edges of its regime, each against an independent answer.
 
-Every case runs the exact solver far from the paper's parameters and checks the outcome
-against a closed form derived on paper, the 50-digit reference, or the reference solver
-at tight tolerance. :func:`run_all` gives one row per case for ``results/stress/summary.csv``;
-the tests run the same cases.
+Every case runs the exact solver far from the paper's parameters and checks the outcome against a closed form
+derived on paper, the 50-digit reference, or the reference solver at tight tolerance. :func:`run_all` gives one
+row per case (:func:`row`) for ``results/stress/summary.csv``; the tests run each case once, beside checks of
+their own.
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from ..integrators.high_precision import solve_high_precision
 from ..integrators.reference import solve_reference
 from ..solvers.stream import iter_cycles
 
-__all__ = ["CASES", "StressCase", "StressResult", "run_all", "run_case"]
+__all__ = ["CASES", "StressCase", "StressResult", "row", "run_all", "run_case"]
 
 
 @dataclass(frozen=True)
@@ -382,10 +382,12 @@ def run_case(case: StressCase) -> StressResult:
     return case.run()
 
 
+def row(case: StressCase, result: StressResult) -> dict:
+    """The case's row of the summary table."""
+    return {"case": case.name, "regime": case.regime, "outcome": result.outcome, "check": result.check,
+            "passed": "yes" if result.passed else "no", "detail": result.detail}
+
+
 def run_all() -> list[dict]:
-    rows = []
-    for case in CASES:
-        result = run_case(case)
-        rows.append({"case": case.name, "regime": case.regime, "outcome": result.outcome, "check": result.check,
-                     "passed": "yes" if result.passed else "no", "detail": result.detail})
-    return rows
+    """Every case, a row each, in the order of :data:`CASES`."""
+    return [row(case, run_case(case)) for case in CASES]
