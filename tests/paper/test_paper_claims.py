@@ -122,7 +122,8 @@ def test_fig4_impulse_and_dissipated_energy_follow_from_the_velocity_jump():
 
 
 def test_fig5_smaller_spring_constant_greater_converged_amplitude():
-    amplitudes = [solve_exact(paper(0.5, K=k), 1.0, n_cycles=60).cycles.largest_displacement[-1] for k in (0.1, 1.0, 10.0)]
+    amplitudes = [solve_exact(paper(0.5, K=k), 1.0, n_cycles=60).cycles.largest_displacement[-1]
+                  for k in (0.1, 1.0, 10.0)]
     assert amplitudes[0] > amplitudes[1] > amplitudes[2]
     for k, h in zip((0.1, 1.0, 10.0), amplitudes):
         p = paper(0.5, K=k)

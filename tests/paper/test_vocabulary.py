@@ -1,64 +1,78 @@
-"""The verdict's words: a check's status weighed by the kind of evidence it rests on, and the register
-refusing a row without an origin, a finding or a kind of evidence from the vocabulary."""
+"""The one rule of the verdict, as tables: a claim's status from its readings' outcomes, weighed by the kind
+of evidence, a reading's kind of evidence from what its check consumes, and a finding's status from its
+parts'."""
 
 from __future__ import annotations
 
 import pytest
-import yaml
 
-from escapement.paper.claims import load_claims
-from escapement.paper.vocabulary import EVIDENCE, STATUSES, weighed
+from escapement.paper.vocabulary import (EVIDENCE, STATUSES, evidence_of, finding_status, status_of, weakest,
+                                         weighed)
 
 
-@pytest.mark.parametrize("evidence, found, expected", [
-    ("independent", "reproduced", "reproduced"),
-    ("independent", "not_reproduced", "not_reproduced"),
-    ("by_construction", "reproduced", "consistent"),
-    ("fitted", "reproduced", "consistent"),
-    # a fitted reading that still misses: no reading of the grid reaches the claim
-    ("fitted", "partially_reproduced", "partially_reproduced"),
-    ("fitted", "not_reproduced", "not_reproduced"),
-    ("independent", "undetermined", "undetermined"),
-    ("none", "reproduced", "untestable"),
-    ("none", "untestable", "untestable"),
+@pytest.mark.parametrize("outcomes, status", [
+    ([True], "reproduced"),
+    ([True, True, True], "reproduced"),
+    ([True, False], "undetermined"),
+    ([False, True, False], "undetermined"),
+    ([False], "not_reproduced"),
+    ([False, False], "not_reproduced"),
+    ([None], "untestable"),
 ])
-def test_an_agreement_by_construction_or_by_choice_is_only_consistent(evidence, found, expected):
-    assert weighed(found, evidence) == expected
+def test_a_claim_holds_under_every_reading_some_or_none(outcomes, status):
+    assert status_of(outcomes) == status
 
 
-def test_every_weighed_status_is_a_status_and_unknown_words_are_refused():
-    assert {weighed(s, e) for s in STATUSES for e in EVIDENCE} <= set(STATUSES)
-    with pytest.raises(ValueError, match="status = 'fine' must be one of reproduced, partially_reproduced"):
+@pytest.mark.parametrize("outcomes", [[], [None, True]])
+def test_no_outcome_or_a_reading_that_computed_nothing_beside_others_is_refused(outcomes):
+    with pytest.raises(ValueError, match="every reading computes an outcome, or none does"):
+        status_of(outcomes)
+
+
+@pytest.mark.parametrize("law, fitted, threshold, holds, kind", [
+    (None, None, None, True, "independent"),
+    (None, None, None, False, "independent"),
+    (None, "Fig. 5's force", None, True, "fitted"),
+    (None, None, "'clearly' as 2 %", True, "fitted"),
+    ("the impact law", None, None, True, "by_construction"),
+    ("the impact law", "Fig. 4's scene", None, True, "by_construction"),
+    (None, None, None, None, "none"),
+])
+def test_the_kind_of_evidence_follows_from_what_the_check_consumes(law, fitted, threshold, holds, kind):
+    assert evidence_of(law, fitted, threshold, holds) == kind
+
+
+@pytest.mark.parametrize("status, evidence, weighed_status", [
+    ("reproduced", "independent", "reproduced"),
+    ("reproduced", "fitted", "consistent"),
+    ("reproduced", "by_construction", "consistent"),
+    ("undetermined", "by_construction", "undetermined"),
+    ("not_reproduced", "fitted", "not_reproduced"),
+    ("untestable", "none", "untestable"),
+])
+def test_an_agreement_by_construction_or_on_fitted_evidence_is_only_consistent(status, evidence, weighed_status):
+    assert weighed(status, evidence) == weighed_status
+
+
+def test_the_weakest_evidence_and_unknown_words():
+    assert weakest(["independent", "fitted"]) == "fitted"
+    assert weakest(["fitted", "by_construction", "independent"]) == "by_construction"
+    assert {weighed(s, e) for s in ("reproduced", "not_reproduced", "undetermined") for e in EVIDENCE} <= set(STATUSES)
+    with pytest.raises(ValueError, match="not words of the vocabulary"):
         weighed("fine", "independent")
-    with pytest.raises(ValueError, match="evidence = 'strong' must be one of independent, by_construction"):
-        weighed("reproduced", "strong")
 
 
-def _register(tmp_path, **over):
-    claim = {"id": "c", "source": "S", "origin": "paper", "finding": "period", "evidence": "independent",
-             "statement": "s", "paper_value": None, "tolerance": 1e-8, "tolerance_reason": "r", "check": "fixed_point",
-             "args": {"case": "a"}}
-    path = tmp_path / "claims.yaml"
-    path.write_text(yaml.safe_dump({"version": 1, "claims": [{**claim, **over}]}))
-    return path
-
-
-@pytest.mark.parametrize("over, message", [
-    ({"origin": "elsewhere"}, "has origin = 'elsewhere'; it must be one of paper, beyond"),
-    ({"evidence": "strong"}, "has evidence = 'strong'; it must be one of independent, by_construction, fitted, none"),
-    ({"finding": "The Period"}, "has finding = 'The Period'; it must be a name of lower-case letters"),
-    ({"finding": 3}, "has finding = 3"),
+@pytest.mark.parametrize("parts, status", [
+    (["reproduced", "reproduced"], "reproduced"),
+    (["reproduced", "consistent"], "consistent"),
+    (["reproduced", "undetermined"], "undetermined"),
+    (["undetermined", "undetermined"], "undetermined"),
+    (["reproduced", "not_reproduced"], "partially_reproduced"),
+    (["consistent", "not_reproduced", "undetermined"], "partially_reproduced"),
+    (["undetermined", "not_reproduced"], "not_reproduced"),
+    (["not_reproduced", "not_reproduced"], "not_reproduced"),
+    (["untestable", "reproduced"], "reproduced"),
+    (["untestable"], "untestable"),
 ])
-def test_the_register_refuses_a_row_outside_the_vocabulary(tmp_path, over, message):
-    with pytest.raises(ValueError, match=message):
-        load_claims(_register(tmp_path, **over))
-
-
-def test_the_register_refuses_a_row_without_its_weight(tmp_path):
-    path = _register(tmp_path)
-    data = yaml.safe_load(path.read_text())
-    del data["claims"][0]["evidence"]
-    path.write_text(yaml.safe_dump(data))
-    with pytest.raises(ValueError, match="claim 0 lacks 'evidence'"):
-        load_claims(path)
-    assert load_claims(_register(tmp_path))[0]["finding"] == "period"
+def test_a_finding_takes_the_rule_over_its_parts(parts, status):
+    assert finding_status(parts) == status

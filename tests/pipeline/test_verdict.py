@@ -9,7 +9,7 @@ import pytest
 import xarray as xr
 import yaml
 
-from escapement.io.atomic import write_csv
+from escapement.io.netcdf import write_csv
 from escapement.io.netcdf import write_netcdf
 from escapement.paper.claims import CHECKS, COLUMNS, ClaimError
 from escapement.pipeline.readings import _formatted, score_table
@@ -59,18 +59,17 @@ def files(tmp_path) -> dict:
     for ds, path in zip((fig3, fig4, fig5, runs), paths.values()):
         write_netcdf(ds, path)
     register = tmp_path / "claims.yaml"
-    weight = {"origin": "paper", "finding": "f", "evidence": "independent"}
+    weight = {"origin": "paper", "quote": "a sentence"}
     claims = [
-        {"id": "fixed_point_first", "source": "Eq. (19)", **weight, "statement": "s", "paper_value": None,
-         "tolerance": 1e-8, "tolerance_reason": "r", "check": "fixed_point", "args": {"case": "first"}},
-        {"id": "multiplier", "source": "Eq. (21)", **weight, "statement": "s", "paper_value": 0.6561, "tolerance": 1e-8,
-         "tolerance_reason": "r",
-         "check": "multiplier_paper_cases"},
-        {"id": "fig5b_axes", "source": "Fig. 5 (b)", **weight, "evidence": "fitted", "statement": "s",
-         "paper_value": None, "tolerance": None,
-         "check": "printed_axes", "args": {"figure": "5", "panel": "b"}},
+        {"id": "fixed_point_first", "source": "Eq. (19)", **weight, "part": "the first", "statement": "s",
+         "paper_value": None, "tolerance": 1e-8, "tolerance_reason": "r", "check": "fixed_point",
+         "args": {"case": "first"}},
+        {"id": "multiplier", "source": "Eq. (21)", **weight, "part": "the multiplier", "statement": "s",
+         "paper_value": 0.6561, "tolerance": 1e-8, "tolerance_reason": "r", "check": "multiplier_paper_cases"},
+        {"id": "fig5b_axes", "source": "Fig. 5 (b)", "origin": "paper", "quote": "Fig. 5.", "statement": "s",
+         "paper_value": None, "tolerance": None, "check": "printed_axes", "args": {"figure": "5", "panel": "b"}},
     ]
-    register.write_text(yaml.safe_dump({"version": 1, "claims": claims}))
+    register.write_text(yaml.safe_dump({"version": 2, "claims": claims}))
     # the grid of candidate readings of Fig. 5 (b): the same ellipse, and one twice as large (-2 .. 2 on both axes)
     readings = [Reading("5", "b", "as simulated", 0.9 * np.cos(phase), -0.95 * np.sin(phase)),
                 Reading("5", "b", "twice as large", 1.8 * np.cos(phase), -1.9 * np.sin(phase))]
@@ -85,8 +84,9 @@ def test_the_job_writes_one_row_per_claim_with_the_configured_label(tmp_path):
     check_claims(**files(tmp_path), output=str(output), log=str(tmp_path / "log"))
     rows = read_claims_csv(output)
     assert [r["claim_id"] for r in rows] == ["fixed_point_first", "multiplier", "fig5b_axes"]
-    # the axes were fitted: a match is consistent, not reproduced
+    # the axes were fitted: a match is consistent, not reproduced; the first two rows are parts of one sentence
     assert [r["status"] for r in rows] == ["reproduced", "reproduced", "consistent"]
+    assert [r["finding"] for r in rows] == ["fixed_point_first", "fixed_point_first", "fig5b_axes"]
     assert rows[0]["replicated_value"] == "1.256561725 m/s at cycle 2"
     # the job autoscaled the Fig. 5 output itself (matplotlib, the printed tick steps), and read the grid's scores
     assert rows[2]["replicated_value"].startswith(
@@ -109,12 +109,13 @@ def test_the_job_fails_naming_the_claim_when_a_check_raises(tmp_path, monkeypatc
 
 
 ROWS = [
-    {"claim_id": "x", "source": "Eq. (1)", "origin": "paper", "finding": "f", "evidence": "independent",
-     "statement": 's, with "quotes"', "paper_value": "[0.5, 3]",
-     "replicated_value": "a: 1, b: 2", "tolerance": "", "status": "reproduced", "note": "line\nbreak"},
-    {"claim_id": "y", "source": "Fig. 2", "origin": "beyond", "finding": "period", "evidence": "fitted",
-     "statement": "s", "paper_value": "6.2832", "replicated_value": "6.2957 s",
-     "tolerance": "5e-05", "status": "not_reproduced", "note": ""},
+    {"claim_id": "x", "source": "Eq. (1)", "origin": "paper", "quote": "It is, \"said\".", "part": "", "finding": "x",
+     "evidence": "independent", "statement": 's, with "quotes"', "readings": "as stated: holds",
+     "paper_value": "[0.5, 3]", "replicated_value": "a: 1, b: 2", "tolerance": "", "status": "reproduced",
+     "note": "line\nbreak"},
+    {"claim_id": "y", "source": "Fig. 2", "origin": "beyond", "quote": "", "part": "", "finding": "",
+     "evidence": "fitted", "statement": "s", "readings": "in s: fails; per cycle: holds", "paper_value": "6.2832",
+     "replicated_value": "6.2957 s", "tolerance": "5e-05", "status": "undetermined", "note": ""},
 ]
 
 

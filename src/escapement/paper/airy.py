@@ -27,7 +27,7 @@ from collections.abc import Mapping, Sequence
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..solvers.exact import solve_exact
-from .checks import NOT, PARTIAL, REPRODUCED, Evidence, Verdict, check, fig3_all, fmt, params_of, runs_only, within
+from .checks import Evidence, Verdict, check, fig3_all, fmt, params_of, runs_only, within
 
 __all__ = ["SECONDS_PER_DAY", "airy_verdict", "daily_rate", "first_order_zone_change", "zone_amplitude", "zone_shift"]
 
@@ -77,8 +77,7 @@ def airy_verdict(zones: Mapping[str, Mapping], tolerance: float) -> Verdict:
     """``zones``: per zone its ``zone`` (a, c), first-order coefficient ``kappa`` (dT2 / f as f -> 0,
     s per m/s^2; 0 for a symmetric zone), and the measured ``f`` and ``shift`` (dT2, s) at each force.
     A zone agrees with Airy when its measured order in ``f`` is 2 (symmetric) or 1 with ``dT2 / f``
-    within ``tolerance`` of ``kappa`` (relative, at the smallest force). Reproduced when every zone
-    agrees, partially when some do."""
+    within ``tolerance`` of ``kappa`` (relative, at the smallest force). Holds when every zone agrees."""
     agree, parts = [], []
     for name, z in zones.items():
         order = _order(z["f"], z["shift"])
@@ -95,8 +94,7 @@ def airy_verdict(zones: Mapping[str, Mapping], tolerance: float) -> Verdict:
                          f"{fmt(z['kappa'], 5)} to first order ({'shortens' if z['kappa'] < 0 else 'lengthens'}), "
                          f"order {fmt(order, 4)}")
         agree.append(ok)
-    status = REPRODUCED if all(agree) else PARTIAL if any(agree) else NOT
-    return Verdict("; ".join(parts), status, note=(
+    return Verdict("; ".join(parts), all(agree), note=(
         "dT2 = zone time less the sine phase it advances, from the exact solver's events on one passage at a fixed "
         "amplitude; first order (derived on paper): f (sqrt(A^2 - a^2) - sqrt(A^2 - c^2)) / (w^3 A^2), zero for a "
         "zone symmetric about 0, so there dT2/f -> 0; order = log ratio of dT2 over the two smallest forces"),

@@ -6,9 +6,10 @@ rounded extent of the data. So an axis matches only when the values, autoscaled 
 the printed tick step imposed, give exactly the printed limits, not when they merely lie inside them.
 
 The readings the paper leaves open were chosen by fitting these same axes, so a match confirms
-nothing: it shows that the choice is consistent (the register marks these rows ``fitted``, and the
-verdict weighs them so). What the axes can show is a mismatch over the whole grid of candidate
-readings: the status comes from the best candidate of the grid (``Evidence.readings``), and the row
+nothing: it shows that the choice is consistent (the check declares the fitted reading it reads, so the
+row's evidence is fitted). What the axes can show is a mismatch over the whole grid of candidate
+readings: the claim holds when the best candidate of the grid (``Evidence.readings``) gives every printed
+limit, and the row
 names every candidate tied at the best score, grouping those that plot the same values (equivalent
 readings no axis can tell apart), and the score with the plotting program's own tick step. The
 pipeline's output, the reading adopted, is reported beside it (``Evidence.axes``, autoscaled by
@@ -23,8 +24,8 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from .checks import NOT, PARTIAL, REPRODUCED, Evidence, Verdict, check, fig3_labelled, fmt
-from .printed_axes import CYCLES, FIG5_PANEL_K, Panel, panel
+from .checks import Evidence, Verdict, check, fig3_labelled, fmt
+from .printed_axes import FIG5_PANEL_K, Panel, panel
 
 __all__ = ["panel_scenes", "printed_axes"]
 
@@ -69,12 +70,11 @@ def _ties(best: int, out_of: int, groups: list[tuple[str, ...]], n: int) -> str:
             f"plot different values, so the reading is undetermined: {named}")
 
 
-@check("printed_axes", scenes=panel_scenes, args=("figure", "panel"))
+@check("printed_axes", scenes=panel_scenes, args=("figure", "panel"),
+       fitted="the readings of the paper's open choices, fitted to the printed axes")
 def printed_axes(claim, ev: Evidence) -> Verdict:
-    """The status of the best candidate reading of the grid: reproduced (which the register's
-    ``fitted`` evidence turns into consistent) when it gives every printed limit, partially when it
-    gives some limit of a quantity axis (not only the cycle axes, which follow from the number of
-    cycles plotted), not reproduced otherwise: no reading of the grid reaches the printed axes."""
+    """Some candidate reading of the grid gives every printed limit of the panel (the best one is
+    named, with its ties); otherwise no reading of the grid reaches the printed axes."""
     figure, name = str(claim["args"]["figure"]), str(claim["args"]["panel"])
     printed: Panel = panel(figure, name)
     scenes = panel_scenes(claim, ev)
@@ -92,15 +92,13 @@ def printed_axes(claim, ev: Evidence) -> Verdict:
         raise ValueError(f"the candidate readings of Fig. {figure} panel {name!r} are scored out of "
                          f"{candidates.out_of} limits; the panel has {out_of}")
     matched = sum(axis.matches(*limits[axis_name]) for axis_name, axis in scored.items())
-    cycle_limits = 2 * sum(axis.label == CYCLES for axis in scored.values())
     best, groups = candidates.tied()
-    status = REPRODUCED if best == out_of else PARTIAL if best > cycle_limits else NOT
     default = (f"; with the plotting program's own tick step the best is {max(candidates.default_scores.values())} "
                f"of {out_of}" if candidates.default_scores else "")
     return Verdict(
         "; ".join(f"{axis.label}: {_limits(*limits[axis_name])}" for axis_name, axis in scored.items())
         + f" ({matched} of {out_of} printed limits); {_ties(best, out_of, groups, len(candidates.scores))}",
-        status,
+        best == out_of,
         note=(
             f"the output ({_reading(figure, ds)}) autoscaled with the printed tick steps imposed "
             f"({', '.join(fmt(axis.step, 4) for axis in scored.values())}), limits rounded out to the ticks, no "

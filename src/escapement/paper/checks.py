@@ -1,15 +1,13 @@
-"""The checks of the claims register on the paper's equations (Sec. 3), and what every check uses.
+"""The checks of the claims register: what every check is and uses, and the checks on the paper's map,
+fixed point and multipliers (Sec. 3).
 
-A check, marked with :func:`check` by its name in the register, computes the replicated value of
-one kind of claim from the datasets (and the paper's closed forms where the claim is a formula) and
-decides the status (one of :data:`escapement.paper.vocabulary.STATUSES`); tolerances and
-the Fig. 3 case labels come from the register (``tolerance``, ``args``). Each check declares the
-scenes it reads, so that a scene that left the escapement regime gets its defined verdict
-(:func:`escapement.paper.claims.evaluate`); the checks on the runs of the checks dataset handle each
-run's outcome themselves. The checks on the figures of Sec. 4 are in :mod:`.section4_checks`, those
-on the period formulas in :mod:`.period_checks`, the further ones in :mod:`.register`,
-:mod:`.existence`, :mod:`.figure_checks`, :mod:`.airy` and :mod:`.axis_claims`; every one of them
-is named in the one list of :mod:`.registry`.
+A check, registered by :func:`check` under its name in the register, computes the replicated value of
+one kind of claim under one reading (its ``args``) from the datasets, and says whether the claim holds
+(:class:`Verdict`); the status follows by the register's one rule (:mod:`.vocabulary`). Tolerances and
+the Fig. 3 case labels come from the register. Each check declares the scenes it reads, so that a scene
+that left the escapement regime gets its defined verdict (:func:`escapement.paper.claims.evaluate`), and
+what it consumes besides the simulation (a law of the model, a fitted reading, a threshold). The
+other checks are in the modules :mod:`escapement.paper.claims` imports.
 """
 
 from __future__ import annotations
@@ -26,9 +24,8 @@ from ..model.parameters import Parameters
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 from . import printed as pe
-from .vocabulary import NOT, PARTIAL, REPRODUCED, STATUSES, UNDETERMINED, UNTESTABLE  # noqa: F401 (re-exported)
 
-__all__ = ["STATUSES", "Candidates", "Check", "Evidence", "Verdict", "check", "fmt"]
+__all__ = ["CHECKS", "Candidates", "Check", "Evidence", "Verdict", "check", "fmt"]
 
 COMPLETED = Status.COMPLETED.value
 
@@ -94,10 +91,14 @@ class Evidence:
 
 @dataclass(frozen=True)
 class Verdict:
+    """What a check finds under one reading: the replicated value, whether the claim ``holds`` (True or False;
+    a mapping of each reading of a grid the check walks to its outcome; None when nothing can be computed),
+    a note, and the paper's value where the paper gives a formula rather than a number."""
+
     replicated_value: str
-    status: str
+    holds: bool | None | Mapping[str, bool]
     note: str = ""
-    paper_value: str | None = None  #: filled when the paper gives a formula rather than a number
+    paper_value: str | None = None
 
 
 Scenes = Callable[[Mapping, Evidence], dict[str, xr.Dataset]]
@@ -105,37 +106,33 @@ Scenes = Callable[[Mapping, Evidence], dict[str, xr.Dataset]]
 
 @dataclass(frozen=True)
 class Check:
-    """A registered check: its function, the scenes it reads and the ``args`` it needs from the register."""
+    """A registered check: its function, the scenes it reads, the ``args`` it needs from the register, and what
+    it consumes besides the simulation, from which the kind of its evidence follows
+    (:func:`escapement.paper.vocabulary.evidence_of`): the model's ``law`` it restates, what it reads that was
+    ``fitted`` to the printed axes, the ``threshold`` on the claim's words the register's tolerance sets."""
 
     name: str
     function: Callable[[Mapping, Evidence], Verdict]
     scenes: Scenes
     args: tuple[str, ...] = ()
+    law: str | None = None
+    fitted: str | None = None
+    threshold: str | None = None
 
 
-def check(name: str, *, scenes: Scenes, args: tuple[str, ...] = ()) -> Callable:
-    """Mark the decorated function as the check ``name`` of the register.
+#: every check of the register by its name, filled by :func:`check` as the modules of the checks are imported
+CHECKS: dict[str, Check] = {}
 
-    The function gets the attribute ``check``, its :class:`Check`; it counts in the register once
-    :mod:`escapement.paper.registry` lists it. Nothing is registered on import.
 
-    Parameters
-    ----------
-    name : str
-        The name by which the register (``workflow/claims.yaml``) calls the check.
-    scenes : callable
-        ``scenes(claim, evidence)``: the datasets the check reads, by a name for the verdict.
-    args : tuple of str
-        The keys the check needs in the claim's ``args``.
-
-    Returns
-    -------
-    callable
-        The decorator; it returns the function itself.
-    """
+def check(name: str, *, scenes: Scenes, args: tuple[str, ...] = (), law: str | None = None,
+          fitted: str | None = None, threshold: str | None = None) -> Callable:
+    """Register the decorated function as the check ``name`` of the register (see :class:`Check`); a
+    function may be registered under several names. A name registered twice is refused."""
 
     def mark(function: Callable) -> Callable:
-        function.check = Check(name, function, scenes, tuple(args))
+        if name in CHECKS:
+            raise ValueError(f"two checks are named '{name}'")
+        CHECKS[name] = Check(name, function, scenes, tuple(args), law, fitted, threshold)
         return function
 
     return mark
@@ -192,8 +189,8 @@ def rel(a: float, b: float) -> float:
     return abs(a - b) / abs(b)
 
 
-def within(value: float, tolerance: float) -> str:
-    return REPRODUCED if value <= tolerance else NOT
+def within(value: float, tolerance: float) -> bool:
+    return bool(value <= tolerance)
 
 
 def group_runs(ev: Evidence, group: str) -> xr.Dataset:
@@ -212,7 +209,7 @@ def runs_left_regime(runs: xr.Dataset) -> Verdict | None:
     messages = runs["outcome_message"].values[left]
     return Verdict(
         f"not evaluated: {len(left)} of {runs.sizes['case']} runs left the escapement regime",
-        NOT,
+        False,
         note="; ".join(f"{lab} ended with outcome '{o}': {m}" for lab, o, m in zip(labels, outcomes, messages)),
     )
 
@@ -256,77 +253,71 @@ def multiplier_paper_cases(claim, ev: Evidence) -> Verdict:
     if (left := runs_left_regime(paper)) is not None:
         return left
     mu = paper["multiplier"].values
-    worst = float(np.max(np.abs(mu - float(claim["paper_value"]))))
     return Verdict(
         ", ".join(f"{label}: {fmt(m)}" for label, m in zip(paper["label"].values, mu)),
-        within(worst, claim["tolerance"]),
+        within(float(np.max(np.abs(mu - float(claim["paper_value"])))), claim["tolerance"]),
         note="central difference of the simulated return map at the measured fixed point",
     )
 
 
 @check("stability_over_b", scenes=runs_only)
 def stability_over_b(claim, ev: Evidence) -> Verdict:
+    """Every b of the group converges with mu2 = (1 - b)^4: the motion's own return map, for 0 < b < 2."""
     group = group_runs(ev, "b")
     outcome = group["outcome"].values
-    # chattering (b > 1) is the finding of this claim; any other exit leaves the check without an answer
+    # chattering (b > 1) is an answer of this check; any other exit leaves it without one
     if (left := runs_left_regime(group.isel(case=np.flatnonzero(outcome != "chattering")))) is not None:
         return left
     b, mu, mu21 = group["b"].values, group["multiplier"].values, group["multiplier_eq21"].values
     stable = outcome == COMPLETED
-    deviation = float(np.max(np.abs(mu[stable] - mu21[stable]))) if stable.any() else math.nan
-    replicated = (
-        f"converges with mu2 = (1-b)^4 (within {fmt(deviation, 2)}) for b = {', '.join(fmt(x, 3) for x in b[stable])}"
-    )
+    deviation = float(np.max(np.abs(mu[stable] - mu21[stable]))) if stable.any() else math.inf
+    replicated = (f"converges with mu2 = (1-b)^4 (within {fmt(deviation, 2)}) for b = "
+                  + ", ".join(fmt(x, 3) for x in b[stable]))
     if (~stable).any():
-        chattering = ", ".join(fmt(x, 3) for x in b[~stable])
-        replicated += f"; for b = {chattering} the impact reverses the velocity and the impacts chatter (Zeno)"
-    if stable.all() and deviation <= claim["tolerance"]:
-        status = REPRODUCED
-    elif stable.any() and deviation <= claim["tolerance"] and (b[~stable] > 1).all():
-        status = PARTIAL
-    else:
-        status = NOT
-    return Verdict(
-        replicated,
-        status,
-        note=(
-            "for b > 1 the impact law v+ = (1-b) v- reverses the velocity; the map (16) squares the sign away, "
-            "so |mu2| < 1 there says nothing about the motion, whose impacts accumulate in finite time"
-        ),
-    )
+        replicated += (f"; for b = {', '.join(fmt(x, 3) for x in b[~stable])} the impact reverses the velocity and "
+                       "the impacts chatter (Zeno): no periodic motion")
+    return Verdict(replicated, bool(stable.all()) and within(deviation, claim["tolerance"]), note=(
+        "for b > 1 the impact law v+ = (1-b) v- reverses the velocity; the map (16) squares the sign away, so "
+        "|mu2| < 1 there says nothing about the motion, whose impacts accumulate in finite time"))
 
 
 @check("multiplier_group", scenes=runs_only, args=("group",))
-def multipliergroup_runs(claim, ev: Evidence) -> Verdict:
+def multiplier_group(claim, ev: Evidence) -> Verdict:
+    """mu2 = (1 - b)^4 in every run of the group: the rate of convergence depends on nothing else."""
     group = group_runs(ev, claim["args"]["group"])
     if (left := runs_left_regime(group)) is not None:
         return left
-    mu, mu21 = group["multiplier"].values, group["multiplier_eq21"].values
-    worst = float(np.max(np.abs(mu - mu21)))
+    worst = float(np.max(np.abs(group["multiplier"].values - group["multiplier_eq21"].values)))
     forces = sorted(set(group["F"].values.tolist()))
+    return Verdict(f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over {group.sizes['case']} runs (F = "
+                   f"{', '.join(fmt(f, 3) for f in forces)} N)", within(worst, claim["tolerance"]))
+
+
+@check("runs_converge", scenes=runs_only, args=("group",))
+def runs_converge(claim, ev: Evidence) -> Verdict:
+    """Every run of the group reaches a limit cycle: it completes its cycles with |mu2| < 1."""
+    group = group_runs(ev, claim["args"]["group"])
+    mu, outcome = group["multiplier"].values, group["outcome"].values
+    fine = (outcome == COMPLETED) & (np.abs(mu) < 1)
     return Verdict(
-        f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over {len(mu)} runs (F = {', '.join(fmt(f, 3) for f in forces)} N "
-        f"and {len(mu) // len(forces)} geometries)",
-        within(worst, claim["tolerance"]),
-    )
+        f"{int(fine.sum())} of {len(fine)} runs converge to a limit cycle (mu2 = {fmt(np.nanmin(mu), 6)} to "
+        f"{fmt(np.nanmax(mu), 6)})" + "".join(f"; {lab}: {o}" for lab, o in zip(group["label"].values[~fine],
+                                                                               outcome[~fine])),
+        bool(fine.all()))
 
 
 @check("asymmetric_dependence", scenes=runs_only)
 def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
+    """The rate of convergence (mu2) of the asymmetric runs depends on F or the positions: beyond the tolerance."""
     group = group_runs(ev, "asymmetric")
     if (left := runs_left_regime(group)) is not None:
         return left
-    mu, mu21 = group["multiplier"].values, group["multiplier_eq21"].values
-    worst = float(np.max(np.abs(mu - mu21)))
+    worst = float(np.max(np.abs(group["multiplier"].values - group["multiplier_eq21"].values)))
     v = group["velocity"].values
     return Verdict(
-        f"mu2 = (1-b)^4 within {fmt(worst, 2)} in all {len(mu)} asymmetric runs; fixed points "
+        f"mu2 = (1-b)^4 within {fmt(worst, 2)} in all {group.sizes['case']} asymmetric runs; fixed points "
         f"{fmt(np.min(v), 4)}-{fmt(np.max(v), 4)} m/s",
-        NOT if worst <= claim["tolerance"] else REPRODUCED,
-        note=(
-            "Eq. (16) is linear in x1^2: g' = (1-b)^4 x1/g(x1) = (1-b)^4 at any fixed point, with or without "
-            "symmetry; what depends on F and the positions is the fixed point and whether it exists "
-            "(C > 0 in x1^2 = (1-b)^4 x1^2 + C), not the rate of convergence"
-        ),
+        not within(worst, claim["tolerance"]),
+        note=("Eq. (16) is linear in x1^2: g' = (1-b)^4 x1/g(x1) = (1-b)^4 at any fixed point, with or without "
+              "symmetry; what depends on F and the positions is the fixed point and whether it exists"),
     )
-

@@ -1,151 +1,163 @@
-"""The claims register: each of the paper's claims checked against the netCDF outputs.
+"""The claims register evaluated: each of the paper's claims checked under every reading of its words.
 
-``workflow/claims.yaml`` lists the claims; each names a check of :data:`escapement.paper.registry.CHECKS`
-(the one list of them), which computes the replicated value and decides the status.
-:func:`evaluate` gives one row per claim:
+``workflow/claims.yaml`` lists the claims, checked against ``workflow/schemas/claims.schema.yaml``
+(:func:`load_claims`). :func:`evaluate` runs each reading's check (registered by its decorator in the
+modules imported below) and gives one row per claim, with exactly the columns of :data:`COLUMNS`: the
+status follows from the readings' outcomes and the kind of evidence from what the checks consume, by the
+rules of :mod:`escapement.paper.vocabulary`, never from the register; rows that quote one sentence are its
+parts and share its finding, named after the first of them.
 
-* each row carries the claim's origin, finding and kind of evidence from the register, and its
-  status is the check's weighed by that evidence (:func:`escapement.paper.vocabulary.weighed`:
-  an agreement by construction or under a fitted reading is ``consistent``);
-* a claim whose scene left the escapement regime (its ``outcome`` is not ``completed``) gets
-  ``not_reproduced`` with the scene's outcome message, and its check is not run;
-* a check that raises is a defect of the code or of its inputs, never a verdict:
-  :func:`evaluate` raises :class:`ClaimError` naming the claim, chained to the original error.
-
-Tolerances and the Fig. 3 case labels come from the register, never from here.
+* a reading whose scene left the escapement regime (its ``outcome`` is not ``completed``) fails, with the
+  scene's outcome message, and its check is not run;
+* a check that raises is a defect of the code or of its inputs, never a verdict: :func:`evaluate` raises
+  :class:`ClaimError` naming the claim, chained to the original error.
 """
 
 from __future__ import annotations
 
 import os
-import re
 from collections.abc import Mapping
+from dataclasses import replace
 from pathlib import Path
 
-import xarray as xr
+import jsonschema
+import numpy as np
 import yaml
 
-from .checks import COMPLETED, NOT, Evidence, Verdict, fmt
-from .registry import CHECKS
-from .vocabulary import EVIDENCE, ORIGINS, STATUSES, weighed
+# the modules of the checks: importing them registers their checks in CHECKS
+from . import airy, axis_claims, conventions, dynamics_checks, existence, figure_checks  # noqa: F401
+from . import model_claims, period_checks, register, section4_checks, stability  # noqa: F401
+from .checks import CHECKS, COMPLETED, Evidence, Verdict, fmt
+from .vocabulary import evidence_of, status_of, weakest, weighed
 
-__all__ = ["COLUMNS", "STATUSES", "CHECKS", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims"]
+__all__ = ["CHECKS", "COLUMNS", "SCHEMA", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims"]
 
-COLUMNS = ["claim_id", "source", "origin", "finding", "evidence", "statement", "paper_value", "replicated_value",
-           "tolerance", "status", "note"]
-#: the register's keys every claim must have
-REQUIRED = ("id", "source", "origin", "finding", "evidence", "statement", "paper_value", "tolerance", "check")
-#: the words a finding's name may use
-_FINDING = re.compile(r"[a-z][a-z0-9_]*")
+COLUMNS = ["claim_id", "source", "origin", "quote", "part", "finding", "evidence", "statement", "readings",
+           "paper_value", "replicated_value", "tolerance", "status", "note"]
+#: the register's JSON Schema, beside the register in the workflow
+SCHEMA = Path(__file__).resolve().parents[3] / "workflow" / "schemas" / "claims.schema.yaml"
+#: the reading of a claim checked under one reading only
+AS_STATED = "as stated"
 
 
 class ClaimError(RuntimeError):
     """A check could not compute its verdict on a claim; the message names the claim."""
 
 
-# --- the register ------------------------------------------------------------------------------
+def _schema(path: str | os.PathLike) -> dict:
+    """The register's schema, with the names of the registered checks."""
+    schema = yaml.safe_load(Path(path).read_text())
+    schema["$defs"]["check"]["properties"]["check"] = {"enum": sorted(CHECKS)}
+    return schema
 
 
-def load_claims(path: str | os.PathLike) -> list[dict]:
-    """Read and check the register: unique ids, the required keys, an origin, a finding and a kind of
-    evidence from the vocabulary, a tolerance with its reason (or neither), a registered check and its args."""
-    data = yaml.safe_load(Path(path).read_text())
-    claims = data.get("claims") if isinstance(data, dict) else None
-    if not isinstance(claims, list) or not claims:
-        raise ValueError(f"{path}: expected a mapping with a non-empty list 'claims'")
-    seen = set()
-    for i, claim in enumerate(claims):
-        if not isinstance(claim, dict):
-            raise ValueError(f"{path}: claim {i} is {claim!r}; it must be a mapping")
-        for key in REQUIRED:
-            if key not in claim:
-                raise ValueError(f"{path}: claim {i} lacks '{key}'")
-        for key, words in (("origin", ORIGINS), ("evidence", EVIDENCE)):
-            if claim[key] not in words:
-                raise ValueError(f"{path}: claim '{claim['id']}' has {key} = {claim[key]!r}; "
-                                 f"it must be one of {', '.join(words)}")
-        if not (isinstance(claim["finding"], str) and _FINDING.fullmatch(claim["finding"])):
-            raise ValueError(f"{path}: claim '{claim['id']}' has finding = {claim['finding']!r}; it must be a "
-                             "name of lower-case letters, digits and underscores")
-        _check_tolerance(path, claim)
-        if claim["id"] in seen:
-            raise ValueError(f"{path}: claim id '{claim['id']}' appears twice")
-        seen.add(claim["id"])
-        if claim["check"] not in CHECKS:
-            raise ValueError(f"{path}: claim '{claim['id']}' names an unknown check '{claim['check']}'")
-        claim.setdefault("args", {})
-        missing = [a for a in CHECKS[claim["check"]].args if a not in claim["args"]]
-        if missing:
-            raise ValueError(f"{path}: claim '{claim['id']}' lacks the args {', '.join(missing)} of its check")
-    return claims
+def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA) -> list[dict]:
+    """The claims of the register at ``path``, checked against ``schema``, each with its ``readings`` (one,
+    ``as stated``, for a claim checked under one reading); ValueError naming the claim if the register is
+    malformed, if two claims share an id, if two parts of one sentence share a name, or if a check lacks its
+    args (the three things a schema cannot say)."""
+    data = yaml.load(Path(path).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+    error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(_schema(schema)).iter_errors(data))
+    if error is not None:
+        where = list(error.absolute_path)
+        claim = data["claims"][where[1]] if where[:1] == ["claims"] and len(where) > 1 else {}
+        name = f"claim '{claim['id']}'" if isinstance(claim, dict) and "id" in claim else "/".join(map(str, where))
+        message = (f"{error.instance!r} is a value this claim may not have" if error.validator is None else
+                   f"{error.instance!r} is not a registered check" if where[-1:] == ["check"] else error.message)
+        raise ValueError(f"{path}: {name}: {message} (at {'/'.join(map(str, where[2:])) or 'the claim'})")
+    seen: dict[str, set] = {"id": set(), "part": set()}
+    for claim in data["claims"]:
+        keys = [("id", claim["id"])] + ([("part", (claim["quote"], claim.get("part")))] if "quote" in claim else [])
+        for key, value in keys:
+            if value in seen[key]:
+                raise ValueError(f"{path}: claim '{claim['id']}': a second claim with this {key} ({value!r}); "
+                                 "the rows that quote one sentence name each its part")
+            seen[key].add(value)
+        if "readings" not in claim:
+            spec = {k: claim.pop(k) for k in ("check", "args", "tolerance", "tolerance_reason") if k in claim}
+            claim["readings"] = [{"reading": AS_STATED, **spec}]
+        for reading in claim["readings"]:
+            reading.setdefault("args", {})
+            missing = [a for a in CHECKS[reading["check"]].args if a not in reading["args"]]
+            if missing:
+                raise ValueError(f"{path}: claim '{claim['id']}': the check '{reading['check']}' needs the args "
+                                 f"{', '.join(missing)}")
+    return data["claims"]
 
 
-def _check_tolerance(path, claim: dict) -> None:
-    """A tolerance is a number >= 0 published with its reason (``tolerance_reason``), or null with none."""
-    tolerance, reason = claim["tolerance"], claim.get("tolerance_reason")
-    if tolerance is None:
-        if reason is not None:
-            raise ValueError(f"{path}: claim '{claim['id']}' gives a tolerance_reason but no tolerance")
-        return
-    if isinstance(tolerance, bool) or not isinstance(tolerance, (int, float)) or not tolerance >= 0:
-        raise ValueError(f"{path}: claim '{claim['id']}' has tolerance = {tolerance!r}; it must be a number >= 0 "
-                         "or null")
-    if not (isinstance(reason, str) and reason.strip()):
-        raise ValueError(f"{path}: claim '{claim['id']}' has tolerance = {tolerance!r} and tolerance_reason = "
-                         f"{reason!r}; a tolerance is a decision: it must give its reason as non-empty text")
-
-
-def left_regime(scene: str, ds: xr.Dataset) -> Verdict:
-    """The verdict on a claim whose scene left the escapement regime."""
-    outcome, message = ds.attrs["outcome"], ds.attrs["outcome_message"]
-    return Verdict(
-        f"not evaluated: {scene} left the escapement regime ({outcome})",
-        NOT,
-        note=f"{scene} ended with outcome '{outcome}': {message}; the claim concerns the escapement regime",
-    )
-
-
-def verdict(claim: Mapping, evidence: Evidence) -> Verdict:
-    """The verdict of the claim's check; :class:`ClaimError` naming the claim if the check fails."""
-    if claim["check"] not in CHECKS:
-        raise ClaimError(f"claim '{claim['id']}' names an unknown check '{claim['check']}'")
-    registered = CHECKS[claim["check"]]
+def verdict(claim: Mapping, reading: Mapping, evidence: Evidence) -> Verdict:
+    """The verdict of the check of one ``reading`` of the claim; :class:`ClaimError` naming the claim if the
+    check fails or answers no outcome."""
+    registered, spec = CHECKS[reading["check"]], {**claim, **reading}
     try:
-        scenes = registered.scenes(claim, evidence)
+        scenes = registered.scenes(spec, evidence)
         left = [(name, ds) for name, ds in scenes.items() if ds.attrs["outcome"] != COMPLETED]
-        result = left_regime(*left[0]) if left else registered.function(claim, evidence)
+        if left:
+            name, ds = left[0]
+            outcome = ds.attrs["outcome"]
+            return Verdict(f"not evaluated: {name} left the escapement regime ({outcome})", False,
+                           note=f"{name} ended with outcome '{outcome}': {ds.attrs['outcome_message']}; the "
+                                "claim concerns the escapement regime")
+        result = registered.function(spec, evidence)
     except Exception as err:  # re-raised naming the claim: a failing check is never a verdict
-        raise ClaimError(
-            f"claim '{claim['id']}': check '{registered.name}' failed: {type(err).__name__}: {err}"
-        ) from err
-    if result.status not in STATUSES:
-        raise ClaimError(f"claim '{claim['id']}': check '{registered.name}' returned the status {result.status!r}")
-    return result
+        raise ClaimError(f"claim '{claim['id']}': check '{registered.name}' failed: {type(err).__name__}: {err}"
+                         ) from err
+    holds, truth = result.holds, (bool, np.bool_)
+    if not (holds is None or isinstance(holds, truth) or (
+            isinstance(holds, Mapping) and holds and all(isinstance(h, truth) for h in holds.values()))):
+        raise ClaimError(f"claim '{claim['id']}': check '{registered.name}' answered holds = {holds!r}")
+    return replace(result, holds=holds if holds is None else {k: bool(h) for k, h in holds.items()}
+                   if isinstance(holds, Mapping) else bool(holds))
+
+
+def _outcomes(name: str, holds) -> tuple[list, str]:
+    """The outcomes of one reading (a grid's, if the check walked one), and them in words."""
+    if isinstance(holds, Mapping):
+        return list(holds.values()), f"{name}: holds under {sum(holds.values())} of the {len(holds)} readings of a grid"
+    return [holds], f"{name}: " + ("nothing to compute" if holds is None else "holds" if holds else "fails")
+
+
+def _joined(pairs: list[tuple[str, str]]) -> str:
+    """One text per reading, named, or the text once when every reading gives the same."""
+    texts = [text for _, text in pairs]
+    return texts[0] if len(set(texts)) == 1 else " | ".join(f"[{name}] {text}" for name, text in pairs if text)
 
 
 def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
-    """One row per claim, with exactly the columns of ``COLUMNS``; raises :class:`ClaimError` on a failing check."""
-    rows = []
+    """One row per claim, with exactly the columns of :data:`COLUMNS`; :class:`ClaimError` on a failing check."""
+    rows, findings = [], {}
     for claim in claims:
-        result = verdict(claim, evidence)
+        results = [(reading, verdict(claim, reading, evidence)) for reading in claim["readings"]]
+        outcomes, words, kinds = [], [], []
+        for reading, result in results:
+            found, said = _outcomes(reading["reading"], result.holds)
+            outcomes += found
+            words.append(said)
+            c = CHECKS[reading["check"]]
+            kinds.append(evidence_of(c.law, c.fitted, c.threshold, result.holds))
+        kind = weakest(kinds)
         paper = claim["paper_value"]
         if paper is None:
-            paper = result.paper_value or ""
+            paper = next((r.paper_value for _, r in results if r.paper_value), "")
         elif isinstance(paper, list):
             paper = "[" + ", ".join(fmt(x) for x in paper) + "]"
-        rows.append(
-            {
-                "claim_id": claim["id"],
-                "source": claim["source"],
-                "origin": claim["origin"],
-                "finding": claim["finding"],
-                "evidence": claim["evidence"],
-                "statement": claim["statement"],
-                "paper_value": fmt(paper) if not isinstance(paper, str) else paper,
-                "replicated_value": result.replicated_value,
-                "tolerance": "" if claim["tolerance"] is None else fmt(claim["tolerance"]),
-                "status": weighed(result.status, claim["evidence"]),
-                "note": result.note,
-            }
-        )
+        named = [reading["reading"] for reading, _ in results]
+        rows.append({
+            "claim_id": claim["id"],
+            "source": claim["source"],
+            "origin": claim["origin"],
+            "quote": claim.get("quote", ""),
+            "part": claim.get("part", ""),
+            "finding": findings.setdefault(claim["quote"], claim["id"]) if claim["origin"] == "paper" else "",
+            "evidence": kind,
+            "statement": claim["statement"],
+            "readings": "; ".join(words),
+            "paper_value": fmt(paper) if not isinstance(paper, str) else paper,
+            "replicated_value": _joined([(n, r.replicated_value) for n, (_, r) in zip(named, results)]),
+            "tolerance": _joined([(n, "" if r["tolerance"] is None else fmt(r["tolerance"]))
+                                  for n, (r, _) in zip(named, results)]),
+            "status": weighed(status_of(outcomes), kind),
+            "note": _joined([(n, r.note) for n, (_, r) in zip(named, results)]) + (
+                f"; no figure decides between the readings: {claim['figures_tried']}" if len(named) > 1 else ""),
+        })
     return rows

@@ -5,11 +5,10 @@ as signed positions (``-a1`` in (22a)); Eq. (2) writes the force as ``sigma f``,
 second half period; the second half period mirrors the first (``x -> -x``, ``a1 <-> a3``,
 ``a2 <-> a4``); a formula may take the velocity before or after an impact. Before a printed formula
 is called wrong, it is evaluated here under every combination of these readings
-(:data:`AXES`) and compared with the simulated value. A formula that the reading the register
-adopts (:data:`AS_READ`: signed positions, ``f``, the second half as written, the velocity after
-the impact) reproduces is reproduced; one that only another of the paper's own readings reproduces
-shows an inconsistency between two conventions of the paper (``partially_reproduced``, finding
-``conventions``); one that no reading reproduces is a wrong formula (``not_reproduced``).
+(:data:`AXES`) and compared with the simulated value: by the rule of REPLICATION.md, Sec. 7, a printed
+formula holds when one of the paper's conventions reproduces it (the note says whether the adopted one,
+:data:`AS_READ`: signed positions, ``f``, the second half as written, the velocity after the impact,
+does, or only another, which mixes two conventions of the paper), and fails when none does.
 
 The check of Eq. (14) under the conventions is here (:func:`eq14_conventions`); those of
 (22e)-(25) are in :mod:`.period_checks`.
@@ -26,7 +25,7 @@ from ..model.events import EventKind
 from ..model.parameters import Parameters
 from . import corrected as derived
 from . import printed as pe
-from .checks import NOT, PARTIAL, REPRODUCED, Evidence, Verdict, check, events_of, fig3_case, fmt, params_of
+from .checks import Evidence, Verdict, check, events_of, fig3_case, fmt, params_of
 
 __all__ = [
     "AS_READ", "AXES", "Reading", "Trial", "conventions_verdict", "departure", "describe", "eq14_conventions",
@@ -135,28 +134,23 @@ def describe(trials: list[Trial]) -> str:
     return "; ".join(f"{departure(t.reading)}: {fmt(t.value)} ({fmt(t.relative_difference, 2)})" for t in trials)
 
 
-def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple[str, str]:
-    """The status and note of a formula's ``trials`` (:func:`try_readings`), the adopted reading first.
-
-    ``reproduced`` if the adopted reading reproduces; ``partially_reproduced`` if only other readings
-    of the paper's do (an inconsistency between two of its conventions); ``not_reproduced`` if none
-    does (a wrong formula).
-    """
+def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple[bool, str]:
+    """Whether one of the paper's conventions reproduces the formula (its ``trials``, :func:`try_readings`, the
+    adopted reading first), and a note that says which."""
     if not trials or trials[0].reading != AS_READ:
         raise ValueError("trials must start with the adopted reading AS_READ")
     working = [t for t in trials if t.reproduces]
-    as_read = trials[0]
     listing = describe(trials)
-    if as_read.reproduces:
-        return REPRODUCED, f"{what} reproduces {simulated} as read; every reading: {listing}"
+    if trials[0].reproduces:
+        return True, f"{what} reproduces {simulated} as read; every reading: {listing}"
     if working:
-        return PARTIAL, (
-            f"{what} as read ({AS_READ}) gives {fmt(as_read.value)} against {simulated}; it is reproduced with "
-            f"{' or '.join(departure(t.reading) for t in working)}: an inconsistency between two conventions of the "
-            f"paper, not a wrong formula; every reading (relative difference): {listing}"
+        return True, (
+            f"{what} as read ({AS_READ}) gives {fmt(trials[0].value)} against {simulated}; it is reproduced with "
+            f"{' or '.join(departure(t.reading) for t in working)}: two conventions of the paper mixed, not a wrong "
+            f"formula; every reading (relative difference): {listing}"
         )
-    return NOT, (f"no convention of the paper reproduces {simulated} with {what}: a wrong formula; "
-                 f"every reading: {listing}")
+    return False, (f"no convention of the paper reproduces {simulated} with {what}: a wrong formula; "
+                   f"every reading: {listing}")
 
 
 # --- Eq. (14) ----------------------------------------------------------------------------------
@@ -172,8 +166,8 @@ def eq14_conventions(claim, ev: Evidence) -> Verdict:
     i = events_of(ds, EventKind.IMPACT_A1)[-2]
     v1, v5 = float(ds["event_velocity_before"].values[i]), float(ds["event_velocity_before"].values[i + 3])
     trials = second_half_trials(p, derived.cycle_velocities(v1, p), v5, claim["tolerance"], pe.v5_14)
-    status, note = conventions_verdict(trials, f"the simulated velocity at a4, {fmt(v5)} m/s", "Eq. (14)")
-    return Verdict(f"simulated velocity at a4 {fmt(v5)} m/s (case {case}, last cycle)", status, note=note,
+    holds, note = conventions_verdict(trials, f"the simulated velocity at a4, {fmt(v5)} m/s", "Eq. (14)")
+    return Verdict(f"simulated velocity at a4 {fmt(v5)} m/s (case {case}, last cycle)", holds, note=note,
                    paper_value=f"{fmt(trials[0].value)} m/s as read")
 
 

@@ -32,7 +32,7 @@ from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..model.status import Status
 from ..solvers.exact import solve_exact
-from .checks import NOT, PARTIAL, REPRODUCED, Evidence, Verdict, check, fmt, runs_only
+from .checks import Evidence, Verdict, check, fmt, runs_only
 
 __all__ = [
     "existence_threshold",
@@ -69,8 +69,8 @@ def existence_threshold(p: Parameters) -> float:
 
 def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: float) -> Verdict:
     """``rows``: per force ``F``, the closed-form ``C`` and ``fixed_point`` and the run's ``outcome``,
-    ``cycles`` and last ``velocity``. Reproduced when every run agrees with the sign of C (C > 0:
-    converges to the fixed point; C < 0: stops) and the forces lie on both sides of F*."""
+    ``cycles`` and last ``velocity``. Holds when every run agrees with the sign of C (C > 0: converges to
+    the fixed point; C < 0: stops) and the forces lie on both sides of F*."""
     agree = []
     for r in rows:
         if r["C"] > 0:
@@ -88,10 +88,10 @@ def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: floa
             parts.append(f"F = {fmt(r['F'], 4)} N (C = {fmt(r['C'], 4)} m^2/s^2): {r['outcome']} after "
                          f"{r['cycles']} complete cycles")
     both_sides = any(r["C"] > 0 for r in rows) and any(r["C"] < 0 for r in rows)
-    status = REPRODUCED if all(agree) and both_sides else NOT
-    why = ("the runs agree with the sign of C on both sides of F*" if status == REPRODUCED else
+    holds = all(agree) and both_sides
+    why = ("the runs agree with the sign of C on both sides of F*" if holds else
            "a run disagrees with the sign of C" if not all(agree) else "the forces do not straddle F*")
-    return Verdict("; ".join(parts), status, note=(
+    return Verdict("; ".join(parts), holds, note=(
         f"F* = (2b - b^2) K (a1^2 - a3^2) / (2 [(1-b)^2 (a2 - a1) + (a3 - a4)]) = {fmt(threshold, 6)} N (closed "
         f"form): C < 0 below it, no fixed point, v1^2 falls by |C| or more per cycle until the escapement stops; "
         f"in the symmetric case F* = 0; {why}"),
@@ -118,10 +118,8 @@ def existence_sign_change(claim, ev: Evidence) -> Verdict:
 
 def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) -> Verdict:
     """``rows``: per release ``x0`` the run's ``outcome`` and last ``velocity``, and the closed-form
-    ``fixed_point``. Reproduced when every release converges to the fixed point; partially when those
-    beyond ``boundary`` do and those inside it stop; not reproduced otherwise."""
-    beyond = [r for r in rows if abs(r["x0"]) > boundary]
-    inside = [r for r in rows if abs(r["x0"]) <= boundary]
+    ``fixed_point``. Holds when every release converges to the fixed point (the note says where the
+    releases inside ``boundary`` stand)."""
 
     def converged(r) -> bool:
         return r["outcome"] == Status.COMPLETED.value and abs(r["velocity"] - r["fixed_point"]) <= (
@@ -130,13 +128,7 @@ def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) 
     text = "; ".join(
         f"x0 = {fmt(r['x0'], 6)} m: " + (f"converges to {fmt(r['velocity'])} m/s" if converged(r) else r["outcome"])
         for r in rows)
-    if all(converged(r) for r in rows):
-        status = REPRODUCED
-    elif beyond and all(converged(r) for r in beyond) and all(r["outcome"] == Status.STOPPED.value for r in inside):
-        status = PARTIAL
-    else:
-        status = NOT
-    return Verdict(text, status, note=(
+    return Verdict(text, all(converged(r) for r in rows), note=(
         f"from rest at x0 the free swing covers [-|x0|, |x0|] and meets an impact position only if |x0| > "
         f"min(-a1, a3) = {fmt(boundary, 6)} m (closed form); beyond it every release converges to the same fixed "
         f"point (Eq. (19): {fmt(rows[0]['fixed_point'])} m/s), inside it (or exactly on it) the escapement never "
@@ -176,15 +168,13 @@ def grazing_limit(p: Parameters) -> float:
     return math.sqrt(p.omega2 * (p.a3**2 - p.a1**2) + 2 * p.f * (p.a3 - p.a4))
 
 
-def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> Verdict:
+def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float, conclusion: str) -> Verdict:
     """``rows``: per offset ``delta`` of the release from the grazing one, ``above`` (released at
     ``-A (1 + delta)``: its ``outcome`` and ``v_next``, the velocity before its second impact at a1) and
-    ``below`` (at ``-A (1 - delta)``: its ``outcome``). Every state has one continuation under the
-    strict jump set x xdot < 0, so the paper's conclusion, one solution, holds; its reason does not
-    (g is not Lipschitz), nor what the reason would also give, a motion continuous in the initial
-    state: when the runs above continue towards ``limit`` and those below stop, whatever delta, the
-    motion jumps with the release: partially reproduced. Reproduced when both sides agree
-    (continuous); not reproduced when the runs above do not tend to the closed-form continuation."""
+    ``below`` (at ``-A (1 - delta)``: its ``outcome``). ``conclusion`` ``unique``: holds when the runs above
+    continue to the closed-form continuation ``limit`` (one continuation from the grazing state, the strict
+    jump set x xdot < 0 counting a touch at rest as no impact); ``continuous``: holds when the runs either
+    side agree in outcome, as a Lipschitz right-hand side would make them (continuity in the release)."""
     split = all(r["above"]["outcome"] == Status.COMPLETED.value and r["below"]["outcome"] == Status.STOPPED.value
                 for r in rows)
     smallest = min(rows, key=lambda r: r["delta"])
@@ -193,25 +183,17 @@ def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> 
         f"delta = {fmt(r['delta'], 2)}: from -A(1 + delta) {r['above']['outcome']}"
         + (f", next impact at a1 with {fmt(r['above']['v_next'])} m/s" if math.isfinite(r["above"]["v_next"]) else "")
         + f"; from -A(1 - delta) {r['below']['outcome']}" for r in rows)
-    if not split:
-        status = REPRODUCED
-    elif error <= tolerance:
-        status = PARTIAL
-    else:
-        status = NOT
-    return Verdict(text + f"; one continuation from every state, but not continuous in the release: the grazing "
-                   f"release separates an impact and impulse (next v1 = {fmt(limit)} m/s, closed form) from no impact "
-                   "(a free swing of amplitude a3 for ever)", status, note=(
-        "uniqueness holds: with the strict jump set x xdot < 0 every state has exactly one continuation (a touch of "
-        "a3 at rest is no impact, in the solver as in the jump set). The reason given does not: g(t) of Eq. (2) is "
-        "the force sigma f switched on and off where x crosses a1..a4, discontinuous in y, so A y + g is not "
-        "Lipschitz and the cited theorem does not apply; and what that theorem would also give fails: releases "
-        "delta either side of the grazing one end an O(1) apart however small delta, so the motion does not "
-        "depend continuously on the release position"),
+    holds = bool(error <= tolerance) if conclusion == "unique" else not split
+    return Verdict(text + f"; the grazing release separates an impact and impulse (next v1 = {fmt(limit)} m/s, "
+                   "closed form) from no impact (a free swing of amplitude a3 for ever)", holds, note=(
+        "with the strict jump set x xdot < 0 a touch of a3 at rest is no impact, in the solver as in the jump set, "
+        "and the state has one continuation; but g(t) of Eq. (2) is the force sigma f switched on and off where x "
+        "crosses a1..a4, discontinuous in y, so A y + g is not Lipschitz and the cited theorem does not apply: "
+        "releases delta either side of the grazing one end an O(1) apart however small delta"),
         paper_value="exactly one solution (A and g Lipschitz)")
 
 
-@check("grazing_uniqueness", scenes=runs_only, args=("positions", "F", "deltas", "n_cycles"))
+@check("grazing_uniqueness", scenes=runs_only, args=("positions", "F", "deltas", "n_cycles", "conclusion"))
 def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     p = _params(args, args["F"])
@@ -225,6 +207,6 @@ def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
 
     rows = [{"delta": float(d), "above": run(-release * (1 + float(d))), "below": run(-release * (1 - float(d)))}
             for d in args["deltas"]]
-    verdict = grazing_verdict(rows, grazing_limit(p), claim["tolerance"])
-    return Verdict(f"grazing release A = {fmt(release)} m (closed form); " + verdict.replicated_value, verdict.status,
+    verdict = grazing_verdict(rows, grazing_limit(p), claim["tolerance"], args["conclusion"])
+    return Verdict(f"grazing release A = {fmt(release)} m (closed form); " + verdict.replicated_value, verdict.holds,
                    note=verdict.note, paper_value=verdict.paper_value)

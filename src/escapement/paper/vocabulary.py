@@ -1,73 +1,106 @@
-"""The words of the verdict, defined once: statuses, kinds of evidence, origins.
+"""The words of the verdict and the one rule that gives them: statuses, kinds of evidence, origins.
 
-A row of the claims register carries three judgements besides its numbers:
-
-* its **origin**: a claim the paper makes, or one the replication adds beyond it;
-* its **evidence**: how the replicated value bears on the claim: an independent computation, a
-  comparison that holds by construction (the model is built from the claim), a comparison under a
-  reading chosen by fitting the same evidence (the printed axes), or nothing the paper gives that
-  can be computed against;
-* its **status**, decided by the check and then weighed by the evidence (:func:`weighed`): an
-  agreement that holds by construction or by choice is ``consistent``, never ``reproduced``.
-
-Rows that share one root cause share a **finding** (a short name in the register), so that one
-discrepancy is counted once however many rows show it (:func:`escapement.pipeline.tally`).
+A row of the claims register checks one part of one of the paper's sentences (its ``quote``) under
+each reading its words admit. Its **status** follows from the readings by :func:`status_of`: holds
+under every reading, reproduced; under some, undetermined; under none, not reproduced; nothing to
+compute, untestable. Its **evidence** follows from what its checks consume (:func:`evidence_of`):
+a check that restates the model's own law is by construction, one that reads a scene or a score
+fitted to the paper's printed axes, or a threshold the project chose, is fitted; an agreement of
+either kind is only ``consistent`` (:func:`weighed`). The rows that quote one sentence are its
+parts, and the sentence is one **finding**, whose status follows from its parts by
+:func:`finding_status`; only there can a status be ``partially_reproduced``.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 __all__ = [
     "CONSISTENT", "EVIDENCE", "NOT", "ORIGINS", "PARTIAL", "REPRODUCED", "STATUSES", "UNDETERMINED",
-    "UNTESTABLE", "weighed",
+    "UNTESTABLE", "evidence_of", "finding_status", "status_of", "weakest", "weighed",
 ]
 
-#: every status a row may have, with what it means
+#: every status a row or a finding may have, with what it means
 STATUSES: dict[str, str] = {
-    "reproduced": "an independent computation agrees with the claim within its tolerance",
-    "partially_reproduced": "an independent computation agrees with part of the claim only",
-    "not_reproduced": "an independent computation disagrees with the claim",
-    "consistent": ("the replication agrees with the claim, but by construction or under a reading chosen "
-                   "from the same evidence: it confirms nothing"),
-    "undetermined": ("several readings fit the paper's evidence equally well, and the claim holds under some "
-                     "and fails under others: no verdict"),
+    "reproduced": "holds under every reading of the sentence's words, on evidence computed independently of it",
+    "partially_reproduced": ("a finding only: a named part of the sentence holds under every reading, another "
+                             "fails under every reading"),
+    "not_reproduced": "fails under every reading of the sentence's words",
+    "consistent": ("holds, but by construction (the model is built from it) or under a reading or threshold chosen "
+                   "by the project: it confirms nothing"),
+    "undetermined": ("holds under some readings of the sentence's words and fails under others, and no printed "
+                     "figure tells the readings apart: no verdict"),
     "untestable": "the paper gives nothing the claim can be computed against",
 }
 REPRODUCED, PARTIAL, NOT, CONSISTENT, UNDETERMINED, UNTESTABLE = STATUSES
 
-#: every kind of evidence a row may rest on, with what it means
+#: every kind of evidence, from the strongest, with what it means
 EVIDENCE: dict[str, str] = {
     "independent": "computed independently of the claim (a simulation, a closed form derived here)",
-    "by_construction": "the model is built from the claim, so the comparison cannot fail",
-    "fitted": "compared under a reading of the paper's open choices chosen by fitting the same evidence",
+    "fitted": ("computed under a reading fitted to the paper's printed axes, or judged by a threshold the project "
+               "chose"),
+    "by_construction": "restates a law the model is built on, so the comparison cannot fail",
     "none": "the paper gives no number, formula or figure the claim can be computed against",
 }
 
 #: where a claim comes from
 ORIGINS: dict[str, str] = {
-    "paper": "a claim the paper makes",
-    "beyond": "a claim the replication adds beyond the paper (it is not counted in the paper's tally)",
+    "paper": "a sentence of the paper, quoted",
+    "beyond": "a result the paper does not state, added by the replication (not counted among the findings)",
 }
 
 
-def weighed(status: str, evidence: str) -> str:
-    """The row's status: the check's ``status`` weighed by the kind of ``evidence`` it rests on.
+def evidence_of(law: str | None, fitted: str | None, threshold: str | None, holds) -> str:
+    """The kind of evidence of one reading, from what its check consumes: the model's ``law`` it restates,
+    what it reads that was ``fitted`` to the printed axes, the ``threshold`` the project chose; ``holds`` None
+    (nothing computed) is no evidence."""
+    if holds is None:
+        return "none"
+    return "by_construction" if law else "fitted" if (fitted or threshold) else "independent"
 
-    An agreement by construction or under a fitted reading is ``consistent``; a disagreement under
-    a fitted reading stays what the check found (no reading of the grid reaches the claim, which is
-    evidence against it whatever the choice); a claim with no evidence is ``untestable`` whatever
-    the check says.
+
+def weakest(kinds: Iterable[str]) -> str:
+    """The weakest of the kinds of evidence (the last in :data:`EVIDENCE`'s order)."""
+    order = list(EVIDENCE)
+    return max(kinds, key=order.index)
+
+
+def status_of(outcomes: Iterable[bool | None]) -> str:
+    """The one rule: the status of a claim from whether it holds under each reading of its words.
 
     Raises
     ------
     ValueError
-        If ``status`` or ``evidence`` is not one of :data:`STATUSES`, :data:`EVIDENCE`.
+        If there is no outcome, or if some readings computed nothing and others did.
     """
-    if status not in STATUSES:
-        raise ValueError(f"status = {status!r} must be one of {', '.join(STATUSES)}")
-    if evidence not in EVIDENCE:
-        raise ValueError(f"evidence = {evidence!r} must be one of {', '.join(EVIDENCE)}")
-    if evidence == "none":
+    outcomes = list(outcomes)
+    if not outcomes or (None in outcomes and any(o is not None for o in outcomes)):
+        raise ValueError(f"outcomes = {outcomes!r}: every reading computes an outcome, or none does")
+    if outcomes[0] is None:
         return UNTESTABLE
-    if evidence in ("by_construction", "fitted") and status == REPRODUCED:
-        return CONSISTENT
-    return status
+    return REPRODUCED if all(outcomes) else UNDETERMINED if any(outcomes) else NOT
+
+
+def weighed(status: str, evidence: str) -> str:
+    """The row's status: an agreement by construction or on fitted evidence is ``consistent``; a
+    disagreement or an undetermined status stays what it is."""
+    if status not in STATUSES or evidence not in EVIDENCE:
+        raise ValueError(f"status = {status!r}, evidence = {evidence!r}: not words of the vocabulary")
+    return CONSISTENT if status == REPRODUCED and evidence in ("fitted", "by_construction") else status
+
+
+def finding_status(statuses: Iterable[str]) -> str:
+    """A sentence's status from its parts' (its rows'): every part holds, reproduced (consistent if one part
+    holds only so); no part fails under every reading, undetermined; some part fails under every reading,
+    partially reproduced if another holds under every reading, else not reproduced. Untestable parts count
+    only when every part is."""
+    statuses = list(statuses)
+    tested = [s for s in statuses if s != UNTESTABLE]
+    if not tested:
+        return UNTESTABLE
+    holds = [s for s in tested if s in (REPRODUCED, CONSISTENT)]
+    if len(holds) == len(tested):
+        return CONSISTENT if CONSISTENT in holds else REPRODUCED
+    if NOT not in tested:
+        return UNDETERMINED
+    return PARTIAL if holds else NOT
