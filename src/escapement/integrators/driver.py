@@ -1,24 +1,13 @@
 """The integrators' loop: drives the automaton from event to event with a pluggable integrator (a *stepper*).
 
 The reference, high-precision and naive solvers integrate the equations of motion numerically, to check the
-exact solver (:mod:`escapement.solvers.kernel`) along an independent path. A stepper answers one question:
-starting in ``mode`` from ``(x, v)`` at time ``t``, which watched surface is reached first, when, and at what
-velocity? Everything else, which surfaces are watched, the impact law, the next mode, the regime exits, the
-cycle bookkeeping and the limits of the run, comes from :mod:`escapement.model.automaton` and is done here;
-how a run ends (an :class:`~escapement.solvers.outcomes.Outcome`) is decided as for the exact solver.
-
-A stepper's :meth:`Stepper.next_event` returns a :class:`Step`:
-
-* ``kind`` an :class:`EventKind`: the surface reached after ``dt`` with velocity ``v``; ``x_max`` is the largest
-  displacement on the way; ``t_abs``, if not None, is the event's time as the integrator computed it
-  (otherwise the loop sums the durations with compensation), and ``x_at``, if not None, the position where
-  it applies the event (otherwise the surface's);
-* ``kind`` :data:`NO_EVENT`: no watched surface is ever passed; ``x_max`` is the turning point (free flight: the
-  radius of the swing) reached ``dt`` after the start (``inf`` for free flight);
-* ``kind`` :data:`HORIZON`: the end time ``t_stop`` comes first.
-
-A stepper that keeps a trajectory says how many bytes it stores per event in ``trajectory_bytes_per_event``
-and, whatever the run's length, in ``fixed_bytes``: the loop counts them in the run's memory estimate.
+exact solver along an independent path. A stepper answers one question: from ``(x, v)`` at time ``t`` in
+``mode``, which watched surface is reached first, when, and at what velocity (:meth:`Stepper.next_event`, a
+:class:`Step`)? Everything else, which surfaces are watched, the impact law, the next mode, the regime exits,
+the cycles and the limits of the run, comes from :mod:`escapement.model.automaton` and is done here; how a run
+ends is decided as for the exact solver (:mod:`escapement.solvers.outcomes`). A stepper that keeps a trajectory
+says how many bytes it stores per event (``trajectory_bytes_per_event``) and whatever the run's length
+(``fixed_bytes``): the loop counts them in the run's memory estimate.
 """
 
 from __future__ import annotations
@@ -38,15 +27,8 @@ from ..model.kinematics import compensated_add
 from ..model.limits import RunSpec
 from ..model.status import Status
 from ..solvers.describe import CycleTable, Exit, Trajectory
-from ..solvers.outcomes import (
-    Outcome,
-    chattering_outcome,
-    completed_outcome,
-    event_limit_message,
-    finish,
-    horizon_outcome,
-    no_event_outcome,
-)
+from ..solvers.outcomes import (Outcome, chattering_outcome, completed_outcome, event_limit_message, finish,
+                                horizon_outcome, no_event_outcome)
 from ..solvers.result import Solution
 
 __all__ = ["HORIZON", "NO_EVENT", "Step", "Stepper", "drive"]
@@ -68,7 +50,11 @@ _MPF_BYTES_PER_BIT = 0.12
 
 
 class Step(NamedTuple):
-    """What a stepper returns (a plain tuple of these six fields is accepted too)."""
+    """What a stepper returns (a plain tuple of these six fields is accepted too). ``kind`` an
+    :class:`EventKind`: the surface reached after ``dt`` with velocity ``v``, ``x_max`` the largest displacement
+    on the way, ``t_abs`` the event's time as the integrator computed it (None: the loop sums the durations with
+    compensation); :data:`NO_EVENT`: no watched surface is ever passed, ``x_max`` the turning point (free flight:
+    the radius of the swing) reached ``dt`` after the start; :data:`HORIZON`: the end time comes first."""
 
     kind: int
     dt: float

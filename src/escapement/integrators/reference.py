@@ -1,25 +1,17 @@
-"""Reference solver: numerical integration with scipy's ``solve_ivp`` and terminal events.
+"""Reference solver: numerical integration by SciPy's ``solve_ivp`` (or SUNDIALS CVODE) with terminal events.
 
-It checks the exact solver independently and measures what a general-purpose integrator costs (SciPy's
-methods and SUNDIALS CVODE): it shares the automaton (through the loop of :mod:`escapement.integrators.driver`)
-but none of the closed forms. The motion is integrated segment by segment, a segment ending at every event
-and every turning point, so that ``x`` is monotone inside it and a surface is crossed at most once; it
-watches the surfaces ahead in the direction of motion, and rest; after each event the state is put exactly
-on the surface (SciPy reports a spurious event when a segment starts on a surface it watches).
+It checks the exact solver independently and measures what a general-purpose integrator costs: it shares the
+automaton (through the loop of :mod:`escapement.integrators.driver`) but none of the closed forms. The motion is
+integrated segment by segment, a segment ending at every event and every turning point, so that ``x`` is monotone
+inside it and a surface is crossed at most once; after each event the state is put exactly on the surface
+(SciPy reports a spurious event when a segment starts on a surface it watches).
 
-Grazing.  An integrator locates an event only where the event function has opposite signs
-at the two ends of a step.  A step that spans the crossing of a surface and the turning point
-just beyond it (a zone's end a2 or a4 passed slowly, an arc that turns a hair past it) can end
-where ``x`` has come back across the surface: the turning point is found, the crossing is not.
-So at the end of every segment the state there is checked against every surface the segment
-watches: one that lies between the start and the end in the direction of motion was crossed,
-and its crossing is located on the monotone stretch before the end (on the segment's dense
-output with SciPy, by integrating back from the end with CVODE).  The velocity has a single zero
-in any step (steps are kept below half a period, the spacing of its zeros), so no turning point
-is missed; an impact position (a1, a3) is reached moving towards the free centre, so it is
-grazed only just after a turning point, where a segment starts: one sign change, which the
-integrator finds.  An escapement that stops is declared so only at a turning point from which
-no watched surface lies ahead, so that the turning point it reports lies short of them.
+Grazing. An integrator finds an event only where the event function changes sign over a step: a step that spans
+the crossing of a zone's end and the turning point just beyond it shows none. So at the end of every segment
+each surface it watches that lies between its start and its end was crossed, and is located on the monotone
+stretch before the end (on the dense output with SciPy, integrating back with CVODE). Steps are kept below half a
+period, so no turning point is missed; an impact position is grazed only just after a turning point, where a
+segment starts. An escapement that stops is declared so only at a turning point with no watched surface ahead.
 """
 
 from __future__ import annotations
@@ -151,19 +143,9 @@ class IvpStepper:
         return DenseSegments(np.array(self.seg_t), tuple(self.seg_sol), np.array(self.seg_c), self.omega, t_final)
 
 
-def solve_reference(
-    params: Parameters,
-    x0: float,
-    v0: float = 0.0,
-    *,
-    n_cycles: int | None = None,
-    t_end: float | None = None,
-    max_events: int | None = None,
-    method: str = "DOP853",
-    rtol: float = 1e-12,
-    atol: float | None = None,
-    record_trajectory: bool = True,
-) -> Solution:
+def solve_reference(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = None,
+                    t_end: float | None = None, max_events: int | None = None, method: str = "DOP853",
+                    rtol: float = 1e-12, atol: float | None = None, record_trajectory: bool = True) -> Solution:
     """Integrate the escapement model numerically, segment by segment.
 
     ``method`` is a ``solve_ivp`` method ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA") or

@@ -1,6 +1,7 @@
 """The integration backends of the reference solver: one segment of the motion by SciPy's ``solve_ivp``
-(:class:`SciPyIntegrator`, with dense output) or by SUNDIALS CVODE (:class:`CvodeIntegrator`), each ending
-at the first surface it watches (:class:`Watch`), and the crossing of a surface located inside a segment.
+(:class:`SciPyIntegrator`, with dense output) or by SUNDIALS CVODE (:class:`CvodeIntegrator`), each ending at the
+first surface it watches (:class:`Watch`), and the crossing of a surface located inside a segment (hand-written:
+neither library reports a crossing that a step passes together with the turning point just beyond it).
 """
 
 from __future__ import annotations

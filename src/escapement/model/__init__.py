@@ -7,19 +7,5 @@ from .parameters import ParameterError, Parameters, check_initial_state
 from .quantities import INITIAL_STATE, PARAMETERS, Quantity
 from .status import Status
 
-__all__ = [
-    "EventKind",
-    "EventLog",
-    "INITIAL_STATE",
-    "Mode",
-    "PARAMETERS",
-    "ParameterError",
-    "Parameters",
-    "Quantity",
-    "RunLimits",
-    "RunSpec",
-    "Status",
-    "Surface",
-    "check_initial_state",
-    "run_spec",
-]
+__all__ = ["EventKind", "EventLog", "INITIAL_STATE", "Mode", "PARAMETERS", "ParameterError", "Parameters", "Quantity",
+           "RunLimits", "RunSpec", "Status", "Surface", "check_initial_state", "run_spec"]

@@ -1,23 +1,12 @@
 """The checks of every argument of the public entry points: one rule per kind of argument, one error.
 
-The solvers (:func:`~escapement.solve_exact`, :func:`~escapement.solve_ensemble`, the integrators), the
-parameters (:class:`~escapement.Parameters`) and the methods of the results (``Solution.sample``,
-``Solution.to_dataframe``, ``EnsembleSolution.outcome``) check each argument here, before any work, and
-refuse a bad one with a :class:`ParameterError` that names the argument, its value as given and what it
-must be. The kinds:
-
-* :func:`real_number`: a single real number (a Python or NumPy int or float, a fraction), finite. A bool,
-  a string, a complex number, ``None``, a masked value and an array of any dimension (0-d included) or a
-  sequence are refused: a scalar argument takes a plain number;
-* :func:`real_array`: a real number or an array-like of them, of any shape (the ensemble's inputs), finite.
-  Booleans, strings, complex numbers and other objects are refused element by element (NumPy would turn
-  ``[0.1, True]`` into ``[0.1, 1.0]`` or ``["1.0"]`` into ``[1.0]`` silently), and so is a masked element
-  (its value is not data: a masked array is taken only where nothing is masked), naming the first bad
-  element's flat index as the row;
-* :func:`sample_times`: times, a real number or a 1-d array of them, finite;
-* :func:`check_flag`, :func:`check_count`, :func:`check_index`, :func:`check_choice` and
-  :func:`check_type`: a yes or a no, a count, a row of an ensemble, a name from a list (a method, a table),
-  an object of a given class (:class:`ParameterTypeError`, also a :class:`TypeError`).
+Each entry point checks each argument here, before any work, and refuses a bad one with a
+:class:`ParameterError` naming the argument, its value as given and what it must be: a single finite real number
+(:func:`real_number`: not a bool, a string, a complex number, None, a masked value, an array or a sequence), an
+array of them (:func:`real_array`, the ensemble's inputs, refused element by element with the first bad
+element's flat index as the row: NumPy would turn ``[0.1, True]`` into ``[0.1, 1.0]`` silently), sample times,
+a yes or a no, a count, a row, a name from a list, an object of a class (:class:`ParameterTypeError`).
+Hand-written, because NumPy and the validation libraries coerce such values silently and name no row.
 """
 
 from __future__ import annotations
@@ -29,19 +18,8 @@ from typing import Any, TypeAlias, TypeVar
 
 import numpy as np
 
-__all__ = [
-    "Numeric",
-    "ParameterError",
-    "ParameterTypeError",
-    "check_choice",
-    "check_count",
-    "check_flag",
-    "check_index",
-    "check_type",
-    "real_array",
-    "real_number",
-    "sample_times",
-]
+__all__ = ["Numeric", "ParameterError", "ParameterTypeError", "check_choice", "check_count", "check_flag",
+           "check_index", "check_type", "real_array", "real_number", "sample_times"]
 
 #: a real number as the closed forms of the model take it: a float, a NumPy array of them (element by
 #: element) or an mpmath number (the 50-digit solver); checked by the caller, not by the type

@@ -21,25 +21,9 @@ from .status import Status
 if TYPE_CHECKING:
     from .parameters import Parameters
 
-__all__ = [
-    "ARCS",
-    "CENTRE_SIGN",
-    "EXIT_WITHOUT_EVENT",
-    "RELEASE",
-    "SURFACES",
-    "ZONE_OF",
-    "Arc",
-    "Mode",
-    "Surface",
-    "centre",
-    "cycle_plan",
-    "is_impact",
-    "position",
-    "rebound_distance",
-    "reverses",
-    "impact_factor",
-    "velocity_after",
-]
+__all__ = ["ARCS", "CENTRE_SIGN", "EXIT_WITHOUT_EVENT", "RELEASE", "SURFACES", "ZONE_OF", "Arc", "Mode", "Surface",
+           "centre", "cycle_plan", "is_impact", "position", "rebound_distance", "reverses", "impact_factor",
+           "velocity_after"]
 
 
 class Mode(IntEnum):

@@ -20,16 +20,8 @@ import numpy as np
 
 from .arguments import Numeric
 
-__all__ = [
-    "arc_terms",
-    "crossing",
-    "arc_maximum",
-    "compensated_add",
-    "time_to_rest",
-    "two_sum",
-    "rebound_accumulation_time",
-    "sample_arcs",
-]
+__all__ = ["arc_terms", "crossing", "arc_maximum", "compensated_add", "time_to_rest", "two_sum",
+           "rebound_accumulation_time", "sample_arcs"]
 
 TWO_PI = 2.0 * math.pi
 
@@ -258,24 +250,16 @@ def _atan_euler_maclaurin_sum(x: float, lam: float) -> float:
 def _atan_geometric_sum(x: float, ratio: float) -> float:
     """``S(x, r) = sum_{n>=0} atan(x r**n)`` for ``x >= 0`` and ``0 <= r < 1``, in a bounded number of operations.
 
-    Branches (``lam = -ln r``, computed as ``-log1p(r - 1)``, exact in ``r - 1`` for ``r >= 1/2``):
+    Branches (``lam = -ln r``, as ``-log1p(r - 1)``, exact in ``r - 1`` for ``r >= 1/2``): ``x <= 1/4``, the power
+    series (:func:`_atan_power_series_sum`); ``lam <= 0.1`` (``r >= 0.905``), Euler-Maclaurin
+    (:func:`_atan_euler_maclaurin_sum`); ``lam > 0.1`` and ``x <= 1``, at most 15 direct terms, then the power
+    series; ``lam > 0.1`` and ``x > 1``: with ``N = ceil(ln(x)/lam)`` (the terms above 1 are ``n < N``),
+    ``atan(y) = pi/2 - atan(1/y)`` turns them into ``N pi/2 - S(z, r) + S(z r**N, r)`` with ``z = 1/(x r**(N-1))``
+    in ``[r, 1]``, and the rest is ``S(x r**N, r)``, ``x r**N`` in ``(r, 1]``: three sums of the previous kind.
 
-    * ``x <= 1/4``: the power series of :func:`_atan_power_series_sum` (16 terms, 16 ``expm1``);
-    * ``lam <= 0.1`` (``r >= 0.905``): Euler-Maclaurin, :func:`_atan_euler_maclaurin_sum`
-      (an inverse tangent integral and 8 correction terms), truncation below 1e-19 relative;
-    * ``lam > 0.1`` and ``x <= 1``: at most 15 direct terms, then the power series;
-    * ``lam > 0.1`` and ``x > 1``: with ``N = ceil(ln(x)/lam)`` (the terms above 1 are ``n < N``),
-      ``atan(y) = pi/2 - atan(1/y)`` turns them into ``N pi/2 - S(z, r) + S(z r**N, r)`` with
-      ``z = 1/(x r**(N-1))`` in ``[r, 1]`` and ``z r**N = r/x``; the rest is ``S(x r**N, r)``,
-      ``x r**N`` in ``(r, 1]``. Three sums of the previous kind (sharing the series' denominators),
-      whatever ``x``.
-
-    So at most 64 evaluations of ``atan``, ``expm1`` and ``log`` (3 x 15 direct terms, 16 denominators,
-    3 logarithms) and a few hundred arithmetic operations, independent of ``x`` and of how close ``r``
-    is to 1. The truncation errors are
-    below 1e-18 relative; rounding leaves a few units of 2**-53 relative (measured: below 4e-16
-    against 30-digit sums). ``S`` is well conditioned in ``x`` and in ``lam`` (relative condition
-    numbers at most about 1), and ``log1p`` gives ``lam`` to an ulp even for ``r = 1 - 1e-12``.
+    So at most 64 evaluations of ``atan``, ``expm1`` and ``log`` and a few hundred arithmetic operations, whatever
+    ``x`` and however close ``r`` is to 1. The truncation errors are below 1e-18 relative; rounding leaves a few
+    units of 2**-53 (measured: below 4e-16 against 30-digit sums); ``S`` is well conditioned in ``x`` and ``lam``.
     """
     if x == 0.0:
         return 0.0
@@ -301,19 +285,12 @@ def _atan_geometric_sum(x: float, ratio: float) -> float:
 def rebound_accumulation_time(omega: float, distance: float, speed: float, ratio: float) -> float:
     """Total time of an infinite sequence of rebounds that shrink geometrically (a Zeno point).
 
-    After an impact reverses the velocity, the spring brings the mass back to the
-    impact position, which lies ``distance > 0`` from the centre of oscillation
-    on the side the spring pushes towards; it arrives with the speed it left with
-    and rebounds again with ``ratio = |1 - b| < 1`` times it.  The ``n``-th flight
-    lasts ``(2/omega) atan(ratio**n x)``, ``x = speed / (omega * distance)``, so the
-    flights sum to ``(2/omega) S(x, ratio)``, ``S(x, r) = sum_{n>=0} atan(x r**n)``:
-    finite for every ``r < 1``, and ``~ Ti2(x) / (1 - r)`` as ``r -> 1``
-    (``Ti2`` the inverse tangent integral).
-
-    Always a finite float, in a bounded number of operations (at most 64 elementary functions,
-    whatever ``x`` and however close ``ratio`` is to 1); the truncation error is below
-    1e-18 relative, and the result is within a few units of 2**-53 (relative) of the exact sum
-    for the given floats. The branches are described in :func:`_atan_geometric_sum`.
+    After an impact reverses the velocity, the spring brings the mass back to the impact position, ``distance > 0``
+    from the centre of oscillation on the side the spring pushes towards; it arrives with the speed it left with
+    and rebounds again with ``ratio = |1 - b| < 1`` times it. The ``n``-th flight lasts
+    ``(2/omega) atan(ratio**n x)``, ``x = speed / (omega * distance)``, so the flights sum to
+    ``(2/omega) S(x, ratio)`` (:func:`_atan_geometric_sum`): a finite float for every ``r < 1`` (``~ Ti2(x) / (1 - r)``
+    as ``r -> 1``), within a few units of 2**-53 (relative) of the exact sum, in at most 64 elementary functions.
     """
     checks = (
         ("omega", omega, math.isfinite(omega) and omega > 0.0, "finite and > 0 (rad/s)"),
@@ -331,21 +308,11 @@ def rebound_accumulation_time(omega: float, distance: float, speed: float, ratio
     return 2.0 * _atan_geometric_sum(x, ratio) / omega
 
 
-def sample_arcs(
-    t: np.ndarray,
-    t_start: np.ndarray,
-    centre: np.ndarray,
-    x_start: np.ndarray,
-    v_start: np.ndarray,
-    omega: float,
-    t_final: float,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Displacement, velocity and (smooth) acceleration at times ``t``.
-
-    Arc ``i`` holds on ``[t_start[i], t_start[i+1])``; the last one up to
-    ``t_final``.  Times before 0 or after ``t_final`` give NaN.  The acceleration
-    excludes the impulsive part at impacts, which the event log carries.
-    """
+def sample_arcs(t: np.ndarray, t_start: np.ndarray, centre: np.ndarray, x_start: np.ndarray, v_start: np.ndarray,
+                omega: float, t_final: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Displacement, velocity and (smooth) acceleration at times ``t``: arc ``i`` holds on
+    ``[t_start[i], t_start[i+1])``, the last one up to ``t_final``; NaN before 0 or after ``t_final``. The
+    acceleration excludes the impulsive part at impacts, which the event log carries."""
     t = np.asarray(t, dtype=float)
     idx = np.searchsorted(t_start, t, side="right") - 1
     valid = (idx >= 0) & (t <= t_final) & (t >= 0.0)

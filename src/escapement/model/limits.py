@@ -20,23 +20,9 @@ from .parameters import ParameterArrays, Parameters, check_initial_state, check_
 from .printing import texts
 from .quantities import MODEL_KEYS
 
-__all__ = [
-    "EVENTS_PER_CYCLE",
-    "MAX_CYCLES",
-    "MAX_DIGITS",
-    "MAX_EVENTS",
-    "MAX_MEMORY_BUDGET",
-    "MEMORY_BUDGET",
-    "MIN_DIGITS",
-    "MemoryBudgetError",
-    "RunLimits",
-    "RunSpec",
-    "check_budget",
-    "check_count",
-    "check_flag",
-    "events_for",
-    "run_spec",
-]
+__all__ = ["EVENTS_PER_CYCLE", "MAX_CYCLES", "MAX_DIGITS", "MAX_EVENTS", "MAX_MEMORY_BUDGET", "MEMORY_BUDGET",
+           "MIN_DIGITS", "MemoryBudgetError", "RunLimits", "RunSpec", "check_budget", "check_count", "check_flag",
+           "events_for", "run_spec"]
 
 EVENTS_PER_CYCLE = 4
 DEFAULT_MAX_EVENTS_FOR_TIME = 10_000_000

@@ -20,21 +20,8 @@ import numpy as np
 from .arguments import ParameterError, check_type, real_array, real_number
 from .quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS, REQUIRED_KEYS, SYMMETRIC_DEFAULTS, quantity
 
-__all__ = [
-    "B_SMALLEST",
-    "LARGEST",
-    "SIGNS",
-    "SMALLEST",
-    "ParameterArrays",
-    "ParameterError",
-    "Parameters",
-    "check_initial_state",
-    "check_parameters",
-    "real_array",
-    "rules",
-    "state_rules",
-    "validate_arrays",
-]
+__all__ = ["B_SMALLEST", "LARGEST", "SIGNS", "SMALLEST", "ParameterArrays", "ParameterError", "Parameters",
+           "check_initial_state", "check_parameters", "real_array", "rules", "state_rules", "validate_arrays"]
 
 #: the smallest and largest magnitude of a non-zero dimensional input, in SI units (see :func:`rules`)
 SMALLEST = 1e-50

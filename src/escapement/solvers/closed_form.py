@@ -1,23 +1,17 @@
 """The closed forms of whole cycles, the engine of :mod:`escapement.solvers.cycles`.
 
-From the first impact at a1 (the event solver's, :class:`~escapement.solvers.kernel.EventRun`) every cycle
-follows from the return map of ``v**2`` (:func:`~escapement.model.cycle_map.cycle_map`): the velocities
-before each impact at a1 for every cycle at once, then the four arcs of all the distinct cycles in one
-:func:`~escapement.model.kinematics.crossing` call on ``(4, m)`` arrays, with the rows of the event loop
-(:func:`~escapement.solvers.kernel.rows`). The period is the arcs' durations summed in the event solver's
-order, the amplitude the largest of ``a1`` and the arcs' largest ``x``.
+From the first impact at a1 (the event loop's) every cycle follows from the return map of ``v**2``
+(:func:`~escapement.model.cycle_map.cycle_map`): the velocities before each impact at a1 for every cycle at once,
+then the four arcs of the distinct cycles in one :func:`~escapement.model.kinematics.crossing` call on ``(4, m)``
+arrays, with the event loop's rows. From some cycle on ``v_k**2`` is the float ``v***2`` (rounding is monotone),
+so only the distinct cycles are computed (about ``45 / -log10(mu)``). Impact times
+``t_k = t_1 + (k-1) T + sum_{j<k} (T_j - T)``, ``T`` the last period, in exact parts added with TwoSum: within
+about an ulp of the exact sum of the floats.
 
-Distinct cycles only: from some cycle on, ``v_k**2`` is the float ``v***2`` (rounding is monotone, so it
-stays there), so the arcs are computed for the distinct cycles only (about ``45 / -log10(mu)`` of them).
-Impact times ``t_k = t_1 + (k-1) T + sum_{j<k} (T_j - T)``, ``T`` the last period: ``T_j - T`` is exact
-(Sterbenz), ``(k-1) T`` an exact product (``T`` split into its 22 leading bits and the rest) plus a tiny
-one, the remainders' prefix sums compensated, and the parts added with TwoSum: within about an ulp of the
-exact sum of the floats.
-
-The closed form does not apply (a string says why) where ``b`` is outside ``(0, 1]``, the first partial
-cycle does not complete, ``v_k**2`` is not positive, an arc cannot reach its end, or an arc grazes its end:
-it arrives with ``v**2 <= GRAZING_SPEED_SQ (w**2 (x - c)**2 + v0**2)``, where the arrival phase amplifies
-the rounding of the velocity and the closed form and the event solver would no longer agree to 1e-14.
+The closed form does not apply (a string says why) where ``b`` is outside ``(0, 1]``, the first partial cycle
+does not complete, ``v_k**2`` is not positive, an arc cannot reach its end, or it grazes its end (arrives with
+``v**2 <= GRAZING_SPEED_SQ`` times its largest), where the closed form and the event loop would no longer agree
+to 1e-14.
 """
 
 from __future__ import annotations

@@ -28,22 +28,9 @@ from .result import Ended, Solution
 from .stream import CHUNK_BYTES_PER_CYCLE, DEFAULT_CHUNK, ChunkIterator, CycleStream, StreamSummary, check_chunk
 from .stream import iter_cycles
 
-__all__ = [
-    "CHUNK_BYTES_PER_CYCLE",
-    "CLOSED_FORM",
-    "CROSS_CHECK_RTOL",
-    "GRAZING_SPEED_SQ",
-    "PEAK_BYTES_PER_CYCLE",
-    "CrossCheckError",
-    "CycleChunks",
-    "CycleMap",
-    "CycleRun",
-    "compare_tables",
-    "cross_check",
-    "cycle_map",
-    "iter_closed_form_cycles",
-    "solve_cycles",
-]
+__all__ = ["CHUNK_BYTES_PER_CYCLE", "CLOSED_FORM", "CROSS_CHECK_RTOL", "GRAZING_SPEED_SQ", "PEAK_BYTES_PER_CYCLE",
+           "CrossCheckError", "CycleChunks", "CycleMap", "CycleRun", "compare_tables", "cross_check", "cycle_map",
+           "iter_closed_form_cycles", "solve_cycles"]
 
 #: the method's name (in :attr:`CycleRun.method` and the benchmark's rows)
 CLOSED_FORM = "closed-form cycles"

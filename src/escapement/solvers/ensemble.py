@@ -84,11 +84,10 @@ class _State:
     largest_displacement: np.ndarray
 
 
-def solve_ensemble(
-    M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: ArrayLike, a2: ArrayLike,
-    a3: ArrayLike | None = None, a4: ArrayLike | None = None, x0: ArrayLike = 1.0, v0: ArrayLike = 0.0, *,
-    n_cycles: int, max_events: int | None = None, largest_displacement: bool = True, memory_budget: int | None = None,
-) -> EnsembleSolution:
+def solve_ensemble(M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: ArrayLike, a2: ArrayLike,
+                   a3: ArrayLike | None = None, a4: ArrayLike | None = None, x0: ArrayLike = 1.0, v0: ArrayLike = 0.0,
+                   *, n_cycles: int, max_events: int | None = None, largest_displacement: bool = True,
+                   memory_budget: int | None = None) -> EnsembleSolution:
     """Integrate every trajectory for ``n_cycles`` complete cycles (or until it leaves the regime).
 
     The model's inputs and the initial state are numbers or arrays, broadcast to one shape; each element is one

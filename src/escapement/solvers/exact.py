@@ -33,17 +33,9 @@ PASS_BYTES = 1 << 16
 _REMEDY = "raise memory_budget, or stream the cycles in constant memory with escapement.solvers.iter_cycles"
 
 
-def solve_exact(
-    params: Parameters,
-    x0: float,
-    v0: float = 0.0,
-    *,
-    n_cycles: int | None = None,
-    t_end: float | None = None,
-    max_events: int | None = None,
-    record_trajectory: bool = True,
-    memory_budget: int | None = None,
-) -> Solution:
+def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = None,
+                t_end: float | None = None, max_events: int | None = None, record_trajectory: bool = True,
+                memory_budget: int | None = None) -> Solution:
     """Integrate the escapement model exactly from ``(x0, v0)`` at ``t = 0+``.
 
     The run ends after ``n_cycles`` complete cycles, at ``t_end``, after ``max_events``

@@ -39,8 +39,8 @@ class Outcome(NamedTuple):
     t_final: object  #: a float, or an mpmath number for the high-precision solver
 
 
-#: the direction in which the free swing would pass each impact position
-_DIRECTION = {"a1": "moving right", "a3": "moving left"}
+#: the direction in which the free swing would pass each impact position, from the automaton's surfaces
+_DIRECTION = {s.position: "moving right" if s.direction > 0 else "moving left" for s in automaton.SURFACES.values()}
 #: the significant digits of the computed times and positions in the messages (more where needed)
 _DIGITS = 12
 

@@ -156,15 +156,12 @@ class Solution(Ended):
     def to_dataframe(self, table: str = "cycles") -> pd.DataFrame:
         """The run's cycles or events as a :class:`pandas.DataFrame`.
 
-        The columns are the variables of the run's CF dataset (the same names, values and units, from
-        :mod:`escapement.solvers.describe`), a row per cycle or per event: for ``"cycles"`` the index is the
-        cycle number ``cycle`` (1 .. N) and the columns are the fields of the cycle table, ``impact_time`` (s),
-        ``velocity_before_impact`` (m s-1), ``period`` (s) and ``largest_displacement`` (m); for ``"events"``
-        the index ``event`` counts from 0 and the columns are ``event_time`` (s), ``event_kind`` (the
-        :class:`~escapement.EventKind` code, which compares equal to its member), ``event_position`` (m),
-        ``event_velocity_before`` and ``event_velocity_after`` (m s-1). ``df.attrs["units"]`` maps each column
-        with units to its UDUNITS string, ``df.attrs["long_names"]`` each column to its description. The
-        high-precision solver's mpmath numbers become their nearest doubles.
+        The columns are the variables of the run's CF dataset, the same names, values and units
+        (:data:`~escapement.solvers.describe.CYCLE_COLUMNS`, the fields of the cycle table, indexed by the cycle
+        number ``cycle``, 1 .. N; :data:`~escapement.solvers.describe.EVENT_COLUMNS`, indexed by ``event`` from 0,
+        the kind as the :class:`~escapement.EventKind` code). ``df.attrs["units"]`` maps each column with units to
+        its UDUNITS string, ``df.attrs["long_names"]`` each column to its description. The high-precision solver's
+        mpmath numbers become their nearest doubles.
 
         Parameters
         ----------

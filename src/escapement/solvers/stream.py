@@ -132,17 +132,9 @@ class CycleStream(ChunkIterator):
         self._carry = (start + begins, before, tuple(column[begins:].copy() for column in columns))
 
 
-def iter_cycles(
-    params: Parameters,
-    x0: float,
-    v0: float = 0.0,
-    *,
-    n_cycles: int | None = None,
-    t_end: float | None = None,
-    max_events: int | None = None,
-    chunk: int = DEFAULT_CHUNK,
-    memory_budget: int | None = None,
-) -> CycleStream:
+def iter_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = None,
+                t_end: float | None = None, max_events: int | None = None, chunk: int = DEFAULT_CHUNK,
+                memory_budget: int | None = None) -> CycleStream:
     """The per-cycle table of :func:`~escapement.solvers.exact.solve_exact` for the same arguments, in
     chunks of at most ``chunk`` cycles (:class:`~escapement.solvers.result.CycleTable` each), in memory
     that does not grow with the run: no event log, no trajectory, one chunk at a time.
