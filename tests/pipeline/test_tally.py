@@ -10,7 +10,7 @@ from escapement.pipeline.tally import findings, findings_table, headline, vocabu
 
 def row(claim, status, finding, part="", origin="paper") -> dict:
     return {"claim_id": claim, "status": status, "finding": finding if origin == "paper" else "", "part": part,
-            "origin": origin}
+            "origin": origin, "quote": f"The sentence of {finding}." if origin == "paper" else ""}
 
 
 ROWS = [
@@ -55,7 +55,7 @@ def test_the_findings_table_lists_each_finding_once_with_its_parts():
     table = findings_table(ROWS)
     assert [r["finding"] for r in table] == ["map", "axes", "law", "sets", "period", "stable", "linear", "release",
                                              "accuracy"]
-    assert table[3] == {"finding": "sets", "verdict": "partially reproduced",
+    assert table[3] == {"finding": "sets", "sentence": "The sentence of sets.", "verdict": "partially reproduced",
                         "rows": "`s1` (S2: consistent), `s2` (S-bar: not reproduced)"}
     assert table[1]["rows"] == "`ax`"
 
