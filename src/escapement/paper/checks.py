@@ -153,6 +153,14 @@ def fig3_case(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     return {f"Fig. 3 case {label}": fig3_labelled(ev, label)}
 
 
+def fig3_cases(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
+    """The two Fig. 3 cases of ``args: {cases: [first, second]}``, in that order."""
+    labels = [str(c) for c in claim["args"]["cases"]]
+    if len(labels) != 2:
+        raise ValueError(f"args 'cases' must name two Fig. 3 cases, not {labels}")
+    return {f"Fig. 3 case {c}": fig3_labelled(ev, c) for c in labels}
+
+
 def fig3_all(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     return {f"Fig. 3 case {c}": ds for c, ds in ev.fig3.items()}
 

@@ -20,7 +20,7 @@ from ..model.events import EventKind
 from ..model.parameters import Parameters
 from . import printed as pe
 from ..solvers.exact import solve_exact
-from .checks import (Evidence, Verdict, check, events_of, fig3_all, fig3_case, fig3_labelled, fmt, group_runs,
+from .checks import (Evidence, Verdict, check, events_of, fig3_all, fig3_case, fig3_cases, fmt, group_runs,
                      params_of, rel, runs_left_regime, runs_only, within)
 from .poincare import RELATIVE_STEP, return_map
 
@@ -132,12 +132,7 @@ def natural_period(claim, ev: Evidence) -> Verdict:
     )
 
 
-def fig3_pair(claim, ev: Evidence) -> dict:
-    """The two Fig. 3 cases of ``args: {cases: [first, second]}``."""
-    return {f"Fig. 3 case {c}": fig3_labelled(ev, str(c)) for c in claim["args"]["cases"]}
-
-
-@check("initial_order", scenes=fig3_pair, args=("cases", "side"))
+@check("initial_order", scenes=fig3_cases, args=("cases", "side"))
 def initial_order(claim, ev: Evidence) -> Verdict:
     """The first case of ``cases`` has the smaller first velocity before the impact at a1, both released from rest
     at ``side`` (-1 or +1) times their initial amplitude |x0| (the paper gives the amplitude, not the side)."""

@@ -12,7 +12,7 @@ import xarray as xr
 
 from ..model.events import EventKind
 from . import corrected as derived
-from .checks import (Evidence, Verdict, check, fig3_all, fig3_case, fig3_labelled, fmt, group_runs, params_of, rel,
+from .checks import (Evidence, Verdict, check, fig3_all, fig3_case, fig3_cases, fmt, group_runs, params_of, rel,
                      runs_left_regime, runs_only, within)
 from .dynamics_checks import amplitude_of
 
@@ -22,21 +22,8 @@ __all__ = ["NOT_COMPARED", "common_force_runs", "converged_amplitudes", "energy_
 # --- the scenes of the figure checks -----------------------------------------------------------
 
 
-def fig3_cases(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
-    """The two Fig. 3 cases of ``args: {cases: [first, second]}``, in that order."""
-    labels = [str(c) for c in claim["args"]["cases"]]
-    if len(labels) != 2:
-        raise ValueError(f"args 'cases' must name two Fig. 3 cases, not {labels}")
-    return {f"Fig. 3 case {c}": fig3_labelled(ev, c) for c in labels}
-
-
 def fig4(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     return {"Fig. 4": ev.fig4}
-
-
-def _two_cases(claim: Mapping) -> tuple[str, str]:
-    first, second = (str(c) for c in claim["args"]["cases"])
-    return first, second
 
 
 # --- Sec. 4, Fig. 3 ----------------------------------------------------------------------------
@@ -70,7 +57,7 @@ def converged_amplitudes(ds: xr.Dataset) -> dict[str, float]:
 def compare_cases(claim, ev: Evidence) -> Verdict:
     """The first case of ``cases`` converges to a greater ``quantity`` than the second: a variable of the Fig. 3
     datasets, or ``amplitude`` under the definition ``args: {definition}`` (:func:`converged_amplitudes`)."""
-    first, second = _two_cases(claim)
+    first, second = (str(c) for c in claim["args"]["cases"])
     quantity = claim["args"]["quantity"]
     a, b = (converged_amplitudes(ds)[claim["args"]["definition"]] if quantity == "amplitude"
             else float(ds[quantity].values[-1]) for ds in (ev.fig3[first], ev.fig3[second]))
@@ -90,7 +77,7 @@ def energy_rate(v: np.ndarray) -> float:
 @check("convergence_rates", scenes=fig3_cases, args=("cases",))
 def convergence_rates(claim, ev: Evidence) -> Verdict:
     """The asymptotic rates of convergence of x1^2 of the two cases differ beyond the tolerance."""
-    rates = {k: energy_rate(ev.fig3[k]["velocity_before_impact"].values) for k in _two_cases(claim)}
+    rates = {str(k): energy_rate(ev.fig3[str(k)]["velocity_before_impact"].values) for k in claim["args"]["cases"]}
     first, second = rates.values()
     return Verdict(
         "rate of convergence of x1^2 per cycle: " + ", ".join(f"{k}: {fmt(r, 7)}" for k, r in rates.items()),
@@ -130,7 +117,7 @@ def converged_period(claim, ev: Evidence) -> Verdict:
 
 @check("period_difference", scenes=fig3_cases, args=("cases",))
 def period_difference(claim, ev: Evidence) -> Verdict:
-    first, second = _two_cases(claim)
+    first, second = (str(c) for c in claim["args"]["cases"])
     a, b = (float(ev.fig3[c]["period"].values[-1]) for c in (first, second))
     return Verdict(
         f"{fmt(abs(a - b), 6)} s ({first}: {fmt(a)} s, {second}: {fmt(b)} s)",
