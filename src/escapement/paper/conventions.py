@@ -27,11 +27,8 @@ from . import corrected as derived
 from . import printed as pe
 from .checks import Evidence, Verdict, check, events_of, fig3_case, fmt, params_of
 
-__all__ = [
-    "AS_READ", "AXES", "Reading", "Trial", "conventions_verdict", "departure", "describe", "eq14_conventions",
-    "readings", "symbols",
-    "second_half_trials", "try_readings",
-]
+__all__ = ["AS_READ", "AXES", "Reading", "Trial", "conventions_verdict", "departure", "describe", "eq14_conventions",
+    "readings", "symbols", "second_half_trials", "try_readings"]
 
 #: every convention the paper uses, by axis: the first of each is the reading the register adopts
 AXES: dict[str, tuple[str, ...]] = {

@@ -19,18 +19,9 @@ import math
 from ..model.cycle_map import cycle_map
 from ..model.parameters import Parameters
 
-__all__ = [
-    "cycle_velocities",
-    "map_constant",
-    "fixed_point",
-    "fixed_point_energy_sequence",
-    "period",
-    "impact_phase_jump",
-    "impact_phase_jump_closed",
-    "zone_period_change",
-    "period_from_perturbations",
-    "velocity_recovery",
-]
+__all__ = ["cycle_velocities", "map_constant", "fixed_point", "fixed_point_energy_sequence", "period",
+    "impact_phase_jump", "impact_phase_jump_closed", "zone_period_change", "period_from_perturbations",
+    "velocity_recovery"]
 
 
 def _sqrt(value: float) -> float:

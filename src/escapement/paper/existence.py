@@ -34,15 +34,8 @@ from ..model.status import Status
 from ..solvers.exact import solve_exact
 from .checks import Evidence, Verdict, check, fmt, runs_only
 
-__all__ = [
-    "existence_threshold",
-    "existence_verdict",
-    "grazing_limit",
-    "grazing_release",
-    "grazing_verdict",
-    "map_constant",
-    "release_verdict",
-]
+__all__ = ["existence_threshold", "existence_verdict", "grazing_limit", "grazing_release", "grazing_verdict",
+    "map_constant", "release_verdict"]
 
 
 def _params(args: Mapping, F: float, positions: Sequence[float] | None = None) -> Parameters:

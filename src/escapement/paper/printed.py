@@ -20,28 +20,10 @@ from fractions import Fraction
 from ..model.parameters import Parameters
 from .corrected import cycle_velocities
 
-__all__ = [
-    "Symbols",
-    "symbols_of",
-    "v5_14",
-    "zone_left_time_22e",
-    "period_terms_23",
-    "phase_jump_24",
-    "phase_jump_24_closed",
-    "zone_change_25",
-    "step_velocities",
-    "poincare_map_16",
-    "poincare_map_17",
-    "fixed_point_19",
-    "map_derivative_20",
-    "multiplier_21",
-    "multiplier_21_of",
-    "step_times_22",
-    "period_23",
-    "period_perturbation_24",
-    "period_perturbation_24_closed",
-    "period_perturbation_25",
-]
+__all__ = ["Symbols", "symbols_of", "v5_14", "zone_left_time_22e", "period_terms_23", "phase_jump_24",
+    "phase_jump_24_closed", "zone_change_25", "step_velocities", "poincare_map_16", "poincare_map_17",
+    "fixed_point_19", "map_derivative_20", "multiplier_21", "multiplier_21_of", "step_times_22", "period_23",
+    "period_perturbation_24", "period_perturbation_24_closed", "period_perturbation_25"]
 
 
 def _sqrt(value: float) -> float:

@@ -15,10 +15,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-__all__ = [
-    "CONSISTENT", "EVIDENCE", "NOT", "ORIGINS", "PARTIAL", "REPRODUCED", "STATUSES", "UNDETERMINED",
-    "UNTESTABLE", "evidence_of", "finding_status", "status_of", "weakest", "weighed",
-]
+__all__ = ["CONSISTENT", "EVIDENCE", "NOT", "ORIGINS", "PARTIAL", "REPRODUCED", "STATUSES", "UNDETERMINED",
+    "UNTESTABLE", "evidence_of", "finding_status", "status_of", "weakest", "weighed"]
 
 #: every status a row or a finding may have, with what it means
 STATUSES: dict[str, str] = {
