@@ -66,6 +66,7 @@ rule readings:
 rule check_claims:
     input:
         register="workflow/claims.yaml",
+        schema="workflow/schemas/claims.schema.yaml",
         fig3=expand(
             "results/replication/poincare_map/case_{case}.nc",
             case=STUDIES["replication"]["fig3"],

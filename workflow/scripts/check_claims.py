@@ -4,6 +4,7 @@ from escapement.pipeline.verdict import check_claims
 
 check_claims(
     snakemake.input.register,
+    snakemake.input.schema,
     dict(zip(snakemake.params.fig3_labels, snakemake.input.fig3)),
     snakemake.input.fig4,
     dict(zip(snakemake.params.fig5_labels, snakemake.input.fig5)),

@@ -33,7 +33,7 @@ def render_docs(inputs: Mapping[str, str], outputs: Mapping[str, str], log: str)
         stress = read_stress(inputs["stress"])
         tables = {
             "stress": markdown_table(stress, ["regime", "outcome", "check", "passed", "detail"]),
-            "findings": markdown_table(findings_table(rows), ["finding", "verdict", "rows"]),
+            "findings": markdown_table(findings_table(rows), ["finding", "sentence", "verdict", "rows"]),
             "vocabulary": markdown_table(vocabulary_table(), ["word", "meaning"]),
             "readings": markdown_table(best_readings_table(read_scores(inputs["readings"])),
                                        ["figure", "panel", "printed limits", "limits reproduced",

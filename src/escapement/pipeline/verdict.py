@@ -1,4 +1,5 @@
-"""The verdict: the claims register evaluated on the netCDF outputs, written as ``results/claims.csv``.
+"""The verdict: the claims register evaluated on the replication's netCDF outputs, written as
+``results/replication/claims.csv``.
 
 :func:`check_claims` is the job of the workflow rule ``check_claims``; :func:`read_claims_csv`
 reads the table back for the documents.  A check that fails makes the job fail, naming the claim
@@ -21,20 +22,20 @@ __all__ = ["FIG3_VARIABLES", "FIG4_VARIABLES", "FIG5_VARIABLES", "CHECKS_VARIABL
            "write_claims_csv", "read_claims_csv"]
 
 #: The variables the checks read from each output; a file lacking one is named by read_netcdf.
-FIG3_VARIABLES = ("cycle", "velocity_before_impact", "period", "event_time", "event_kind",
+FIG3_VARIABLES = ("cycle", "velocity_before_impact", "period", "event_time", "event_kind", "event_position",
                   "event_velocity_before", "event_velocity_after", *MODEL_KEYS, "x0")
-FIG4_VARIABLES = ("t", "velocity", "acceleration", "velocity_before", "impulse", "energy_dissipated",
+FIG4_VARIABLES = ("t", "velocity", "acceleration", "impact_time", "velocity_before", "impulse", "energy_dissipated",
                   "velocity_window", "acceleration_window", *MODEL_KEYS, "x0")
 FIG5_VARIABLES = ("t", "displacement", "velocity", "impact_time", "velocity_before_impact", "period",
-                  "largest_displacement",
-                  *MODEL_KEYS)
-CHECKS_VARIABLES = ("label", "group", "outcome", "outcome_message", "F", "b", "x0", "velocity", "period",
-                    "multiplier", "multiplier_eq21")
+                  "largest_displacement", *MODEL_KEYS)
+CHECKS_VARIABLES = ("label", "group", "outcome", "outcome_message", "x0", "velocity", "period", "multiplier",
+                    "multiplier_eq21", "largest_displacement", "largest_speed", "first_period", "floquet_major",
+                    "floquet_minor", "cycles_to_converge", *MODEL_KEYS)
 
 
 def check_claims(
-    register: str, fig3: Mapping[str, str], fig4: str, fig5: Mapping[str, str], checks: str, readings: str,
-    output: str, log: str,
+    register: str, schema: str, fig3: Mapping[str, str], fig4: str, fig5: Mapping[str, str], checks: str,
+    readings: str, output: str, log: str,
 ) -> None:
     """Evaluate the register on the outputs (``fig3`` and ``fig5`` keyed by their configured labels)
     and the score table of the candidate readings (``readings``), and write the table; raise, naming
@@ -51,7 +52,7 @@ def check_claims(
             axes=scene_axes(fig3_data, fig4_data, fig5_data),
             readings=panel_candidates(read_scores(readings)),
         )
-        rows = evaluate(load_claims(register), evidence)
+        rows = evaluate(load_claims(register, schema), evidence)
         for row in rows:
             logger.info("%s: %s: %s", row["claim_id"], row["status"], row["replicated_value"])
         write_claims_csv(rows, output)
