@@ -4,7 +4,6 @@ from escapement.pipeline.verdict import check_claims
 
 check_claims(
     snakemake.input.register,
-    snakemake.input.schema,
     dict(zip(snakemake.params.fig3_labels, snakemake.input.fig3)),
     snakemake.input.fig4,
     dict(zip(snakemake.params.fig5_labels, snakemake.input.fig5)),
@@ -12,4 +11,5 @@ check_claims(
     snakemake.input.readings,
     snakemake.output.csv,
     snakemake.log[0],
+    schema=snakemake.input.schema,
 )
