@@ -88,7 +88,8 @@ def test_from_mapping_ignores_other_keys_and_names_a_missing_one():
 
 @pytest.mark.parametrize("x0, v0, name, requirement", [
     (math.nan, 0.0, "x0", "finite"), ("1", 0.0, "x0", "a real number"), (1.0, [0.0, 1.0], "v0", "a single real"),
-    (1e200, 0.0, "x0", f"0 or of magnitude in {RANGE} (m)"), (1.0, -5e-324, "v0", f"0 or of magnitude in {RANGE} (m/s)"),
+    (1e200, 0.0, "x0", f"0 or of magnitude in {RANGE} (m)"),
+    (1.0, -5e-324, "v0", f"0 or of magnitude in {RANGE} (m/s)"),
     (1.0, 1e51, "v0", f"0 or of magnitude in {RANGE} (m/s)"),
 ])
 def test_the_initial_state_is_refused_naming_it(x0, v0, name, requirement):

@@ -22,7 +22,8 @@ CYCLE_COLUMNS = NAMES
 
 def _compare(params_list, x0s, v0s, n_cycles, max_events=None, amplitude=True):
     arrays = {k: [getattr(p, k) for p in params_list] for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4")}
-    ens = solve_ensemble(**arrays, x0=x0s, v0=v0s, n_cycles=n_cycles, max_events=max_events, largest_displacement=amplitude)
+    ens = solve_ensemble(**arrays, x0=x0s, v0=v0s, n_cycles=n_cycles, max_events=max_events,
+                         largest_displacement=amplitude)
     for i, p in enumerate(params_list):
         run = solve_exact(p, x0s[i], v0s[i], n_cycles=n_cycles, max_events=max_events, record_trajectory=False)
         assert ens.outcome(i) == run.status
@@ -110,7 +111,8 @@ def test_a_completed_row_with_a_non_finite_number_is_a_bug_raised(monkeypatch, p
         monkeypatch.setattr(np, "hypot", lambda u, w: np.full(np.shape(u), np.nan))
     with pytest.raises(FloatingPointError, match="^row 0: a completed run holds a non-finite largest_displacement"):
         solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2)
-    out = solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2, largest_displacement=False)  # not computed: NaN
+    # not computed: NaN
+    out = solve_ensemble(1.0, 1.0, 1.0, 0.1, -0.1, 0.05, x0=1.0, n_cycles=2, largest_displacement=False)
     assert out.success[0] and np.isnan(out.cycles.largest_displacement).all()
 
 

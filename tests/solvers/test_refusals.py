@@ -99,7 +99,8 @@ ENSEMBLE = [
     ({"n_cycles": 0}, "n_cycles", None, "a positive integer, at most 1_000_000_000"),
     ({"max_events": 2.0}, "max_events", None, "a positive integer, at most 5_000_000_000"),
     ({"largest_displacement": "no"}, "largest_displacement", None, "True or False"),
-    ({"n_cycles": 10**6, "memory_budget": 10**6}, "n_cycles", None, "at most 6_923 for the run to fit its memory budget: "
+    ({"n_cycles": 10**6, "memory_budget": 10**6}, "n_cycles", None, "at most 6_923 for the run to fit its memory "
+     "budget: "
      "it would store the cycle tables of 3 trajectories, an estimated 144_003_000 bytes, over the memory budget"),
     ({"memory_budget": 10}, "memory_budget", None, "at least 1_144 bytes, those of a run of trajectories = 1"),
 ]
@@ -120,10 +121,11 @@ def test_the_ensemble_refuses_a_bad_input_naming_it_and_its_row(changes, name, r
 
 
 def test_inputs_too_large_are_refused_from_their_shapes_before_any_array_is_made():
-    """10**8 trajectories given as a broadcast view (no memory of its own): refused naming the trajectories."""
+    """10**8 trajectories given as a broadcast view (no memory of its own): refused naming the trajectories, the
+    most that fit 2e9 / (48 * 20 + 1000) bytes each."""
     with mock.patch("escapement.model.limits.validate_arrays") as validate:
         with pytest.raises(MemoryBudgetError, match=r"^trajectories = 100000000 is invalid: trajectories must be at "
-                                                     r"most 1_020_408 for the run to fit its memory budget"):  # 2e9 / (48 * 20 + 1000)
+                                                     r"most 1_020_408 for the run to fit its memory budget"):
             solve_ensemble(M=1.0, K=1.0, F=np.broadcast_to(1.0, (10**8,)), b=0.1, a1=-0.1, a2=0.05, n_cycles=20)
     assert not validate.called
 

@@ -224,7 +224,8 @@ def table_rows(c: Cycles, start: int, stop: int) -> tuple[CycleTable, float]:
     s, e2 = two_sum(s, _window(c.hi, start, stop + 1))
     t = s + (((e1 + e2) + k * (c.big - c.big_hi)) + _window(c.lo, start, stop + 1))
     table = CycleTable(impact_time=t[:-1], velocity_before_impact=_window(c.v, start, stop),
-                       period=_window(c.period, start, stop), largest_displacement=_window(c.largest_displacement, start, stop))
+                       period=_window(c.period, start, stop),
+                       largest_displacement=_window(c.largest_displacement, start, stop))
     return table, float(t[-1])
 
 

@@ -20,7 +20,8 @@ from ..model.parameters import Parameters
 from ..model.printing import exact, number, span, texts
 from ..model.quantities import INITIAL_STATE, PARAMETERS
 from ..model.status import Status, succeeded
-from .describe import CYCLE_COLUMNS, CYCLE_UNITS, EVENT_COLUMNS, EXIT_UNITS, ArcTable, CycleTable, Exit, Trajectory, line
+from .describe import (CYCLE_COLUMNS, CYCLE_UNITS, EVENT_COLUMNS, EXIT_UNITS, ArcTable, CycleTable, Exit, Trajectory,
+                       line)
 
 if TYPE_CHECKING:  # pandas is imported on use (see Solution.to_dataframe)
     import pandas as pd

@@ -196,7 +196,8 @@ def iter_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
 
 def check_chunk(chunk: int, memory_budget: int) -> tuple[int, int]:
     """``chunk`` checked (an integer in [1, :data:`MAX_CHUNK`]) and the bytes a chunk of it takes
-    (:data:`CHUNK_BYTES_PER_CYCLE` a cycle), within ``memory_budget`` (:func:`~escapement.model.limits.check_budget`)."""
+    (:data:`CHUNK_BYTES_PER_CYCLE` a cycle), within ``memory_budget``
+    (:func:`~escapement.model.limits.check_budget`)."""
     chunk = check_count("chunk", chunk, MAX_CHUNK)
     return chunk, check_budget(memory_budget, f"chunks of {CHUNK_BYTES_PER_CYCLE} bytes a cycle",
                                [("chunk", chunk, lambda n: n * CHUNK_BYTES_PER_CYCLE)])
