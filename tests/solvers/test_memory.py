@@ -155,7 +155,7 @@ def test_a_streamed_run_takes_the_memory_of_a_chunk_whatever_its_length():
     """The budget a chunk is checked against bounds the stream's peak: the chunk being built, the one the caller
     holds, and a pass of the loop (the chunk large enough for its cycles to outweigh the pass); five times the
     cycles take no more memory."""
-    _, _, peak = _peak(lambda: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=20_000, chunk=10_000)])
+    _, _, peak = _peak(lambda: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=12_000, chunk=10_000)])
     _bounds(10_000 * stream.CHUNK_BYTES_PER_CYCLE, peak)
     short, long = (_peak(lambda n=n: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=n, chunk=500)])[2]
                    for n in (2_000, 10_000))
