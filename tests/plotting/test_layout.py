@@ -74,7 +74,7 @@ def test_no_text_covers_another_or_data_and_the_title_has_at_most_two_lines(data
     assert not found, "\n".join(found)
 
 
-@pytest.mark.parametrize("name", ["poincare_map", "stability_map"])
+@pytest.mark.parametrize("name", ["stability_map"])  # rasterised: the likeliest to differ
 def test_a_figure_saves_to_the_same_bytes_every_time(tmp_path, datasets, name):
     digests = []
     for i in range(2):

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from escapement.model.status import Status
-from escapement.scenes.maps import escapement_error, existence_map, stability_chunk
+from escapement.scenes.maps import escapement_error, existence_map, stability_map
 
 #: the paper's Sec. 4 model with the symmetric a4 = -a2; a3 is the existence map's axis
 MODEL = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05}
@@ -53,14 +53,18 @@ def test_the_existence_map_flips_just_across_the_binding_threshold(a3):
 
 
 def test_the_stability_map_measures_the_multiplier_of_eq_21():
-    """mu2 = (1 - b)^4 (Eq. (21), written out here) where the cycle completes, on a small (b, F) grid."""
-    ds, timings = stability_chunk({**MODEL, "b_values": [0.05, 0.5, 1.5], "F_values": [0.5, 1.0]})
+    """mu2 = (1 - b)^4 (Eq. (21), written out here) where the cycle completes, on a small (b, F) grid: b at the
+    cell centres 0.25, 0.75, 1.25, 1.75 of (0, 2), F = 0.5 and 1 N."""
+    ds, timings = stability_map({**MODEL, "b": {"start": 0.0, "stop": 2.0, "n": 4}, "F": {"start": 0.5, "stop": 1.0,
+                                                                                        "n": 2}})
+    assert ds["b"].values.tolist() == [0.25, 0.75, 1.25, 1.75] and ds["F"].values.tolist() == [0.5, 1.0]
     completed = ds["outcome"].values == Status.COMPLETED.code
-    assert completed[:2].all()  # 0 < b < 1: the escapement keeps going
-    expected = (1 - np.array([0.05, 0.5, 1.5]))[:, None] ** 4 * np.ones((1, 2))
+    assert completed[:2].all() and not completed[2:].any()  # b > 1: the impact reverses the velocity
+    expected = (1 - np.array([0.25, 0.75, 1.25, 1.75]))[:, None] ** 4 * np.ones((1, 2))
     np.testing.assert_allclose(ds["multiplier"].values[completed], expected[completed], atol=1e-8)
     np.testing.assert_array_equal(ds["multiplier_eq21"].values, expected)
-    assert set(timings) == {"ensemble_seconds_per_trajectory", "scalar_seconds_per_trajectory"}
+    assert set(timings) == {"ensemble_seconds_per_trajectory", "scalar_seconds_per_trajectory",
+                            "ensemble_speedup_per_trajectory"}
 
 
 def test_the_escapement_error_holds_each_zone_at_each_force_and_its_formula_agrees_with_the_solver():

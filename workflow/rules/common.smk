@@ -64,10 +64,27 @@ CODE = {
 }
 
 
-def scene(block, key=None):
-    """The params of the scene of ``block`` that the job's wildcards name: its study and, for a kind with several
-    scenes, the wildcard ``key`` (a Fig. 3 case, a spring constant, a chunk)."""
-    return lambda w: STUDIES[w.study][block][w[key] if key else ""]
+def scenes(block, name=None):
+    """The params of the scenes of ``block`` in the job's study, by the file each writes: ``name`` (a pattern
+    such as ``case_{}.nc``) for a kind of several scenes, in its folder; the one scene of the others.
+    """
+    return lambda w: {
+        name.format(label) if name else "": settings
+        for label, settings in STUDIES[w.study][block].items()
+    }
+
+
+def scene_files(study, block, name):
+    """The files of the scenes of ``block`` in ``study``, in its kind's folder, by their labels."""
+    return {
+        label: f"results/{study}/{KINDS[block].name}/{name.format(label)}"
+        for label in STUDIES[study][block]
+    }
+
+
+def files(block, name):
+    """:func:`scene_files` of the job's study."""
+    return lambda w: scene_files(w.study, block, name)
 
 
 def study_outputs(study):

@@ -9,7 +9,7 @@ rule checks:
         "results/logs/replication/checks.log",
     params:
         kind="checks",
-        scene=RUNS["checks"],
+        scenes={"": RUNS["checks"]},
         code=CODE["simulate"],
     script:
         "../scripts/simulate.py"
@@ -24,7 +24,7 @@ rule long_run:
     priority: 10  # the longest job, at the head of a chain (stress table, its figure): started first
     params:
         kind="long_run",
-        scene=RUNS["long_run"],
+        scenes={"": RUNS["long_run"]},
         code=CODE["simulate"],
     script:
         "../scripts/simulate.py"
@@ -62,15 +62,9 @@ rule check_claims:
     input:
         register="workflow/claims.yaml",
         schema="workflow/schemas/claims.schema.yaml",
-        fig3=expand(
-            "results/replication/poincare_map/case_{case}.nc",
-            case=STUDIES["replication"]["fig3"],
-        ),
+        fig3="results/replication/poincare_map",
         fig4="results/replication/shock_detail.nc",
-        fig5=expand(
-            "results/replication/phase_diagrams/K_{K}.nc",
-            K=STUDIES["replication"]["fig5"],
-        ),
+        fig5="results/replication/phase_diagrams",
         checks="results/replication/checks.nc",
         readings="results/replication/readings.csv",
     output:
@@ -84,8 +78,8 @@ rule check_claims:
         "results/logs/replication/check_claims.log",
     localrule: True
     params:
-        fig3_labels=list(STUDIES["replication"]["fig3"]),
-        fig5_labels=list(STUDIES["replication"]["fig5"]),
+        fig3=scene_files("replication", "fig3", "case_{}.nc"),
+        fig5=scene_files("replication", "fig5", "K_{}.nc"),
         code=CODE["verdict"],
     script:
         "../scripts/check_claims.py"

@@ -1,17 +1,16 @@
 # The scenes of every study: the replication's (config/paper.yaml) and the user's own (config/config.yaml),
-# {study} naming which; each job writes one dataset (or one figure) from its scene's settings.
+# {study} naming which. Each job writes the datasets of one kind of scene (a kind of several scenes, such as
+# Fig. 3's cases, into its folder, one file per scene) and each plotting job the figure of one kind.
 
 
 rule poincare_map:
     output:
-        nc="results/{study}/poincare_map/case_{case}.nc",
+        folder=directory("results/{study}/poincare_map"),
     log:
-        "results/logs/{study}/poincare_map_{case}.log",
-    wildcard_constraints:
-        case="[a-z]",
+        "results/logs/{study}/poincare_map.log",
     params:
         kind="poincare_map",
-        scene=scene("fig3", "case"),
+        scenes=scenes("fig3", "case_{}.nc"),
         code=CODE["simulate"],
     script:
         "../scripts/simulate.py"
@@ -24,22 +23,20 @@ rule shock_detail:
         "results/logs/{study}/shock_detail.log",
     params:
         kind="shock_detail",
-        scene=scene("fig4"),
+        scenes=scenes("fig4"),
         code=CODE["simulate"],
     script:
         "../scripts/simulate.py"
 
 
-rule phase_diagram:
+rule phase_diagrams:
     output:
-        nc="results/{study}/phase_diagrams/K_{K}.nc",
+        folder=directory("results/{study}/phase_diagrams"),
     log:
-        "results/logs/{study}/phase_diagram_K_{K}.log",
-    wildcard_constraints:
-        K="[0-9.e+-]+",
+        "results/logs/{study}/phase_diagrams.log",
     params:
         kind="phase_diagram",
-        scene=scene("fig5", "K"),
+        scenes=scenes("fig5", "K_{}.nc"),
         code=CODE["simulate"],
     script:
         "../scripts/simulate.py"
@@ -52,7 +49,7 @@ rule escapement_error:
         "results/logs/{study}/escapement_error.log",
     params:
         kind="escapement_error",
-        scene=scene("escapement_error"),
+        scenes=scenes("escapement_error"),
         code=CODE["simulate"],
     script:
         "../scripts/simulate.py"
@@ -65,45 +62,24 @@ rule existence_map:
         "results/logs/{study}/existence_map.log",
     params:
         kind="existence_map",
-        scene=scene("existence_map"),
-        code=CODE["simulate"],
-    script:
-        "../scripts/simulate.py"
-
-
-rule stability_chunk:
-    output:
-        nc="results/{study}/stability_map/chunk_{chunk}.nc",
-        timing="results/{study}/stability_map/chunk_{chunk}_timing.csv",
-    log:
-        "results/logs/{study}/stability_chunk_{chunk}.log",
-    wildcard_constraints:
-        chunk="[0-9]+",
-    params:
-        kind="stability_chunk",
-        scene=scene("stability_map", "chunk"),
+        scenes=scenes("existence_map"),
         code=CODE["simulate"],
     script:
         "../scripts/simulate.py"
 
 
 rule stability_map:
-    input:
-        chunks=lambda w: expand(
-            "results/{study}/stability_map/chunk_{chunk}.nc",
-            study=w.study,
-            chunk=STUDIES[w.study]["stability_map"],
-        ),
     output:
         nc="results/{study}/stability_map.nc",
         timing="results/{study}/stability_map_timing.csv",
     log:
         "results/logs/{study}/stability_map.log",
-    localrule: True
     params:
+        kind="stability_map",
+        scenes=scenes("stability_map"),
         code=CODE["simulate"],
     script:
-        "../scripts/merge_stability.py"
+        "../scripts/simulate.py"
 
 
 # --- the figures: one rule a kind, titled by the study
@@ -111,11 +87,7 @@ rule stability_map:
 
 rule plot_poincare_map:
     input:
-        nc=lambda w: expand(
-            "results/{study}/poincare_map/case_{case}.nc",
-            study=w.study,
-            case=STUDIES[w.study]["fig3"],
-        ),
+        folder="results/{study}/poincare_map",
     output:
         png=report(
             "results/{study}/figures/poincare_map.png",
@@ -128,10 +100,28 @@ rule plot_poincare_map:
         "results/logs/{study}/plot_poincare_map.log",
     localrule: True
     params:
-        labels=lambda w: list(STUDIES[w.study]["fig3"]),
+        files=files("fig3", "case_{}.nc"),
         code=CODE["plot"],
     script:
         "../scripts/plot.py"
+
+
+use rule plot_poincare_map as plot_phase_diagrams with:
+    input:
+        folder="results/{study}/phase_diagrams",
+    output:
+        png=report(
+            "results/{study}/figures/phase_diagrams.png",
+            caption="../report/phase_diagrams.rst",
+            category="{study}",
+            labels={"figure": "phase diagrams"},
+        ),
+        pdf="results/{study}/figures/phase_diagrams.pdf",
+    log:
+        "results/logs/{study}/plot_phase_diagrams.log",
+    params:
+        files=files("fig5", "K_{}.nc"),
+        code=CODE["plot"],
 
 
 rule plot_shock_detail:
@@ -149,32 +139,6 @@ rule plot_shock_detail:
         "results/logs/{study}/plot_shock_detail.log",
     localrule: True
     params:
-        labels=[""],
-        code=CODE["plot"],
-    script:
-        "../scripts/plot.py"
-
-
-rule plot_phase_diagrams:
-    input:
-        nc=lambda w: expand(
-            "results/{study}/phase_diagrams/K_{K}.nc",
-            study=w.study,
-            K=STUDIES[w.study]["fig5"],
-        ),
-    output:
-        png=report(
-            "results/{study}/figures/phase_diagrams.png",
-            caption="../report/phase_diagrams.rst",
-            category="{study}",
-            labels={"figure": "phase diagrams"},
-        ),
-        pdf="results/{study}/figures/phase_diagrams.pdf",
-    log:
-        "results/logs/{study}/plot_phase_diagrams.log",
-    localrule: True
-    params:
-        labels=lambda w: list(STUDIES[w.study]["fig5"]),
         code=CODE["plot"],
     script:
         "../scripts/plot.py"

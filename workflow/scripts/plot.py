@@ -4,11 +4,11 @@ from pathlib import Path
 
 from escapement.pipeline.plot import plot
 
+files = snakemake.params.get("files") or {"": path for path in snakemake.input}  # a kind of several scenes: by label
 plot(
     Path(snakemake.output.png).stem,
     snakemake.wildcards.get("study", "replication"),
-    list(snakemake.input),
-    snakemake.params.get("labels", None),
+    files,
     snakemake.output.png,
     snakemake.output.pdf,
     snakemake.log[0],

@@ -184,27 +184,30 @@ def stability_grid(model: dict, b, F, iterations: int = 40):
     F = np.asarray(F, dtype=float)
     omega = math.sqrt(model["K"] / model["M"])
 
-    def slope_at(v):
-        lo_in, lo_out, _, _ = ensemble_return_map(model, b, F, v * (1 - RELATIVE_STEP))
-        hi_in, hi_out, _, _ = ensemble_return_map(model, b, F, v * (1 + RELATIVE_STEP))
+    def slope_at(i, v):
+        lo_in, lo_out, _, _ = ensemble_return_map(model, b[i], F[i], v * (1 - RELATIVE_STEP))
+        hi_in, hi_out, _, _ = ensemble_return_map(model, b[i], F[i], v * (1 + RELATIVE_STEP))
         return (hi_out - lo_out) / (hi_in - lo_in)
 
     v = np.full(b.shape, omega * abs(model["a1"])) + np.sqrt(2 * F / model["M"] * (model["a2"] - model["a1"]))
     converged = np.zeros(b.shape, dtype=bool)
+    active = np.arange(b.size)  # the cells still iterating: neither converged nor out of the regime
     for _ in range(iterations):
-        v_in, v_out, _, status = ensemble_return_map(model, b, F, v)
-        step = (v_out - v_in) / (1.0 - slope_at(v))
-        ok = np.isfinite(step) & (status == Status.COMPLETED.code)
-        v = np.where(ok, v_in + step, v)
-        # 1 / (1 - slope) magnifies rounding as b -> 0, hence a tolerance above 1e-16
-        converged = ok & (np.abs(step) <= 1e-12 * np.abs(v))
-        if not (ok & ~converged).any():
+        if active.size == 0:
             break
+        v_in, v_out, _, status = ensemble_return_map(model, b[active], F[active], v[active])
+        step = (v_out - v_in) / (1.0 - slope_at(active, v[active]))
+        ok = np.isfinite(step) & (status == Status.COMPLETED.code)
+        v[active[ok]] = v_in[ok] + step[ok]
+        # 1 / (1 - slope) magnifies rounding as b -> 0, hence a tolerance above 1e-16
+        done = ok & (np.abs(step) <= 1e-12 * np.abs(v[active]))
+        converged[active[done]] = True
+        active = active[ok & ~done]
     v_in, _, period, status = ensemble_return_map(model, b, F, v)
     good = status == Status.COMPLETED.code
     return {
         "fixed_point": np.where(good, v_in, np.nan),
-        "multiplier": np.where(good, slope_at(v), np.nan),
+        "multiplier": np.where(good, slope_at(np.arange(b.size), v), np.nan),
         "period": np.where(good, period, np.nan),
         "status": status,
         "newton_converged": converged,

@@ -31,7 +31,7 @@ from ..scenes.settings import (
     PoincareScene,
     Release,
     ShockScene,
-    StabilityChunk,
+    StabilityMapScene,
 )
 
 __all__ = ["ConfigError", "check_cases", "code_digest", "own_blocks", "read_yaml", "refusal", "replication_scenes",
@@ -138,9 +138,10 @@ def _per_panel(fig5: Mapping, key: str, index: int):
 
 
 def study_scenes(study: str, blocks: Mapping) -> dict[str, dict[str, dict]]:
-    """Every scene of a study, by kind and label: its flat mapping (the rule's params), each built and checked
-    by its settings (:mod:`escapement.scenes.settings`) here, before any job; :class:`ConfigError` naming the
-    block for the first that fails."""
+    """Every scene of a study, by kind and label (a Fig. 3 case, a spring constant; ``""`` for the kinds of one
+    scene): its flat mapping (the rule's params), each built and checked by its settings
+    (:mod:`escapement.scenes.settings`) here, before any job; :class:`ConfigError` naming the block for the first
+    that fails."""
     model, scenes = blocks["model"], {}
     tag = "" if study == REPLICATION else f"your study '{study}': "
     for block in KINDS:
@@ -161,21 +162,11 @@ def study_scenes(study: str, blocks: Mapping) -> dict[str, dict[str, dict]]:
                                                  "x0": _per_panel(b, "x0", i), "study": study, "label": label})
                          for i, label in enumerate(labels)}
                 checked = [PhaseScene.from_mapping(s) for s in found.values()]
-            elif block == "stability_map":
-                b_values, F_values = StabilityChunk.axes(b)
-                if b["chunks"] > len(b_values):
-                    raise ConfigError(f"stability_map.chunks = {b['chunks']!r} is invalid: chunks must be <= b.n "
-                                      f"= {len(b_values)}")
-                size = -(-len(b_values) // b["chunks"])
-                found = {str(i): _flat(model, {"b_values": list(b_values[i * size:(i + 1) * size]),
-                                               "F_values": list(F_values), "study": study})
-                         for i in range(b["chunks"])}
-                checked = [StabilityChunk.from_mapping(s) for s in found.values()]
             else:
                 settings = {"fig4": ShockScene, "escapement_error": EscapementErrorScene,
-                            "existence_map": ExistenceMapScene}[block]
-                found = {"": {**_flat(model, b, {"study": study}), **{k: v for k, v in b.items() if k in (
-                    "zones", "F", "a3") and isinstance(v, dict)}}}
+                            "existence_map": ExistenceMapScene, "stability_map": StabilityMapScene}[block]
+                nested = {k: v for k, v in b.items() if isinstance(v, dict)}  # the axes, the zones
+                found = {"": {**_flat(model, b, {"study": study}), **nested}}
                 checked = [settings.from_mapping(s) for s in found.values()]
         except ParameterError as err:
             raise ConfigError(f"{tag}{block}: {err}") from None

@@ -7,7 +7,7 @@ no solver and no scene."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping
 
 from ..io.netcdf import read_netcdf
 from ..scenes.settings import KINDS, REPLICATION
@@ -29,20 +29,19 @@ def title(figure: str, study: str) -> str:
     return f"{shows} of the escapement model, study '{study}'"
 
 
-def plot(figure: str, study: str, inputs: Sequence[str], labels: Sequence[str] | None, png: str, pdf: str,
-         log: str) -> None:
-    """Draw ``figure`` (a file name: poincare_map, long_run, ...) of ``study`` from ``inputs`` (netCDF files,
-    one per label of ``labels`` for the figures of several scenes; the work-precision table) to ``png`` and
-    ``pdf``."""
+def plot(figure: str, study: str, inputs: Mapping[str, str], png: str, pdf: str, log: str) -> None:
+    """Draw ``figure`` (a file name: poincare_map, long_run, ...) of ``study`` from ``inputs`` (its files by their
+    labels: the netCDF file of each scene, by its label for the figures of several scenes; ``""`` for the one
+    file of the others) to ``png`` and ``pdf``."""
     from .. import plotting
 
     with logged(log, f"plot {figure}"):
         if figure == "work_precision":
-            fig = plotting.work_precision(read_work_precision(inputs[0]))
+            fig = plotting.work_precision(read_work_precision(inputs[""]))
         elif figure == "long_run":
-            fig = plotting.long_run(read_netcdf(inputs[0]))
+            fig = plotting.long_run(read_netcdf(inputs[""]))
         elif figure in ("poincare_map", "shock_detail", "phase_diagrams"):
-            data = {label: read_netcdf(path) for label, path in zip(labels, inputs, strict=True)}
+            data = {label: read_netcdf(path) for label, path in inputs.items()}
             data = data[""] if figure == "shock_detail" else data
             axes = None
             if study == REPLICATION:  # each printed panel's axes as its claims score them
@@ -55,5 +54,5 @@ def plot(figure: str, study: str, inputs: Sequence[str], labels: Sequence[str] |
                 axes = measure(data, VARIANTS[CLAIM_AUTOSCALE])
             fig = getattr(plotting, figure)(data, title(figure, study), axes)
         else:
-            fig = getattr(plotting, figure)(read_netcdf(inputs[0]), title(figure, study))
+            fig = getattr(plotting, figure)(read_netcdf(inputs[""]), title(figure, study))
         plotting.save_figure(fig, png, pdf)

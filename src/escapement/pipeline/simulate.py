@@ -1,16 +1,17 @@
-"""The simulation jobs: a scene's settings in, its netCDF file out (and, for the scenes that time themselves,
-the wall times apart, in a CSV file): each kind's scene function (:mod:`escapement.scenes`) makes the dataset,
-this job logs its outcome and writes it."""
+"""The simulation jobs: a scene's settings in, its netCDF file out (for a kind of several scenes, one file per
+scene in the kind's folder; for the scenes that time themselves, the wall times apart, in a CSV file): each kind's
+scene function (:mod:`escapement.scenes`) makes the dataset, this job logs its outcome and writes it."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 from importlib import import_module
+from pathlib import Path
 
 from ..io.netcdf import write_csv, write_netcdf
 from .logs import logged
 
-__all__ = ["SCENES", "simulate", "write_timings"]
+__all__ = ["SCENES", "TIMING_COLUMNS", "simulate", "write_timings"]
 
 #: each kind of scene: the module and function that make its dataset (imported by its job alone: the long run
 #: and the checks bring mpmath, the maps the ensemble)
@@ -20,7 +21,7 @@ SCENES = {
     "phase_diagram": ("figures", "phase_diagram"),
     "escapement_error": ("maps", "escapement_error"),
     "existence_map": ("maps", "existence_map"),
-    "stability_chunk": ("maps", "stability_chunk"),
+    "stability_map": ("maps", "stability_map"),
     "long_run": ("runs", "long_run"),
     "checks": ("runs", "checks"),
 }
@@ -33,19 +34,22 @@ def write_timings(timings: Mapping[str, float], path: str) -> None:
     write_csv([{"measurement": k, "seconds": repr(float(v))} for k, v in timings.items()], TIMING_COLUMNS, path)
 
 
-def simulate(kind: str, scene: Mapping, outputs: Mapping[str, str], log: str, rule: str = "") -> None:
-    """Make the dataset of the scene ``kind`` from its settings ``scene`` and write it to ``outputs["nc"]``
-    (its wall times, if it measures any, to ``outputs["timing"]``); its history names the rule and the file."""
+def simulate(kind: str, scenes: Mapping[str, Mapping], outputs: Mapping[str, str], log: str, rule: str = "") -> None:
+    """Make the dataset of each scene of ``scenes`` (file name: settings) of the kind ``kind`` and write it, into
+    the folder ``outputs["folder"]`` under its name, or to ``outputs["nc"]`` for a kind of one scene (its wall
+    times, if it measures any, to ``outputs["timing"]``); each file's history names the rule and the file."""
     module, name = SCENES[kind]
+    make = getattr(import_module(f"..scenes.{module}", __package__), name)
     with logged(log, kind) as logger:
-        logger.info("settings: %s", dict(scene))
-        make = getattr(import_module(f"..scenes.{module}", __package__), name)
-        made = make(scene["cases"], scene["n_cycles"]) if kind == "checks" else make(dict(scene))
-        ds, timings = made if isinstance(made, tuple) else (made, {})
-        if "outcome" in ds.attrs:
-            logger.info("outcome: %s: %s", ds.attrs["outcome"], ds.attrs["outcome_message"])
-        for key, seconds in timings.items():
-            logger.info("%s: %.3e", key, seconds)
-        write_netcdf(ds, outputs["nc"], history=f"escapement workflow, rule {rule or kind}: {outputs['nc']}")
-        if "timing" in outputs:
-            write_timings(timings, outputs["timing"])
+        for file, scene in scenes.items():
+            logger.info("%s: settings %s", file or outputs["nc"], dict(scene))
+            made = make(scene["cases"], scene["n_cycles"]) if kind == "checks" else make(dict(scene))
+            ds, timings = made if isinstance(made, tuple) else (made, {})
+            if "outcome" in ds.attrs:
+                logger.info("outcome: %s: %s", ds.attrs["outcome"], ds.attrs["outcome_message"])
+            for key, seconds in timings.items():
+                logger.info("%s: %.3e", key, seconds)
+            path = Path(outputs["folder"], file) if "folder" in outputs else Path(outputs["nc"])
+            write_netcdf(ds, path, history=f"escapement workflow, rule {rule or kind}: {path}")
+            if "timing" in outputs:
+                write_timings(timings, outputs["timing"])

@@ -61,7 +61,8 @@ def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str,
              "time_s": ode["wall_s"], "reference_s": h["closed_form"]["wall_s"], "repeats": ode["repeats"],
              "note": note},
         ]
-        for r in per_cycle_times(params, x0, (50, n, 100_000), scene["min_seconds"], scene["max_repeats"]):
+        sizes = tuple(dict.fromkeys((50, n, *speed["floor"]["exact_cycles"])))  # the floors' sizes too
+        for r in per_cycle_times(params, x0, sizes, scene["min_seconds"], scene["max_repeats"]):
             rows.append({"name": "solve_exact / closed-form cycles", "n": r["n_cycles"], "ratio": r["ratio"],
                          "time_s": r["exact_s_per_cycle"] * r["n_cycles"],
                          "reference_s": r["closed_form_s_per_cycle"] * r["n_cycles"],

@@ -1,15 +1,12 @@
-"""The workflow's tables, read back with their columns checked, and the merge of the stability map's chunks."""
+"""The workflow's tables, read back with their columns checked."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from ..io.netcdf import read_csv
+from .simulate import TIMING_COLUMNS
 
-from ..io.netcdf import read_csv, read_netcdf, write_netcdf
-from .logs import logged
-from .simulate import TIMING_COLUMNS, write_timings
-
-__all__ = ["SPEED_COLUMNS", "STRESS_COLUMNS", "WORK_PRECISION_COLUMNS", "merge_stability", "read_stress",
-           "read_timings", "read_work_precision"]
+__all__ = ["SPEED_COLUMNS", "STRESS_COLUMNS", "WORK_PRECISION_COLUMNS", "read_stress", "read_timings",
+           "read_work_precision"]
 
 WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "repeats", "error_velocity", "error_time"]
 #: the speed table: a ratio of two wall times (or of two peak memories) measured side by side
@@ -27,25 +24,3 @@ def read_stress(path: str) -> list[dict]:
 
 def read_timings(path: str) -> dict[str, float]:
     return {row["measurement"]: float(row["seconds"]) for row in read_csv(path, TIMING_COLUMNS)}
-
-
-def merge_stability(paths: Sequence[str], output: str, timing_output: str, log: str) -> None:
-    """Concatenate the chunks along b (the constant parameters stay 0-d, the first chunk's attributes kept);
-    the timings are the medians over the chunks, with the ensemble's speed-up per trajectory."""
-    import numpy as np
-    import xarray as xr
-
-    with logged(log, "merge_stability") as logger:
-        chunks = [read_netcdf(p, ("b", "F", "multiplier", "outcome")) for p in paths]
-        merged = xr.concat(chunks, dim="b", data_vars="minimal", combine_attrs="override")
-        merged.attrs["chunks"] = len(chunks)
-        timings = [read_timings(p.removesuffix(".nc") + "_timing.csv") for p in paths]
-        ensemble = [t["ensemble_seconds_per_trajectory"] for t in timings]
-        scalar = [t["scalar_seconds_per_trajectory"] for t in timings]
-        merged_timings = {"ensemble_seconds_per_trajectory": float(np.median(ensemble)),
-                          "scalar_seconds_per_trajectory": float(np.median(scalar)),
-                          "ensemble_speedup_per_trajectory": float(np.median(np.divide(scalar, ensemble)))}
-        logger.info("ensemble speed-up per trajectory (median over chunks): %.1f",
-                    merged_timings["ensemble_speedup_per_trajectory"])
-        write_netcdf(merged, output, history=f"escapement workflow, merged from {len(chunks)} chunks: {output}")
-        write_timings(merged_timings, timing_output)

@@ -1,7 +1,7 @@
 """The scenes over grids of parameters, each from its settings to its dataset (and, apart from the numbers,
 the wall times it measured, which vary from run to run and never enter a dataset).
 
-* :func:`stability_chunk`: over ``(b, F)``, the fixed point of the simulated return map (Newton on the
+* :func:`stability_map`: over ``(b, F)``, the fixed point of the simulated return map (Newton on the
   vectorised ensemble), the period there, the measured multiplier beside Eq. (21)'s and how the cycle from the
   fixed point ended; with the cost per trajectory of the ensemble against the scalar solver in a loop.
 * :func:`existence_map`: over ``(a3, F)`` of an asymmetric escapement (Sec. 5), whether a release settles on a
@@ -28,9 +28,9 @@ from ..paper.printed import multiplier_21_of
 from ..solvers.ensemble import solve_ensemble
 from ..studies.escapement_error import SECONDS_PER_DAY, rate_against_amplitude
 from .cf import MODEL_INPUT, QUALITY, assemble, global_attributes, parameter_variables, scalar_variable
-from .settings import EscapementErrorScene, ExistenceMapScene, StabilityChunk
+from .settings import EscapementErrorScene, ExistenceMapScene, StabilityMapScene
 
-__all__ = ["escapement_error", "existence_map", "mirror_image", "stability_chunk"]
+__all__ = ["escapement_error", "existence_map", "mirror_image", "stability_map"]
 
 
 def _coords(**axes: np.ndarray) -> dict:
@@ -44,10 +44,10 @@ def _grid(values, coords: dict, units: str, long_name: str, **attrs) -> xr.DataA
                         attrs={"units": units, "long_name": long_name, **attrs})
 
 
-def stability_chunk(settings: Mapping | StabilityChunk, speed_sample: int = 100) -> tuple[xr.Dataset, dict]:
-    """One chunk of the stability map and, apart from it, the cost per trajectory of the ensemble and of the
-    scalar solver looped over an even sample of ``speed_sample`` cells, both at the fixed points."""
-    scene = settings if isinstance(settings, StabilityChunk) else StabilityChunk.from_mapping(settings)
+def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = 100) -> tuple[xr.Dataset, dict]:
+    """The stability map and, apart from it, the cost per trajectory of the ensemble and of the scalar solver
+    looped over an even sample of ``speed_sample`` cells, both at the fixed points, and the ensemble's speed-up."""
+    scene = settings if isinstance(settings, StabilityMapScene) else StabilityMapScene.from_mapping(settings)
     model = {k: v for k, v in scene.params.as_dict().items() if k not in ("b", "F")}
     bb, ff = np.meshgrid(np.array(scene.b_values), np.array(scene.F_values), indexing="ij")
     grid = stability_grid(model, bb.ravel(), ff.ravel())
@@ -83,7 +83,8 @@ def stability_chunk(settings: Mapping | StabilityChunk, speed_sample: int = 100)
         "at a1, found by Newton's method, the period of the cycle there, the multiplier mu_2 measured by central "
         "differences of the map beside (1 - b)**4 of Eq. (21), and how the cycle from the fixed point ended.",
         solver="exact, vectorised ensemble", study=scene.study.name)
-    timings = {"ensemble_seconds_per_trajectory": ensemble, "scalar_seconds_per_trajectory": scalar}
+    timings = {"ensemble_seconds_per_trajectory": ensemble, "scalar_seconds_per_trajectory": scalar,
+               "ensemble_speedup_per_trajectory": scalar / ensemble}
     return assemble(variables, attrs), timings
 
 

@@ -20,7 +20,7 @@ import numpy as np
 from ..model.parameters import ParameterError, Parameters, check_initial_state
 
 __all__ = ["KINDS", "REPLICATION", "EscapementErrorScene", "ExistenceMapScene", "Kind", "LongRunScene",
-           "PhaseScene", "PoincareScene", "Release", "ShockScene", "StabilityChunk", "Study", "positive_int",
+           "PhaseScene", "PoincareScene", "Release", "ShockScene", "StabilityMapScene", "Study", "positive_int",
            "time_window"]
 
 #: the study of the paper's scenes (the others are the user's own, by their name)
@@ -216,8 +216,9 @@ def cell_centres(start: float, stop: float, n: int) -> tuple[float, ...]:
 
 
 @dataclass(frozen=True)
-class StabilityChunk:
-    """One chunk of the stability map: every ``(b, F)`` of ``b_values x F_values``; ``params`` gives the rest."""
+class StabilityMapScene:
+    """The stability map over ``(b, F)``: b at the cell centres of its axis, F from start to stop (ends included);
+    ``params`` gives the rest of the model."""
 
     study: Study
     params: Parameters
@@ -225,20 +226,15 @@ class StabilityChunk:
     F_values: tuple[float, ...]
 
     @classmethod
-    def from_mapping(cls, values: Mapping) -> StabilityChunk:
-        b_values, F_values = tuple(float(b) for b in values["b_values"]), tuple(float(f) for f in values["F_values"])
-        for b in (min(b_values), max(b_values)):  # every cell's model is valid if the corners' are
-            for force in (min(F_values), max(F_values)):
+    def from_mapping(cls, values: Mapping) -> StabilityMapScene:
+        b_values = cell_centres(*_axis("b", values["b"]))
+        start, stop, n = _axis("F", values["F"])
+        F_values = tuple(start + (stop - start) * j / max(n - 1, 1) for j in range(n))
+        for b in (b_values[0], b_values[-1]):  # every cell's model is valid if the corners' are
+            for force in (F_values[0], F_values[-1]):
                 Parameters(**{**_model(values), "b": b, "F": force})
-        return cls(Study.from_mapping(values), Parameters.from_mapping({**values, "F": F_values[0],
-                                                                        "b": b_values[0]}), b_values, F_values)
-
-    @staticmethod
-    def axes(block: Mapping) -> tuple[tuple[float, ...], tuple[float, ...]]:
-        """The map's b values (cell centres of (start, stop)) and F values (start to stop, ends included)."""
-        b_values = cell_centres(*_axis("b", block["b"]))
-        start, stop, n = _axis("F", block["F"])
-        return b_values, tuple(start + (stop - start) * j / max(n - 1, 1) for j in range(n))
+        params = Parameters.from_mapping({**values, "F": F_values[0], "b": b_values[0]})
+        return cls(Study.from_mapping(values), params, b_values, F_values)
 
 
 @dataclass(frozen=True)
