@@ -7,6 +7,7 @@ rule work_precision:
         csv="results/replication/work_precision.csv",
     log:
         "results/logs/replication/work_precision.log",
+    priority: 10  # one of the two longest jobs (with the long run): started first, on the other core
     threads: 1  # an indicative table beside the other jobs; the benchmark target times with the machine to itself
     params:
         scene=RUNS["benchmark"],

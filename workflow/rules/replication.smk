@@ -21,7 +21,7 @@ rule long_run:
         timing="results/replication/long_run_timing.csv",
     log:
         "results/logs/replication/long_run.log",
-    priority: 10  # the longest job, at the head of a chain (stress table, its figure): started first
+    priority: 10  # one of the two longest jobs, at the head of a chain (stress table, its figure): started first
     params:
         kind="long_run",
         scenes={"": RUNS["long_run"]},
@@ -37,6 +37,7 @@ rule readings:
         csv="results/replication/readings.csv",  # 0.4 MB: out of the report; REPLICATION.md, Sec. 3, sums it up
     log:
         "results/logs/replication/readings.log",
+    priority: 5  # the claims wait for it
     params:
         settings={
             "model": PAPER["model"],

@@ -21,7 +21,7 @@ import numpy as np
 from ..model import automaton
 from ..model.automaton import RELEASE, Mode
 from ..model.events import EventKind
-from ..model.kinematics import arc_maximum, arc_terms, compensated_add, crossing, time_to_rest
+from ..model.kinematics import arc_maximum, arc_terms, crossing, time_to_rest, two_sum
 from ..model.arguments import Numeric
 from ..model.limits import RunSpec
 from ..model.parameters import ParameterArrays, Parameters
@@ -146,7 +146,8 @@ class EventRun:
             if not reached:
                 ending = NO_EVENT
                 break
-            new_sum, new_err = compensated_add(t_sum, t_err, dt)
+            new_sum, rounding = two_sum(t_sum, dt)  # the compensated sum of the durations (compensated_add inline)
+            new_err = t_err + rounding
             if new_sum + new_err > t_stop:  # the event's time, as it is stored, after the end time
                 ending = HORIZON
                 break
