@@ -4,14 +4,15 @@ from __future__ import annotations
 
 import csv
 import math
+from pathlib import Path
 from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal
 
 import pytest
 
 from escapement.paper.printed_axes import PANELS
 from escapement.paper.checks import Candidates
-from escapement.pipeline.readings import (PAPER_SETTINGS, COLUMNS, best_readings, limits_match, score_readings,
-                                          score_table)
+from escapement.pipeline.config import read_yaml
+from escapement.pipeline.readings import COLUMNS, limits_match, score_readings, score_table
 from escapement.pipeline.scores import (DEFAULT_LOCATOR, PRINTED_STEP, best_readings_table, joint_candidates,
                                         panel_candidates, read_scores)
 from escapement.plotting.autoscale import VARIANTS
@@ -61,9 +62,8 @@ def test_fig3a_velocity_axis_scores_derived_on_paper(fig3_rows):
         assert (x["low"], x["high"], x["matches"]) == (0, 50, 2)
 
     # the mirror image read at a3 plots the same values: one group, not a tie
-    best = {b["panel"]: b for b in best_readings(fig3_rows) if b["figure"] == "3"}
-    assert best["a/velocity"]["best"] == [(MIRROR_LEFT, VELOCITY_LEFT)]
-    assert (best["a/velocity"]["score"], best["a/velocity"]["out_of"]) == (4, 4)
+    c = panel_candidates(fig3_rows)[("3", "a/velocity")]
+    assert c.tied() == (4, [(MIRROR_LEFT, VELOCITY_LEFT)]) and c.out_of == 4
 
 
 def test_a_margin_of_5_percent_moves_the_cycle_axis_off_0_to_50(fig3_rows):
@@ -133,8 +133,6 @@ def test_ties_reach_the_summary_as_ties_and_equivalents_group():
                            equivalent=(("one", "mirror of one"),))
     assert c.tied() == (4, [("one", "mirror of one"), ("two",)])
     assert c.tied(default=True) == (4, [("three",)])
-    (best,) = best_readings(rows)
-    assert best["best"] == [("one", "mirror of one"), ("two",)] and best["default_score"] == 4
     (row,) = best_readings_table(rows)
     assert row["limits reproduced"] == "4 of 4 (4 with the default locator)"
     readings = row["best-supported readings"]
@@ -165,7 +163,8 @@ def test_a_joint_reading_is_scored_over_both_panels():
 @pytest.fixture(scope="module")
 def paper_rows():
     """The whole grid at the paper's settings (about a second)."""
-    return score_table(all_readings(PAPER_SETTINGS))
+    paper = read_yaml(Path(__file__).resolve().parents[2] / "config/paper.yaml")
+    return score_table(all_readings({key: paper[key] for key in ("model", "fig3", "fig4", "fig5")}))
 
 
 def test_on_the_paper_grid_fig4_is_undetermined(paper_rows):

@@ -20,23 +20,13 @@ import numpy as np
 
 from ..io.netcdf import write_csv
 from ..paper.printed_axes import PANELS, Panel, limits_match
-from ..plotting import panel_axes
 from ..plotting.autoscale import VARIANTS, autoscaled_axes
 from ..studies.readings import Reading, Runs, all_readings
 from .logs import logged
-from .scores import (CLAIM_AUTOSCALE, COLUMNS, PRINTED_STEP, TICKS, best_readings, best_readings_table,
-                     joint_candidates, panel_candidates, read_scores, ties_text)
+from .scores import COLUMNS, PRINTED_STEP, TICKS, joint_candidates, panel_candidates, summary
 
-__all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "PAPER_SETTINGS", "best_readings", "best_readings_table", "equivalence",
-           "limits_match", "panel_candidates", "read_scores", "scene_axes", "score_readings", "score_table"]
+__all__ = ["COLUMNS", "equivalence", "limits_match", "score_readings", "score_table"]
 
-#: Sec. 4 of the paper, with the replication's sampling (the blocks of the workflow's configuration)
-PAPER_SETTINGS: dict = {
-    "model": {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05},
-    "fig3": {"n_cycles": 50, "cases": {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0}}},
-    "fig4": {"velocity_window": [80.0, 87.0], "acceleration_window": [81.0, 85.0], "samples_per_second": 1000},
-    "fig5": {"K": [0.1, 1.0, 10.0], "n_cycles": 60, "samples_per_period": 400},
-}
 #: plotted values equal to this relative tolerance are the same values (the rounding of a mirror image)
 SAME_VALUES_RTOL = 1e-9
 
@@ -111,17 +101,6 @@ def score_table(readings: Iterable[Reading], panels: Iterable[Panel] = PANELS,
     return rows
 
 
-def scene_axes(fig3, fig4, fig5, autoscale: str = CLAIM_AUTOSCALE) -> panel_axes.PanelAxes:
-    """The limits each printed panel's scored axes get when the pipeline's own outputs (Fig. 3 by
-    case label, Fig. 4, Fig. 5 by any label) are autoscaled with the printed tick step imposed and the
-    margin ``autoscale`` (one of :data:`~escapement.plotting.autoscale.VARIANTS`):
-    ``{(figure, panel): {"x": (low, high), "y": (low, high)}}`` (scored axes only). The claims score
-    these limits; the figures draw them (:mod:`escapement.pipeline.plot`)."""
-    if autoscale not in VARIANTS:
-        raise ValueError(f"autoscale = {autoscale!r} must be one of {', '.join(VARIANTS)}")
-    return panel_axes.scene_axes(fig3, fig4, fig5, VARIANTS[autoscale])
-
-
 def _formatted(row: Mapping) -> dict:
     out = dict(row)
     for name in ("data_min", "data_max"):
@@ -131,19 +110,19 @@ def _formatted(row: Mapping) -> dict:
     return out
 
 
-def score_readings(output_csv: str, log: str, settings: Mapping | None = None) -> None:
-    """Job: score every reading against the printed axes and write the table as CSV; the log
-    names, per panel and margin, every reading tied at the best score. ``settings`` holds the
-    configuration's blocks ``model``, ``fig3``, ``fig4``, ``fig5`` (default :data:`PAPER_SETTINGS`)."""
+def score_readings(output_csv: str, log: str, settings: Mapping) -> None:
+    """Job: score every reading against the printed axes and write the table as CSV; the log names, per panel and
+    margin, every reading tied at the best score. ``settings`` holds the replication's blocks ``model``,
+    ``fig3``, ``fig4``, ``fig5`` (config/paper.yaml)."""
     with logged(log, "score_readings") as logger:
         start = time.perf_counter()
-        runs = Runs((PAPER_SETTINGS if settings is None else settings)["model"])
-        readings = all_readings(PAPER_SETTINGS if settings is None else settings, runs)
+        runs = Runs(settings["model"])
+        readings = all_readings(settings, runs)
         logger.info("%d readings from %d runs in %.2f s", len(readings), runs.solved, time.perf_counter() - start)
         rows = score_table(readings)
         logger.info("%d scores (%s) in %.2f s", len(rows), ", ".join(TICKS), time.perf_counter() - start)
         for variant in VARIANTS:
             for (figure, panel), candidates in panel_candidates(rows, variant).items():
-                logger.info("[%s] Fig. %s %s: %s", variant, figure, panel, ties_text(candidates))
-            logger.info("[%s] Fig. 4, both panels: %s", variant, ties_text(joint_candidates(rows, "4", variant)))
+                logger.info("[%s] Fig. %s %s: %s; %s", variant, figure, panel, *summary(candidates))
+            logger.info("[%s] Fig. 4, both panels: %s; %s", variant, *summary(joint_candidates(rows, "4", variant)))
         write_csv([_formatted(r) for r in rows], COLUMNS, output_csv)

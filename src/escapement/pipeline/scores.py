@@ -14,8 +14,8 @@ from collections.abc import Iterable, Mapping
 from ..paper.checks import Candidates
 from ..paper.printed_axes import PANELS
 
-__all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "DEFAULT_LOCATOR", "PRINTED_STEP", "TICKS", "best_readings",
-           "best_readings_table", "joint_candidates", "panel_candidates", "read_scores", "ties_text"]
+__all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "DEFAULT_LOCATOR", "PRINTED_STEP", "TICKS", "best_readings_table",
+           "joint_candidates", "panel_candidates", "read_scores", "summary"]
 
 #: the score table's columns: ``ticks`` says whether the printed tick step was imposed or the plotting
 #: program chose its own (``tick_step`` is the step the axis ended with); ``same_values_as`` names the
@@ -105,37 +105,9 @@ def joint_candidates(rows: Iterable[Mapping], figure: str, autoscale: str = CLAI
                       equivalent=_equivalent(groups))
 
 
-def ties_text(candidates: Candidates, sep: str = "; ") -> str:
-    """The best score in words, with every reading tied at it (equivalent ones joined by ``=``) and
-    the best score with the default locator."""
-    best, groups = candidates.tied()
-    default, _ = candidates.tied(default=True) if candidates.default_scores else (None, None)
-    n = len(candidates.scores)
-    head = f"{best} of {candidates.out_of} printed limits (tick step imposed), the best of {n} readings"
-    if len(groups) == 1:
-        head += (", by one reading" if len(groups[0]) == 1 else
-                 f", by {len(groups[0])} equivalent readings (identical plotted values)")
-    else:
-        head += f": a tie of {len(groups)} readings that plot different values, so the reading is undetermined"
-    if default is not None:
-        head += f"; with the default locator the best is {default} of {candidates.out_of}"
-    return head + ": " + sep.join(" = ".join(group) for group in groups)
-
-
-def best_readings(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> list[dict]:
-    """Per panel (in the order met), the readings that reproduce the most printed limits over the
-    panel's scored axes with the printed tick step imposed: ``{"figure", "panel", "score", "out_of",
-    "default_score", "best": [group of equivalent readings, ...]}``."""
-    result = []
-    for (figure, name), c in panel_candidates(rows, autoscale).items():
-        best, groups = c.tied()
-        result.append({"figure": figure, "panel": name, "score": best, "out_of": c.out_of,
-                       "default_score": max(c.default_scores.values()) if c.default_scores else None,
-                       "best": groups})
-    return result
-
-
-def _cell(candidates: Candidates) -> tuple[str, str]:
+def summary(candidates: Candidates) -> tuple[str, str]:
+    """The best score in words (with the printed tick step imposed, and with the default locator), and every
+    reading tied at it, equivalent ones joined by ``=``."""
     best, groups = candidates.tied()
     default = max(candidates.default_scores.values()) if candidates.default_scores else None
     score = f"{best} of {candidates.out_of}" + ("" if default is None else f" ({default} with the default locator)")
@@ -156,12 +128,12 @@ def best_readings_table(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCAL
     for (figure, name), c in panel_candidates(rows, autoscale).items():
         printed = next(p for p in PANELS if (p.figure, p.name) == (figure, name))
         limits = "; ".join(f"{axis} {a.low:g} to {a.high:g}" for axis, a in printed.axes.items() if a.scored)
-        score, readings = _cell(c)
+        score, readings = summary(c)
         table.append({"figure": figure, "panel": name, "printed limits": limits, "limits reproduced": score,
                       "best-supported readings": readings})
     figures = {row["figure"] for row in table}
     if "4" in figures:
-        score, readings = _cell(joint_candidates(rows, "4", autoscale))
+        score, readings = summary(joint_candidates(rows, "4", autoscale))
         at = max(i for i, row in enumerate(table) if row["figure"] == "4") + 1
         limits = "; ".join(f"{row['panel']}: {row['printed limits']}" for row in table if row["figure"] == "4")
         table.insert(at, {"figure": "4", "panel": "both panels", "printed limits": limits,

@@ -14,8 +14,9 @@ from ..io.netcdf import read_netcdf
 from ..paper.claims import SCHEMA, Evidence, evaluate, load_claims
 from .claims_csv import read_claims_csv, write_claims_csv
 from .logs import logged
-from .readings import scene_axes
-from .scores import panel_candidates, read_scores
+from ..plotting.autoscale import VARIANTS
+from ..plotting.panel_axes import scene_axes
+from .scores import CLAIM_AUTOSCALE, panel_candidates, read_scores
 
 __all__ = ["check_claims", "read_claims_csv", "write_claims_csv"]
 
@@ -36,7 +37,7 @@ def check_claims(
             fig4=fig4_data,
             fig5=fig5_data,
             checks=read_netcdf(checks),
-            axes=scene_axes(fig3_data, fig4_data, fig5_data),
+            axes=scene_axes(fig3_data, fig4_data, fig5_data, VARIANTS[CLAIM_AUTOSCALE]),
             readings=panel_candidates(read_scores(readings)),
         )
         rows = evaluate(load_claims(register, schema), evidence)

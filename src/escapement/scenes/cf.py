@@ -20,20 +20,9 @@ from ..model.quantities import quantity
 from ..solvers.describe import CYCLE_COLUMNS, EVENT_COLUMNS
 from ..solvers.result import Solution
 
-__all__ = [
-    "MODEL_SUMMARY",
-    "cycle_variables",
-    "sample_variables",
-    "impact_variables",
-    "event_variables",
-    "parameter_variables",
-    "scalar_variable",
-    "global_attributes",
-    "assemble",
-    "dataset",
-    "run_dataset",
-    "table_dataset",
-]
+__all__ = ["MODEL_SUMMARY", "assemble", "cycle_variables", "dataset", "event_variables", "global_attributes",
+           "impact_variables", "parameter_variables", "run_dataset", "sample_variables", "scalar_variable",
+           "table_dataset"]
 
 #: The model and its impact law, in the ``summary`` of every file (each file adds what it holds).
 MODEL_SUMMARY = (
@@ -214,24 +203,12 @@ def dataset(
 
 
 def run_dataset(solution: Solution) -> xr.Dataset:
-    """One run as a CF-1.11 / ACDD-1.3 dataset.
-
-    The per-cycle table (:func:`cycle_variables`) on the coordinate ``cycle``, every event
-    (:func:`event_variables`), the end time ``t_final`` and the numbers behind a regime exit (NaN
-    where they do not apply), each with its ``units`` and ``long_name``; the parameters and initial
-    state as 0-d variables, the outcome and the solver as global attributes
-    (:func:`dataset`). The high-precision solver's mpmath numbers become their nearest doubles.
-    Write it with :func:`escapement.io.write_netcdf`, which adds where and when it was written.
-
-    Parameters
-    ----------
-    solution : Solution
-        A run of any solver.
-
-    Returns
-    -------
-    xarray.Dataset
-        The dataset, in memory.
+    """One run of any solver as a CF-1.11 / ACDD-1.3 dataset: the per-cycle table (:func:`cycle_variables`) on
+    the coordinate ``cycle``, every event (:func:`event_variables`), the end time ``t_final`` and the numbers
+    behind a regime exit (NaN where they do not apply), each with its ``units`` and ``long_name``; the parameters
+    and initial state as 0-d variables, the outcome and the solver as global attributes (:func:`dataset`). The
+    high-precision solver's mpmath numbers become their nearest doubles. Write it with
+    :func:`escapement.io.write_netcdf`, which adds where and when it was written.
 
     Examples
     --------
@@ -247,8 +224,7 @@ def run_dataset(solution: Solution) -> xr.Dataset:
     variables = {**cycle_variables(solution), **event_variables(solution)}
     variables = {name: da.astype(float) if da.dtype == object else da for name, da in variables.items()}
     variables["t_final"] = scalar_variable(
-        float(solution.t_final), "s", "end of the computed trajectory (inf: the free oscillation goes on for ever)"
-    )
+        float(solution.t_final), "s", "end of the computed trajectory (inf: the free oscillation goes on for ever)")
     exit_numbers = {
         "exit_turning_point": ("m", "where the motion turns at a regime exit (radius of the free swing when stopped)"),
         "exit_margin": ("m", "how far short of the awaited position the motion turns at a regime exit"),
@@ -258,20 +234,14 @@ def run_dataset(solution: Solution) -> xr.Dataset:
         value = float(getattr(solution.exit, name.removeprefix("exit_")))
         variables[name] = scalar_variable(value, units, f"{long_name}; NaN where it does not apply")
     return dataset(
-        solution,
-        variables,
-        title=f"One run of the escapement model, solver {solution.method}",
-        scene="run",
+        solution, variables, title=f"One run of the escapement model, solver {solution.method}", scene="run",
         summary=(
             "This file holds one run released at x0 with velocity v0: per cycle (the Poincare map on the section "
             "x = a1, v > 0), the time of the impact at a1, the velocity just before it, the period and the "
             "largest displacement; every event of the run (impacts and ends of the impulse zones); the end of the "
-            "computed "
-            "trajectory; and the numbers behind a regime exit, if the run left the escapement regime."
+            "computed trajectory; and the numbers behind a regime exit, if the run left the escapement regime."
         ),
-        n_cycles=len(solution.cycles),
-        n_events=len(solution.events),
-    )
+        n_cycles=len(solution.cycles), n_events=len(solution.events))
 
 
 def table_dataset(columns: dict[str, tuple], title: str, scene: str, summary: str, **extra) -> xr.Dataset:

@@ -45,27 +45,9 @@ from ..paper.printed_axes import FIG5_PANEL_K
 from ..solvers.result import Solution
 from .reading_series import SECTIONS, Runs, SectionCycles, critical_times, phase_series, section_cycles, window_series
 
-__all__ = [
-    "AMPLITUDES",
-    "Amplitude",
-    "FIG3_QUANTITIES",
-    "FIG4_K",
-    "FIG5_FORCES",
-    "FIG5_RELEASES",
-    "PAIRINGS",
-    "RELEASES",
-    "Reading",
-    "Runs",
-    "all_readings",
-    "critical_times",
-    "fig3_readings",
-    "fig4_readings",
-    "fig5_readings",
-    "largest_abs_per_cycle",
-    "release_name",
-    "step1_amplitudes",
-    "window_series",
-]
+__all__ = ["AMPLITUDES", "Amplitude", "FIG3_QUANTITIES", "FIG4_K", "FIG5_FORCES", "FIG5_RELEASES", "PAIRINGS",
+           "RELEASES", "Reading", "Runs", "all_readings", "critical_times", "fig3_readings", "fig4_readings",
+           "fig5_readings", "largest_abs_per_cycle", "release_name", "step1_amplitudes", "window_series"]
 
 #: the release sides: +1 releases at +|x0|, -1 at -|x0| (both at rest)
 RELEASES: tuple[int, ...] = (+1, -1)
