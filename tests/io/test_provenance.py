@@ -4,6 +4,7 @@ only about the repository this package is the source of: a copy inside another r
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -26,16 +27,17 @@ def test_an_archive_gives_the_commit_git_stamped_into_it_whatever_git_says():
 
 
 def test_the_stamp_is_the_placeholder_git_archive_substitutes():
-    """``.gitattributes`` names the module for export-subst, whose placeholder is ``$Format:%H$``."""
+    """``.gitattributes`` names the module for export-subst, whose placeholder is ``$Format:%H$``: in a clone the
+    placeholder, in an archive the commit git wrote there."""
     text = Path(provenance.__file__).read_text()
-    assert 'ARCHIVE_COMMIT = "$Format:%H$"' in text
+    assert re.search(r'^ARCHIVE_COMMIT = "(\$Format:%H\$|[0-9a-f]{40})"$', text, re.M)
     attributes = (provenance.ROOT / ".gitattributes").read_text().splitlines()
     assert "src/escapement/io/provenance.py export-subst" in attributes
 
 
-def test_without_git_or_a_repository_the_commit_is_unknown(monkeypatch, tmp_path):
+def test_a_clone_without_git_says_its_commit_is_unknown(monkeypatch, tmp_path):
     monkeypatch.setenv("PATH", str(tmp_path))  # no git program on PATH
-    assert git_commit() == "unknown"
+    assert git_commit("$Format:%H$") == "unknown"  # the placeholder as a clone holds it
 
 
 @needs_git
