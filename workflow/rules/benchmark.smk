@@ -8,6 +8,8 @@ rule work_precision:
     log:
         "results/logs/replication/work_precision.log",
     priority: 10  # one of the two longest jobs (with the long run): started first, on the other core
+    conda:
+        "../../environment/environment.yml"
     threads: 1  # an indicative table beside the other jobs; the benchmark target times with the machine to itself
     params:
         scene=RUNS["benchmark"],
@@ -52,6 +54,8 @@ rule plot_work_precision:
     log:
         "results/logs/replication/plot_work_precision.log",
     localrule: True
+    conda:
+        "../../environment/environment.yml"
     params:
         code=CODE["plot"],
     script:
@@ -82,6 +86,8 @@ rule plot_long_run:
     log:
         "results/logs/replication/plot_long_run.log",
     localrule: True
+    conda:
+        "../../environment/environment.yml"
     params:
         code=CODE["plot"],
     script:
@@ -94,6 +100,8 @@ rule speed:
         headline="results/replication/benchmark/headline.csv",
     log:
         "results/logs/replication/speed.log",
+    conda:
+        "../../environment/environment.yml"
     threads: 2  # the machine to itself while it times
     params:
         scene=RUNS["benchmark"],

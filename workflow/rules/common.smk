@@ -103,3 +103,13 @@ def all_outputs():
         "results/replication/figures/work_precision.png",
         "results/replication/docs/README.md",
     ]
+
+
+def publish_inputs(wildcards):
+    """What publish copies from; refused, before any job, when the configuration holds a study of your own."""
+    if len(STUDIES) > 1:
+        raise WorkflowError(
+            f"publish updates the tracked figures and documents from the replication alone: run it without a "
+            f"configuration of your own (this one makes the study '{NAME}' of {', '.join(OWN)})"
+        )
+    return list(PUBLISHED.values())

@@ -7,6 +7,8 @@ rule checks:
         nc="results/replication/checks.nc",
     log:
         "results/logs/replication/checks.log",
+    conda:
+        "../../environment/environment.yml"
     params:
         kind="checks",
         scenes={"": RUNS["checks"]},
@@ -22,6 +24,8 @@ rule long_run:
     log:
         "results/logs/replication/long_run.log",
     priority: 10  # one of the two longest jobs, at the head of a chain (stress table, its figure): started first
+    conda:
+        "../../environment/environment.yml"
     params:
         kind="long_run",
         scenes={"": RUNS["long_run"]},
@@ -38,6 +42,8 @@ rule readings:
     log:
         "results/logs/replication/readings.log",
     priority: 5  # the claims wait for it
+    conda:
+        "../../environment/environment.yml"
     params:
         settings={
             "model": PAPER["model"],
@@ -78,6 +84,8 @@ rule check_claims:
     log:
         "results/logs/replication/check_claims.log",
     localrule: True
+    conda:
+        "../../environment/environment.yml"
     params:
         fig3=scene_files("replication", "fig3", "case_{}.nc"),
         fig5=scene_files("replication", "fig5", "K_{}.nc"),
@@ -98,6 +106,8 @@ rule run_stress:
         ),
     log:
         "results/logs/replication/stress.log",
+    conda:
+        "../../environment/environment.yml"
     params:
         code=CODE["simulate"],
     script:
@@ -132,20 +142,12 @@ rule render_docs:
     log:
         "results/logs/replication/render_docs.log",
     localrule: True
+    conda:
+        "../../environment/environment.yml"
     params:
         code=CODE["docs"],
     script:
         "../scripts/render_docs.py"
-
-
-def publish_inputs(wildcards):
-    """What publish copies from; refused, before any job, when the configuration holds a study of your own."""
-    if len(STUDIES) > 1:
-        raise WorkflowError(
-            f"publish updates the tracked figures and documents from the replication alone: run it without a "
-            f"configuration of your own (this one makes the study '{NAME}' of {', '.join(OWN)})"
-        )
-    return list(PUBLISHED.values())
 
 
 # The tracked figures and documents (figures/, README.md, REPLICATION.md), copied from results/replication/
@@ -158,6 +160,8 @@ rule publish:
     log:
         "results/logs/replication/publish.log",
     localrule: True
+    conda:
+        "../../environment/environment.yml"
     params:
         published=PUBLISHED,
     script:

@@ -8,6 +8,8 @@ rule poincare_map:
         folder=directory("results/{study}/poincare_map"),
     log:
         "results/logs/{study}/poincare_map.log",
+    conda:
+        "../../environment/environment.yml"
     params:
         kind="poincare_map",
         scenes=scenes("fig3", "case_{}.nc"),
@@ -21,6 +23,8 @@ rule shock_detail:
         nc="results/{study}/shock_detail.nc",
     log:
         "results/logs/{study}/shock_detail.log",
+    conda:
+        "../../environment/environment.yml"
     params:
         kind="shock_detail",
         scenes=scenes("fig4"),
@@ -34,6 +38,8 @@ rule phase_diagrams:
         folder=directory("results/{study}/phase_diagrams"),
     log:
         "results/logs/{study}/phase_diagrams.log",
+    conda:
+        "../../environment/environment.yml"
     params:
         kind="phase_diagram",
         scenes=scenes("fig5", "K_{}.nc"),
@@ -47,6 +53,8 @@ rule escapement_error:
         nc="results/{study}/escapement_error.nc",
     log:
         "results/logs/{study}/escapement_error.log",
+    conda:
+        "../../environment/environment.yml"
     params:
         kind="escapement_error",
         scenes=scenes("escapement_error"),
@@ -60,6 +68,8 @@ rule existence_map:
         nc="results/{study}/existence_map.nc",
     log:
         "results/logs/{study}/existence_map.log",
+    conda:
+        "../../environment/environment.yml"
     params:
         kind="existence_map",
         scenes=scenes("existence_map"),
@@ -74,6 +84,8 @@ rule stability_map:
         timing="results/{study}/stability_map_timing.csv",
     log:
         "results/logs/{study}/stability_map.log",
+    conda:
+        "../../environment/environment.yml"
     params:
         kind="stability_map",
         scenes=scenes("stability_map"),
@@ -99,6 +111,8 @@ rule plot_poincare_map:
     log:
         "results/logs/{study}/plot_poincare_map.log",
     localrule: True
+    conda:
+        "../../environment/environment.yml"
     params:
         files=files("fig3", "case_{}.nc"),
         code=CODE["plot"],
@@ -138,6 +152,8 @@ rule plot_shock_detail:
     log:
         "results/logs/{study}/plot_shock_detail.log",
     localrule: True
+    conda:
+        "../../environment/environment.yml"
     params:
         code=CODE["plot"],
     script:
