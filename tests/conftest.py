@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, settings
 
-from escapement import Parameters
+from escapement import Parameters, solve_exact
 
 settings.register_profile(
     "ci", derandomize=True, max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow]
@@ -32,6 +32,18 @@ def case_a() -> Parameters:
 def case_b() -> Parameters:
     """Fig. 3 (b): F = 0.5 N (with x0 = 3 m)."""
     return paper_parameters(F=0.5)
+
+
+@pytest.fixture(scope="session")
+def run50():
+    """Fig. 3 (a) (M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m) from x0 = 1 m, 50 cycles."""
+    return solve_exact(paper_parameters(F=1.0), 1.0, n_cycles=50)
+
+
+@pytest.fixture(scope="session")
+def stopped():
+    """Released at 0.01 m from rest, the free swing (radius 0.01 m) never reaches a1 = -0.1 m or a3 = 0.1 m."""
+    return solve_exact(paper_parameters(F=1.0), 0.01, n_cycles=5)
 
 
 #: the files that take a worker longest, longest first: under ``--dist loadfile`` each goes whole to a worker, the

@@ -25,18 +25,6 @@ from escapement.solvers.exact import solve_exact
 from escapement.integrators.high_precision import solve_high_precision
 
 
-@pytest.fixture(scope="module")
-def run50():
-    """Fig. 3 (a) (M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m) from x0 = 1 m, 50 cycles."""
-    return solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=50)
-
-
-@pytest.fixture(scope="module")
-def stopped():
-    """Released at 0.01 m from rest, the free swing (radius 0.01 m) never reaches a1 = -0.1 m or a3 = 0.1 m."""
-    return solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 0.01, n_cycles=5)
-
-
 def test_every_variable_has_units_and_a_long_name(case_b):
     run = solve_exact(case_b, 3.0, n_cycles=5)
     variables = {**cycle_variables(run), **impact_variables(run), **sample_variables(run, np.linspace(0, 5, 11), True)}

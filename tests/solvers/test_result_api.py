@@ -14,18 +14,6 @@ import pytest
 from escapement import EventKind, Parameters, Status, solve_ensemble, solve_exact, solve_high_precision
 
 
-@pytest.fixture(scope="module")
-def run50():
-    """Fig. 3 (a) (M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m) from x0 = 1 m, 50 cycles."""
-    return solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=50)
-
-
-@pytest.fixture(scope="module")
-def stopped():
-    """Released at 0.01 m from rest, the free swing (radius 0.01 m) never reaches a1 = -0.1 m or a3 = 0.1 m."""
-    return solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 0.01, n_cycles=5)
-
-
 # --- repr ---------------------------------------------------------------------------------------
 
 
