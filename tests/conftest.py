@@ -49,8 +49,8 @@ def stopped():
 #: the files that take a worker longest, longest first: under ``--dist loadfile`` each goes whole to a worker, the
 #: next file to the first worker free, so that the two workers start on the longest and the short files, run last,
 #: fill both of them to the end
-LONGEST = ("test_workflow.py", "integrators/test_reference.py", "solvers/test_memory.py", "pipeline/test_readings.py",
-           "solvers/test_grazing.py", "plotting/test_paper_figures.py", "paper/test_claims.py")
+LONGEST = ("test_workflow.py", "solvers/test_memory.py", "plotting/test_layout.py", "paper/test_claims.py",
+           "pipeline/test_readings.py", "pipeline/test_speed.py", "solvers/test_grazing.py")
 
 
 def pytest_collection_modifyitems(config, items):

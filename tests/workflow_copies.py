@@ -16,7 +16,7 @@ import yaml
 
 REPO = Path(__file__).resolve().parents[1]
 PARTS = ["Snakefile", "config", "profiles", "workflow", "src", "benchmarks", "README.md", "REPLICATION.md",
-         "figures", ".gitattributes"]
+         "figures", ".gitattributes", "environment/environment.yml"]
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
 #: the longest a Snakemake command of the tests may take before it is killed (the reduced run takes ~20 s)
 TIMEOUT = 240
@@ -28,6 +28,7 @@ def copy_repository(dest: Path) -> Path:
         if source.is_dir():
             shutil.copytree(source, dest / part, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
         elif source.exists():
+            (dest / part).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(source, dest / part)
     return dest
 

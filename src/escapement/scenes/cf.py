@@ -210,6 +210,16 @@ def run_dataset(solution: Solution) -> xr.Dataset:
     high-precision solver's mpmath numbers become their nearest doubles. Write it with
     :func:`escapement.io.write_netcdf`, which adds where and when it was written.
 
+    Parameters
+    ----------
+    solution : Solution
+        A run of any solver.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset, in memory.
+
     Examples
     --------
     >>> from escapement import Parameters, solve_exact
