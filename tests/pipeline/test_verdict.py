@@ -14,7 +14,9 @@ from escapement.io.netcdf import write_netcdf
 from escapement.paper.claims import CHECKS, COLUMNS, ClaimError
 from escapement.pipeline.readings import _formatted, score_table
 from escapement.pipeline.scores import COLUMNS as SCORE_COLUMNS
-from escapement.pipeline.verdict import check_claims, read_claims_csv, write_claims_csv
+from escapement.io.netcdf import DatasetError
+from escapement.pipeline.tables import read_claims
+from escapement.pipeline.verdict import check_claims
 from escapement.studies.readings import Reading
 
 #: the model's parameters and x0 as 0-d variables, as the scenes write them; the outcome as attributes
@@ -82,7 +84,7 @@ def files(tmp_path) -> dict:
 def test_the_job_writes_one_row_per_claim_with_the_configured_label(tmp_path):
     output = tmp_path / "claims.csv"
     check_claims(**files(tmp_path), output=str(output), log=str(tmp_path / "log"))
-    rows = read_claims_csv(output)
+    rows = read_claims(output)
     assert [r["claim_id"] for r in rows] == ["fixed_point_first", "multiplier", "fig5b_axes"]
     # the axes were fitted: a match is consistent, not reproduced; the first two rows are parts of one sentence
     assert [r["status"] for r in rows] == ["reproduced", "reproduced", "consistent"]
@@ -121,13 +123,13 @@ ROWS = [
 
 def test_csv_round_trip(tmp_path):
     path = tmp_path / "claims.csv"
-    write_claims_csv(ROWS, path)
+    write_csv(ROWS, COLUMNS, path)
     assert path.read_text().splitlines()[0] == ",".join(COLUMNS)
-    assert read_claims_csv(path) == ROWS
+    assert read_claims(path) == ROWS
 
 
 def test_csv_with_other_columns_is_rejected(tmp_path):
     path = tmp_path / "bad.csv"
     path.write_text("a,b\n1,2\n")
-    with pytest.raises(ValueError, match="bad.csv: columns"):
-        read_claims_csv(path)
+    with pytest.raises(DatasetError, match="bad.csv: not a table with the columns"):
+        read_claims(path)

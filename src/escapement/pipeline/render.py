@@ -8,12 +8,11 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from ..io.netcdf import read_netcdf, write_text
-from .claims_csv import read_claims_csv
 from .docs import markdown_html, markdown_table, render, verdict_html
 from .facts import collect_facts
 from .logs import logged
 from .scores import best_readings_table, read_scores
-from .tables import read_stress, read_timings, read_work_precision
+from .tables import read_claims, read_stress, read_timings, read_work_precision
 from .tally import findings_table, vocabulary_table
 
 __all__ = ["render_docs"]
@@ -25,7 +24,7 @@ def render_docs(inputs: Mapping[str, str], outputs: Mapping[str, str], log: str)
     as HTML (``outputs["verdict"]``, ``outputs["replication_html"]``), from the claims table, the benchmark, the
     long run, the stability map, the stress table and the readings' scores of ``inputs``."""
     with logged(log, "render_docs"):
-        rows = read_claims_csv(inputs["claims"])
+        rows = read_claims(inputs["claims"])
         facts, measured = collect_facts(
             read_work_precision(inputs["benchmark"]), read_netcdf(inputs["long_run"]),
             read_netcdf(inputs["stability"]), read_timings(inputs["long_run_timing"]),

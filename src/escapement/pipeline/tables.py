@@ -3,15 +3,21 @@
 from __future__ import annotations
 
 from ..io.netcdf import read_csv
+from ..paper.claims import COLUMNS
 from .simulate import TIMING_COLUMNS
 
-__all__ = ["SPEED_COLUMNS", "STRESS_COLUMNS", "WORK_PRECISION_COLUMNS", "read_stress", "read_timings",
+__all__ = ["SPEED_COLUMNS", "STRESS_COLUMNS", "WORK_PRECISION_COLUMNS", "read_claims", "read_stress", "read_timings",
            "read_work_precision"]
 
 WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "repeats", "error_velocity", "error_time"]
 #: the speed table: a ratio of two wall times (or of two peak memories) measured side by side
 SPEED_COLUMNS = ["name", "n", "ratio", "time_s", "reference_s", "repeats", "bytes", "reference_bytes", "note"]
 STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
+
+
+def read_claims(path: str) -> list[dict]:
+    """The verdict's table, written by the claims job (:mod:`escapement.pipeline.verdict`)."""
+    return read_csv(path, COLUMNS)
 
 
 def read_work_precision(path: str) -> list[dict]:

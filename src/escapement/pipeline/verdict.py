@@ -1,8 +1,8 @@
 """The verdict: the claims register evaluated on the replication's netCDF outputs, written as
 ``results/replication/claims.csv``.
 
-:func:`check_claims` is the job of the workflow rule ``check_claims``; :func:`read_claims_csv`
-reads the table back for the documents.  A check that fails makes the job fail, naming the claim
+:func:`check_claims` is the job of the workflow rule ``check_claims``; the documents read the table back
+(:func:`escapement.pipeline.tables.read_claims`).  A check that fails makes the job fail, naming the claim
 (:class:`escapement.paper.claims.ClaimError`); it never becomes a row of the table.
 """
 
@@ -10,15 +10,14 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from ..io.netcdf import read_netcdf
-from ..paper.claims import SCHEMA, Evidence, evaluate, load_claims
-from .claims_csv import read_claims_csv, write_claims_csv
+from ..io.netcdf import read_netcdf, write_csv
+from ..paper.claims import COLUMNS, SCHEMA, Evidence, evaluate, load_claims
 from .logs import logged
 from ..plotting.autoscale import VARIANTS
 from ..plotting.panel_axes import scene_axes
 from .scores import CLAIM_AUTOSCALE, panel_candidates, read_scores
 
-__all__ = ["check_claims", "read_claims_csv", "write_claims_csv"]
+__all__ = ["check_claims"]
 
 
 def check_claims(
@@ -43,5 +42,5 @@ def check_claims(
         rows = evaluate(load_claims(register, schema), evidence)
         for row in rows:
             logger.info("%s: %s: %s", row["claim_id"], row["status"], row["replicated_value"])
-        write_claims_csv(rows, output)
+        write_csv(rows, COLUMNS, output)
 

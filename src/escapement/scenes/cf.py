@@ -74,15 +74,11 @@ def _attrs(name: str) -> dict:
     return {"units": q.units, "long_name": q.long_name}
 
 
-def time_coordinate(t: np.ndarray) -> dict:
-    return {"t": ("t", np.asarray(t, dtype=float), _attrs("t"))}
-
-
 def sample_variables(solution: Solution, t: np.ndarray, acceleration: bool = False) -> dict[str, xr.DataArray]:
     """Displacement, velocity (and the smooth part of the acceleration) at times ``t`` (the experiment
     chooses them: :func:`escapement.scenes.figures.sample_times`)."""
     x, v, a = solution.sample(t)
-    coords = time_coordinate(t)
+    coords = {"t": ("t", np.asarray(t, dtype=float), _attrs("t"))}
     names = ("displacement", "velocity", "acceleration")[:2 + acceleration]
     out = {name: xr.DataArray(values, dims="t", coords=coords, attrs=_attrs(name))
            for name, values in zip(names, (x, v, a))}
@@ -99,7 +95,6 @@ def impact_variables(solution: Solution, window: tuple[float, float] | None = No
         keep &= (ev.t >= window[0]) & (ev.t <= window[1])
     m = solution.params.M
     vb, va = ev.v_before[keep], ev.v_after[keep]
-    dims = "impact"
     table = {
         "impact_time": (ev.t[keep], "s", "time of the impact"),
         "impact_position": (ev.x[keep], "m", "position of the impact (a1 or a3)"),
@@ -108,10 +103,8 @@ def impact_variables(solution: Solution, window: tuple[float, float] | None = No
         "impulse": (m * (va - vb), *_attrs("impulse").values()),
         "energy_dissipated": (0.5 * m * (vb**2 - va**2), *_attrs("energy_dissipated").values()),
     }
-    return {
-        name: xr.DataArray(values, dims=dims, attrs={"units": u, "long_name": ln})
-        for name, (values, u, ln) in table.items()
-    }
+    return {name: xr.DataArray(values, dims="impact", attrs={"units": u, "long_name": ln})
+            for name, (values, u, ln) in table.items()}
 
 
 def event_variables(solution: Solution, window: tuple[float, float] | None = None) -> dict[str, xr.DataArray]:
@@ -203,12 +196,10 @@ def dataset(
 
 
 def run_dataset(solution: Solution) -> xr.Dataset:
-    """One run of any solver as a CF-1.11 / ACDD-1.3 dataset: the per-cycle table (:func:`cycle_variables`) on
-    the coordinate ``cycle``, every event (:func:`event_variables`), the end time ``t_final`` and the numbers
-    behind a regime exit (NaN where they do not apply), each with its ``units`` and ``long_name``; the parameters
-    and initial state as 0-d variables, the outcome and the solver as global attributes (:func:`dataset`). The
-    high-precision solver's mpmath numbers become their nearest doubles. Write it with
-    :func:`escapement.io.write_netcdf`, which adds where and when it was written.
+    """One run of any solver as a CF-1.11 / ACDD-1.3 dataset: the per-cycle table on ``cycle``, every event, the
+    end time ``t_final`` and the numbers behind a regime exit (NaN where they do not apply); the parameters and
+    initial state as 0-d variables, the outcome and the solver as global attributes. Mpmath numbers become their
+    nearest doubles. :func:`escapement.io.write_netcdf` writes it, adding where and when it was written.
 
     Parameters
     ----------
