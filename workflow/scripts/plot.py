@@ -1,4 +1,5 @@
-"""Glue: the plotting rules -> escapement.pipeline.plot.plot (the figure named by the output's file name)."""
+"""Glue: the plotting rules -> escapement.pipeline.plot.plot (the figure named by params.figure, else by the
+output's file name)."""
 
 from pathlib import Path
 
@@ -6,7 +7,7 @@ from escapement.pipeline.plot import plot
 
 files = snakemake.params.get("files") or {"": path for path in snakemake.input}  # a kind of several scenes: by label
 plot(
-    Path(snakemake.output.png).stem,
+    snakemake.params.get("figure") or Path(snakemake.output.png).stem,
     snakemake.wildcards.get("study", "replication"),
     files,
     snakemake.output.png,
