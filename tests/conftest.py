@@ -50,7 +50,7 @@ def stopped():
 #: next file to the first worker free, so that the two workers start on the longest and the short files, run last,
 #: fill both of them to the end
 LONGEST = ("test_workflow.py", "solvers/test_memory.py", "plotting/test_layout.py", "paper/test_claims.py",
-           "pipeline/test_readings.py", "pipeline/test_speed.py", "solvers/test_grazing.py")
+           "pipeline/test_readings.py", "pipeline/test_speed.py", "solvers/test_grazing.py", "test_benchmark_target.py")
 
 
 def pytest_collection_modifyitems(config, items):

@@ -39,7 +39,10 @@ def reduce(paper: dict) -> None:
     paper["fig4"]["samples_per_second"] = 50
     paper["fig5"].update(n_cycles=12, samples_per_period=16)
     paper["checks"]["n_cycles"] = 40
-    paper["benchmark"].update(n_cycles=5, min_seconds=0.01)
+    paper["benchmark"].update(n_cycles=5, min_seconds=0.01, slow_settings={"Radau": [1e-6]})
+    paper["speed"]["headline"].update(n_cycles=5, target=1e-6, settings={"DOP853": [1e-9]})
+    paper["speed"]["floor"].update(exact_cycles=[10], ensemble_trajectories=10, ensemble_cycles=2,
+                                   stream_cycles=[100, 1000])
     paper["long_run"].update(n_cycles=2000, ivp_cycles=10)
     paper["escapement_error"]["F"]["n"] = 3
     paper["existence_map"]["a3"]["n"] = 10
