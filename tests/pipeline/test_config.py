@@ -86,11 +86,39 @@ def test_a_nested_config_value_gets_the_types_a_file_gives_it():
      "your study 'own': stability_map: b = {'start': 2.0, 'stop': 0.0, 'n': 4} is invalid: b must be an axis"),
     ({"fig5": {"n_cycles": 10_000, "samples_per_period": 2000}}, "samples_per_period = 2000 is invalid"),
     ({"fig3": {"cases": {"a": {"F": 1.0, "x0": -1.0, "M": 1e-320}}}}, "M = 1e-320 is invalid: M must be"),
+    ({"fig5": {"samples_per_period": 2}}, "fig5.samples_per_period = 2 is invalid: samples_per_period must be an "
+                                          "integer in [8, 100000]"),
+    ({"existence_map": {"F": {"start": 0.0, "stop": 1.0, "n": 0}}}, "existence_map.F.n = 0 is invalid: n must be an "
+                                                                    "integer in [1, 400]"),
 ])
 def test_each_problem_is_refused_in_one_line_naming_the_key_its_value_and_the_rule(config, message):
     with pytest.raises(ConfigError) as refused:
         checked(config)
     assert message in str(refused.value) and "\n" not in str(refused.value)
+
+
+def test_every_constraint_of_the_schemas_names_its_rule_for_the_refusal():
+    """A refusal's rule is the violated schema's description; a combinator's branches (anyOf, not) report at the
+    key that holds them, which has one."""
+    missing = []
+
+    def walk(node, path: str) -> None:
+        if isinstance(node, dict):
+            constrained = node.get("type") in ("integer", "number", "string", "boolean") or any(
+                key in node for key in ("minimum", "maximum", "exclusiveMinimum", "exclusiveMaximum", "enum",
+                                        "minItems", "maxItems", "pattern"))
+            if constrained and "description" not in node and "$ref" not in node:
+                missing.append(path)
+            for key, value in node.items():
+                if key not in ("anyOf", "not"):
+                    walk(value, f"{path}/{key}")
+        elif isinstance(node, list):
+            for value in node:
+                walk(value, path)
+
+    for name in ("config.schema.yaml", "paper.schema.yaml"):
+        walk(read_yaml(SCHEMAS / name), name)
+    assert missing == []
 
 
 @pytest.mark.parametrize("text, message", [

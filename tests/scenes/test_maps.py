@@ -76,3 +76,14 @@ def test_the_escapement_error_holds_each_zone_at_each_force_and_its_formula_agre
     assert float(ds["max_period_difference"]) < 1e-12
     # Airy: an impulse before the equilibrium shortens the period, a clock counting 2 pi / omega gains
     assert (ds["rate_zones"].sel(zone=1).values > 0).all()
+
+
+def test_a_zone_without_a_limit_cycle_is_nan_with_its_outcome_and_the_others_are_kept():
+    """b = 1 stops the mass at a1: for the zone (0.05, 0.2) m it then swings about F/K inside the zone and turns
+    short of its end at F = 0.1 N (amplitude 0.05 m about 0.1 m), while the paper's zone has a limit cycle."""
+    ds = escapement_error({**MODEL, "b": 1.0, "F": {"start": 0.1, "stop": 1.0, "n": 2},
+                           "zones": {"paper": [-0.1, 0.05], "after": [0.05, 0.2]}})
+    outcome = ds["outcome"].values
+    assert (outcome[0] == Status.COMPLETED.code).all() and outcome[1, 0] == Status.TURNED_BACK_IN_ZONE.code
+    assert np.isnan(ds["rate"].values[1, 0]) and np.isfinite(ds["rate"].values[0]).all()
+    assert float(ds["max_period_difference"]) < 1e-12

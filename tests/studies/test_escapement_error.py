@@ -8,6 +8,7 @@ import pytest
 from scipy.integrate import quad
 
 from escapement.model.parameters import Parameters
+from escapement.model.status import Status
 from escapement.paper.corrected import zone_period_change
 from escapement.studies.escapement_error import (
     daily_rate,
@@ -79,7 +80,11 @@ def test_more_force_more_amplitude():
     assert amplitudes == sorted(amplitudes)
 
 
-def test_no_limit_cycle_is_refused_by_name():
-    # the constant term of the map (16) is negative: F = 0.05 N with an asymmetric geometry
-    with pytest.raises(ValueError, match="F = 0.05"):
-        limit_cycle_rate(Parameters(M=1.0, K=1.0, F=0.05, b=0.1, a1=-0.3, a2=-0.25, a3=0.1, a4=0.05))
+def test_without_a_limit_cycle_the_rate_is_nan_and_the_status_says_how_the_motion_ends():
+    # the constant term of the map (16) is negative: F = 0.05 N with an asymmetric geometry, no fixed point
+    r = limit_cycle_rate(Parameters(M=1.0, K=1.0, F=0.05, b=0.1, a1=-0.3, a2=-0.25, a3=0.1, a4=0.05))
+    assert r.status is Status.STOPPED and "F = 0.05" in r.message and math.isnan(r.rate)
+    # b = 1: the impact stops the mass at a1 = 0.05 m, inside the zone (0.05, 0.2) m; there it swings about
+    # F/K = 0.1 m with amplitude 0.05 m and turns at 0.15 m, short of the zone's end
+    r = limit_cycle_rate(Parameters(M=1.0, K=1.0, F=0.1, b=1.0, a1=0.05, a2=0.2))
+    assert r.status is Status.TURNED_BACK_IN_ZONE and math.isnan(r.largest_displacement)

@@ -103,7 +103,9 @@ def refusal(error, source: str) -> str:
         return f"{source}: {where or 'the top level'}: the key {error.instance!r} is invalid: a key must be {rule}"
     name = next((p for p in reversed(path) if isinstance(p, str)), "the value")
     subject = f"each item of {name}" if path and isinstance(path[-1], int) else name
-    return f"{source}: {where} = {error.instance!r} is invalid: {subject} must be {rule or error.message}"
+    if rule is None:  # a constraint without a description: jsonschema's own sentence
+        return f"{source}: {where} = {error.instance!r} is invalid: {error.message}"
+    return f"{source}: {where} = {error.instance!r} is invalid: {subject} must be {rule}"
 
 
 def own_blocks(config: Mapping, paper: Mapping) -> dict[str, dict]:

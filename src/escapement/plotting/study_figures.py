@@ -222,6 +222,10 @@ def escapement_error(ds: xr.Dataset, title: str | None = None) -> Figure:
         for i, name in enumerate(str(n) for n in ds["zone_name"].values):
             a1, a2 = float(ds["zone_a1"][i]), float(ds["zone_a2"][i])
             label = f"{name}: impact at {quantity_value('a1', a1)}, impulse to {quantity_value('a2', a2)}"
+            if not np.isfinite(ds["rate"][i]).any():  # no limit cycle at any force: the legend says how it ends
+                ends = sorted({Status.from_code(int(c)).value.replace("_", " ") for c in ds["outcome"].values[i]})
+                axes[0].plot([], [], ls="none", label=f"{label}: no limit cycle ({', '.join(ends)})")
+                continue
             for ax, (variable, _, _) in zip(axes, panels):
                 ax.plot(ds["largest_displacement"][i], ds[variable][i], marker="o", ms=2.5, lw=1.1, color=SERIES[i % 4],
                         label=label)

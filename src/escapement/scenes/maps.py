@@ -157,16 +157,22 @@ def escapement_error(settings: Mapping | EscapementErrorScene) -> xr.Dataset:
     scene = settings if isinstance(settings, EscapementErrorScene) else EscapementErrorScene.from_mapping(settings)
     forces = np.array(scene.forces)
     values = {name: np.empty((len(scene.zones), len(forces))) for name in RATE_VARIABLES}
+    outcome = np.empty((len(scene.zones), len(forces)), dtype=np.int8)
     for i, (_, a1, a2) in enumerate(scene.zones):
         p = Parameters(**{**scene.params.as_dict(), "a1": a1, "a2": a2, "a3": -a1, "a4": -a2})
         for j, cycle in enumerate(rate_against_amplitude(p, forces)):
+            outcome[i, j] = cycle.status.code
             for name in RATE_VARIABLES:
                 values[name][i, j] = getattr(cycle, name)
-    worst = float(np.max(np.abs(values["period_formula"] - values["period"]) / values["period"]))
+    differences = np.abs(values["period_formula"] - values["period"]) / values["period"]
+    worst = float(np.nanmax(differences)) if np.isfinite(differences).any() else float("nan")
     zone = ("zone", np.arange(len(scene.zones), dtype=np.int32), {"long_name": "impulse zone number", "units": "1"})
     coords = {"zone": zone, **_coords(F=forces)}
     variables = {name: xr.DataArray(values[name], dims=("zone", "F"), coords=coords,
                                     attrs={"units": u, "long_name": ln}) for name, (u, ln) in RATE_VARIABLES.items()}
+    variables["outcome"] = xr.DataArray(outcome, dims=("zone", "F"), coords=coords, attrs={
+        "long_name": "how the cycle from the fixed point of the map (16) ended: completed is a limit cycle, stopped "
+                     "is no fixed point (the variables above are NaN where it is not completed)", **flag_attributes()})
     variables["zone_name"] = xr.DataArray(np.array([z[0] for z in scene.zones], dtype=object), dims="zone",
                                           coords={"zone": zone}, attrs={"long_name": "name of the impulse zone",
                                                                         "coverage_content_type": MODEL_INPUT})
@@ -176,8 +182,8 @@ def escapement_error(settings: Mapping | EscapementErrorScene) -> xr.Dataset:
                                                 coords={"zone": zone}, attrs={"units": "m", "long_name": long_name,
                                                                               "coverage_content_type": MODEL_INPUT})
     variables["max_period_difference"] = scalar_variable(
-        worst, "1", "largest relative difference between the corrected Eqs. (24)-(25) and the exact solver's period",
-        QUALITY)
+        worst, "1", "largest relative difference between the corrected Eqs. (24)-(25) and the exact solver's period "
+        "over the limit cycles", QUALITY)
     variables["seconds_per_day"] = scalar_variable(SECONDS_PER_DAY, "s day-1", "seconds in a day", MODEL_INPUT)
     variables.update(parameter_variables({k: getattr(scene.params, k) for k in ("M", "K", "b")}))
     attrs = global_attributes(

@@ -59,21 +59,26 @@ class LimitCycleRate:
     rate: float  #: seconds per day gained (negative: lost)
     rate_impacts: float  #: the part of the rate due to dT1, s/day (first order: -86400 dT1 / T0)
     rate_zones: float  #: the part due to dT2, s/day
+    status: Status = Status.COMPLETED  #: COMPLETED for a limit cycle; else how the cycle ends (the fields NaN)
+    message: str = "a limit cycle"  #: what ended it, naming the configuration
 
 
 def limit_cycle_rate(p: Parameters) -> LimitCycleRate:
     """The limit cycle of ``p`` (the fixed point of the map (16)), measured with the exact solver
     over one cycle from the fixed point, and decomposed by the corrected Eqs. (24)-(25).
 
-    Raises ``ValueError`` naming the configuration if it has no limit cycle (no fixed point, or the
-    cycle from it leaves the regime)."""
+    Without a limit cycle its fields are NaN and ``status`` says how the motion ends: STOPPED when the
+    map (16) has no fixed point (every velocity decays to rest), else the status of the cycle from the
+    fixed point that leaves the regime (turned back in a zone, chattering), with ``message``."""
     v = corrected.fixed_point(p)
     if not math.isfinite(v):
-        raise ValueError(f"F = {p.F!r} N with a1..a4 = {p.a1}, {p.a2}, {p.a3}, {p.a4}: the map (16) has no fixed point")
+        return _no_limit_cycle(p, Status.STOPPED, f"F = {p.F!r} N with a1..a4 = {p.a1}, {p.a2}, {p.a3}, {p.a4}: "
+                                                  "the map (16) has no fixed point, every velocity decays to rest")
     release = -math.hypot(p.a1, v / p.omega)  # at rest on the free arc that meets a1 with v
     run = solve_exact(p, release, n_cycles=1, record_trajectory=False)
     if run.status != Status.COMPLETED:
-        raise ValueError(f"F = {p.F!r} N: the cycle from the fixed point leaves the regime: {run.message}")
+        return _no_limit_cycle(p, run.status, f"F = {p.F!r} N: the cycle from the fixed point leaves the regime: "
+                                              f"{run.message}")
     w = p.omega
     vel = corrected.cycle_velocities(v, p)
     mirror = Parameters(M=p.M, K=p.K, F=p.F, b=p.b, a1=-p.a3, a2=-p.a4, a3=-p.a1, a4=-p.a2)
@@ -93,6 +98,11 @@ def limit_cycle_rate(p: Parameters) -> LimitCycleRate:
         rate_impacts=-SECONDS_PER_DAY * impacts / t0,
         rate_zones=-SECONDS_PER_DAY * zones / t0,
     )
+
+
+def _no_limit_cycle(p: Parameters, status: Status, message: str) -> LimitCycleRate:
+    nan = float("nan")
+    return LimitCycleRate(p.F, nan, nan, nan, nan, nan, nan, nan, nan, nan, status=status, message=message)
 
 
 def rate_against_amplitude(base: Parameters, forces: np.ndarray) -> list[LimitCycleRate]:
