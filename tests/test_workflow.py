@@ -12,7 +12,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from workflow_copies import planned_jobs, reduced_copy, snakemake, tracked_state
+from snakemake.api import SnakemakeApi
+from snakemake.settings.types import OutputSettings, ResourceSettings
+from workflow_copies import copy_repository, planned_jobs, reduced_copy, snakemake, tracked_state
 
 from escapement.io.netcdf import read_netcdf
 from escapement.pipeline.publish import check
@@ -166,3 +168,16 @@ def test_an_invalid_configuration_stops_before_any_job_in_one_line(run):
     message = "the configuration: model.M = 0 is invalid: M must be a number > 0 (kg)"
     result = snakemake(run[0], "--dry-run", "--cores", "2", "--config", "model={M: 0}", check=False)
     assert result.returncode != 0 and message in result.stdout + result.stderr and "Job stats" not in result.stdout
+
+
+def test_the_jobs_of_seconds_run_beside_snakemake_and_every_simulation_goes_to_the_executor(tmp_path):
+    """On a cluster (profiles/slurm) the plots and the documents' jobs are local rules, as the README says; a
+    rule made by ``use rule ... with`` does not inherit the flag, so each states it. Read in process, from a copy
+    (Snakemake starts a log file in its working directory)."""
+    where = copy_repository(tmp_path)
+    with SnakemakeApi(OutputSettings(quiet={"all"})) as api:
+        workflow = api.workflow(resource_settings=ResourceSettings(cores=1), snakefile=where / "Snakefile",
+                                workdir=where)._workflow
+        rules = {rule.name for rule in workflow.rules if not rule.norun}
+        local = set(workflow._localrules)
+    assert local == {rule for rule in rules if rule.startswith("plot_")} | {"check_claims", "render_docs", "publish"}

@@ -70,6 +70,7 @@ use rule plot_work_precision as plot_work_precision_full with:
         pdf="results/replication/benchmark/work_precision_full.pdf",
     log:
         "results/logs/replication/plot_work_precision_full.log",
+    localrule: True
     params:
         figure="work_precision",  # the figure's name, which its file's name is not
         code=CODE["plot"],

@@ -133,6 +133,7 @@ use rule plot_poincare_map as plot_phase_diagrams with:
         pdf="results/{study}/figures/phase_diagrams.pdf",
     log:
         "results/logs/{study}/plot_phase_diagrams.log",
+    localrule: True
     params:
         files=files("fig5", "K_{}.nc"),
         code=CODE["plot"],
@@ -173,6 +174,7 @@ use rule plot_shock_detail as plot_escapement_error with:
         pdf="results/{study}/figures/escapement_error.pdf",
     log:
         "results/logs/{study}/plot_escapement_error.log",
+    localrule: True
 
 
 use rule plot_shock_detail as plot_stability_map with:
@@ -188,6 +190,7 @@ use rule plot_shock_detail as plot_stability_map with:
         pdf="results/{study}/figures/stability_map.pdf",
     log:
         "results/logs/{study}/plot_stability_map.log",
+    localrule: True
 
 
 use rule plot_shock_detail as plot_existence_map with:
@@ -203,3 +206,4 @@ use rule plot_shock_detail as plot_existence_map with:
         pdf="results/{study}/figures/existence_map.pdf",
     log:
         "results/logs/{study}/plot_existence_map.log",
+    localrule: True
