@@ -24,7 +24,7 @@ positive for one after.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -101,8 +101,8 @@ def limit_cycle_rate(p: Parameters) -> LimitCycleRate:
 
 
 def _no_limit_cycle(p: Parameters, status: Status, message: str) -> LimitCycleRate:
-    nan = float("nan")
-    return LimitCycleRate(p.F, nan, nan, nan, nan, nan, nan, nan, nan, nan, status=status, message=message)
+    measured = [f.name for f in fields(LimitCycleRate) if f.name not in ("F", "status", "message")]
+    return LimitCycleRate(F=p.F, **dict.fromkeys(measured, math.nan), status=status, message=message)
 
 
 def rate_against_amplitude(base: Parameters, forces: np.ndarray) -> list[LimitCycleRate]:
