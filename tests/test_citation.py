@@ -24,7 +24,8 @@ def test_title_abstract_and_version_agree():
     assert _words(ZENODO["title"]) == _words(CFF["title"]) == _words(CODEMETA["name"])
     assert _words(ZENODO["description"]) == _words(CFF["abstract"]) == _words(CODEMETA["description"])
     assert ZENODO["version"] == CFF["version"] == CODEMETA["version"] == PROJECT["version"]
-    assert ZENODO["publication_date"] == CFF["date-released"] == CODEMETA["datePublished"]
+    # a release date goes with a release (a tag and its archive); until then none of the three claims one
+    assert ZENODO.get("publication_date") == CFF.get("date-released") == CODEMETA.get("datePublished")
 
 
 def test_authors_keywords_and_licences_agree():

@@ -22,10 +22,11 @@ from escapement.pipeline.publish import check
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
-    """The reduced copy after the default run, and the state of its tracked files before it."""
+    """The reduced copy after the default run (each job's loaded modules listed in ``.trace/``), and the state of
+    its tracked files before it."""
     where = reduced_copy(tmp_path_factory.mktemp("workflow"))
     before = tracked_state(where)
-    snakemake(where, "--cores", "2")
+    snakemake(where, "--cores", "2", trace=where / ".trace")
     return where, before
 
 
@@ -149,17 +150,71 @@ SIMULATIONS = {"poincare_map", "shock_detail", "phase_diagrams", "escapement_err
                "checks", "long_run", "readings", "work_precision", "run_stress"}
 PLOTS = {"plot_poincare_map", "plot_shock_detail", "plot_phase_diagrams", "plot_escapement_error", "plot_stability_map",
          "plot_existence_map", "plot_long_run", "plot_work_precision"}
+EVERY_JOB = SIMULATIONS | PLOTS | {"check_claims", "render_docs"}
 
 
-@pytest.mark.parametrize("edit, expected", [
-    ("src/escapement/plotting/style.py", PLOTS | {"check_claims", "render_docs"}),  # the claims score drawn axes
-    ("src/escapement/model/quantities.py", SIMULATIONS | PLOTS | {"check_claims", "render_docs"}),
-])
-def test_an_edit_replans_the_jobs_that_run_the_edited_layer_and_no_other(run, tmp_path, edit, expected):
+def loaded(where: Path) -> dict[str, set[Path]]:
+    """The files of the repository's copy each rule's jobs loaded, by rule (from the run's trace)."""
+    found: dict[str, set[Path]] = {}
+    for trace in (where / ".trace").glob("*.txt"):
+        files = {Path(f).resolve() for f in trace.read_text().split("\n") if f}
+        assert not {f for f in files if "escapement" in f.parts and where.resolve() not in f.parents}, \
+            f"{trace.name}: the job loaded the package from outside the copy"
+        rule = trace.name.rsplit("-", 1)[0]
+        found.setdefault(rule, set()).update(f for f in files if where.resolve() in f.parents)
+    return found
+
+
+def test_every_job_loads_only_code_that_the_rules_digest_covers(run):
+    """Each job's process, traced: every file of the repository it loads is in the package, the workflow's scripts
+    or the benchmarks' floors (escapement.pipeline.outputs.code_digest, a param of every rule), or is Snakemake's
+    copy of the rule's script."""
+    where = run[0].resolve()
+    jobs = loaded(where)
+    assert set(jobs) == EVERY_JOB
+    covered = [where / "src/escapement", where / "workflow/scripts", where / "benchmarks", where / ".snakemake/scripts"]
+    for rule, files in jobs.items():
+        assert any(where / "src/escapement/solvers" in f.parents for f in files) or rule.startswith(("plot_", "render"))
+        outside = sorted(str(f.relative_to(where)) for f in files if not any(c in f.parents for c in covered))
+        assert not outside, f"{rule} loads {outside}, which no rule's digest covers"
+
+
+def test_an_edit_of_any_file_a_job_loads_changes_the_digest_of_every_rule(run, tmp_path):
+    """Every file any job loaded, edited in turn (one byte appended) in a copy of the package: the digest changes."""
+    from escapement.pipeline.outputs import code_digest
+
+    where = run[0].resolve()
+    files = sorted({f for found in loaded(where).values() for f in found if where / "src/escapement" in f.parents})
+    assert len(files) >= 60
+    package = shutil.copytree(where / "src/escapement", tmp_path / "escapement")
+    before = code_digest(where, package)
+    for file in files:
+        copy = package / file.relative_to(where / "src/escapement")
+        text = copy.read_bytes()
+        copy.write_bytes(text + b"\n")
+        assert code_digest(where, package) != before, file
+        copy.write_bytes(text)
+    assert code_digest(where, package) == before
+
+
+@pytest.mark.parametrize("edit", ["src/escapement/pipeline/scores.py", "src/escapement/__init__.py",
+                                  "workflow/scripts/plot.py"])
+def test_an_edit_replans_every_job(run, tmp_path, edit):
+    """The edits the rules' hand-kept lists of layers once missed: the axis claims' autoscaling (scores.py), the
+    package's __init__; and a script."""
     where = Path(shutil.copytree(run[0], tmp_path / "copy", symlinks=True))
     with open(where / edit, "a") as handle:
         handle.write("\n# an edit\n")
-    assert set(planned_jobs(where)) - {"all"} == expected
+    assert set(planned_jobs(where)) - {"all"} == EVERY_JOB
+
+
+def test_a_deleted_data_file_is_made_again_by_a_plain_run(run, tmp_path):
+    where = Path(shutil.copytree(run[0], tmp_path / "copy", symlinks=True))
+    (where / "results/replication/long_run.nc").unlink()
+    (where / "results/replication/poincare_map/case_b.nc").unlink()
+    (where / "results/replication/readings.csv").unlink()
+    planned = planned_jobs(where)
+    assert planned["long_run"] == 1 and planned["poincare_map"] == 1 and planned["readings"] == 1
 
 
 def test_an_invalid_configuration_stops_before_any_job_in_one_line(run):

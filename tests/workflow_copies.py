@@ -63,10 +63,37 @@ def reduced_copy(dest: Path) -> Path:
     return where
 
 
-def snakemake(where: Path, *args: str, check: bool = True, timeout: float = TIMEOUT) -> subprocess.CompletedProcess:
-    """``snakemake ARGS`` in ``where``; its process group killed if it outlives ``timeout`` or the test stops."""
+#: a sitecustomize module that, in each job's process, writes the files of the modules it loaded when it exits
+TRACER = """
+import atexit, os, sys
+
+def _loaded():
+    job = getattr(sys.modules.get("__main__"), "snakemake", None)
+    if job is not None:
+        files = sorted({m.__file__ for m in list(sys.modules.values()) if getattr(m, "__file__", None)})
+        name = f"{job.rule}-{os.getpid()}.txt"
+        with open(os.path.join(os.environ["ESCAPEMENT_TRACE"], name), "w") as handle:
+            handle.write("\\n".join(files))
+
+atexit.register(_loaded)
+"""
+
+
+def snakemake(where: Path, *args: str, check: bool = True, timeout: float = TIMEOUT,
+              trace: Path | None = None) -> subprocess.CompletedProcess:
+    """``snakemake ARGS`` in ``where``, its jobs running the copy's package (``src`` first on the path), each job's
+    loaded modules listed in ``trace`` (a folder) if given; its process group killed if it outlives ``timeout`` or
+    the test stops."""
+    path = [str(where / "src")]
+    env = {**os.environ, "PYTHONWARNINGS": "ignore"}
+    if trace is not None:
+        trace.mkdir(parents=True, exist_ok=True)
+        (trace / "sitecustomize.py").write_text(TRACER)
+        path.insert(0, str(trace))
+        env["ESCAPEMENT_TRACE"] = str(trace)
+    env["PYTHONPATH"] = os.pathsep.join(path)
     process = subprocess.Popen([str(SNAKEMAKE), *args], cwd=where, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                               text=True, start_new_session=True, env={**os.environ, "PYTHONWARNINGS": "ignore"})
+                               text=True, start_new_session=True, env=env)
     try:
         stdout, stderr = process.communicate(timeout=timeout)
     finally:

@@ -63,7 +63,7 @@ def test_a_document_is_the_same_where_its_text_and_its_numbers_at_their_printed_
     assert compare(tmp_path / "old.md", tmp_path / "new.md")[0] is same
 
 
-def test_publish_copies_only_what_differs_and_a_pdf_with_its_png(drawings, tmp_path, monkeypatch):
+def test_publish_copies_only_what_differs_and_a_pdf_with_its_png(drawings, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     shutil.copytree(drawings["tracked"].parent, "figures")
     Path("README.md").write_text("error 1.3e-14\n")
@@ -76,6 +76,8 @@ def test_publish_copies_only_what_differs_and_a_pdf_with_its_png(drawings, tmp_p
     assert Path("figures/fig.pdf").read_bytes() == drawings["per_cent"].with_suffix(".pdf").read_bytes()
     assert Path("README.md").read_bytes() == before["README.md"]  # the same numbers: kept as it was
     assert "README.md: kept" in Path("publish.log").read_text()
+    said = capsys.readouterr().err.splitlines()  # on the console too
+    assert "README.md: kept (0 numbers printed differently)" in said and said[-1] == "publish: 2 of 3 tracked files updated"
 
 
 def test_the_check_says_which_tracked_file_differs_from_the_run(drawings, tmp_path, monkeypatch, capsys):

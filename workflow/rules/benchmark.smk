@@ -14,7 +14,7 @@ rule work_precision:
     params:
         scene=RUNS["benchmark"],
         settings=PAPER["benchmark"]["settings"],
-        code=CODE["simulate"],
+        code=CODE,
     script:
         "../scripts/work_precision.py"
 
@@ -37,7 +37,7 @@ use rule work_precision as work_precision_full with:
                 **PAPER["benchmark"]["slow_settings"],
             }.items()
         },
-        code=CODE["simulate"],
+        code=CODE,
 
 
 rule plot_work_precision:
@@ -57,7 +57,7 @@ rule plot_work_precision:
     conda:
         "../../environment/environment.yml"
     params:
-        code=CODE["plot"],
+        code=CODE,
     script:
         "../scripts/plot.py"
 
@@ -73,7 +73,7 @@ use rule plot_work_precision as plot_work_precision_full with:
     localrule: True
     params:
         figure="work_precision",  # the figure's name, which its file's name is not
-        code=CODE["plot"],
+        code=CODE,
 
 
 rule plot_long_run:
@@ -93,7 +93,7 @@ rule plot_long_run:
     conda:
         "../../environment/environment.yml"
     params:
-        code=CODE["plot"],
+        code=CODE,
     script:
         "../scripts/plot.py"
 
@@ -110,7 +110,7 @@ rule speed:
     params:
         scene=RUNS["benchmark"],
         speed=PAPER["speed"],
-        code=CODE["simulate"],
+        code=CODE,
     script:
         "../scripts/speed.py"
 

@@ -1,7 +1,10 @@
+import sys
+
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
 from escapement.pipeline import config as settings
+from escapement.pipeline import outputs
 from escapement.pipeline.publish import PUBLISHED
 from escapement.scenes.settings import KINDS
 
@@ -11,10 +14,11 @@ def checked(data, schema, source):
     try:
         validate(data, schema, set_default=False)
     except WorkflowError as err:
-        raise WorkflowError(settings.refusal(err.__context__, source)) from None
+        raise settings.ConfigError(settings.refusal(err.__context__, source)) from None
 
 
-# Every file read strictly (a key given twice is refused with its line), nested --config values with the
+# A refusal is one line on the console, before any job: a SystemExit's message (Snakemake prints a WorkflowError
+# with the Snakefile's line and a traceback). Every file read strictly (a key given twice is refused with its line), nested --config values with the
 # types a file gives them; then each source against its schema; then every scene built and checked.
 try:
     for path in dict.fromkeys([*workflow.configfiles, "config/config.yaml"]):
@@ -30,85 +34,60 @@ try:
         STUDIES[NAME] = settings.study_scenes(NAME, OWN)
     RUNS = settings.replication_scenes(PAPER)
 except settings.ConfigError as err:
-    raise WorkflowError(str(err)) from None
+    sys.exit(str(err))
 
 
 wildcard_constraints:
-    study="|".join(STUDIES),
+    study="[^/]+",
+    label="[^/]+",
 
 
-#: the layers of the package each kind of job runs: their sources' digest is a param of its rules, so that an
-#: edit reruns the jobs that run the edited code (Snakemake follows a rule's own script only)
-LAYERS = {
-    "simulate": ["model", "solvers", "integrators", "paper", "studies", "scenes", "io"],
-    "plot": ["model", "io", "paper", "plotting"],
-    "verdict": [
-        "model",
-        "solvers",
-        "integrators",
-        "paper",
-        "studies",
-        "io",
-        "plotting",
-    ],
-    "docs": ["model", "io", "paper"],
-}
-CODE = {
-    job: settings.code_digest(
-        workflow.basedir,
-        *(f"src/escapement/{layer}" for layer in layers),
-        f"src/escapement/pipeline/{'simulate' if job == 'simulate' else job}.py",
-        "src/escapement/pipeline/config.py",
-    )
-    for job, layers in LAYERS.items()
-}
+#: the digest of the code every job runs (the package, the scripts, the dependencies' versions): a param of every
+#: rule, so that any edit reruns every job (escapement.pipeline.outputs)
+CODE = outputs.code_digest(workflow.basedir)
 
 
-def scenes(block, name=None):
-    """The params of the scenes of ``block`` in the job's study, by the file each writes: ``name`` (a pattern
-    such as ``case_{}.nc``) for a kind of several scenes, in its folder; the one scene of the others.
-    """
-    return lambda w: {
-        name.format(label) if name else "": settings
-        for label, settings in STUDIES[w.study][block].items()
-    }
+def refuse(path):
+    """Stop before any job with one line: ``path`` is not made by this configuration (Snakemake prints a
+    WorkflowError raised here with its traceback; a SystemExit's message alone)."""
+    sys.exit(outputs.not_a_target(path, STUDIES))
 
 
-def scene_files(study, block, name):
-    """The files of the scenes of ``block`` in ``study``, in its kind's folder, by their labels."""
-    return {
-        label: f"results/{study}/{KINDS[block].name}/{name.format(label)}"
-        for label in STUDIES[study][block]
-    }
+def settings_of(block, path):
+    """The settings of the scene of ``block`` that writes ``path`` (its label a wildcard, for the kinds of several
+    scenes), as the rule's params; one line if the study or its scene does not exist."""
+
+    def params(w):
+        labelled = STUDIES.get(w.study, {}).get(block, {})
+        label = w.get("label", "")
+        if label not in labelled:
+            refuse(path.format(**w))
+        return labelled[label]
+
+    return params
 
 
-def files(block, name):
-    """:func:`scene_files` of the job's study."""
-    return lambda w: scene_files(w.study, block, name)
+def kind_files(block, labelled=False):
+    """The data files of the kind ``block`` in the job's study (its figure's inputs), or with ``labelled`` by their
+    labels (its params); one line if the study has no such kind."""
 
+    def files(w):
+        if block not in STUDIES.get(w.study, {}):
+            refuse(f"results/{w.study}/figures/{KINDS[block].name}.png")
+        found = outputs.data_files(w.study, block, STUDIES[w.study][block])
+        return found if labelled else list(found.values())
 
-def study_outputs(study):
-    """The figures of one study (each needs its datasets)."""
-    return [
-        f"results/{study}/figures/{KINDS[block].name}.png" for block in STUDIES[study]
-    ]
+    return files
 
 
 def all_outputs():
-    return [
-        *(path for study in STUDIES for path in study_outputs(study)),
-        "results/replication/claims.csv",
-        "results/replication/stress.csv",
-        "results/replication/figures/long_run.png",
-        "results/replication/figures/work_precision.png",
-        "results/replication/docs/README.md",
-    ]
+    return outputs.targets(STUDIES)
 
 
 def publish_inputs(wildcards):
     """What publish copies from; refused, before any job, when the configuration holds a study of your own."""
     if len(STUDIES) > 1:
-        raise WorkflowError(
+        sys.exit(
             f"publish updates the tracked figures and documents from the replication alone: run it without a "
             f"configuration of your own (this one makes the study '{NAME}' of {', '.join(OWN)})"
         )

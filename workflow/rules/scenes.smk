@@ -1,19 +1,20 @@
 # The scenes of every study: the replication's (config/paper.yaml) and the user's own (config/config.yaml),
-# {study} naming which. Each job writes the datasets of one kind of scene (a kind of several scenes, such as
-# Fig. 3's cases, into its folder, one file per scene) and each plotting job the figure of one kind.
+# {study} naming which. Each job writes the dataset of one scene (a kind of several scenes, such as Fig. 3's
+# cases, one file per scene in the kind's folder, {label} naming it) and each plotting job the figure of one kind.
+# Every file is a target of the default run, so a missing one is made again.
 
 
 rule poincare_map:
     output:
-        folder=directory("results/{study}/poincare_map"),
+        nc="results/{study}/poincare_map/case_{label}.nc",
     log:
-        "results/logs/{study}/poincare_map.log",
+        "results/logs/{study}/poincare_map/case_{label}.log",
     conda:
         "../../environment/environment.yml"
     params:
         kind="poincare_map",
-        scenes=scenes("fig3", "case_{}.nc"),
-        code=CODE["simulate"],
+        scene=settings_of("fig3", "results/{study}/poincare_map/case_{label}.nc"),
+        code=CODE,
     script:
         "../scripts/simulate.py"
 
@@ -27,23 +28,23 @@ rule shock_detail:
         "../../environment/environment.yml"
     params:
         kind="shock_detail",
-        scenes=scenes("fig4"),
-        code=CODE["simulate"],
+        scene=settings_of("fig4", "results/{study}/shock_detail.nc"),
+        code=CODE,
     script:
         "../scripts/simulate.py"
 
 
 rule phase_diagrams:
     output:
-        folder=directory("results/{study}/phase_diagrams"),
+        nc="results/{study}/phase_diagrams/K_{label}.nc",
     log:
-        "results/logs/{study}/phase_diagrams.log",
+        "results/logs/{study}/phase_diagrams/K_{label}.log",
     conda:
         "../../environment/environment.yml"
     params:
         kind="phase_diagram",
-        scenes=scenes("fig5", "K_{}.nc"),
-        code=CODE["simulate"],
+        scene=settings_of("fig5", "results/{study}/phase_diagrams/K_{label}.nc"),
+        code=CODE,
     script:
         "../scripts/simulate.py"
 
@@ -57,8 +58,8 @@ rule escapement_error:
         "../../environment/environment.yml"
     params:
         kind="escapement_error",
-        scenes=scenes("escapement_error"),
-        code=CODE["simulate"],
+        scene=settings_of("escapement_error", "results/{study}/escapement_error.nc"),
+        code=CODE,
     script:
         "../scripts/simulate.py"
 
@@ -72,8 +73,8 @@ rule existence_map:
         "../../environment/environment.yml"
     params:
         kind="existence_map",
-        scenes=scenes("existence_map"),
-        code=CODE["simulate"],
+        scene=settings_of("existence_map", "results/{study}/existence_map.nc"),
+        code=CODE,
     script:
         "../scripts/simulate.py"
 
@@ -88,8 +89,8 @@ rule stability_map:
         "../../environment/environment.yml"
     params:
         kind="stability_map",
-        scenes=scenes("stability_map"),
-        code=CODE["simulate"],
+        scene=settings_of("stability_map", "results/{study}/stability_map.nc"),
+        code=CODE,
     script:
         "../scripts/simulate.py"
 
@@ -99,7 +100,7 @@ rule stability_map:
 
 rule plot_poincare_map:
     input:
-        folder="results/{study}/poincare_map",
+        kind_files("fig3"),
     output:
         png=report(
             "results/{study}/figures/poincare_map.png",
@@ -114,15 +115,15 @@ rule plot_poincare_map:
     conda:
         "../../environment/environment.yml"
     params:
-        files=files("fig3", "case_{}.nc"),
-        code=CODE["plot"],
+        files=kind_files("fig3", labelled=True),
+        code=CODE,
     script:
         "../scripts/plot.py"
 
 
 use rule plot_poincare_map as plot_phase_diagrams with:
     input:
-        folder="results/{study}/phase_diagrams",
+        kind_files("fig5"),
     output:
         png=report(
             "results/{study}/figures/phase_diagrams.png",
@@ -135,13 +136,13 @@ use rule plot_poincare_map as plot_phase_diagrams with:
         "results/logs/{study}/plot_phase_diagrams.log",
     localrule: True
     params:
-        files=files("fig5", "K_{}.nc"),
-        code=CODE["plot"],
+        files=kind_files("fig5", labelled=True),
+        code=CODE,
 
 
 rule plot_shock_detail:
     input:
-        nc="results/{study}/shock_detail.nc",
+        kind_files("fig4"),
     output:
         png=report(
             "results/{study}/figures/shock_detail.png",
@@ -156,14 +157,14 @@ rule plot_shock_detail:
     conda:
         "../../environment/environment.yml"
     params:
-        code=CODE["plot"],
+        code=CODE,
     script:
         "../scripts/plot.py"
 
 
 use rule plot_shock_detail as plot_escapement_error with:
     input:
-        nc="results/{study}/escapement_error.nc",
+        kind_files("escapement_error"),
     output:
         png=report(
             "results/{study}/figures/escapement_error.png",
@@ -179,7 +180,7 @@ use rule plot_shock_detail as plot_escapement_error with:
 
 use rule plot_shock_detail as plot_stability_map with:
     input:
-        nc="results/{study}/stability_map.nc",
+        kind_files("stability_map"),
     output:
         png=report(
             "results/{study}/figures/stability_map.png",
@@ -195,7 +196,7 @@ use rule plot_shock_detail as plot_stability_map with:
 
 use rule plot_shock_detail as plot_existence_map with:
     input:
-        nc="results/{study}/existence_map.nc",
+        kind_files("existence_map"),
     output:
         png=report(
             "results/{study}/figures/existence_map.png",

@@ -2,4 +2,4 @@
 
 from escapement.pipeline.simulate import simulate
 
-simulate(snakemake.params.kind, snakemake.params.scenes, dict(snakemake.output), snakemake.log[0], snakemake.rule)
+simulate(snakemake.params.kind, snakemake.params.scene, dict(snakemake.output), snakemake.log[0], snakemake.rule)

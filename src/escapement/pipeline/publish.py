@@ -91,17 +91,19 @@ def compare(tracked: str | Path, drawn: str | Path) -> tuple[bool, str]:
 
 def publish(published: Mapping[str, str], log: str) -> None:
     """Copy each drawn file of ``published`` (tracked path: drawn path) over its tracked one where they differ
-    beyond the tolerance; log per file what was compared and the difference."""
+    beyond the tolerance; say per file, in the log and on the console, what was compared and the difference."""
     from .logs import logged
 
     with logged(log, "publish") as logger:
         decided = [(tracked, drawn, *compare(tracked, drawn)) for tracked, drawn in published.items()]
+        lines = []
         for tracked, drawn, same, detail in decided:  # all compared first: a PDF goes by its PNG as tracked
-            if same:
-                logger.info("%s: kept (%s)", tracked, detail)
-                continue
-            shutil.copyfile(drawn, tracked)
-            logger.info("%s: updated from %s (%s)", tracked, drawn, detail)
+            if not same:
+                shutil.copyfile(drawn, tracked)
+            lines.append(f"{tracked}: kept ({detail})" if same else f"{tracked}: updated from {drawn} ({detail})")
+            logger.info("%s", lines[-1])
+        updated = sum(not same for *_, same, _ in decided)
+        print("\n".join([*lines, f"publish: {updated} of {len(decided)} tracked files updated"]), file=sys.stderr)
 
 
 def check(published: Mapping[str, str] = PUBLISHED) -> list[tuple[str, bool, str]]:

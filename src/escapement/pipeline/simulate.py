@@ -1,12 +1,11 @@
-"""The simulation jobs: a scene's settings in, its netCDF file out (for a kind of several scenes, one file per
-scene in the kind's folder; for the scenes that time themselves, the wall times apart, in a CSV file): each kind's
-scene function (:mod:`escapement.scenes`) makes the dataset, this job logs its outcome and writes it."""
+"""The simulation jobs: a scene's settings in, its netCDF file out (for the scenes that time themselves, the wall
+times apart, in a CSV file): each kind's scene function (:mod:`escapement.scenes`) makes the dataset, this job logs
+its outcome and writes it."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 from importlib import import_module
-from pathlib import Path
 
 from ..io.netcdf import write_csv, write_netcdf
 from .logs import logged
@@ -34,22 +33,20 @@ def write_timings(timings: Mapping[str, float], path: str) -> None:
     write_csv([{"measurement": k, "seconds": repr(float(v))} for k, v in timings.items()], TIMING_COLUMNS, path)
 
 
-def simulate(kind: str, scenes: Mapping[str, Mapping], outputs: Mapping[str, str], log: str, rule: str = "") -> None:
-    """Make the dataset of each scene of ``scenes`` (file name: settings) of the kind ``kind`` and write it, into
-    the folder ``outputs["folder"]`` under its name, or to ``outputs["nc"]`` for a kind of one scene (its wall
-    times, if it measures any, to ``outputs["timing"]``); each file's history names the rule and the file."""
+def simulate(kind: str, scene: Mapping, outputs: Mapping[str, str], log: str, rule: str = "") -> None:
+    """Make the dataset of the scene ``scene`` (its settings) of the kind ``kind`` and write it to
+    ``outputs["nc"]`` (its wall times, if it measures any, to ``outputs["timing"]``); the file's history names the
+    rule and the file."""
     module, name = SCENES[kind]
     make = getattr(import_module(f"..scenes.{module}", __package__), name)
     with logged(log, kind) as logger:
-        for file, scene in scenes.items():
-            logger.info("%s: settings %s", file or outputs["nc"], dict(scene))
-            made = make(scene["cases"], scene["n_cycles"]) if kind == "checks" else make(dict(scene))
-            ds, timings = made if isinstance(made, tuple) else (made, {})
-            if "outcome" in ds.attrs:
-                logger.info("outcome: %s: %s", ds.attrs["outcome"], ds.attrs["outcome_message"])
-            for key, seconds in timings.items():
-                logger.info("%s: %.3e", key, seconds)
-            path = Path(outputs["folder"], file) if "folder" in outputs else Path(outputs["nc"])
-            write_netcdf(ds, path, history=f"escapement workflow, rule {rule or kind}: {path}")
-            if "timing" in outputs:
-                write_timings(timings, outputs["timing"])
+        logger.info("%s: settings %s", outputs["nc"], dict(scene))
+        made = make(scene["cases"], scene["n_cycles"]) if kind == "checks" else make(dict(scene))
+        ds, timings = made if isinstance(made, tuple) else (made, {})
+        if "outcome" in ds.attrs:
+            logger.info("outcome: %s: %s", ds.attrs["outcome"], ds.attrs["outcome_message"])
+        for key, seconds in timings.items():
+            logger.info("%s: %.3e", key, seconds)
+        write_netcdf(ds, outputs["nc"], history=f"escapement workflow, rule {rule or kind}: {outputs['nc']}")
+        if "timing" in outputs:
+            write_timings(timings, outputs["timing"])

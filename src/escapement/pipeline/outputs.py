@@ -1,0 +1,104 @@
+"""What a run promises and what makes it: every file the workflow's default target holds, the one line that
+answers a target no configuration makes, and the digest of the code every job runs.
+
+The digest covers the whole package, the workflow's scripts, the benchmarks' floors and the versions of the
+package's declared dependencies: every rule holds it in its params, so any edit of a source file (whichever job
+loads it, directly, lazily or through a package's ``__init__``) reruns every job, and no hand-kept list of which job
+loads what can miss one (tests/test_workflow.py traces the files each job's process loads against it).
+"""
+
+from __future__ import annotations
+
+import difflib
+import hashlib
+import re
+from collections.abc import Iterable, Mapping
+from importlib import metadata
+from pathlib import Path
+
+from ..scenes.settings import KINDS, REPLICATION
+
+__all__ = ["EXTRA_FIGURES", "FIGURE_NAMES", "FILES", "code_digest", "data_files", "figure_files", "not_a_target",
+           "study_targets", "targets"]
+
+#: the data files of each kind in its study's folder: a pattern per scene (its label) or the kind's one file
+FILES = {"fig3": "poincare_map/case_{}.nc", "fig5": "phase_diagrams/K_{}.nc"}
+#: the replication's data beyond its scenes: the claims' runs, the long run, the readings, the tables
+REPLICATION_DATA = ("checks.nc", "long_run.nc", "long_run_timing.csv", "readings.csv", "work_precision.csv",
+                    "claims.csv", "stress.csv")
+#: the replication's figures beyond its scenes'
+EXTRA_FIGURES = ("long_run", "work_precision")
+#: the name of every figure a rule draws (a figure of another name is not a target of any configuration)
+FIGURE_NAMES = (*(kind.name for kind in KINDS.values()), *EXTRA_FIGURES, "work_precision_full")
+
+
+def data_files(study: str, block: str, labels: Iterable[str]) -> dict[str, str]:
+    """The data files of the kind ``block`` in ``study``, by scene label (``""`` for a kind of one file)."""
+    if block in FILES:
+        return {label: f"results/{study}/{FILES[block].format(label)}" for label in labels}
+    return {"": f"results/{study}/{KINDS[block].name}.nc"}
+
+
+def figure_files(study: str, blocks: Iterable[str]) -> list[str]:
+    names = [KINDS[block].name for block in blocks] + (list(EXTRA_FIGURES) if study == REPLICATION else [])
+    return [f"results/{study}/figures/{name}.png" for name in names]
+
+
+def study_targets(study: str, scenes: Mapping[str, Mapping[str, object]]) -> list[str]:
+    """Every file a study promises: each kind's data files and figure (and the replication's own data, figures and
+    documents)."""
+    found = [path for block, labelled in scenes.items() for path in data_files(study, block, labelled).values()]
+    found += figure_files(study, scenes)
+    if "stability_map" in scenes:
+        found.append(f"results/{study}/stability_map_timing.csv")
+    if study == REPLICATION:
+        found += [f"results/{REPLICATION}/{name}" for name in REPLICATION_DATA]
+        found += ["results/replication/docs/README.md"]
+    return found
+
+
+def targets(studies: Mapping[str, Mapping[str, Mapping[str, object]]]) -> list[str]:
+    """The default target: every file of every study (a missing one, a data file too, is made again)."""
+    return [path for study, scenes in studies.items() for path in study_targets(study, scenes)]
+
+
+def not_a_target(path: str, studies: Mapping[str, Mapping[str, Mapping[str, object]]]) -> str:
+    """One line for a target this configuration does not make: what it makes instead, and the closest name."""
+    made = targets(studies)
+    parts = Path(path).parts
+    study = parts[1] if len(parts) > 2 and parts[0] == "results" else None
+    if study is not None and study not in studies:
+        return (f"{path} is not made by this configuration: it runs the studies {', '.join(studies)} (a study of "
+                f"your own is named by `name` and runs only with a configuration that differs from the paper's)")
+    tracked = {f"fig{kind.figure[5:]}": kind.name for kind in KINDS.values() if kind.figure}
+    stem = Path(path).stem
+    hint = ""
+    if stem in tracked:
+        hint = f" (the paper's {stem.replace('fig', 'Fig. ')} is drawn as {tracked[stem]}.png; figures/{stem}.png " \
+               f"is its tracked copy, updated by the publish target)"
+    else:
+        close = difflib.get_close_matches(path, made, n=1, cutoff=0.6)
+        hint = f" (did you mean {close[0]}?)" if close else ""
+    study = study or REPLICATION
+    names = ", ".join(Path(p).name for p in figure_files(study, studies[study]))
+    return (f"{path} is not made by this configuration{hint}; the study '{study}' draws {names} (and .pdf) in "
+            f"results/{study}/figures/, each from its data in results/{study}/")
+
+
+def code_digest(root: str | Path, package: str | Path | None = None) -> str:
+    """A digest of the package's source files (``package``: by default the one loaded), the workflow's scripts and
+    the benchmarks' floors under ``root`` (the speed job loads them), and the installed versions of the package's
+    dependencies: every rule's params hold it, so that any of them changing reruns every job (Snakemake itself
+    follows only a rule's own script)."""
+    digest = hashlib.sha256()
+    package = Path(package) if package is not None else Path(__file__).resolve().parents[1]
+    for folder, base in ((package, package.parent), (Path(root, "workflow/scripts"), Path(root)),
+                         (Path(root, "benchmarks"), Path(root))):
+        for file in sorted(folder.rglob("*")):
+            if file.is_file() and "__pycache__" not in file.parts:
+                digest.update(file.relative_to(base).as_posix().encode() + b"\0" + file.read_bytes())
+    for requirement in metadata.requires("escapement") or ():
+        if "extra ==" not in requirement:
+            name = re.match(r"[A-Za-z0-9._-]+", requirement)[0]
+            digest.update(f"{name}=={metadata.version(name)}".encode())
+    return digest.hexdigest()[:16]
