@@ -22,11 +22,11 @@ from escapement.pipeline.publish import check
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
-    """The reduced copy after the default run (each job's loaded modules listed in ``.trace/``), and the state of
-    its tracked files before it."""
+    """The reduced copy after the default run (each job's loaded modules listed in the folder :func:`traces`
+    names), and the state of its tracked files before it."""
     where = reduced_copy(tmp_path_factory.mktemp("workflow"))
     before = tracked_state(where)
-    snakemake(where, "--cores", "2", trace=where / ".trace")
+    snakemake(where, "--cores", "2", trace=traces(where))
     return where, before
 
 
@@ -153,10 +153,14 @@ PLOTS = {"plot_poincare_map", "plot_shock_detail", "plot_phase_diagrams", "plot_
 EVERY_JOB = SIMULATIONS | PLOTS | {"check_claims", "render_docs"}
 
 
+def traces(where: Path) -> Path:
+    return where.with_name(f"{where.name}-trace")
+
+
 def loaded(where: Path) -> dict[str, set[Path]]:
     """The files of the repository's copy each rule's jobs loaded, by rule (from the run's trace)."""
     found: dict[str, set[Path]] = {}
-    for trace in (where / ".trace").glob("*.txt"):
+    for trace in traces(where).glob("*.txt"):
         files = {Path(f).resolve() for f in trace.read_text().split("\n") if f}
         assert not {f for f in files if "escapement" in f.parts and where.resolve() not in f.parents}, \
             f"{trace.name}: the job loaded the package from outside the copy"
@@ -235,4 +239,10 @@ def test_the_jobs_of_seconds_run_beside_snakemake_and_every_simulation_goes_to_t
                                 workdir=where)._workflow
         rules = {rule.name for rule in workflow.rules if not rule.norun}
         local = set(workflow._localrules)
+        digests = {rule.name: rule.params.get("code") for rule in workflow.rules if not rule.norun}
+    from escapement.pipeline.outputs import code_digest
+
+    # and every rule that runs code holds the digest of it all in its params (the package as the jobs load it)
+    assert digests == dict.fromkeys(rules - {"publish"}, code_digest(where, where / "src/escapement")) | {
+        "publish": None}
     assert local == {rule for rule in rules if rule.startswith("plot_")} | {"check_claims", "render_docs", "publish"}

@@ -177,6 +177,5 @@ rule unknown_figure:
         "results/{study}/figures/{figure}.{ext}",
     log:
         "results/logs/{study}/unknown_figure_{figure}.{ext}.log",
-    localrule: True
     wildcard_constraints:
         figure=f"(?!(?:{'|'.join(outputs.FIGURE_NAMES)})\\.)[^/.]+",
