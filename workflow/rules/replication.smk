@@ -136,9 +136,21 @@ rule render_docs:
             category="Speed and accuracy",
             labels={"document": "measured times"},
         ),
-        # the verdict and REPLICATION.md as HTML, for the report's landing page (workflow/report/workflow.rst)
-        verdict="results/replication/docs/verdict.html",
-        replication_html="results/replication/docs/replication.html",
+        # the verdict's headline, for the report's landing page (workflow/report/workflow.rst)
+        landing="results/replication/docs/landing.html",
+        # the claims register and REPLICATION.md as HTML documents, items of the report
+        verdict=report(
+            "results/replication/docs/verdict.html",
+            caption="../report/verdict.rst",
+            category="Verdict",
+            labels={"table": "claims register and stress cases"},
+        ),
+        replication_html=report(
+            "results/replication/docs/replication.html",
+            caption="../report/replication.rst",
+            category="Verdict",
+            labels={"table": "REPLICATION.md"},
+        ),
     log:
         "results/logs/replication/render_docs.log",
     localrule: True

@@ -1,6 +1,7 @@
 """The job that writes the documents from their templates and the results: README.md and REPLICATION.md
 (deterministic numbers only: the publish step compares them with the tracked ones), timings.md (the measured
-times too), and for the report's landing page the verdict and REPLICATION.md as HTML."""
+times too), and the HTML of the report: the verdict's headline for its landing page, and the claims register and
+REPLICATION.md as documents of their own."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from ..io.netcdf import read_netcdf, write_text
-from .docs import markdown_html, markdown_table, render, verdict_html
+from .docs import html_document, landing_html, markdown_html, markdown_table, render, verdict_html
 from .facts import collect_facts
 from .logs import logged
 from .scores import best_readings_table, read_scores
@@ -20,9 +21,10 @@ __all__ = ["render_docs"]
 
 def render_docs(inputs: Mapping[str, str], outputs: Mapping[str, str], log: str) -> None:
     """Render the templates ``inputs["readme"]``, ``inputs["replication"]`` (deterministic facts) and
-    ``inputs["timings"]`` (measured ones too) to the outputs of the same names, and the verdict and REPLICATION.md
-    as HTML (``outputs["verdict"]``, ``outputs["replication_html"]``), from the claims table, the benchmark, the
-    long run, the stability map, the stress table and the readings' scores of ``inputs``."""
+    ``inputs["timings"]`` (measured ones too) to the outputs of the same names, the report's landing text
+    (``outputs["landing"]``, a fragment) and the claims register and REPLICATION.md as HTML documents
+    (``outputs["verdict"]``, ``outputs["replication_html"]``), from the claims table, the benchmark, the long run,
+    the stability map, the stress table and the readings' scores of ``inputs``."""
     with logged(log, "render_docs"):
         rows = read_claims(inputs["claims"])
         facts, measured = collect_facts(
@@ -43,5 +45,7 @@ def render_docs(inputs: Mapping[str, str], outputs: Mapping[str, str], log: str)
             text = render(Path(template).read_text(encoding="utf-8"), template, rows, known, tables)
             write_text(text, outputs[name])
             if name == "replication":
-                write_text(markdown_html(text), outputs["replication_html"])
-        write_text(verdict_html(rows, stress), outputs["verdict"])
+                write_text(html_document("Replication report", markdown_html(text)), outputs["replication_html"])
+        write_text(landing_html(rows, stress), outputs["landing"])
+        verdict = "<h1>The verdict</h1>\n" + verdict_html(rows, stress)
+        write_text(html_document("The verdict", verdict), outputs["verdict"])
