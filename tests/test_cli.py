@@ -6,9 +6,13 @@ Fig. 3 (a), read from config/paper.yaml)."""
 from __future__ import annotations
 
 import csv
+import errno
 import math
+import os
+import signal
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -58,30 +62,128 @@ def test_any_run_it_solves_it_saves_as_netcdf_and_csv_with_the_same_names(tmp_pa
     assert f"wrote {nc}, {table}" in capsys.readouterr().out
 
 
-def _parent_is_a_file(tmp_path: Path) -> str:
+def _hostile_paths(tmp_path: Path) -> dict[str, str]:
+    """Paths that name no file to write, made in ``tmp_path``."""
     (tmp_path / "a_file").write_text("")
-    return str(tmp_path / "a_file" / "out.nc")
+    (tmp_path / "a_folder").mkdir()
+    (tmp_path / "loop").symlink_to("loop")
+    (tmp_path / "to_a_folder").symlink_to("a_folder")
+    os.mkfifo(tmp_path / "fifo")
+    return {"tmp": str(tmp_path), "parent_is_a_file": str(tmp_path / "a_file" / "out.nc")}
 
 
-@pytest.mark.parametrize("args, option, status", [
-    (["--M", "0"], "--M", INVALID_INPUT),
-    (["--b", "2.5"], "--b", INVALID_INPUT),
-    (["--a2", "-0.2"], "--a2", INVALID_INPUT),
-    (["--x0", "nan"], "--x0", INVALID_INPUT),
-    (["--cycles", "0"], "--cycles", INVALID_INPUT),
-    (["--cycles", "1e12"], "--cycles", INVALID_INPUT),
-    (["--F", "one"], "--F", INVALID_INPUT),
-    (["--netcdf", "{tmp}/missing/out.nc"], "--netcdf", CANNOT_WRITE),
-    (["--csv", "{parent_is_a_file}"], "--csv", CANNOT_WRITE),
-    (["--netcdf", "{tmp}"], "--netcdf", INVALID_INPUT),
+@pytest.mark.parametrize("args, option, status, requirement", [
+    (["--M", "0"], "--M", INVALID_INPUT, ""),
+    (["--b", "2.5"], "--b", INVALID_INPUT, ""),
+    (["--a2", "-0.2"], "--a2", INVALID_INPUT, ""),
+    (["--x0", "nan"], "--x0", INVALID_INPUT, ""),
+    (["--cycles", "0"], "--cycles", INVALID_INPUT, ""),
+    (["--cycles", "1e12"], "--cycles", INVALID_INPUT, ""),
+    (["--F", "one"], "--F", INVALID_INPUT, ""),
+    (["--netcdf", "{tmp}/missing/out.nc"], "--netcdf", CANNOT_WRITE, "a file in an existing directory"),
+    (["--netcdf", "{tmp}/a/b/c/out.nc"], "--netcdf", CANNOT_WRITE, "a file in an existing directory"),
+    (["--csv", "{parent_is_a_file}"], "--csv", CANNOT_WRITE, "a file in an existing directory"),
+    (["--netcdf", "{tmp}"], "--netcdf", INVALID_INPUT, "not of a directory"),
+    (["--csv", "{tmp}/to_a_folder"], "--csv", INVALID_INPUT, "not of a directory"),
+    (["--csv", "{tmp}/out.csv/"], "--csv", INVALID_INPUT, "not of a directory"),
+    (["--netcdf", ""], "--netcdf", INVALID_INPUT, "not empty"),
+    (["--csv", "/dev/null"], "--csv", INVALID_INPUT, "not of a device, pipe or socket"),
+    (["--netcdf", "{tmp}/fifo"], "--netcdf", INVALID_INPUT, "not of a device, pipe or socket"),
+    (["--netcdf", "{tmp}/loop"], "--netcdf", CANNOT_WRITE, "writable (Too many levels of symbolic links)"),
+    (["--netcdf", "{tmp}/" + "x" * 300], "--netcdf", CANNOT_WRITE, "writable (File name too long)"),
+    # two outputs in one file, however spelt: both options and the value named
+    (["--netcdf", "{tmp}/x", "--csv", "{tmp}/x"], "--csv", INVALID_INPUT, "another file than --netcdf '{tmp}/x'"),
+    (["--netcdf", "{tmp}/x", "--csv", "{tmp}/./a_folder/../x"], "--csv", INVALID_INPUT,
+     "another file than --netcdf '{tmp}/x': both name {tmp}/x"),
 ])
-def test_every_bad_input_is_one_line_before_any_work(args, option, status, tmp_path, capsys, monkeypatch):
+def test_every_bad_input_is_one_line_before_any_work(args, option, status, requirement, tmp_path, capsys,
+                                                     monkeypatch):
     monkeypatch.setattr(cli, "solve_exact", lambda *a, **k: pytest.fail("the solver ran before the refusal"))
-    args = [a.format(tmp=tmp_path, parent_is_a_file=_parent_is_a_file(tmp_path)) for a in args]
+    paths = _hostile_paths(tmp_path)
+    before = sorted(tmp_path.rglob("*"))
+    args = [a.format(**paths) for a in args]
     assert main(["solve", *args]) == status
     out, err = capsys.readouterr()
     assert out == "" and err.count("\n") == 1 and "Traceback" not in err
     assert err.startswith(f"{PROG} solve: {option} ") and f"{option} must be" in err
+    if requirement:  # an output: its path as typed, and what it must be
+        assert err.startswith(f"{PROG} solve: {option} {args[args.index(option) + 1]!r} is invalid: {option} must be ")
+        assert requirement.format(**paths) in err
+    assert sorted(tmp_path.rglob("*")) == before
+
+
+def test_a_folder_that_takes_no_new_file_is_one_line_before_any_work(tmp_path, capsys, monkeypatch):
+    """As a read-only folder is for any user but root (who writes there all the same), and a read-only file
+    system for root too: the temporary file the check makes there is refused."""
+    def refused(*args, **kwargs):
+        raise PermissionError(errno.EACCES, os.strerror(errno.EACCES))
+
+    monkeypatch.setattr(cli, "solve_exact", lambda *a, **k: pytest.fail("the solver ran before the refusal"))
+    monkeypatch.setattr(tempfile, "NamedTemporaryFile", refused)
+    for option in ("--netcdf", "--csv"):
+        assert main(["solve", option, str(tmp_path / "out")]) == CANNOT_WRITE
+        err = capsys.readouterr().err
+        assert err == f"{PROG} solve: {option} '{tmp_path}/out' is invalid: {option} must be writable " \
+                      "(Permission denied)\n"
+
+
+def test_a_read_only_folder_is_one_line_before_any_work(tmp_path, capsys, monkeypatch):
+    folder = tmp_path / "read_only"
+    folder.mkdir(mode=0o555)
+    try:
+        (folder / "probe").write_text("")
+    except PermissionError:
+        pass
+    else:
+        pytest.skip("this user writes into a read-only folder (root)")
+    monkeypatch.setattr(cli, "solve_exact", lambda *a, **k: pytest.fail("the solver ran before the refusal"))
+    assert main(["solve", "--netcdf", str(folder / "out.nc")]) == CANNOT_WRITE
+    assert capsys.readouterr().err.endswith("--netcdf must be writable (Permission denied)\n")
+
+
+def test_a_write_that_fails_once_the_run_is_solved_is_one_line_and_leaves_no_file(tmp_path, capsys, monkeypatch):
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(tempfile, "mkstemp", full)  # the write's own temporary file, after the check's
+    for option in ("--netcdf", "--csv"):
+        assert main(["solve", "--cycles", "2", option, str(tmp_path / "out")]) == CANNOT_WRITE
+        out, err = capsys.readouterr()
+        assert out == "" and err.count("\n") == 1 and "No space left on device" in err
+        assert err.startswith(f"{PROG} solve: {option} '{tmp_path}/out' is invalid: {option} must be writable (")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_output_that_is_a_symbolic_link_is_written_through_it(tmp_path, capsys):
+    (tmp_path / "data").mkdir()
+    (tmp_path / "run.nc").symlink_to("data/run.nc")
+    (tmp_path / "cycles.csv").symlink_to(tmp_path / "data" / "cycles.csv")
+    (tmp_path / "data" / "cycles.csv").write_text("old")
+    args = ["solve", "--cycles", "2", "--netcdf", str(tmp_path / "run.nc"), "--csv", str(tmp_path / "cycles.csv")]
+    assert main(args) == COMPLETED
+    assert (tmp_path / "run.nc").is_symlink() and (tmp_path / "cycles.csv").is_symlink()
+    assert read_netcdf(tmp_path / "data" / "run.nc").sizes["cycle"] == 2
+    assert (tmp_path / "data" / "cycles.csv").read_text().startswith("cycle,impact_time")
+    assert sorted(p.name for p in (tmp_path / "data").iterdir()) == ["cycles.csv", "run.nc"]
+
+
+def test_a_ctrl_c_during_the_write_leaves_no_file(tmp_path, monkeypatch):
+    import xarray as xr
+
+    to_netcdf = xr.Dataset.to_netcdf
+
+    def interrupted(self, *args, **kwargs):
+        signal.raise_signal(signal.SIGINT)
+        return to_netcdf(self, *args, **kwargs)
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", interrupted)
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)  # Python's own, whatever the runner's
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            main(["solve", "--cycles", "2", "--netcdf", str(tmp_path / "run.nc"), "--csv", str(tmp_path / "c.csv")])
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_the_defaults_are_the_replication_s_fig3a():

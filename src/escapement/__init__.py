@@ -45,6 +45,7 @@ _EXPORTS = {
     "solve_high_precision": "integrators",
     "solve_naive": "integrators",
     "solve_reference": "integrators",
+    "run_dataset": "scenes",  # a run of any solver as a CF dataset (the solvers' layer holds no xarray)
 }
 
 __all__ = ["__version__", *sorted(_EXPORTS)]

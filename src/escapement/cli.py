@@ -10,9 +10,13 @@ Parameters are given under the paper's symbols, in SI units (names, units and de
 point (the paper's Step 1).
 
 Everything is checked before any work: the parameters, the number of cycles and the output paths (each must name
-a file in an existing, writable directory). A refusal is one line on standard error naming the option as typed,
-its value and what it must be. The exit statuses (:data:`EXIT_STATUSES`): 0 the run completed, 1 it left the
-escapement's regime (its typed outcome is printed), 2 invalid input, 3 an output that cannot be written.
+a regular file, new or not, in an existing directory that takes a new file, as a temporary file made there shows;
+the two outputs must be two files, their symbolic links resolved). An output that is a symbolic link is written
+through it: the link stays, the file it names gets the data. A refusal is one line on standard error naming the
+option as typed, its value and what it must be. The exit statuses (:data:`EXIT_STATUSES`): 0 the run completed,
+1 it left the escapement's regime (its typed outcome is printed), 2 invalid input, 3 an output that cannot be
+written. A Ctrl-C ends the process by the signal, as Python does, within seconds even while a file is written,
+and leaves no partial file (:func:`escapement.io.netcdf.interrupt_deferred`).
 """
 
 from __future__ import annotations
@@ -117,15 +121,47 @@ def _parser(prog: str) -> argparse.ArgumentParser:
     return parser
 
 
-def _check_output(option: str, text: str) -> None:
-    """Refuse a path that names no file, or whose directory does not exist or takes no new file."""
-    path = Path(text)
-    if not text or "\0" in text or text.endswith((os.sep, "/")) or path.name in ("", ".", "..") or path.is_dir():
-        raise Refusal(EXIT_INVALID_INPUT, option, text, "the path of a file to write, not of a directory")
-    folder = path.parent
-    if not folder.is_dir() or not os.access(folder, os.W_OK | os.X_OK) or (path.exists() and not
-                                                                           os.access(path, os.W_OK)):
-        raise Refusal(EXIT_CANNOT_WRITE, option, text, "a file in an existing directory that takes a new file")
+def _check_output(option: str, text: str) -> Path:
+    """The file ``text`` names (its symbolic links resolved: the data go through them), or a refusal of a path
+    that names no file (empty, a directory, a device), or of one where no file can be written: a missing folder
+    or one that takes no new file (tried with a temporary file, as the write makes), a read-only file."""
+    from .io.netcdf import writable_target
+
+    if not text or "\0" in text:
+        raise Refusal(EXIT_INVALID_INPUT, option, text, "the path of a file to write, not empty")
+    directory = Refusal(EXIT_INVALID_INPUT, option, text, "the path of a file to write, not of a directory")
+    if text.endswith((os.sep, "/")) or Path(text).name in ("", ".", ".."):
+        raise directory
+    try:
+        target = writable_target(text)
+        read_only = target.exists() and not os.access(target, os.W_OK)
+    except IsADirectoryError as err:
+        raise directory from err
+    except FileExistsError as err:  # a device, a pipe, a socket
+        raise Refusal(EXIT_INVALID_INPUT, option, text, "the path of a regular file or of a new one, not of a "
+                      "device, pipe or socket") from err
+    except (FileNotFoundError, NotADirectoryError) as err:
+        raise Refusal(EXIT_CANNOT_WRITE, option, text, "a file in an existing directory") from err
+    except OSError as err:  # no permission, a read-only file system, a loop of links, a name too long
+        raise Refusal(EXIT_CANNOT_WRITE, option, text, f"writable ({err.strerror})") from err
+    if read_only:
+        raise Refusal(EXIT_CANNOT_WRITE, option, text, "writable (the file is read-only)")
+    return target
+
+
+def _check_outputs(args: argparse.Namespace) -> None:
+    """Each output path checked (:func:`_check_output`), and no two of them the same file."""
+    seen: dict[Path, str] = {}
+    for option in ("--netcdf", "--csv"):
+        text = getattr(args, option.removeprefix("--"))
+        if text is None:
+            continue
+        target = _check_output(option, text)
+        if target in seen:
+            other = seen[target]
+            raise Refusal(EXIT_INVALID_INPUT, option, text, f"another file than {other} "
+                          f"{getattr(args, other.removeprefix('--'))!r}: both name {target}")
+        seen[target] = option
 
 
 def _run(args: argparse.Namespace, command: str) -> tuple[int, str]:
@@ -139,9 +175,7 @@ def _run(args: argparse.Namespace, command: str) -> tuple[int, str]:
         for name, option in OPTIONS.items():
             requirement = re.sub(rf"\b{name}\b", option, requirement)
         raise Refusal(EXIT_INVALID_INPUT, OPTIONS.get(err.name, f"--{err.name}"), err.value, requirement) from err
-    for option in ("netcdf", "csv"):
-        if getattr(args, option) is not None:
-            _check_output(f"--{option}", getattr(args, option))
+    _check_outputs(args)
     try:
         run = solve_exact(params, args.x0, args.v0, n_cycles=args.cycles, record_trajectory=False)
     except ParameterError as err:  # the initial state, the run's memory estimate
@@ -155,14 +189,17 @@ def _run(args: argparse.Namespace, command: str) -> tuple[int, str]:
 
         try:
             write_netcdf(run_dataset(run), args.netcdf, history=command)
-        except DatasetError as err:
+        except (DatasetError, OSError) as err:  # what the file system says once the run is solved
             raise Refusal(EXIT_CANNOT_WRITE, "--netcdf", args.netcdf, f"writable ({err})") from err
         written.append(args.netcdf)
     if args.csv is not None:
         from .io.netcdf import replaced
 
-        with replaced(args.csv) as tmp:
-            table.to_csv(tmp, float_format="%.17g")
+        try:
+            with replaced(args.csv) as tmp:
+                table.to_csv(tmp, float_format="%.17g")
+        except OSError as err:
+            raise Refusal(EXIT_CANNOT_WRITE, "--csv", args.csv, f"writable ({err})") from err
         written.append(args.csv)
     head = f"# {run.status.value}: {run.message}" + (f"; wrote {', '.join(written)}" if written else "")
     body = table.to_csv(sep="\t", float_format="%.17g", lineterminator="\n").rstrip("\n")

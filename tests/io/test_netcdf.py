@@ -1,13 +1,21 @@
-"""netCDF files as written and read: compressed, checksummed, renamed into place, refused by name when damaged."""
+"""netCDF files as written and read: compressed, checksummed, renamed into place, refused by name when damaged;
+written through symbolic links; a Ctrl-C during a write ends it at once without a file, and the partial files of a
+killed write are removed by the next write of their target."""
 
 import os
+import signal
+import subprocess
+import sys
+import threading
+import time
 
 import netCDF4
 import numpy as np
 import pytest
 import xarray as xr
 
-from escapement.io.netcdf import DatasetError, read_netcdf, write_netcdf
+from escapement.io.netcdf import (DatasetError, read_netcdf, stale_partials, writable_target, write_csv,
+                                  write_netcdf, write_text)
 
 
 def small_dataset():
@@ -127,3 +135,168 @@ def test_other_netcdf_failure_names_the_file(tmp_path, monkeypatch):
     with pytest.raises(DatasetError, match=r"x\.nc: cannot write the netCDF file \(RuntimeError: NetCDF: Not a valid"):
         write_netcdf(small_dataset(), tmp_path / "x.nc")
     assert list(tmp_path.iterdir()) == []
+
+
+# -- interrupts, killed writes, symbolic links -------------------------------------------------------------------------
+
+#: a process that writes ``sys.argv[1]`` for about a second and a half (random numbers do not compress)
+SLOW_WRITE = """
+import sys
+import numpy as np
+import xarray as xr
+from escapement.io.netcdf import write_netcdf
+
+values = np.random.default_rng(0).random((10, 1_000_000))
+ds = xr.Dataset({f"v{i}": ("n", row) for i, row in enumerate(values)})
+write_netcdf(ds, sys.argv[1], history="a slow write")
+"""
+
+
+def start_slow_write(target):
+    """The process of :data:`SLOW_WRITE` on ``target``, once its temporary file exists (the write has begun)."""
+    proc = subprocess.Popen([sys.executable, "-c", SLOW_WRITE, str(target)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    while not stale_partials(target):
+        assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+        time.sleep(0.01)
+    time.sleep(0.2)  # inside the netCDF library's write
+    return proc
+
+
+def test_a_ctrl_c_during_a_write_ends_the_process_within_seconds_and_leaves_no_file(tmp_path):
+    proc = start_slow_write(tmp_path / "x.nc")
+    proc.send_signal(signal.SIGINT)
+    sent = time.monotonic()
+    try:
+        _, err = proc.communicate(timeout=15)
+    except subprocess.TimeoutExpired:  # the hang: xarray waits for the lock the interrupt left held
+        proc.kill()
+        proc.communicate()
+        pytest.fail("the process did not end within 15 s of a Ctrl-C")
+    assert time.monotonic() - sent < 10
+    assert proc.returncode == -signal.SIGINT and err.rstrip().endswith("KeyboardInterrupt")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.fixture
+def python_sigint():
+    """Python's own SIGINT handler (KeyboardInterrupt), whatever the test runner installed, put back after."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
+def test_a_ctrl_c_inside_the_write_is_raised_once_it_returns_and_nothing_is_left(tmp_path, monkeypatch,
+                                                                                 python_sigint):
+    to_netcdf, finished = xr.Dataset.to_netcdf, []
+
+    def interrupted(self, *args, **kwargs):
+        signal.raise_signal(signal.SIGINT)  # as a Ctrl-C while the netCDF library writes
+        result = to_netcdf(self, *args, **kwargs)
+        finished.append(True)  # reached only if the interrupt waits for the write
+        return result
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        write_netcdf(small_dataset(), tmp_path / "x.nc")
+    assert finished == [True] and list(tmp_path.iterdir()) == []
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # put back
+    monkeypatch.undo()
+    assert read_netcdf(write_netcdf(small_dataset(), tmp_path / "x.nc"))["v"].values.tolist() == [0, 1, 2, 3, 4]
+
+
+def test_a_write_outside_the_main_thread_leaves_the_signals_alone(tmp_path):
+    done = []
+    worker = threading.Thread(target=lambda: done.append(write_netcdf(small_dataset(), tmp_path / "x.nc")))
+    worker.start()
+    worker.join(timeout=60)
+    assert done == [tmp_path / "x.nc"] and read_netcdf(tmp_path / "x.nc")["v"].size == 5
+
+
+#: a process that reads ``sys.argv[1]`` forty times, most of the time inside netCDF4's read
+MANY_READS = """
+import sys
+from escapement.io.netcdf import read_netcdf
+
+read_netcdf(sys.argv[1])
+print("reading", flush=True)
+for _ in range(40):
+    read_netcdf(sys.argv[1])
+"""
+
+
+def test_a_ctrl_c_during_a_read_is_not_lost(tmp_path):
+    """netCDF4 loses an interrupt that comes while it reads: the process would read on to the end."""
+    path = write_netcdf(xr.Dataset({"v": ("n", np.random.default_rng(0).random(2_000_000))}), tmp_path / "x.nc")
+    proc = subprocess.Popen([sys.executable, "-c", MANY_READS, str(path)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    assert proc.stdout.readline() == "reading\n"
+    time.sleep(0.3)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == -signal.SIGINT and err.rstrip().endswith("KeyboardInterrupt")
+
+
+def test_a_killed_write_leaves_a_partial_file_that_the_next_write_of_its_target_removes(tmp_path):
+    proc = start_slow_write(tmp_path / "x.nc")
+    proc.kill()
+    proc.communicate()
+    (left,) = stale_partials(tmp_path / "x.nc")
+    assert left.name.startswith(".x.nc.") and left.name.endswith(".partial")
+    write_netcdf(small_dataset(), tmp_path / "x.nc")
+    assert [p.name for p in tmp_path.iterdir()] == ["x.nc"]
+
+
+def test_only_the_target_s_own_partial_files_are_removed(tmp_path):
+    own = [".x.nc.abcd1234.partial", ".x.nc.z_9.partial"]
+    others = [".y.nc.abcd1234.partial",  # another target's
+              ".x.nc.gz.abcd1234.partial",  # the target x.nc.gz's
+              ".x.nc.abcd1234.partial.kept", "x.nc.abcd1234.partial", ".x.nc.partial", "sub/.x.nc.abcd1234.partial"]
+    for name in own + others:
+        (tmp_path / name).parent.mkdir(exist_ok=True)
+        (tmp_path / name).write_text("left by a killed write")
+    assert [p.name for p in stale_partials(tmp_path / "x.nc")] == own
+    write_text("new", tmp_path / "x.nc")
+    assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*") if p.is_file()) == \
+        sorted(["x.nc", *others])
+
+
+def test_a_symbolic_link_is_written_through_and_stays(tmp_path):
+    (tmp_path / "data").mkdir()
+    link, target = tmp_path / "x.nc", tmp_path / "data" / "x.nc"
+    link.symlink_to("data/x.nc")  # dangling until the first write
+    for _ in range(2):  # made, then replaced
+        write_netcdf(small_dataset(), link)
+        assert link.is_symlink() and os.readlink(link) == "data/x.nc" and target.is_file()
+        assert read_netcdf(target)["v"].size == 5
+    write_text("a line\n", tmp_path / "t.txt")
+    (tmp_path / "t_link.txt").symlink_to(tmp_path / "t.txt")
+    write_csv([{"a": 1}], ["a"], tmp_path / "t_link.txt")
+    assert (tmp_path / "t_link.txt").is_symlink() and (tmp_path / "t.txt").read_text() == "a\n1\n"
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["data", "t.txt", "t_link.txt", "x.nc", "x.nc"]
+
+
+def test_a_target_that_is_not_a_regular_file_is_refused_before_any_work(tmp_path):
+    (tmp_path / "folder").mkdir()
+    os.mkfifo(tmp_path / "fifo")
+    (tmp_path / "loop").symlink_to("loop")
+    with pytest.raises(IsADirectoryError):
+        write_netcdf(small_dataset(), tmp_path / "folder")
+    with pytest.raises(FileExistsError, match="not a regular file"):
+        write_text("x", tmp_path / "fifo")
+    with pytest.raises(OSError, match="Too many levels of symbolic links"):
+        write_text("x", tmp_path / "loop")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["fifo", "folder", "loop"]
+
+
+def test_a_writable_target_is_tried_with_a_temporary_file_that_is_removed(tmp_path):
+    (tmp_path / "a_file").write_text("")
+    assert writable_target(tmp_path / "x.nc") == tmp_path / "x.nc"
+    with pytest.raises(FileNotFoundError):
+        writable_target(tmp_path / "missing" / "x.nc")
+    with pytest.raises(NotADirectoryError):
+        writable_target(tmp_path / "a_file" / "x.nc")
+    with pytest.raises(OSError, match="File name too long"):
+        writable_target(tmp_path / ("x" * 250))  # its temporary file's name would be too long
+    assert [p.name for p in tmp_path.iterdir()] == ["a_file"]

@@ -1,12 +1,21 @@
 """Writing and reading the files: netCDF (compressed, checksummed, stamped with their provenance), CSV and
 text, each written to a temporary file beside its target and renamed into place, so that a reader never
-sees a partial file (Snakemake removes the outputs of a job that fails)."""
+sees a partial file (Snakemake removes the outputs of a job that fails).
+
+A target that is a symbolic link is written through it: the link stays and the file it names gets the data. A
+Ctrl-C (SIGINT) during a netCDF write or read is raised as soon as it returns, and an interrupted write leaves no
+file; the temporary files that a killed process leaves behind are removed by the next write of the same target.
+"""
 
 from __future__ import annotations
 
 import csv
+import errno
 import os
+import re
+import signal
 import tempfile
+import threading
 from collections.abc import Iterable, Mapping
 from contextlib import contextmanager
 from pathlib import Path
@@ -17,20 +26,66 @@ from .provenance import command_line, provenance_attributes
 if TYPE_CHECKING:  # xarray is imported where a netCDF file is read or written: a CSV job does without it
     import xarray as xr
 
-__all__ = ["DatasetError", "read_csv", "read_netcdf", "replaced", "write_csv", "write_netcdf", "write_text"]
+__all__ = ["DatasetError", "interrupt_deferred", "read_csv", "read_netcdf", "replaced", "stale_partials", "target_of",
+           "writable_target", "write_csv", "write_netcdf", "write_text"]
+
+#: the suffix of the temporary file a write fills before renaming it to its target
+PARTIAL = ".partial"
 
 
 class DatasetError(RuntimeError):
     """A file is missing, damaged, or lacks what it should hold; the message names it."""
 
 
+def stale_partials(path: str | os.PathLike) -> list[Path]:
+    """The temporary files of earlier writes of ``path`` still in its folder (a write killed before it could
+    remove its own): ``.<name>.<random>.partial`` beside it, the random part without a dot, so that no other
+    target's temporary files match."""
+    path = Path(path)
+    pattern = re.compile(rf"\.{re.escape(path.name)}\.[^./]+{re.escape(PARTIAL)}")
+    return sorted(p for p in path.parent.glob(f".*{PARTIAL}") if pattern.fullmatch(p.name))
+
+
+def target_of(path: str | os.PathLike) -> Path:
+    """The file a write of ``path`` replaces: ``path`` with its symbolic links resolved, so that the data go
+    through a link to the file it names. :class:`OSError` for a loop of links, :class:`IsADirectoryError` for a
+    directory and :class:`FileExistsError` for anything else that exists and is not a regular file (a device, a
+    pipe), which the rename would replace."""
+    target = Path(os.path.realpath(path))
+    if target.is_symlink():  # realpath stops where the links loop
+        raise OSError(errno.ELOOP, os.strerror(errno.ELOOP), str(path))
+    if target.is_dir():
+        raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), str(target))
+    if target.exists() and not target.is_file():
+        raise FileExistsError(errno.EEXIST, "not a regular file, which a write would replace", str(target))
+    return target
+
+
+def writable_target(path: str | os.PathLike) -> Path:
+    """:func:`target_of` ``path``, once a temporary file named as a write's has been made beside it and removed;
+    the :class:`OSError` of the file system where a write could not begin: a missing folder, a parent that is a
+    file, a folder that takes no new file (tried rather than foretold from the permission bits, which do not tell
+    access lists, network file systems or read-only mounts), a name too long."""
+    target = target_of(path)
+    with tempfile.NamedTemporaryFile(dir=target.parent, prefix=f".{target.name}.", suffix=PARTIAL):
+        pass
+    return target
+
+
 @contextmanager
 def replaced(path: str | os.PathLike):
     """A temporary path beside ``path`` (its folder made if missing), renamed to ``path`` when the block ends
-    without an error (removed if it raises)."""
-    path = Path(path)
+    without an error (removed if it raises).
+
+    The target is :func:`target_of` ``path``: through a symbolic link the file it names is replaced, in that
+    file's folder, and the link stays. The temporary files of earlier writes of the same target
+    (:func:`stale_partials`) are removed first; two writes of one target at once are not supported (the later
+    removes the earlier's temporary file, whose rename then fails)."""
+    path = target_of(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    handle, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".partial")
+    for stale in stale_partials(path):
+        stale.unlink(missing_ok=True)
+    handle, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=PARTIAL)
     os.close(handle)
     try:
         yield Path(tmp)
@@ -42,17 +97,41 @@ def replaced(path: str | os.PathLike):
         Path(tmp).unlink(missing_ok=True)
 
 
+@contextmanager
+def interrupt_deferred():
+    """Run the block with a SIGINT recorded instead of raised, and deliver it to the handler it had once the
+    block has ended; outside the main thread, which alone receives signals, the block runs as it is.
+
+    Hand-written because the netCDF libraries handle an interrupt badly: xarray's writer, interrupted inside,
+    can keep a lock that it then waits for when it closes the file (the process hangs until a second Ctrl-C),
+    and netCDF4 loses one that comes while it reads. Deferred, the Ctrl-C lands once the library has returned."""
+    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is None:
+        yield  # a handler installed from outside Python cannot be put back: leave it alone
+        return
+    caught: list[int] = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if caught:
+            signal.raise_signal(signal.SIGINT)  # KeyboardInterrupt under Python's default handler
+
+
 def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, history: str | None = None) -> Path:
     """Write ``ds`` to ``path`` with its provenance (``history``: what wrote it, by default this process's
     command line): data variables compressed (zlib level 4), every variable with a Fletcher-32 checksum that
-    :func:`read_netcdf` checks, coordinates without ``_FillValue``."""
+    :func:`read_netcdf` checks, coordinates without ``_FillValue``; the target is replaced as :func:`replaced`
+    does. A Ctrl-C during the write (:func:`interrupt_deferred`) raises :class:`KeyboardInterrupt` when the write
+    returns, and no file is left."""
     ds = ds.copy()
     ds.attrs.update(provenance_attributes(history or command_line()))
     encoding = {name: {"zlib": True, "complevel": 4, "fletcher32": True} for name in ds.data_vars}
     encoding.update({name: {"_FillValue": None, "fletcher32": True} for name in ds.coords})
     with replaced(path) as tmp:
         try:
-            ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)
+            with interrupt_deferred():
+                ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)
         except (OSError, RuntimeError) as err:  # what netCDF4 raises when the library fails
             raise DatasetError(f"{path}: cannot write the netCDF file ({type(err).__name__}: {err})") from err
     return Path(path)
@@ -60,11 +139,13 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, history: str | None = 
 
 def read_netcdf(path: str | os.PathLike, required: Iterable[str] = ()) -> xr.Dataset:
     """The dataset of ``path``, loaded into memory with its checksums checked; :class:`DatasetError` naming the
-    file if it cannot be read or lacks a ``required`` variable."""
+    file if it cannot be read or lacks a ``required`` variable. A Ctrl-C during the read
+    (:func:`interrupt_deferred`) raises :class:`KeyboardInterrupt` when it returns: netCDF4, interrupted while
+    it reads, loses the interrupt."""
     import xarray as xr
 
     try:
-        with xr.open_dataset(path, engine="netcdf4") as ds:
+        with interrupt_deferred(), xr.open_dataset(path, engine="netcdf4") as ds:
             loaded = ds.load()
     except FileNotFoundError as err:
         raise DatasetError(f"{path}: no such netCDF file") from err

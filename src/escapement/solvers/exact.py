@@ -38,12 +38,24 @@ def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
                 memory_budget: int | None = None) -> Solution:
     """Integrate the escapement model exactly from ``(x0, v0)`` at ``t = 0+``.
 
-    The run ends after ``n_cycles`` complete cycles, at ``t_end``, after ``max_events``
-    events, or when the motion leaves the escapement regime; the returned
+    The run ends at the first of: ``n_cycles`` complete cycles, the end time ``t_end``, ``max_events``
+    events, or the motion leaving the escapement regime; the returned
     :class:`~escapement.solvers.result.Solution` says which, in ``status`` and ``message``.
     Before any work the size of the result is estimated from the limits and a run above
     ``memory_budget`` bytes is refused; :func:`escapement.solvers.stream.iter_cycles` gives the cycles of
     any run in constant memory.
+
+    On which side each boundary falls (:meth:`EventRun.advance <escapement.solvers.kernel.EventRun.advance>`):
+
+    * ``t_end``: an event whose time (as stored, the compensated sum of the arcs' durations) equals ``t_end``
+      belongs to the run, as one before it; one an ulp after it does not, and the run completes at
+      ``t_final = t_end``. A turn back inside an impulse zone exactly at ``t_end`` is that exit
+      (``turned_back_in_zone``); one an ulp after it is not, and the run completes at ``t_end``.
+    * ``n_cycles``: the run's last event is the ``(n_cycles + 1)``-th impact at a1, which ends the last cycle;
+      ``t_final`` is its time.
+    * ``max_events``: the run holds at most ``max_events`` events. If the last allowed event ends the last
+      cycle the run has completed; otherwise it ends there with ``event_limit``, even where the next event would
+      come after ``t_end`` (the bound is reached before the end time is).
 
     Parameters
     ----------
@@ -57,9 +69,9 @@ def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
         Complete cycles to run (cycle ``k`` runs from the ``k``-th impact at ``a1`` to the next); at
         least one of ``n_cycles`` and ``t_end`` is given.
     t_end : float, optional
-        End time, s.
+        End time, s; an event exactly at ``t_end`` is kept.
     max_events : int, optional
-        Bound on the number of events (default: those of ``n_cycles`` cycles with a margin, or
+        The most events the run may hold (default: those of ``n_cycles`` cycles with a margin, or
         10**7 for a run to ``t_end`` alone).
     record_trajectory : bool, default True
         Keep the harmonic arcs, for :meth:`Solution.sample <escapement.Solution.sample>`.
@@ -84,22 +96,22 @@ def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
 
     Examples
     --------
-    The paper's case (a), released from rest at ``x0 = 1`` m:
+    The paper's Fig. 3 (a) as the configuration runs it (fig3.cases.a), released from rest at x0 = -1 m:
 
     >>> from escapement import Parameters, solve_exact
     >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-    >>> run = solve_exact(p, x0=1.0, n_cycles=50)
+    >>> run = solve_exact(p, x0=-1.0, n_cycles=50)
     >>> run.status, len(run.cycles)
     (<Status.COMPLETED: 'completed'>, 50)
     >>> round(float(run.cycles.period[-1]), 4)  # s
     6.2957
     >>> x, v, a = run.sample([0.0, 1.0])  # m, m/s, m/s**2
     >>> round(float(x[1]), 6)
-    0.540302
+    -0.540302
 
     A release too close to the centre never reaches an impact position:
 
-    >>> solve_exact(p, x0=0.01, n_cycles=5).status
+    >>> solve_exact(p, x0=-0.01, n_cycles=5).status
     <Status.STOPPED: 'stopped'>
     """
     spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events,

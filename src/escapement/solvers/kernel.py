@@ -128,7 +128,13 @@ class EventRun:
         return (PLAN.index(A1) - PLAN.index(self.first)) % len(PLAN)
 
     def advance(self, n: int) -> None:
-        """Run at most ``n`` more events, or until the run ends (:attr:`outcome` set)."""
+        """Run at most ``n`` more events, or until the run ends (:attr:`outcome` set).
+
+        The stopping rules and the side of each boundary: an event is kept when its time as stored (the
+        compensated sum ``t_sum + t_err``) is at most the end time, so an event exactly at ``t_end`` belongs to
+        the run and one an ulp later ends it there (:data:`HORIZON`); the run holds at most :attr:`last` events
+        (``max_events``, or the events up to the ``(n_cycles + 1)``-th impact at a1 if fewer), and the pass stops
+        after the last of them without computing the next arc."""
         if self.outcome is not None:
             return
         table, omega, b, t_stop = self.rows, self.omega, self.b, self.t_stop
@@ -167,7 +173,10 @@ class EventRun:
         self._end(ending, v1)
 
     def _end(self, ending: str | None, v1: float) -> None:
-        """The outcome of a pass that ended with ``ending``, or at the run's last event."""
+        """The outcome of a pass that ended with ``ending``, or at the run's last event. The event that ends the
+        last cycle completes the run, even where it is also the last event ``max_events`` allows or an impact
+        that reverses the velocity; any other last allowed event ends it with :attr:`Status.EVENT_LIMIT`, even
+        where the next event would come after the end time (it is not computed)."""
         if ending == NO_EVENT:
             self.open_arc = True
             self.outcome = self._no_event()
@@ -183,11 +192,14 @@ class EventRun:
             self.outcome = Outcome(Status.EVENT_LIMIT, message, Exit(), self.time)
 
     def completed(self) -> bool:
-        """The run's cycles are done: its last event is the (n_cycles + 1)-th impact at a1."""
+        """The run's cycles are done: its last event is the (n_cycles + 1)-th impact at a1 (that impact, not the
+        ``n_cycles``-th, ends the last cycle)."""
         return self.limits.n_cycles is not None and self.impacts_a1() == self.limits.n_cycles + 1
 
     def _no_event(self) -> Outcome:
-        """No watched surface is passed from the state after the last event: the turning point of the arc."""
+        """No watched surface is passed from the state after the last event: the turning point of the arc. A turn
+        back inside a zone exactly at the end time is that exit; only an end time strictly before the turn
+        completes the run there (:func:`~escapement.solvers.outcomes.no_event_outcome`)."""
         x = self.release[1] if self.state == RELEASE else automaton.position(self.state, self.params)
         mode = automaton.ARCS[self.state].mode
         centre = automaton.centre(mode, self.params.zone_offset)

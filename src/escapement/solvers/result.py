@@ -79,18 +79,18 @@ class Solution(Ended):
     --------
     >>> from escapement import Parameters, solve_exact
     >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-    >>> run = solve_exact(p, x0=1.0, n_cycles=50)
+    >>> run = solve_exact(p, x0=-1.0, n_cycles=50)
     >>> run
     <escapement.Solution> completed (exact)
     message:    completed 50 cycles
-    time span:  t = 0 .. 319.423 s (t_final)
-    events:     203 (102 impacts) from t = 1.47063 s to 319.423 s
+    time span:  t = 0 .. 316.275 s (t_final)
+    events:     201 (101 impacts) from t = 1.47063 s to 316.275 s
     cycles:     50; the last: period 6.29567 s, velocity before impact 1.25656 m/s, largest displacement 1.26053 m
-    trajectory: kept (203 harmonic arcs)
-    initial:    x0 = 1 m, v0 = 0 m/s
+    trajectory: kept (201 harmonic arcs)
+    initial:    x0 = -1 m, v0 = 0 m/s
     parameters: M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m, a3 = 0.1 m, a4 = -0.05 m
     >>> run.success, len(run.cycles), len(run.events)
-    (True, 50, 203)
+    (True, 50, 201)
     """
 
     params: Parameters
@@ -182,7 +182,7 @@ class Solution(Ended):
         Examples
         --------
         >>> from escapement import EventKind, Parameters, solve_exact
-        >>> run = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=3)
+        >>> run = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=-1.0, n_cycles=3)
         >>> cycles = run.to_dataframe("cycles")
         >>> list(cycles.columns), cycles.index.name, cycles.attrs["units"]["period"]
         (['impact_time', 'velocity_before_impact', 'period', 'largest_displacement'], 'cycle', 's')
@@ -235,7 +235,7 @@ class EnsembleSolution:
     Examples
     --------
     >>> from escapement import solve_ensemble
-    >>> runs = solve_ensemble(M=1.0, K=1.0, F=[0.5, 1.0], b=0.1, a1=-0.1, a2=0.05, x0=1.0, n_cycles=3)
+    >>> runs = solve_ensemble(M=1.0, K=1.0, F=[0.5, 1.0], b=0.1, a1=-0.1, a2=0.05, x0=-1.0, n_cycles=3)
     >>> runs.success
     array([ True,  True])
     >>> runs.cycles.period.shape
