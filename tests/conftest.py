@@ -24,19 +24,20 @@ def paper_parameters(F: float, K: float = 1.0) -> Parameters:
 
 @pytest.fixture
 def case_a() -> Parameters:
-    """Fig. 3 (a): F = 1 N (with x0 = 1 m)."""
+    """Fig. 3 (a)'s model: F = 1 N (the configuration releases it from rest at -1 m)."""
     return paper_parameters(F=1.0)
 
 
 @pytest.fixture
 def case_b() -> Parameters:
-    """Fig. 3 (b): F = 0.5 N (with x0 = 3 m)."""
+    """Fig. 3 (b)'s model: F = 0.5 N (the configuration releases it from rest at -3 m)."""
     return paper_parameters(F=0.5)
 
 
 @pytest.fixture(scope="session")
 def run50():
-    """Fig. 3 (a) (M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m) from x0 = 1 m, 50 cycles."""
+    """Fig. 3 (a)'s model (M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m) released from rest at
+    +1 m (the mirror of the configuration's -1 m), 50 cycles."""
     return solve_exact(paper_parameters(F=1.0), 1.0, n_cycles=50)
 
 

@@ -38,7 +38,8 @@ from escapement.integrators.naive import solve_naive
 from escapement.integrators.reference import solve_reference
 from escapement.solvers.stream import iter_cycles
 
-#: the paper's case (a), symmetric, released at rest at x0 = 1 m (w = 1 rad/s)
+#: the model of the paper's case (a), symmetric, released at rest at x0 = +1 m (the mirror of the configuration's
+#: -1 m; w = 1 rad/s)
 PAPER = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 X0 = 1.0
 FACTOR = 1.2  # the patched law's r = 1 - 1.2 b
