@@ -5,8 +5,9 @@ from snakemake.utils import min_version
 min_version("8.0")
 
 
-# Your own scenes; the replication's are config/paper.yaml (read by workflow/rules/common.smk).
-configfile: "config/config.yaml"
+# The replication's scenes are config/paper.yaml, your own config/config.yaml (with --configfile and --config): both
+# read by workflow/rules/common.smk, with the project's own reader (Snakemake's configfile directive would read the
+# file first, unbounded).
 
 
 report: "workflow/report/workflow.rst"

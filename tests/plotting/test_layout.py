@@ -25,6 +25,17 @@ from escapement.plotting import (
 TOLERANCE = 0.5
 TITLE = "A figure of the escapement model (a paper, Fig. 9)\nM = 1 kg, b = 0.1, a\u2081 = \u22120.1 m, a\u2082 = 0.05 m"
 
+STUDY = "A figure of the escapement model, study 'mine'"
+#: what a study changed, long enough to take several lines above the legend
+CHANGES = ("M = 2 kg (paper: 1 kg), b = 0.3 (paper: 0.1), a1 = -0.12 m (paper: -0.1 m), a2 = 0.07 m (paper: 0.05 m), "
+           "a3 = 0.12 m (paper: 0.1 m), a4 = -0.03 m (paper: -0.05 m); case c added (F = 0.75 N, x0 = -2 m)")
+
+
+def _study(ds):
+    ds.attrs["study_changes"] = CHANGES
+    return ds
+
+
 FIGURES = {
     "poincare_map": lambda d: poincare_map({"a": d.poincare(), "b": d.poincare(F=0.5, x0=-3.0),
                                             "c": d.poincare(outcome="stopped", x0=0.05)}, TITLE),
@@ -36,6 +47,12 @@ FIGURES = {
     "existence_map": lambda d: existence_map(d.existence()),
     "escapement_error": lambda d: escapement_error(d.escapement_error()),
     "work_precision": lambda d: work_precision(d.work_precision()),
+    "poincare_map of a study": lambda d: poincare_map({"c": _study(d.poincare(F=0.75, x0=-2.0))}, STUDY),
+    "shock_detail of a study": lambda d: shock_detail(_study(d.shock(impacts=(82.0, 84.4, 86.0))), STUDY),
+    "phase_diagrams of a study": lambda d: phase_diagrams({f"{K:g}": _study(d.phase(K=K)) for K in (0.1, 5.0)}, STUDY),
+    "stability_map of a study": lambda d: stability_map(_study(d.stability(b=(0.5, 0.9))), STUDY),
+    "existence_map of a study": lambda d: existence_map(_study(d.existence()), STUDY),
+    "escapement_error of a study": lambda d: escapement_error(_study(d.escapement_error()), STUDY),
 }
 
 

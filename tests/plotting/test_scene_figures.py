@@ -106,3 +106,43 @@ def test_the_shock_detail_breaks_the_velocity_at_each_impact_and_lists_each_impa
             assert any(f"t = {t:g} s" in entry and f"impulse {j:.3g} N s" in entry for entry in listed)
     finally:
         plt.close(fig)
+
+
+def _changes(fig) -> list[str]:
+    return [legend.get_title().get_text() for legend in fig.legends if legend.get_title().get_text()]
+
+
+def test_a_single_case_is_titled_by_its_case_and_a_single_panel_by_its_letter_and_k(datasets):
+    """A study of one case c, or of one spring constant, still says which it is."""
+    one_case = poincare_map({"c": datasets.poincare(F=0.75, x0=-2.0)}, "t")
+    one_panel = phase_diagrams({"5": datasets.phase(K=5.0)}, "t")
+    try:
+        assert _plain(one_case.axes[0].get_title()).startswith("(c) F = 0.75 N, K = 1 N/m")
+        assert _plain(one_panel.axes[0].get_title()).startswith("(a) F = 1 N, K = 5 N/m")
+    finally:
+        plt.close(one_case)
+        plt.close(one_panel)
+
+
+def test_a_study_s_figure_names_what_its_datasets_say_it_changed_and_the_replication_s_nothing(datasets):
+    """The changes come from the datasets (their study_changes), each parameter by its symbol, above the legend;
+    the title keeps its two lines."""
+    said = "a3 = 0.12 m (paper: 0.1 m), a4 = -0.03 m (paper: -0.05 m); case c added (F = 0.75 N, x0 = -2 m)"
+    cases = {"a": datasets.poincare(), "b": datasets.poincare(F=0.5), "c": datasets.poincare(F=0.75, x0=-2.0)}
+    for ds in cases.values():
+        ds.attrs["study_changes"] = said
+    shock = datasets.shock()
+    shock.attrs["study_changes"] = "b = 0.3 (paper: 0.1)"
+    figures = [poincare_map(cases, "Poincare map, study 'asym'"), shock_detail(shock, "Shock detail, study 'b'"),
+               phase_diagrams({"0.1": datasets.phase(K=0.1)}, "Phase diagrams")]
+    try:
+        first, second, replication = (" ".join(_plain(t) for t in _changes(fig)).replace("\n", " ")
+                                      for fig in figures)
+        assert first == ("Changed from the paper's scenes: a\u2083 = 0.12 m (paper: 0.1 m), a\u2084 = -0.03 m (paper: "
+                         "-0.05 m); case c added (F = 0.75 N, x(0) = -2 m)")
+        assert second == "Changed from the paper's scenes: b = 0.3 (paper: 0.1)"
+        assert replication == ""
+        assert all(fig.get_suptitle().count("\n") <= 1 for fig in figures)
+    finally:
+        for fig in figures:
+            plt.close(fig)

@@ -92,3 +92,21 @@ def test_the_stability_map_marks_no_cycle_apart_from_the_colour_scale(datasets):
             assert x0 == (0.9 + 1.1) / 2 and x1 == 1.5 + (1.5 - 1.1) / 2  # the cells' edges, midway between centres
     finally:
         plt.close(fig)
+
+
+@pytest.mark.parametrize("name", ["stability", "existence", "escapement_error"])
+def test_a_map_of_a_study_names_what_its_dataset_says_it_changed(datasets, name):
+    from escapement.plotting import escapement_error, existence_map
+
+    draw = {"stability": stability_map, "existence": existence_map, "escapement_error": escapement_error}[name]
+    ds = getattr(datasets, name)()
+    plain = draw(ds)
+    ds.attrs["study_changes"] = "K = 2 N/m (paper: 1 N/m)"
+    study = draw(ds, "A map of the escapement model, study 'k'")
+    try:
+        titles = [legend.get_title().get_text().replace("\u00a0", " ") for legend in study.legends]
+        assert "Changed from the paper's scenes: K = 2 N/m (paper: 1 N/m)" in titles
+        assert not any(legend.get_title().get_text() for legend in plain.legends)
+    finally:
+        plt.close(plain)
+        plt.close(study)

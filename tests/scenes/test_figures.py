@@ -37,6 +37,16 @@ def test_the_replication_is_titled_by_the_paper_s_figure_and_a_study_of_your_own
     assert "Fig." not in phase_diagram({**FIG5, "study": "heavy"}).attrs["title"]
 
 
+@pytest.mark.parametrize("scene, settings", [(poincare_map, FIG3), (shock_detail, FIG4), (phase_diagram, FIG5)])
+def test_a_study_s_dataset_names_what_it_changed_from_the_paper_and_the_replication_s_nothing(scene, settings):
+    """The scene's settings carry the line (the configuration writes it); the dataset keeps it as a global
+    attribute of text, as CF and ACDD want their attributes."""
+    own = scene({**settings, "b": 0.3, "study": "own", "changes": "b = 0.3 (paper: 0.1)"})
+    assert own.attrs["study_changes"] == "b = 0.3 (paper: 0.1)" and own.attrs["study"] == "own"
+    assert float(own["b"]) == 0.3
+    assert "study_changes" not in scene(settings).attrs
+
+
 def test_the_shock_detail_is_sampled_only_inside_its_windows_on_each_side_of_each_event():
     ds = shock_detail(FIG4)
     t = ds["t"].values

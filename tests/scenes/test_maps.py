@@ -67,6 +67,18 @@ def test_the_stability_map_measures_the_multiplier_of_eq_21():
                             "ensemble_speedup_per_trajectory"}
 
 
+@pytest.mark.parametrize("scene, settings", [
+    (lambda s: stability_map(s, speed_sample=1)[0], {"b": {"start": 0.0, "stop": 1.0, "n": 2},
+                                                     "F": {"start": 0.5, "stop": 1.0, "n": 2}}),
+    (existence_map, existence({"start": 0.05, "stop": 0.15, "n": 2}, {"start": 0.0, "stop": 0.01, "n": 2}, 5)),
+    (escapement_error, {"F": {"start": 0.5, "stop": 1.0, "n": 2}, "zones": {"paper": [-0.1, 0.05]}}),
+])
+def test_a_map_of_a_study_names_what_it_changed_in_a_text_attribute(scene, settings):
+    own = scene({**MODEL, **settings, "study": "own", "changes": "K = 2 N/m (paper: 1 N/m)"})
+    assert own.attrs["study_changes"] == "K = 2 N/m (paper: 1 N/m)" and own.attrs["study"] == "own"
+    assert "study_changes" not in scene({**MODEL, **settings}).attrs
+
+
 def test_the_escapement_error_holds_each_zone_at_each_force_and_its_formula_agrees_with_the_solver():
     ds = escapement_error({**MODEL, "F": {"start": 0.1, "stop": 1.0, "n": 3},
                            "zones": {"symmetric": [-0.1, 0.1], "before": [-0.2, -0.05]}})

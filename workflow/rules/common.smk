@@ -1,7 +1,5 @@
 import sys
-
-from snakemake.exceptions import WorkflowError
-from snakemake.utils import validate
+from pathlib import Path
 
 from escapement.pipeline import config as settings
 from escapement.pipeline import outputs
@@ -10,27 +8,32 @@ from escapement.scenes.settings import KINDS
 
 
 def checked(data, schema, source):
-    """Snakemake's validation against the JSON schema, its error in one line naming the key."""
-    try:
-        validate(data, schema, set_default=False)
-    except WorkflowError as err:
-        raise settings.ConfigError(settings.refusal(err.__context__, source)) from None
+    """``data`` against the JSON schema ``schema`` of workflow/schemas by Snakemake's validate, its first violation
+    in one line naming the key (an unknown key with the closest valid one)."""
+    settings.validated(data, Path(workflow.basedir, "workflow", "schemas", schema), source)
 
 
 # A refusal is one line on the console, before any job: a SystemExit's message (Snakemake prints a WorkflowError
-# with the Snakefile's line and a traceback). Every file read strictly (a key given twice is refused with its line), nested --config values with the
-# types a file gives them; then each source against its schema; then every scene built and checked.
+# with the Snakefile's line and a traceback). The user's sources (config/config.yaml unless
+# --replace-workflow-config, then --configfile and --config) read again by the project's one reader: bounded in
+# size, depth and items, no anchors or aliases, a key given twice refused, numbers the same from a file and from
+# --config; then each source against its schema; then every scene built and checked.
 try:
-    for path in dict.fromkeys([*workflow.configfiles, "config/config.yaml"]):
-        settings.read_yaml(path)
-    settings.typed_overrides(config, workflow.config_settings.config_args)
+    replaced = workflow.config_settings.replace_workflow_config and workflow.config_settings.overwrite_config
+    own = settings.user_config([*([] if replaced else ["config/config.yaml"]), *workflow.config_settings.configfiles],
+                               workflow.config_settings.config_args)
+    config.clear()  # every source as the project reads it, in place of Snakemake's reading
+    config.update(own)
     PAPER = settings.read_yaml("config/paper.yaml")
-    checked(config, "../schemas/config.schema.yaml", "the configuration")
-    checked(PAPER, "../schemas/paper.schema.yaml", "config/paper.yaml")
+    checked(config, "config.schema.yaml", "the configuration")
+    checked(PAPER, "paper.schema.yaml", "config/paper.yaml")
     NAME = config.get("name", "own")
     STUDIES = {"replication": settings.study_scenes("replication", PAPER)}
     OWN = settings.own_blocks(config, PAPER)
-    if len(OWN) > 1:
+    for note in settings.study_notes(config, PAPER):  # each kind the user's changes do not reach, and why
+        print(note, file=sys.stderr)
+    if len(OWN) > 1:  # the paper's bounds hold on the study, the user's cases and zones joined to the paper's
+        checked(settings.laid_over(config, PAPER), "paper.schema.yaml", f"your study '{NAME}'")
         STUDIES[NAME] = settings.study_scenes(NAME, OWN)
     RUNS = settings.replication_scenes(PAPER)
 except settings.ConfigError as err:

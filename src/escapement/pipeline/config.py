@@ -3,21 +3,21 @@
 Two sources. ``config/paper.yaml`` holds the replication (the paper's scenes and the runs that check its
 claims); it is read here, never overridden. The user's configuration (Snakemake's ``config``: the
 ``configfile`` of the Snakefile, ``--configfile``, ``--config``) holds the user's own scenes: each block is laid
-over the paper's block of the same name, key by key, the model over the paper's model, and every kind of
-figure whose settings then differ from the paper's is the user's study (:func:`own_blocks`).
+over the paper's block of the same name, key by key at every level, the model over the paper's model, and every
+kind of figure whose scenes then run something other than the paper's is the user's study (:func:`own_blocks`;
+:func:`study_notes` says why a kind the user's changes do not reach does not run).
 
-Checks, in order, each refusal one line naming the file or key, its value and the rule: every file read with
-ruamel.yaml, which refuses a key given twice (:func:`read_yaml`; Snakemake's loader keeps the last silently),
-and a nested ``--config`` value read again as YAML (:func:`typed_overrides`: Snakemake leaves its scalars as
-text); each source against its JSON Schema (Snakemake's ``validate`` in the rules, its error put in one line by
-:func:`refusal` from the schema's ``description``); then every scene built and checked by
+Checks, in order, each refusal one line naming the file or key, its value and the rule: every source, a file or
+a ``--config`` entry, read by one YAML reader, strictly and within bounds (:mod:`escapement.pipeline.sources`:
+:func:`read_yaml`, :func:`typed_overrides`, :func:`user_config`); each source against its JSON Schema
+(:func:`validated`, its first violation put in one line by :func:`refusal`); then every scene built and checked by
 :mod:`escapement.scenes.settings` (:func:`study_scenes`).
 """
 
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Iterable, Mapping
+from collections.abc import Mapping
 from pathlib import Path
 
 from ..model.parameters import ParameterError
@@ -33,100 +33,85 @@ from ..scenes.settings import (
     ShockScene,
     StabilityMapScene,
 )
+from .changes import KindPlan, changed_model_keys, describe, filled, leaves, merged, notes
+from .sources import ConfigError, read_yaml, refusal, typed_overrides, user_config, validated
 
-__all__ = ["ConfigError", "check_cases", "code_digest", "own_blocks", "read_yaml", "refusal", "replication_scenes",
-           "study_scenes", "typed_overrides"]
+__all__ = ["ConfigError", "check_cases", "code_digest", "laid_over", "own_blocks", "read_yaml", "refusal",
+           "replication_scenes", "study_notes", "study_scenes", "typed_overrides", "user_config", "validated"]
 
 #: the blocks a user's configuration may lay over the paper's (besides ``name``)
 BLOCKS = ("model", *KINDS)
 
 
-class ConfigError(ValueError):
-    """The configuration is invalid; the message is one line naming the file or key."""
-
-
-def _yaml():
-    from ruamel.yaml import YAML  # read only by Snakemake's process, when it plans the workflow
-
-    return YAML(typ="safe", pure=True)
-
-
-def read_yaml(path: str | Path) -> dict:
-    """The mapping of the YAML (or JSON) file ``path``; :class:`ConfigError` naming the file, line and column
-    for a YAML error or a key given twice, or if the file holds no mapping."""
-    from ruamel.yaml.error import MarkedYAMLError
-
-    try:
-        with open(path, encoding="utf-8") as handle:
-            content = _yaml().load(handle)
-    except OSError as err:
-        raise ConfigError(f"{path}: cannot read the configuration ({err.strerror})") from None
-    except MarkedYAMLError as err:
-        mark = err.problem_mark
-        where = "" if mark is None else f", line {mark.line + 1}, column {mark.column + 1}"
-        raise ConfigError(f"{path}{where}: not valid YAML: {err.problem}") from None
-    if not isinstance(content, dict):
-        raise ConfigError(f"{path}: the configuration must be a mapping of keys, not "
-                          f"{type(content).__name__ if content is not None else 'empty'}")
-    return content
-
-
-def typed_overrides(config: dict, entries: Iterable[str] | None) -> None:
-    """Read again, as a configuration file would, each ``--config key=value`` entry whose value Snakemake read as
-    a mapping or a list (it leaves their scalars as text: ``{K: [0.1]}`` gives ``['0.1']``), and lay it over
-    ``config`` in order, as Snakemake does (mappings key by key, other values replaced)."""
-    from ruamel.yaml.error import YAMLError
-    from snakemake.utils import update_config
-
-    for entry in entries or ():
-        key, _, text = str(entry).partition("=")
-        if not isinstance(config.get(key), dict | list):
-            continue
-        try:
-            update_config(config, {key: _yaml().load(text)})
-        except YAMLError as err:
-            raise ConfigError(f"--config {entry}: not valid YAML ({getattr(err, 'problem', err)}); a nested "
-                              "value may also be given in a file, with --configfile") from None
-
-
-def refusal(error, source: str) -> str:
-    """One line for the first violation of a JSON Schema (a jsonschema ``ValidationError``) in ``source``:
-    the key, its value and the rule, the rule taken from the schema's ``description``."""
-    path = list(error.absolute_path)
-    where = "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in path).lstrip(".")
-    rule = error.schema.get("description") if isinstance(error.schema, dict) else None
-    if "propertyNames" in error.schema_path:  # the rule is the propertyNames schema's, one level up
-        rule = error.parent.schema.get("description") if error.parent is not None else rule
-    if error.validator in ("required", "additionalProperties", "unevaluatedProperties"):
-        return f"{source}: {where or 'the top level'}: {error.message}"
-    if "propertyNames" in error.schema_path:
-        return f"{source}: {where or 'the top level'}: the key {error.instance!r} is invalid: a key must be {rule}"
-    name = next((p for p in reversed(path) if isinstance(p, str)), "the value")
-    subject = f"each item of {name}" if path and isinstance(path[-1], int) else name
-    if rule is None:  # a constraint without a description: jsonschema's own sentence
-        return f"{source}: {where} = {error.instance!r} is invalid: {error.message}"
-    return f"{source}: {where} = {error.instance!r} is invalid: {subject} must be {rule}"
-
-
 def own_blocks(config: Mapping, paper: Mapping) -> dict[str, dict]:
-    """The user's study: the model and each kind's block laid over the paper's, keeping the kinds whose
-    settings then differ from the paper's (the model counts for every kind)."""
-    model = {**paper["model"], **config.get("model", {})}
-    found = {"model": model}
-    for block in KINDS:
-        merged = {**paper[block], **config.get(block, {})}
-        if merged != paper[block] or model != paper["model"]:
-            found[block] = merged
-    return found
+    """The user's study: the model and each kind's block laid over the paper's at every level
+    (:func:`~escapement.pipeline.changes.merged`), keeping the kinds whose scenes then differ from the paper's in
+    what they run (:func:`~escapement.pipeline.changes.describe`), each block with, under ``changes``, that
+    difference in one line (its scenes' ``changes``, their datasets' ``study_changes``)."""
+    return _own(config, paper)[0]
+
+
+def study_notes(config: Mapping, paper: Mapping) -> list[str]:
+    """The lines the planning prints about the user's study: each kind the user's changes touch that does not run,
+    or that some of the model's changes do not reach, and why; one line if no kind runs
+    (:func:`~escapement.pipeline.changes.notes`)."""
+    return _own(config, paper)[1]
+
+
+def laid_over(config: Mapping, paper: Mapping) -> dict:
+    """The paper's configuration with the user's blocks laid over it at every level (no kind left out): what the
+    paper's schema checks again, so that its bounds hold for the blocks a user's cases or zones join."""
+    return {**paper, **{block: merged(paper[block], config.get(block) or {}) for block in BLOCKS}}
+
+
+def _own(config: Mapping, paper: Mapping) -> tuple[dict[str, dict], list[str]]:
+    """The blocks of the kinds that run (with their ``changes``) and the notes: each kind's scenes compared with
+    the paper's, and each model key the user changed reverted alone to find the kinds it does not reach."""
+    name = str(config.get("name", "own"))
+    given_model = config.get("model") or {}
+    model = merged(paper["model"], given_model)
+    moved = changed_model_keys(model, paper["model"], given_model)
+    blocks, laid, plans = {"model": model}, {}, []
+    try:
+        for block in KINDS:
+            mine_block = laid[block] = merged(paper[block], config.get(block) or {})
+            mine, theirs = _effective(block, model, mine_block), _effective(block, paper["model"], paper[block])
+            missed = tuple(key for key in moved if _effective(block, _reverted(model, paper["model"], key),
+                                                                mine_block) == mine)
+            own = {case: tuple(keys) for case, keys in mine_block["cases"].items()} if block == "fig3" else \
+                {label: ("K", "F", "x0") for label in mine}
+            changes = describe(block, mine, theirs, own)
+            if changes:
+                blocks[block] = {**mine_block, "changes": changes}
+            paper_leaves = leaves(paper[block])
+            block_changes = tuple((k, v) for k, v in leaves(mine_block).items()
+                                  if k not in paper_leaves or paper_leaves[k] != v)
+            plans.append(KindPlan(block, changes, missed, block in config, block_changes))
+    except ConfigError as err:
+        raise ConfigError(f"your study '{name}': {err}") from None
+    return blocks, notes(name, plans, model, laid, [b for b in BLOCKS if b in config])
+
+
+def _reverted(model: Mapping, paper: Mapping, key: str) -> dict:
+    """``model`` with ``key`` as the paper's model has it (absent if the paper's model leaves it out)."""
+    return {k: v for k, v in model.items() if k != key} | ({key: paper[key]} if key in paper else {})
+
+
+def _effective(block: str, model: Mapping, b: Mapping) -> dict[str, dict]:
+    """The settings each scene of ``block`` runs, by label: the model's keys the kind ignores left out, the
+    symmetric defaults filled in, nested axes and zones as dotted keys (:func:`~escapement.pipeline.changes.leaves`)."""
+    ignored = KINDS[block].ignored
+    scenes = _scene_mappings(block, {k: v for k, v in model.items() if k not in ignored}, b, {})
+    return {label: leaves(filled(scene, ignored)) for label, scene in scenes.items()}
 
 
 def _flat(*parts: Mapping) -> dict:
     """The parts merged (later ones win), nested mappings left out, sorted by key: a scene's flat mapping, which
     reordering a file does not change (Snakemake compares params by their text)."""
-    merged: dict = {}
+    flat: dict = {}
     for part in parts:
-        merged.update({k: v for k, v in part.items() if not isinstance(v, dict)})
-    return dict(sorted(merged.items()))
+        flat.update({k: v for k, v in part.items() if not isinstance(v, dict)})
+    return dict(sorted(flat.items()))
 
 
 def _per_panel(fig5: Mapping, key: str, index: int):
@@ -139,6 +124,28 @@ def _per_panel(fig5: Mapping, key: str, index: int):
     return value[index]
 
 
+def _scene_mappings(block: str, model: Mapping, b: Mapping, extra: Mapping) -> dict[str, dict]:
+    """The flat mapping of each scene of ``block`` by label (a Fig. 3 case, a spring constant; ``""`` for the kinds
+    of one scene), unchecked: the model's keys, the block's, the scene's own and ``extra``, later ones winning; the
+    nested axes and zones of a kind of one scene after them."""
+    if block == "fig3":
+        return {case: _flat(model, b, keys, extra, {"label": case}) for case, keys in b["cases"].items()}
+    if block == "fig5":
+        labels = [f"{k:g}" for k in b["K"]]
+        if len(set(labels)) < len(labels):
+            raise ConfigError(f"fig5.K = {b['K']!r} is invalid: K must be spring constants that differ in "
+                              "their file labels (e.g. 0.1 and 0.10000000001 both write K_0.1.nc)")
+        return {label: _flat(model, b, {"K": b["K"][i], "F": _per_panel(b, "F", i), "x0": _per_panel(b, "x0", i)},
+                             extra, {"label": label}) for i, label in enumerate(labels)}
+    nested = {k: v for k, v in b.items() if isinstance(v, dict)}  # the axes, the zones
+    return {"": {**_flat(model, b, extra), **nested}}
+
+
+#: each kind's settings, by its block (Fig. 3's and Fig. 5's scenes, one per case or spring constant)
+SETTINGS = {"fig3": PoincareScene, "fig4": ShockScene, "fig5": PhaseScene, "escapement_error": EscapementErrorScene,
+            "existence_map": ExistenceMapScene, "stability_map": StabilityMapScene}
+
+
 def study_scenes(study: str, blocks: Mapping) -> dict[str, dict[str, dict]]:
     """Every scene of a study, by kind and label (a Fig. 3 case, a spring constant; ``""`` for the kinds of one
     scene): its flat mapping (the rule's params), each built and checked by its settings
@@ -149,27 +156,9 @@ def study_scenes(study: str, blocks: Mapping) -> dict[str, dict[str, dict]]:
     for block in KINDS:
         if block not in blocks:
             continue
-        b = blocks[block]
         try:
-            if block == "fig3":
-                found = {case: _flat(model, b, keys, {"study": study, "label": case})
-                         for case, keys in b["cases"].items()}
-                checked = [PoincareScene.from_mapping(s) for s in found.values()]
-            elif block == "fig5":
-                labels = [f"{k:g}" for k in b["K"]]
-                if len(set(labels)) < len(labels):
-                    raise ConfigError(f"fig5.K = {b['K']!r} is invalid: K must be spring constants that differ in "
-                                      "their file labels (e.g. 0.1 and 0.10000000001 both write K_0.1.nc)")
-                found = {label: _flat(model, b, {"K": b["K"][i], "F": _per_panel(b, "F", i),
-                                                 "x0": _per_panel(b, "x0", i), "study": study, "label": label})
-                         for i, label in enumerate(labels)}
-                checked = [PhaseScene.from_mapping(s) for s in found.values()]
-            else:
-                settings = {"fig4": ShockScene, "escapement_error": EscapementErrorScene,
-                            "existence_map": ExistenceMapScene, "stability_map": StabilityMapScene}[block]
-                nested = {k: v for k, v in b.items() if isinstance(v, dict)}  # the axes, the zones
-                found = {"": {**_flat(model, b, {"study": study}), **nested}}
-                checked = [settings.from_mapping(s) for s in found.values()]
+            found = _scene_mappings(block, model, blocks[block], {"study": study})
+            checked = [SETTINGS[block].from_mapping(s) for s in found.values()]
         except ParameterError as err:
             raise ConfigError(f"{tag}{block}: {err}") from None
         except ConfigError as err:

@@ -1,5 +1,6 @@
 """The words on the figures: axis labels, quantities with their values and units, how a run was
-released, which parameters a panel states, and how a run that did not complete ended.
+released, which parameters a panel states, how a run that did not complete ended, and what a study of the
+user's own changed from the paper's scenes (the line its figure shows above its legend).
 
 Names, symbols and units come from :mod:`escapement.model.quantities`, values and outcomes from the
 datasets. A figure's title is its caller's; what a figure assumes or how it scores goes in the
@@ -8,15 +9,17 @@ caption its caller writes, not here.
 
 from __future__ import annotations
 
+import re
+import textwrap
 from collections.abc import Iterable
 
 import xarray as xr
 
-from ..model.quantities import quantity
+from ..model.quantities import INITIAL_STATE, PARAMETERS as QUANTITIES, quantity
 from ..model.status import Status
 
-__all__ = ["PARAMETERS", "axis_label", "outcome", "panel_parameters", "quantity_value", "release",
-           "shared_parameters", "signed", "unit"]
+__all__ = ["CHANGES_FONTSIZE", "PARAMETERS", "axis_label", "changes_legend", "outcome", "panel_parameters",
+           "quantity_value", "release", "shared_parameters", "signed", "study_changes", "unit"]
 
 #: the model's parameters in the order a title or panel states them
 PARAMETERS = ("F", "K", "M", "b", "a1", "a2", "a3", "a4")
@@ -81,3 +84,42 @@ def outcome(ds: xr.Dataset, count: str = "cycle") -> str | None:
     done = ds.sizes.get(count, 0)
     asked = ds.attrs.get("n_cycles")
     return f"{status.value.replace('_', ' ')} after {done}" + (f" of {asked}" if asked else "") + " cycles"
+
+
+#: the font size of the line that names a study's changes (the title of the legend below the axes)
+CHANGES_FONTSIZE = 8.0
+#: a value with its units in a dataset's ``study_changes``: ``a3 = 0.12 m``, ``zones.wide = [-0.3, 0.2] m``
+_VALUE = re.compile(r"(?P<key>[\w.]+) = (?P<value>\[[^\]]*\]|\S+?)(?P<units> (?:%s))?(?=[,;)]|$| \()" % "|".join(
+    sorted({re.escape(q.unit_label) for q in (*QUANTITIES.values(), *INITIAL_STATE.values()) if q.units != "1"},
+           key=len, reverse=True)))
+
+
+def _unbroken(match: re.Match) -> str:
+    """One value of a study's changes, by the parameter's symbol, on one line."""
+    key = match["key"]
+    symbol = quantity(key).symbol if key in QUANTITIES or key in INITIAL_STATE else key
+    value = match["value"].replace(" ", "\u00a0")
+    return f"{symbol}\u00a0=\u00a0{value}" + (f"\u00a0{match['units'].strip()}" if match["units"] else "")
+
+
+def study_changes(datasets: Iterable[xr.Dataset]) -> str | None:
+    """What a study of the user's own changed from the paper's scenes, as its datasets say it (their global
+    attribute ``study_changes``, each differing text once): ``Changed from the paper's scenes: b = 0.3 (paper:
+    0.1)``, each parameter by its symbol with the minus of the ticks, no value broken across lines; None where no
+    dataset has the attribute (the replication)."""
+    said = dict.fromkeys(str(ds.attrs["study_changes"]) for ds in datasets if ds.attrs.get("study_changes"))
+    if not said:
+        return None
+    text = _VALUE.sub(_unbroken, "; ".join(said))
+    text = re.sub(r"\(paper: [^)]*\)", lambda m: m[0].replace(" ", "\u00a0"), text)
+    return "Changed from the paper's scenes: " + re.sub(r"(?<![\w.])-(?=[\d.])", "\u2212", text)
+
+
+def changes_legend(fig, datasets: Iterable[xr.Dataset]) -> dict:
+    """The keywords of the legend below the axes that give it :func:`study_changes` as its title, wrapped to the
+    figure's width; none for the replication."""
+    text = study_changes(datasets)
+    if text is None:
+        return {}
+    width = int(fig.get_figwidth() * 72 / (0.6 * CHANGES_FONTSIZE))  # characters of about 0.6 em
+    return {"title": textwrap.fill(text, width, break_on_hyphens=False), "title_fontsize": CHANGES_FONTSIZE}

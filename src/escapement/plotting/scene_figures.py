@@ -3,7 +3,9 @@ Poincaré map per cycle, the shock detail around the impacts, and phase diagrams
 
 Each draws from the netCDF datasets (never from the solver), takes its title from the caller (one or
 two lines: which figure of which paper, or which parameter study) and states each panel's own
-parameters in its panel title. Given ``axes`` (:mod:`escapement.plotting.panel_axes`), a panel is drawn
+parameters in its panel title, lettered by its case (Fig. 3's kind) or its place, a figure of one panel too.
+A study of the user's own names what it changed from the paper's scenes, as its datasets say (their
+``study_changes``), above the legend. Given ``axes`` (:mod:`escapement.plotting.panel_axes`), a panel is drawn
 with exactly those limits and tick step (the paper's printed axes, as its claims score them); without,
 matplotlib autoscales. Guides (a fixed point, the natural period) are drawn only where they fall inside
 the axes, so the legend lists only what a panel shows; text stays outside the axes.
@@ -21,7 +23,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from .captions import axis_label, outcome, panel_parameters, release, signed, unit
+from .captions import axis_label, changes_legend, outcome, panel_parameters, release, signed, unit
 from .panel_axes import DrawnAxes, apply_axes
 from .style import ACCENT, GUIDE, INK, MUTED, legend_below, style, suptitle
 
@@ -43,11 +45,10 @@ def _letter(i: int) -> str:
     return string.ascii_lowercase[i] if i < 26 else str(i + 1)
 
 
-def _panel_title(i: int, ds: xr.Dataset, datasets) -> str:
+def _panel_title(name: str, ds: xr.Dataset, datasets) -> str:
     """``(a) F = 1 N, K = 1 N/m`` / ``released from rest at x(0) = -1 m`` / how the run ended, if it did not
-    complete (no letter for a figure of one panel)."""
-    letter = f"({_letter(i)}) " if len(datasets) > 1 else ""
-    lines = [letter + panel_parameters(ds, datasets), release(ds), outcome(ds)]
+    complete; ``name`` is the panel's case or letter, given a figure of one panel too."""
+    lines = [f"({name}) " + panel_parameters(ds, datasets), release(ds), outcome(ds)]
     return "\n".join(line for line in lines if line)
 
 
@@ -81,8 +82,8 @@ def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | 
     ----------
     cases : mapping of str to xarray.Dataset
         Each case's Poincaré-map dataset (``velocity_before_impact``, ``period``, the variable its attribute
-        ``amplitude_variable`` names, the parameters, ``x0``; ``fixed_point_19`` drawn if present), in the
-        order of the columns, lettered (a), (b), ...
+        ``amplitude_variable`` names, the parameters, ``x0``; ``fixed_point_19`` drawn if present), by its
+        case, in the order of the columns, each column titled by its case: (a), (b), ...
     title : str
         The figure's title, one or two lines.
     axes : DrawnAxes, optional
@@ -109,9 +110,9 @@ def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | 
                 if key == "period":
                     _guide(ax, 2 * math.pi * math.sqrt(float(ds["M"]) / float(ds["K"])), ls=":", lw=1.2,
                            color=GUIDE, label="natural period 2\u03c0/\u03c9")
-            grid[0, col].set_title(_panel_title(col, ds, datasets))
+            grid[0, col].set_title(_panel_title(label, ds, datasets))
         suptitle(fig, title)
-        legend_below(fig, grid, ncols=3)
+        legend_below(fig, grid, ncols=3, **changes_legend(fig, datasets))
     return fig
 
 
@@ -178,7 +179,7 @@ def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> F
         rows = max(len(left), len(right))
         entries = [*left, *[("", None)] * (rows - len(left)), *right, *[("", None)] * (rows - len(right))]
         fig.legend([h or Line2D([], [], ls="none") for _, h in entries], [label for label, _ in entries],
-                   loc="outside lower center", ncols=2)
+                   loc="outside lower center", ncols=2, **changes_legend(fig, [ds]))
         suptitle(fig, title)
     return fig
 
@@ -218,7 +219,7 @@ def phase_diagrams(panels: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes
             ax.set_xlabel(axis_label("displacement"))
             ax.set_ylabel(axis_label("velocity"))
             _axes(ax, axes, label)
-            ax.set_title(_panel_title(col, ds, datasets))
+            ax.set_title(_panel_title(_letter(col), ds, datasets))
         suptitle(fig, title)
-        legend_below(fig, grid, ncols=3)
+        legend_below(fig, grid, ncols=3, **changes_legend(fig, datasets))
     return fig

@@ -1,7 +1,9 @@
 """The project's own figures, beyond the paper's three kinds: the solvers' work-precision and long-run
 errors, the stability map over (b, F), the existence map over (a3, F), and the escapement error against
 amplitude. Drawn from the studies' tables and netCDF datasets in the style of the scene figures; each
-composes a title of at most two lines from its dataset unless its caller gives one.
+composes a title of at most two lines from its dataset unless its caller gives one, and a map or the escapement
+error of a study of the user's own names what it changed from the paper's scenes, as its dataset says (its
+``study_changes``), above the legend.
 
 The long-run figure shows rounding for what it is. The float64 spacing of the impact time (1 ulp of t;
 of the velocity, relative) is a shaded band, and the exact solver's and the per-cycle closed forms'
@@ -28,7 +30,7 @@ from matplotlib.patches import Patch, PathPatch
 from matplotlib.path import Path
 
 from ..model.status import Status
-from .captions import axis_label, quantity_value, release, unit
+from .captions import axis_label, changes_legend, quantity_value, release, unit
 from .style import ACCENT, GUIDE, INK, NO_CYCLE, SERIES, legend_below, style, suptitle
 
 __all__ = ["ERROR_FLOOR", "escapement_error", "existence_map", "long_run", "stability_map", "work_precision"]
@@ -205,8 +207,10 @@ def stability_map(ds: xr.Dataset, title: str | None = None) -> Figure:
         axes[1].set_title("distance from Eq. (21)")
         suptitle(fig, title or "Stability of the limit cycle over (b, F): measured multiplier and Eq. (21)\n"
                  + _constants(ds, ("M", "K", "a1", "a2", "a3", "a4")))
-        if cells is not None:
-            fig.legend(handles=[Patch(**look, label=label)], loc="outside lower center")
+        legend = changes_legend(fig, [ds])
+        if cells is not None or legend:
+            fig.legend(handles=[Patch(**look, label=label)] if cells is not None else [], loc="outside lower center",
+                       **legend)
     return fig
 
 
@@ -237,7 +241,7 @@ def escapement_error(ds: xr.Dataset, title: str | None = None) -> Figure:
         forces = f"F from {float(ds['F'][0]):g} to {float(ds['F'][-1]):g} {unit('F')}"
         suptitle(fig, title or "Escapement error: the rate of a clock counting 2\u03c0/\u03c9 per swing, against "
                  f"amplitude\n{_constants(ds, ('M', 'K', 'b'))}, {forces}; the second half cycle mirrors the first")
-        legend_below(fig, axes, ncols=2, fontsize=7.5)
+        legend_below(fig, axes, ncols=2, fontsize=7.5, **changes_legend(fig, [ds]))
     return fig
 
 
@@ -290,5 +294,5 @@ def existence_map(ds: xr.Dataset, title: str | None = None) -> Figure:
         ax.grid(False)  # grid lines over a map read as cell borders
         suptitle(fig, title or f"Existence of the limit cycle over ({A3}, F) with {A1} \u2260 \u2212{A3}, each run "
                  f"{release(ds)}\n{_constants(ds, ('M', 'K', 'b', 'a1', 'a2', 'a4'))}")
-        fig.legend(handles=handles, loc="outside lower center", ncols=1, fontsize=7.5)
+        fig.legend(handles=handles, loc="outside lower center", ncols=1, fontsize=7.5, **changes_legend(fig, [ds]))
     return fig

@@ -4,8 +4,10 @@ attributes; :func:`run_dataset` holds one run, the scenes' datasets are built of
 Every file describes itself: the model's parameters and initial state are 0-d variables with their
 units and long names (from :mod:`escapement.model.quantities`), never global attributes; counts
 (``n_cycles``, ``samples_per_period``, ...) and text (``solver``, ``outcome``) stay global
-attributes. The global ``summary`` states the model once (:data:`MODEL_SUMMARY`), then what the
-file holds. No CF standard name exists for the quantities of this model, so none is given.
+attributes, as do a scene's ``study`` and, for a study of the user's own, ``study_changes``: what its kind
+changed from the paper's scenes, in one line of text (:meth:`escapement.scenes.settings.Study.attributes`).
+The global ``summary`` states the model once (:data:`MODEL_SUMMARY`), then what the file holds. No CF
+standard name exists for the quantities of this model, so none is given.
 """
 
 from __future__ import annotations

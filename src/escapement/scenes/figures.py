@@ -69,7 +69,7 @@ def poincare_map(settings: Mapping | PoincareScene) -> xr.Dataset:
                  "velocity just before the impact at a1, the period and the largest displacement, for n_cycles "
                  "cycles, and the amplitude named by amplitude_variable; every event of the run (impacts and ends "
                  "of the impulse zones); and the fixed point of Eq. (19) as printed."),
-        study=scene.study.name, n_cycles=scene.n_cycles, amplitude_variable=scene.amplitude,
+        **scene.study.attributes(), n_cycles=scene.n_cycles, amplitude_variable=scene.amplitude,
     )
 
 
@@ -99,7 +99,7 @@ def shock_detail(settings: Mapping | ShockScene) -> xr.Dataset:
                  "acceleration windows, on a uniform grid of samples_per_second with, at each event, a sample at "
                  "the largest float below its time and one at its time; the impacts in the window with their "
                  "impulse and dissipated energy; and every event in the window."),
-        study=scene.study.name,
+        **scene.study.attributes(),
     )
 
 
@@ -123,5 +123,5 @@ def phase_diagram(settings: Mapping | PhaseScene) -> xr.Dataset:
                  "natural period 2 pi sqrt(M/K) with, at each impact, a sample at the largest float below its time "
                  "and one at its time; the per-cycle Poincare map; and every impact with its impulse and "
                  "dissipated energy."),
-        study=scene.study.name, n_cycles=scene.n_cycles, samples_per_period=scene.samples_per_period,
+        **scene.study.attributes(), n_cycles=scene.n_cycles, samples_per_period=scene.samples_per_period,
     )

@@ -82,7 +82,7 @@ def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = 100
         "parameters are constants), the fixed point of the simulated return map of the velocity before the impact "
         "at a1, found by Newton's method, the period of the cycle there, the multiplier mu_2 measured by central "
         "differences of the map beside (1 - b)**4 of Eq. (21), and how the cycle from the fixed point ended.",
-        solver="exact, vectorised ensemble", study=scene.study.name)
+        solver="exact, vectorised ensemble", **scene.study.attributes())
     timings = {"ensemble_seconds_per_trajectory": ensemble, "scalar_seconds_per_trajectory": scalar,
                "ensemble_speedup_per_trajectory": scalar / ensemble}
     return assemble(variables, attrs), timings
@@ -135,7 +135,7 @@ def existence_map(settings: Mapping | ExistenceMapScene) -> xr.Dataset:
         "coordinates; the other parameters and the release are constants), how a run of the exact solver "
         "(vectorised ensemble) from the release ended and whether it reached a limit cycle, beside the closed-form "
         "forces F* and F*' below which the map (16), read at a1 or at a3, has no fixed point.",
-        solver="exact, vectorised ensemble", study=scene.study.name)
+        solver="exact, vectorised ensemble", **scene.study.attributes())
     return assemble(variables, attrs)
 
 
@@ -193,5 +193,5 @@ def escapement_error(settings: Mapping | EscapementErrorScene) -> xr.Dataset:
         "cycle's largest displacement, its period measured by the exact solver from the fixed point of the map "
         "(16), the period by the corrected Eqs. (24)-(25), and the rate of a clock counting the natural period per "
         "swing, split into the impacts' part dT1 and the impulse zones' part dT2.",
-        solver="exact", study=scene.study.name)
+        solver="exact", **scene.study.attributes())
     return assemble(variables, attrs)

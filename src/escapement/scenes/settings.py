@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.parameters import ParameterError, Parameters, check_initial_state
+from ..studies.readings import AMPLITUDES as DEFINED_AMPLITUDES
 
 __all__ = ["KINDS", "REPLICATION", "EscapementErrorScene", "ExistenceMapScene", "Kind", "LongRunScene",
            "PhaseScene", "PoincareScene", "Release", "ShockScene", "StabilityMapScene", "Study", "positive_int",
@@ -29,33 +30,55 @@ REPLICATION = "replication"
 
 @dataclass(frozen=True)
 class Kind:
-    """A kind of scene: its configuration block, its name in files, what it shows and the paper's figure."""
+    """A kind of scene: its configuration block, its name in files, what it shows and the paper's figure; and the
+    model's keys its data do not depend on, each with the reason (an axis, the zones: the scenes never take them
+    from the model block)."""
 
     block: str
     name: str
     shows: str
     figure: str | None = None
     label: str = "{}"  #: how a scene's label reads in a title
+    ignores: tuple[tuple[str, str], ...] = ()  #: (model key, why the kind's data do not depend on it)
+
+    @property
+    def ignored(self) -> tuple[str, ...]:
+        """The model's keys this kind's data do not depend on."""
+        return tuple(key for key, _ in self.ignores)
+
+    def why(self, keys) -> str:
+        """Why the kind's data do not depend on ``keys``, each reason once, in the kind's order."""
+        return "; ".join(dict.fromkeys(reason for key, reason in self.ignores if key in keys))
 
 
-#: every kind of scene a study may hold, by its configuration block
+#: every kind of scene a study may hold, by its configuration block (the escapement error's zones set the impact
+#: positions of the first half cycle and mirror them in the second; whether a release settles on a limit cycle is
+#: the same for every mass: x(t) depends on M only through omega t)
 KINDS = {k.block: k for k in (
     Kind("fig3", "poincare_map", "Poincare map", "Fig. 3", "case {}"),
     Kind("fig4", "shock_detail", "shock detail", "Fig. 4"),
     Kind("fig5", "phase_diagrams", "phase diagram", "Fig. 5", "K = {} N/m"),
-    Kind("escapement_error", "escapement_error", "escapement error: rate against amplitude"),
-    Kind("stability_map", "stability_map", "stability and existence map over (b, F)"),
-    Kind("existence_map", "existence_map", "existence map of the limit cycle over (a3, F)"),
+    Kind("escapement_error", "escapement_error", "escapement error: rate against amplitude",
+         ignores=(("F", "F is its axis"),
+                  *((key, "its zones set a1 and a2, and a3 = -a1, a4 = -a2") for key in ("a1", "a2", "a3", "a4")))),
+    Kind("stability_map", "stability_map", "stability and existence map over (b, F)",
+         ignores=(("b", "b is its axis"), ("F", "F is its axis"))),
+    Kind("existence_map", "existence_map", "existence map of the limit cycle over (a3, F)",
+         ignores=(("a3", "a3 is its axis"), ("F", "F is its axis"),
+                  ("M", "its outcome does not depend on M (the mass sets only the time scale, sqrt(M/K))"))),
 )}
 
 
 @dataclass(frozen=True)
 class Study:
-    """Where a scene belongs: the study (``replication``, or the user's own by its name) and the scene's label
-    within its kind (a Fig. 3 case, a spring constant), which name its files and title its dataset."""
+    """Where a scene belongs: the study (``replication``, or the user's own by its name), the scene's label
+    within its kind (a Fig. 3 case, a spring constant), which name its files and title its dataset, and, for a
+    study of the user's own, what in its kind differs from the paper's scenes (one line, written by the
+    workflow's configuration)."""
 
     name: str
     label: str = ""
+    changes: str = ""
 
     def title(self, block: str) -> str:
         """The dataset's title: what it shows, and the paper's figure for the replication's scenes."""
@@ -66,40 +89,81 @@ class Study:
                    f"({kind.figure} of Mao, Fu & Li 2013)"
         return f"{kind.shows[:1].upper()}{kind.shows[1:]} of the escapement model{label}, study {self.name}"
 
+    def attributes(self) -> dict[str, str]:
+        """The dataset's global attributes that place it: ``study`` and, for a study of the user's own,
+        ``study_changes`` (what differs from the paper's scenes of its kind)."""
+        return {"study": self.name, **({"study_changes": self.changes} if self.changes else {})}
+
     @classmethod
     def from_mapping(cls, values: Mapping) -> Study:
-        return cls(str(values.get("study", REPLICATION)), str(values.get("label", "")))
+        return cls(str(values.get("study", REPLICATION)), str(values.get("label", "")), str(values.get("changes", "")))
 
 
-def positive_int(name: str, value: object, most: int | None = None) -> int:
-    """``value`` as an int if it is an integer >= 1 (and <= ``most``), not a bool; else ParameterError."""
-    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1 or (most and value > most):
-        raise ParameterError(name, value, "a positive integer" + (f" <= {most:_}" if most else ""))
+def positive_int(name: str, value: object, most: int | None = None, least: int = 1) -> int:
+    """``value`` as an int if it is an integer in ``[least, most]`` (no upper bound without ``most``), not a bool;
+    else ParameterError."""
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < least or (most and value > most):
+        raise ParameterError(name, value, f"an integer in [{least:_}, {most:_}]" if most else
+                             "a positive integer" if least == 1 else f"an integer >= {least:_}")
     return int(value)
+
+
+def _real(value: object) -> bool:
+    return isinstance(value, int | float | np.integer | np.floating) and not isinstance(value, bool)
 
 
 def time_window(name: str, window: object) -> tuple[float, float]:
     """The window ``[start, end]`` (s) with ``0 <= start < end < inf``; else ParameterError naming ``name``."""
-    try:
-        lo, hi = (float(w) for w in window)  # type: ignore[union-attr]
-    except (TypeError, ValueError) as err:
-        raise ParameterError(name, window, "a pair [start, end] of times in s") from err
+    if isinstance(window, str | bytes | Mapping) or not hasattr(window, "__len__") or len(window) != 2 \
+            or not all(_real(w) for w in window):  # type: ignore[union-attr]
+        raise ParameterError(name, window, "a pair [start, end] of times in s")
+    lo, hi = (float(w) for w in window)  # type: ignore[union-attr]
     if not 0 <= lo < hi < np.inf:
         raise ParameterError(name, window, "a pair [start, end] with 0 <= start < end (s)")
     return lo, hi
 
 
-def _axis(name: str, axis: Mapping) -> tuple[float, float, int]:
-    """``(start, stop, n)`` of a configured axis, with ``start < stop`` (or one point)."""
-    start, stop, n = float(axis["start"]), float(axis["stop"]), positive_int(f"{name}.n", axis["n"], 2000)
+#: The bounds [least, most] of each count a scene takes, by its configuration block and key (an axis's number of
+#: points as ``<axis>.n``): what fits a laptop's memory and runs in minutes. The configuration's schema states
+#: them too, for the refusals before any scene is built; tests/pipeline/test_config_hostile.py checks that each
+#: count the schema bounds in these blocks is here with the same bounds.
+COUNTS = {
+    "fig3.n_cycles": (1, 1_000_000),
+    "fig4.samples_per_second": (1, 100_000),
+    "fig5.n_cycles": (1, 10_000),
+    "fig5.samples_per_period": (8, 100_000),  # the impulse zones resolved (tests/pipeline/test_fig5_sampling.py)
+    "escapement_error.F.n": (1, 1_000),
+    "stability_map.b.n": (1, 2_000),
+    "stability_map.F.n": (1, 2_000),
+    "existence_map.a3.n": (1, 400),
+    "existence_map.F.n": (1, 400),
+    "existence_map.n_cycles": (2, 10_000),  # convergence compares the last two cycles
+    "long_run.n_cycles": (10, 100_000_000),
+    "long_run.ivp_cycles": (10, 20_000),
+}
+
+
+def _count(key: str, value: object) -> int:
+    """``value`` within the bounds of ``key`` (``block.key``) in :data:`COUNTS`, named without its block."""
+    least, most = COUNTS[key]
+    return positive_int(key.split(".", 1)[1], value, most, least)
+
+
+def _axis(block: str, name: str, axis: object) -> tuple[float, float, int]:
+    """``(start, stop, n)`` of the axis ``name`` of ``block``, with finite ``start < stop`` (or one point) and ``n``
+    within :data:`COUNTS`."""
+    if not isinstance(axis, Mapping) or set(axis) != {"start", "stop", "n"} or not _real(axis["start"]) \
+            or not _real(axis["stop"]):
+        raise ParameterError(name, axis, "an axis {start, stop, n}: two numbers and a count")
+    start, stop, n = float(axis["start"]), float(axis["stop"]), _count(f"{block}.{name}.n", axis["n"])
     if not (np.isfinite(start) and np.isfinite(stop) and (start < stop or n == 1)):
         raise ParameterError(name, dict(axis), "an axis {start, stop, n} with finite start < stop")
     return start, stop, n
 
 
-#: the definitions of Fig. 3's amplitude, by the name of the variable that holds it (their values:
-#: escapement.studies.readings.AMPLITUDES, with the readings of the printed axes)
-AMPLITUDES = ("amplitude_h0", "amplitude_h4", "largest_displacement", "largest_abs_displacement")
+#: the definitions of Fig. 3's amplitude, by the name of the variable that holds it (defined, with the readings
+#: of the printed axes, by escapement.studies.readings.AMPLITUDES)
+AMPLITUDES = tuple(DEFINED_AMPLITUDES)
 
 #: the most samples a sampled time series may hold (three float64 arrays: 240 MB)
 MAX_SAMPLES = 10_000_000
@@ -134,7 +198,7 @@ class PoincareScene:
         if values["amplitude"] not in AMPLITUDES:
             raise ParameterError("amplitude", values["amplitude"], f"one of {', '.join(AMPLITUDES)}")
         return cls(Study.from_mapping(values), Parameters.from_mapping(values), Release.from_mapping(values),
-                   positive_int("n_cycles", values["n_cycles"], 1_000_000), str(values["amplitude"]))
+                   _count("fig3.n_cycles", values["n_cycles"]), str(values["amplitude"]))
 
 
 @dataclass(frozen=True)
@@ -151,7 +215,7 @@ class ShockScene:
     @classmethod
     def from_mapping(cls, values: Mapping) -> ShockScene:
         windows = {name: time_window(name, values[name]) for name in ("velocity_window", "acceleration_window")}
-        rate = positive_int("samples_per_second", values["samples_per_second"], 100_000)
+        rate = _count("fig4.samples_per_second", values["samples_per_second"])
         for name, (lo, hi) in windows.items():
             if (hi - lo) * rate > MAX_SAMPLES:
                 raise ParameterError("samples_per_second", rate, f"at most {MAX_SAMPLES:_} samples over the "
@@ -172,8 +236,8 @@ class PhaseScene:
 
     @classmethod
     def from_mapping(cls, values: Mapping) -> PhaseScene:
-        n_cycles = positive_int("n_cycles", values["n_cycles"], 10_000)
-        per_period = positive_int("samples_per_period", values["samples_per_period"], 100_000)
+        n_cycles = _count("fig5.n_cycles", values["n_cycles"])
+        per_period = _count("fig5.samples_per_period", values["samples_per_period"])
         if n_cycles * per_period > MAX_SAMPLES:
             raise ParameterError("samples_per_period", per_period, f"at most {MAX_SAMPLES:_} samples with "
                                  f"n_cycles = {n_cycles} ({n_cycles * per_period:_} asked)")
@@ -193,7 +257,7 @@ class EscapementErrorScene:
 
     @classmethod
     def from_mapping(cls, values: Mapping) -> EscapementErrorScene:
-        start, stop, n = _axis("F", values["F"])
+        start, stop, n = _axis("escapement_error", "F", values["F"])
         if start <= 0:
             raise ParameterError("F.start", start, "a number > 0 (N): the forces are spaced geometrically")
         forces = tuple(start * (stop / start) ** (i / (n - 1)) if n > 1 else start for i in range(n))
@@ -227,8 +291,8 @@ class StabilityMapScene:
 
     @classmethod
     def from_mapping(cls, values: Mapping) -> StabilityMapScene:
-        b_values = cell_centres(*_axis("b", values["b"]))
-        start, stop, n = _axis("F", values["F"])
+        b_values = cell_centres(*_axis("stability_map", "b", values["b"]))
+        start, stop, n = _axis("stability_map", "F", values["F"])
         F_values = tuple(start + (stop - start) * j / max(n - 1, 1) for j in range(n))
         for b in (b_values[0], b_values[-1]):  # every cell's model is valid if the corners' are
             for force in (F_values[0], F_values[-1]):
@@ -252,16 +316,15 @@ class ExistenceMapScene:
 
     @classmethod
     def from_mapping(cls, values: Mapping) -> ExistenceMapScene:
-        a3_values, F_values = cell_centres(*_axis("a3", values["a3"])), cell_centres(*_axis("F", values["F"]))
+        a3_values = cell_centres(*_axis("existence_map", "a3", values["a3"]))
+        F_values = cell_centres(*_axis("existence_map", "F", values["F"]))
         for a3 in (a3_values[0], a3_values[-1]):
             for force in (F_values[0], F_values[-1]):
                 Parameters(**{**_model(values), "a3": a3, "F": force})
-        tolerance = float(values["tolerance"])
+        tolerance = float(values["tolerance"]) if _real(values["tolerance"]) else np.nan
         if not 0 < tolerance < 1:
             raise ParameterError("tolerance", values["tolerance"], "a relative tolerance in (0, 1)")
-        n_cycles = positive_int("n_cycles", values["n_cycles"], 10_000)
-        if n_cycles < 2:
-            raise ParameterError("n_cycles", n_cycles, "at least 2: convergence compares the last two cycles")
+        n_cycles = _count("existence_map.n_cycles", values["n_cycles"])
         params = Parameters.from_mapping({**values, "a3": a3_values[0], "F": F_values[0]})
         return cls(Study.from_mapping(values), params, Release.from_mapping(values), a3_values, F_values,
                    n_cycles, tolerance)
@@ -282,5 +345,5 @@ class LongRunScene:
     @classmethod
     def from_mapping(cls, values: Mapping) -> LongRunScene:
         return cls(Parameters.from_mapping(values), Release.from_mapping(values),
-                   positive_int("n_cycles", values["n_cycles"], 100_000_000), str(values["ivp_method"]),
-                   float(values["ivp_rtol"]), positive_int("ivp_cycles", values["ivp_cycles"], 20_000))
+                   _count("long_run.n_cycles", values["n_cycles"]), str(values["ivp_method"]),
+                   float(values["ivp_rtol"]), _count("long_run.ivp_cycles", values["ivp_cycles"]))
