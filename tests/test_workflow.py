@@ -7,6 +7,7 @@ current, every netCDF output against CF-1.11 and ACDD-1.3, and the report in a b
 
 from __future__ import annotations
 
+import re
 import shutil
 from pathlib import Path
 
@@ -219,6 +220,36 @@ def test_a_deleted_data_file_is_made_again_by_a_plain_run(run, tmp_path):
     (where / "results/replication/readings.csv").unlink()
     planned = planned_jobs(where)
     assert planned["long_run"] == 1 and planned["poincare_map"] == 1 and planned["readings"] == 1
+
+
+@pytest.mark.parametrize("config, planned, said", [
+    # the escapement error sets a3 = -a1, a4 = -a2 from its zones; the existence map's axis is a3
+    ("model={a3: 0.12, a4: -0.03}", {"poincare_map": 2, "shock_detail": 1, "phase_diagrams": 3, "stability_map": 1,
+                                     "existence_map": 1},
+     "your study 'own': escapement_error does not run: its zones set a1 and a2"),
+    ("model={b: 0.3}", {"poincare_map": 2, "shock_detail": 1, "phase_diagrams": 3, "escapement_error": 1,
+                        "existence_map": 1}, "your study 'own': stability_map does not run: b is its axis"),
+    ("fig3={cases: {c: {F: 0.75, x0: -2.0}}}", {"poincare_map": 3}, None),  # the paper's a and b, and c
+    ("model={F: 2.0}", {}, "does not run: nothing you changed (model.F = 2) reaches a scene"),
+])
+def test_a_study_runs_only_the_kinds_its_changes_reach_and_says_why_of_the_others(run, config, planned, said):
+    result = snakemake(run[0], "--dry-run", "--cores", "2", "--config", config)
+    jobs = {m[0]: int(m[1]) for m in re.findall(r"^(\w+)\s+(\d+)\s*$", result.stdout, re.M)
+            if m[0] not in ("job", "all", "total") and not m[0].startswith("plot_")}
+    assert jobs == planned
+    assert said is None or said in result.stderr
+
+
+def test_a_target_no_rule_makes_is_refused_in_one_line_naming_what_the_study_draws(run):
+    result = snakemake(run[0], "--dry-run", "--cores", "2", "results/replication/figures/fig3.png", check=False)
+    said = [line for line in result.stderr.splitlines() if "fig3.png" in line]
+    assert result.returncode == 1 and len(said) == 1 and "Traceback" not in result.stderr
+    assert said[0].startswith("results/replication/figures/fig3.png is not made by this configuration (the paper's "
+                              "Fig. 3 is drawn as poincare_map.png")
+    result = snakemake(run[0], "--dry-run", "--cores", "2", "results/own/figures/phase_diagrams.png", "--config",
+                       "fig3={n_cycles: 20}", check=False)
+    assert result.returncode == 1 and "Traceback" not in result.stderr + result.stdout
+    assert "the study 'own' draws poincare_map.png (and .pdf)" in result.stderr
 
 
 def test_an_invalid_configuration_stops_before_any_job_in_one_line(run):

@@ -16,9 +16,7 @@ a ``--config`` entry, read by one YAML reader, strictly and within bounds (:mod:
 
 from __future__ import annotations
 
-import hashlib
 from collections.abc import Mapping
-from pathlib import Path
 
 from ..model.parameters import ParameterError
 from ..scenes.settings import (
@@ -36,7 +34,7 @@ from ..scenes.settings import (
 from .changes import KindPlan, changed_model_keys, describe, filled, leaves, merged, notes
 from .sources import ConfigError, read_yaml, refusal, typed_overrides, user_config, validated
 
-__all__ = ["ConfigError", "check_cases", "code_digest", "laid_over", "own_blocks", "read_yaml", "refusal",
+__all__ = ["ConfigError", "check_cases", "laid_over", "own_blocks", "read_yaml", "refusal",
            "replication_scenes", "study_notes", "study_scenes", "typed_overrides", "user_config", "validated"]
 
 #: the blocks a user's configuration may lay over the paper's (besides ``name``)
@@ -220,15 +218,3 @@ def check_cases(paper: Mapping) -> list[dict]:
                   for force in checks["forces"]["F"]]
     return cases
 
-
-def code_digest(root: str | Path, *parts: str) -> str:
-    """A digest of the source files under ``parts`` (folders or files, relative to ``root``): a rule's params
-    hold the digest of the layers it runs, so that Snakemake's params trigger reruns a job when their code
-    changes (Snakemake itself follows only a rule's own script)."""
-    digest = hashlib.sha256()
-    for part in parts:
-        path = Path(root, part)
-        for file in sorted(path.rglob("*") if path.is_dir() else [path]):
-            if file.is_file() and file.suffix in (".py", ".yaml", ".mplstyle") and "__pycache__" not in file.parts:
-                digest.update(file.relative_to(root).as_posix().encode() + b"\0" + file.read_bytes())
-    return digest.hexdigest()[:16]
