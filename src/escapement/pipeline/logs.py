@@ -1,4 +1,5 @@
-"""One log file per job: what it did, how long it took, and the traceback if it failed."""
+"""One log file per job: what it did, how long it took, and why it failed: one line when the machine refused (a
+read-only folder, a full disk: an OSError), the traceback for anything else."""
 
 from __future__ import annotations
 
@@ -24,6 +25,9 @@ def logged(log: str | Path, what: str) -> Iterator[logging.Logger]:
     try:
         yield logger
         logger.info("%s done in %.3f s", what, time.perf_counter() - start)
+    except OSError as err:  # not a fault of the code: the job fails with one line naming the file and the cause
+        logger.error("%s failed: %s", what, err)
+        raise SystemExit(f"{what} failed: {err}") from None
     except Exception:
         logger.exception("%s failed", what)
         raise
