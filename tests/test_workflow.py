@@ -255,7 +255,7 @@ def test_a_target_no_rule_makes_is_refused_in_one_line_naming_what_the_study_dra
 def test_an_invalid_configuration_stops_before_any_job_in_one_line(run):
     """Each refusal's words are tested on the configuration's functions (tests/pipeline/test_config.py); here,
     that Snakemake stops on one before planning any job."""
-    message = "the configuration: model.M = 0 is invalid: M must be a number > 0 (kg)"
+    message = "the configuration: model.M = 0.0 is invalid: M must be > 0 (kg)"
     result = snakemake(run[0], "--dry-run", "--cores", "2", "--config", "model={M: 0}", check=False)
     assert result.returncode != 0 and message in result.stdout + result.stderr and "Job stats" not in result.stdout
 

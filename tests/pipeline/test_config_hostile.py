@@ -40,7 +40,7 @@ def mapping_bomb(levels: int = 9) -> str:
     return "{" + ", ".join(parts) + "}"
 
 
-def refused_fast(read, match: str, seconds: float = 2.0, megabytes: float = 20.0) -> str:
+def refused_fast(read, match: str, seconds: float = 5.0, megabytes: float = 20.0) -> str:
     """``read()`` refused with a one-line ConfigError matching ``match``, within ``seconds`` and ``megabytes``."""
     tracemalloc.start()
     start = time.perf_counter()

@@ -27,6 +27,8 @@ try:
     PAPER = settings.read_yaml("config/paper.yaml")
     checked(config, "config.schema.yaml", "the configuration")
     checked(PAPER, "paper.schema.yaml", "config/paper.yaml")
+    settings.check_model(PAPER["model"], "config/paper.yaml")
+    settings.check_model({**PAPER["model"], **config.get("model", {})}, "the configuration")
     NAME = config.get("name", "own")
     STUDIES = {"replication": settings.study_scenes("replication", PAPER)}
     OWN = settings.own_blocks(config, PAPER)

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from ..model.parameters import ParameterError
+from ..model.parameters import ParameterError, Parameters
 from ..scenes.settings import (
     KINDS,
     REPLICATION,
@@ -34,7 +34,7 @@ from ..scenes.settings import (
 from .changes import KindPlan, changed_model_keys, describe, filled, leaves, merged, notes
 from .sources import ConfigError, read_yaml, refusal, typed_overrides, user_config, validated
 
-__all__ = ["ConfigError", "check_cases", "laid_over", "own_blocks", "read_yaml", "refusal",
+__all__ = ["ConfigError", "check_cases", "check_model", "laid_over", "own_blocks", "read_yaml", "refusal",
            "replication_scenes", "study_notes", "study_scenes", "typed_overrides", "user_config", "validated"]
 
 #: the blocks a user's configuration may lay over the paper's (besides ``name``)
@@ -218,3 +218,13 @@ def check_cases(paper: Mapping) -> list[dict]:
                   for force in checks["forces"]["F"]]
     return cases
 
+
+
+def check_model(model: Mapping, source: str) -> None:
+    """The model block (laid over the paper's) by the model's own rules, :class:`Parameters` being the one
+    statement of each parameter's bounds (the schema states only their types); :class:`ConfigError` naming
+    ``model.<key>``. F belongs to the scenes: checked there, with each scene."""
+    try:
+        Parameters.from_mapping({"F": 0.0, **model})
+    except ParameterError as err:
+        raise ConfigError(f"{source}: model.{err}") from None
