@@ -10,7 +10,9 @@ from escapement.scenes.settings import KINDS
 def checked(data, schema, source):
     """``data`` against the JSON schema ``schema`` of workflow/schemas by Snakemake's validate, its first violation
     in one line naming the key (an unknown key with the closest valid one)."""
-    settings.validated(data, Path(workflow.basedir, "workflow", "schemas", schema), source)
+    settings.validated(
+        data, Path(workflow.basedir, "workflow", "schemas", schema), source
+    )
 
 
 # A refusal is one line on the console, before any job: a SystemExit's message (Snakemake prints a WorkflowError
@@ -19,23 +21,39 @@ def checked(data, schema, source):
 # size, depth and items, no anchors or aliases, a key given twice refused, numbers the same from a file and from
 # --config; then each source against its schema; then every scene built and checked.
 try:
-    replaced = workflow.config_settings.replace_workflow_config and workflow.config_settings.overwrite_config
-    own = settings.user_config([*([] if replaced else ["config/config.yaml"]), *workflow.config_settings.configfiles],
-                               workflow.config_settings.config_args)
+    replaced = (
+        workflow.config_settings.replace_workflow_config
+        and workflow.config_settings.overwrite_config
+    )
+    own = settings.user_config(
+        [
+            *([] if replaced else ["config/config.yaml"]),
+            *workflow.config_settings.configfiles,
+        ],
+        workflow.config_settings.config_args,
+    )
     config.clear()  # every source as the project reads it, in place of Snakemake's reading
     config.update(own)
     PAPER = settings.read_yaml("config/paper.yaml")
     checked(config, "config.schema.yaml", "the configuration")
     checked(PAPER, "paper.schema.yaml", "config/paper.yaml")
     settings.check_model(PAPER["model"], "config/paper.yaml")
-    settings.check_model({**PAPER["model"], **config.get("model", {})}, "the configuration")
+    settings.check_model(
+        {**PAPER["model"], **config.get("model", {})}, "the configuration"
+    )
     NAME = config.get("name", "own")
     STUDIES = {"replication": settings.study_scenes("replication", PAPER)}
     OWN = settings.own_blocks(config, PAPER)
-    for note in settings.study_notes(config, PAPER):  # each kind the user's changes do not reach, and why
+    # each kind the user's changes do not reach, and why
+    for note in settings.study_notes(config, PAPER):
         print(note, file=sys.stderr)
-    if len(OWN) > 1:  # the paper's bounds hold on the study, the user's cases and zones joined to the paper's
-        checked(settings.laid_over(config, PAPER), "paper.schema.yaml", f"your study '{NAME}'")
+    # the paper's bounds hold on the study, the user's cases and zones joined to the paper's
+    if len(OWN) > 1:
+        checked(
+            settings.laid_over(config, PAPER),
+            "paper.schema.yaml",
+            f"your study '{NAME}'",
+        )
         STUDIES[NAME] = settings.study_scenes(NAME, OWN)
     RUNS = settings.replication_scenes(PAPER)
 except settings.ConfigError as err:

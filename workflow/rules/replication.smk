@@ -69,9 +69,13 @@ rule check_claims:
     input:
         register="workflow/claims.yaml",
         schema="workflow/schemas/claims.schema.yaml",
-        fig3=outputs.data_files("replication", "fig3", STUDIES["replication"]["fig3"]).values(),
+        fig3=outputs.data_files(
+            "replication", "fig3", STUDIES["replication"]["fig3"]
+        ).values(),
         fig4="results/replication/shock_detail.nc",
-        fig5=outputs.data_files("replication", "fig5", STUDIES["replication"]["fig5"]).values(),
+        fig5=outputs.data_files(
+            "replication", "fig5", STUDIES["replication"]["fig5"]
+        ).values(),
         checks="results/replication/checks.nc",
         readings="results/replication/readings.csv",
     output:
