@@ -34,14 +34,12 @@ QUANTITIES = {**PARAMETERS, **INITIAL_STATE}
 
 
 def merged(base: Mapping, over: Mapping) -> dict:
-    """``over`` laid over ``base`` key by key at every level: where both hold a mapping under a key they are
-    merged; any other value of ``over`` (a number, a list) replaces ``base``'s. Neither is changed."""
+    """``over`` laid over ``base`` key by key at every level, by Snakemake's own rule for configuration sources
+    (``snakemake.utils.update_config``: mappings merged, any other value, a list too, replaced); neither changed."""
+    from snakemake.utils import update_config
+
     out = copy.deepcopy(dict(base))
-    for key, value in over.items():
-        if isinstance(value, Mapping) and isinstance(out.get(key), Mapping):
-            out[key] = merged(out[key], value)
-        else:
-            out[key] = copy.deepcopy(value)
+    update_config(out, copy.deepcopy(dict(over)))
     return out
 
 
