@@ -68,7 +68,9 @@ def test_the_weakest_evidence_and_unknown_words():
     (["reproduced", "undetermined"], "undetermined"),
     (["undetermined", "undetermined"], "undetermined"),
     (["reproduced", "not_reproduced"], "partially_reproduced"),
-    (["consistent", "not_reproduced", "undetermined"], "partially_reproduced"),
+    (["consistent", "not_reproduced", "undetermined"], "not_reproduced"),  # a consistent part confirms nothing
+    (["consistent", "not_reproduced"], "not_reproduced"),
+    (["reproduced", "consistent", "not_reproduced"], "partially_reproduced"),
     (["undetermined", "not_reproduced"], "not_reproduced"),
     (["not_reproduced", "not_reproduced"], "not_reproduced"),
     (["untestable", "reproduced"], "reproduced"),
@@ -76,3 +78,21 @@ def test_the_weakest_evidence_and_unknown_words():
 ])
 def test_a_finding_takes_the_rule_over_its_parts(parts, status):
     assert finding_status(parts) == status
+
+
+def test_the_finding_rule_is_one_rule_over_every_combination_of_parts():
+    """Every combination of up to four part statuses: the order of the parts does not matter; a consistent part
+    changes no finding but a reproduced one (to consistent); partially reproduced exactly when a part is reproduced
+    and another not reproduced."""
+    import itertools
+
+    row_statuses = [s for s in STATUSES if s != "partially_reproduced"]  # a row is never partial
+    for n in range(1, 5):
+        for parts in itertools.combinations_with_replacement(row_statuses, n):
+            found = finding_status(parts)
+            assert all(finding_status(p) == found for p in itertools.permutations(parts))
+            tested = [s for s in parts if s != "untestable"]
+            if tested:
+                alone = finding_status(tested + ["consistent"])
+                assert alone == ("consistent" if found == "reproduced" else found), parts
+            assert (found == "partially_reproduced") == ("reproduced" in parts and "not_reproduced" in parts)

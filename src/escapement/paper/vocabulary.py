@@ -21,8 +21,8 @@ __all__ = ["CONSISTENT", "EVIDENCE", "NOT", "ORIGINS", "PARTIAL", "REPRODUCED", 
 #: every status a row or a finding may have, with what it means
 STATUSES: dict[str, str] = {
     "reproduced": "holds under every reading of the sentence's words, on evidence computed independently of it",
-    "partially_reproduced": ("a finding only: a named part of the sentence holds under every reading, another "
-                             "fails under every reading"),
+    "partially_reproduced": ("a finding only: a named part of the sentence is reproduced (holds under every "
+                             "reading, on independent evidence), another fails under every reading"),
     "not_reproduced": "fails under every reading of the sentence's words",
     "consistent": ("holds, but by construction (the model is built from it) or under a reading or threshold chosen "
                    "by the project: it confirms nothing"),
@@ -88,17 +88,17 @@ def weighed(status: str, evidence: str) -> str:
 
 
 def finding_status(statuses: Iterable[str]) -> str:
-    """A sentence's status from its parts' (its rows'): every part holds, reproduced (consistent if one part
-    holds only so); no part fails under every reading, undetermined; some part fails under every reading,
-    partially reproduced if another holds under every reading, else not reproduced. Untestable parts count
-    only when every part is."""
+    """A sentence's status from its parts' (its rows'), one rule for every part: every part holds, reproduced
+    (consistent if one part holds only so); no part fails under every reading, undetermined; some part fails under
+    every reading, partially reproduced if another part is reproduced, else not reproduced. A consistent part
+    confirms nothing, so it never lifts a failing finding: {consistent, not reproduced} is not reproduced, as
+    {not reproduced} alone. Untestable parts count only when every part is."""
     statuses = list(statuses)
     tested = [s for s in statuses if s != UNTESTABLE]
     if not tested:
         return UNTESTABLE
-    holds = [s for s in tested if s in (REPRODUCED, CONSISTENT)]
-    if len(holds) == len(tested):
-        return CONSISTENT if CONSISTENT in holds else REPRODUCED
+    if all(s in (REPRODUCED, CONSISTENT) for s in tested):
+        return CONSISTENT if CONSISTENT in tested else REPRODUCED
     if NOT not in tested:
         return UNDETERMINED
-    return PARTIAL if holds else NOT
+    return PARTIAL if REPRODUCED in tested else NOT
