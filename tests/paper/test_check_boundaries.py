@@ -250,7 +250,7 @@ def test_stability_over_b_at_the_tolerance_and_at_b_equal_to_1():
 
 
 def test_the_trivial_multiplier_and_the_other_within_the_tolerance_on_both_sides():
-    row = register_row("eq8_trivial_multiplier", 1e-8, 0)
+    row = register_row("eq8_trivial_multiplier", 1e-8)  # the conclusion, mu1 = 1, a part checked as stated
     group = row["args"]["group"]
     for key, centre in (("floquet_major", 1.0), ("floquet_minor", 0.6561)):
         for factor, side in SIDES:
@@ -404,16 +404,25 @@ def test_the_step_times_of_eq22_hold_to_their_relative_tolerance_of_the_simulate
 
 
 def test_eq24_holds_to_its_relative_tolerance_of_the_measured_phase_delay(monkeypatch):
-    """The delay of the impact at a1 (a1 = -0.1, v1 = 1, w = 1), by hand atan(10) - atan(9), which the first
-    form gives under every velocity convention and the second with the velocity before the impact: measured
-    as that / (1 +/- e), both forms reproduce under that convention inside the tolerance, neither outside."""
-    from escapement.paper import corrected
-    row = register_row("eq24_impact_perturbation", 1e-6)
+    """The delay of the impact at a1 (a1 = -0.1, v1 = 1, w = 1), by hand atan(10) - atan(9), which the first form
+    gives with x1+ the velocity after the impact (Eq. (10)): measured as that / (1 +/- e), the first form
+    reproduces inside the tolerance, not outside. The second form, with x1+ after the impact too (one convention
+    for the whole equation), gives atan(0.1 * 0.1 * 0.9 / (0.01 + 0.81)) instead, 11 % off: it fails either side."""
+    from escapement.paper import corrected, printed
+    first, second = register_row("eq24_impact_perturbation", 1e-6), register_row("eq24_second_form", 1e-6)
+    assert (first["args"]["form"], second["args"]["form"]) == ("first", "second")
     for factor, expected in ((SIDES[0][0], "reproduced"), (SIDES[1][0], "not_reproduced")):
         for sign in (1.0, -1.0):
             delay = (math.atan(10.0) - math.atan(9.0)) / (1 + sign * factor * 1e-6)
             monkeypatch.setattr(corrected, "impact_phase_jump", lambda position, v, p, delay=delay: delay)
-            assert judged(row, evidence({row["args"]["case"]: fig3([1.0, 1.0])})) == expected, (factor, sign)
+            scene = evidence({first["args"]["case"]: fig3([1.0, 1.0])})
+            assert judged(first, scene) == expected, (factor, sign)
+            assert judged(second, scene) == "not_reproduced", (factor, sign)
+    # a second form that equals the first under the equation's convention reproduces it
+    second_form = math.atan(0.1 * 0.1 * 0.9 / (0.01 + 0.9 * 0.81))
+    monkeypatch.setattr(corrected, "impact_phase_jump", lambda position, v, p: second_form)
+    monkeypatch.setattr(printed, "phase_jump_24", lambda v_before, v_after, s: second_form)
+    assert judged(second, evidence({"a": fig3([1.0, 1.0])})) == "reproduced"
 
 
 # --- Sec. 3.3-3.4: the checks that run the exact solver, given its answers ---------------------------
@@ -446,13 +455,52 @@ def test_one_eigenvalue_of_the_map_8_is_1_while_within_the_tolerance(monkeypatch
     """The map (16) replaced by a line through the fixed point of slope 1 - t f: the Jacobian of (8) has the
     eigenvalues 0 and 1 - t f (central differences of a line: rounding 2e-11 relative, margin 10 %)."""
     from escapement.paper import printed, stability
-    row = register_row("eq8_trivial_multiplier", 1e-8, 1)
+    # the inference from the map (8) is now the reason, a part of the sentence of its own (was the second reading
+    # of eq8_trivial_multiplier): reason and conclusion are parts everywhere
+    row = register_row("eq8_map_reason", 1e-8)
     star = math.sqrt(0.3 / 0.19)
     for factor, expected in ((0.9, "reproduced"), (1.1, "not_reproduced")):
         slope = 1 - factor * 1e-8
         monkeypatch.setattr(stability.pe, "poincare_map_16", lambda x, p, slope=slope: star + slope * (x - star))
         assert stability.pe is printed
         assert judged(row, evidence({"a": fig3([1.0])})) == expected, factor
+
+
+def test_the_lipschitz_quotient_is_the_norm_of_a_to_the_tolerance(monkeypatch):
+    """Both readings of the Lipschitz sentence with the grid's answer replaced: g constant and the largest quotient
+    ||A|| (1 + t (1 -/+ 1e-2)), ||A|| = 1 at K = 1 N/m (margin 1e-14, some 45 units of rounding at 1), holds inside
+    the tolerance and fails outside; a jump of g, however small, fails it at the quotient 1."""
+    from escapement.paper import model_claims
+    for reading in (0, 1):
+        row = register_row("lipschitz_reason", 1e-12, reading)
+        for factor, expected in ((1 - 1e-2, "reproduced"), (1 + 1e-2, "not_reproduced")):
+            monkeypatch.setattr(model_claims, "lipschitz_quotients",
+                                lambda p, x0, v0, r, q=1 + factor * 1e-12: (0.0, q))
+            assert judged(row, evidence({"a": fig3([1.0])})) == expected, (reading, factor)
+        monkeypatch.setattr(model_claims, "lipschitz_quotients", lambda p, x0, v0, r: (1e-300, 1.0))
+        assert judged(row, evidence({"a": fig3([1.0])})) == "not_reproduced", reading
+
+
+def test_mu2_follows_b_alone_to_the_tolerance_and_only_runs_beyond_b_1_fail_to_converge():
+    """Runs at other forces, springs and releases with mu2 = (1 - b)^4 (0.6561 at b = 0.1, 0.0625 at b = 0.5) and one
+    off by +/- t (1 -/+ 1e-6); a run that chatters at b = 1.5 leaves the claim as it is, one that chatters at b = 1,
+    converges at b = 1.2 or stops, fails it."""
+    row = register_row("stability_only_b", 1e-8)
+
+    def stable(off: float) -> list[dict]:
+        return [{"group": "force", "F": 0.2, "x0": -1.0, "multiplier": 0.6561 + off},
+                {"group": "common_force", "K": 10.0}, {"group": "release", "x0": -3.0},
+                {"group": "b", "b": 0.5, "multiplier": 0.0625, "multiplier_eq21": 0.0625}]
+
+    chatter = {"group": "b", "b": 1.5, "outcome": "chattering", "multiplier": math.nan, "multiplier_eq21": 0.0625}
+    for factor, side in SIDES:
+        for sign in (1.0, -1.0):
+            status = judged(row, evidence(checks=runs(*stable(sign * factor * 1e-8), chatter)))
+            assert status == ("reproduced" if side == "inside" else "not_reproduced"), (factor, sign)
+    for other in ({**chatter, "b": 1.0, "multiplier_eq21": 0.0},
+                  {"group": "b", "b": 1.2, "multiplier": 0.0016, "multiplier_eq21": 0.0016},
+                  {"group": "asymmetric", "outcome": "stopped"}):
+        assert judged(row, evidence(checks=runs(*stable(0.0), chatter, other))) == "not_reproduced", other
 
 
 @pytest.mark.parametrize("claim_id, reading, sense", [("asymptotically_stable", 0, "orbital"),

@@ -11,6 +11,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -64,6 +65,36 @@ def test_every_quote_is_the_papers_text_and_every_sentence_is_quoted():
         assert " ".join(sentence.split()) in text, name
     quoted = {c["quote"] for c in register() if c["origin"] == "paper"}
     assert quoted == set(sentences.values())
+
+
+def test_reason_and_conclusion_are_parts_never_readings():
+    """A sentence that gives a reason for its conclusion is checked in two rows of its own, its parts, never as
+    two readings of one row; and Eq. (24)'s two forms, its parts, are read in one convention (their checks differ
+    only in the form)."""
+    for c in register():
+        for r in c["readings"]:
+            assert not re.search(r"\b(reason|conclusion|inference)\b", r["reading"]), c["id"]
+    for reason, conclusion in (("eq8_map_reason", "eq8_trivial_multiplier"),
+                               ("lipschitz_reason", "solution_exists_unique")):
+        assert claim_of(reason)["part"].endswith("(the reason)"), reason
+        assert claim_of(conclusion)["part"].endswith("(the conclusion)"), conclusion
+        assert claim_of(reason)["quote"] == claim_of(conclusion)["quote"]
+    first, second = (claim_of(i)["readings"] for i in ("eq24_impact_perturbation", "eq24_second_form"))
+    assert len(first) == len(second) == 1 and claim_of("eq24_second_form")["quote"] == claim_of(
+        "eq24_impact_perturbation")["quote"]
+    assert {**first[0]["args"], "form": None} == {**second[0]["args"], "form": None}
+
+
+def test_every_row_read_several_ways_names_every_figure_it_tried():
+    """A row whose readings could part says which figures it tried: every figure of the paper (3, 4 and 5) is
+    named, unless the claim holds, or fails, under every reading alike (then no figure has anything to decide)."""
+    alike = re.compile(r"(holds|fails) (under both|under each|from either side)")
+    for c in register():
+        if len(c["readings"]) < 2 or alike.search(c["figures_tried"]):
+            continue
+        named = {d for span in re.findall(r"Figs?\. [0-9][0-9 ,and]*", c["figures_tried"]) for d in re.findall(
+            r"[0-9]", span)}
+        assert named >= {"3", "4", "5"}, (c["id"], named)
 
 
 def _written(tmp_path, mutate) -> Path:

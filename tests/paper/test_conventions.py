@@ -48,9 +48,9 @@ def fig3(v_last: float = 1.0, zone_left: float = 1.0, period: float = 6.3, v5: f
     )
 
 
-def verdict(check, ds: xr.Dataset, tolerance: float = 1e-9):
+def verdict(check, ds: xr.Dataset, tolerance: float = 1e-9, **args):
     ev = Evidence(fig3={"a": ds}, fig4=None, fig5={}, checks=None)
-    return check({"args": {"case": "a"}, "tolerance": tolerance}, ev)
+    return check({"args": {"case": "a", **args}, "tolerance": tolerance}, ev)
 
 
 # --- the readings ------------------------------------------------------------------------------
@@ -156,20 +156,28 @@ def test_eq23_holds_whole_under_one_convention_or_not_at_all():
 # --- Eqs. (24), (25) ---------------------------------------------------------------------------
 
 
-def test_eq24_second_form_needs_the_velocity_before_the_impact(monkeypatch):
+@pytest.mark.parametrize("form", ["first", "second"])
+def test_eq24_is_read_in_one_convention_for_both_forms(monkeypatch, form):
     # at v1 = 1: the sine phase atan2(a1, v) jumps from atan2(-0.1, 1) to atan2(-0.1, 0.9), a delay of
-    # atan(0.1/0.9) - atan(0.1) = 0.011111... - ... s; the second form with x1+ = 0.9 gives
-    # atan(0.1 * 0.1 * 0.9 / (0.01 + 0.9 * 0.81)) instead
+    # atan(0.1/0.9) - atan(0.1) s, which the first form gives with x1+ = 0.9, the velocity after the impact as
+    # Eq. (10) defines it; the second form with the same x1+ = 0.9 gives atan(0.1 * 0.1 * 0.9 / (0.01 + 0.9 * 0.81))
+    # instead (it needs x1 = 1, the velocity before: a misprint). With x1+ read as the velocity before the impact
+    # (x1 after) the first form gives minus the delay and the second the delay: no one reading gives both.
+    # (The second form was judged with the velocity before the impact and the first with the one after: one
+    # symbol read two ways in one equation; now one convention holds for the whole equation.)
     delay = math.atan(0.1 / 0.9) - math.atan(0.1)
-    result = verdict(pc.eq24, fig3(), tolerance=1e-12)
-    assert result.holds is True and "both forms reproduce the phase delay" in result.note
-    assert "with before" in result.note
-    assert result.replicated_value.startswith(f"phase delay of the impact {delay:.10g} s")
     second_as_printed = math.atan(0.1 * 0.1 * 0.9 / (0.01 + 0.9 * 0.81))
-    assert f"second form {second_as_printed:.10g} s" in result.replicated_value
+    result = verdict(pc.eq24, fig3(), tolerance=1e-12, form=form)
+    assert result.holds is (form == "first")
+    assert result.replicated_value == (f"phase delay of the impact {delay:.10g} s; with x1+ after the impact: first "
+                                       f"form {delay:.10g} s, second form {second_as_printed:.10g} s")
+    assert f"the first form gives {-delay:.10g} s and the second {delay:.10g} s" in result.note
+    assert ("named a misprint" in result.note) is (form == "second")
     # a phase delay that neither form gives under any convention
     monkeypatch.setattr(pc.derived, "impact_phase_jump", lambda position, v, p: 1.01 * delay)
-    assert verdict(pc.eq24, fig3(), tolerance=1e-6).holds is False
+    assert verdict(pc.eq24, fig3(), tolerance=1e-6, form=form).holds is False
+    with pytest.raises(ValueError, match="form = 'third'"):
+        verdict(pc.eq24, fig3(), tolerance=1e-6, form="third")
 
 
 def eq25_by_hand(v_in: float, a1: float, a2: float) -> float:

@@ -23,7 +23,8 @@ from escapement.paper.checks import Evidence
 # b = 0.1, K = 1 N/m:
 # F* = (2b - b^2) K (a1^2 - a3^2) / (2 [(1 - b)^2 (a2 - a1) + (a3 - a4)]) = 0.19 * 0.08 / (2 * 0.0905)
 THRESHOLD = 0.19 * 0.08 / (2 * (0.81 * 0.05 + 0.05))
-# initial_amplitude_no_effect: the free swing from rest meets an impact position beyond min(-a1, a3) = 0.1 m
+# initial_amplitude_no_effect and symmetric_convergence_only_b (their readings "whether the motion converges" from
+# every release): the free swing from rest meets an impact position beyond min(-a1, a3) = 0.1 m
 BOUNDARY = 0.1
 # solution_exists_unique: a1 = -0.1, a3 = 0.3, a4 = -0.05 m, f = F / M = 0.1 m/s^2, w^2 = 1 s^-2:
 # v1^2 = w^2 (a3^2 - a1^2) + 2 f (a3 - a4) = 0.08 + 0.07
@@ -33,7 +34,7 @@ CASES = [
     ("asymmetric_convergence_depends", 1, "existence_verdict", THRESHOLD),
     ("initial_amplitude_no_effect", 0, "release_verdict", BOUNDARY),
     ("solution_exists_unique", 0, "grazing_verdict", LIMIT),
-    ("lipschitz_reason", 0, "grazing_verdict", LIMIT),
+    ("symmetric_convergence_only_b", 2, "release_verdict", BOUNDARY),
 ]
 
 

@@ -238,20 +238,18 @@ def test_grazing_verdict_on_synthetic_numbers():
     def row(delta, above="completed", v=0.3873, below="stopped"):
         return {"delta": delta, "above": {"outcome": above, "v_next": v}, "below": {"outcome": below}}
 
-    # one continuation (to the closed form) but no continuity in the release
-    assert [grazing_verdict([row(1e-4), row(1e-12)], 0.3873, 1e-8, c).holds for c in ("unique", "continuous")] == [
-        True, False]
-    assert grazing_verdict([row(1e-12, below="completed")], 0.3873, 1e-8, "continuous").holds is True
-    assert grazing_verdict([row(1e-12, v=0.5)], 0.3873, 1e-8, "unique").holds is False
+    # one continuation (to the closed form), whatever the runs below the grazing release do
+    assert grazing_verdict([row(1e-4), row(1e-12)], 0.3873, 1e-8).holds is True
+    assert grazing_verdict([row(1e-12, below="completed")], 0.3873, 1e-8).holds is True
+    assert grazing_verdict([row(1e-12, v=0.5)], 0.3873, 1e-8).holds is False
 
 
 def test_grazing_uniqueness_with_the_solver():
-    args = dict(positions=[-0.1, 0.05, 0.3, -0.05], F=0.1, deltas=[1e-4, 1e-12], n_cycles=3, conclusion="unique")
+    args = dict(positions=[-0.1, 0.05, 0.3, -0.05], F=0.1, deltas=[1e-4, 1e-12], n_cycles=3)
     result = outcome(claim("grazing_uniqueness", **args))
     # A^2 = 0.01 + (0.09 - 0.01 - 0.03) / 0.81; the continuation after a touch counted as an impact:
     # v1^2 = 0.09 - 0.01 + 2 * 0.1 * 0.35 = 0.15
     assert result.holds is True
-    assert outcome(claim("grazing_uniqueness", **{**args, "conclusion": "continuous"})).holds is False
     assert f"A = {math.sqrt(0.01 + 0.05 / 0.81):.10g} m" in result.replicated_value
     assert f"next v1 = {math.sqrt(0.15):.10g} m/s" in result.replicated_value
     with pytest.raises(cl.ClaimError, match="no release grazes a3"):
@@ -443,3 +441,60 @@ def test_an_untestable_claim_gives_its_reason_and_the_register_weighs_it_untesta
     c = claim("untestable", tolerance=None, reason="r")
     row = cl.evaluate([{**c, "readings": [c]}], evidence())[0]
     assert (row["status"], row["evidence"]) == ("untestable", "none")
+
+
+# --- Sec. 3.3: A y + g Lipschitz near the initial state ----------------------------------------------
+
+
+def test_g_of_eq3b_is_sigma_f_on_s2_and_0_elsewhere():
+    """F = 2 N, M = 1 kg: f = 2 m/s^2 in (a1, a2) = (-0.1, 0.05) moving right, -2 in (a4, a3) = (-0.05, 0.1) moving
+    left; 0 outside the zones, at their ends, and at rest (Eq. (5) leaves those states out of S2)."""
+    from escapement.model.parameters import Parameters
+    from escapement.paper.model_claims import g_eq3b
+    p = Parameters(**GEOMETRY, F=2.0)
+    x = [0.0, 0.0, 0.07, -0.07, 0.0, 0.05, -0.1, 0.1, -0.05, -1.0]
+    v = [1.0, -1.0, 1.0, -1.0, 0.0, 1.0, 1.0, -1.0, -1.0, 1.0]
+    assert g_eq3b(p, x, v).tolist() == [2.0, -2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+
+
+@pytest.mark.parametrize("K", [1.0, 10.0, 0.1])
+def test_near_a_release_outside_the_zones_g_is_constant_and_the_lipschitz_constant_is_the_norm_of_a(K):
+    """From rest at -1 m the zones begin 0.9 m away: over the square of half-width 0.9 m, g = 0 and the largest
+    quotient is the larger singular value of A = [[0, 1], [-K, 0]] (M = 1 kg), max(1, K)."""
+    from escapement.model.parameters import Parameters
+    from escapement.paper.model_claims import lipschitz_quotients
+    p = Parameters(**{**GEOMETRY, "K": K}, F=1.0)
+    jump, quotient = lipschitz_quotients(p, -1.0, 0.0, 0.9 * (1 - 1e-9))
+    assert jump == 0.0
+    assert quotient == pytest.approx(max(1.0, K), rel=1e-14)
+
+
+@pytest.mark.parametrize("radius", [1e-2, 1e-4, 1e-6])
+def test_at_the_end_of_a_zone_the_quotient_grows_as_one_over_the_half_width(radius):
+    """At (a2, 1) = (0.05 m, 1 m/s), f = 1: g = 0 at x = a2 (S2 is open) and f at a2 - r/10, the next grid state;
+    their quotient is |(0, w^2 r/10 + f)| / (r/10) = 1 + 10 f / r, the largest of the grid."""
+    from escapement.model.parameters import Parameters
+    from escapement.paper.model_claims import lipschitz_quotients
+    p = Parameters(**GEOMETRY, F=1.0)
+    jump, quotient = lipschitz_quotients(p, 0.05, 1.0, radius)
+    assert jump == 1.0
+    assert quotient == pytest.approx(1.0 + 10.0 / radius, rel=1e-9)
+
+
+def test_lipschitz_near_holds_at_the_release_and_fails_at_the_end_of_a_zone():
+    """The register's two readings of the Lipschitz sentence, on the paper's case (a) from -1 m: at the release
+    (half-width 0.9 (1 - 1e-9) m) the quotient is 1; at a2 moving right it reaches 1 + 10 f / 1e-6 = 1e7 + 1. The
+    row is undetermined, on evidence by construction (the paper's own A and g)."""
+    ds = scene_of_case_a()
+    release = model_verdict("lipschitz_near", evidence(fig3={"a": ds}), at="release")
+    assert release.holds is True and "half-width 0.9: largest |g(y1) - g(y2)| 0 m/s^2, largest quotient 1" in (
+        release.replicated_value)
+    edge = model_verdict("lipschitz_near", evidence(fig3={"a": ds}), at="zone_end")
+    assert edge.holds is False and "half-width 1e-06: largest |g(y1) - g(y2)| 1 m/s^2, largest quotient 1e+07" in (
+        edge.replicated_value)
+    with pytest.raises(cl.ClaimError, match="at = 'nowhere'"):
+        model_verdict("lipschitz_near", evidence(fig3={"a": ds}), at="nowhere")
+    readings = [claim("lipschitz_near", tolerance=1e-12, at=at) for at in ("release", "zone_end")]
+    row = cl.evaluate([{**readings[0], "readings": readings, "figures_tried": "none"}],
+                      evidence(fig3={"a": ds}))[0]
+    assert (row["status"], row["evidence"]) == ("undetermined", "by_construction")

@@ -28,7 +28,7 @@ import yaml
 from . import airy, axis_claims, conventions, dynamics_checks, existence, figure_checks  # noqa: F401
 from . import model_claims, period_checks, register, section4_checks, stability  # noqa: F401
 from .checks import CHECKS, COMPLETED, Evidence, Verdict, fmt
-from .vocabulary import evidence_of, status_of, weakest, weighed
+from .vocabulary import UNDETERMINED, evidence_of, status_of, weakest, weighed
 
 __all__ = ["CHECKS", "COLUMNS", "SCHEMA", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims"]
 
@@ -142,6 +142,9 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
         elif isinstance(paper, list):
             paper = "[" + ", ".join(fmt(x) for x in paper) + "]"
         named = [reading["reading"] for reading, _ in results]
+        status = weighed(status_of(outcomes), kind)
+        figures = ("" if len(named) == 1 else f"; no figure decides between the readings: {claim['figures_tried']}"
+                   if status == UNDETERMINED else f"; the figures: {claim['figures_tried']}")
         rows.append({
             "claim_id": claim["id"],
             "source": claim["source"],
@@ -156,8 +159,7 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
             "replicated_value": _joined([(n, r.replicated_value) for n, (_, r) in zip(named, results)]),
             "tolerance": _joined([(n, "" if r["tolerance"] is None else fmt(r["tolerance"]))
                                   for n, (r, _) in zip(named, results)]),
-            "status": weighed(status_of(outcomes), kind),
-            "note": _joined([(n, r.note) for n, (_, r) in zip(named, results)]) + (
-                f"; no figure decides between the readings: {claim['figures_tried']}" if len(named) > 1 else ""),
+            "status": status,
+            "note": _joined([(n, r.note) for n, (_, r) in zip(named, results)]) + figures,
         })
     return rows

@@ -161,32 +161,29 @@ def grazing_limit(p: Parameters) -> float:
     return math.sqrt(p.omega2 * (p.a3**2 - p.a1**2) + 2 * p.f * (p.a3 - p.a4))
 
 
-def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float, conclusion: str) -> Verdict:
+def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> Verdict:
     """``rows``: per offset ``delta`` of the release from the grazing one, ``above`` (released at
     ``-A (1 + delta)``: its ``outcome`` and ``v_next``, the velocity before its second impact at a1) and
-    ``below`` (at ``-A (1 - delta)``: its ``outcome``). ``conclusion`` ``unique``: holds when the runs above
-    continue to the closed-form continuation ``limit`` (one continuation from the grazing state, the strict
-    jump set x xdot < 0 counting a touch at rest as no impact); ``continuous``: holds when the runs either
-    side agree in outcome, as a Lipschitz right-hand side would make them (continuity in the release)."""
-    split = all(r["above"]["outcome"] == Status.COMPLETED.value and r["below"]["outcome"] == Status.STOPPED.value
-                for r in rows)
+    ``below`` (at ``-A (1 - delta)``: its ``outcome``). Holds when the run above at the smallest ``delta``
+    continues to the closed-form continuation ``limit``: one continuation from the grazing state, the strict
+    jump set x xdot < 0 counting a touch at rest as no impact."""
     smallest = min(rows, key=lambda r: r["delta"])
     error = abs(smallest["above"]["v_next"] - limit) / limit
     text = "; ".join(
         f"delta = {fmt(r['delta'], 2)}: from -A(1 + delta) {r['above']['outcome']}"
         + (f", next impact at a1 with {fmt(r['above']['v_next'])} m/s" if math.isfinite(r["above"]["v_next"]) else "")
         + f"; from -A(1 - delta) {r['below']['outcome']}" for r in rows)
-    holds = bool(error <= tolerance) if conclusion == "unique" else not split
     return Verdict(text + f"; the grazing release separates an impact and impulse (next v1 = {fmt(limit)} m/s, "
-                   "closed form) from no impact (a free swing of amplitude a3 for ever)", holds, note=(
+                   "closed form) from no impact (a free swing of amplitude a3 for ever)", bool(error <= tolerance),
+                   note=(
         "with the strict jump set x xdot < 0 a touch of a3 at rest is no impact, in the solver as in the jump set, "
-        "and the state has one continuation; but g(t) of Eq. (2) is the force sigma f switched on and off where x "
-        "crosses a1..a4, discontinuous in y, so A y + g is not Lipschitz and the cited theorem does not apply: "
-        "releases delta either side of the grazing one end an O(1) apart however small delta"),
-        paper_value="exactly one solution (A and g Lipschitz)")
+        "and the state has one continuation; the touch comes two swings after the release, on the edge of an "
+        "impulse zone, where g of Eq. (3b) switches with the state: releases delta either side of the grazing one "
+        "end an O(1) apart however small delta, so the solution does not depend continuously on the release there"),
+        paper_value="exactly one solution")
 
 
-@check("grazing_uniqueness", scenes=runs_only, args=("positions", "F", "deltas", "n_cycles", "conclusion"))
+@check("grazing_uniqueness", scenes=runs_only, args=("positions", "F", "deltas", "n_cycles"))
 def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     p = _params(args, args["F"])
@@ -200,6 +197,6 @@ def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
 
     rows = [{"delta": float(d), "above": run(-release * (1 + float(d))), "below": run(-release * (1 - float(d)))}
             for d in args["deltas"]]
-    verdict = grazing_verdict(rows, grazing_limit(p), claim["tolerance"], args["conclusion"])
+    verdict = grazing_verdict(rows, grazing_limit(p), claim["tolerance"])
     return Verdict(f"grazing release A = {fmt(release)} m (closed form); " + verdict.replicated_value, verdict.holds,
                    note=verdict.note, paper_value=verdict.paper_value)
