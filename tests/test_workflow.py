@@ -213,13 +213,16 @@ def test_an_edit_replans_every_job(run, tmp_path, edit):
     assert set(planned_jobs(where)) - {"all"} == EVERY_JOB
 
 
-def test_a_deleted_data_file_is_made_again_by_a_plain_run(run, tmp_path):
+def test_a_deleted_output_is_made_again_by_a_plain_run(run, tmp_path):
     where = Path(shutil.copytree(run[0], tmp_path / "copy", symlinks=True))
     (where / "results/replication/long_run.nc").unlink()
     (where / "results/replication/poincare_map/case_b.nc").unlink()
     (where / "results/replication/readings.csv").unlink()
+    (where / "results/replication/docs/verdict.html").unlink()  # an output beside the job's target, README.md
+    (where / "results/replication/figures/long_run.pdf").unlink()
     planned = planned_jobs(where)
     assert planned["long_run"] == 1 and planned["poincare_map"] == 1 and planned["readings"] == 1
+    assert planned["render_docs"] == 1 and planned["plot_long_run"] == 1
 
 
 @pytest.mark.parametrize("config, planned, said", [

@@ -26,6 +26,8 @@ FILES = {"fig3": "poincare_map/case_{}.nc", "fig5": "phase_diagrams/K_{}.nc"}
 #: the replication's data beyond its scenes: the claims' runs, the long run, the readings, the tables
 REPLICATION_DATA = ("checks.nc", "long_run.nc", "long_run_timing.csv", "readings.csv", "work_precision.csv",
                     "claims.csv", "stress.csv")
+#: the documents the replication renders (docs/): the pages, the measured times, the report's landing text and items
+DOCUMENTS = ("README.md", "REPLICATION.md", "timings.md", "landing.html", "verdict.html", "replication.html")
 #: the replication's figures beyond its scenes'
 EXTRA_FIGURES = ("long_run", "work_precision")
 #: the name of every figure a rule draws (a figure of another name is not a target of any configuration)
@@ -45,20 +47,21 @@ def figure_files(study: str, blocks: Iterable[str]) -> list[str]:
 
 
 def study_targets(study: str, scenes: Mapping[str, Mapping[str, object]]) -> list[str]:
-    """Every file a study promises: each kind's data files and figure (and the replication's own data, figures and
-    documents)."""
+    """Every file a study promises: each kind's data files and figure, PNG and PDF (and the replication's own data,
+    figures and documents)."""
     found = [path for block, labelled in scenes.items() for path in data_files(study, block, labelled).values()]
-    found += figure_files(study, scenes)
+    found += [path for png in figure_files(study, scenes) for path in (png, png.removesuffix(".png") + ".pdf")]
     if "stability_map" in scenes:
         found.append(f"results/{study}/stability_map_timing.csv")
     if study == REPLICATION:
         found += [f"results/{REPLICATION}/{name}" for name in REPLICATION_DATA]
-        found += ["results/replication/docs/README.md"]
+        found += [f"results/replication/docs/{name}" for name in DOCUMENTS]
     return found
 
 
 def targets(studies: Mapping[str, Mapping[str, Mapping[str, object]]]) -> list[str]:
-    """The default target: every file of every study (a missing one, a data file too, is made again)."""
+    """The default target: every file of every study (a missing one, whichever it is, is made again: Snakemake
+    reruns a job for a missing target, not for a missing output beside it)."""
     return [path for study, scenes in studies.items() for path in study_targets(study, scenes)]
 
 
