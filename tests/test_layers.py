@@ -124,3 +124,35 @@ def test_the_layers_have_no_cycle(edges):
 
 def test_every_import_goes_down_the_declared_order(edges):
     assert violations(edges) == []
+
+
+#: the modules of the checks that still run a solver themselves, each until its runs move into a scene
+#: (a variable of the ``checks`` dataset, :mod:`escapement.scenes.runs`): this set may only shrink
+STILL_SIMULATE = {"airy", "existence", "figure_checks", "model_claims", "poincare", "register", "stability"}
+
+
+def _registers_a_check(tree: ast.AST) -> bool:
+    """Whether the module defines a function decorated by ``check(...)``."""
+    return any(isinstance(node, ast.FunctionDef) and any(
+        isinstance(d, ast.Call) and isinstance(d.func, ast.Name) and d.func.id == "check" for d in node.decorator_list)
+        for node in ast.walk(tree))
+
+
+def verdict_modules(root: Path = SOURCE) -> dict[str, list[tuple[tuple[str, ...], int]]]:
+    """The modules of the checks, each with what it imports: every module of :mod:`escapement.paper` that
+    registers a check, and every module of the package those import, transitively."""
+    paper = root / "paper"
+    imports = {path.stem: imported_modules(path, root) for path in sorted(paper.glob("*.py"))}
+    found = [path.stem for path in sorted(paper.glob("*.py")) if _registers_a_check(ast.parse(path.read_text()))]
+    for name in found:
+        found += [m[2] for m, _ in imports[name] if m[:2] == ("escapement", "paper") and len(m) > 2
+                  and m[2] in imports and m[2] not in found]
+    return {name: imports[name] for name in found}
+
+
+def test_the_checks_read_datasets_and_never_simulate():
+    modules = verdict_modules()
+    assert {"checks", "register", "section4_checks", "stability", "poincare"} <= set(modules)
+    simulating = {name for name, imported in modules.items()
+                  if any(layer_of(module) in ("solvers", "integrators") for module, _ in imported)}
+    assert simulating == STILL_SIMULATE
