@@ -128,7 +128,7 @@ def test_every_import_goes_down_the_declared_order(edges):
 
 #: the modules of the checks that still run a solver themselves, each until its runs move into a scene
 #: (a variable of the ``checks`` dataset, :mod:`escapement.scenes.runs`): this set may only shrink
-STILL_SIMULATE = {"airy", "existence", "figure_checks", "model_claims", "poincare", "register", "stability"}
+STILL_SIMULATE = {"airy", "existence", "figure_checks", "model_claims"}
 
 
 def _registers_a_check(tree: ast.AST) -> bool:
@@ -152,7 +152,7 @@ def verdict_modules(root: Path = SOURCE) -> dict[str, list[tuple[tuple[str, ...]
 
 def test_the_checks_read_datasets_and_never_simulate():
     modules = verdict_modules()
-    assert {"checks", "register", "section4_checks", "stability", "poincare"} <= set(modules)
+    assert {"checks", "register", "section4_checks", "stability", "existence"} <= set(modules)
     simulating = {name for name, imported in modules.items()
                   if any(layer_of(module) in ("solvers", "integrators") for module, _ in imported)}
     assert simulating == STILL_SIMULATE

@@ -109,6 +109,31 @@ def runs(*rows: dict) -> xr.Dataset:
                       coords={"case": np.arange(len(rows))})
 
 
+def probes(star: float = 1.25, shift: float = 0.0, gap: float = 0.0, slopes=None, n_cycles: int = 100) -> dict:
+    """The checks dataset's runs behind single claims, by hand at the paper's geometry (w = 1): the first swings of
+    Fig. 3 (a) (F = 1) and (b) (F = 0.5) from rest at -A, sqrt(A^2 - a1^2), and at +A, where the impact at a3 and
+    the impulse over [a4, a3] come first, sqrt((1 - b)^2 (A^2 - a3^2) + 2 f (a3 - a4)); the slope of the return map
+    of case (a), Eq. (20) times ``slopes[v]`` at each velocity v; and the runs of case (a) from the section at
+    ``star`` and 1 % above it, impacts at a1 every 6.3 s, the perturbed ones ``shift`` later, its last speed
+    ``gap`` (relatively) above ``star``."""
+    swings = [("a", -1.0, 0.99), ("a", 1.0, 0.81 * 0.99 + 0.3), ("b", -3.0, 8.99), ("b", 3.0, 0.81 * 8.99 + 0.15)]
+    speeds = [0.5, 1.0, 2.0]
+    times = 6.3 * np.arange(1, n_cycles + 2)
+    perturbation = {"perturbation": [0.0, 0.01]}
+    return {
+        "first_swing_case": ("first_swing", np.array([c for c, _, _ in swings], dtype=object)),
+        "first_swing_x0": ("first_swing", [x for _, x, _ in swings]),
+        "first_swing_velocity": ("first_swing", [math.sqrt(v2) for _, _, v2 in swings]),
+        "map_slope": xr.DataArray([0.6561 * v / g17(v) * (slopes or {}).get(v, 1.0) for v in speeds],
+                                  coords={"map_velocity": speeds}, dims="map_velocity",
+                                  attrs={"case": "a", "relative_step": 1e-5}),
+        "perturbed_impact_time": xr.DataArray(np.stack([times, times + shift]), dims=("perturbation", "impact"),
+                                              coords=perturbation, attrs={"case": "a", "n_cycles": n_cycles}),
+        "perturbed_speed": xr.DataArray([star, star * (1 + gap)], dims="perturbation", coords=perturbation,
+                                        attrs={"converged_speed": star}),
+    }
+
+
 def evidence(fig3s=None, fig5s=None, checks=None) -> Evidence:
     """Evidence holding only what a check reads; the rest left empty."""
     return Evidence(fig3=fig3s or {}, fig4=None, fig5=fig5s or {}, checks=checks)
@@ -320,25 +345,17 @@ def test_eq14_as_read_holds_to_its_relative_tolerance_of_the_simulated_velocity_
             assert judged(row, evidence({row["args"]["case"]: ds})) == expected, (factor, sign)
 
 
-def test_the_derivative_of_the_map_holds_to_its_relative_tolerance_of_eq20(monkeypatch):
-    """The simulated return map replaced by a linear one whose slope is Eq. (20) by hand,
-    0.6561 x / g(x), times (1 +/- e), at each velocity of the claim; the slope from central differences
-    of 1e-5 carries a rounding of about 1e-11, so the margin is 10 %."""
-    from escapement.paper import register as rg
+def test_the_derivative_of_the_map_holds_to_its_relative_tolerance_of_eq20():
+    """The slope of the return map in the checks dataset is Eq. (20) by hand, 0.6561 x / g(x), times (1 +/- e)
+    at one velocity of the claim; the slope from central differences of 1e-5 carries a rounding of about 1e-11,
+    so the margin is 10 %."""
     row = register_row("eq20_map_derivative", 1e-8)
     for factor, expected in ((0.9, "reproduced"), (1.1, "not_reproduced")):
         for sign in (1.0, -1.0):
             for off in row["args"]["velocities"]:
-                def slope(x: float) -> float:
-                    return 0.6561 * x / g17(x) * (1 + (sign * factor * 1e-8 if x == off else 0.0))
-                centres = {float(v) for v in row["args"]["velocities"]}
-
-                def linear(p, v: float) -> tuple[float, float]:
-                    centre = min(centres, key=lambda c: abs(c - v))
-                    return v, slope(centre) * v
-                monkeypatch.setattr(rg, "return_map", linear)
-                ds = fig3([1.0])
-                assert judged(row, evidence({row["args"]["case"]: ds})) == expected, (factor, sign, off)
+                checks = runs({}).assign(probes(slopes={float(off): 1 + sign * factor * 1e-8}))
+                assert judged(row, evidence({row["args"]["case"]: fig3([1.0])}, checks=checks)) == expected, (
+                    factor, sign, off)
 
 
 # --- the period formulas (22e), (23), (25) as read, by hand (test_conventions) ---------------------
@@ -506,22 +523,14 @@ def test_mu2_follows_b_alone_to_the_tolerance_and_only_runs_beyond_b_1_fail_to_c
 @pytest.mark.parametrize("claim_id, reading, sense", [("asymptotically_stable", 0, "orbital"),
                                                       ("asymptotically_stable", 1, "lyapunov"),
                                                       ("stability_iff_b", 1, "lyapunov")])
-def test_the_perturbed_run_returns_to_the_cycle_or_to_the_solution_within_the_tolerance(monkeypatch, claim_id,
-                                                                                        reading, sense):
+def test_the_perturbed_run_returns_to_the_cycle_or_to_the_solution_within_the_tolerance(claim_id, reading, sense):
     """The unperturbed run's impacts at a1 every 6.3 s at 1.25 m/s; the perturbed one's speed (relatively) or
     its impact times (in s) apart by the tolerance (1 -/+ 1e-3): the times near 630 s resolve 1e-13 s."""
-    from escapement.paper import stability
     row = register_row(claim_id, 1e-8, reading)
     assert row["args"]["sense"] == sense
     for factor, side in ((1 - 1e-3, "inside"), (1 + 1e-3, "outside")):
         off = factor * 1e-8
-
-        def solve(p, x0, v0, **kw):
-            perturbed = v0 != float(evidence_scene["velocity_before_impact"].values[-1])
-            times = 6.3 * np.arange(1, 102) + (off if perturbed and sense == "lyapunov" else 0.0)
-            return stub_run(times, speeds=[1.0, 1.25 * (1 + (off if perturbed and sense == "orbital" else 0.0))])
-
-        evidence_scene = fig3([1.0, 1.25])
-        monkeypatch.setattr(stability, "solve_exact", solve)
-        assert judged(row, evidence({"a": evidence_scene})) == ("reproduced" if side == "inside" else
-                                                                "not_reproduced"), factor
+        apart = {"shift": off} if sense == "lyapunov" else {"gap": off}
+        checks = runs({}).assign(probes(star=1.25, **apart))
+        assert judged(row, evidence({"a": fig3([1.0, 1.25])}, checks=checks)) == (
+            "reproduced" if side == "inside" else "not_reproduced"), factor

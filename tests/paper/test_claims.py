@@ -23,7 +23,7 @@ from escapement.model.parameters import Parameters
 from escapement.paper import claims as cl
 from escapement.paper.checks import CHECKS, Evidence, Verdict, runs_only
 from escapement.solvers.exact import solve_exact
-from paper.test_check_boundaries import GEOMETRY, runs
+from paper.test_check_boundaries import GEOMETRY, probes, runs
 
 REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"
 
@@ -221,8 +221,9 @@ def solved_fig3(F: float, x0: float, n: int = 50) -> xr.Dataset:
         coords={"cycle": np.arange(1, n + 1)}, attrs={"outcome": "completed", "outcome_message": "completed"})
 
 
-def checks_dataset() -> xr.Dataset:
-    """Every group of runs the register's checks read, shaped as the checks dataset."""
+def checks_dataset(star: float = 1.25) -> xr.Dataset:
+    """Every group of runs the register's checks read, shaped as the checks dataset, with the runs behind single
+    claims (the runs from the section at ``star``, the converged speed of Fig. 3 (a))."""
     rows = [{"group": "paper", "label": "fig3a"}, {"group": "paper", "label": "fig3b", "F": 0.5},
             {"group": "initial_condition", "x0": 3.0}, {"group": "asymmetric", "a3": 0.2, "a4": -0.02}]
     rows += [{"group": "b", "b": b, "multiplier_eq21": (1 - b) ** 4, "multiplier": (1 - b) ** 4} for b in (0.1, 0.5)]
@@ -230,13 +231,14 @@ def checks_dataset() -> xr.Dataset:
     rows += [{"group": "release", "x0": x0, "first_period": 6.3 + x0} for x0 in (-1.0, 1.0)]
     rows += [{"group": "common_force", "K": K, "F": F, "x0": -1.0, "velocity": 1.2}
              for F in (0.5, 1.0) for K in (0.1, 1.0, 10.0)]
-    return runs(*rows)
+    return runs(*rows).assign(probes(star))
 
 
 @functools.cache
 def scenes(side: float) -> Evidence:
-    return Evidence(fig3={"a": solved_fig3(1.0, side * 1.0), "b": solved_fig3(0.5, side * 3.0)}, fig4=None,
-                    fig5={}, checks=checks_dataset())
+    fig3 = {"a": solved_fig3(1.0, side * 1.0), "b": solved_fig3(0.5, side * 3.0)}
+    return Evidence(fig3=fig3, fig4=None, fig5={},
+                    checks=checks_dataset(float(fig3["a"]["velocity_before_impact"].values[-1])))
 
 
 def test_a_check_that_reads_a_fitted_input_declares_it():

@@ -20,7 +20,7 @@ from escapement.model.parameters import Parameters
 from escapement.model.status import Status
 from escapement.paper import corrected as d
 from escapement.paper import printed as pe
-from escapement.paper.poincare import measure_cycle
+from escapement.studies.poincare import measure_cycle
 from escapement.solvers.exact import solve_exact
 from escapement.integrators.high_precision import solve_high_precision
 

@@ -22,6 +22,7 @@ from escapement.paper.checks import Evidence
 from escapement.paper.existence import existence_verdict, grazing_verdict, release_verdict
 from escapement.paper.figure_checks import section_crossing_counts
 from escapement.paper.vocabulary import status_of
+from paper.test_check_boundaries import probes
 
 GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
 DONE = {"outcome": "completed", "outcome_message": "completed: a message"}
@@ -141,9 +142,13 @@ def test_map_eq17():
 
 
 def test_derivative_eq20_against_the_simulated_return_map():
-    # central differences of the exact return map agree with (20) to about 1e-11, not to 1e-14
-    assert status(claim("derivative_eq20", case="a", velocities=[0.5, 2.0])) == "reproduced"
-    assert status(claim("derivative_eq20", tolerance=1e-14, case="a", velocities=[0.5, 2.0])) == "not_reproduced"
+    """The checks dataset's slopes, Eq. (20) by hand off by 1e-11 (the rounding of central differences of the
+    simulated map): within 1e-8, not within 1e-14."""
+    ev = evidence(checks=runs({}).assign(probes(slopes={0.5: 1 + 1e-11, 2.0: 1 - 1e-11})))
+    assert status(claim("derivative_eq20", case="a", velocities=[0.5, 2.0]), ev) == "reproduced"
+    assert status(claim("derivative_eq20", tolerance=1e-14, case="a", velocities=[0.5, 2.0]), ev) == "not_reproduced"
+    with pytest.raises(cl.ClaimError, match="0 runs of map_slope"):
+        outcome(claim("derivative_eq20", case="a", velocities=[0.7]), ev)
 
 
 # --- Sec. 4: period, stable velocity, first cycles ------------------------------------------------
@@ -166,13 +171,15 @@ def test_daily_rate():
 @pytest.mark.parametrize("side", [-1, 1])
 def test_initial_order(side):
     """Released from rest at side |x0|: from -1 m the first swing meets a1 at sqrt(1 - 0.01) m/s (w = 1), from
-    -3 m at sqrt(9 - 0.01); from +|x0| the first impact is at a3 and a1 comes after an impulse."""
+    -3 m at sqrt(9 - 0.01); from +|x0| the first impact is at a3 and a1 comes after an impulse (the checks
+    dataset's first swings, by hand)."""
     c = claim("initial_order", tolerance=None, cases=["a", "b"], side=side)
-    result = outcome(c)
+    ev = evidence(checks=runs({}).assign(probes()))
+    result = outcome(c, ev)
     assert result.holds is True
     if side == -1:
         assert f"{math.sqrt(0.99):.6g} m/s" in result.replicated_value
-    assert outcome({**c, "args": {**c["args"], "cases": ["b", "a"]}}).holds is False
+    assert outcome({**c, "args": {**c["args"], "cases": ["b", "a"]}}, ev).holds is False
 
 
 def test_stable_velocity_scaling():
@@ -419,15 +426,18 @@ def test_the_map_8_has_the_eigenvalues_0_and_g_prime_not_1():
 
 
 def test_a_speed_perturbed_by_1_percent_returns_to_the_cycle_with_a_phase_shift():
-    """The paper's case (a) from (a1, v*) and (a1, 1.01 v*): the speeds agree after 100 cycles, the impact times
-    stay -0.000848 s apart (the referee's simulator, in 40-digit arithmetic, finds -0.000848 s)."""
+    """The runs from (a1, v*) and (a1, 1.01 v*) of the checks dataset: the speeds agree after 100 cycles, the
+    impact times stay -0.000848 s apart (the value of the scene, tests/scenes/test_runs.py)."""
     ds = scene_of_case_a()
+    star = float(ds["velocity_before_impact"].values[-1])
+    ev = evidence(fig3={"a": ds}, checks=runs({}).assign(probes(star=star, shift=-0.000848)))
     args = dict(case="a", perturbation=0.01, n_cycles=100)
-    orbital = model_verdict("phase_shift", evidence(fig3={"a": ds}), tolerance=1e-8, sense="orbital", **args)
-    lyapunov = model_verdict("phase_shift", evidence(fig3={"a": ds}), tolerance=1e-8, sense="lyapunov", **args)
+    orbital = model_verdict("phase_shift", ev, tolerance=1e-8, sense="orbital", **args)
+    lyapunov = model_verdict("phase_shift", ev, tolerance=1e-8, sense="lyapunov", **args)
     assert (orbital.holds, lyapunov.holds) == (True, False)
-    shift = float(lyapunov.replicated_value.split("impact times ")[1].split(" s apart")[0])
-    assert shift == pytest.approx(-0.000848, abs=5e-7)
+    assert "impact times -0.000848 s apart" in lyapunov.replicated_value
+    with pytest.raises(cl.ClaimError, match="not those of the claim"):
+        model_verdict("phase_shift", ev, tolerance=1e-8, sense="orbital", **{**args, "n_cycles": 50})
 
 
 def scene_of_case_a() -> xr.Dataset:

@@ -43,3 +43,23 @@ def test_the_long_run_refuses_a_count_that_is_not_a_positive_integer(name, value
                 "ivp_cycles": 10, name: value}
     with pytest.raises(ParameterError, match=f"^{name} = "):
         long_run(settings)
+
+
+def test_the_runs_behind_single_claims_by_value():
+    """The paper's case (a) (w = 1): from rest at -1 m the first impact at a1 comes at sqrt(1 - a1^2); the return
+    map's slope is Eq. (20), 0.6561 x / sqrt(0.6561 x^2 + 0.543 F); the runs from the section at the converged
+    speed and 1 % above it agree in speed after 100 cycles and keep their impact times -0.000848 s apart (the
+    referee's simulator, in 40-digit arithmetic, finds -0.000848 s)."""
+    case = {**MODEL, "a3": 0.1, "a4": -0.05, "F": 1.0, "x0": -1.0, "label": "a"}
+    ds = checks([], 1, {"first_swings": [case, {**case, "x0": -3.0}],
+                        "return_map": {**case, "velocities": [0.5, 2.0]},
+                        "phase_shift": {**case, "n_release": 50, "perturbations": [0.01], "n_cycles": 100}})
+    assert ds["first_swing_velocity"].values == pytest.approx([math.sqrt(0.99), math.sqrt(8.99)], rel=1e-12)
+    slope = [0.6561 * v / math.sqrt(0.6561 * v * v + 0.543) for v in (0.5, 2.0)]
+    assert ds["map_slope"].values == pytest.approx(slope, rel=1e-9) and ds["map_slope"].attrs["case"] == "a"
+    times = ds["perturbed_impact_time"].values
+    assert ds["perturbation"].values.tolist() == [0.0, 0.01] and np.isfinite(times).all()
+    assert times[1, -1] - times[0, -1] == pytest.approx(-0.000848, abs=5e-7)
+    speeds = ds["perturbed_speed"].values
+    assert abs(speeds[1] - speeds[0]) <= 1e-8 * speeds[0]
+    assert ds["perturbed_speed"].attrs["converged_speed"] == pytest.approx(math.sqrt(0.3 / 0.19), rel=1e-8)

@@ -14,7 +14,7 @@ import pytest
 from escapement.model import automaton
 from escapement.model.parameters import ParameterError, Parameters
 from escapement.model.status import Status
-from escapement.paper.poincare import stability_grid
+from escapement.studies.poincare import stability_grid
 from escapement.solvers.ensemble import solve_ensemble
 from escapement.solvers.exact import solve_exact
 from escapement.studies import stress

@@ -205,7 +205,22 @@ def group_runs(ev: Evidence, group: str) -> xr.Dataset:
     rows = np.flatnonzero(ev.checks["group"].values == group)
     if not len(rows):
         raise ValueError(f"the checks dataset holds no run of group '{group}'")
-    return ev.checks.isel(case=rows)
+    table = [name for name, variable in ev.checks.data_vars.items() if "case" in variable.dims]
+    return ev.checks[table].isel(case=rows)  # the table alone: the runs behind single claims have their own dims
+
+
+def probe(ev: Evidence, name: str, dim: str, **where) -> xr.DataArray:
+    """The variable ``name`` of the checks dataset at the one index of ``dim`` where every variable of ``where``
+    has its value: the run a claim's ``args`` name, which the checks scene made (config ``checks`` block)."""
+    if name not in ev.checks:
+        raise ValueError(f"the checks dataset has no variable {name} (the checks block of the configuration)")
+    match = np.ones(ev.checks.sizes[dim], dtype=bool)
+    for key, value in where.items():
+        match &= ev.checks[key].values == value
+    if match.sum() != 1:
+        raise ValueError(f"the checks dataset holds {int(match.sum())} runs of {name} at "
+                         + ", ".join(f"{k} = {v!r}" for k, v in where.items()) + ", not one")
+    return ev.checks[name].isel({dim: int(np.flatnonzero(match)[0])})
 
 
 def runs_left_regime(runs: xr.Dataset) -> Verdict | None:

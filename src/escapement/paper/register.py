@@ -19,10 +19,8 @@ import numpy as np
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from . import printed as pe
-from ..solvers.exact import solve_exact
 from .checks import (Evidence, Verdict, check, events_of, fig3_all, fig3_case, fig3_cases, fmt, group_runs,
-                     params_of, rel, runs_left_regime, runs_only, within)
-from .poincare import RELATIVE_STEP, return_map
+                     params_of, probe, rel, runs_left_regime, runs_only, within)
 
 __all__ = ["PRINTED_STEPS"]
 
@@ -98,18 +96,18 @@ def map_eq17(claim, ev: Evidence) -> Verdict:
 @check("derivative_eq20", scenes=fig3_case, args=("case", "velocities"))
 def derivative_eq20(claim, ev: Evidence) -> Verdict:
     p = params_of(ev.fig3[claim["args"]["case"]])
-    rows = []
-    for v in claim["args"]["velocities"]:
-        lo_in, lo_out = return_map(p, float(v) * (1 - RELATIVE_STEP))
-        hi_in, hi_out = return_map(p, float(v) * (1 + RELATIVE_STEP))
-        rows.append((float(v), (hi_out - lo_out) / (hi_in - lo_in), pe.map_derivative_20(float(v), p)))
+    if ev.checks["map_slope"].attrs["case"] != str(claim["args"]["case"]):
+        raise ValueError(f"the checks dataset's return map is of case {ev.checks['map_slope'].attrs['case']}")
+    rows = [(float(v), float(probe(ev, "map_slope", "map_velocity", map_velocity=float(v))),
+             pe.map_derivative_20(float(v), p)) for v in claim["args"]["velocities"]]
     worst = max(rel(measured, printed) for _, measured, printed in rows)
     return Verdict(
         "slope of the simulated return map: " + "; ".join(
             f"at {fmt(v, 3)} m/s {fmt(m)} (Eq. (20): {fmt(q)})" for v, m, q in rows),
         within(worst, claim["tolerance"]),
-        note=(f"central differences (relative step {RELATIVE_STEP:g}) of one simulated cycle from the section, "
-              f"away from the fixed point as well as near it; max relative difference {fmt(worst, 2)}"),
+        note=(f"central differences (relative step {ev.checks['map_slope'].attrs['relative_step']:g}) of one "
+              "simulated cycle from the section, away from the fixed point as well as near it; max relative "
+              f"difference {fmt(worst, 2)}"),
         paper_value="g'(x1) = (1-b)^4 x1 / g(x1)",
     )
 
@@ -141,8 +139,8 @@ def initial_order(claim, ev: Evidence) -> Verdict:
     for case in (str(c) for c in claim["args"]["cases"]):
         ds = ev.fig3[case]
         x0 = side * abs(float(ds["x0"]))
-        first[case] = (x0, float(solve_exact(params_of(ds), x0, n_cycles=1, record_trajectory=False)
-                                 .cycles.velocity_before_impact[0]))
+        first[case] = (x0, float(probe(ev, "first_swing_velocity", "first_swing", first_swing_case=case,
+                                       first_swing_x0=x0)))
     (a, (xa, va)), (b, (xb, vb)) = first.items()
     return Verdict(f"first velocity before impact released at {fmt(xa, 3)} m ({a}): {fmt(va, 6)} m/s, at "
                    f"{fmt(xb, 3)} m ({b}): {fmt(vb, 6)} m/s", bool(va < vb),

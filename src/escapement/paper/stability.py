@@ -5,19 +5,18 @@ Eq. (8), and "the solution is asymptotically stable" from mu1 = 1, |mu2| < 1.
   ``[[0, 0], [0, g']]`` at its fixed point: its eigenvalues are 0 and ``g'``, so 1 is not among them
   (the flow's trivial multiplier is 1, measured by ``trivial_multiplier``; it does not follow from (8)).
 * ``phase_shift``: the theorem the paper cites gives *orbital* asymptotic stability. Two runs of the exact
-  solver from the section, at the limit cycle's speed and at ``1 + perturbation`` times it, are compared
-  after ``n_cycles``: orbitally, their speeds before the impact at a1 agree; in the sense of Lyapunov,
-  their impact times agree too, which the permanent phase shift of an autonomous system forbids.
+  solver from the section (made by the checks scene, its variables on ``perturbation``), at the limit cycle's
+  speed and at ``1 + perturbation`` times it, are compared after ``n_cycles``: orbitally, their speeds before the
+  impact at a1 agree; in the sense of Lyapunov, their impact times agree too, which the permanent phase shift
+  of an autonomous system forbids.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..model.events import EventKind
-from ..solvers.exact import solve_exact
 from . import printed as pe
-from .checks import Evidence, Verdict, check, fig3_case, fmt, params_of, within
+from .checks import Evidence, Verdict, check, fig3_case, fmt, params_of, probe, within
 
 __all__: list[str] = []
 
@@ -49,14 +48,19 @@ def phase_shift(claim, ev: Evidence) -> Verdict:
     speed: ``sense: orbital`` holds when their speeds before the impact at a1 agree after ``n_cycles`` (relative,
     within the tolerance), ``sense: lyapunov`` when their impact times at a1 agree too (s)."""
     args = claim["args"]
-    ds = ev.fig3[args["case"]]
-    p, star = params_of(ds), float(ds["velocity_before_impact"].values[-1])
-    runs = [solve_exact(p, p.a1, star * (1 + d), n_cycles=int(args["n_cycles"]), record_trajectory=False)
-            for d in (0.0, float(args["perturbation"]))]
-    times = [r.events.t[r.events.kind == int(EventKind.IMPACT_A1)] for r in runs]
+    star = float(ev.fig3[args["case"]]["velocity_before_impact"].values[-1])
+    impacts = ev.checks["perturbed_impact_time"]
+    made = (impacts.attrs["case"], int(impacts.attrs["n_cycles"]),
+            float(ev.checks["perturbed_speed"].attrs["converged_speed"]))
+    if made != (str(args["case"]), int(args["n_cycles"]), star):
+        raise ValueError(f"the checks dataset's runs from the section (case, cycles, converged speed) {made} are not "
+                         f"those of the claim")
+    found = [(probe(ev, "perturbed_impact_time", "perturbation", perturbation=d).values,
+              float(probe(ev, "perturbed_speed", "perturbation", perturbation=d))) for d in (0.0, args["perturbation"])]
+    times = [t[np.isfinite(t)] for t, _ in found]
     n = min(len(t) for t in times)
     shift = float(times[1][n - 1] - times[0][n - 1])
-    speeds = [float(r.cycles.velocity_before_impact[-1]) for r in runs]
+    speeds = [speed for _, speed in found]
     gap = abs(speeds[1] - speeds[0]) / speeds[0]
     return Verdict(
         f"after {n} impacts at a1: speeds {fmt(speeds[0])} and {fmt(speeds[1])} m/s (relative difference "

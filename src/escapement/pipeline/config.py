@@ -169,7 +169,8 @@ def study_scenes(study: str, blocks: Mapping) -> dict[str, dict[str, dict]]:
 def replication_scenes(paper: Mapping) -> dict[str, dict]:
     """The replication's own runs, checked: ``checks`` (the claims register's runs and their cycles),
     ``benchmark`` and ``long_run`` (each on the Fig. 3 case it names, as Fig. 3 runs it)."""
-    found = {"checks": {"cases": check_cases(paper), "n_cycles": paper["checks"]["n_cycles"]}}
+    found = {"checks": {"cases": check_cases(paper), "n_cycles": paper["checks"]["n_cycles"],
+                        "probes": check_probes(paper)}}
     for block in ("benchmark", "long_run"):
         case = paper[block]["case"]
         if case not in paper["fig3"]["cases"]:
@@ -185,6 +186,29 @@ def replication_scenes(paper: Mapping) -> dict[str, dict]:
     except ParameterError as err:
         raise ConfigError(f"config/paper.yaml: {err}") from None
     return found
+
+
+def check_probes(paper: Mapping) -> dict:
+    """The runs behind single claims (the ``checks`` block's ``first_swings``, ``return_map`` and ``phase_shift``),
+    each on a Fig. 3 case as the fig3 block runs it (:func:`escapement.scenes.probes.probe_variables`)."""
+    checks, fig3 = paper["checks"], paper["fig3"]
+
+    def case(label: str, *parts: Mapping) -> dict:
+        if label not in fig3["cases"]:
+            raise ConfigError(f"checks: case {label!r} is invalid: a case must be one of fig3.cases, one of "
+                              f"{', '.join(sorted(fig3['cases']))}")
+        return _flat(paper["model"], fig3["cases"][label], {"label": label}, *parts)
+
+    probes: dict = {}
+    if "first_swings" in checks:
+        probes["first_swings"] = [case(c, {"x0": side * abs(fig3["cases"][c]["x0"])})
+                                  for c in checks["first_swings"]["cases"] for side in checks["first_swings"]["sides"]]
+    if "return_map" in checks:
+        probes["return_map"] = case(checks["return_map"]["case"], checks["return_map"])
+    if "phase_shift" in checks:
+        probes["phase_shift"] = case(checks["phase_shift"]["case"], checks["phase_shift"],
+                                     {"n_release": fig3["n_cycles"]})
+    return probes
 
 
 def check_cases(paper: Mapping) -> list[dict]:

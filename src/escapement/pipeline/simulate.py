@@ -41,7 +41,7 @@ def simulate(kind: str, scene: Mapping, outputs: Mapping[str, str], log: str, ru
     make = getattr(import_module(f"..scenes.{module}", __package__), name)
     with logged(log, kind) as logger:
         logger.info("%s: settings %s", outputs["nc"], dict(scene))
-        made = make(scene["cases"], scene["n_cycles"]) if kind == "checks" else make(dict(scene))
+        made = make(scene["cases"], scene["n_cycles"], scene.get("probes")) if kind == "checks" else make(dict(scene))
         ds, timings = made if isinstance(made, tuple) else (made, {})
         if "outcome" in ds.attrs:
             logger.info("outcome: %s: %s", ds.attrs["outcome"], ds.attrs["outcome_message"])

@@ -23,7 +23,7 @@ from ..model.parameters import Parameters, validate_arrays
 from ..model.quantities import MODEL_KEYS, PARAMETERS
 from ..model.status import Status, flag_attributes
 from ..paper.existence import existence_threshold
-from ..paper.poincare import ensemble_return_map, return_map, stability_grid
+from ..studies.poincare import ensemble_return_map, return_map, stability_grid
 from ..paper.printed import multiplier_21_of
 from ..solvers.ensemble import solve_ensemble
 from ..studies.escapement_error import SECONDS_PER_DAY, rate_against_amplitude

@@ -13,8 +13,9 @@ import xarray as xr
 from ..model.parameters import Parameters
 from ..model.quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS
 from ..paper.corrected import fixed_point
-from ..paper.poincare import measure_cycle
+from ..studies.poincare import measure_cycle
 from ..paper.printed import multiplier_21
+from .probes import probe_variables
 from .cf import CLASSIFICATION, MODEL_INPUT, QUALITY, assemble, global_attributes, parameter_variables, \
     scalar_variable, table_dataset
 from .settings import LongRunScene, Release, positive_int
@@ -43,11 +44,12 @@ CHECKS_COLUMNS = {
 }
 
 
-def checks(cases: Sequence[Mapping], n_cycles: int) -> xr.Dataset:
+def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = None) -> xr.Dataset:
     """The runs of the claims register, one row per case (each a mapping with ``group``, ``label``, the model's
     keys and ``x0``): released from rest, run ``n_cycles`` cycles, the Poincare map measured at the last cycle
-    (:func:`escapement.paper.poincare.measure_cycle`) beside the fixed point of Eq. (16) and the multiplier of
-    Eq. (21)."""
+    (:func:`escapement.studies.poincare.measure_cycle`) beside the fixed point of Eq. (16) and the multiplier of
+    Eq. (21); beside the table, the runs behind single claims that ``probes`` names
+    (:func:`escapement.scenes.probes.probe_variables`)."""
     n_cycles = positive_int("n_cycles", n_cycles, 100_000)
     runs = [(case, p, Release.from_mapping(case).x0) for case in cases for p in [Parameters.from_mapping(case)]]
     measured = [measure_cycle(p, x0, n_cycles) for _, p, x0 in runs]
@@ -72,10 +74,14 @@ def checks(cases: Sequence[Mapping], n_cycles: int) -> xr.Dataset:
         "starts from rest at x0 and lasts n_cycles cycles; its fixed point, period, largest displacement and "
         "multiplier are measured at the last cycle, beside the fixed point of Eq. (16) and the multiplier of "
         "Eq. (21); with the first cycle's period, the largest speed on the last cycle and both Floquet multipliers "
-        "of the flow over the last period (central differences of the exact flow)."
+        "of the flow over the last period (central differences of the exact flow). Beside the table, each on its "
+        "own dimension, the runs behind single claims: Fig. 3's cases' first swings from either side "
+        "(first_swing), the slope of a Fig. 3 case's return map at given speeds (map_velocity), and the runs of a "
+        "Fig. 3 case from the section at its converged speed and beside it (perturbation)."
     )
-    return table_dataset(table, "Measured Poincare maps for the claims register", "checks", summary,
-                         solver="exact", n_cycles=n_cycles)
+    ds = table_dataset(table, "Measured Poincare maps for the claims register", "checks", summary,
+                       solver="exact", n_cycles=n_cycles)
+    return ds.assign(probe_variables(probes or {}))
 
 
 def long_run(settings: Mapping | LongRunScene) -> tuple[xr.Dataset, dict[str, float]]:

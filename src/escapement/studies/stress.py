@@ -19,7 +19,7 @@ from ..model.limits import MemoryBudgetError
 from ..model.parameters import ParameterError, Parameters
 from ..model.status import Status
 from ..paper import corrected as derived
-from ..paper.poincare import stability_grid
+from .poincare import stability_grid
 from ..solvers.ensemble import solve_ensemble
 from ..solvers.exact import solve_exact
 from ..integrators.high_precision import solve_high_precision

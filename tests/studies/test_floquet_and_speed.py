@@ -1,4 +1,4 @@
-"""The largest speed of a motion from its arcs and both Floquet multipliers of the flow (paper.poincare),
+"""The largest speed of a motion from its arcs and both Floquet multipliers of the flow (studies.poincare),
 against hand-derived values and the paper's printed multiplier 0.6561."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from escapement.model.parameters import Parameters
-from escapement.paper.poincare import floquet_multipliers, largest_speed, measure_cycle
+from escapement.studies.poincare import floquet_multipliers, largest_speed, measure_cycle
 from escapement.solvers.result import ArcTable
 
 PAPER = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)

@@ -5,7 +5,7 @@ import pytest
 
 from escapement.model.parameters import Parameters
 from escapement.model.status import Status
-from escapement.paper.poincare import NoReturn, ensemble_return_map, measure_cycle, return_map, stability_grid
+from escapement.studies.poincare import NoReturn, ensemble_return_map, measure_cycle, return_map, stability_grid
 
 MODEL = dict(M=1.0, K=1.0, a1=-0.1, a2=0.05)
 
