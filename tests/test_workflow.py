@@ -87,23 +87,26 @@ def test_publish_updates_the_tracked_files_and_then_they_show_what_the_run_drew(
 #: lengths in m, times in s, velocities in m/s, accelerations in m/s2, forces in N, the impulse in N s, energies
 #: in J, the daily rate in s/day; counts, ratios and relative errors dimensionless
 DIMENSIONS = {
-    "M": "kg", "K": "N/m", **dict.fromkeys(["F", "threshold", "threshold_mirror"], "N"),
+    "M": "kg", "K": "N/m", **dict.fromkeys(["F", "threshold", "threshold_mirror", "release_F"], "N"),
+    "release_M": "kg", "release_K": "N/m",
     **dict.fromkeys(["a1", "a2", "a3", "a4", "x0", "amplitude_h0", "largest_displacement", "displacement",
-                     "event_position", "impact_position", "zone_a1", "zone_a2", "first_swing_x0"], "m"),
+                     "event_position", "impact_position", "zone_a1", "zone_a2", "first_swing_x0", "release_x0",
+                     *(f"release_a{i}" for i in range(1, 5))], "m"),
     **dict.fromkeys(["t", "t_final", "period", "first_period", "period_formula", "fixed_point_period", "impact_time",
                      "event_time", "drift_exact", "drift_ivp", "drift_closed_form", "velocity_window",
                      "acceleration_window", "perturbed_impact_time"], "s"),
     **dict.fromkeys(["v0", "velocity", "velocity_before", "velocity_after", "velocity_before_impact",
                      "event_velocity_before", "event_velocity_after", "largest_speed", "fixed_point",
                      "fixed_point_19", "fixed_point_eq16", "fixed_point_velocity", "first_swing_velocity",
-                     "map_velocity", "perturbed_speed"], "m/s"),
+                     "map_velocity", "perturbed_speed", "release_velocity", "release_next_velocity"], "m/s"),
     "acceleration": "m/s2", "impulse": "N s", "energy_dissipated": "J", "samples_per_second": "1/s",
     **dict.fromkeys(["rate", "rate_impacts", "rate_zones", "seconds_per_day"], "s/day"),
     **dict.fromkeys(["b", "case", "cycle", "amplitude_cycle", "cycles_to_converge", "n_cycles", "zone", "tolerance",
                      "multiplier", "multiplier_eq21", "floquet_major", "floquet_minor", "closed_form_difference",
                      "max_period_deviation", "max_period_difference", "max_velocity_deviation", "error_time_exact",
                      "error_time_ivp", "error_time_closed_form", "error_velocity_exact", "error_velocity_ivp",
-                     "error_velocity_closed_form", "map_slope", "perturbation"], "1"),
+                     "error_velocity_closed_form", "map_slope", "perturbation", "release_b", "release_n_cycles",
+                     "release_cycles"], "1"),
 }
 #: the flag variables: a run ends completed (0), stopped (1), turned back in a zone (2), chattering (3) or at its
 #: event limit (4); an event is an impact at a1 (1), the end of the impulse at a2 (2), an impact at a3 (3), the end

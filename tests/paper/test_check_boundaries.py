@@ -134,6 +134,19 @@ def probes(star: float = 1.25, shift: float = 0.0, gap: float = 0.0, slopes=None
     }
 
 
+def release_runs(args: dict) -> xr.Dataset:
+    """The runs from rest a check on where a limit cycle exists reads, as the checks scene makes them from the
+    claim's ``args`` (its positions, n_cycles, M, K, b, and its forces, releases or grazing offsets)."""
+    from escapement.scenes.probes import probe_variables
+    base = {**dict(zip(("a1", "a2", "a3", "a4"), args["positions"])), "n_cycles": args["n_cycles"],
+            **{k: args.get(k, d) for k, d in (("M", 1.0), ("K", 1.0), ("b", 0.1))}}
+    if "deltas" in args:
+        return xr.Dataset(probe_variables({"grazing": {**base, "F": args["F"], "deltas": args["deltas"]}}))
+    runs = ([{**base, "F": F, "x0": args["x0"]} for F in args["forces"]] if "forces" in args else
+            [{**base, "F": args["F"], "x0": x0} for x0 in args["releases"]])
+    return xr.Dataset(probe_variables({"releases": runs}))
+
+
 def evidence(fig3s=None, fig5s=None, checks=None) -> Evidence:
     """Evidence holding only what a check reads; the rest left empty."""
     return Evidence(fig3=fig3s or {}, fig4=None, fig5=fig5s or {}, checks=checks)

@@ -231,7 +231,17 @@ def checks_dataset(star: float = 1.25) -> xr.Dataset:
     rows += [{"group": "release", "x0": x0, "first_period": 6.3 + x0} for x0 in (-1.0, 1.0)]
     rows += [{"group": "common_force", "K": K, "F": F, "x0": -1.0, "velocity": 1.2}
              for F in (0.5, 1.0) for K in (0.1, 1.0, 10.0)]
-    return runs(*rows).assign(probes(star))
+    return runs(*rows).assign(probes(star)).assign(releases_of_the_register())
+
+
+@functools.cache
+def releases_of_the_register() -> dict:
+    """The runs from rest of the checks on where a limit cycle exists, as the checks scene makes them from the
+    paper's configuration (the register's args select them)."""
+    from escapement.pipeline.config import check_probes, read_yaml
+    from escapement.scenes.probes import probe_variables
+    made = check_probes(read_yaml(REGISTER.parents[1] / "config" / "paper.yaml"))
+    return probe_variables({key: made[key] for key in ("releases", "grazing")})
 
 
 @functools.cache

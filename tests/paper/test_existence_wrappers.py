@@ -1,6 +1,6 @@
-"""The three checks that run the solver themselves (``existence_sign_change``, ``release_boundary``,
-``grazing_uniqueness``) hand their verdict functions the register's tolerance and the closed-form
-reference, unchanged.
+"""The three checks on runs from rest of their own positions (``existence_sign_change``, ``release_boundary``,
+``grazing_uniqueness``, the runs made by the checks scene) hand their verdict functions the register's tolerance
+and the closed-form reference, unchanged.
 
 The verdict functions are tested at their boundaries in ``test_check_boundaries*.py``; a tolerance scaled
 inside a wrapper, or a wrong closed form passed to it, would change no status when the runs converge to
@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from paper.test_check_boundaries import register_row
+from paper.test_check_boundaries import register_row, release_runs
 
 from escapement.paper import claims as cl
 from escapement.paper import existence
@@ -50,7 +50,7 @@ def test_the_wrapper_hands_its_verdict_the_registers_tolerance_and_the_closed_fo
         return real(rows, closed_form, tolerance, *rest)
 
     monkeypatch.setattr(existence, verdict_function, watched)
-    cl.verdict(row, row, Evidence(fig3={}, fig4=None, fig5={}, checks=None))
+    cl.verdict(row, row, Evidence(fig3={}, fig4=None, fig5={}, checks=release_runs(row["args"])))
     assert len(calls) == 1
     closed_form, tolerance = calls[0]
     assert tolerance == row["tolerance"]

@@ -22,7 +22,7 @@ from escapement.paper.checks import Evidence
 from escapement.paper.existence import existence_verdict, grazing_verdict, release_verdict
 from escapement.paper.figure_checks import section_crossing_counts
 from escapement.paper.vocabulary import status_of
-from paper.test_check_boundaries import probes
+from paper.test_check_boundaries import probes, release_runs
 
 GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
 DONE = {"outcome": "completed", "outcome_message": "completed: a message"}
@@ -211,12 +211,21 @@ def test_existence_verdict_on_synthetic_numbers():
     assert existence_verdict([stop, {**converge, "velocity": 0.1}], 0.084, 1e-8).holds is False
 
 
+def released(c: dict) -> Evidence:
+    """The evidence with the runs from rest of the claim ``c``, made by the checks scene."""
+    return evidence(checks=release_runs(c["args"]))
+
+
 def test_existence_sign_change_with_the_solver():
     # F* = 0.19 * 0.08 / (2 (0.81 * 0.05 + 0.05)) = 0.0839779 N
-    result = outcome(claim("existence_sign_change", forces=[0.05, 0.1], **ASYMMETRIC))
+    c = claim("existence_sign_change", forces=[0.05, 0.1], **ASYMMETRIC)
+    result = outcome(c, released(c))
     assert result.holds is True and "= 0.0839779 N" in result.note
     assert "F = 0.05 N (C = -0.00615 m^2/s^2): stopped" in result.replicated_value
-    assert status(claim("existence_sign_change", forces=[0.1, 0.2], **ASYMMETRIC)) == "not_reproduced"
+    c = claim("existence_sign_change", forces=[0.1, 0.2], **ASYMMETRIC)
+    assert status(c, released(c)) == "not_reproduced"
+    with pytest.raises(cl.ClaimError, match="0 runs of release_outcome"):
+        outcome(c, evidence(checks=release_runs({**c["args"], "n_cycles": 20})))
 
 
 PAPER_CASE = dict(positions=[-0.1, 0.05, 0.1, -0.05], F=1.0, M=1.0, K=1.0, b=0.1)
@@ -233,9 +242,10 @@ def test_release_verdict_on_synthetic_numbers():
 
 def test_release_boundary_with_the_solver():
     c = claim("release_boundary", releases=[-1.0, 0.1001], n_cycles=200, **PAPER_CASE)
-    assert status(c) == "reproduced"
-    assert status({**c, "args": {**c["args"], "releases": [-1.0, 0.1001, -0.0999]}}) == "not_reproduced"
-    assert status({**c, "args": {**c["args"], "n_cycles": 5}}) == "not_reproduced"  # not yet at the fixed point
+    assert status(c, released(c)) == "reproduced"
+    for other in ({"releases": [-1.0, 0.1001, -0.0999]}, {"n_cycles": 5}):  # inside the boundary; not yet converged
+        c_other = {**c, "args": {**c["args"], **other}}
+        assert status(c_other, released(c_other)) == "not_reproduced"
 
 
 # --- Secs. 3.3 and 5: uniqueness fails at grazing --------------------------------------------------
@@ -253,14 +263,15 @@ def test_grazing_verdict_on_synthetic_numbers():
 
 def test_grazing_uniqueness_with_the_solver():
     args = dict(positions=[-0.1, 0.05, 0.3, -0.05], F=0.1, deltas=[1e-4, 1e-12], n_cycles=3)
-    result = outcome(claim("grazing_uniqueness", **args))
+    c = claim("grazing_uniqueness", **args)
+    result = outcome(c, released(c))
     # A^2 = 0.01 + (0.09 - 0.01 - 0.03) / 0.81; the continuation after a touch counted as an impact:
     # v1^2 = 0.09 - 0.01 + 2 * 0.1 * 0.35 = 0.15
     assert result.holds is True
     assert f"A = {math.sqrt(0.01 + 0.05 / 0.81):.10g} m" in result.replicated_value
     assert f"next v1 = {math.sqrt(0.15):.10g} m/s" in result.replicated_value
     with pytest.raises(cl.ClaimError, match="no release grazes a3"):
-        outcome(claim("grazing_uniqueness", **{**args, "positions": [-0.1, 0.05, 0.1, -0.05]}))
+        outcome(claim("grazing_uniqueness", **{**args, "positions": [-0.1, 0.05, 0.1, -0.05]}), released(c))
 
 
 # --- Figs. 4 and 5, the Poincare section ---------------------------------------------------------

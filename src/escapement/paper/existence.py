@@ -1,8 +1,9 @@
 """Checks on where a limit cycle exists and where the solution is unique (Secs. 3.3, 4 and 5).
 
-Each check runs the exact solver on the configurations its ``args`` in the register name, and
-compares the outcomes with a closed form derived on paper; the verdict comes from a pure function
-(``*_verdict``) of the measured numbers, so that the tests can give it every case.
+Each check reads the runs from rest its ``args`` in the register name, made by the checks scene (the
+``release`` dimension of the checks dataset), and compares the outcomes with a closed form derived on paper;
+the verdict comes from a pure function (``*_verdict``) of the measured numbers, so that the tests can give it
+every case.
 
 Closed forms used (derived here, from the map (16), which is right):
 
@@ -28,11 +29,10 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
-from ..model.events import EventKind
 from ..model.parameters import Parameters
+from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
-from ..solvers.exact import solve_exact
-from .checks import Evidence, Verdict, check, fmt, runs_only
+from .checks import Evidence, Verdict, check, fmt, probe, runs_only
 
 __all__ = ["existence_threshold", "existence_verdict", "grazing_limit", "grazing_release", "grazing_verdict",
     "map_constant", "release_verdict"]
@@ -42,6 +42,14 @@ def _params(args: Mapping, F: float, positions: Sequence[float] | None = None) -
     a1, a2, a3, a4 = positions if positions is not None else args["positions"]
     return Parameters(M=float(args.get("M", 1.0)), K=float(args.get("K", 1.0)), F=float(F), b=float(args.get("b", 0.1)),
                       a1=float(a1), a2=float(a2), a3=float(a3), a4=float(a4))
+
+
+def _run(ev: Evidence, p: Parameters, x0: float, n_cycles) -> dict:
+    """The run from rest at ``x0`` with ``p`` over ``n_cycles`` of the checks dataset: its ``outcome``, complete
+    ``cycles``, last ``velocity`` and ``next_velocity`` (before the second impact at a1)."""
+    where = {**{f"release_{k}": getattr(p, k) for k in MODEL_KEYS}, "release_x0": x0, "release_n_cycles": int(n_cycles)}
+    return {name: probe(ev, f"release_{name}", "release", **where).item()
+            for name in ("outcome", "cycles", "velocity", "next_velocity")}
 
 
 def map_constant(p: Parameters) -> float:
@@ -98,11 +106,9 @@ def existence_sign_change(claim, ev: Evidence) -> Verdict:
     for F in args["forces"]:
         p = _params(args, F)
         c = map_constant(p)
-        run = solve_exact(p, float(args["x0"]), n_cycles=int(args["n_cycles"]), record_trajectory=False)
-        v = run.cycles.velocity_before_impact
+        run = _run(ev, p, float(args["x0"]), args["n_cycles"])
         rows.append({"F": p.F, "C": c, "fixed_point": math.sqrt(c / (1 - (1 - p.b) ** 4)) if c > 0 else math.nan,
-                     "outcome": run.status.value, "cycles": len(run.cycles), "velocity": float(v[-1]) if len(v) else
-                     math.nan})
+                     "outcome": run["outcome"], "cycles": run["cycles"], "velocity": run["velocity"]})
     return existence_verdict(rows, existence_threshold(_params(args, 0.0)), claim["tolerance"])
 
 
@@ -136,10 +142,8 @@ def release_boundary(claim, ev: Evidence) -> Verdict:
     star = math.sqrt(map_constant(p) / (1 - (1 - p.b) ** 4))
     rows = []
     for x0 in args["releases"]:
-        run = solve_exact(p, float(x0), n_cycles=int(args["n_cycles"]), record_trajectory=False)
-        v = run.cycles.velocity_before_impact
-        rows.append({"x0": float(x0), "outcome": run.status.value, "velocity": float(v[-1]) if len(v) else math.nan,
-                     "fixed_point": star})
+        run = _run(ev, p, float(x0), args["n_cycles"])
+        rows.append({"x0": float(x0), "outcome": run["outcome"], "velocity": run["velocity"], "fixed_point": star})
     return release_verdict(rows, min(-p.a1, p.a3), claim["tolerance"])
 
 
@@ -190,10 +194,8 @@ def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
     release = grazing_release(p)
 
     def run(x0: float) -> dict:
-        sol = solve_exact(p, x0, n_cycles=int(args["n_cycles"]), record_trajectory=False)
-        impacts = sol.events.of_kind(EventKind.IMPACT_A1)
-        v_next = float(sol.events.v_before[impacts[1]]) if len(impacts) > 1 else math.nan
-        return {"outcome": sol.status.value, "v_next": v_next}
+        found = _run(ev, p, x0, args["n_cycles"])
+        return {"outcome": found["outcome"], "v_next": found["next_velocity"]}
 
     rows = [{"delta": float(d), "above": run(-release * (1 + float(d))), "below": run(-release * (1 - float(d)))}
             for d in args["deltas"]]

@@ -189,8 +189,9 @@ def replication_scenes(paper: Mapping) -> dict[str, dict]:
 
 
 def check_probes(paper: Mapping) -> dict:
-    """The runs behind single claims (the ``checks`` block's ``first_swings``, ``return_map`` and ``phase_shift``),
-    each on a Fig. 3 case as the fig3 block runs it (:func:`escapement.scenes.probes.probe_variables`)."""
+    """The runs behind single claims (the ``checks`` block's ``first_swings``, ``return_map`` and ``phase_shift``,
+    each on a Fig. 3 case as the fig3 block runs it; ``existence``, ``release_boundary`` and ``grazing``, on the
+    model with their own positions) (:func:`escapement.scenes.probes.probe_variables`)."""
     checks, fig3 = paper["checks"], paper["fig3"]
 
     def case(label: str, *parts: Mapping) -> dict:
@@ -208,6 +209,15 @@ def check_probes(paper: Mapping) -> dict:
     if "phase_shift" in checks:
         probes["phase_shift"] = case(checks["phase_shift"]["case"], checks["phase_shift"],
                                      {"n_release": fig3["n_cycles"]})
+    own = {key: {**dict(zip(("a1", "a2", "a3", "a4"), block["positions"])), **block}
+           for key, block in checks.items() if key in ("existence", "release_boundary", "grazing")}
+    probes["releases"] = [_flat(paper["model"], own["existence"], {"F": F}) for F in own["existence"]["forces"]
+                          ] if "existence" in own else []
+    if "release_boundary" in own:
+        probes["releases"] += [_flat(paper["model"], own["release_boundary"], {"x0": x0})
+                               for x0 in own["release_boundary"]["releases"]]
+    if "grazing" in own:
+        probes["grazing"] = _flat(paper["model"], own["grazing"])
     return probes
 
 

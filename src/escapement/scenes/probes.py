@@ -1,8 +1,9 @@
 """The runs behind single claims of the register, beside the table of the ``checks`` dataset
 (:func:`escapement.scenes.runs.checks`): each Fig. 3 case's first swing from either side of its release, the
-slope of the return map of a Fig. 3 case at given speeds, and the runs from the section at the converged speed
-and beside it. Each group of variables has its own dimension; the checks find in it the run their ``args`` in
-the register name (:mod:`escapement.paper`), and never run one.
+slope of the return map of a Fig. 3 case at given speeds, the runs from the section at the converged speed
+and beside it, and the releases from rest of the checks on where a limit cycle exists (Secs. 3.3, 4 and 5).
+Each group of variables has its own dimension; the checks find in it the run their ``args`` in the register name
+(:mod:`escapement.paper`), and never run one.
 """
 
 from __future__ import annotations
@@ -14,9 +15,11 @@ import xarray as xr
 
 from ..model.events import EventKind
 from ..model.parameters import Parameters
+from ..model.quantities import MODEL_KEYS, PARAMETERS
+from ..paper.existence import grazing_release
 from ..solvers.exact import solve_exact
 from ..studies.poincare import RELATIVE_STEP, return_map
-from .cf import MODEL_INPUT, MODEL_RESULT
+from .cf import CLASSIFICATION, MODEL_INPUT, MODEL_RESULT
 from .settings import positive_int
 
 __all__ = ["probe_variables"]
@@ -84,9 +87,39 @@ def _phase_shift(spec: Mapping) -> dict[str, xr.DataArray]:
     }
 
 
+def _releases(runs: list[Mapping], grazing: Mapping | None) -> dict[str, xr.DataArray]:
+    """Each run (the model's keys, ``x0`` and ``n_cycles``) from rest, and from either side of the grazing
+    release ``-A (1 +/- delta)`` of ``grazing`` (:func:`escapement.paper.existence.grazing_release`) at each of its
+    ``deltas``: how it ended, its complete cycles, its last velocity before impact at a1 and the one before its
+    second impact at a1."""
+    if grazing is not None:
+        edge = grazing_release(Parameters.from_mapping(grazing))
+        runs = [*runs, *({**grazing, "x0": x0} for d in grazing["deltas"]
+                         for x0 in (-edge * (1 + float(d)), -edge * (1 - float(d))))]
+    found = []
+    for r in runs:
+        sol = solve_exact(Parameters.from_mapping(r), float(r["x0"]), n_cycles=positive_int(
+            "n_cycles", r["n_cycles"], 100_000), record_trajectory=False)
+        v, impacts = sol.cycles.velocity_before_impact, sol.events.of_kind(EventKind.IMPACT_A1)
+        found.append((sol.status.value, len(sol.cycles), float(v[-1]) if len(v) else np.nan,
+                      float(sol.events.v_before[impacts[1]]) if len(impacts) > 1 else np.nan))
+    dims, given = "release", ("released from rest", MODEL_INPUT)
+    return {
+        **{f"release_{k}": _variable([float(r[k]) for r in runs], dims, PARAMETERS[k].units, PARAMETERS[k].long_name,
+                                     MODEL_INPUT) for k in MODEL_KEYS},
+        "release_x0": _variable([float(r["x0"]) for r in runs], dims, "m", *given),
+        "release_n_cycles": _variable([int(r["n_cycles"]) for r in runs], dims, "1", "cycles run", MODEL_INPUT),
+        "release_outcome": _variable([f[0] for f in found], dims, None, "how the run ended", CLASSIFICATION),
+        "release_cycles": _variable([f[1] for f in found], dims, "1", "complete cycles"),
+        "release_velocity": _variable([f[2] for f in found], dims, "m s-1", "velocity before the last impact at a1"),
+        "release_next_velocity": _variable([f[3] for f in found], dims, "m s-1",
+                                           "velocity before the second impact at a1 (NaN if none)"),
+    }
+
+
 def probe_variables(probes: Mapping) -> dict[str, xr.DataArray]:
-    """The variables of the runs ``probes`` names: ``first_swings`` (a list of runs), ``return_map`` and
-    ``phase_shift`` (one case each), whichever it holds."""
+    """The variables of the runs ``probes`` names: ``first_swings`` and ``releases`` (lists of runs),
+    ``return_map``, ``phase_shift`` and ``grazing`` (one case each), whichever it holds."""
     found: dict[str, xr.DataArray] = {}
     if probes.get("first_swings"):
         found.update(_first_swings(list(probes["first_swings"])))
@@ -94,4 +127,6 @@ def probe_variables(probes: Mapping) -> dict[str, xr.DataArray]:
         found.update(_return_map(probes["return_map"]))
     if "phase_shift" in probes:
         found.update(_phase_shift(probes["phase_shift"]))
+    if probes.get("releases") or "grazing" in probes:
+        found.update(_releases(list(probes.get("releases", [])), probes.get("grazing")))
     return found
