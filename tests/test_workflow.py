@@ -87,14 +87,15 @@ def test_publish_updates_the_tracked_files_and_then_they_show_what_the_run_drew(
 #: lengths in m, times in s, velocities in m/s, accelerations in m/s2, forces in N, the impulse in N s, energies
 #: in J, the daily rate in s/day; counts, ratios and relative errors dimensionless
 DIMENSIONS = {
-    "M": "kg", "K": "N/m", **dict.fromkeys(["F", "threshold", "threshold_mirror", "release_F"], "N"),
+    "M": "kg", "K": "N/m", **dict.fromkeys(["F", "threshold", "threshold_mirror", "release_F", "airy_force"], "N"),
     "release_M": "kg", "release_K": "N/m",
     **dict.fromkeys(["a1", "a2", "a3", "a4", "x0", "amplitude_h0", "largest_displacement", "displacement",
                      "event_position", "impact_position", "zone_a1", "zone_a2", "first_swing_x0", "release_x0",
+                     "airy_zone_start", "airy_zone_end",
                      *(f"release_a{i}" for i in range(1, 5))], "m"),
     **dict.fromkeys(["t", "t_final", "period", "first_period", "period_formula", "fixed_point_period", "impact_time",
                      "event_time", "drift_exact", "drift_ivp", "drift_closed_form", "velocity_window",
-                     "acceleration_window", "perturbed_impact_time"], "s"),
+                     "acceleration_window", "perturbed_impact_time", "airy_zone_shift"], "s"),
     **dict.fromkeys(["v0", "velocity", "velocity_before", "velocity_after", "velocity_before_impact",
                      "event_velocity_before", "event_velocity_after", "largest_speed", "fixed_point",
                      "fixed_point_19", "fixed_point_eq16", "fixed_point_velocity", "first_swing_velocity",

@@ -13,8 +13,9 @@ zone ``phi`` advances at ``w - f x / (w A**2)``) a zone from ``a`` to ``c`` on a
 ``A`` costs ``dT2 = f / (w**3 A**2) (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) + O(f**2)``: zero for a
 zone symmetric about 0, negative before the equilibrium, positive after.
 
-:func:`zone_shift` measures ``dT2`` on one passage of the exact solver at a fixed amplitude (the
-setting of Airy's theorem; on the limit cycle the amplitude itself changes with ``f``). The check
+The checks scene measures ``dT2`` on one passage of the exact solver at a fixed amplitude
+(:func:`escapement.scenes.probes.zone_shift`, the ``airy_zone_shift`` of the checks dataset; the setting of Airy's
+theorem; on the limit cycle the amplitude itself changes with ``f``). The check
 ``airy_order`` compares it with the closed form as ``f -> 0``; ``daily_rate`` restates a period as
 seconds gained per day.
 """
@@ -24,12 +25,10 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
-from ..model.events import EventKind
 from ..model.parameters import Parameters
-from ..solvers.exact import solve_exact
-from .checks import Evidence, Verdict, check, fig3_all, fmt, params_of, runs_only, within
+from .checks import Evidence, Verdict, check, fig3_all, fmt, params_of, probe, runs_only, within
 
-__all__ = ["SECONDS_PER_DAY", "airy_verdict", "daily_rate", "first_order_zone_change", "zone_amplitude", "zone_shift"]
+__all__ = ["SECONDS_PER_DAY", "airy_verdict", "daily_rate", "first_order_zone_change", "zone_amplitude"]
 
 SECONDS_PER_DAY = 86_400.0
 
@@ -52,19 +51,6 @@ def zone_amplitude(p: Parameters, release: float) -> float:
     """Amplitude of the arc that enters the zone (a1, a2) after the impact at a1, for a release from
     rest at ``-release``: ``sqrt(a1**2 + (1 - b)**2 (release**2 - a1**2))`` (closed form)."""
     return math.sqrt(p.a1**2 + (1 - p.b) ** 2 * (release**2 - p.a1**2))
-
-
-def zone_shift(p: Parameters, release: float) -> float:
-    """``dT2`` of the first passage through the zone (a1, a2), from the exact solver's events, for a
-    release from rest at ``-release`` (s)."""
-    run = solve_exact(p, -release, n_cycles=1, record_trajectory=False)
-    ev = run.events
-    first = ev.of_kind(EventKind.IMPACT_A1)
-    if not len(first) or first[0] + 1 >= len(ev) or ev.kind[first[0] + 1] != EventKind.ZONE_END_A2:
-        raise ValueError(f"F = {p.F!r} N, zone ({p.a1}, {p.a2}): no passage through the zone ({run.message})")
-    i, w = first[0], p.omega
-    advance = math.atan2(ev.x[i + 1], ev.v_before[i + 1] / w) - math.atan2(ev.x[i], ev.v_after[i] / w)
-    return float(ev.t[i + 1] - ev.t[i]) - advance / w
 
 
 def _order(f: Sequence[float], shift: Sequence[float]) -> float:
@@ -104,7 +90,11 @@ def airy_verdict(zones: Mapping[str, Mapping], tolerance: float) -> Verdict:
 @check("airy_order", scenes=runs_only, args=("zones", "forces", "release"))
 def airy_order(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
-    release = float(args["release"])
+    release, made = float(args["release"]), ev.checks["airy_zone_shift"].attrs
+    if (made["release"], made["M"], made["K"], made["b"]) != (
+            release, *(float(args.get(k, d)) for k, d in (("M", 1.0), ("K", 1.0), ("b", 0.1)))):
+        raise ValueError(f"the checks dataset's passages are released at -{made['release']} m, M, K, b = "
+                         f"{made['M']}, {made['K']}, {made['b']}, not as the claim's")
     zones = {}
     for name, (a, c) in args["zones"].items():
         base = dict(M=float(args.get("M", 1.0)), K=float(args.get("K", 1.0)), b=float(args.get("b", 0.1)),
@@ -114,8 +104,9 @@ def airy_order(claim, ev: Evidence) -> Verdict:
         amplitude = zone_amplitude(p0, release)
         kappa = 0.0 if math.isclose(a, -c, rel_tol=0, abs_tol=1e-15) else (
             first_order_zone_change(a, c, amplitude, p0.omega, 1.0))
+        row = probe(ev, "airy_zone_shift", "airy_zone", airy_zone_start=float(a), airy_zone_end=float(c))
         zones[name] = {"zone": (a, c), "kappa": kappa, "f": [F / base["M"] for F in forces],
-                       "shift": [zone_shift(Parameters(F=F, **base), release) for F in forces]}
+                       "shift": [float(row.sel(airy_force=F)) for F in forces]}
     return airy_verdict(zones, claim["tolerance"])
 
 

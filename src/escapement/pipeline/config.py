@@ -191,7 +191,8 @@ def replication_scenes(paper: Mapping) -> dict[str, dict]:
 def check_probes(paper: Mapping) -> dict:
     """The runs behind single claims (the ``checks`` block's ``first_swings``, ``return_map`` and ``phase_shift``,
     each on a Fig. 3 case as the fig3 block runs it; ``existence``, ``release_boundary`` and ``grazing``, on the
-    model with their own positions) (:func:`escapement.scenes.probes.probe_variables`)."""
+    model with their own positions; ``airy``, its zones on the model)
+    (:func:`escapement.scenes.probes.probe_variables`)."""
     checks, fig3 = paper["checks"], paper["fig3"]
 
     def case(label: str, *parts: Mapping) -> dict:
@@ -218,6 +219,8 @@ def check_probes(paper: Mapping) -> dict:
                                for x0 in own["release_boundary"]["releases"]]
     if "grazing" in own:
         probes["grazing"] = _flat(paper["model"], own["grazing"])
+    if "airy" in checks:
+        probes["airy"] = _flat(paper["model"], checks["airy"])
     return probes
 
 

@@ -1,13 +1,15 @@
 """The runs behind single claims of the register, beside the table of the ``checks`` dataset
 (:func:`escapement.scenes.runs.checks`): each Fig. 3 case's first swing from either side of its release, the
 slope of the return map of a Fig. 3 case at given speeds, the runs from the section at the converged speed
-and beside it, and the releases from rest of the checks on where a limit cycle exists (Secs. 3.3, 4 and 5).
+and beside it, the releases from rest of the checks on where a limit cycle exists (Secs. 3.3, 4 and 5), and the
+time one passage through an impulse zone adds to the swing (Airy's theorem, Sec. 5).
 Each group of variables has its own dimension; the checks find in it the run their ``args`` in the register name
 (:mod:`escapement.paper`), and never run one.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 
 import numpy as np
@@ -117,9 +119,39 @@ def _releases(runs: list[Mapping], grazing: Mapping | None) -> dict[str, xr.Data
     }
 
 
+def zone_shift(p: Parameters, release: float) -> float:
+    """``dT2`` of the first passage through the zone (a1, a2), from the exact solver's events, for a release
+    from rest at ``-release`` (s): the time in the zone less the free swing's over the same phase."""
+    run = solve_exact(p, -release, n_cycles=1, record_trajectory=False)
+    ev = run.events
+    first = ev.of_kind(EventKind.IMPACT_A1)
+    if not len(first) or first[0] + 1 >= len(ev) or ev.kind[first[0] + 1] != EventKind.ZONE_END_A2:
+        raise ValueError(f"F = {p.F!r} N, zone ({p.a1}, {p.a2}): no passage through the zone ({run.message})")
+    i, w = first[0], p.omega
+    advance = math.atan2(ev.x[i + 1], ev.v_before[i + 1] / w) - math.atan2(ev.x[i], ev.v_after[i] / w)
+    return float(ev.t[i + 1] - ev.t[i]) - advance / w
+
+
+def _airy(spec: Mapping) -> dict[str, xr.DataArray]:
+    """``dT2`` (:func:`zone_shift`) of each zone ``[a1, a2]`` of ``spec`` at each of its ``forces``, on the model's
+    M, K and b, released from rest at ``-release``."""
+    zones, forces, release = spec["zones"], [float(F) for F in spec["forces"]], float(spec["release"])
+    given = {key: float(spec[key]) for key in ("M", "K", "b")}
+    shifts = [[zone_shift(Parameters(F=F, a1=float(a), a2=float(c), **given), release) for F in forces]
+              for a, c in zones]
+    return {"airy_zone_start": _variable([float(a) for a, _ in zones], "airy_zone", "m", "start of the impulse zone",
+                                         MODEL_INPUT),
+            "airy_zone_end": _variable([float(c) for _, c in zones], "airy_zone", "m", "end of the impulse zone",
+                                       MODEL_INPUT),
+            "airy_force": _variable(forces, "airy_force", "N", "force over the impulse zone", MODEL_INPUT),
+            "airy_zone_shift": _variable(shifts, ("airy_zone", "airy_force"), "s", "time one passage through the "
+                                         "zone adds to the free swing, released from rest at -release",
+                                         release=release, **given)}
+
+
 def probe_variables(probes: Mapping) -> dict[str, xr.DataArray]:
     """The variables of the runs ``probes`` names: ``first_swings`` and ``releases`` (lists of runs),
-    ``return_map``, ``phase_shift`` and ``grazing`` (one case each), whichever it holds."""
+    ``return_map``, ``phase_shift``, ``grazing`` and ``airy`` (one case each), whichever it holds."""
     found: dict[str, xr.DataArray] = {}
     if probes.get("first_swings"):
         found.update(_first_swings(list(probes["first_swings"])))
@@ -127,6 +159,8 @@ def probe_variables(probes: Mapping) -> dict[str, xr.DataArray]:
         found.update(_return_map(probes["return_map"]))
     if "phase_shift" in probes:
         found.update(_phase_shift(probes["phase_shift"]))
+    if "airy" in probes:
+        found.update(_airy(probes["airy"]))
     if probes.get("releases") or "grazing" in probes:
         found.update(_releases(list(probes.get("releases", [])), probes.get("grazing")))
     return found
