@@ -88,18 +88,20 @@ def test_publish_updates_the_tracked_files_and_then_they_show_what_the_run_drew(
 #: in J, the daily rate in s/day; counts, ratios and relative errors dimensionless
 DIMENSIONS = {
     "M": "kg", "K": "N/m", **dict.fromkeys(["F", "threshold", "threshold_mirror", "release_F", "airy_force"], "N"),
-    "release_M": "kg", "release_K": "N/m",
+    "release_M": "kg", **dict.fromkeys(["release_K", "short_K"], "N/m"),
     **dict.fromkeys(["a1", "a2", "a3", "a4", "x0", "amplitude_h0", "largest_displacement", "displacement",
                      "event_position", "impact_position", "zone_a1", "zone_a2", "first_swing_x0", "release_x0",
-                     "airy_zone_start", "airy_zone_end",
+                     "airy_zone_start", "airy_zone_end", "short_x0", "short_event_position",
                      *(f"release_a{i}" for i in range(1, 5))], "m"),
     **dict.fromkeys(["t", "t_final", "period", "first_period", "period_formula", "fixed_point_period", "impact_time",
                      "event_time", "drift_exact", "drift_ivp", "drift_closed_form", "velocity_window",
-                     "acceleration_window", "perturbed_impact_time", "airy_zone_shift"], "s"),
+                     "acceleration_window", "perturbed_impact_time", "airy_zone_shift",
+                     "short_event_time"], "s"),
     **dict.fromkeys(["v0", "velocity", "velocity_before", "velocity_after", "velocity_before_impact",
                      "event_velocity_before", "event_velocity_after", "largest_speed", "fixed_point",
                      "fixed_point_19", "fixed_point_eq16", "fixed_point_velocity", "first_swing_velocity",
-                     "map_velocity", "perturbed_speed", "release_velocity", "release_next_velocity"], "m/s"),
+                     "map_velocity", "perturbed_speed", "release_velocity", "release_next_velocity",
+                     "short_event_velocity_before", "short_event_velocity_after"], "m/s"),
     "acceleration": "m/s2", "impulse": "N s", "energy_dissipated": "J", "samples_per_second": "1/s",
     **dict.fromkeys(["rate", "rate_impacts", "rate_zones", "seconds_per_day"], "s/day"),
     **dict.fromkeys(["b", "case", "cycle", "amplitude_cycle", "cycles_to_converge", "n_cycles", "zone", "tolerance",
@@ -107,7 +109,7 @@ DIMENSIONS = {
                      "max_period_deviation", "max_period_difference", "max_velocity_deviation", "error_time_exact",
                      "error_time_ivp", "error_time_closed_form", "error_velocity_exact", "error_velocity_ivp",
                      "error_velocity_closed_form", "map_slope", "perturbation", "release_b", "release_n_cycles",
-                     "release_cycles"], "1"),
+                     "release_cycles", "short_event_kind"], "1"),
 }
 #: the flag variables: a run ends completed (0), stopped (1), turned back in a zone (2), chattering (3) or at its
 #: event limit (4); an event is an impact at a1 (1), the end of the impulse at a2 (2), an impact at a3 (3), the end

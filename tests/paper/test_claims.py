@@ -244,11 +244,21 @@ def releases_of_the_register() -> dict:
     return probe_variables({key: made[key] for key in ("releases", "grazing", "airy")})
 
 
+def short_runs_of_the_register(fig3: xr.Dataset) -> dict:
+    """The short runs of Fig. 3 (a) the register's checks of Sec. 3.3 read (its springs and releases), as the
+    checks scene makes them from the scene ``fig3``'s parameters."""
+    from escapement.scenes.probes import probe_variables
+    case = {**{k: float(fig3[k]) for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4")}, "label": "a", "n_cycles": 3}
+    x0 = float(fig3["x0"])
+    pairs = dict.fromkeys([(K, x0) for K in (0.1, 1.0, 10.0)] + [(1.0, r) for r in (-1.0, -1.5)])
+    return probe_variables({"short_runs": [{**case, "K": K, "x0": r} for K, r in pairs]})
+
+
 @functools.cache
 def scenes(side: float) -> Evidence:
     fig3 = {"a": solved_fig3(1.0, side * 1.0), "b": solved_fig3(0.5, side * 3.0)}
-    return Evidence(fig3=fig3, fig4=None, fig5={},
-                    checks=checks_dataset(float(fig3["a"]["velocity_before_impact"].values[-1])))
+    checks = checks_dataset(float(fig3["a"]["velocity_before_impact"].values[-1]))
+    return Evidence(fig3=fig3, fig4=None, fig5={}, checks=checks.assign(short_runs_of_the_register(fig3["a"])))
 
 
 def test_a_check_that_reads_a_fitted_input_declares_it():

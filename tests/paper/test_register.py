@@ -384,10 +384,20 @@ def model_verdict(check: str, ev=None, tolerance=1e-12, **args):
 def test_the_state_matrix_as_printed_holds_only_where_omega_is_1():
     """The exact solver's free arcs at each K conserve v^2 + w^2 x^2; -omega_n in A conserves v^2 + w x^2 instead,
     which the arcs do only at K = 1 N/m."""
+    ev = evidence(checks=made_short_runs([1.0, 4.0], []))
     for entry, holds in (("omega", False), ("omega2", True)):
-        result = model_verdict("state_matrix", tolerance=1e-10, case="a", entry=entry, K=[1.0, 4.0])
+        result = model_verdict("state_matrix", ev, tolerance=1e-10, case="a", entry=entry, K=[1.0, 4.0])
         assert result.holds is holds and "K = 4 N/m (omega_n = 2 rad/s)" in result.replicated_value
-    assert model_verdict("state_matrix", tolerance=1e-10, case="a", entry="omega", K=[1.0]).holds is True
+    assert model_verdict("state_matrix", ev, tolerance=1e-10, case="a", entry="omega", K=[1.0]).holds is True
+
+
+def made_short_runs(springs: list[float], releases: list[float]) -> xr.Dataset:
+    """The short runs of Fig. 3 (a) (F = 1 N, from rest at -1 m) at each spring and from each release, three
+    cycles each, as the checks scene makes them."""
+    from escapement.scenes.probes import probe_variables
+    case = {**GEOMETRY, "F": 1.0, "label": "a", "n_cycles": 3}
+    pairs = dict.fromkeys([(K, -1.0) for K in springs] + [(1.0, x0) for x0 in releases])
+    return xr.Dataset(probe_variables({"short_runs": [{**case, "K": K, "x0": x0} for K, x0 in pairs]}))
 
 
 def test_each_mode_keeps_its_energy_in_the_events_of_the_printed_steps():
@@ -432,8 +442,9 @@ def test_the_supplementary_sets_miss_the_ends_of_the_zones_and_the_turning_point
 
 
 def test_the_force_is_switched_on_where_the_state_is_not_at_given_times():
-    assert model_verdict("autonomous", tolerance=1e-9, case="a", releases=[-1.0, -1.5]).holds is False
-    assert model_verdict("autonomous", tolerance=1e-9, case="a", releases=[-1.0, -1.0]).holds is True
+    ev = evidence(checks=made_short_runs([], [-1.0, -1.5]))
+    assert model_verdict("autonomous", ev, tolerance=1e-9, case="a", releases=[-1.0, -1.5]).holds is False
+    assert model_verdict("autonomous", ev, tolerance=1e-9, case="a", releases=[-1.0, -1.0]).holds is True
 
 
 def test_the_map_8_has_the_eigenvalues_0_and_g_prime_not_1():

@@ -191,7 +191,7 @@ def replication_scenes(paper: Mapping) -> dict[str, dict]:
 def check_probes(paper: Mapping) -> dict:
     """The runs behind single claims (the ``checks`` block's ``first_swings``, ``return_map`` and ``phase_shift``,
     each on a Fig. 3 case as the fig3 block runs it; ``existence``, ``release_boundary`` and ``grazing``, on the
-    model with their own positions; ``airy``, its zones on the model)
+    model with their own positions; ``airy``, its zones on the model; ``short_runs``)
     (:func:`escapement.scenes.probes.probe_variables`)."""
     checks, fig3 = paper["checks"], paper["fig3"]
 
@@ -221,6 +221,11 @@ def check_probes(paper: Mapping) -> dict:
         probes["grazing"] = _flat(paper["model"], own["grazing"])
     if "airy" in checks:
         probes["airy"] = _flat(paper["model"], checks["airy"])
+    if "short_runs" in checks:
+        short, given = checks["short_runs"], fig3["cases"][checks["short_runs"]["case"]]
+        pairs = [(K, given["x0"]) for K in short["K"]] + [(paper["model"]["K"], x0) for x0 in short["releases"]]
+        probes["short_runs"] = [case(short["case"], {"K": K, "x0": x0, "n_cycles": short["n_cycles"]})
+                                for K, x0 in dict.fromkeys(pairs)]
     return probes
 
 

@@ -2,7 +2,8 @@
 (:func:`escapement.scenes.runs.checks`): each Fig. 3 case's first swing from either side of its release, the
 slope of the return map of a Fig. 3 case at given speeds, the runs from the section at the converged speed
 and beside it, the releases from rest of the checks on where a limit cycle exists (Secs. 3.3, 4 and 5), and the
-time one passage through an impulse zone adds to the swing (Airy's theorem, Sec. 5).
+time one passage through an impulse zone adds to the swing (Airy's theorem, Sec. 5), and the events of short runs
+of a Fig. 3 case at other springs and releases (Sec. 3.3).
 Each group of variables has its own dimension; the checks find in it the run their ``args`` in the register name
 (:mod:`escapement.paper`), and never run one.
 """
@@ -149,8 +150,30 @@ def _airy(spec: Mapping) -> dict[str, xr.DataArray]:
                                          release=release, **given)}
 
 
+def _short_runs(runs: list[Mapping]) -> dict[str, xr.DataArray]:
+    """Each run (a Fig. 3 case at its own K and release ``x0``) from rest over ``n_cycles``: its events, NaN after
+    the last."""
+    solved = [solve_exact(Parameters.from_mapping(r), float(r["x0"]), n_cycles=positive_int(
+        "n_cycles", r["n_cycles"], 1000), record_trajectory=False).events for r in runs]
+    table = np.full((5, len(runs), max(len(e) for e in solved)), np.nan)
+    for i, e in enumerate(solved):
+        table[:, i, :len(e)] = e.t, e.kind, e.x, e.v_before, e.v_after
+    dims, case = ("short_run", "short_event"), str(runs[0]["label"])
+    return {"short_K": _variable([float(r["K"]) for r in runs], "short_run", "N m-1", "spring constant of the run",
+                                 MODEL_INPUT, case=case, n_cycles=int(runs[0]["n_cycles"])),
+            "short_x0": _variable([float(r["x0"]) for r in runs], "short_run", "m", "released from rest at",
+                                  MODEL_INPUT),
+            **{f"short_event_{name}": _variable(values, dims, units, long_name) for values, (name, units, long_name)
+               in zip(table, (("time", "s", "time of the event"),
+                              ("kind", "1", "kind of the event: 1 impact at a1, 2 end of the impulse at a2, 3 impact "
+                                            "at a3, 4 end of the impulse at a4"),
+                              ("position", "m", "position of the event"),
+                              ("velocity_before", "m s-1", "velocity just before the event"),
+                              ("velocity_after", "m s-1", "velocity just after the event")))}}
+
+
 def probe_variables(probes: Mapping) -> dict[str, xr.DataArray]:
-    """The variables of the runs ``probes`` names: ``first_swings`` and ``releases`` (lists of runs),
+    """The variables of the runs ``probes`` names: ``first_swings``, ``releases`` and ``short_runs`` (lists of runs),
     ``return_map``, ``phase_shift``, ``grazing`` and ``airy`` (one case each), whichever it holds."""
     found: dict[str, xr.DataArray] = {}
     if probes.get("first_swings"):
@@ -161,6 +184,8 @@ def probe_variables(probes: Mapping) -> dict[str, xr.DataArray]:
         found.update(_phase_shift(probes["phase_shift"]))
     if "airy" in probes:
         found.update(_airy(probes["airy"]))
+    if probes.get("short_runs"):
+        found.update(_short_runs(list(probes["short_runs"])))
     if probes.get("releases") or "grazing" in probes:
         found.update(_releases(list(probes.get("releases", [])), probes.get("grazing")))
     return found
