@@ -128,7 +128,7 @@ def test_every_import_goes_down_the_declared_order(edges):
 
 #: the modules of the checks that still run a solver themselves, each until its runs move into a scene
 #: (a variable of the ``checks`` dataset, :mod:`escapement.scenes.runs`): this set may only shrink
-STILL_SIMULATE = {"figure_checks"}
+STILL_SIMULATE: set[str] = set()
 
 
 def _registers_a_check(tree: ast.AST) -> bool:

@@ -87,16 +87,18 @@ def test_publish_updates_the_tracked_files_and_then_they_show_what_the_run_drew(
 #: lengths in m, times in s, velocities in m/s, accelerations in m/s2, forces in N, the impulse in N s, energies
 #: in J, the daily rate in s/day; counts, ratios and relative errors dimensionless
 DIMENSIONS = {
-    "M": "kg", "K": "N/m", **dict.fromkeys(["F", "threshold", "threshold_mirror", "release_F", "airy_force"], "N"),
-    "release_M": "kg", **dict.fromkeys(["release_K", "short_K"], "N/m"),
+    "M": "kg", "K": "N/m", **dict.fromkeys(["F", "threshold", "threshold_mirror", "release_F", "airy_force",
+                                                   "window_F"], "N"),
+    "release_M": "kg", **dict.fromkeys(["release_K", "short_K", "window_K"], "N/m"),
     **dict.fromkeys(["a1", "a2", "a3", "a4", "x0", "amplitude_h0", "largest_displacement", "displacement",
                      "event_position", "impact_position", "zone_a1", "zone_a2", "first_swing_x0", "release_x0",
                      "airy_zone_start", "airy_zone_end", "short_x0", "short_event_position",
+                     "window_x0",
                      *(f"release_a{i}" for i in range(1, 5))], "m"),
     **dict.fromkeys(["t", "t_final", "period", "first_period", "period_formula", "fixed_point_period", "impact_time",
                      "event_time", "drift_exact", "drift_ivp", "drift_closed_form", "velocity_window",
                      "acceleration_window", "perturbed_impact_time", "airy_zone_shift",
-                     "short_event_time"], "s"),
+                     "short_event_time", "window_impact_time"], "s"),
     **dict.fromkeys(["v0", "velocity", "velocity_before", "velocity_after", "velocity_before_impact",
                      "event_velocity_before", "event_velocity_after", "largest_speed", "fixed_point",
                      "fixed_point_19", "fixed_point_eq16", "fixed_point_velocity", "first_swing_velocity",
@@ -109,7 +111,7 @@ DIMENSIONS = {
                      "max_period_deviation", "max_period_difference", "max_velocity_deviation", "error_time_exact",
                      "error_time_ivp", "error_time_closed_form", "error_velocity_exact", "error_velocity_ivp",
                      "error_velocity_closed_form", "map_slope", "perturbation", "release_b", "release_n_cycles",
-                     "release_cycles", "short_event_kind"], "1"),
+                     "release_cycles", "short_event_kind", "crossings"], "1"),
 }
 #: the flag variables: a run ends completed (0), stopped (1), turned back in a zone (2), chattering (3) or at its
 #: event limit (4); an event is an impact at a1 (1), the end of the impulse at a2 (2), an impact at a3 (3), the end
@@ -180,13 +182,16 @@ def loaded(where: Path) -> dict[str, set[Path]]:
 def test_every_job_loads_only_code_that_the_rules_digest_covers(run):
     """Each job's process, traced: every file of the repository it loads is in the package, the workflow's scripts
     or the benchmarks' floors (escapement.pipeline.outputs.code_digest, a param of every rule), or is Snakemake's
-    copy of the rule's script."""
+    copy of the rule's script; the verdict's job loads no solver or integrator."""
     where = run[0].resolve()
     jobs = loaded(where)
     assert set(jobs) == EVERY_JOB
     covered = [where / "src/escapement", where / "workflow/scripts", where / "benchmarks", where / ".snakemake/scripts"]
     for rule, files in jobs.items():
-        assert any(where / "src/escapement/solvers" in f.parents for f in files) or rule.startswith(("plot_", "render"))
+        simulates = any(where / f"src/escapement/{layer}" in f.parents for f in files for layer in ("solvers",
+                                                                                                    "integrators"))
+        # the verdict reads the datasets and never simulates; every simulation job loads the solvers
+        assert simulates is (rule != "check_claims") or rule.startswith(("plot_", "render")), rule
         outside = sorted(str(f.relative_to(where)) for f in files if not any(c in f.parents for c in covered))
         assert not outside, f"{rule} loads {outside}, which no rule's digest covers"
 

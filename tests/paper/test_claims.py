@@ -236,12 +236,13 @@ def checks_dataset(star: float = 1.25) -> xr.Dataset:
 
 @functools.cache
 def releases_of_the_register() -> dict:
-    """The runs from rest of the checks on where a limit cycle exists and the passages of Airy's check, as the
-    checks scene makes them from the paper's configuration (the register's args select them)."""
+    """The runs from rest of the checks on where a limit cycle exists, the passages of Airy's check, the runs of
+    Fig. 4's grid and the crossings of the section of Fig. 3's runs, as the checks scene makes them from the paper's
+    configuration (the register's args select them)."""
     from escapement.pipeline.config import check_probes, read_yaml
     from escapement.scenes.probes import probe_variables
     made = check_probes(read_yaml(REGISTER.parents[1] / "config" / "paper.yaml"))
-    return probe_variables({key: made[key] for key in ("releases", "grazing", "airy")})
+    return probe_variables({key: made[key] for key in ("releases", "grazing", "airy", "windows", "crossings")})
 
 
 def short_runs_of_the_register(fig3: xr.Dataset) -> dict:

@@ -24,6 +24,8 @@ from escapement.paper.figure_checks import section_crossing_counts
 from escapement.paper.vocabulary import status_of
 from paper.test_check_boundaries import probes, release_runs
 
+from escapement.scenes.probes import probe_variables
+
 GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
 DONE = {"outcome": "completed", "outcome_message": "completed: a message"}
 
@@ -283,7 +285,10 @@ def test_window_impact_holds_under_every_reading_of_the_grid(monkeypatch):
     for the review of this check; for K = 0.1 N/m, whose impacts come about 31 s apart, it is a property of
     these releases, not of the geometry)."""
     c = claim("window_impact", tolerance=None)
-    ev = evidence(fig3={"a": fig3(), "b": fig3(F=0.5, v0=3.0, x0=-3.0)})
+    grid = [{**GEOMETRY, "F": F, "K": K, "x0": x0} for F in (0.5, 1.0) for K in (0.1, 1.0, 10.0)
+            for x0 in (-3.0, -1.0, 1.0, 3.0)]
+    ev = evidence(fig3={"a": fig3(), "b": fig3(F=0.5, v0=3.0, x0=-3.0)},
+                  checks=xr.Dataset(probe_variables({"windows": grid})))
     result = outcome(c, ev)
     assert len(result.holds) == 24 and all(result.holds.values())
     assert status(c, ev) == "reproduced"
@@ -296,7 +301,10 @@ def test_window_impact_holds_under_every_reading_of_the_grid(monkeypatch):
 
 def test_section_crossings():
     c = claim("section_crossings", tolerance=None, samples_per_period=400)
-    result = outcome(c)
+    cases = [{**GEOMETRY, "F": F, "x0": x0, "label": label, "n_cycles": 4} for label, F, x0 in (("a", 1.0, -1.0),
+                                                                                             ("b", 0.5, -3.0))]
+    result = outcome(c, evidence(checks=xr.Dataset(probe_variables({"crossings": {"cases": cases,
+                                                                                  "samples_per_period": 400}}))))
     assert result.holds is True and "case a: 4 cycles, crossings per cycle 1-1" in result.replicated_value
     # a trajectory x = -cos t with every other impact at a1 left out: two crossings in each "cycle"
     t = np.linspace(0.0, 8 * math.pi, 4000)
@@ -368,7 +376,6 @@ def test_airy_order_with_the_solver():
 
 def passages(c: dict) -> Evidence:
     """The evidence with the passages through the zones of the claim ``c``, made by the checks scene."""
-    from escapement.scenes.probes import probe_variables
     spec = {"zones": list(c["args"]["zones"].values()), "forces": c["args"]["forces"], "release": 1.0,
             "M": 1.0, "K": 1.0, "b": 0.1}
     return evidence(checks=xr.Dataset(probe_variables({"airy": spec})))
@@ -394,7 +401,6 @@ def test_the_state_matrix_as_printed_holds_only_where_omega_is_1():
 def made_short_runs(springs: list[float], releases: list[float]) -> xr.Dataset:
     """The short runs of Fig. 3 (a) (F = 1 N, from rest at -1 m) at each spring and from each release, three
     cycles each, as the checks scene makes them."""
-    from escapement.scenes.probes import probe_variables
     case = {**GEOMETRY, "F": 1.0, "label": "a", "n_cycles": 3}
     pairs = dict.fromkeys([(K, -1.0) for K in springs] + [(1.0, x0) for x0 in releases])
     return xr.Dataset(probe_variables({"short_runs": [{**case, "K": K, "x0": x0} for K, x0 in pairs]}))

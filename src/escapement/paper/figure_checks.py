@@ -2,9 +2,10 @@
 
 * ``section_crossings``: "each cycle only contains one such state", a crossing of
   Sigma = {x = a1, xdot > 0} (Eq. (7)), counted on the sampled trajectory of the exact solver for each
-  Fig. 3 case between successive impacts at a1;
+  Fig. 3 case between successive impacts at a1 (by the checks scene: ``crossings`` of the checks dataset);
 * ``window_impact``: Fig. 4 "shows the neighborhood where the impact occurs": an impact in both printed
-  time windows under every reading of Fig. 4's grid (the printed axes leave the reading undetermined);
+  time windows under every reading of Fig. 4's grid (the printed axes leave the reading undetermined; the runs'
+  impacts are the ``window_impact_time`` of the checks dataset);
 * ``fig5_dimensions``: "the dimensions of the limit cycles are different", at one common force
   (the panels are run at different forces);
 * ``fig5_impact_visible``: "impact is also clearly shown": the velocity jump at the impact,
@@ -18,10 +19,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..model.events import EventKind
-from ..model.parameters import Parameters
-from ..solvers.exact import solve_exact
-from .checks import Evidence, Verdict, check, fig3_all, fmt, params_of, runs_only
+from .checks import Evidence, Verdict, check, fig3_all, fmt, probe, runs_only
 from .printed_axes import FIG5_PANEL_K, panel
 from .section4_checks import NOT_COMPARED, common_force_runs
 
@@ -47,14 +45,13 @@ def section_crossing_counts(t: np.ndarray, x: np.ndarray, v: np.ndarray, a1: flo
 
 @check("section_crossings", scenes=fig3_all, args=("samples_per_period",))
 def section_crossings(claim, ev: Evidence) -> Verdict:
+    made = int(ev.checks["crossings"].attrs["samples_per_period"])
+    if made != int(claim["args"]["samples_per_period"]):
+        raise ValueError(f"the checks dataset's crossings are counted at {made} samples per period")
     rows = []
-    for label, ds in ev.fig3.items():
-        p = params_of(ds)
-        run = solve_exact(p, float(ds["x0"]), n_cycles=ds.sizes["cycle"])
-        t = np.linspace(0.0, run.t_final, int(claim["args"]["samples_per_period"] * run.t_final / p.natural_period))
-        x, v, _ = run.sample(t)
-        starts = run.events.t[run.events.kind == int(EventKind.IMPACT_A1)]
-        rows.append((label, section_crossing_counts(t, x, v, p.a1, starts)))
+    for label in ev.fig3:
+        counts = probe(ev, "crossings", "crossing_case", crossing_case=label).values
+        rows.append((label, counts[np.isfinite(counts)].astype(int)))
     if any(not len(counts) for _, counts in rows):
         raise ValueError("a Fig. 3 run holds no complete cycle between two impacts at a1")
     return Verdict(
@@ -78,16 +75,15 @@ def window_impact(claim, ev: Evidence) -> Verdict:
     every spring constant of Fig. 5), an impact lies in each printed time window; each run exactly to the
     windows' end, with the model's other parameters those of the Fig. 3 cases."""
     windows = [(a.low, a.high) for a in (panel("4", "velocity").x, panel("4", "acceleration").x)]
-    model = params_of(next(iter(ev.fig3.values()))).as_dict()
+    if (t_end := ev.checks["window_impact_time"].attrs["t_end"]) < max(w[1] for w in windows):
+        raise ValueError(f"the checks dataset's runs for Fig. 4 end at {t_end} s, before the windows")
     forces = sorted({float(ds["F"]) for ds in ev.fig3.values()})
     magnitudes = sorted({abs(float(ds["x0"])) for ds in ev.fig3.values()})
     held = {}
     for F in forces:
         for K in FIG5_PANEL_K.values():
-            p = Parameters(**{**model, "F": F, "K": K})
             for x0 in (side * m for m in magnitudes for side in (-1.0, 1.0)):
-                e = solve_exact(p, x0, t_end=max(w[1] for w in windows), record_trajectory=False).events
-                impacts = e.t[(e.kind == int(EventKind.IMPACT_A1)) | (e.kind == int(EventKind.IMPACT_A3))]
+                impacts = probe(ev, "window_impact_time", "window_run", window_F=F, window_K=K, window_x0=x0).values
                 held[f"F = {fmt(F, 3)} N, K = {fmt(K, 3)} N/m, x0 = {fmt(x0, 3)} m"] = all(
                     bool(np.any((impacts >= lo) & (impacts <= hi))) for lo, hi in windows)
     return Verdict(

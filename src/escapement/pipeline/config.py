@@ -19,6 +19,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from ..model.parameters import ParameterError, Parameters
+from ..paper.printed_axes import FIG5_PANEL_K
 from ..scenes.settings import (
     KINDS,
     REPLICATION,
@@ -191,7 +192,8 @@ def replication_scenes(paper: Mapping) -> dict[str, dict]:
 def check_probes(paper: Mapping) -> dict:
     """The runs behind single claims (the ``checks`` block's ``first_swings``, ``return_map`` and ``phase_shift``,
     each on a Fig. 3 case as the fig3 block runs it; ``existence``, ``release_boundary`` and ``grazing``, on the
-    model with their own positions; ``airy``, its zones on the model; ``short_runs``)
+    model with their own positions; ``airy``, its zones on the model; ``short_runs``; ``section_crossings``; and
+    always ``windows``, the runs of Fig. 4's grid of readings)
     (:func:`escapement.scenes.probes.probe_variables`)."""
     checks, fig3 = paper["checks"], paper["fig3"]
 
@@ -226,6 +228,13 @@ def check_probes(paper: Mapping) -> dict:
         pairs = [(K, given["x0"]) for K in short["K"]] + [(paper["model"]["K"], x0) for x0 in short["releases"]]
         probes["short_runs"] = [case(short["case"], {"K": K, "x0": x0, "n_cycles": short["n_cycles"]})
                                 for K, x0 in dict.fromkeys(pairs)]
+    if "section_crossings" in checks:
+        probes["crossings"] = {"cases": [case(c, {"n_cycles": fig3["n_cycles"]}) for c in fig3["cases"]],
+                               **checks["section_crossings"]}
+    magnitudes = sorted({abs(c["x0"]) for c in fig3["cases"].values()})
+    probes["windows"] = [_flat(paper["model"], {"F": F, "K": K, "x0": side * m})
+                         for F in sorted({c["F"] for c in fig3["cases"].values()}) for K in FIG5_PANEL_K.values()
+                         for m in magnitudes for side in (-1.0, 1.0)]
     return probes
 
 

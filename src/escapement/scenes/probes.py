@@ -3,7 +3,8 @@
 slope of the return map of a Fig. 3 case at given speeds, the runs from the section at the converged speed
 and beside it, the releases from rest of the checks on where a limit cycle exists (Secs. 3.3, 4 and 5), and the
 time one passage through an impulse zone adds to the swing (Airy's theorem, Sec. 5), and the events of short runs
-of a Fig. 3 case at other springs and releases (Sec. 3.3).
+of a Fig. 3 case at other springs and releases (Sec. 3.3); the crossings of the Poincare section per cycle of
+Fig. 3's cases and the impacts of the runs of Fig. 4's grid of readings up to its printed windows.
 Each group of variables has its own dimension; the checks find in it the run their ``args`` in the register name
 (:mod:`escapement.paper`), and never run one.
 """
@@ -20,6 +21,8 @@ from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..model.quantities import MODEL_KEYS, PARAMETERS
 from ..paper.existence import grazing_release
+from ..paper.figure_checks import section_crossing_counts
+from ..paper.printed_axes import panel
 from ..solvers.exact import solve_exact
 from ..studies.poincare import RELATIVE_STEP, return_map
 from .cf import CLASSIFICATION, MODEL_INPUT, MODEL_RESULT
@@ -172,9 +175,53 @@ def _short_runs(runs: list[Mapping]) -> dict[str, xr.DataArray]:
                               ("velocity_after", "m s-1", "velocity just after the event")))}}
 
 
+def _padded(rows: list, dims: tuple[str, str], units: str, long_name: str, **attrs) -> xr.DataArray:
+    """Rows of different lengths as one variable, NaN after the end of each."""
+    table = np.full((len(rows), max(len(r) for r in rows)), np.nan)
+    for row, values in zip(table, rows):
+        row[:len(values)] = values
+    return _variable(table, dims, units, long_name, **attrs)
+
+
+def _crossings(spec: Mapping) -> dict[str, xr.DataArray]:
+    """Each Fig. 3 case of ``spec`` run as Fig. 3 runs it, sampled ``samples_per_period`` times per natural
+    period: the crossings of the section x = a1 with xdot > 0 in each cycle
+    (:func:`escapement.paper.figure_checks.section_crossing_counts`)."""
+    counts = []
+    for case in spec["cases"]:
+        p = Parameters.from_mapping(case)
+        run = solve_exact(p, float(case["x0"]), n_cycles=positive_int("n_cycles", case["n_cycles"], 100_000))
+        t = np.linspace(0.0, run.t_final, int(spec["samples_per_period"] * run.t_final / p.natural_period))
+        x, v, _ = run.sample(t)
+        counts.append(section_crossing_counts(t, x, v, p.a1, run.events.t[run.events.kind == int(
+            EventKind.IMPACT_A1)]))
+    return {"crossing_case": _variable([c["label"] for c in spec["cases"]], "crossing_case", None, "Fig. 3 case",
+                                       MODEL_INPUT),
+            "crossings": _padded(counts, ("crossing_case", "crossing_cycle"), "1", "crossings of x = a1 with xdot > "
+                                 "0 from one impact at a1 to the next, on the sampled trajectory (NaN after the last)",
+                                 samples_per_period=int(spec["samples_per_period"]))}
+
+
+def _windows(runs: list[Mapping]) -> dict[str, xr.DataArray]:
+    """Each run (the model's keys and ``x0``) from rest to the end of Fig. 4's later printed window: the times of
+    its impacts at a1 and a3."""
+    t_end = max(panel("4", name).x.high for name in ("velocity", "acceleration"))
+    impacts = []
+    for r in runs:
+        e = solve_exact(Parameters.from_mapping(r), float(r["x0"]), t_end=t_end, record_trajectory=False).events
+        impacts.append(e.t[(e.kind == int(EventKind.IMPACT_A1)) | (e.kind == int(EventKind.IMPACT_A3))])
+    return {**{f"window_{k}": _variable([float(r[k]) for r in runs], "window_run", PARAMETERS[k].units,
+                                        PARAMETERS[k].long_name, MODEL_INPUT) for k in ("F", "K")},
+            "window_x0": _variable([float(r["x0"]) for r in runs], "window_run", "m", "released from rest at",
+                                   MODEL_INPUT),
+            "window_impact_time": _padded(impacts, ("window_run", "window_impact"), "s", "time of each impact at a1 "
+                                          "or a3 (NaN after the last)", t_end=t_end)}
+
+
 def probe_variables(probes: Mapping) -> dict[str, xr.DataArray]:
-    """The variables of the runs ``probes`` names: ``first_swings``, ``releases`` and ``short_runs`` (lists of runs),
-    ``return_map``, ``phase_shift``, ``grazing`` and ``airy`` (one case each), whichever it holds."""
+    """The variables of the runs ``probes`` names: ``first_swings``, ``releases``, ``short_runs`` and ``windows``
+    (lists of runs), ``return_map``, ``phase_shift``, ``grazing``, ``airy`` and ``crossings`` (one each), whichever
+    it holds."""
     found: dict[str, xr.DataArray] = {}
     if probes.get("first_swings"):
         found.update(_first_swings(list(probes["first_swings"])))
@@ -184,6 +231,10 @@ def probe_variables(probes: Mapping) -> dict[str, xr.DataArray]:
         found.update(_phase_shift(probes["phase_shift"]))
     if "airy" in probes:
         found.update(_airy(probes["airy"]))
+    if "crossings" in probes:
+        found.update(_crossings(probes["crossings"]))
+    if probes.get("windows"):
+        found.update(_windows(list(probes["windows"])))
     if probes.get("short_runs"):
         found.update(_short_runs(list(probes["short_runs"])))
     if probes.get("releases") or "grazing" in probes:
