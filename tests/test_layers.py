@@ -126,11 +126,6 @@ def test_every_import_goes_down_the_declared_order(edges):
     assert violations(edges) == []
 
 
-#: the modules of the checks that still run a solver themselves, each until its runs move into a scene
-#: (a variable of the ``checks`` dataset, :mod:`escapement.scenes.runs`): this set may only shrink
-STILL_SIMULATE: set[str] = set()
-
-
 def _registers_a_check(tree: ast.AST) -> bool:
     """Whether the module defines a function decorated by ``check(...)``."""
     return any(isinstance(node, ast.FunctionDef) and any(
@@ -140,7 +135,7 @@ def _registers_a_check(tree: ast.AST) -> bool:
 
 def verdict_modules(root: Path = SOURCE) -> dict[str, list[tuple[tuple[str, ...], int]]]:
     """The modules of the checks, each with what it imports: every module of :mod:`escapement.paper` that
-    registers a check, and every module of the package those import, transitively."""
+    registers a check, and every module of :mod:`escapement.paper` those import, transitively."""
     paper = root / "paper"
     imports = {path.stem: imported_modules(path, root) for path in sorted(paper.glob("*.py"))}
     found = [path.stem for path in sorted(paper.glob("*.py")) if _registers_a_check(ast.parse(path.read_text()))]
@@ -151,8 +146,10 @@ def verdict_modules(root: Path = SOURCE) -> dict[str, list[tuple[tuple[str, ...]
 
 
 def test_the_checks_read_datasets_and_never_simulate():
+    """Every run a check needs is a variable of a dataset (the checks scene's, :mod:`escapement.scenes.probes`):
+    no module of the checks imports a solver or an integrator."""
     modules = verdict_modules()
     assert {"checks", "register", "section4_checks", "stability", "existence"} <= set(modules)
     simulating = {name for name, imported in modules.items()
                   if any(layer_of(module) in ("solvers", "integrators") for module, _ in imported)}
-    assert simulating == STILL_SIMULATE
+    assert simulating == set()

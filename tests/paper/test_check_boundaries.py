@@ -470,16 +470,7 @@ def test_eq24_holds_to_its_relative_tolerance_of_the_measured_phase_delay(monkey
     assert judged(second, evidence({"a": fig3([1.0, 1.0])})) == "reproduced"
 
 
-# --- Sec. 3.3-3.4: the checks that run the exact solver, given its answers ---------------------------
-
-
-def stub_run(impacts, kinds=None, speeds=(1.0,)):
-    """What a check reads of a run of the exact solver: its events (times, kinds) and its cycles' speeds."""
-    from types import SimpleNamespace
-    impacts = np.asarray(impacts, dtype=float)
-    kind = np.asarray([1] * len(impacts) if kinds is None else kinds)
-    return SimpleNamespace(events=SimpleNamespace(t=impacts, kind=kind),
-                           cycles=SimpleNamespace(velocity_before_impact=np.asarray(speeds, dtype=float)))
+# --- Sec. 3.3-3.4: the checks on the runs of the checks dataset, given its values -------------------
 
 
 def test_the_force_is_a_function_of_time_while_two_releases_switch_it_on_within_the_tolerance():

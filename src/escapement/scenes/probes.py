@@ -77,16 +77,12 @@ def _phase_shift(spec: Mapping) -> dict[str, xr.DataArray]:
     perturbations = [0.0, *(float(d) for d in spec["perturbations"])]
     runs = [solve_exact(p, p.a1, star * (1 + d), n_cycles=n_cycles, record_trajectory=False) for d in perturbations]
     times = [r.events.t[r.events.kind == int(EventKind.IMPACT_A1)] for r in runs]
-    table = np.full((len(runs), max(len(t) for t in times)), np.nan)
-    for row, t in zip(table, times):
-        row[:len(t)] = t
-    dims = ("perturbation", "impact")
     return {
         "perturbation": _variable(perturbations, "perturbation", "1", "relative perturbation of the speed at the "
                                   "section, from the converged speed", MODEL_INPUT),
-        "perturbed_impact_time": _variable(table, dims, "s", f"time of each impact at a1 of Fig. 3 case "
-                                           f"{spec['label']} started at the section (NaN after the last)",
-                                           case=str(spec["label"]), n_cycles=n_cycles),
+        "perturbed_impact_time": _padded(times, ("perturbation", "impact"), "s", "time of each impact at a1 of Fig. 3 "
+                                         f"case {spec['label']} started at the section (NaN after the last)",
+                                         case=str(spec["label"]), n_cycles=n_cycles),
         "perturbed_speed": _variable([float(r.cycles.velocity_before_impact[-1]) for r in runs], "perturbation",
                                      "m s-1", "velocity before the last impact at a1 of the run from the section",
                                      converged_speed=star),
