@@ -130,6 +130,8 @@ def test_every_variable_written_has_the_dimension_of_its_quantity_and_a_long_nam
         ds = read_netcdf(path)
         assert ds.attrs["Conventions"] == "CF-1.11, ACDD-1.3" and "commit " in ds.attrs["source"]
         assert "rule " in ds.attrs["history"] or "merged" in ds.attrs["history"]
+        # a coordinate variable (named as its dimension) holds numbers, as CF's checker requires
+        assert all(ds[dim].dtype.kind in "iuf" for dim in ds.dims if dim in ds.variables), path.name
         for name, variable in ds.variables.items():
             assert variable.attrs.get("long_name"), f"{path.name}: {name}"
             units = variable.attrs.get("units")

@@ -50,7 +50,7 @@ def section_crossings(claim, ev: Evidence) -> Verdict:
         raise ValueError(f"the checks dataset's crossings are counted at {made} samples per period")
     rows = []
     for label in ev.fig3:
-        counts = probe(ev, "crossings", "crossing_case", crossing_case=label).values
+        counts = probe(ev, "crossings", "crossing_case", crossing_case_label=label).values
         rows.append((label, counts[np.isfinite(counts)].astype(int)))
     if any(not len(counts) for _, counts in rows):
         raise ValueError("a Fig. 3 run holds no complete cycle between two impacts at a1")

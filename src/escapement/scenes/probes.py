@@ -191,8 +191,9 @@ def _crossings(spec: Mapping) -> dict[str, xr.DataArray]:
         x, v, _ = run.sample(t)
         counts.append(section_crossing_counts(t, x, v, p.a1, run.events.t[run.events.kind == int(
             EventKind.IMPACT_A1)]))
-    return {"crossing_case": _variable([c["label"] for c in spec["cases"]], "crossing_case", None, "Fig. 3 case",
-                                       MODEL_INPUT),
+    # the labels beside their dimension, not its coordinate: CF's coordinate variables are numbers
+    return {"crossing_case_label": _variable([c["label"] for c in spec["cases"]], "crossing_case", None,
+                                             "Fig. 3 case", MODEL_INPUT),
             "crossings": _padded(counts, ("crossing_case", "crossing_cycle"), "1", "crossings of x = a1 with xdot > "
                                  "0 from one impact at a1 to the next, on the sampled trajectory (NaN after the last)",
                                  samples_per_period=int(spec["samples_per_period"]))}
