@@ -25,7 +25,7 @@ from html.parser import HTMLParser
 from pathlib import Path
 
 from escapement.pipeline.tables import read_claims
-from escapement.pipeline.tally import headline
+from escapement.verdict.tally import headline
 
 WINDOW = (1280, 800)
 HEADING = re.compile(r"^(#{1,6})\s+(.+?)\s*#*\s*$")

@@ -18,12 +18,15 @@ SOURCE = Path(__file__).resolve().parents[1] / "src" / "escapement"
 #: the layers, bottom to top: each may import only those before it. ``_lazy`` holds the package
 #: root (``escapement/__init__.py`` and the helper of its lazy exports); ``cli`` the command line.
 LAYERS = (
-    "_lazy", "model", "solvers", "integrators", "paper", "studies", "scenes", "io", "plotting", "pipeline", "cli",
+    "_lazy", "model", "solvers", "integrators", "paper", "studies", "scenes", "io", "plotting", "verdict", "pipeline",
+    "cli",
 )
 #: the top-level modules and the layer each belongs to
 TOP_LEVEL = {"__init__": "_lazy", "_lazy": "_lazy", "cli": "cli", "__main__": "cli"}
-#: layers held to fewer imports than the order allows: io reads and writes files, whatever made them
-ONLY = {"io": {"_lazy"}}
+#: layers held to fewer imports than the order allows: io reads and writes files, whatever made them; the paper as
+#: printed is written in the model's terms; the verdict reads datasets, so it reaches neither a solver nor an
+#: integrator, not even through another layer
+ONLY = {"io": {"_lazy"}, "paper": {"_lazy", "model"}, "verdict": {"_lazy", "model", "paper"}}
 
 
 def layer_of(module: tuple[str, ...]) -> str | None:
@@ -133,23 +136,15 @@ def _registers_a_check(tree: ast.AST) -> bool:
         for node in ast.walk(tree))
 
 
-def verdict_modules(root: Path = SOURCE) -> dict[str, list[tuple[tuple[str, ...], int]]]:
-    """The modules of the checks, each with what it imports: every module of :mod:`escapement.paper` that
-    registers a check, and every module of :mod:`escapement.paper` those import, transitively."""
-    paper = root / "paper"
-    imports = {path.stem: imported_modules(path, root) for path in sorted(paper.glob("*.py"))}
-    found = [path.stem for path in sorted(paper.glob("*.py")) if _registers_a_check(ast.parse(path.read_text()))]
-    for name in found:
-        found += [m[2] for m, _ in imports[name] if m[:2] == ("escapement", "paper") and len(m) > 2
-                  and m[2] in imports and m[2] not in found]
-    return {name: imports[name] for name in found}
-
-
-def test_the_checks_read_datasets_and_never_simulate():
-    """Every run a check needs is a variable of a dataset (the checks scene's, :mod:`escapement.scenes.probes`):
-    no module of the checks imports a solver or an integrator."""
-    modules = verdict_modules()
-    assert {"checks", "register", "section4_checks", "stability", "existence"} <= set(modules)
-    simulating = {name for name, imported in modules.items()
-                  if any(layer_of(module) in ("solvers", "integrators") for module, _ in imported)}
-    assert simulating == set()
+def test_every_check_sits_in_the_verdict_and_none_simulates(edges):
+    """Every module that registers a check is in :mod:`escapement.verdict`, and the verdict imports neither a solver
+    nor an integrator, directly or through the layers it may import (:data:`ONLY`)."""
+    registering = {str(path.relative_to(SOURCE)) for path in SOURCE.rglob("*.py")
+                   if _registers_a_check(ast.parse(path.read_text()))}
+    assert len(registering) >= 10 and all(path.startswith("verdict/") for path in registering), registering
+    reach, grown = {"verdict"}, True
+    while grown:
+        more = {target for source, target in edges if source in reach} - reach
+        reach |= more
+        grown = bool(more)
+    assert reach.isdisjoint({"solvers", "integrators", "studies", "scenes"}), reach

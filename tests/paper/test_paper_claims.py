@@ -1,4 +1,4 @@
-"""Tolerance tests of the paper's claims (the claims register, workflow/claims.yaml).
+"""Tolerance tests of the paper's claims (the claims register, src/escapement/verdict/claims.yaml).
 
 A reproduced claim is asserted within the tolerance the paper's precision allows. A claim that
 does not reproduce is asserted at its replicated value, against an independent source (a closed
@@ -9,7 +9,6 @@ xfail that says why; a strict xfail that starts passing fails the suite.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,10 +21,11 @@ from escapement.paper import corrected as d
 from escapement.paper import printed as pe
 from escapement.studies.poincare import measure_cycle
 from escapement.solvers.exact import solve_exact
+from escapement.verdict.engine import REGISTER as REGISTER_FILE
 from escapement.integrators.high_precision import solve_high_precision
 
 
-REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"
+REGISTER = REGISTER_FILE
 PRINTED_4_DECIMALS = 5e-5  # half a unit of the last digit of "6.2832 s"
 
 
@@ -280,7 +280,7 @@ def test_fig4_velocity_axis_paper():
     assert v.min() >= -0.1 and v.max() <= 0.9
 
 
-# --- further claims (escapement.paper.register, .existence, .airy) ---------------------------------
+# --- further claims (escapement.verdict) ---------------------------------
 
 
 def test_asymmetric_existence_replicated_follows_the_sign_of_C():

@@ -10,11 +10,11 @@ from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal
 import pytest
 
 from escapement.paper.printed_axes import PANELS
-from escapement.paper.checks import Candidates
+from escapement.verdict.evidence import Candidates
 from escapement.pipeline.config import read_yaml
 from escapement.pipeline.readings import COLUMNS, limits_match, score_readings, score_table
-from escapement.pipeline.scores import (DEFAULT_LOCATOR, PRINTED_STEP, best_readings_table, joint_candidates,
-                                        panel_candidates, read_scores)
+from escapement.verdict.scores import (DEFAULT_LOCATOR, PRINTED_STEP, best_readings_table, joint_candidates,
+                                      panel_candidates, read_scores)
 from escapement.plotting.autoscale import VARIANTS
 from escapement.studies.readings import all_readings, fig3_readings, fig4_readings, fig5_readings
 

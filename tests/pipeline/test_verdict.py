@@ -11,9 +11,10 @@ import yaml
 
 from escapement.io.netcdf import write_csv
 from escapement.io.netcdf import write_netcdf
-from escapement.paper.claims import CHECKS, COLUMNS, ClaimError
+from escapement.verdict.evidence import CHECKS
+from escapement.verdict.engine import COLUMNS, ClaimError
 from escapement.pipeline.readings import _formatted, score_table
-from escapement.pipeline.scores import COLUMNS as SCORE_COLUMNS
+from escapement.verdict.scores import COLUMNS as SCORE_COLUMNS
 from escapement.io.netcdf import DatasetError
 from escapement.pipeline.tables import read_claims
 from escapement.pipeline.verdict import check_claims

@@ -67,8 +67,8 @@ rule readings:
 
 rule check_claims:
     input:
-        register="workflow/claims.yaml",
-        schema="workflow/schemas/claims.schema.yaml",
+        register="src/escapement/verdict/claims.yaml",
+        schema="src/escapement/verdict/claims.schema.yaml",
         fig3=outputs.data_files(
             "replication", "fig3", STUDIES["replication"]["fig3"]
         ).values(),

@@ -10,8 +10,8 @@ formula holds when one of the paper's conventions reproduces it (the note says w
 :data:`AS_READ`: signed positions, ``f``, the second half as written, the velocity after the impact,
 does, or only another, which mixes two conventions of the paper), and fails when none does.
 
-The check of Eq. (14) under the conventions is here (:func:`eq14_conventions`); those of
-(22e)-(25) are in :mod:`.period_checks`.
+The checks that use them are in the verdict: Eq. (14) in :mod:`escapement.verdict.sec3_steps`, (22e)-(25) in
+:mod:`escapement.verdict.sec3_period`.
 """
 
 from __future__ import annotations
@@ -21,13 +21,10 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-from ..model.events import EventKind
 from ..model.parameters import Parameters
-from . import corrected as derived
 from . import printed as pe
-from .checks import Evidence, Verdict, check, events_of, fig3_case, fmt, params_of
 
-__all__ = ["AS_READ", "AXES", "Reading", "Trial", "conventions_verdict", "departure", "describe", "eq14_conventions",
+__all__ = ["AS_READ", "AXES", "Reading", "Trial", "departure",
     "readings", "symbols", "second_half_trials", "try_readings"]
 
 #: every convention the paper uses, by axis: the first of each is the reading the register adopts
@@ -126,46 +123,12 @@ def departure(reading: Reading) -> str:
     return " + ".join(changed) if changed else "as read"
 
 
-def describe(trials: list[Trial]) -> str:
-    """Every trial as ``reading: value (relative difference)``."""
-    return "; ".join(f"{departure(t.reading)}: {fmt(t.value)} ({fmt(t.relative_difference, 2)})" for t in trials)
 
 
-def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple[bool, str]:
-    """Whether one of the paper's conventions reproduces the formula (its ``trials``, :func:`try_readings`, the
-    adopted reading first), and a note that says which."""
-    if not trials or trials[0].reading != AS_READ:
-        raise ValueError("trials must start with the adopted reading AS_READ")
-    working = [t for t in trials if t.reproduces]
-    listing = describe(trials)
-    if trials[0].reproduces:
-        return True, f"{what} reproduces {simulated} as read; every reading: {listing}"
-    if working:
-        return True, (
-            f"{what} as read ({AS_READ}) gives {fmt(trials[0].value)} against {simulated}; it is reproduced with "
-            f"{' or '.join(departure(t.reading) for t in working)}: two conventions of the paper mixed, not a wrong "
-            f"formula; every reading (relative difference): {listing}"
-        )
-    return False, (f"no convention of the paper reproduces {simulated} with {what}: a wrong formula; "
-                   f"every reading: {listing}")
 
 
-# --- Eq. (14) ----------------------------------------------------------------------------------
 
 
-@check("eq14_conventions", scenes=fig3_case, args=("case",))
-def eq14_conventions(claim, ev: Evidence) -> Verdict:
-    """Eq. (14) at the simulated last cycle under each convention: the velocity at a4 from the one after
-    the impact at a3 (by the energy balance from the simulated velocity at a1, Eqs. (10)-(13))."""
-    case = claim["args"]["case"]
-    ds = ev.fig3[case]
-    p = params_of(ds)
-    i = events_of(ds, EventKind.IMPACT_A1)[-2]
-    v1, v5 = float(ds["event_velocity_before"].values[i]), float(ds["event_velocity_before"].values[i + 3])
-    trials = second_half_trials(p, derived.cycle_velocities(v1, p), v5, claim["tolerance"], pe.v5_14)
-    holds, note = conventions_verdict(trials, f"the simulated velocity at a4, {fmt(v5)} m/s", "Eq. (14)")
-    return Verdict(f"simulated velocity at a4 {fmt(v5)} m/s (case {case}, last cycle)", holds, note=note,
-                   paper_value=f"{fmt(trials[0].value)} m/s as read")
 
 
 def second_half_trials(p: Parameters, velocity: Mapping[str, float], simulated: float, tolerance: float,

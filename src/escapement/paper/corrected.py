@@ -21,7 +21,8 @@ from ..model.parameters import Parameters
 
 __all__ = ["cycle_velocities", "map_constant", "fixed_point", "fixed_point_energy_sequence", "period",
     "impact_phase_jump", "impact_phase_jump_closed", "zone_period_change", "period_from_perturbations",
-    "velocity_recovery"]
+    "velocity_recovery", "existence_threshold", "grazing_release", "grazing_limit", "SECONDS_PER_DAY", "daily_rate",
+    "first_order_zone_change", "zone_amplitude"]
 
 
 def _sqrt(value: float) -> float:
@@ -155,3 +156,47 @@ def velocity_recovery(v1: float, p: Parameters) -> tuple[float, float]:
         if p.a1 < x <= p.a2:
             return x, _zone_time(p.zone_offset, p.a1, x, v1p, p.omega)
     return math.nan, math.nan
+
+
+def existence_threshold(p: Parameters) -> float:
+    """``F*``: the force at which ``C`` changes sign (N); a limit cycle needs ``F > F*``."""
+    b = p.b
+    return (2 * b - b * b) * p.K * (p.a1**2 - p.a3**2) / (2 * ((1 - b) ** 2 * (p.a2 - p.a1) + (p.a3 - p.a4)))
+
+
+def grazing_release(p: Parameters) -> float:
+    """``A``: released from rest at ``-A`` the swing after the first impulse turns exactly at a3."""
+    w2 = p.omega2
+    a_sq = p.a1**2 + (p.a3**2 - p.a1**2 - 2 * p.f * (p.a2 - p.a1) / w2) / (1 - p.b) ** 2
+    if a_sq <= p.a1**2:
+        raise ValueError(f"a1..a4 = {p.a1}, {p.a2}, {p.a3}, {p.a4}, F = {p.F}: no release grazes a3 "
+                         "(the first impulse alone carries the swing past it)")
+    return math.sqrt(a_sq)
+
+
+def grazing_limit(p: Parameters) -> float:
+    """The velocity before the next impact at a1 if the touch at a3 counts as an impact with speed 0."""
+    return math.sqrt(p.omega2 * (p.a3**2 - p.a1**2) + 2 * p.f * (p.a3 - p.a4))
+
+
+SECONDS_PER_DAY = 86_400.0
+
+
+def daily_rate(period: float, natural_period: float) -> float:
+    """Seconds gained per day (negative: lost) by a clock that counts ``natural_period`` per swing
+    of an oscillator whose period is ``period``: ``86400 (T0 / T - 1)``."""
+    return SECONDS_PER_DAY * (natural_period / period - 1.0)
+
+
+def first_order_zone_change(start: float, end: float, amplitude: float, omega: float, f: float) -> float:
+    """The first-order time cost of a zone from ``start`` to ``end`` (force per unit mass ``f`` along
+    the motion) on an arc of amplitude ``amplitude``: ``f (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) /
+    (w**3 A**2)`` (see the module docstring)."""
+    a2 = amplitude * amplitude
+    return f * (math.sqrt(a2 - start * start) - math.sqrt(a2 - end * end)) / (omega**3 * a2)
+
+
+def zone_amplitude(p: Parameters, release: float) -> float:
+    """Amplitude of the arc that enters the zone (a1, a2) after the impact at a1, for a release from
+    rest at ``-release``: ``sqrt(a1**2 + (1 - b)**2 (release**2 - a1**2))`` (closed form)."""
+    return math.sqrt(p.a1**2 + (1 - p.b) ** 2 * (release**2 - p.a1**2))

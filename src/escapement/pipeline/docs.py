@@ -15,8 +15,8 @@ from collections.abc import Mapping, Sequence
 import jinja2
 import markdown
 
-from ..paper.claims import COLUMNS
-from .tally import headline
+from ..verdict.engine import COLUMNS
+from ..verdict.tally import headline
 
 __all__ = ["claims_table", "html_document", "html_table", "landing_html", "markdown_html", "markdown_table", "render",
            "verdict_html"]

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..paper.claims import fmt
+from ..verdict.evidence import fmt
 
 __all__ = ["collect_facts"]
 

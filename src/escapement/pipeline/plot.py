@@ -47,7 +47,7 @@ def plot(figure: str, study: str, inputs: Mapping[str, str], png: str, pdf: str,
             if study == REPLICATION:  # each printed panel's axes as its claims score them
                 from ..plotting import panel_axes
                 from ..plotting.autoscale import VARIANTS
-                from .scores import CLAIM_AUTOSCALE
+                from ..verdict.scores import CLAIM_AUTOSCALE
 
                 measure = {"poincare_map": panel_axes.poincare_axes, "shock_detail": panel_axes.shock_axes,
                            "phase_diagrams": panel_axes.phase_axes}[figure]

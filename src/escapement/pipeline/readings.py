@@ -6,7 +6,7 @@ For every reading (:mod:`escapement.studies.readings`), every scored axis of its
 and both tick modes (the printed step imposed, or matplotlib's default locator choosing its own), the
 limits matplotlib gives the reading's values are compared with the printed limits: ``matches``
 counts the limits reproduced exactly (0, 1 or 2). Readings of one panel whose plotted values are
-identical to rounding share ``same_values_as``. :mod:`escapement.pipeline.scores` reads the table
+identical to rounding share ``same_values_as``. :mod:`escapement.verdict.scores` reads the table
 back and names, per panel, every reading tied at the best score.
 """
 
@@ -23,7 +23,7 @@ from ..paper.printed_axes import PANELS, Panel, limits_match
 from ..plotting.autoscale import VARIANTS, autoscaled_axes
 from ..studies.readings import Reading, Runs, all_readings
 from .logs import logged
-from .scores import COLUMNS, PRINTED_STEP, TICKS, joint_candidates, panel_candidates, summary
+from ..verdict.scores import COLUMNS, PRINTED_STEP, TICKS, joint_candidates, panel_candidates, summary
 
 __all__ = ["COLUMNS", "equivalence", "limits_match", "score_readings", "score_table"]
 

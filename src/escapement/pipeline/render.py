@@ -12,9 +12,9 @@ from ..io.netcdf import read_netcdf, write_text
 from .docs import html_document, landing_html, markdown_html, markdown_table, render, verdict_html
 from .facts import collect_facts
 from .logs import logged
-from .scores import best_readings_table, read_scores
+from ..verdict.scores import best_readings_table, read_scores
 from .tables import read_claims, read_stress, read_timings, read_work_precision
-from .tally import findings_table, vocabulary_table
+from ..verdict.tally import findings_table, vocabulary_table
 
 __all__ = ["render_docs"]
 

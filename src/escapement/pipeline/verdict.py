@@ -3,7 +3,7 @@
 
 :func:`check_claims` is the job of the workflow rule ``check_claims``; the documents read the table back
 (:func:`escapement.pipeline.tables.read_claims`).  A check that fails makes the job fail, naming the claim
-(:class:`escapement.paper.claims.ClaimError`); it never becomes a row of the table.
+(:class:`escapement.verdict.engine.ClaimError`); it never becomes a row of the table.
 """
 
 from __future__ import annotations
@@ -11,11 +11,12 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from ..io.netcdf import read_netcdf, write_csv
-from ..paper.claims import COLUMNS, SCHEMA, Evidence, evaluate, load_claims
-from .logs import logged
 from ..plotting.autoscale import VARIANTS
 from ..plotting.panel_axes import scene_axes
-from .scores import CLAIM_AUTOSCALE, panel_candidates, read_scores
+from ..verdict.engine import COLUMNS, SCHEMA, evaluate, load_claims
+from ..verdict.evidence import Evidence
+from .logs import logged
+from ..verdict.scores import CLAIM_AUTOSCALE, panel_candidates, read_scores
 
 __all__ = ["check_claims"]
 

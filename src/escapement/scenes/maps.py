@@ -22,11 +22,11 @@ import xarray as xr
 from ..model.parameters import Parameters, validate_arrays
 from ..model.quantities import MODEL_KEYS, PARAMETERS
 from ..model.status import Status, flag_attributes
-from ..paper.existence import existence_threshold
-from ..studies.poincare import ensemble_return_map, return_map, stability_grid
+from ..paper.corrected import existence_threshold
 from ..paper.printed import multiplier_21_of
 from ..solvers.ensemble import solve_ensemble
 from ..studies.escapement_error import SECONDS_PER_DAY, rate_against_amplitude
+from ..studies.poincare import ensemble_return_map, return_map, stability_grid
 from .cf import MODEL_INPUT, QUALITY, assemble, global_attributes, parameter_variables, scalar_variable
 from .settings import EscapementErrorScene, ExistenceMapScene, StabilityMapScene
 

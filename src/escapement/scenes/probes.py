@@ -20,11 +20,10 @@ import xarray as xr
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..model.quantities import MODEL_KEYS, PARAMETERS
-from ..paper.existence import grazing_release
-from ..paper.figure_checks import section_crossing_counts
+from ..paper.corrected import grazing_release
 from ..paper.printed_axes import panel
 from ..solvers.exact import solve_exact
-from ..studies.poincare import RELATIVE_STEP, return_map
+from ..studies.poincare import RELATIVE_STEP, return_map, section_crossing_counts
 from .cf import CLASSIFICATION, MODEL_INPUT, MODEL_RESULT
 from .settings import positive_int
 
@@ -91,7 +90,7 @@ def _phase_shift(spec: Mapping) -> dict[str, xr.DataArray]:
 
 def _releases(runs: list[Mapping], grazing: Mapping | None) -> dict[str, xr.DataArray]:
     """Each run (the model's keys, ``x0`` and ``n_cycles``) from rest, and from either side of the grazing
-    release ``-A (1 +/- delta)`` of ``grazing`` (:func:`escapement.paper.existence.grazing_release`) at each of its
+    release ``-A (1 +/- delta)`` of ``grazing`` (:func:`escapement.paper.corrected.grazing_release`) at each of its
     ``deltas``: how it ended, its complete cycles, its last velocity before impact at a1 and the one before its
     second impact at a1."""
     if grazing is not None:
@@ -182,7 +181,7 @@ def _padded(rows: list, dims: tuple[str, str], units: str, long_name: str, **att
 def _crossings(spec: Mapping) -> dict[str, xr.DataArray]:
     """Each Fig. 3 case of ``spec`` run as Fig. 3 runs it, sampled ``samples_per_period`` times per natural
     period: the crossings of the section x = a1 with xdot > 0 in each cycle
-    (:func:`escapement.paper.figure_checks.section_crossing_counts`)."""
+    (:func:`escapement.studies.poincare.section_crossing_counts`)."""
     counts = []
     for case in spec["cases"]:
         p = Parameters.from_mapping(case)

@@ -31,8 +31,7 @@ import numpy as np
 from ..model.parameters import Parameters
 from ..model.status import Status
 from ..paper import corrected
-# the daily rate and Airy's first-order zone cost live with the check of Airy's theorem
-from ..paper.airy import SECONDS_PER_DAY, daily_rate, first_order_zone_change
+from ..paper.corrected import SECONDS_PER_DAY, daily_rate, first_order_zone_change
 from ..solvers.exact import solve_exact
 
 __all__ = [

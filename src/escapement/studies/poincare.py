@@ -27,7 +27,7 @@ from ..solvers.ensemble import solve_ensemble
 from ..solvers.exact import solve_exact
 
 __all__ = ["CycleMeasurement", "NoReturn", "ensemble_return_map", "floquet_multipliers", "largest_speed",
-           "measure_cycle", "return_map", "stability_grid"]
+           "measure_cycle", "return_map", "section_crossing_counts", "stability_grid"]
 
 #: relative step of the central difference: truncation ~ h**2, rounding ~ 1e-16 / h
 RELATIVE_STEP = 1e-5
@@ -212,3 +212,13 @@ def stability_grid(model: dict, b, F, iterations: int = 40):
         "status": status,
         "newton_converged": converged,
     }
+
+
+def section_crossing_counts(t: np.ndarray, x: np.ndarray, v: np.ndarray, a1: float, starts: np.ndarray) -> np.ndarray:
+    """Crossings of Sigma (x rising through a1 with xdot > 0) of the samples ``t, x, v`` in each cycle, from one
+    impact at a1 (``starts``) to the next."""
+    up = np.flatnonzero((x[:-1] < a1) & (x[1:] >= a1) & (v[1:] > 0))
+    crossings = t[up + 1]
+    slack = 1e-9 * max(1.0, float(t[-1]))
+    return np.array([np.count_nonzero((crossings >= s - slack) & (crossings < e - slack))
+                     for s, e in zip(starts[:-1], starts[1:])], dtype=int)

@@ -1,4 +1,4 @@
-"""The printed formulas under each convention of the paper (paper.conventions, paper.period_checks), on
+"""The printed formulas under each convention of the paper (paper.conventions, verdict.sec3_steps and sec3_period), on
 small synthetic Fig. 3 datasets built here (no solver run).
 
 Hand derivations for the paper's case M = K = 1 kg, N/m (w = 1), F = 1 N (f = 1, c = f/w^2 = 1), b = 0.1,
@@ -17,9 +17,9 @@ import pytest
 import xarray as xr
 
 from escapement.paper import conventions as cv
-from escapement.paper import period_checks as pc
+from escapement.verdict import sec3_period, sec3_steps
 from escapement.paper import printed as pe
-from escapement.paper.checks import Evidence
+from escapement.verdict.evidence import Evidence
 from escapement.model.parameters import Parameters
 
 GEOMETRY = {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
@@ -100,12 +100,12 @@ def test_eq23_with_the_magnitudes_of_sec4_is_the_swing_through_the_left_turning_
 def test_eq14_reproduced_as_read_by_a_convention_or_by_none():
     """By the rule of REPLICATION.md, Sec. 7: a printed formula holds when one of the paper's conventions
     reproduces it; the note says whether the adopted one does."""
-    as_read = verdict(cv.eq14_conventions, fig3(v5=-math.sqrt(0.6066)))
+    as_read = verdict(sec3_steps.eq14_conventions, fig3(v5=-math.sqrt(0.6066)))
     assert as_read.holds is True and "as read" in as_read.note
-    other = verdict(cv.eq14_conventions, fig3(v5=-math.sqrt(1.2066)))
+    other = verdict(sec3_steps.eq14_conventions, fig3(v5=-math.sqrt(1.2066)))
     assert other.holds is True
     assert "reproduced with mirrored or sigma f" in other.note and "not a wrong formula" in other.note
-    assert verdict(cv.eq14_conventions, fig3(v5=-1.0)).holds is False
+    assert verdict(sec3_steps.eq14_conventions, fig3(v5=-1.0)).holds is False
 
 
 # --- Eq. (22e) ---------------------------------------------------------------------------------
@@ -117,14 +117,14 @@ def eq22e_by_hand(a3: float, a4: float, c: float, v: float) -> float:
 
 
 def test_eq22e_as_read_by_a_convention_or_by_none():
-    assert verdict(pc.eq22e, fig3(zone_left=eq22e_by_hand(0.1, -0.05, 1.0, V4P))).holds is True
+    assert verdict(sec3_period.eq22e, fig3(zone_left=eq22e_by_hand(0.1, -0.05, 1.0, V4P))).holds is True
     # mirrored positions (-a3, -a4), the mirrored velocity before the impact
-    mirrored = verdict(pc.eq22e, fig3(zone_left=eq22e_by_hand(-0.1, 0.05, 1.0, -V4)))
+    mirrored = verdict(sec3_period.eq22e, fig3(zone_left=eq22e_by_hand(-0.1, 0.05, 1.0, -V4)))
     assert mirrored.holds is True and "mirrored + before" in mirrored.note
     # the left zone's true time: the mirror of the right one, [acos((c - a2)/R) - acos((c - a1)/R)]/w
     r = math.hypot(-0.1 - 1.0, -V4P)
     true_time = math.acos(0.95 / r) - math.acos(1.1 / r)
-    wrong = verdict(pc.eq22e, fig3(zone_left=true_time))
+    wrong = verdict(sec3_period.eq22e, fig3(zone_left=true_time))
     assert wrong.holds is False and "a wrong formula" in wrong.note
 
 
@@ -143,13 +143,13 @@ def test_eq23_holds_whole_under_one_convention_or_not_at_all():
     true_swing = math.acos(0.05 / h5) + math.acos(0.1 / h5)  # through the left turning point
     steps = (zone_right, a2_to_a3, true_swing)
     as_read = sum((zone_right, a2_to_a3, zone_left, printed_swing))
-    assert verdict(pc.eq23, fig3(period=as_read, zone_left=zone_left, steps=steps)).holds is True
+    assert verdict(sec3_period.eq23, fig3(period=as_read, zone_left=zone_left, steps=steps)).holds is True
     # each step right under some convention, the whole under none: the conventions mixed, the formula fails
     true_period = sum((zone_right, a2_to_a3, zone_left, true_swing))
-    mixed = verdict(pc.eq23, fig3(period=true_period, zone_left=zone_left, steps=steps))
+    mixed = verdict(sec3_period.eq23, fig3(period=true_period, zone_left=zone_left, steps=steps))
     assert mixed.holds is False
     assert "a4_to_a1: mirrored or magnitudes" in mixed.note and "zone_left: as read" in mixed.note
-    wrong = verdict(pc.eq23, fig3(period=true_period, zone_left=1.0, steps=steps))
+    wrong = verdict(sec3_period.eq23, fig3(period=true_period, zone_left=1.0, steps=steps))
     assert wrong.holds is False and "zone_left: no reading" in wrong.note
 
 
@@ -167,17 +167,17 @@ def test_eq24_is_read_in_one_convention_for_both_forms(monkeypatch, form):
     # symbol read two ways in one equation; now one convention holds for the whole equation.)
     delay = math.atan(0.1 / 0.9) - math.atan(0.1)
     second_as_printed = math.atan(0.1 * 0.1 * 0.9 / (0.01 + 0.9 * 0.81))
-    result = verdict(pc.eq24, fig3(), tolerance=1e-12, form=form)
+    result = verdict(sec3_period.eq24, fig3(), tolerance=1e-12, form=form)
     assert result.holds is (form == "first")
     assert result.replicated_value == (f"phase delay of the impact {delay:.10g} s; with x1+ after the impact: first "
                                        f"form {delay:.10g} s, second form {second_as_printed:.10g} s")
     assert f"the first form gives {-delay:.10g} s and the second {delay:.10g} s" in result.note
     assert ("named a misprint" in result.note) is (form == "second")
     # a phase delay that neither form gives under any convention
-    monkeypatch.setattr(pc.derived, "impact_phase_jump", lambda position, v, p: 1.01 * delay)
-    assert verdict(pc.eq24, fig3(), tolerance=1e-6, form=form).holds is False
+    monkeypatch.setattr(sec3_period.derived, "impact_phase_jump", lambda position, v, p: 1.01 * delay)
+    assert verdict(sec3_period.eq24, fig3(), tolerance=1e-6, form=form).holds is False
     with pytest.raises(ValueError, match="form = 'third'"):
-        verdict(pc.eq24, fig3(), tolerance=1e-6, form="third")
+        verdict(sec3_period.eq24, fig3(), tolerance=1e-6, form="third")
 
 
 def eq25_by_hand(v_in: float, a1: float, a2: float) -> float:
@@ -190,7 +190,7 @@ def eq25_by_hand(v_in: float, a1: float, a2: float) -> float:
 
 
 def test_eq25_as_read_by_a_convention_or_by_none():
-    assert verdict(pc.eq25, fig3(period=eq25_by_hand(0.9, -0.1, 0.05))).holds is True
-    magnitudes = verdict(pc.eq25, fig3(period=eq25_by_hand(1.0, 0.1, 0.05)))
+    assert verdict(sec3_period.eq25, fig3(period=eq25_by_hand(0.9, -0.1, 0.05))).holds is True
+    magnitudes = verdict(sec3_period.eq25, fig3(period=eq25_by_hand(1.0, 0.1, 0.05)))
     assert magnitudes.holds is True and "magnitudes + before" in magnitudes.note
-    assert verdict(pc.eq25, fig3(period=6.3)).holds is False
+    assert verdict(sec3_period.eq25, fig3(period=6.3)).holds is False

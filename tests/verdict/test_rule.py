@@ -6,8 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from escapement.paper.vocabulary import (EVIDENCE, STATUSES, evidence_of, finding_status, status_of, weakest,
-                                         weighed)
+from escapement.verdict.rule import EVIDENCE, STATUSES, evidence_of, finding_status, status_of, weakest, weighed
 
 
 @pytest.mark.parametrize("outcomes, status", [

@@ -1,20 +1,18 @@
-"""The checks of the claims register on the period formulas of Sec. 3.4, Eqs. (22)-(25): each
-printed form against the simulated step durations and periods of Fig. 3; (22e)-(25) under each
-convention the paper uses (:mod:`.conventions`): a printed formula holds when one of them reproduces it."""
+"""The checks of the period formulas, Eqs. (22)-(25): each printed form against the simulated step
+durations and periods of Fig. 3; (22e)-(25) under each convention the paper uses
+(:mod:`escapement.paper.conventions`): a printed formula holds when one of them reproduces it, and one equation is
+read under one convention for all its forms.
+"""
 
 from __future__ import annotations
 
 import math
 
-from . import corrected as derived
-from . import printed as pe
-from .checks import Evidence, Verdict, check, cycle_durations, fig3_all, fig3_case, fmt, params_of, rel, within
-from .conventions import Reading, conventions_verdict, departure, describe, second_half_trials, symbols, try_readings
-
-__all__ = ["PERIOD_23_PARTS"]
-
-
-# --- Sec. 3.4: the period formulas -------------------------------------------------------------
+from ..paper import corrected as derived
+from ..paper import printed as pe
+from ..paper.conventions import Reading, departure, second_half_trials, symbols, try_readings
+from .sec3_steps import conventions_verdict, describe
+from .evidence import Evidence, Verdict, check, cycle_durations, fig3_all, fig3_case, fmt, params_of, rel, within
 
 
 @check("eq22_abcd", scenes=fig3_all)

@@ -2,7 +2,7 @@
 
 Each sentence of the paper the register quotes is one finding, however many rows check its parts (the rows
 share its ``finding``); its status follows from its rows' by
-:func:`escapement.paper.vocabulary.finding_status`. Rows beyond the paper are not findings. Reads the
+:func:`escapement.verdict.rule.finding_status`. Rows beyond the paper are not findings. Reads the
 claims table only (a group-by in plain Python: the table has a few dozen rows).
 """
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 
-from ..paper.vocabulary import EVIDENCE, ORIGINS, STATUSES, finding_status
+from .rule import EVIDENCE, ORIGINS, STATUSES, finding_status
 
 __all__ = ["findings", "findings_table", "headline", "vocabulary_table"]
 

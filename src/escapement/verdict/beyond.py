@@ -1,4 +1,4 @@
-"""Airy's theorem on the escapement error, checked against the exact solver (beyond the paper).
+"""Airy's theorem on the escapement error, checked on the exact solver's runs (beyond the paper).
 
 Airy (1830): an impulse delivered symmetrically about the equilibrium leaves the period unchanged to
 first order in the impulse; one delivered before the equilibrium shortens it (the clock gains), one
@@ -11,7 +11,8 @@ the sine phase of the free motion, which advances at exactly ``w`` in free fligh
 Eq. (25), :mod:`escapement.paper.corrected`). To first order in ``f`` (derived on paper: inside the
 zone ``phi`` advances at ``w - f x / (w A**2)``) a zone from ``a`` to ``c`` on an arc of amplitude
 ``A`` costs ``dT2 = f / (w**3 A**2) (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) + O(f**2)``: zero for a
-zone symmetric about 0, negative before the equilibrium, positive after.
+zone symmetric about 0, negative before the equilibrium, positive after
+(:func:`escapement.paper.corrected.first_order_zone_change`).
 
 The checks scene measures ``dT2`` on one passage of the exact solver at a fixed amplitude
 (:func:`escapement.scenes.probes.zone_shift`, the ``airy_zone_shift`` of the checks dataset; the setting of Airy's
@@ -26,31 +27,8 @@ import math
 from collections.abc import Mapping, Sequence
 
 from ..model.parameters import Parameters
-from .checks import Evidence, Verdict, check, fig3_all, fmt, params_of, probe, runs_only, within
-
-__all__ = ["SECONDS_PER_DAY", "airy_verdict", "daily_rate", "first_order_zone_change", "zone_amplitude"]
-
-SECONDS_PER_DAY = 86_400.0
-
-
-def daily_rate(period: float, natural_period: float) -> float:
-    """Seconds gained per day (negative: lost) by a clock that counts ``natural_period`` per swing
-    of an oscillator whose period is ``period``: ``86400 (T0 / T - 1)``."""
-    return SECONDS_PER_DAY * (natural_period / period - 1.0)
-
-
-def first_order_zone_change(start: float, end: float, amplitude: float, omega: float, f: float) -> float:
-    """The first-order time cost of a zone from ``start`` to ``end`` (force per unit mass ``f`` along
-    the motion) on an arc of amplitude ``amplitude``: ``f (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) /
-    (w**3 A**2)`` (see the module docstring)."""
-    a2 = amplitude * amplitude
-    return f * (math.sqrt(a2 - start * start) - math.sqrt(a2 - end * end)) / (omega**3 * a2)
-
-
-def zone_amplitude(p: Parameters, release: float) -> float:
-    """Amplitude of the arc that enters the zone (a1, a2) after the impact at a1, for a release from
-    rest at ``-release``: ``sqrt(a1**2 + (1 - b)**2 (release**2 - a1**2))`` (closed form)."""
-    return math.sqrt(p.a1**2 + (1 - p.b) ** 2 * (release**2 - p.a1**2))
+from ..paper.corrected import daily_rate, first_order_zone_change, zone_amplitude
+from .evidence import Evidence, Verdict, check, fig3_all, fmt, params_of, probe, runs_only, within
 
 
 def _order(f: Sequence[float], shift: Sequence[float]) -> float:

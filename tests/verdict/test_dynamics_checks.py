@@ -1,5 +1,5 @@
-"""The checks on the dynamics (paper.dynamics_checks) and the Fig. 5 comparisons at one common force
-(paper.section4_checks), on small synthetic evidence built here (no solver run)."""
+"""The checks on the dynamics (verdict.sec2_model, sec3_map, sec4_fig3) and the Fig. 5 comparisons at one common force
+(verdict.sec4_fig5), on small synthetic evidence built here (no solver run)."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from escapement.paper import dynamics_checks as dc
-from escapement.paper import section4_checks as s4
-from escapement.paper.checks import Evidence
+from escapement.verdict import sec2_model, sec3_map, sec4_fig3, sec4_fig5
+from escapement.verdict.sec3_equations import piecewise_linear
+from escapement.verdict.evidence import Evidence
 
 GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
 
@@ -49,10 +49,11 @@ def common(speeds_05, speeds_1, velocity=math.sqrt(0.15 / 0.19)) -> xr.Dataset:
     ((1.0, 2.0, 3.0), (1.0, 2.0, 2.0), False),
 ])
 def test_fig5_velocity_order_compares_k_at_each_common_force(speeds_05, speeds_1, holds):
-    result = s4.fig5_velocity_common_force(claim(speed="largest_speed"), evidence(common(speeds_05, speeds_1)))
+    result = sec4_fig5.fig5_velocity_common_force(claim(speed="largest_speed"), evidence(common(speeds_05, speeds_1)))
     assert result.holds is holds and "not compared with each other" in result.note
     # the velocity before the impact, the other reading of "maximum velocity", is the same for every K here
-    assert s4.fig5_velocity_common_force(claim(speed="velocity"), evidence(common(speeds_05, speeds_1))).holds is False
+    result = sec4_fig5.fig5_velocity_common_force(claim(speed="velocity"), evidence(common(speeds_05, speeds_1)))
+    assert result.holds is False
 
 
 @pytest.mark.parametrize("amplitudes_05, amplitudes_1, holds", [
@@ -63,7 +64,7 @@ def test_fig5_velocity_order_compares_k_at_each_common_force(speeds_05, speeds_1
 def test_fig5_amplitude_order_compares_k_at_each_common_force(amplitudes_05, amplitudes_1, holds):
     rows = [{"group": "common_force", "K": k, "F": f, "largest_displacement": h}
             for f, values in ((0.5, amplitudes_05), (1.0, amplitudes_1)) for k, h in zip((0.1, 1.0, 10.0), values)]
-    result = s4.fig5_amplitude_common_force(claim(definition="largest x"), evidence(runs(*rows)))
+    result = sec4_fig5.fig5_amplitude_common_force(claim(definition="largest x"), evidence(runs(*rows)))
     assert result.holds is holds and "not compared with each other" in result.note
     assert result.replicated_value.startswith(
         f"converged amplitude: F = 0.5 N: K = 0.1: {amplitudes_05[0]:g} m, K = 1: {amplitudes_05[1]:g} m")
@@ -71,7 +72,7 @@ def test_fig5_amplitude_order_compares_k_at_each_common_force(amplitudes_05, amp
 
 def test_fig5_velocity_order_reports_a_run_that_left_the_regime():
     data = runs({"group": "common_force", "K": 0.1, "outcome": "stopped"}, {"group": "common_force", "K": 1.0})
-    assert s4.fig5_velocity_common_force(claim(speed="largest_speed"), evidence(data)).holds is False
+    assert sec4_fig5.fig5_velocity_common_force(claim(speed="largest_speed"), evidence(data)).holds is False
 
 
 def test_fig5_recovery_at_one_force():
@@ -80,7 +81,7 @@ def test_fig5_recovery_at_one_force():
     # q = 0.05 - 0.01 w^2: for K = 1 (w = 1) x^2 - x + 0.04 = 0, x = (1 - sqrt(0.84))/2 = 0.041742 m inside
     # (a1, a2); the time from a1 follows from the arc about c = 0.5 m.
     ev = evidence(common((3, 2, 1), (3, 2, 1)))
-    result = s4.fig5_recovery_common_force(claim(measure="seconds"), ev)
+    result = sec4_fig5.fig5_recovery_common_force(claim(measure="seconds"), ev)
     x = (1 - math.sqrt(0.84)) / 2
     v1p = 0.9 * math.sqrt(0.15 / 0.19)
     r = math.hypot(-0.1 - 0.5, v1p)
@@ -88,7 +89,7 @@ def test_fig5_recovery_at_one_force():
     assert f"K = 1: {seconds:.4g} s" in result.replicated_value
     # the stiffer spring recovers sooner in seconds, later as a fraction of its cycle
     assert result.holds is False
-    assert s4.fig5_recovery_common_force(claim(measure="period"), ev).holds is True
+    assert sec4_fig5.fig5_recovery_common_force(claim(measure="period"), ev).holds is True
 
 
 # --- Sec. 2: the period's shares ---------------------------------------------------------------
@@ -118,7 +119,7 @@ def limit_cycle(natural: float = 2 * math.pi) -> xr.Dataset:
 
 
 def test_the_period_shares_are_the_phase_jumps_and_the_zones_less_their_advance():
-    s = dc.phase_shares(limit_cycle())
+    s = sec2_model.phase_shares(limit_cycle())
     # by hand: each impact steps the phase back by atan(0.1/0.9) - atan(0.1) = 0.0109886 (a delay); each zone
     # lasts 0.15 s and advances the phase by atan(0.05) + atan(0.1/0.9) = 0.1606154: 0.15 - 0.1606154 s
     delay = 2 * (math.atan(0.1 / 0.9) - math.atan(0.1))
@@ -127,11 +128,11 @@ def test_the_period_shares_are_the_phase_jumps_and_the_zones_less_their_advance(
     assert s["impulses"] == pytest.approx(advance, rel=1e-12) and advance == pytest.approx(-0.0212308, rel=1e-4)
     assert abs(s["residual"]) < 1e-14
     ev = evidence(fig3={"a": limit_cycle()})
-    assert dc.period_shares(claim(case="a"), ev).holds is True
+    assert sec2_model.period_shares(claim(case="a"), ev).holds is True
     # T - 2 pi = 0.0219771 - 0.0212308 = 7.46e-4 s, 1.19e-4 of 2 pi: "mainly" the spring at a tolerance of 1e-3,
     # not at 1e-4
-    assert dc.period_mainly_spring(claim(1e-3, case="a"), ev).holds is True
-    assert dc.period_mainly_spring(claim(1e-4, case="a"), ev).holds is False
+    assert sec2_model.period_mainly_spring(claim(1e-3, case="a"), ev).holds is True
+    assert sec2_model.period_mainly_spring(claim(1e-4, case="a"), ev).holds is False
 
 
 # --- Sec. 3.3: piecewise linear ----------------------------------------------------------------
@@ -143,13 +144,13 @@ def fig3_map(values) -> xr.Dataset:
 
 def test_an_affine_return_map_is_linear_and_the_escapement_map_is_not():
     affine = [2.0 + 0.5**k for k in range(30)]  # v -> 2 + (v - 2)/2: slope 0.5 everywhere
-    assert dc.piecewise_linear(claim(1e-6, claim="linear"), evidence(fig3={"a": fig3_map(affine)})).holds is True
+    assert piecewise_linear(claim(1e-6, claim="linear"), evidence(fig3={"a": fig3_map(affine)})).holds is True
     v = [0.3]
     for _ in range(40):  # the paper's map in v^2: v^2 -> 0.6561 v^2 + 0.543 (F = 1)
         v.append(math.sqrt(0.6561 * v[-1] ** 2 + 0.543))
-    result = dc.piecewise_linear(claim(1e-6, claim="linear"), evidence(fig3={"a": fig3_map(v)}))
+    result = piecewise_linear(claim(1e-6, claim="linear"), evidence(fig3={"a": fig3_map(v)}))
     assert result.holds is False and "ratio in v^2 0.6561 to 0.6561" in result.replicated_value
-    assert dc.piecewise_linear(claim(1e-6, claim="nonlinear"), evidence(fig3={"a": fig3_map(v)})).holds is True
+    assert piecewise_linear(claim(1e-6, claim="nonlinear"), evidence(fig3={"a": fig3_map(v)})).holds is True
 
 
 # --- Eq. (8): the Floquet multipliers ----------------------------------------------------------
@@ -157,11 +158,11 @@ def test_an_affine_return_map_is_linear_and_the_escapement_map_is_not():
 
 def test_trivial_multiplier():
     good = runs({"group": "paper", "floquet_major": 1 + 1e-10, "floquet_minor": 0.6561 - 1e-10})
-    assert dc.trivial_multiplier(claim(1e-8, group="paper"), evidence(good)).holds is True
+    assert sec3_map.trivial_multiplier(claim(1e-8, group="paper"), evidence(good)).holds is True
     off = runs({"group": "paper", "floquet_major": 1.001})
-    assert dc.trivial_multiplier(claim(1e-8, group="paper"), evidence(off)).holds is False
+    assert sec3_map.trivial_multiplier(claim(1e-8, group="paper"), evidence(off)).holds is False
     complex_pair = runs({"group": "paper", "floquet_major": float("nan"), "floquet_minor": float("nan")})
-    assert dc.trivial_multiplier(claim(1e-8, group="paper"), evidence(complex_pair)).holds is False
+    assert sec3_map.trivial_multiplier(claim(1e-8, group="paper"), evidence(complex_pair)).holds is False
 
 
 # --- Sec. 4: force and amplitude, release and transient ----------------------------------------
@@ -173,16 +174,16 @@ def test_force_amplitude(amplitudes, holds):
     other = [{"group": "force", "F": f, "a1": -0.3, "a3": 0.3, "largest_displacement": a}
              for f, a in ((0.2, 1.0), (1.0, 2.0))]
     c = claim(groups=["force"], definition="largest x")
-    assert dc.force_amplitude(c, evidence(runs(*rows, *other))).holds is holds  # one family failing fails it
-    assert dc.force_amplitude(c, evidence(runs(*rows))).holds is holds
+    assert sec4_fig3.force_amplitude(c, evidence(runs(*rows, *other))).holds is holds  # one family failing fails it
+    assert sec4_fig3.force_amplitude(c, evidence(runs(*rows))).holds is holds
     # h0 = sqrt(a1^2 + (v/w)^2) grows with the velocity, whatever the largest displacement says
     speeds = [{"group": "force", "F": f, "velocity": v} for f, v in zip((0.2, 1.0, 5.0), amplitudes)]
-    assert dc.force_amplitude(claim(groups=["force"], definition="h0"), evidence(runs(*speeds))).holds is holds
+    assert sec4_fig3.force_amplitude(claim(groups=["force"], definition="h0"), evidence(runs(*speeds))).holds is holds
 
 
 @pytest.mark.parametrize("first, holds", [((6.28, 6.30), False), ((6.28, 6.28), True)])
 def test_release_transient(first, holds):
     rows = [{"group": "release", "x0": x0, "first_period": a, "period": 6.2957} for x0, a in zip((-1.0, 3.0), first)]
-    assert dc.release_transient(claim(1e-9, group="release"), evidence(runs(*rows))).holds is holds
+    assert sec4_fig3.release_transient(claim(1e-9, group="release"), evidence(runs(*rows))).holds is holds
     with pytest.raises(ValueError, match="no runs that differ only in x0"):
-        dc.release_transient(claim(1e-9, group="release"), evidence(runs(rows[0])))
+        sec4_fig3.release_transient(claim(1e-9, group="release"), evidence(runs(rows[0])))

@@ -12,11 +12,14 @@ import math
 import numpy as np
 import xarray as xr
 
-from escapement.paper import dynamics_checks as dc
-from escapement.paper.airy import airy_verdict
-from escapement.paper.checks import Evidence
-from escapement.paper.existence import existence_verdict, grazing_verdict, release_verdict
-from paper.test_check_boundaries import (DONE, SIDES, evidence, fig3, fig5, judged, register_row, runs,
+
+from escapement.verdict import sec2_model
+from escapement.verdict.beyond import airy_verdict
+from escapement.verdict.evidence import Evidence
+from escapement.verdict.sec5_conclusions import existence_verdict
+from escapement.verdict.sec3_equations import grazing_verdict
+from escapement.verdict.sec4_fig3 import release_verdict
+from verdict.test_check_boundaries import (DONE, SIDES, evidence, fig3, fig5, judged, register_row, runs,
                                          scalars)
 
 SIGNS = (1.0, -1.0)
@@ -153,13 +156,13 @@ def test_the_period_is_mainly_the_springs_to_its_relative_tolerance_of_2_pi_over
     ev = evidence({row["args"]["case"]: fig3([1.0])})
     for factor, side in SIDES:
         for sign in SIGNS:
-            monkeypatch.setattr(dc, "phase_shares", shares(natural * (1 + sign * factor * 0.01)))
+            monkeypatch.setattr(sec2_model, "phase_shares", shares(natural * (1 + sign * factor * 0.01)))
             assert judged(row, ev) == expect(side, "reproduced", "not_reproduced"), (factor, sign)
     for share in ("impacts", "impulses"):
         at = {share: 1000 * 2.0**-30}  # exact in binary: equal to 1000 times the residual
-        monkeypatch.setattr(dc, "phase_shares", shares(natural, **at))
+        monkeypatch.setattr(sec2_model, "phase_shares", shares(natural, **at))
         assert judged(changed, ev) == "not_reproduced", share
-        monkeypatch.setattr(dc, "phase_shares", shares(natural, **{share: math.nextafter(at[share], 1.0)}))
+        monkeypatch.setattr(sec2_model, "phase_shares", shares(natural, **{share: math.nextafter(at[share], 1.0)}))
         assert judged(changed, ev) == "reproduced", share
 
 

@@ -20,12 +20,13 @@ import xarray as xr
 import yaml
 
 from escapement.model.parameters import Parameters
-from escapement.paper import claims as cl
-from escapement.paper.checks import CHECKS, Evidence, Verdict, runs_only
+from escapement.verdict import engine as cl
+from escapement.verdict.evidence import CHECKS, Evidence, Verdict, runs_only
 from escapement.solvers.exact import solve_exact
-from paper.test_check_boundaries import GEOMETRY, probes, runs
+from verdict.test_check_boundaries import GEOMETRY, probes, runs
 
-REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"
+REGISTER = cl.REGISTER
+REPO = Path(__file__).resolve().parents[2]
 
 
 @functools.cache
@@ -45,7 +46,7 @@ def test_the_register_uses_every_registered_check_and_no_other():
 
 
 def test_the_register_gives_the_fig3_cases_of_the_configuration():
-    config = next(p for p in (REGISTER.parents[1] / "config" / n for n in ("paper.yaml", "config.yaml")) if p.exists())
+    config = next(p for p in (REPO / "config" / n for n in ("paper.yaml", "config.yaml")) if p.exists())
     labels = {str(c) for c in yaml.safe_load(config.read_text())["fig3"]["cases"]}
     for c in register():
         for r in c["readings"]:
@@ -241,7 +242,7 @@ def releases_of_the_register() -> dict:
     configuration (the register's args select them)."""
     from escapement.pipeline.config import check_probes, read_yaml
     from escapement.scenes.probes import probe_variables
-    made = check_probes(read_yaml(REGISTER.parents[1] / "config" / "paper.yaml"))
+    made = check_probes(read_yaml(REPO / "config" / "paper.yaml"))
     return probe_variables({key: made[key] for key in ("releases", "grazing", "airy", "windows", "crossings")})
 
 
@@ -326,3 +327,43 @@ def test_a_printed_period_is_judged_at_half_a_unit_of_its_last_printed_digit():
                 ds = solved_fig3(1.0, -1.0, n=2)
                 ds["period"].values[-1] = 6.2832 + sign * offset * half_unit
                 assert cl.verdict(claim, reading, Evidence({case: ds}, None, {}, None)).holds is holds, (offset, sign)
+
+
+#: each module of the checks, in the paper's order, with the sources (the register's ``source``) it holds
+PARTS = (
+    ("sec2_model", r"^Sec\. 2\b"),
+    ("sec3_equations", r"^Eqs?\. \((2|3[abc]|4|5)\)|^Secs?\. 3\.3"),
+    ("sec3_steps", r"^Eqs?\. \(1[0-5]\)"),
+    ("sec3_map", r"^Eqs?\. \((7|8|1[6-9]|2[01])\)|^Sec\. 3\.4"),
+    ("sec3_period", r"^Eqs?\. \(2[2-5]"),
+    ("sec4_fig3", r"^Sec\. 4"),
+    ("sec4_fig4", r"^Sec\. 4; Fig\. 4"),
+    ("sec4_fig5", r"^Sec\. 4; Fig\. 5"),
+    ("sec5_conclusions", r"^(Sec\. 5|Abstract)"),
+    ("figure_axes", r"^Fig\. [345]\b"),
+    ("beyond", r"beyond the paper"),
+)
+
+
+def part_of(source: str) -> int:
+    """The index in :data:`PARTS` of the part of the paper ``source`` names: of the patterns it matches, the last
+    (the narrowest: ``Sec. 4; Fig. 4`` is Fig. 4's, not Sec. 4's)."""
+    found = [i for i, (_, pattern) in enumerate(PARTS) if re.search(pattern, source)]
+    assert found, f"no module of the checks holds the source {source!r}"
+    return found[-1]
+
+
+def test_a_checks_module_follows_from_the_source_of_its_claims():
+    """Each check sits in the module of the earliest part of the paper among the sources of the claims that use it,
+    so a reader finds a claim's check from its source; ``untestable`` alone, the check of every claim the paper gives
+    nothing to compute against, sits with the engine's evidence."""
+    users: dict[str, list[str]] = {}
+    for claim in cl.load_claims(REGISTER):
+        for reading in claim["readings"]:
+            users.setdefault(reading["check"], []).append(claim["source"])
+    where = {name: c.function.__module__.rsplit(".", 1)[1] for name, c in cl.CHECKS.items()}
+    expected = {name: PARTS[min(part_of(s) for s in sources)][0] for name, sources in users.items()}
+    assert {n: m for n, m in where.items() if n != "untestable"} == {n: m for n, m in expected.items()
+                                                                     if n != "untestable"}
+    assert where["untestable"] == "evidence" and set(users) == set(where)
+    assert part_of("Sec. 4; Fig. 4") == 6 and part_of("Sec. 4; Fig. 3 (beyond the paper)") == 10

@@ -1,19 +1,14 @@
-"""The checks of the claims register: what every check is and uses, and the checks on the paper's map,
-fixed point and multipliers (Sec. 3).
-
-A check, registered by :func:`check` under its name in the register, computes the replicated value of
-one kind of claim under one reading (its ``args``) from the datasets, and says whether the claim holds
-(:class:`Verdict`); the status follows by the register's one rule (:mod:`.vocabulary`). Tolerances and
-the Fig. 3 case labels come from the register. Each check declares the scenes it reads, so that a scene
-that left the escapement regime gets its defined verdict (:func:`escapement.paper.claims.evaluate`), and
-what it consumes besides the simulation (a law of the model, a fitted reading, a threshold). The
-other checks are in the modules :mod:`escapement.paper.claims` imports.
+"""What every check reads and answers: the datasets (:class:`Evidence`), the verdict under one reading
+(:class:`Verdict`), the registry the checks join by :func:`check`, the scenes a check declares it reads, and the
+helpers that find a run of the checks dataset (:func:`probe`, :func:`group_runs`, :func:`release_run`). The status
+of a row follows from the verdicts by the one rule of :mod:`escapement.verdict.rule`, in
+:func:`escapement.verdict.engine.evaluate`.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -23,9 +18,6 @@ from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
-from . import printed as pe
-
-__all__ = ["CHECKS", "Candidates", "Check", "Evidence", "Verdict", "check", "fmt"]
 
 COMPLETED = Status.COMPLETED.value
 
@@ -108,7 +100,7 @@ Scenes = Callable[[Mapping, Evidence], dict[str, xr.Dataset]]
 class Check:
     """A registered check: its function, the scenes it reads, the ``args`` it needs from the register, and what
     it consumes besides the simulation, from which the kind of its evidence follows
-    (:func:`escapement.paper.vocabulary.evidence_of`): the model's ``law`` it restates, what it reads that was
+    (:func:`escapement.verdict.rule.evidence_of`): the model's ``law`` it restates, what it reads that was
     ``fitted`` to the printed axes, the ``threshold`` on the claim's words the register's tolerance sets."""
 
     name: str
@@ -136,9 +128,6 @@ def check(name: str, *, scenes: Scenes, args: tuple[str, ...] = (), law: str | N
         return function
 
     return mark
-
-
-# --- the scenes a check reads ------------------------------------------------------------------
 
 
 def fig3_labelled(ev: Evidence, label: str) -> xr.Dataset:
@@ -170,7 +159,8 @@ def runs_only(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     return {}
 
 
-# --- helpers -----------------------------------------------------------------------------------
+def fig4_scene(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
+    return {"Fig. 4": ev.fig4}
 
 
 def params_of(ds: xr.Dataset) -> Parameters:
@@ -237,132 +227,21 @@ def runs_left_regime(runs: xr.Dataset) -> Verdict | None:
     )
 
 
-# --- Sec. 3.3-3.4: the Poincare map and its fixed point ----------------------------------------
+def model_of(args: Mapping, F: float, positions: Sequence[float] | None = None) -> Parameters:
+    a1, a2, a3, a4 = positions if positions is not None else args["positions"]
+    return Parameters(M=float(args.get("M", 1.0)), K=float(args.get("K", 1.0)), F=float(F), b=float(args.get("b", 0.1)),
+                      a1=float(a1), a2=float(a2), a3=float(a3), a4=float(a4))
 
 
-@check("map_eq16", scenes=fig3_all)
-def map_eq16(claim, ev: Evidence) -> Verdict:
-    worst = 0.0
-    pairs = 0
-    for ds in ev.fig3.values():
-        p, v = params_of(ds), ds["velocity_before_impact"].values
-        predicted = np.array([pe.poincare_map_16(x, p) for x in v[:-1]])
-        worst = max(worst, float(np.max(np.abs(v[1:] - predicted) / predicted)))
-        pairs += len(predicted)
-    return Verdict(
-        f"max relative difference {fmt(worst, 3)} over {pairs} simulated cycle pairs (Fig. 3 {', '.join(ev.fig3)})",
-        within(worst, claim["tolerance"]),
-        paper_value="g of Eq. (16)",
-    )
+def release_run(ev: Evidence, p: Parameters, x0: float, n_cycles) -> dict:
+    """The run from rest at ``x0`` with ``p`` over ``n_cycles`` of the checks dataset: its ``outcome``, complete
+    ``cycles``, last ``velocity`` and ``next_velocity`` (before the second impact at a1)."""
+    where = {**{f"release_{k}": getattr(p, k) for k in MODEL_KEYS}, "release_x0": x0, "release_n_cycles": int(n_cycles)}
+    return {name: probe(ev, f"release_{name}", "release", **where).item()
+            for name in ("outcome", "cycles", "velocity", "next_velocity")}
 
 
-@check("fixed_point", scenes=fig3_case, args=("case",))
-def fixed_point(claim, ev: Evidence) -> Verdict:
-    ds = ev.fig3[claim["args"]["case"]]
-    formula = pe.fixed_point_19(params_of(ds))
-    simulated = float(ds["velocity_before_impact"].values[-1])
-    n = ds.sizes["cycle"]
-    return Verdict(
-        f"{fmt(simulated)} m/s at cycle {n}",
-        within(rel(simulated, formula), claim["tolerance"]),
-        note=f"relative difference {fmt(rel(simulated, formula), 2)}, the transient left after {n} cycles",
-        paper_value=f"{fmt(formula)} m/s",
-    )
-
-
-@check("multiplier_paper_cases", scenes=runs_only)
-def multiplier_paper_cases(claim, ev: Evidence) -> Verdict:
-    paper = group_runs(ev, "paper")
-    if (left := runs_left_regime(paper)) is not None:
-        return left
-    mu = paper["multiplier"].values
-    return Verdict(
-        ", ".join(f"{label}: {fmt(m)}" for label, m in zip(paper["label"].values, mu)),
-        within(float(np.max(np.abs(mu - float(claim["paper_value"])))), claim["tolerance"]),
-        note="central difference of the simulated return map at the measured fixed point",
-    )
-
-
-@check("stability_over_b", scenes=runs_only)
-def stability_over_b(claim, ev: Evidence) -> Verdict:
-    """Every b of the group converges with mu2 = (1 - b)^4: the motion's own return map, for 0 < b < 2."""
-    group = group_runs(ev, "b")
-    outcome = group["outcome"].values
-    # chattering (b > 1) is an answer of this check; any other exit leaves it without one
-    if (left := runs_left_regime(group.isel(case=np.flatnonzero(outcome != "chattering")))) is not None:
-        return left
-    b, mu, mu21 = group["b"].values, group["multiplier"].values, group["multiplier_eq21"].values
-    stable = outcome == COMPLETED
-    deviation = float(np.max(np.abs(mu[stable] - mu21[stable]))) if stable.any() else math.inf
-    replicated = (f"converges with mu2 = (1-b)^4 (within {fmt(deviation, 2)}) for b = "
-                  + ", ".join(fmt(x, 3) for x in b[stable]))
-    if (~stable).any():
-        replicated += (f"; for b = {', '.join(fmt(x, 3) for x in b[~stable])} the impact reverses the velocity and "
-                       "the impacts chatter (Zeno): no periodic motion")
-    return Verdict(replicated, bool(stable.all()) and within(deviation, claim["tolerance"]), note=(
-        "for b > 1 the impact law v+ = (1-b) v- reverses the velocity; the map (16) squares the sign away, so "
-        "|mu2| < 1 there says nothing about the motion, whose impacts accumulate in finite time"))
-
-
-@check("multiplier_group", scenes=runs_only, args=("group",))
-def multiplier_group(claim, ev: Evidence) -> Verdict:
-    """mu2 = (1 - b)^4 in every run of the group: the rate of convergence depends on nothing else."""
-    group = group_runs(ev, claim["args"]["group"])
-    if (left := runs_left_regime(group)) is not None:
-        return left
-    worst = float(np.max(np.abs(group["multiplier"].values - group["multiplier_eq21"].values)))
-    forces = sorted(set(group["F"].values.tolist()))
-    return Verdict(f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over {group.sizes['case']} runs (F = "
-                   f"{', '.join(fmt(f, 3) for f in forces)} N)", within(worst, claim["tolerance"]))
-
-
-@check("multiplier_only_b", scenes=runs_only)
-def multiplier_only_b(claim, ev: Evidence) -> Verdict:
-    """Sec. 3.4, the stability determined only by b: mu2 = (1 - b)^4 in every run of the checks dataset that
-    converges, whatever its force, spring, positions or release, and the runs that do not converge chatter, every
-    one at b > 1, where the impact reverses the velocity; any other exit leaves the check without an answer."""
-    runs = ev.checks
-    outcome, b = runs["outcome"].values, runs["b"].values
-    if (left := runs_left_regime(runs.isel(case=np.flatnonzero(outcome != "chattering")))) is not None:
-        return left
-    done = outcome == COMPLETED
-    worst = float(np.max(np.abs(runs["multiplier"].values[done] - runs["multiplier_eq21"].values[done])))
-    spans = "; ".join(f"{k} = {fmt(np.min(runs[k].values[done]), 3)} to {fmt(np.max(runs[k].values[done]), 3)}"
-                      for k in ("F", "K", "a1", "a3", "x0", "b"))
-    chatter = sorted(set(b[~done].tolist()))
-    return Verdict(
-        f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over the {int(done.sum())} runs that converge ({spans}); "
-        + (f"the runs at b = {', '.join(fmt(x, 3) for x in chatter)} chatter" if chatter else "none chatters"),
-        within(worst, claim["tolerance"]) and bool(np.all(b[~done] > 1)) and not bool(np.any(b[done] > 1)),
-        note="mu2 measured from each run's return map: it follows b alone over runs that differ in every other "
-             "parameter and in the release; whether the limit cycle exists is another question (Sec. 5)")
-
-
-@check("runs_converge", scenes=runs_only, args=("group",))
-def runs_converge(claim, ev: Evidence) -> Verdict:
-    """Every run of the group reaches a limit cycle: it completes its cycles with |mu2| < 1."""
-    group = group_runs(ev, claim["args"]["group"])
-    mu, outcome = group["multiplier"].values, group["outcome"].values
-    fine = (outcome == COMPLETED) & (np.abs(mu) < 1)
-    return Verdict(
-        f"{int(fine.sum())} of {len(fine)} runs converge to a limit cycle (mu2 = {fmt(np.nanmin(mu), 6)} to "
-        f"{fmt(np.nanmax(mu), 6)})" + "".join(f"; {lab}: {o}" for lab, o in zip(group["label"].values[~fine],
-                                                                               outcome[~fine])),
-        bool(fine.all()))
-
-
-@check("asymmetric_dependence", scenes=runs_only)
-def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
-    """The rate of convergence (mu2) of the asymmetric runs depends on F or the positions: beyond the tolerance."""
-    group = group_runs(ev, "asymmetric")
-    if (left := runs_left_regime(group)) is not None:
-        return left
-    worst = float(np.max(np.abs(group["multiplier"].values - group["multiplier_eq21"].values)))
-    v = group["velocity"].values
-    return Verdict(
-        f"mu2 = (1-b)^4 within {fmt(worst, 2)} in all {group.sizes['case']} asymmetric runs; fixed points "
-        f"{fmt(np.min(v), 4)}-{fmt(np.max(v), 4)} m/s",
-        not within(worst, claim["tolerance"]),
-        note=("Eq. (16) is linear in x1^2: g' = (1-b)^4 x1/g(x1) = (1-b)^4 at any fixed point, with or without "
-              "symmetry; what depends on F and the positions is the fixed point and whether it exists"),
-    )
+@check("untestable", scenes=runs_only, args=("reason",))
+def untestable(claim, ev: Evidence) -> Verdict:
+    """A claim the paper gives no evidence for: the reason is the register's."""
+    return Verdict("nothing to compute", None, note=str(claim["args"]["reason"]), paper_value="no measurement given")

@@ -1,4 +1,4 @@
-"""The further checks of the register (escapement.paper.register, .existence, .figure_checks, .airy,
+"""The further checks of the register (escapement.verdict's modules by part of the paper,
 .model_claims, .stability), each on synthetic evidence built here that gives each of its outcomes; the
 checks that run the exact solver themselves are given configurations (their ``args``) on either side of
 what they decide, and their verdicts are tested on synthetic numbers too.
@@ -16,13 +16,15 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from escapement.paper import claims as cl
-from escapement.paper.airy import airy_verdict
-from escapement.paper.checks import Evidence
-from escapement.paper.existence import existence_verdict, grazing_verdict, release_verdict
-from escapement.paper.figure_checks import section_crossing_counts
-from escapement.paper.vocabulary import status_of
-from paper.test_check_boundaries import probes, release_runs
+from escapement.verdict import engine as cl
+from escapement.verdict.beyond import airy_verdict
+from escapement.verdict.evidence import Evidence
+from escapement.verdict.sec5_conclusions import existence_verdict
+from escapement.verdict.sec3_equations import grazing_verdict
+from escapement.verdict.sec4_fig3 import release_verdict
+from escapement.studies.poincare import section_crossing_counts
+from escapement.verdict.rule import status_of
+from verdict.test_check_boundaries import probes, release_runs
 
 from escapement.scenes.probes import probe_variables
 
@@ -293,7 +295,7 @@ def test_window_impact_holds_under_every_reading_of_the_grid(monkeypatch):
     assert len(result.holds) == 24 and all(result.holds.values())
     assert status(c, ev) == "reproduced"
     # windows of 0.2 s: some readings of the grid put an impact in them, most do not: undetermined
-    from escapement.paper import figure_checks
+    from escapement.verdict import sec4_fig4 as figure_checks
     narrow = type("Axis", (), {"low": 84.3, "high": 84.5})
     monkeypatch.setattr(figure_checks, "panel", lambda figure, name: type("Panel", (), {"x": narrow}))
     assert status(c, ev) in ("undetermined", "not_reproduced")
@@ -496,7 +498,7 @@ def test_g_of_eq3b_is_sigma_f_on_s2_and_0_elsewhere():
     """F = 2 N, M = 1 kg: f = 2 m/s^2 in (a1, a2) = (-0.1, 0.05) moving right, -2 in (a4, a3) = (-0.05, 0.1) moving
     left; 0 outside the zones, at their ends, and at rest (Eq. (5) leaves those states out of S2)."""
     from escapement.model.parameters import Parameters
-    from escapement.paper.model_claims import g_eq3b
+    from escapement.verdict.sec3_equations import g_eq3b
     p = Parameters(**GEOMETRY, F=2.0)
     x = [0.0, 0.0, 0.07, -0.07, 0.0, 0.05, -0.1, 0.1, -0.05, -1.0]
     v = [1.0, -1.0, 1.0, -1.0, 0.0, 1.0, 1.0, -1.0, -1.0, 1.0]
@@ -508,7 +510,7 @@ def test_near_a_release_outside_the_zones_g_is_constant_and_the_lipschitz_consta
     """From rest at -1 m the zones begin 0.9 m away: over the square of half-width 0.9 m, g = 0 and the largest
     quotient is the larger singular value of A = [[0, 1], [-K, 0]] (M = 1 kg), max(1, K)."""
     from escapement.model.parameters import Parameters
-    from escapement.paper.model_claims import lipschitz_quotients
+    from escapement.verdict.sec3_equations import lipschitz_quotients
     p = Parameters(**{**GEOMETRY, "K": K}, F=1.0)
     jump, quotient = lipschitz_quotients(p, -1.0, 0.0, 0.9 * (1 - 1e-9))
     assert jump == 0.0
@@ -520,7 +522,7 @@ def test_at_the_end_of_a_zone_the_quotient_grows_as_one_over_the_half_width(radi
     """At (a2, 1) = (0.05 m, 1 m/s), f = 1: g = 0 at x = a2 (S2 is open) and f at a2 - r/10, the next grid state;
     their quotient is |(0, w^2 r/10 + f)| / (r/10) = 1 + 10 f / r, the largest of the grid."""
     from escapement.model.parameters import Parameters
-    from escapement.paper.model_claims import lipschitz_quotients
+    from escapement.verdict.sec3_equations import lipschitz_quotients
     p = Parameters(**GEOMETRY, F=1.0)
     jump, quotient = lipschitz_quotients(p, 0.05, 1.0, radius)
     assert jump == 1.0

@@ -13,11 +13,12 @@ from __future__ import annotations
 import math
 
 import pytest
-from paper.test_check_boundaries import register_row, release_runs
+from verdict.test_check_boundaries import register_row, release_runs
 
-from escapement.paper import claims as cl
-from escapement.paper import existence
-from escapement.paper.checks import Evidence
+from escapement.verdict import engine as cl
+
+from escapement.verdict import sec3_equations, sec4_fig3, sec5_conclusions
+from escapement.verdict.evidence import Evidence
 
 # asymmetric_convergence_depends (its reading "whether the motion converges"): a1..a4 = -0.3, -0.25, 0.1, 0.05,
 # b = 0.1, K = 1 N/m:
@@ -42,14 +43,16 @@ CASES = [
 def test_the_wrapper_hands_its_verdict_the_registers_tolerance_and_the_closed_form(
         monkeypatch, claim_id, reading, verdict_function, reference):
     row = register_row(claim_id, 1e-8, reading)
-    real = getattr(existence, verdict_function)
+    module = {"existence_verdict": sec5_conclusions, "grazing_verdict": sec3_equations,
+              "release_verdict": sec4_fig3}[verdict_function]
+    real = getattr(module, verdict_function)
     calls = []
 
     def watched(rows, closed_form, tolerance, *rest):
         calls.append((closed_form, tolerance))
         return real(rows, closed_form, tolerance, *rest)
 
-    monkeypatch.setattr(existence, verdict_function, watched)
+    monkeypatch.setattr(module, verdict_function, watched)
     cl.verdict(row, row, Evidence(fig3={}, fig4=None, fig5={}, checks=release_runs(row["args"])))
     assert len(calls) == 1
     closed_form, tolerance = calls[0]

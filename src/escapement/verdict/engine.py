@@ -1,10 +1,10 @@
 """The claims register evaluated: each of the paper's claims checked under every reading of its words.
 
-``workflow/claims.yaml`` lists the claims, checked against ``workflow/schemas/claims.schema.yaml``
+``claims.yaml`` (beside this module) lists the claims, checked against ``claims.schema.yaml``
 (:func:`load_claims`). :func:`evaluate` runs each reading's check (registered by its decorator in the
 modules imported below) and gives one row per claim, with exactly the columns of :data:`COLUMNS`: the
 status follows from the readings' outcomes and the kind of evidence from what the checks consume, by the
-rules of :mod:`escapement.paper.vocabulary`, never from the register; rows that quote one sentence are its
+rules of :mod:`escapement.verdict.rule`, never from the register; rows that quote one sentence are its
 parts and share its finding, named after the first of them.
 
 * a reading whose scene left the escapement regime (its ``outcome`` is not ``completed``) fails, with the
@@ -24,18 +24,18 @@ import jsonschema
 import numpy as np
 import yaml
 
-# the modules of the checks: importing them registers their checks in CHECKS
-from . import airy, axis_claims, conventions, dynamics_checks, existence, figure_checks  # noqa: F401
-from . import model_claims, period_checks, register, section4_checks, stability  # noqa: F401
-from .checks import CHECKS, COMPLETED, Evidence, Verdict, fmt
-from .vocabulary import UNDETERMINED, evidence_of, status_of, weakest, weighed
+# the modules of the checks, one per part of the paper: importing them registers their checks in CHECKS
+from . import beyond, figure_axes, sec2_model, sec3_equations, sec3_map, sec3_period, sec3_steps  # noqa: F401
+from . import sec4_fig3, sec4_fig4, sec4_fig5, sec5_conclusions  # noqa: F401
+from .evidence import CHECKS, COMPLETED, Evidence, Verdict, fmt
+from .rule import UNDETERMINED, evidence_of, status_of, weakest, weighed
 
 __all__ = ["CHECKS", "COLUMNS", "SCHEMA", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims"]
 
 COLUMNS = ["claim_id", "source", "origin", "quote", "part", "finding", "evidence", "statement", "readings",
            "paper_value", "replicated_value", "tolerance", "status", "note"]
-#: the register's JSON Schema, beside the register in the workflow
-SCHEMA = Path(__file__).resolve().parents[3] / "workflow" / "schemas" / "claims.schema.yaml"
+#: the register and its JSON Schema, package data beside this module
+REGISTER, SCHEMA = (Path(__file__).with_name(name) for name in ("claims.yaml", "claims.schema.yaml"))
 #: the reading of a claim checked under one reading only
 AS_STATED = "as stated"
 

@@ -13,7 +13,7 @@ limit, and the row
 names every candidate tied at the best score, grouping those that plot the same values (equivalent
 readings no axis can tell apart), and the score with the plotting program's own tick step. The
 pipeline's output, the reading adopted, is reported beside it (``Evidence.axes``, autoscaled by
-:func:`escapement.pipeline.readings.scene_axes`); the printed limits come from
+:func:`escapement.plotting.panel_axes.scene_axes`); the printed limits come from
 :mod:`escapement.paper.printed_axes`.
 """
 
@@ -24,10 +24,8 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from .checks import Evidence, Verdict, check, fig3_labelled, fmt
-from .printed_axes import FIG5_PANEL_K, Panel, panel
-
-__all__ = ["panel_scenes", "printed_axes"]
+from ..paper.printed_axes import FIG5_PANEL_K, Panel, panel
+from .evidence import Evidence, Verdict, check, fig3_labelled, fmt
 
 
 def _limits(lo: float, hi: float) -> str:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from escapement.pipeline.tally import findings, findings_table, headline, vocabulary_table
+from escapement.verdict.tally import findings, findings_table, headline, vocabulary_table
 
 
 def row(claim, status, finding, part="", origin="paper") -> dict:

@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from escapement.paper import claims as cl
-from escapement.paper.checks import Candidates, Evidence
+from escapement.verdict import engine as cl
+from escapement.verdict.evidence import Candidates, Evidence
 
 
 def _ds(K: float = 1.0, outcome: str = "completed", **extra) -> xr.Dataset:

@@ -17,17 +17,16 @@ from __future__ import annotations
 import copy
 import functools
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
 
-from escapement.paper import claims as cl
-from escapement.paper.checks import Evidence
-from escapement.paper.vocabulary import status_of
+from escapement.verdict import engine as cl
+from escapement.verdict.evidence import Evidence
+from escapement.verdict.rule import status_of
 
-REGISTER = Path(__file__).resolve().parents[2] / "workflow" / "claims.yaml"
+REGISTER = cl.REGISTER
 GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
 DONE = {"outcome": "completed", "outcome_message": "completed: a message"}
 #: the relative offsets from a tolerance at which a check is judged: inside, outside
@@ -176,7 +175,7 @@ def g17(x: float, F: float = 1.0) -> float:
 
 
 def test_within_keeps_a_value_equal_to_the_tolerance():
-    from escapement.paper.checks import within
+    from escapement.verdict.evidence import within
     assert within(0.25, 0.25) is True  # 0.25 exact in binary: equality itself, no rounding
     assert within(math.nextafter(0.25, 1.0), 0.25) is False
     assert within(0.0, 0.0) is True
@@ -202,7 +201,7 @@ def test_a_printed_reading_reproduces_up_to_its_relative_tolerance_of_the_simula
 def test_the_state_matrix_holds_while_the_arcs_keep_their_invariant_to_the_tolerance(monkeypatch, reading):
     """The largest relative change of v^2 + k x^2 along the free arcs, given (the exact solver's arcs are
     tested in test_register), just inside and just outside the tolerance, under either entry of A."""
-    from escapement.paper import model_claims
+    from escapement.verdict import sec3_equations as model_claims
     row = register_row("eq3a_state_matrix", 1e-10, reading)
     for factor, side in SIDES:
         monkeypatch.setattr(model_claims, "arc_invariant_error", lambda *a, factor=factor, **k: factor * 1e-10)
@@ -393,7 +392,7 @@ def period_formula_cases() -> dict:
     """Per claim: the Fig. 3 scene of test_conventions (v1 = 1 m/s, F = 1, w = 1) with the simulated
     value as a function of the printed one (divided by 1 + e: a relative difference e from it), and the
     status outside the tolerance."""
-    from paper.test_conventions import V4P, eq22e_by_hand, eq25_by_hand, fig3 as scene
+    from verdict.test_conventions import V4P, eq22e_by_hand, eq25_by_hand, fig3 as scene
     c = 1.0
     v1p, v2, v5 = 0.9, math.sqrt(1.1175), -math.sqrt(1.2066)
     r1, h2, r3, h5 = math.hypot(-0.1 - c, v1p), math.hypot(0.05, v2), math.hypot(0.1 + c, V4P), math.hypot(-0.05, v5)
@@ -453,7 +452,8 @@ def test_eq24_holds_to_its_relative_tolerance_of_the_measured_phase_delay(monkey
     gives with x1+ the velocity after the impact (Eq. (10)): measured as that / (1 +/- e), the first form
     reproduces inside the tolerance, not outside. The second form, with x1+ after the impact too (one convention
     for the whole equation), gives atan(0.1 * 0.1 * 0.9 / (0.01 + 0.81)) instead, 11 % off: it fails either side."""
-    from escapement.paper import corrected, printed
+    from escapement.paper import corrected
+    from escapement.paper import printed
     first, second = register_row("eq24_impact_perturbation", 1e-6), register_row("eq24_second_form", 1e-6)
     assert (first["args"]["form"], second["args"]["form"]) == ("first", "second")
     for factor, expected in ((SIDES[0][0], "reproduced"), (SIDES[1][0], "not_reproduced")):
@@ -488,7 +488,8 @@ def test_the_force_is_a_function_of_time_while_two_releases_switch_it_on_within_
 def test_one_eigenvalue_of_the_map_8_is_1_while_within_the_tolerance(monkeypatch):
     """The map (16) replaced by a line through the fixed point of slope 1 - t f: the Jacobian of (8) has the
     eigenvalues 0 and 1 - t f (central differences of a line: rounding 2e-11 relative, margin 10 %)."""
-    from escapement.paper import printed, stability
+    from escapement.paper import printed
+    from escapement.verdict import sec3_map as stability
     # the inference from the map (8) is now the reason, a part of the sentence of its own (was the second reading
     # of eq8_trivial_multiplier): reason and conclusion are parts everywhere
     row = register_row("eq8_map_reason", 1e-8)
@@ -504,7 +505,7 @@ def test_the_lipschitz_quotient_is_the_norm_of_a_to_the_tolerance(monkeypatch):
     """Both readings of the Lipschitz sentence with the grid's answer replaced: g constant and the largest quotient
     ||A|| (1 + t (1 -/+ 1e-2)), ||A|| = 1 at K = 1 N/m (margin 1e-14, some 45 units of rounding at 1), holds inside
     the tolerance and fails outside; a jump of g, however small, fails it at the quotient 1."""
-    from escapement.paper import model_claims
+    from escapement.verdict import sec3_equations as model_claims
     for reading in (0, 1):
         row = register_row("lipschitz_reason", 1e-12, reading)
         for factor, expected in ((1 - 1e-2, "reproduced"), (1 + 1e-2, "not_reproduced")):

@@ -1,25 +1,26 @@
-"""Checks of the model's definitions, Eqs. (2)-(5) of Sec. 3.3, and of the paper's claim of accuracy.
+"""The checks of Eqs. (2)-(5) and of the words of Sec. 3.3: the model's definitions, the system
+called linear, and the existence and uniqueness of its solution.
 
-The model is built from the impact matrix (3c), the jump set (4), the impulse set S2 of (5) read as
-"after the impact" and the mode equations (A-1), (A-3), (A-5): the checks on them restate the law they
-name (by construction). The state matrix (3a) is printed with -omega_n where the motion needs
--omega_n**2, the complement S1 u S2 of (5) misses states every cycle passes through, and g of (2) is
-a function of the state, not of time: each is checked against the exact motion. That A y + g is Lipschitz
-near an initial state is checked on the paper's own A and g (by construction). The closing claims that the
-model "can describe the system properly" and that the method studies it "conveniently" have nothing to be
-compared with: untestable.
+The model is built from the impact matrix (3c), the jump set (4), the impulse set S2 of (5) read as "after the
+impact" and the mode equations (A-1), (A-3), (A-5): the checks on them restate the law they name (by construction).
+The state matrix (3a) is printed with -omega_n where the motion needs -omega_n**2, the complement S1 u S2 of (5)
+misses states every cycle passes through, and g of (2) is a function of the state, not of time: each is checked
+against the exact motion. That A y + g is Lipschitz near an initial state is checked on the paper's own A and g.
 """
 
 from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
 from ..model.automaton import CENTRE_SIGN, Mode
 from ..model.events import EventKind
 from ..model.parameters import Parameters
-from .checks import Evidence, Verdict, check, fig3_all, fig3_case, fmt, params_of, probe, runs_only, within
-
-__all__ = ["arc_invariant_error", "g_eq3b", "lipschitz_quotients"]
+from ..paper.corrected import grazing_limit, grazing_release
+from .evidence import (COMPLETED, Evidence, Verdict, check, fig3_all, fig3_case, fmt, group_runs, model_of,
+                       params_of, probe, release_run, runs_only, within)
 
 A1, A2, A3, A4 = (int(k) for k in (EventKind.IMPACT_A1, EventKind.ZONE_END_A2, EventKind.IMPACT_A3,
                                   EventKind.ZONE_END_A4))
@@ -244,7 +245,84 @@ def lipschitz_near(claim, ev: Evidence) -> Verdict:
         paper_value="A and g Lipschitz near (t0, y0)")
 
 
-@check("untestable", scenes=runs_only, args=("reason",))
-def untestable(claim, ev: Evidence) -> Verdict:
-    """A claim the paper gives no evidence for: the reason is the register's."""
-    return Verdict("nothing to compute", None, note=str(claim["args"]["reason"]), paper_value="no measurement given")
+def _successive_ratios(values: np.ndarray) -> np.ndarray:
+    """``(u[k+2] - u[k+1]) / (u[k+1] - u[k])`` where both differences are well above rounding (1e-7 of u)."""
+    d = np.diff(values)
+    usable = (np.abs(d[:-1]) > 1e-7 * np.abs(values[-1])) & (np.abs(d[1:]) > 1e-7 * np.abs(values[-1]))
+    return d[1:][usable] / d[:-1][usable]
+
+
+@check("piecewise_linear", scenes=fig3_all, args=("claim",))
+def piecewise_linear(claim, ev: Evidence) -> Verdict:
+    """The whole system is linear only if its return map is affine in v, whose successive differences then
+    shrink by one constant ratio, its slope: the ratios measured on the Fig. 3 transients are compared, and a
+    spread beyond the tolerance shows the whole is not linear. ``args: {claim: linear}`` holds when the spread is
+    within the tolerance, ``nonlinear`` when it is beyond."""
+    parts, spread = [], 0.0
+    for label, ds in ev.fig3.items():
+        v = ds["velocity_before_impact"].values
+        in_v, in_v2 = _successive_ratios(v), _successive_ratios(v**2)
+        if len(in_v) < 2:
+            raise ValueError(f"Fig. 3 case {label} has fewer than three cycles of transient to measure the map's slope")
+        spread = max(spread, float(np.ptp(in_v)))
+        parts.append(f"case {label}: slope of the return map {fmt(in_v.min(), 5)} to {fmt(in_v.max(), 5)} over "
+                     f"{len(in_v) + 2} transient cycles (ratio in v^2 {fmt(in_v2.min(), 6)} to {fmt(in_v2.max(), 6)})")
+    linear = within(spread, claim["tolerance"])
+    return Verdict(
+        "; ".join(parts), linear if claim["args"]["claim"] == "linear" else not linear,
+        note=(f"the return map's slope in v changes by {fmt(spread, 3)} along the transient (an affine map has one "
+              "slope), while the map is affine in v^2: the system is piecewise linear, switched at events whose times "
+              "depend on the state"),
+    )
+
+
+def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> Verdict:
+    """``rows``: per offset ``delta`` of the release from the grazing one, ``above`` (released at
+    ``-A (1 + delta)``: its ``outcome`` and ``v_next``, the velocity before its second impact at a1) and
+    ``below`` (at ``-A (1 - delta)``: its ``outcome``). Holds when the run above at the smallest ``delta``
+    continues to the closed-form continuation ``limit``: one continuation from the grazing state, the strict
+    jump set x xdot < 0 counting a touch at rest as no impact."""
+    smallest = min(rows, key=lambda r: r["delta"])
+    error = abs(smallest["above"]["v_next"] - limit) / limit
+    text = "; ".join(
+        f"delta = {fmt(r['delta'], 2)}: from -A(1 + delta) {r['above']['outcome']}"
+        + (f", next impact at a1 with {fmt(r['above']['v_next'])} m/s" if math.isfinite(r["above"]["v_next"]) else "")
+        + f"; from -A(1 - delta) {r['below']['outcome']}" for r in rows)
+    return Verdict(text + f"; the grazing release separates an impact and impulse (next v1 = {fmt(limit)} m/s, "
+                   "closed form) from no impact (a free swing of amplitude a3 for ever)", bool(error <= tolerance),
+                   note=(
+        "with the strict jump set x xdot < 0 a touch of a3 at rest is no impact, in the solver as in the jump set, "
+        "and the state has one continuation; the touch comes two swings after the release, on the edge of an "
+        "impulse zone, where g of Eq. (3b) switches with the state: releases delta either side of the grazing one "
+        "end an O(1) apart however small delta, so the solution does not depend continuously on the release there"),
+        paper_value="exactly one solution")
+
+
+@check("grazing_uniqueness", scenes=runs_only, args=("positions", "F", "deltas", "n_cycles"))
+def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
+    args = claim["args"]
+    p = model_of(args, args["F"])
+    release = grazing_release(p)
+
+    def run(x0: float) -> dict:
+        found = release_run(ev, p, x0, args["n_cycles"])
+        return {"outcome": found["outcome"], "v_next": found["next_velocity"]}
+
+    rows = [{"delta": float(d), "above": run(-release * (1 + float(d))), "below": run(-release * (1 - float(d)))}
+            for d in args["deltas"]]
+    verdict = grazing_verdict(rows, grazing_limit(p), claim["tolerance"])
+    return Verdict(f"grazing release A = {fmt(release)} m (closed form); " + verdict.replicated_value, verdict.holds,
+                   note=verdict.note, paper_value=verdict.paper_value)
+
+
+@check("runs_converge", scenes=runs_only, args=("group",))
+def runs_converge(claim, ev: Evidence) -> Verdict:
+    """Every run of the group reaches a limit cycle: it completes its cycles with |mu2| < 1."""
+    group = group_runs(ev, claim["args"]["group"])
+    mu, outcome = group["multiplier"].values, group["outcome"].values
+    fine = (outcome == COMPLETED) & (np.abs(mu) < 1)
+    return Verdict(
+        f"{int(fine.sum())} of {len(fine)} runs converge to a limit cycle (mu2 = {fmt(np.nanmin(mu), 6)} to "
+        f"{fmt(np.nanmax(mu), 6)})" + "".join(f"; {lab}: {o}" for lab, o in zip(group["label"].values[~fine],
+                                                                               outcome[~fine])),
+        bool(fine.all()))

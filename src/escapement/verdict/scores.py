@@ -11,8 +11,8 @@ import csv
 from collections import defaultdict
 from collections.abc import Iterable, Mapping
 
-from ..paper.checks import Candidates
 from ..paper.printed_axes import PANELS
+from .evidence import Candidates
 
 __all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "DEFAULT_LOCATOR", "PRINTED_STEP", "TICKS", "best_readings_table",
            "joint_candidates", "panel_candidates", "read_scores", "summary"]

@@ -1,0 +1,249 @@
+"""The checks of the Poincare map and its stability: Eqs. (7), (8), (16)-(21) and Sec. 3.4.
+
+The maps (16) and (17), the fixed point (19), the derivative (20) and the multiplier (21) against the simulated
+cycles and the runs of the checks dataset; "Therefore mu1 = 1" from the map (8) as printed (its Jacobian has the
+eigenvalues 0 and g'), the flow's own multipliers, the stability over b and "determined only by b", one crossing of
+the section per cycle, and the asymptotic stability the theorem gives (orbital, not in the sense of Lyapunov).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..paper import printed as pe
+from .evidence import (COMPLETED, Evidence, Verdict, check, fig3_all, fig3_case, fmt, group_runs, params_of, probe, rel,
+                       runs_left_regime, runs_only, within)
+
+
+@check("map_eq16", scenes=fig3_all)
+def map_eq16(claim, ev: Evidence) -> Verdict:
+    worst = 0.0
+    pairs = 0
+    for ds in ev.fig3.values():
+        p, v = params_of(ds), ds["velocity_before_impact"].values
+        predicted = np.array([pe.poincare_map_16(x, p) for x in v[:-1]])
+        worst = max(worst, float(np.max(np.abs(v[1:] - predicted) / predicted)))
+        pairs += len(predicted)
+    return Verdict(
+        f"max relative difference {fmt(worst, 3)} over {pairs} simulated cycle pairs (Fig. 3 {', '.join(ev.fig3)})",
+        within(worst, claim["tolerance"]),
+        paper_value="g of Eq. (16)",
+    )
+
+
+@check("fixed_point", scenes=fig3_case, args=("case",))
+def fixed_point(claim, ev: Evidence) -> Verdict:
+    ds = ev.fig3[claim["args"]["case"]]
+    formula = pe.fixed_point_19(params_of(ds))
+    simulated = float(ds["velocity_before_impact"].values[-1])
+    n = ds.sizes["cycle"]
+    return Verdict(
+        f"{fmt(simulated)} m/s at cycle {n}",
+        within(rel(simulated, formula), claim["tolerance"]),
+        note=f"relative difference {fmt(rel(simulated, formula), 2)}, the transient left after {n} cycles",
+        paper_value=f"{fmt(formula)} m/s",
+    )
+
+
+@check("multiplier_paper_cases", scenes=runs_only)
+def multiplier_paper_cases(claim, ev: Evidence) -> Verdict:
+    paper = group_runs(ev, "paper")
+    if (left := runs_left_regime(paper)) is not None:
+        return left
+    mu = paper["multiplier"].values
+    return Verdict(
+        ", ".join(f"{label}: {fmt(m)}" for label, m in zip(paper["label"].values, mu)),
+        within(float(np.max(np.abs(mu - float(claim["paper_value"])))), claim["tolerance"]),
+        note="central difference of the simulated return map at the measured fixed point",
+    )
+
+
+@check("stability_over_b", scenes=runs_only)
+def stability_over_b(claim, ev: Evidence) -> Verdict:
+    """Every b of the group converges with mu2 = (1 - b)^4: the motion's own return map, for 0 < b < 2."""
+    group = group_runs(ev, "b")
+    outcome = group["outcome"].values
+    # chattering (b > 1) is an answer of this check; any other exit leaves it without one
+    if (left := runs_left_regime(group.isel(case=np.flatnonzero(outcome != "chattering")))) is not None:
+        return left
+    b, mu, mu21 = group["b"].values, group["multiplier"].values, group["multiplier_eq21"].values
+    stable = outcome == COMPLETED
+    deviation = float(np.max(np.abs(mu[stable] - mu21[stable]))) if stable.any() else math.inf
+    replicated = (f"converges with mu2 = (1-b)^4 (within {fmt(deviation, 2)}) for b = "
+                  + ", ".join(fmt(x, 3) for x in b[stable]))
+    if (~stable).any():
+        replicated += (f"; for b = {', '.join(fmt(x, 3) for x in b[~stable])} the impact reverses the velocity and "
+                       "the impacts chatter (Zeno): no periodic motion")
+    return Verdict(replicated, bool(stable.all()) and within(deviation, claim["tolerance"]), note=(
+        "for b > 1 the impact law v+ = (1-b) v- reverses the velocity; the map (16) squares the sign away, so "
+        "|mu2| < 1 there says nothing about the motion, whose impacts accumulate in finite time"))
+
+
+@check("multiplier_group", scenes=runs_only, args=("group",))
+def multiplier_group(claim, ev: Evidence) -> Verdict:
+    """mu2 = (1 - b)^4 in every run of the group: the rate of convergence depends on nothing else."""
+    group = group_runs(ev, claim["args"]["group"])
+    if (left := runs_left_regime(group)) is not None:
+        return left
+    worst = float(np.max(np.abs(group["multiplier"].values - group["multiplier_eq21"].values)))
+    forces = sorted(set(group["F"].values.tolist()))
+    return Verdict(f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over {group.sizes['case']} runs (F = "
+                   f"{', '.join(fmt(f, 3) for f in forces)} N)", within(worst, claim["tolerance"]))
+
+
+@check("multiplier_only_b", scenes=runs_only)
+def multiplier_only_b(claim, ev: Evidence) -> Verdict:
+    """Sec. 3.4, the stability determined only by b: mu2 = (1 - b)^4 in every run of the checks dataset that
+    converges, whatever its force, spring, positions or release, and the runs that do not converge chatter, every
+    one at b > 1, where the impact reverses the velocity; any other exit leaves the check without an answer."""
+    runs = ev.checks
+    outcome, b = runs["outcome"].values, runs["b"].values
+    if (left := runs_left_regime(runs.isel(case=np.flatnonzero(outcome != "chattering")))) is not None:
+        return left
+    done = outcome == COMPLETED
+    worst = float(np.max(np.abs(runs["multiplier"].values[done] - runs["multiplier_eq21"].values[done])))
+    spans = "; ".join(f"{k} = {fmt(np.min(runs[k].values[done]), 3)} to {fmt(np.max(runs[k].values[done]), 3)}"
+                      for k in ("F", "K", "a1", "a3", "x0", "b"))
+    chatter = sorted(set(b[~done].tolist()))
+    return Verdict(
+        f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over the {int(done.sum())} runs that converge ({spans}); "
+        + (f"the runs at b = {', '.join(fmt(x, 3) for x in chatter)} chatter" if chatter else "none chatters"),
+        within(worst, claim["tolerance"]) and bool(np.all(b[~done] > 1)) and not bool(np.any(b[done] > 1)),
+        note="mu2 measured from each run's return map: it follows b alone over runs that differ in every other "
+             "parameter and in the release; whether the limit cycle exists is another question (Sec. 5)")
+
+
+@check("map_eq17", scenes=fig3_all)
+def map_eq17(claim, ev: Evidence) -> Verdict:
+    worst, pairs = 0.0, 0
+    for label, ds in ev.fig3.items():
+        p = params_of(ds)
+        if not (p.a3 == -p.a1 and p.a4 == -p.a2):
+            raise ValueError(f"Fig. 3 case {label} is not symmetric (a3 = -a1, a4 = -a2): Eq. (17) does not apply")
+        v = ds["velocity_before_impact"].values
+        predicted = np.array([pe.poincare_map_17(float(x), p) for x in v[:-1]])
+        worst = max(worst, float(np.max(np.abs(v[1:] - predicted) / predicted)))
+        pairs += len(predicted)
+    return Verdict(
+        f"max relative difference {fmt(worst, 3)} over {pairs} simulated cycle pairs (Fig. 3 {', '.join(ev.fig3)})",
+        within(worst, claim["tolerance"]),
+        note="read as x1(k+1) = sqrt((1-b)^4 x1(k)^2 + 2 (b^2 - 2b + 2)(a2 - a1) f), Eq. (16) with a3 = -a1, a4 = -a2",
+        paper_value="g of Eq. (17)",
+    )
+
+
+@check("derivative_eq20", scenes=fig3_case, args=("case", "velocities"))
+def derivative_eq20(claim, ev: Evidence) -> Verdict:
+    p = params_of(ev.fig3[claim["args"]["case"]])
+    if ev.checks["map_slope"].attrs["case"] != str(claim["args"]["case"]):
+        raise ValueError(f"the checks dataset's return map is of case {ev.checks['map_slope'].attrs['case']}")
+    rows = [(float(v), float(probe(ev, "map_slope", "map_velocity", map_velocity=float(v))),
+             pe.map_derivative_20(float(v), p)) for v in claim["args"]["velocities"]]
+    worst = max(rel(measured, printed) for _, measured, printed in rows)
+    return Verdict(
+        "slope of the simulated return map: " + "; ".join(
+            f"at {fmt(v, 3)} m/s {fmt(m)} (Eq. (20): {fmt(q)})" for v, m, q in rows),
+        within(worst, claim["tolerance"]),
+        note=(f"central differences (relative step {ev.checks['map_slope'].attrs['relative_step']:g}) of one "
+              "simulated cycle from the section, away from the fixed point as well as near it; max relative "
+              f"difference {fmt(worst, 2)}"),
+        paper_value="g'(x1) = (1-b)^4 x1 / g(x1)",
+    )
+
+
+@check("trivial_multiplier", scenes=runs_only, args=("group",))
+def trivial_multiplier(claim, ev: Evidence) -> Verdict:
+    """Eq. (8): mu1 = 1. Both Floquet multipliers measured from the flow over one period (checks dataset,
+    ``floquet_major``, ``floquet_minor``) against 1 and (1 - b)^4, independent of the return map."""
+    runs = group_runs(ev, claim["args"]["group"])
+    if (left := runs_left_regime(runs)) is not None:
+        return left
+    major, minor, mu21 = (runs[k].values for k in ("floquet_major", "floquet_minor", "multiplier_eq21"))
+    worst = float(np.max(np.maximum(np.abs(major - 1.0), np.abs(minor - mu21))))
+    if not math.isfinite(worst):
+        worst = math.inf
+    return Verdict(
+        "; ".join(f"{lab}: {fmt(a, 12)} and {fmt(b, 12)}" for lab, a, b in zip(runs["label"].values, major, minor)),
+        within(worst, claim["tolerance"]),
+        note=(
+            f"eigenvalues of the Jacobian of the flow over the last period, by central differences of the exact "
+            f"solver from a state in free flight between a2 and a3; largest distance from 1 and (1-b)^4: "
+            f"{fmt(worst, 2)}"
+        ),
+    )
+
+
+@check("map8_eigenvalues", scenes=fig3_case, args=("case",))
+def map8_eigenvalues(claim, ev: Evidence) -> Verdict:
+    """One of the eigenvalues of the map (8) as printed, at the fixed point of (16), is 1 (within the tolerance)."""
+    p = params_of(ev.fig3[claim["args"]["case"]])
+    star, step = pe.fixed_point_19(p), 1e-5
+
+    def P(y: np.ndarray) -> np.ndarray:
+        return np.array([p.a1, pe.poincare_map_16(float(y[1]), p)])
+
+    y = np.array([p.a1, star])
+    jacobian = np.column_stack([(P(y + d) - P(y - d)) / (2 * step * star) for d in np.eye(2) * step * star])
+    eigenvalues = np.sort(np.linalg.eigvals(jacobian).real)
+    return Verdict(
+        f"eigenvalues of the map (8) at the fixed point {fmt(star)} m/s: {', '.join(fmt(e, 8) for e in eigenvalues)}",
+        bool(np.any(np.abs(eigenvalues - 1.0) <= claim["tolerance"])),
+        note="P(y) = (a1, g(y2)) does not depend on y1, so its Jacobian is [[0, 0], [0, g']]: the eigenvalues are 0 "
+             "and g' = (1 - b)^4; mu1 = 1 is the flow's multiplier along the orbit, which the map on the section "
+             "does not have",
+        paper_value="Therefore mu1 = 1")
+
+
+@check("phase_shift", scenes=fig3_case, args=("case", "sense", "perturbation", "n_cycles"))
+def phase_shift(claim, ev: Evidence) -> Verdict:
+    """The run from the section (a1, v*) and the run from (a1, (1 + perturbation) v*), v* the case's converged
+    speed: ``sense: orbital`` holds when their speeds before the impact at a1 agree after ``n_cycles`` (relative,
+    within the tolerance), ``sense: lyapunov`` when their impact times at a1 agree too (s)."""
+    args = claim["args"]
+    star = float(ev.fig3[args["case"]]["velocity_before_impact"].values[-1])
+    impacts = ev.checks["perturbed_impact_time"]
+    made = (impacts.attrs["case"], int(impacts.attrs["n_cycles"]),
+            float(ev.checks["perturbed_speed"].attrs["converged_speed"]))
+    if made != (str(args["case"]), int(args["n_cycles"]), star):
+        raise ValueError(f"the checks dataset's runs from the section (case, cycles, converged speed) {made} are not "
+                         f"those of the claim")
+    found = [(probe(ev, "perturbed_impact_time", "perturbation", perturbation=d).values,
+              float(probe(ev, "perturbed_speed", "perturbation", perturbation=d))) for d in (0.0, args["perturbation"])]
+    times = [t[np.isfinite(t)] for t, _ in found]
+    n = min(len(t) for t in times)
+    shift = float(times[1][n - 1] - times[0][n - 1])
+    speeds = [speed for _, speed in found]
+    gap = abs(speeds[1] - speeds[0]) / speeds[0]
+    return Verdict(
+        f"after {n} impacts at a1: speeds {fmt(speeds[0])} and {fmt(speeds[1])} m/s (relative difference "
+        f"{fmt(gap, 2)}), impact times {fmt(shift, 4)} s apart (first impact {fmt(times[1][0] - times[0][0], 4)} s)",
+        within(gap, claim["tolerance"]) if args["sense"] == "orbital" else within(abs(shift), claim["tolerance"]),
+        note=f"the speed at the section perturbed by {fmt(100 * float(args['perturbation']), 3)} %: the motion returns "
+             "to the limit cycle (orbital stability) but keeps a phase shift, as any autonomous oscillator does, so it "
+             "does not return to the solution it started beside (no asymptotic stability in the sense of Lyapunov)",
+        paper_value="the solution is asymptotically stable")
+
+
+@check("section_crossings", scenes=fig3_all, args=("samples_per_period",))
+def section_crossings(claim, ev: Evidence) -> Verdict:
+    made = int(ev.checks["crossings"].attrs["samples_per_period"])
+    if made != int(claim["args"]["samples_per_period"]):
+        raise ValueError(f"the checks dataset's crossings are counted at {made} samples per period")
+    rows = []
+    for label in ev.fig3:
+        counts = probe(ev, "crossings", "crossing_case", crossing_case_label=label).values
+        rows.append((label, counts[np.isfinite(counts)].astype(int)))
+    if any(not len(counts) for _, counts in rows):
+        raise ValueError("a Fig. 3 run holds no complete cycle between two impacts at a1")
+    return Verdict(
+        "; ".join(f"case {label}: {len(c)} cycles, crossings per cycle {int(c.min())}-{int(c.max())}"
+                  for label, c in rows),
+        all((counts == 1).all() for _, counts in rows),
+        note=("counted on the exact solver's trajectory of each Fig. 3 case, sampled "
+              f"{claim['args']['samples_per_period']} times per natural period (x rising through a1 with xdot > 0), "
+              "between successive impacts at a1; the one crossing is the impact itself, which maps (a1, x1) to "
+              "(a1, (1-b) x1): both states lie on Sigma, at one instant, and the map (8) takes the state before it"),
+        paper_value="one state on Sigma per cycle",
+    )

@@ -1,0 +1,338 @@
+"""The checks of Sec. 4 on Fig. 3 and of its sentences that name no figure: both cases converge, their
+rates, periods, stable velocities and amplitudes compared, the period against the spring and the release, and the
+convergence from every release; each read off the Fig. 3 datasets and the runs of the checks dataset.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..model.events import EventKind
+from ..model.status import Status
+from ..paper.corrected import map_constant
+from .evidence import (Evidence, Verdict, check, fig3_all, fig3_case, fig3_cases, fmt, group_runs, model_of,
+                       params_of, probe, rel, release_run, runs_left_regime, runs_only, within)
+
+
+@check("both_converge", scenes=fig3_all)
+def both_converge(claim, ev: Evidence) -> Verdict:
+    changes = {k: rel(ds["velocity_before_impact"].values[-1], ds["velocity_before_impact"].values[-2])
+               for k, ds in ev.fig3.items()}
+    return Verdict(
+        "; ".join(f"case {k}: last change {fmt(c, 2)}" for k, c in changes.items()),
+        within(max(changes.values()), claim["tolerance"]),
+        note="relative change of the velocity before impact between the last two cycles",
+    )
+
+
+def converged_amplitudes(ds: xr.Dataset) -> dict[str, float]:
+    """The last cycle's amplitude under each definition, from its events: the Step-1 amplitude ``h0`` of the
+    free arc that ends in the impact at a1, the right turning point (the largest x) of the free arc after a2,
+    and the left one (|x|) of the free arc after a4."""
+    p = params_of(ds)
+    kind, before = ds["event_kind"].values.astype(int), ds["event_velocity_before"].values
+    v2 = before[np.flatnonzero(kind == int(EventKind.ZONE_END_A2))[-1]]
+    v5 = before[np.flatnonzero(kind == int(EventKind.ZONE_END_A4))[-1]]
+    return {"h0": float(np.hypot(p.a1, ds["velocity_before_impact"].values[-1] / p.omega)),
+            "right turning point": float(np.hypot(p.a2, v2 / p.omega)),
+            "left turning point": float(np.hypot(p.a4, v5 / p.omega))}
+
+
+@check("compare_cases", scenes=fig3_cases, args=("cases", "quantity"))
+def compare_cases(claim, ev: Evidence) -> Verdict:
+    """The first case of ``cases`` converges to a greater ``quantity`` than the second: a variable of the Fig. 3
+    datasets, or ``amplitude`` under the definition ``args: {definition}`` (:func:`converged_amplitudes`)."""
+    first, second = (str(c) for c in claim["args"]["cases"])
+    quantity = claim["args"]["quantity"]
+    a, b = (converged_amplitudes(ds)[claim["args"]["definition"]] if quantity == "amplitude"
+            else float(ds[quantity].values[-1]) for ds in (ev.fig3[first], ev.fig3[second]))
+    return Verdict(f"{first}: {fmt(a)}, {second}: {fmt(b)}", bool(a > b))
+
+
+def energy_rate(v: np.ndarray) -> float:
+    """Rate of convergence of v^2 per cycle, from successive differences: for a map linear in v^2,
+    (E[k+2] - E[k+1]) / (E[k+1] - E[k]) is the rate, with no need to know the limit. Only
+    differences well above rounding (1e-7 of E) are used."""
+    e = v**2
+    d = np.diff(e)
+    usable = np.flatnonzero((np.abs(d[:-1]) > 1e-7 * e[-1]) & (np.abs(d[1:]) > 1e-7 * e[-1]))
+    return float(np.median(d[usable + 1] / d[usable]))
+
+
+@check("convergence_rates", scenes=fig3_cases, args=("cases",))
+def convergence_rates(claim, ev: Evidence) -> Verdict:
+    """The asymptotic rates of convergence of x1^2 of the two cases differ beyond the tolerance."""
+    rates = {str(k): energy_rate(ev.fig3[str(k)]["velocity_before_impact"].values) for k in claim["args"]["cases"]}
+    first, second = rates.values()
+    return Verdict(
+        "rate of convergence of x1^2 per cycle: " + ", ".join(f"{k}: {fmt(r, 7)}" for k, r in rates.items()),
+        not within(abs(first - second), claim["tolerance"]),
+        note=("the map is linear in x1^2, so x1^2 approaches its limit by the factor (1-b)^4 per cycle whatever the "
+              "force; x1 itself does not (its ratio of successive differences tends to (1-b)^4 only near the limit)"),
+    )
+
+
+@check("cycles_to_converge", scenes=runs_only, args=("group",),
+       threshold="the convergence criterion by which the checks dataset counts the cycles to converge")
+def cycles_to_converge(claim, ev: Evidence) -> Verdict:
+    """Runs released alike that differ only in F take different numbers of cycles to converge."""
+    runs = group_runs(ev, claim["args"]["group"])
+    if (left := runs_left_regime(runs)) is not None:
+        return left
+    cycles = runs["cycles_to_converge"].values
+    return Verdict(", ".join(f"F = {fmt(f, 3)} N: {int(c)} cycles" for f, c in zip(runs["F"].values, cycles))
+                   + f" (released at x0 = {', '.join(sorted({fmt(x, 3) for x in runs['x0'].values}))} m)",
+                   len(set(cycles.tolist())) > 1)
+
+
+@check("converged_period", scenes=fig3_case, args=("case",))
+def converged_period(claim, ev: Evidence) -> Verdict:
+    ds = ev.fig3[claim["args"]["case"]]
+    p = params_of(ds)
+    simulated = float(ds["period"].values[-1])
+    return Verdict(
+        f"{fmt(simulated)} s",
+        within(abs(simulated - float(claim["paper_value"])), claim["tolerance"]),
+        note=(
+            f"2 pi/w = {fmt(p.natural_period)} s; the two impacts delay each cycle and the two impulses advance it, "
+            f"by {fmt(simulated - p.natural_period, 4)} s in all (Eqs. (24)-(25), corrected)"
+        ),
+    )
+
+
+@check("period_difference", scenes=fig3_cases, args=("cases",))
+def period_difference(claim, ev: Evidence) -> Verdict:
+    first, second = (str(c) for c in claim["args"]["cases"])
+    a, b = (float(ev.fig3[c]["period"].values[-1]) for c in (first, second))
+    return Verdict(
+        f"{fmt(abs(a - b), 6)} s ({first}: {fmt(a)} s, {second}: {fmt(b)} s)",
+        within(abs(a - b), claim["tolerance"]),
+        note="the period depends on the force through the perturbations of Eqs. (24)-(25)",
+    )
+
+
+@check("period_initial_condition", scenes=runs_only)
+def period_initial_condition(claim, ev: Evidence) -> Verdict:
+    paper, other = group_runs(ev, "paper"), group_runs(ev, "initial_condition")
+    for runs in (paper, other):
+        if (left := runs_left_regime(runs)) is not None:
+            return left
+    worst = 0.0
+    parts = []
+    for i in range(other.sizes["case"]):
+        run = other.isel(case=i)
+        same_force = np.flatnonzero(paper["F"].values == run["F"].values)
+        if not len(same_force):
+            continue
+        ref = paper.isel(case=same_force[0])
+        worst = max(worst, abs(float(run["period"]) - float(ref["period"])))
+        parts.append(
+            f"F = {fmt(run['F'], 3)} N from x0 = {fmt(run['x0'], 3)} m: "
+            f"{fmt(run['period'])} s (from x0 = {fmt(ref['x0'], 3)} m: {fmt(ref['period'])} s)"
+        )
+    return Verdict("; ".join(parts), within(worst, claim["tolerance"]), note=f"largest difference {fmt(worst, 2)} s")
+
+
+@check("natural_period", scenes=fig3_all)
+def natural_period(claim, ev: Evidence) -> Verdict:
+    rows = []
+    for label, ds in ev.fig3.items():
+        p = params_of(ds)
+        rows.append((label, float(ds["period"].values[-1]), 2 * math.pi * math.sqrt(p.M / p.K)))
+    worst = max(abs(t - t0) for _, t, t0 in rows)
+    t0 = rows[0][2]
+    return Verdict(
+        "; ".join(f"{label}: {fmt(t)} s ({fmt(t - t0, 4)} s above)" for label, t, t0 in rows)
+        + f"; 2 pi sqrt(M/K) = {fmt(t0)} s",
+        within(worst, claim["tolerance"]),
+        note=("the printed 6.2832 s is 2 pi sqrt(M/K) to its digits; the converged period exceeds it because each "
+              "impact delays the cycle (Eq. (24)) by more than the impulse advances it (Eq. (25))"),
+        paper_value=f"2 pi sqrt(M/K) = {fmt(t0)} s",
+    )
+
+
+@check("initial_order", scenes=fig3_cases, args=("cases", "side"))
+def initial_order(claim, ev: Evidence) -> Verdict:
+    """The first case of ``cases`` has the smaller first velocity before the impact at a1, both released from rest
+    at ``side`` (-1 or +1) times their initial amplitude |x0| (the paper gives the amplitude, not the side)."""
+    side = float(claim["args"]["side"])
+    first = {}
+    for case in (str(c) for c in claim["args"]["cases"]):
+        ds = ev.fig3[case]
+        x0 = side * abs(float(ds["x0"]))
+        first[case] = (x0, float(probe(ev, "first_swing_velocity", "first_swing", first_swing_case=case,
+                                       first_swing_x0=x0)))
+    (a, (xa, va)), (b, (xb, vb)) = first.items()
+    return Verdict(f"first velocity before impact released at {fmt(xa, 3)} m ({a}): {fmt(va, 6)} m/s, at "
+                   f"{fmt(xb, 3)} m ({b}): {fmt(vb, 6)} m/s", bool(va < vb),
+                   note="the smaller initial amplitude gives the smaller first swing",
+                   paper_value=f"({a}) smaller at the beginning")
+
+
+@check("stable_velocity_scaling", scenes=runs_only, args=("groups",))
+def stable_velocity_scaling(claim, ev: Evidence) -> Verdict:
+    """Eq. (19) derived on paper: v* = sqrt(2 (a2 - a1) F / (M (2b - b^2))), so v*/sqrt(F) depends on the
+    geometry, b and M only: not on x0."""
+    runs = [group_runs(ev, g) for g in claim["args"]["groups"]]
+    for group in runs:
+        if (left := runs_left_regime(group)) is not None:
+            return left
+    worst, per_geometry, per_release = 0.0, {}, {}
+    for group in runs:
+        for i in range(group.sizes["case"]):
+            r = {k: float(group[k].values[i]) for k in ("M", "F", "b", "a1", "a2", "a3", "a4", "x0", "velocity")}
+            if r["a3"] != -r["a1"] or r["a4"] != -r["a2"]:
+                raise ValueError(f"run {group['label'].values[i]} is not symmetric: Eq. (19) does not apply")
+            closed = math.sqrt(2 * (r["a2"] - r["a1"]) * r["F"] / (r["M"] * (2 * r["b"] - r["b"] ** 2)))
+            worst = max(worst, rel(r["velocity"], closed))
+            geometry = (r["a1"], r["a2"], r["b"], r["M"])
+            per_geometry.setdefault(geometry, []).append(r["velocity"] / math.sqrt(r["F"]))
+            per_release.setdefault((*geometry, r["F"]), []).append((r["x0"], r["velocity"]))
+    spread = max(max(v) - min(v) for v in per_geometry.values()) if per_geometry else math.nan
+    releases = [f"F = {fmt(key[-1], 3)} N from x0 = " + ", ".join(fmt(x, 3) for x, _ in vs) + " m: "
+                + ", ".join(fmt(v) for _, v in vs) + " m/s" for key, vs in per_release.items() if len(vs) > 1]
+    return Verdict(
+        "v*/sqrt(F): " + "; ".join(
+            f"(a1, a2) = ({fmt(g[0], 3)}, {fmt(g[1], 3)}) m: {fmt(min(v), 8)}-{fmt(max(v), 8)} over {len(v)} runs"
+            for g, v in per_geometry.items()) + ("; " + "; ".join(releases) if releases else ""),
+        within(worst, claim["tolerance"]),
+        note=(f"Eq. (19): v* = sqrt(2 (a2 - a1) F / (M (2b - b^2))), proportional to sqrt(F) at fixed geometry and b "
+              f"and independent of x0; max relative difference from it {fmt(worst, 2)}, spread of v*/sqrt(F) per "
+              f"geometry {fmt(spread, 2)}; it grows as sqrt(a2 - a1) too: 'mainly the force' holds for a given "
+              "escapement"),
+        paper_value="v* proportional to sqrt(F), independent of x0",
+    )
+
+
+def _families(runs: xr.Dataset, varying: str) -> dict[tuple, list[int]]:
+    """The runs' indices grouped by every parameter and the release except ``varying``."""
+    keys = [k for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4", "x0") if k != varying]
+    families: dict[tuple, list[int]] = {}
+    for i in range(runs.sizes["case"]):
+        families.setdefault(tuple(float(runs[k].values[i]) for k in keys), []).append(i)
+    return {key: rows for key, rows in families.items() if len(rows) > 1}
+
+
+def amplitude_of(run, definition: str) -> float:
+    """A run's converged amplitude: the largest displacement of its last cycle (``largest x``), or the Step-1
+    amplitude ``h0 = sqrt(a1**2 + (v/w)**2)`` of the free arc that ends in the impact at a1 (``h0``)."""
+    if definition == "largest x":
+        return float(run["largest_displacement"])
+    if definition == "h0":
+        return float(np.hypot(float(run["a1"]), float(run["velocity"]) / np.sqrt(float(run["K"]) / float(run["M"]))))
+    raise ValueError(f"no amplitude is defined as {definition!r}; known: largest x, h0")
+
+
+@check("force_amplitude", scenes=runs_only, args=("groups", "definition"))
+def force_amplitude(claim, ev: Evidence) -> Verdict:
+    """Sec. 4, "the system with greater force has greater amplitude": within each family of runs that
+    differ only in F, the converged amplitude grows with F."""
+    holds, parts = [], []
+    definition = claim["args"]["definition"]
+    for group in claim["args"]["groups"]:
+        runs = group_runs(ev, group)
+        if (left := runs_left_regime(runs)) is not None:
+            return left
+        for rows in _families(runs, "F").values():
+            order = sorted(rows, key=lambda i: float(runs["F"].values[i]))
+            amplitude = [amplitude_of(runs.isel(case=i), definition) for i in order]
+            holds.append(all(a < b for a, b in zip(amplitude, amplitude[1:])))
+            parts.append(f"{group} (a1 = {fmt(runs['a1'].values[order[0]], 3)} m): " + ", ".join(
+                f"F = {fmt(runs['F'].values[i], 3)} N: {fmt(a, 5)} m" for i, a in zip(order, amplitude)))
+    if not holds:
+        raise ValueError(f"the groups {claim['args']['groups']} hold no runs that differ only in F")
+    return Verdict("; ".join(parts), all(holds), note=f"converged amplitude ({definition}) of runs that differ only "
+                   "in the force")
+
+
+@check("amplitude_by_force", scenes=runs_only, args=("by_force", "by_release", "definition"))
+def amplitude_by_force(claim, ev: Evidence) -> Verdict:
+    """Sec. 4, the converged amplitude "also determined by the external force": runs that differ only in F (groups
+    ``by_force``) converge to amplitudes apart by more than the tolerance (relative), runs that differ only in the
+    release (the groups ``by_release`` together) to amplitudes within it."""
+    definition, parts, holds = claim["args"]["definition"], [], []
+    tolerance = claim["tolerance"]
+    for key, groups in (("F", claim["args"]["by_force"]), ("x0", claim["args"]["by_release"])):
+        runs = xr.concat([group_runs(ev, g) for g in groups], dim="case")
+        if (left := runs_left_regime(runs)) is not None:
+            return left
+        families = _families(runs, key)
+        if not families:
+            raise ValueError(f"the groups {groups} hold no runs that differ only in {key}")
+        for rows in families.values():
+            by = {float(runs[key].values[i]): amplitude_of(runs.isel(case=i), definition) for i in rows}
+            values = np.array(list(by.values()))
+            spread = float(np.ptp(values) / np.max(np.abs(values)))
+            closest = min((abs(a - b) / max(abs(a), abs(b)) for a, b in itertools.combinations(values, 2)),
+                          default=math.inf)
+            holds.append(closest > tolerance if key == "F" else spread <= tolerance)
+            first = runs.isel(case=rows[0])
+            fixed = "x0" if key == "F" else "F"
+            parts.append(f"{first['group'].values} (a1 = {fmt(first['a1'].values, 3)} m, {fixed} = "
+                         f"{fmt(first[fixed].values, 3)}): {key} = "
+                         + ", ".join(f"{fmt(k, 3)}: {fmt(a, 8)} m" for k, a in sorted(by.items()))
+                         + (f" (closest relative difference {fmt(closest, 2)})" if key == "F" else
+                            f" (spread {fmt(spread, 2)})"))
+    return Verdict("; ".join(parts), all(holds), note=(
+        f"converged amplitude ({definition}) of runs that differ only in the force, then only in the release: it "
+        "changes with F and not with x0, at one escapement (it depends on the positions and on K too)"))
+
+
+@check("release_transient", scenes=runs_only, args=("group",))
+def release_transient(claim, ev: Evidence) -> Verdict:
+    """Sec. 4: the period of every cycle, the first too, is independent of the release, among runs that differ
+    only in x0: the first cycles' periods within the tolerance (s) of each other."""
+    runs = group_runs(ev, claim["args"]["group"])
+    if (left := runs_left_regime(runs)) is not None:
+        return left
+    families = _families(runs, "x0")
+    if not families:
+        raise ValueError(f"group '{claim['args']['group']}' holds no runs that differ only in x0")
+    first_spread, parts = 0.0, []
+    for rows in families.values():
+        first, last = runs["first_period"].values[rows], runs["period"].values[rows]
+        first_spread = max(first_spread, float(np.ptp(first)))
+        parts.append(", ".join(f"x0 = {fmt(runs['x0'].values[i], 3)} m: first {fmt(a, 7)} s, last {fmt(b, 10)} s"
+                               for i, a, b in zip(rows, first, last)))
+    return Verdict(f"first periods spread {fmt(first_spread, 3)} s: " + "; ".join(parts),
+                   within(first_spread, claim["tolerance"]),
+                   note="periods of the first and the last cycle of runs at one force that differ only in the release")
+
+
+
+
+def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) -> Verdict:
+    """``rows``: per release ``x0`` the run's ``outcome`` and last ``velocity``, and the closed-form
+    ``fixed_point``. Holds when every release converges to the fixed point (the note says where the
+    releases inside ``boundary`` stand)."""
+
+    def converged(r) -> bool:
+        return r["outcome"] == Status.COMPLETED.value and abs(r["velocity"] - r["fixed_point"]) <= (
+            tolerance * r["fixed_point"])
+
+    text = "; ".join(
+        f"x0 = {fmt(r['x0'], 6)} m: " + (f"converges to {fmt(r['velocity'])} m/s" if converged(r) else r["outcome"])
+        for r in rows)
+    return Verdict(text, all(converged(r) for r in rows), note=(
+        f"from rest at x0 the free swing covers [-|x0|, |x0|] and meets an impact position only if |x0| > "
+        f"min(-a1, a3) = {fmt(boundary, 6)} m (closed form); beyond it every release converges to the same fixed "
+        f"point (Eq. (19): {fmt(rows[0]['fixed_point'])} m/s), inside it (or exactly on it) the escapement never "
+        "starts and the mass swings freely"),
+        paper_value="convergence independent of the initial amplitude")
+
+
+@check("release_boundary", scenes=runs_only, args=("positions", "F", "releases", "n_cycles"))
+def release_boundary(claim, ev: Evidence) -> Verdict:
+    args = claim["args"]
+    p = model_of(args, args["F"])
+    star = math.sqrt(map_constant(p) / (1 - (1 - p.b) ** 4))
+    rows = []
+    for x0 in args["releases"]:
+        run = release_run(ev, p, float(x0), args["n_cycles"])
+        rows.append({"x0": float(x0), "outcome": run["outcome"], "velocity": run["velocity"], "fixed_point": star})
+    return release_verdict(rows, min(-p.a1, p.a3), claim["tolerance"])

@@ -1,0 +1,164 @@
+"""The checks of Sec. 4 on Fig. 5, the spring-constant sweep: the amplitude, velocity, recovery and size
+of the limit cycles compared between spring constants at one common force (the panels run at different forces, so
+they are not compared with each other), and the impact shown in each panel.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import xarray as xr
+
+from ..paper import corrected as derived
+from ..paper.printed_axes import FIG5_PANEL_K, panel
+from .sec4_fig3 import amplitude_of
+from .evidence import Evidence, Verdict, check, fmt, group_runs, params_of, runs_left_regime, runs_only
+
+
+def common_force_runs(ev: Evidence) -> tuple[dict[float, list[tuple[float, xr.Dataset]]], Verdict | None]:
+    """The runs of group ``common_force`` by force, each list ordered by K; or the verdict if a run left
+    the regime. The panels of Fig. 5 run at different forces: only runs at one force are compared."""
+    runs = group_runs(ev, "common_force")
+    if (left := runs_left_regime(runs)) is not None:
+        return {}, left
+    by_force: dict[float, list] = {}
+    for i in range(runs.sizes["case"]):
+        run = runs.isel(case=i)
+        by_force.setdefault(float(run["F"]), []).append((float(run["K"]), run))
+    if any(len(rows) < 2 for rows in by_force.values()):
+        raise ValueError("the runs of group 'common_force' must give at least two spring constants at each force")
+    return {f: sorted(rows, key=lambda kv: kv[0]) for f, rows in sorted(by_force.items())}, None
+
+
+NOT_COMPARED = ("the panels of Fig. 5 run at different forces (the configuration's fig5.F), so they are not "
+                "compared with each other; each spring constant is run at each force of the figure from the "
+                "figure's release and compared at one force")
+
+
+def _decreasing_in_K(ev: Evidence, value, digits: int, unit: str) -> tuple[bool, str] | Verdict:
+    """Whether ``value(run)`` decreases with K at every common force, and the values in words; or the
+    verdict on a run that left the regime."""
+    by_force, left = common_force_runs(ev)
+    if left is not None:
+        return left
+    holds, parts = [], []
+    for force, rows in by_force.items():
+        values = [value(run) for _, run in rows]
+        holds.append(all(a > b for a, b in zip(values, values[1:])))
+        parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(x, digits)} {unit}"
+                                                          for (k, _), x in zip(rows, values)))
+    return all(holds), "; ".join(parts)
+
+
+@check("fig5_amplitude_common_force", scenes=runs_only, args=("definition",))
+def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
+    """The converged amplitude (:func:`escapement.verdict.sec4_fig3.amplitude_of`) decreases with K at each
+    common force."""
+    found = _decreasing_in_K(ev, lambda run: amplitude_of(run, claim["args"]["definition"]), 5, "m")
+    if isinstance(found, Verdict):
+        return found
+    return Verdict("converged amplitude: " + found[1], found[0], note=NOT_COMPARED)
+
+
+#: the speeds a "maximum velocity" may be: the columns of the checks dataset
+SPEEDS = {"largest_speed": "largest |v| on the limit cycle (exact, from the closed forms of its arcs)",
+          "velocity": "velocity before the impact at a1 on the limit cycle"}
+
+
+@check("fig5_velocity_common_force", scenes=runs_only, args=("speed",))
+def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
+    """The speed ``args: {speed}`` (a key of :data:`SPEEDS`) decreases with K at each common force."""
+    speed = claim["args"]["speed"]
+    found = _decreasing_in_K(ev, lambda run: float(run[speed]), 6, "m/s")
+    if isinstance(found, Verdict):
+        return found
+    return Verdict(f"{SPEEDS[speed]}: " + found[1], found[0], note=NOT_COMPARED)
+
+
+@check("fig5_recovery_common_force", scenes=runs_only, args=("measure",))
+def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
+    """The recovery of the velocity before the impact at a1 (:func:`escapement.paper.corrected.velocity_recovery`
+    at the converged velocity) is faster for smaller K at each common force, measured (``args: {measure}``) in
+    ``seconds``, as a fraction of the ``period`` 2 pi/w, or by the distance covered as a fraction of the limit
+    cycle's ``width`` (twice its amplitude)."""
+    by_force, left = common_force_runs(ev)
+    if left is not None:
+        return left
+    measure, holds, parts = claim["args"]["measure"], [], []
+    unit = {"seconds": "s", "period": "of 2 pi/w", "width": "of the width"}[measure]
+    for force, rows in by_force.items():
+        values = []
+        for k, run in rows:
+            p = params_of(run)
+            x, time = derived.velocity_recovery(float(run["velocity"]), p)
+            values.append((k, {"seconds": time, "period": time / p.natural_period,
+                               "width": (x - p.a1) / (2 * float(run["largest_displacement"]))}[measure]))
+        holds.append(all(a < b for (_, a), (_, b) in zip(values, values[1:])))
+        parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(v, 4)} {unit}" for k, v in values))
+    return Verdict("to regain the velocity before the impact at a1: " + "; ".join(parts), all(holds),
+                   note=NOT_COMPARED)
+
+
+def _fig5(claim, ev: Evidence) -> dict[str, xr.Dataset]:
+    return {f"Fig. 5 K = {label}": ds for label, ds in ev.fig5.items()}
+
+
+@check("fig5_dimensions", scenes=runs_only, threshold="'different' taken as apart by the tolerance of the larger")
+def fig5_dimensions(claim, ev: Evidence) -> Verdict:
+    """The limit cycles of the spring constants differ in size at one common force: their half-widths
+    (the converged amplitude) or half-heights (the largest speed on the last cycle, exact) differ by more
+    than ``tolerance`` of the larger, for every pair, at every force."""
+    by_force, left = common_force_runs(ev)
+    if left is not None:
+        return left
+    differ, parts = [], []
+    for force, runs in by_force.items():
+        rows = [(k, float(run["largest_displacement"]), float(run["largest_speed"])) for k, run in runs]
+        for i, (_, x1, v1) in enumerate(rows):
+            for _, x2, v2 in rows[i + 1:]:
+                differ.append(max(abs(x1 - x2) / max(x1, x2), abs(v1 - v2) / max(v1, v2)) > claim["tolerance"])
+        parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(
+            f"K = {fmt(k, 3)}: {fmt(x, 4)} m x {fmt(v, 4)} m/s" for k, x, v in rows))
+    return Verdict(
+        "limit cycle half-width (amplitude) x half-height (largest speed): " + "; ".join(parts),
+        bool(differ) and all(differ),
+        note=(f"two limit cycles differ when their amplitudes or largest speeds differ by more than "
+              f"{fmt(100 * claim['tolerance'], 3)} % of the larger; {NOT_COMPARED}"),
+        paper_value="the limit cycles have different dimensions",
+    )
+
+
+def _panel_of(k: float) -> str:
+    for name, panel_k in FIG5_PANEL_K.items():
+        if math.isclose(k, panel_k, rel_tol=1e-12):
+            return name
+    raise ValueError(f"no printed panel of Fig. 5 has K = {k:g} N/m")
+
+
+@check("fig5_impact_visible", scenes=_fig5, fitted="Fig. 5's force and release, and the whole trajectory drawn",
+       threshold="'clearly shown' taken as a jump of the tolerance of the printed velocity range")
+def fig5_impact_visible(claim, ev: Evidence) -> Verdict:
+    """The impact is shown in a panel when a velocity jump the panel draws (each impact at a1 of the
+    whole trajectory, b x1) is at least ``tolerance`` of the panel's printed velocity range."""
+    rows = []
+    for k, ds in sorted(((float(ds["K"]), ds) for ds in ev.fig5.values()), key=lambda kv: kv[0]):
+        name = _panel_of(k)
+        axis = panel("5", name).y
+        span = axis.high - axis.low
+        jumps = float(ds["b"]) * np.abs(ds["velocity_before_impact"].values)
+        rows.append((k, name, float(jumps.max()), float(jumps[-1]), span))
+    shown = [largest / span >= claim["tolerance"] for _, _, largest, _, span in rows]
+    return Verdict(
+        "largest velocity jump drawn (impacts at a1 of the whole trajectory), and on the limit cycle: " + "; ".join(
+            f"({name}) K = {fmt(k, 3)}: {fmt(largest, 3)} m/s, {fmt(100 * largest / span, 3)} % of the printed "
+            f"{fmt(span, 3)} m/s (limit cycle {fmt(100 * last / span, 3)} %)"
+            for k, name, largest, last, span in rows),
+        all(shown),
+        note=(f"the jump b x1 (the impact law) at each impact at a1 against the panel's printed velocity range; "
+              "'clearly shown' "
+              f"taken as at least {fmt(100 * claim['tolerance'], 3)} % of it (about a millimetre on a panel 5 cm "
+              "tall) for some jump the panel draws; the panels draw the whole trajectory, whose early impacts, far "
+              "from the limit cycle, jump most"),
+        paper_value="impact clearly shown",
+    )

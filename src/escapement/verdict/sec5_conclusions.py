@@ -1,0 +1,76 @@
+"""The checks of the conclusions (Sec. 5) and of the abstract: the convergence depends on the force
+and the positions when the geometry is asymmetric, where whether a limit cycle exists changes sign with F.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from ..model.status import Status
+from ..paper.corrected import existence_threshold, map_constant
+from .evidence import (Evidence, Verdict, check, fmt, group_runs, model_of, release_run, runs_left_regime, runs_only,
+                       within)
+
+
+@check("asymmetric_dependence", scenes=runs_only)
+def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
+    """The rate of convergence (mu2) of the asymmetric runs depends on F or the positions: beyond the tolerance."""
+    group = group_runs(ev, "asymmetric")
+    if (left := runs_left_regime(group)) is not None:
+        return left
+    worst = float(np.max(np.abs(group["multiplier"].values - group["multiplier_eq21"].values)))
+    v = group["velocity"].values
+    return Verdict(
+        f"mu2 = (1-b)^4 within {fmt(worst, 2)} in all {group.sizes['case']} asymmetric runs; fixed points "
+        f"{fmt(np.min(v), 4)}-{fmt(np.max(v), 4)} m/s",
+        not within(worst, claim["tolerance"]),
+        note=("Eq. (16) is linear in x1^2: g' = (1-b)^4 x1/g(x1) = (1-b)^4 at any fixed point, with or without "
+              "symmetry; what depends on F and the positions is the fixed point and whether it exists"),
+    )
+
+
+def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: float) -> Verdict:
+    """``rows``: per force ``F``, the closed-form ``C`` and ``fixed_point`` and the run's ``outcome``,
+    ``cycles`` and last ``velocity``. Holds when every run agrees with the sign of C (C > 0: converges to
+    the fixed point; C < 0: stops) and the forces lie on both sides of F*."""
+    agree = []
+    for r in rows:
+        if r["C"] > 0:
+            ok = r["outcome"] == Status.COMPLETED.value and abs(r["velocity"] - r["fixed_point"]) <= (
+                tolerance * r["fixed_point"])
+        else:
+            ok = r["outcome"] == Status.STOPPED.value
+        agree.append(ok)
+    parts = []
+    for r in rows:
+        if r["outcome"] == Status.COMPLETED.value:
+            parts.append(f"F = {fmt(r['F'], 4)} N (C = {fmt(r['C'], 4)} m^2/s^2): converges, v1 = {fmt(r['velocity'])} "
+                         f"m/s after {r['cycles']} cycles (closed form {fmt(r['fixed_point'])})")
+        else:
+            parts.append(f"F = {fmt(r['F'], 4)} N (C = {fmt(r['C'], 4)} m^2/s^2): {r['outcome']} after "
+                         f"{r['cycles']} complete cycles")
+    both_sides = any(r["C"] > 0 for r in rows) and any(r["C"] < 0 for r in rows)
+    holds = all(agree) and both_sides
+    why = ("the runs agree with the sign of C on both sides of F*" if holds else
+           "a run disagrees with the sign of C" if not all(agree) else "the forces do not straddle F*")
+    return Verdict("; ".join(parts), holds, note=(
+        f"F* = (2b - b^2) K (a1^2 - a3^2) / (2 [(1-b)^2 (a2 - a1) + (a3 - a4)]) = {fmt(threshold, 6)} N (closed "
+        f"form): C < 0 below it, no fixed point, v1^2 falls by |C| or more per cycle until the escapement stops; "
+        f"in the symmetric case F* = 0; {why}"),
+        paper_value="the limit cycle's existence depends on F and a1..a4")
+
+
+@check("existence_sign_change", scenes=runs_only, args=("positions", "forces", "x0", "n_cycles"))
+def existence_sign_change(claim, ev: Evidence) -> Verdict:
+    args = claim["args"]
+    rows = []
+    for F in args["forces"]:
+        p = model_of(args, F)
+        c = map_constant(p)
+        run = release_run(ev, p, float(args["x0"]), args["n_cycles"])
+        rows.append({"F": p.F, "C": c, "fixed_point": math.sqrt(c / (1 - (1 - p.b) ** 4)) if c > 0 else math.nan,
+                     "outcome": run["outcome"], "cycles": run["cycles"], "velocity": run["velocity"]})
+    return existence_verdict(rows, existence_threshold(model_of(args, 0.0)), claim["tolerance"])
