@@ -61,8 +61,9 @@ def test_every_quote_is_the_papers_text_and_every_sentence_is_quoted():
     if not path:
         pytest.skip("ESCAPEMENT_PAPER_TEXT does not name the paper's text file")
     text = " ".join(Path(path).read_text().split())
-    sentences = yaml.safe_load(REGISTER.read_text())["sentences"]
-    for name, sentence in sentences.items():
+    data = yaml.safe_load(REGISTER.read_text())
+    sentences = data["sentences"]
+    for name, sentence in {**sentences, **data["cited"]}.items():
         assert " ".join(sentence.split()) in text, name
     quoted = {c["quote"] for c in register() if c["origin"] == "paper"}
     assert quoted == set(sentences.values())
@@ -158,7 +159,8 @@ def test_changing_one_readings_outcome_changes_the_status(monkeypatch):
         stubbed(monkeypatch, lambda claim_id, reading, holding=holding: reading in holding)
         row = cl.evaluate([claim], Evidence({}, None, {}, None))[0]
         assert row["status"] == status, holding
-        assert row["readings"] == "; ".join(f"{r}: {'holds' if r in holding else 'fails'}" for r in readings)
+        assert row["readings"] == "; ".join(f'{r} (the paper: "{w}"): {"holds" if r in holding else "fails"}'
+                                            for r, w in zip(readings, (r["words"] for r in claim["readings"])))
 
 
 def test_an_agreement_on_fitted_or_constructed_evidence_is_consistent_and_a_disagreement_stays(monkeypatch):
@@ -367,3 +369,18 @@ def test_a_checks_module_follows_from_the_source_of_its_claims():
                                                                      if n != "untestable"}
     assert where["untestable"] == "evidence" and set(users) == set(where)
     assert part_of("Sec. 4; Fig. 4") == 6 and part_of("Sec. 4; Fig. 3 (beyond the paper)") == 10
+
+
+def test_a_reading_cites_the_papers_words_and_words_not_the_papers_are_refused(tmp_path):
+    """Every reading names the paper's words that admit it, found in the claim's quote or in a sentence the
+    register quotes or cites (each checked verbatim against the paper's text above); a reading whose words are
+    the project's is refused, naming the claim."""
+    data = yaml.safe_load(REGISTER.read_text())
+    readings = [r for c in data["claims"] for r in c.get("readings", [])]
+    assert len(readings) >= 40 and all(r["words"].strip() for r in readings)
+    text = REGISTER.read_text().replace('words: "the converging speed is different"',
+                                        'words: "the speed of convergence"', 1)
+    (tmp_path / "claims.yaml").write_text(text)
+    with pytest.raises(ValueError, match="claim 'fig3_converging_speed_depends_on_force': the words 'the speed of "
+                                         "convergence'"):
+        cl.load_claims(tmp_path / "claims.yaml")

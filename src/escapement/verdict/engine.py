@@ -54,8 +54,8 @@ def _schema(path: str | os.PathLike) -> dict:
 def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA) -> list[dict]:
     """The claims of the register at ``path``, checked against ``schema``, each with its ``readings`` (one,
     ``as stated``, for a claim checked under one reading); ValueError naming the claim if the register is
-    malformed, if two claims share an id, if two parts of one sentence share a name, or if a check lacks its
-    args (the three things a schema cannot say)."""
+    malformed, if two claims share an id, if two parts of one sentence share a name, if a reading's words are
+    not the paper's, or if a check lacks its args (the four things a schema cannot say)."""
     data = yaml.load(Path(path).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
     error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(_schema(schema)).iter_errors(data))
     if error is not None:
@@ -66,7 +66,12 @@ def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA) -> 
                    f"{error.instance!r} is not a registered check" if where[-1:] == ["check"] else error.message)
         raise ValueError(f"{path}: {name}: {message} (at {'/'.join(map(str, where[2:])) or 'the claim'})")
     seen: dict[str, set] = {"id": set(), "part": set()}
+    paper = [*data.get("sentences", {}).values(), *data.get("cited", {}).values()]
     for claim in data["claims"]:
+        for reading in claim.get("readings", []):
+            if not any(reading["words"] in text for text in (claim.get("quote", ""), *paper)):
+                raise ValueError(f"{path}: claim '{claim['id']}': the words {reading['words']!r} of the reading "
+                                 f"{reading['reading']!r} are in neither its quote nor a sentence the register cites")
         keys = [("id", claim["id"])] + ([("part", (claim["quote"], claim.get("part")))] if "quote" in claim else [])
         for key, value in keys:
             if value in seen[key]:
@@ -130,7 +135,8 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
         results = [(reading, verdict(claim, reading, evidence)) for reading in claim["readings"]]
         outcomes, words, kinds = [], [], []
         for reading, result in results:
-            found, said = _outcomes(reading["reading"], result.holds)
+            cited = f' (the paper: "{reading["words"]}")' if "words" in reading else ""
+            found, said = _outcomes(reading["reading"] + cited, result.holds)
             outcomes += found
             words.append(said)
             c = CHECKS[reading["check"]]
