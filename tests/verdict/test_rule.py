@@ -72,7 +72,9 @@ def test_the_weakest_evidence_and_unknown_words():
     (["reproduced", "consistent", "not_reproduced"], "partially_reproduced"),
     (["undetermined", "not_reproduced"], "not_reproduced"),
     (["not_reproduced", "not_reproduced"], "not_reproduced"),
-    (["untestable", "reproduced"], "reproduced"),
+    (["untestable", "reproduced"], "undetermined"),  # an untestable part never counts as holding
+    (["untestable", "not_reproduced"], "not_reproduced"),
+    (["untestable", "reproduced", "not_reproduced"], "partially_reproduced"),
     (["untestable"], "untestable"),
 ])
 def test_a_finding_takes_the_rule_over_its_parts(parts, status):
@@ -81,8 +83,9 @@ def test_a_finding_takes_the_rule_over_its_parts(parts, status):
 
 def test_the_finding_rule_is_one_rule_over_every_combination_of_parts():
     """Every combination of up to four part statuses: the order of the parts does not matter; a consistent part
-    changes no finding but a reproduced one (to consistent); partially reproduced exactly when a part is reproduced
-    and another not reproduced."""
+    changes no finding but a reproduced one (to consistent) and an untestable one (to undetermined); partially
+    reproduced exactly when a part is reproduced and another not reproduced; reproduced or consistent exactly when
+    every part holds."""
     import itertools
 
     row_statuses = [s for s in STATUSES if s != "partially_reproduced"]  # a row is never partial
@@ -90,8 +93,7 @@ def test_the_finding_rule_is_one_rule_over_every_combination_of_parts():
         for parts in itertools.combinations_with_replacement(row_statuses, n):
             found = finding_status(parts)
             assert all(finding_status(p) == found for p in itertools.permutations(parts))
-            tested = [s for s in parts if s != "untestable"]
-            if tested:
-                alone = finding_status(tested + ["consistent"])
-                assert alone == ("consistent" if found == "reproduced" else found), parts
+            alone = finding_status([*parts, "consistent"])
+            assert alone == {"reproduced": "consistent", "untestable": "undetermined"}.get(found, found), parts
             assert (found == "partially_reproduced") == ("reproduced" in parts and "not_reproduced" in parts)
+            assert (found in ("reproduced", "consistent")) == (set(parts) <= {"reproduced", "consistent"}), parts

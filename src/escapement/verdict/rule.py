@@ -27,7 +27,8 @@ STATUSES: dict[str, str] = {
     "consistent": ("holds, but by construction (the model is built from it) or under a reading or threshold chosen "
                    "by the project: it confirms nothing"),
     "undetermined": ("holds under some readings of the sentence's words and fails under others, and no printed "
-                     "figure tells the readings apart: no verdict"),
+                     "figure tells the readings apart; or, for a finding, a part holds and another has no verdict: "
+                     "no verdict"),
     "untestable": "the paper gives nothing the claim can be computed against",
 }
 REPRODUCED, PARTIAL, NOT, CONSISTENT, UNDETERMINED, UNTESTABLE = STATUSES
@@ -89,16 +90,17 @@ def weighed(status: str, evidence: str) -> str:
 
 def finding_status(statuses: Iterable[str]) -> str:
     """A sentence's status from its parts' (its rows'), one rule for every part: every part holds, reproduced
-    (consistent if one part holds only so); no part fails under every reading, undetermined; some part fails under
-    every reading, partially reproduced if another part is reproduced, else not reproduced. A consistent part
-    confirms nothing, so it never lifts a failing finding: {consistent, not reproduced} is not reproduced, as
-    {not reproduced} alone. Untestable parts count only when every part is."""
+    (consistent if one part holds only so); no part fails under every reading, undetermined (a part without a
+    verdict, undetermined or untestable, leaves the sentence without one); some part fails under every reading,
+    partially reproduced if another part is reproduced, else not reproduced. A consistent part confirms nothing, so
+    it never lifts a failing finding: {consistent, not reproduced} is not reproduced, as {not reproduced} alone; an
+    untestable part never counts as holding: {reproduced, untestable} is undetermined. Untestable alone when every
+    part is."""
     statuses = list(statuses)
-    tested = [s for s in statuses if s != UNTESTABLE]
-    if not tested:
+    if all(s == UNTESTABLE for s in statuses):
         return UNTESTABLE
-    if all(s in (REPRODUCED, CONSISTENT) for s in tested):
-        return CONSISTENT if CONSISTENT in tested else REPRODUCED
-    if NOT not in tested:
+    if all(s in (REPRODUCED, CONSISTENT) for s in statuses):
+        return CONSISTENT if CONSISTENT in statuses else REPRODUCED
+    if NOT not in statuses:
         return UNDETERMINED
-    return PARTIAL if REPRODUCED in tested else NOT
+    return PARTIAL if REPRODUCED in statuses else NOT
