@@ -53,7 +53,7 @@ def test_the_runs_behind_single_claims_by_value():
     case = {**MODEL, "a3": 0.1, "a4": -0.05, "F": 1.0, "x0": -1.0, "label": "a"}
     ds = checks([], 1, {"first_swings": [case, {**case, "x0": -3.0}],
                         "return_map": {**case, "velocities": [0.5, 2.0]},
-                        "phase_shift": {**case, "n_release": 50, "perturbations": [0.01], "n_cycles": 100}})
+                        "phase_shift": {**case, "n_release": 50, "perturbation": 0.01, "n_cycles": 100}})
     assert ds["first_swing_velocity"].values == pytest.approx([math.sqrt(0.99), math.sqrt(8.99)], rel=1e-12)
     slope = [0.6561 * v / math.sqrt(0.6561 * v * v + 0.543) for v in (0.5, 2.0)]
     assert ds["map_slope"].values == pytest.approx(slope, rel=1e-9) and ds["map_slope"].attrs["case"] == "a"

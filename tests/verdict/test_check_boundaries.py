@@ -22,11 +22,14 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from escapement.pipeline.sources import read_yaml
 from escapement.verdict import engine as cl
 from escapement.verdict.evidence import Evidence
 from escapement.verdict.rule import status_of
 
 REGISTER = cl.REGISTER
+#: the runs the register names by ``runs``: the configuration's model and checks blocks
+SETTINGS = {key: read_yaml(cl.REGISTER.parents[3] / "config" / "paper.yaml")[key] for key in ("model", "checks")}
 GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
 DONE = {"outcome": "completed", "outcome_message": "completed: a message"}
 #: the relative offsets from a tolerance at which a check is judged: inside, outside
@@ -35,7 +38,7 @@ SIDES = ((1 - 1e-6, "inside"), (1 + 1e-6, "outside"))
 
 @functools.cache
 def _register() -> list[dict]:
-    return cl.load_claims(REGISTER)
+    return cl.load_claims(REGISTER, settings=SETTINGS)
 
 
 def register_row(claim_id: str, tolerance: float | None, reading: int = 0) -> dict:

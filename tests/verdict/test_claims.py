@@ -20,18 +20,21 @@ import xarray as xr
 import yaml
 
 from escapement.model.parameters import Parameters
+from escapement.pipeline.sources import read_yaml
 from escapement.verdict import engine as cl
 from escapement.verdict.evidence import CHECKS, Evidence, Verdict, runs_only
 from escapement.solvers.exact import solve_exact
 from verdict.test_check_boundaries import GEOMETRY, probes, runs
 
 REGISTER = cl.REGISTER
+#: the runs the register names by ``runs``: the configuration's model and checks blocks
+SETTINGS = {key: read_yaml(cl.REGISTER.parents[3] / "config" / "paper.yaml")[key] for key in ("model", "checks")}
 REPO = Path(__file__).resolve().parents[2]
 
 
 @functools.cache
 def register() -> list[dict]:
-    return cl.load_claims(REGISTER)
+    return cl.load_claims(REGISTER, settings=SETTINGS)
 
 
 def claim_of(claim_id: str) -> dict:
@@ -131,7 +134,7 @@ def _written(tmp_path, mutate) -> Path:
 def test_a_malformed_register_is_refused_naming_the_claim(tmp_path, mutate, message):
     """A status, a kind of evidence or a finding typed into the register is refused: they are computed."""
     with pytest.raises(ValueError, match=message):
-        cl.load_claims(_written(tmp_path, mutate))
+        cl.load_claims(_written(tmp_path, mutate), settings=SETTINGS)
 
 
 # --- the one rule, on the register's own claims -------------------------------------------------------
@@ -360,7 +363,7 @@ def test_a_checks_module_follows_from_the_source_of_its_claims():
     so a reader finds a claim's check from its source; ``untestable`` alone, the check of every claim the paper gives
     nothing to compute against, sits with the engine's evidence."""
     users: dict[str, list[str]] = {}
-    for claim in cl.load_claims(REGISTER):
+    for claim in cl.load_claims(REGISTER, settings=SETTINGS):
         for reading in claim["readings"]:
             users.setdefault(reading["check"], []).append(claim["source"])
     where = {name: c.function.__module__.rsplit(".", 1)[1] for name, c in cl.CHECKS.items()}
@@ -383,4 +386,28 @@ def test_a_reading_cites_the_papers_words_and_words_not_the_papers_are_refused(t
     (tmp_path / "claims.yaml").write_text(text)
     with pytest.raises(ValueError, match="claim 'fig3_converging_speed_depends_on_force': the words 'the speed of "
                                          "convergence'"):
-        cl.load_claims(tmp_path / "claims.yaml")
+        cl.load_claims(tmp_path / "claims.yaml", settings=SETTINGS)
+
+
+def test_the_runs_a_reading_names_are_the_configurations_stated_once(tmp_path):
+    """A reading's ``runs: <name>`` takes the numbers of its runs from the configuration's checks block (on the
+    model's M, K and b), so the register repeats none of them; an unknown name, or no configuration, is refused."""
+    written = yaml.safe_load(REGISTER.read_text())
+    named = [(c["id"], r.get("args", {})) for c in written["claims"]
+             for r in c.get("readings", [{"args": c.get("args", {})}])]
+    runs = {args["runs"] for _, args in named if "runs" in args}
+    assert runs >= {"existence", "release_boundary", "grazing", "airy", "short_runs", "return_map", "phase_shift"}
+    for claim_id, args in named:
+        if "runs" in args:
+            assert not set(args) & set(SETTINGS["checks"][args["runs"]]), claim_id  # not repeated in the register
+    resolved = {c["id"]: c["readings"] for c in register()}
+    grazing = resolved["solution_exists_unique"][0]["args"]
+    assert grazing["positions"] == SETTINGS["checks"]["grazing"]["positions"] and grazing["M"] == SETTINGS["model"]["M"]
+    with pytest.raises(ValueError, match="claim 'eq3a_state_matrix': runs 'short_runs' must name an entry of the "
+                                         "configuration's checks block$"):
+        cl.load_claims(REGISTER)
+    text = REGISTER.read_text().replace("args: { runs: existence }", "args: { runs: existance }", 1)
+    (tmp_path / "claims.yaml").write_text(text)
+    with pytest.raises(ValueError, match="runs 'existance' must name an entry of the configuration's checks block, "
+                                         "one of airy, asymmetric, existence, "):
+        cl.load_claims(tmp_path / "claims.yaml", settings=SETTINGS)

@@ -106,7 +106,8 @@ def evidence(**over) -> Evidence:
 def claim(check: str, tolerance=1e-8, **args) -> dict:
     """A claim under one reading: the claim and the reading in one mapping."""
     return {"id": f"the_{check}_claim", "source": "S", "origin": "paper", "quote": "q", "statement": "s",
-            "paper_value": None, "reading": "as stated", "tolerance": tolerance, "check": check, "args": args}
+            "paper_value": None, "reading": "as stated", "tolerance": tolerance, "check": check,
+            "args": {"M": 1.0, "K": 1.0, "b": 0.1, **args}}  # the model's M, K and b, as the register's runs have them
 
 
 def outcome(c: dict, ev: Evidence | None = None):
@@ -378,7 +379,7 @@ def test_airy_order_with_the_solver():
 
 def passages(c: dict) -> Evidence:
     """The evidence with the passages through the zones of the claim ``c``, made by the checks scene."""
-    spec = {"zones": list(c["args"]["zones"].values()), "forces": c["args"]["forces"], "release": 1.0,
+    spec = {"zones": c["args"]["zones"], "forces": c["args"]["forces"], "release": 1.0,
             "M": 1.0, "K": 1.0, "b": 0.1}
     return evidence(checks=xr.Dataset(probe_variables({"airy": spec})))
 

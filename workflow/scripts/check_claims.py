@@ -12,4 +12,5 @@ check_claims(
     snakemake.output.csv,
     snakemake.log[0],
     schema=snakemake.input.schema,
+    settings=snakemake.params.settings,
 )

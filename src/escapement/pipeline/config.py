@@ -222,7 +222,8 @@ def check_probes(paper: Mapping) -> dict:
     if "grazing" in own:
         probes["grazing"] = _flat(paper["model"], own["grazing"])
     if "airy" in checks:
-        probes["airy"] = _flat(paper["model"], checks["airy"])
+        zones = dict(sorted(checks["airy"]["zones"].items()))  # _flat leaves nested mappings out
+        probes["airy"] = {**_flat(paper["model"], checks["airy"]), "zones": zones}
     if "short_runs" in checks:
         short, given = checks["short_runs"], fig3["cases"][checks["short_runs"]["case"]]
         pairs = [(K, given["x0"]) for K in short["K"]] + [(paper["model"]["K"], x0) for x0 in short["releases"]]

@@ -23,10 +23,11 @@ __all__ = ["check_claims"]
 
 def check_claims(
     register: str, fig3: Mapping[str, str], fig4: str, fig5: Mapping[str, str], checks: str, readings: str,
-    output: str, log: str, schema: str = SCHEMA,
+    output: str, log: str, schema: str = SCHEMA, settings: Mapping | None = None,
 ) -> None:
     """Evaluate the register on the outputs (``fig3`` and ``fig5`` keyed by their configured labels)
-    and the score table of the candidate readings (``readings``), and write the table; raise, naming
+    and the score table of the candidate readings (``readings``), the runs the register names taken from
+    ``settings`` (the configuration's ``model`` and ``checks`` blocks), and write the table; raise, naming
     the claim, when a check fails (a variable an output lacks among the causes)."""
     with logged(log, "check_claims") as logger:
         fig3_data = {label: read_netcdf(path) for label, path in fig3.items()}
@@ -40,7 +41,7 @@ def check_claims(
             axes=scene_axes(fig3_data, fig4_data, fig5_data, VARIANTS[CLAIM_AUTOSCALE]),
             readings=panel_candidates(read_scores(readings)),
         )
-        rows = evaluate(load_claims(register, schema), evidence)
+        rows = evaluate(load_claims(register, schema, settings), evidence)
         for row in rows:
             logger.info("%s: %s: %s", row["claim_id"], row["status"], row["replicated_value"])
         write_csv(rows, COLUMNS, output)

@@ -73,7 +73,7 @@ def _phase_shift(spec: Mapping) -> dict[str, xr.DataArray]:
     release = solve_exact(p, float(spec["x0"]), n_cycles=positive_int("n_release", spec["n_release"], 100_000),
                           record_trajectory=False)
     star = float(release.cycles.velocity_before_impact[-1])
-    perturbations = [0.0, *(float(d) for d in spec["perturbations"])]
+    perturbations = [0.0, float(spec["perturbation"])]
     runs = [solve_exact(p, p.a1, star * (1 + d), n_cycles=n_cycles, record_trajectory=False) for d in perturbations]
     times = [r.events.t[r.events.kind == int(EventKind.IMPACT_A1)] for r in runs]
     return {
@@ -134,7 +134,7 @@ def zone_shift(p: Parameters, release: float) -> float:
 def _airy(spec: Mapping) -> dict[str, xr.DataArray]:
     """``dT2`` (:func:`zone_shift`) of each zone ``[a1, a2]`` of ``spec`` at each of its ``forces``, on the model's
     M, K and b, released from rest at ``-release``."""
-    zones, forces, release = spec["zones"], [float(F) for F in spec["forces"]], float(spec["release"])
+    zones, forces, release = list(spec["zones"].values()), [float(F) for F in spec["forces"]], float(spec["release"])
     given = {key: float(spec[key]) for key in ("M", "K", "b")}
     shifts = [[zone_shift(Parameters(F=F, a1=float(a), a2=float(c), **given), release) for F in forces]
               for a, c in zones]

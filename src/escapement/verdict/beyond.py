@@ -65,17 +65,17 @@ def airy_verdict(zones: Mapping[str, Mapping], tolerance: float) -> Verdict:
         paper_value="Airy: symmetric impulse O(f^2); before the equilibrium shortens, after lengthens")
 
 
-@check("airy_order", scenes=runs_only, args=("zones", "forces", "release"))
+@check("airy_order", scenes=runs_only, args=("zones", "forces", "release", "M", "K", "b"))
 def airy_order(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     release, made = float(args["release"]), ev.checks["airy_zone_shift"].attrs
     if (made["release"], made["M"], made["K"], made["b"]) != (
-            release, *(float(args.get(k, d)) for k, d in (("M", 1.0), ("K", 1.0), ("b", 0.1)))):
+            release, *(float(args[k]) for k in ("M", "K", "b"))):
         raise ValueError(f"the checks dataset's passages are released at -{made['release']} m, M, K, b = "
                          f"{made['M']}, {made['K']}, {made['b']}, not as the claim's")
     zones = {}
     for name, (a, c) in args["zones"].items():
-        base = dict(M=float(args.get("M", 1.0)), K=float(args.get("K", 1.0)), b=float(args.get("b", 0.1)),
+        base = dict(M=float(args["M"]), K=float(args["K"]), b=float(args["b"]),
                     a1=float(a), a2=float(c))
         forces = [float(F) for F in args["forces"]]
         p0 = Parameters(F=forces[0], **base)

@@ -51,11 +51,13 @@ def _schema(path: str | os.PathLike) -> dict:
     return schema
 
 
-def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA) -> list[dict]:
+def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, settings: Mapping | None = None
+                ) -> list[dict]:
     """The claims of the register at ``path``, checked against ``schema``, each with its ``readings`` (one,
     ``as stated``, for a claim checked under one reading); ValueError naming the claim if the register is
     malformed, if two claims share an id, if two parts of one sentence share a name, if a reading's words are
-    not the paper's, or if a check lacks its args (the four things a schema cannot say)."""
+    not the paper's, or if a check lacks its args (the four things a schema cannot say). Args that name their
+    ``runs`` take them from ``settings`` (the configuration's ``model`` and ``checks`` blocks)."""
     data = yaml.load(Path(path).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
     error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(_schema(schema)).iter_errors(data))
     if error is not None:
@@ -82,12 +84,25 @@ def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA) -> 
             spec = {k: claim.pop(k) for k in ("check", "args", "tolerance", "tolerance_reason") if k in claim}
             claim["readings"] = [{"reading": AS_STATED, **spec}]
         for reading in claim["readings"]:
-            reading.setdefault("args", {})
+            reading["args"] = _resolved(reading.get("args", {}), settings, f"{path}: claim '{claim['id']}'")
             missing = [a for a in CHECKS[reading["check"]].args if a not in reading["args"]]
             if missing:
                 raise ValueError(f"{path}: claim '{claim['id']}': the check '{reading['check']}' needs the args "
                                  f"{', '.join(missing)}")
     return data["claims"]
+
+
+def _resolved(args: Mapping, settings: Mapping | None, where: str) -> dict:
+    """A reading's args with ``runs: <name>`` replaced by the settings of those runs, the ``checks`` block's entry
+    ``name`` of the configuration, on the model's M, K and b: the runs' numbers are stated once, in config/."""
+    if "runs" not in args:
+        return dict(args)
+    name, blocks = args["runs"], {k for k, v in (settings or {}).get("checks", {}).items() if isinstance(v, Mapping)}
+    if name not in blocks:
+        raise ValueError(f"{where}: runs {name!r} must name an entry of the configuration's checks block"
+                         + (f", one of {', '.join(sorted(blocks))}" if blocks else ""))
+    model = {key: settings["model"][key] for key in ("M", "K", "b")}
+    return {**model, **settings["checks"][name], **{k: v for k, v in args.items() if k != "runs"}}
 
 
 def verdict(claim: Mapping, reading: Mapping, evidence: Evidence) -> Verdict:

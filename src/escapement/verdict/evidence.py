@@ -229,8 +229,8 @@ def runs_left_regime(runs: xr.Dataset) -> Verdict | None:
 
 def model_of(args: Mapping, F: float, positions: Sequence[float] | None = None) -> Parameters:
     a1, a2, a3, a4 = positions if positions is not None else args["positions"]
-    return Parameters(M=float(args.get("M", 1.0)), K=float(args.get("K", 1.0)), F=float(F), b=float(args.get("b", 0.1)),
-                      a1=float(a1), a2=float(a2), a3=float(a3), a4=float(a4))
+    return Parameters(M=float(args["M"]), K=float(args["K"]), F=float(F), b=float(args["b"]), a1=float(a1),
+                      a2=float(a2), a3=float(a3), a4=float(a4))
 
 
 def release_run(ev: Evidence, p: Parameters, x0: float, n_cycles) -> dict:

@@ -298,7 +298,7 @@ def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> 
         paper_value="exactly one solution")
 
 
-@check("grazing_uniqueness", scenes=runs_only, args=("positions", "F", "deltas", "n_cycles"))
+@check("grazing_uniqueness", scenes=runs_only, args=("positions", "F", "deltas", "n_cycles", "M", "K", "b"))
 def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     p = model_of(args, args["F"])

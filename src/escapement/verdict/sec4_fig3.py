@@ -326,7 +326,7 @@ def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) 
         paper_value="convergence independent of the initial amplitude")
 
 
-@check("release_boundary", scenes=runs_only, args=("positions", "F", "releases", "n_cycles"))
+@check("release_boundary", scenes=runs_only, args=("positions", "F", "releases", "n_cycles", "M", "K", "b"))
 def release_boundary(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     p = model_of(args, args["F"])

@@ -63,7 +63,7 @@ def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: floa
         paper_value="the limit cycle's existence depends on F and a1..a4")
 
 
-@check("existence_sign_change", scenes=runs_only, args=("positions", "forces", "x0", "n_cycles"))
+@check("existence_sign_change", scenes=runs_only, args=("positions", "forces", "x0", "n_cycles", "M", "K", "b"))
 def existence_sign_change(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     rows = []
