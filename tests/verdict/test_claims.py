@@ -411,3 +411,17 @@ def test_the_runs_a_reading_names_are_the_configurations_stated_once(tmp_path):
     with pytest.raises(ValueError, match="runs 'existance' must name an entry of the configuration's checks block, "
                                          "one of airy, asymmetric, existence, "):
         cl.load_claims(tmp_path / "claims.yaml", settings=SETTINGS)
+
+
+def test_no_figure_decides_only_after_every_figure_was_tried(monkeypatch, tmp_path):
+    """A row undetermined between its readings says that no figure decides, naming the figures tried; the engine
+    refuses one whose figures_tried leaves out a printed figure (here Fig. 4 of fig5_recovery_small_K_faster)."""
+    assert cl.figures_named("Fig. 3 (a), Figs. 4 and 5") == {"3", "4", "5"} == set(cl.FIGURES)
+    assert cl.figures_named("Figs. 3, 4 and 5; Fig. 2 is a sketch") == {"2", "3", "4", "5"}
+    stubbed(monkeypatch, lambda claim_id, reading: reading == "in seconds")
+    claim = claim_of("fig5_recovery_small_K_faster")
+    row = cl.evaluate([claim], Evidence({}, None, {}, None))[0]
+    assert row["status"] == "undetermined" and "; no figure decides between the readings: Fig. 5" in row["note"]
+    cut = {**claim, "figures_tried": "Fig. 5 is a phase diagram; Fig. 3 shows one point per cycle"}
+    with pytest.raises(cl.ClaimError, match="names no Fig. 4: every printed figure must be tried"):
+        cl.evaluate([cut], Evidence({}, None, {}, None))

@@ -16,6 +16,7 @@ parts and share its finding, named after the first of them.
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Mapping
 from dataclasses import replace
 from pathlib import Path
@@ -24,6 +25,7 @@ import jsonschema
 import numpy as np
 import yaml
 
+from ..paper.printed_axes import PANELS
 # the modules of the checks, one per part of the paper: importing them registers their checks in CHECKS
 from . import beyond, figure_axes, sec2_model, sec3_equations, sec3_map, sec3_period, sec3_steps  # noqa: F401
 from . import sec4_fig3, sec4_fig4, sec4_fig5, sec5_conclusions  # noqa: F401
@@ -130,6 +132,16 @@ def verdict(claim: Mapping, reading: Mapping, evidence: Evidence) -> Verdict:
                    if isinstance(holds, Mapping) else bool(holds))
 
 
+#: the figures whose printed axes could tell readings apart
+FIGURES = sorted({p.figure for p in PANELS})
+
+
+def figures_named(text: str) -> set[str]:
+    """The figures ``text`` names: ``Fig. 3``, ``Fig. 3 (a)``, ``Figs. 4 and 5``, ``Figs. 3, 4 and 5``."""
+    runs = re.findall(r"Figs?\.\s*((?:\d(?:\s*\([a-c]\))?(?:,\s*|\s+and\s+)?)+)", text)
+    return {digit for run in runs for digit in re.findall(r"\d", run)}
+
+
 def _outcomes(name: str, holds) -> tuple[list, str]:
     """The outcomes of one reading (a grid's, if the check walked one), and them in words."""
     if isinstance(holds, Mapping):
@@ -164,6 +176,10 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
             paper = "[" + ", ".join(fmt(x) for x in paper) + "]"
         named = [reading["reading"] for reading, _ in results]
         status = weighed(status_of(outcomes), kind)
+        if status == UNDETERMINED and len(named) > 1 and (missed := set(FIGURES) - figures_named(
+                claim["figures_tried"])):
+            raise ClaimError(f"claim '{claim['id']}' is undetermined, but its figures_tried names no Fig. "
+                             f"{', '.join(sorted(missed))}: every printed figure must be tried before none decides")
         figures = ("" if len(named) == 1 else f"; no figure decides between the readings: {claim['figures_tried']}"
                    if status == UNDETERMINED else f"; the figures: {claim['figures_tried']}")
         rows.append({
