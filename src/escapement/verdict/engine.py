@@ -29,7 +29,7 @@ from ..paper.printed_axes import PANELS
 # the modules of the checks, one per part of the paper: importing them registers their checks in CHECKS
 from . import beyond, figure_axes, sec2_model, sec3_equations, sec3_map, sec3_period, sec3_steps  # noqa: F401
 from . import sec4_fig3, sec4_fig4, sec4_fig5, sec5_conclusions  # noqa: F401
-from .evidence import CHECKS, COMPLETED, Evidence, Verdict, fmt
+from .evidence import CHECKS, COMPLETED, Evidence, Verdict, fmt, runs_left_regime
 from .rule import UNDETERMINED, evidence_of, status_of, weakest, weighed
 
 __all__ = ["CHECKS", "COLUMNS", "SCHEMA", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims"]
@@ -58,7 +58,8 @@ def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, set
     """The claims of the register at ``path``, checked against ``schema``, each with its ``readings`` (one,
     ``as stated``, for a claim checked under one reading); ValueError naming the claim if the register is
     malformed, if two claims share an id, if two parts of one sentence share a name, if a reading's words are
-    not the paper's, or if a check lacks its args (the four things a schema cannot say). Args that name their
+    not the paper's, if the figures tried leave out a printed figure, or if a check lacks its args (the five things
+    a schema cannot say). Args that name their
     ``runs`` take them from ``settings`` (the configuration's ``model`` and ``checks`` blocks)."""
     data = yaml.load(Path(path).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
     error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(_schema(schema)).iter_errors(data))
@@ -72,6 +73,10 @@ def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, set
     seen: dict[str, set] = {"id": set(), "part": set()}
     paper = [*data.get("sentences", {}).values(), *data.get("cited", {}).values()]
     for claim in data["claims"]:
+        if "readings" in claim and (missed := set(FIGURES) - figures_named(claim["figures_tried"])):
+            raise ValueError(f"{path}: claim '{claim['id']}': its figures_tried names no Fig. "
+                             f"{', '.join(sorted(missed))}: every printed figure is tried before a row may say that "
+                             "none decides")
         for reading in claim.get("readings", []):
             if not any(reading["words"] in text for text in (claim.get("quote", ""), *paper)):
                 raise ValueError(f"{path}: claim '{claim['id']}': the words {reading['words']!r} of the reading "
@@ -112,14 +117,13 @@ def verdict(claim: Mapping, reading: Mapping, evidence: Evidence) -> Verdict:
     check fails or answers no outcome."""
     registered, spec = CHECKS[reading["check"]], {**claim, **reading}
     try:
-        scenes = registered.scenes(spec, evidence)
-        left = [(name, ds) for name, ds in scenes.items() if ds.attrs["outcome"] != COMPLETED]
-        if left:
-            name, ds = left[0]
-            outcome = ds.attrs["outcome"]
-            return Verdict(f"not evaluated: {name} left the escapement regime ({outcome})", False,
-                           note=f"{name} ended with outcome '{outcome}': {ds.attrs['outcome_message']}; the "
-                                "claim concerns the escapement regime")
+        for name, ds in registered.scenes(spec, evidence).items():  # one rule for a run that left the regime
+            if "case" in ds.dims and (left := runs_left_regime(ds, registered.answers)) is not None:
+                return left  # a table of runs of the checks dataset
+            if "case" not in ds.dims and (outcome := ds.attrs["outcome"]) != COMPLETED:
+                return Verdict(f"not evaluated: {name} left the escapement regime ({outcome})", False,
+                               note=f"{name} ended with outcome '{outcome}': {ds.attrs['outcome_message']}; the "
+                                    "claim concerns the escapement regime")
         result = registered.function(spec, evidence)
     except Exception as err:  # re-raised naming the claim: a failing check is never a verdict
         raise ClaimError(f"claim '{claim['id']}': check '{registered.name}' failed: {type(err).__name__}: {err}"
@@ -176,10 +180,6 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
             paper = "[" + ", ".join(fmt(x) for x in paper) + "]"
         named = [reading["reading"] for reading, _ in results]
         status = weighed(status_of(outcomes), kind)
-        if status == UNDETERMINED and len(named) > 1 and (missed := set(FIGURES) - figures_named(
-                claim["figures_tried"])):
-            raise ClaimError(f"claim '{claim['id']}' is undetermined, but its figures_tried names no Fig. "
-                             f"{', '.join(sorted(missed))}: every printed figure must be tried before none decides")
         figures = ("" if len(named) == 1 else f"; no figure decides between the readings: {claim['figures_tried']}"
                    if status == UNDETERMINED else f"; the figures: {claim['figures_tried']}")
         rows.append({

@@ -20,6 +20,8 @@ from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 
 COMPLETED = Status.COMPLETED.value
+#: every outcome of a run
+OUTCOMES = tuple(s.value for s in Status)
 
 
 def fmt(x: float, digits: int = 10) -> str:
@@ -101,7 +103,8 @@ class Check:
     """A registered check: its function, the scenes it reads, the ``args`` it needs from the register, and what
     it consumes besides the simulation, from which the kind of its evidence follows
     (:func:`escapement.verdict.rule.evidence_of`): the model's ``law`` it restates, what it reads that was
-    ``fitted`` to the printed axes, the ``threshold`` on the claim's words the register's tolerance sets."""
+    ``fitted`` to the printed axes, the ``threshold`` on the claim's words the register's tolerance sets; and the
+    outcomes of its runs other than ``completed`` that are ``answers`` of the check, not exits from the regime."""
 
     name: str
     function: Callable[[Mapping, Evidence], Verdict]
@@ -110,6 +113,7 @@ class Check:
     law: str | None = None
     fitted: str | None = None
     threshold: str | None = None
+    answers: tuple[str, ...] = ()
 
 
 #: every check of the register by its name, filled by :func:`check` as the modules of the checks are imported
@@ -117,14 +121,14 @@ CHECKS: dict[str, Check] = {}
 
 
 def check(name: str, *, scenes: Scenes, args: tuple[str, ...] = (), law: str | None = None,
-          fitted: str | None = None, threshold: str | None = None) -> Callable:
+          fitted: str | None = None, threshold: str | None = None, answers: tuple[str, ...] = ()) -> Callable:
     """Register the decorated function as the check ``name`` of the register (see :class:`Check`); a
     function may be registered under several names. A name registered twice is refused."""
 
     def mark(function: Callable) -> Callable:
         if name in CHECKS:
             raise ValueError(f"two checks are named '{name}'")
-        CHECKS[name] = Check(name, function, scenes, tuple(args), law, fitted, threshold)
+        CHECKS[name] = Check(name, function, scenes, tuple(args), law, fitted, threshold, tuple(answers))
         return function
 
     return mark
@@ -159,6 +163,20 @@ def runs_only(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     return {}
 
 
+def runs_of(*groups: str) -> Scenes:
+    """The scenes of a check that reads runs of the checks dataset: the groups named here, else those of the claim's
+    ``args`` (``group``, ``groups``, ``by_force`` and ``by_release``); none, every run. The engine judges the runs
+    (:func:`runs_left_regime`) before the check reads them."""
+
+    def scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
+        args = claim["args"]
+        named = groups or ([args["group"]] if "group" in args else
+                           [g for key in ("groups", "by_force", "by_release") for g in args.get(key, [])])
+        return {f"the runs of group {g}": group_runs(ev, g) for g in named} or {"every run": group_runs(ev, None)}
+
+    return scenes
+
+
 def fig4_scene(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     return {"Fig. 4": ev.fig4}
 
@@ -191,8 +209,9 @@ def within(value: float, tolerance: float) -> bool:
     return bool(value <= tolerance)
 
 
-def group_runs(ev: Evidence, group: str) -> xr.Dataset:
-    rows = np.flatnonzero(ev.checks["group"].values == group)
+def group_runs(ev: Evidence, group: str | None) -> xr.Dataset:
+    """The table of the runs of ``group`` of the checks dataset (None: every run)."""
+    rows = np.flatnonzero((ev.checks["group"].values == group) | (group is None))
     if not len(rows):
         raise ValueError(f"the checks dataset holds no run of group '{group}'")
     table = [name for name, variable in ev.checks.data_vars.items() if "case" in variable.dims]
@@ -213,9 +232,10 @@ def probe(ev: Evidence, name: str, dim: str, **where) -> xr.DataArray:
     return ev.checks[name].isel({dim: int(np.flatnonzero(match)[0])})
 
 
-def runs_left_regime(runs: xr.Dataset) -> Verdict | None:
-    """The verdict when a run of the checks dataset left the escapement regime, else None."""
-    left = np.flatnonzero(runs["outcome"].values != COMPLETED)
+def runs_left_regime(runs: xr.Dataset, answers: tuple[str, ...] = ()) -> Verdict | None:
+    """The verdict when a run of the checks dataset left the escapement regime (an outcome neither completed nor
+    one of the check's ``answers``), else None."""
+    left = np.flatnonzero(~np.isin(runs["outcome"].values, [COMPLETED, *answers]))
     if not len(left):
         return None
     labels, outcomes = runs["label"].values[left], runs["outcome"].values[left]

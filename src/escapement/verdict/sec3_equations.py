@@ -19,8 +19,8 @@ from ..model.automaton import CENTRE_SIGN, Mode
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..paper.corrected import grazing_limit, grazing_release
-from .evidence import (COMPLETED, Evidence, Verdict, check, fig3_all, fig3_case, fmt, group_runs, model_of,
-                       params_of, probe, release_run, runs_only, within)
+from .evidence import (COMPLETED, Evidence, OUTCOMES, Verdict, check, fig3_all, fig3_case, fmt, group_runs, model_of,
+                       params_of, probe, release_run, runs_of, runs_only, within)
 
 A1, A2, A3, A4 = (int(k) for k in (EventKind.IMPACT_A1, EventKind.ZONE_END_A2, EventKind.IMPACT_A3,
                                   EventKind.ZONE_END_A4))
@@ -315,7 +315,7 @@ def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
                    note=verdict.note, paper_value=verdict.paper_value)
 
 
-@check("runs_converge", scenes=runs_only, args=("group",))
+@check("runs_converge", scenes=runs_of(), args=("group",), answers=OUTCOMES)
 def runs_converge(claim, ev: Evidence) -> Verdict:
     """Every run of the group reaches a limit cycle: it completes its cycles with |mu2| < 1."""
     group = group_runs(ev, claim["args"]["group"])

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..paper import printed as pe
 from .evidence import (COMPLETED, Evidence, Verdict, check, fig3_all, fig3_case, fmt, group_runs, params_of, probe, rel,
-                       runs_left_regime, runs_only, within)
+                       runs_of, within)
 
 
 @check("map_eq16", scenes=fig3_all)
@@ -47,11 +47,9 @@ def fixed_point(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("multiplier_paper_cases", scenes=runs_only)
+@check("multiplier_paper_cases", scenes=runs_of("paper"))
 def multiplier_paper_cases(claim, ev: Evidence) -> Verdict:
     paper = group_runs(ev, "paper")
-    if (left := runs_left_regime(paper)) is not None:
-        return left
     mu = paper["multiplier"].values
     return Verdict(
         ", ".join(f"{label}: {fmt(m)}" for label, m in zip(paper["label"].values, mu)),
@@ -60,14 +58,11 @@ def multiplier_paper_cases(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("stability_over_b", scenes=runs_only)
+@check("stability_over_b", scenes=runs_of("b"), answers=("chattering",))
 def stability_over_b(claim, ev: Evidence) -> Verdict:
     """Every b of the group converges with mu2 = (1 - b)^4: the motion's own return map, for 0 < b < 2."""
     group = group_runs(ev, "b")
     outcome = group["outcome"].values
-    # chattering (b > 1) is an answer of this check; any other exit leaves it without one
-    if (left := runs_left_regime(group.isel(case=np.flatnonzero(outcome != "chattering")))) is not None:
-        return left
     b, mu, mu21 = group["b"].values, group["multiplier"].values, group["multiplier_eq21"].values
     stable = outcome == COMPLETED
     deviation = float(np.max(np.abs(mu[stable] - mu21[stable]))) if stable.any() else math.inf
@@ -81,31 +76,28 @@ def stability_over_b(claim, ev: Evidence) -> Verdict:
         "|mu2| < 1 there says nothing about the motion, whose impacts accumulate in finite time"))
 
 
-@check("multiplier_group", scenes=runs_only, args=("group",))
+@check("multiplier_group", scenes=runs_of(), args=("group",))
 def multiplier_group(claim, ev: Evidence) -> Verdict:
     """mu2 = (1 - b)^4 in every run of the group: the rate of convergence depends on nothing else."""
     group = group_runs(ev, claim["args"]["group"])
-    if (left := runs_left_regime(group)) is not None:
-        return left
     worst = float(np.max(np.abs(group["multiplier"].values - group["multiplier_eq21"].values)))
     forces = sorted(set(group["F"].values.tolist()))
     return Verdict(f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over {group.sizes['case']} runs (F = "
                    f"{', '.join(fmt(f, 3) for f in forces)} N)", within(worst, claim["tolerance"]))
 
 
-@check("multiplier_only_b", scenes=runs_only)
+@check("multiplier_only_b", scenes=runs_of(), answers=("chattering",))
 def multiplier_only_b(claim, ev: Evidence) -> Verdict:
     """Sec. 3.4, the stability determined only by b: mu2 = (1 - b)^4 in every run of the checks dataset that
     converges, whatever its force, spring, positions or release, and the runs that do not converge chatter, every
     one at b > 1, where the impact reverses the velocity; any other exit leaves the check without an answer."""
     runs = ev.checks
     outcome, b = runs["outcome"].values, runs["b"].values
-    if (left := runs_left_regime(runs.isel(case=np.flatnonzero(outcome != "chattering")))) is not None:
-        return left
     done = outcome == COMPLETED
-    worst = float(np.max(np.abs(runs["multiplier"].values[done] - runs["multiplier_eq21"].values[done])))
+    worst = (float(np.max(np.abs(runs["multiplier"].values[done] - runs["multiplier_eq21"].values[done])))
+             if done.any() else math.inf)  # no run converges: nothing follows b
     spans = "; ".join(f"{k} = {fmt(np.min(runs[k].values[done]), 3)} to {fmt(np.max(runs[k].values[done]), 3)}"
-                      for k in ("F", "K", "a1", "a3", "x0", "b"))
+                      for k in ("F", "K", "a1", "a3", "x0", "b")) if done.any() else "none converges"
     chatter = sorted(set(b[~done].tolist()))
     return Verdict(
         f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over the {int(done.sum())} runs that converge ({spans}); "
@@ -153,13 +145,11 @@ def derivative_eq20(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("trivial_multiplier", scenes=runs_only, args=("group",))
+@check("trivial_multiplier", scenes=runs_of(), args=("group",))
 def trivial_multiplier(claim, ev: Evidence) -> Verdict:
     """Eq. (8): mu1 = 1. Both Floquet multipliers measured from the flow over one period (checks dataset,
     ``floquet_major``, ``floquet_minor``) against 1 and (1 - b)^4, independent of the return map."""
     runs = group_runs(ev, claim["args"]["group"])
-    if (left := runs_left_regime(runs)) is not None:
-        return left
     major, minor, mu21 = (runs[k].values for k in ("floquet_major", "floquet_minor", "multiplier_eq21"))
     worst = float(np.max(np.maximum(np.abs(major - 1.0), np.abs(minor - mu21))))
     if not math.isfinite(worst):

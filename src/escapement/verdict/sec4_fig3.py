@@ -15,8 +15,8 @@ import xarray as xr
 from ..model.events import EventKind
 from ..model.status import Status
 from ..paper.corrected import map_constant
-from .evidence import (Evidence, Verdict, check, fig3_all, fig3_case, fig3_cases, fmt, group_runs, model_of,
-                       params_of, probe, rel, release_run, runs_left_regime, runs_only, within)
+from .evidence import (Evidence, Verdict, check, fig3_all, fig3_case, fig3_cases, fmt, group_runs, model_of, params_of,
+                       probe, rel, release_run, runs_of, runs_only, within)
 
 
 @check("both_converge", scenes=fig3_all)
@@ -77,13 +77,11 @@ def convergence_rates(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("cycles_to_converge", scenes=runs_only, args=("group",),
+@check("cycles_to_converge", scenes=runs_of(), args=("group",),
        threshold="the convergence criterion by which the checks dataset counts the cycles to converge")
 def cycles_to_converge(claim, ev: Evidence) -> Verdict:
     """Runs released alike that differ only in F take different numbers of cycles to converge."""
     runs = group_runs(ev, claim["args"]["group"])
-    if (left := runs_left_regime(runs)) is not None:
-        return left
     cycles = runs["cycles_to_converge"].values
     return Verdict(", ".join(f"F = {fmt(f, 3)} N: {int(c)} cycles" for f, c in zip(runs["F"].values, cycles))
                    + f" (released at x0 = {', '.join(sorted({fmt(x, 3) for x in runs['x0'].values}))} m)",
@@ -116,12 +114,9 @@ def period_difference(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("period_initial_condition", scenes=runs_only)
+@check("period_initial_condition", scenes=runs_of("paper", "initial_condition"))
 def period_initial_condition(claim, ev: Evidence) -> Verdict:
     paper, other = group_runs(ev, "paper"), group_runs(ev, "initial_condition")
-    for runs in (paper, other):
-        if (left := runs_left_regime(runs)) is not None:
-            return left
     worst = 0.0
     parts = []
     for i in range(other.sizes["case"]):
@@ -174,14 +169,11 @@ def initial_order(claim, ev: Evidence) -> Verdict:
                    paper_value=f"({a}) smaller at the beginning")
 
 
-@check("stable_velocity_scaling", scenes=runs_only, args=("groups",))
+@check("stable_velocity_scaling", scenes=runs_of(), args=("groups",))
 def stable_velocity_scaling(claim, ev: Evidence) -> Verdict:
     """Eq. (19) derived on paper: v* = sqrt(2 (a2 - a1) F / (M (2b - b^2))), so v*/sqrt(F) depends on the
     geometry, b and M only: not on x0."""
     runs = [group_runs(ev, g) for g in claim["args"]["groups"]]
-    for group in runs:
-        if (left := runs_left_regime(group)) is not None:
-            return left
     worst, per_geometry, per_release = 0.0, {}, {}
     for group in runs:
         for i in range(group.sizes["case"]):
@@ -228,7 +220,7 @@ def amplitude_of(run, definition: str) -> float:
     raise ValueError(f"no amplitude is defined as {definition!r}; known: largest x, h0")
 
 
-@check("force_amplitude", scenes=runs_only, args=("groups", "definition"))
+@check("force_amplitude", scenes=runs_of(), args=("groups", "definition"))
 def force_amplitude(claim, ev: Evidence) -> Verdict:
     """Sec. 4, "the system with greater force has greater amplitude": within each family of runs that
     differ only in F, the converged amplitude grows with F."""
@@ -236,8 +228,6 @@ def force_amplitude(claim, ev: Evidence) -> Verdict:
     definition = claim["args"]["definition"]
     for group in claim["args"]["groups"]:
         runs = group_runs(ev, group)
-        if (left := runs_left_regime(runs)) is not None:
-            return left
         for rows in _families(runs, "F").values():
             order = sorted(rows, key=lambda i: float(runs["F"].values[i]))
             amplitude = [amplitude_of(runs.isel(case=i), definition) for i in order]
@@ -250,7 +240,7 @@ def force_amplitude(claim, ev: Evidence) -> Verdict:
                    "in the force")
 
 
-@check("amplitude_by_force", scenes=runs_only, args=("by_force", "by_release", "definition"))
+@check("amplitude_by_force", scenes=runs_of(), args=("by_force", "by_release", "definition"))
 def amplitude_by_force(claim, ev: Evidence) -> Verdict:
     """Sec. 4, the converged amplitude "also determined by the external force": runs that differ only in F (groups
     ``by_force``) converge to amplitudes apart by more than the tolerance (relative), runs that differ only in the
@@ -259,8 +249,6 @@ def amplitude_by_force(claim, ev: Evidence) -> Verdict:
     tolerance = claim["tolerance"]
     for key, groups in (("F", claim["args"]["by_force"]), ("x0", claim["args"]["by_release"])):
         runs = xr.concat([group_runs(ev, g) for g in groups], dim="case")
-        if (left := runs_left_regime(runs)) is not None:
-            return left
         families = _families(runs, key)
         if not families:
             raise ValueError(f"the groups {groups} hold no runs that differ only in {key}")
@@ -283,13 +271,11 @@ def amplitude_by_force(claim, ev: Evidence) -> Verdict:
         "changes with F and not with x0, at one escapement (it depends on the positions and on K too)"))
 
 
-@check("release_transient", scenes=runs_only, args=("group",))
+@check("release_transient", scenes=runs_of(), args=("group",))
 def release_transient(claim, ev: Evidence) -> Verdict:
     """Sec. 4: the period of every cycle, the first too, is independent of the release, among runs that differ
     only in x0: the first cycles' periods within the tolerance (s) of each other."""
     runs = group_runs(ev, claim["args"]["group"])
-    if (left := runs_left_regime(runs)) is not None:
-        return left
     families = _families(runs, "x0")
     if not families:
         raise ValueError(f"group '{claim['args']['group']}' holds no runs that differ only in x0")

@@ -13,22 +13,20 @@ import xarray as xr
 from ..paper import corrected as derived
 from ..paper.printed_axes import FIG5_PANEL_K, panel
 from .sec4_fig3 import amplitude_of
-from .evidence import Evidence, Verdict, check, fmt, group_runs, params_of, runs_left_regime, runs_only
+from .evidence import Evidence, Verdict, check, fmt, group_runs, params_of, runs_of
 
 
-def common_force_runs(ev: Evidence) -> tuple[dict[float, list[tuple[float, xr.Dataset]]], Verdict | None]:
-    """The runs of group ``common_force`` by force, each list ordered by K; or the verdict if a run left
-    the regime. The panels of Fig. 5 run at different forces: only runs at one force are compared."""
+def common_force_runs(ev: Evidence) -> dict[float, list[tuple[float, xr.Dataset]]]:
+    """The runs of group ``common_force`` by force, each list ordered by K. The panels of Fig. 5 run at different
+    forces: only runs at one force are compared."""
     runs = group_runs(ev, "common_force")
-    if (left := runs_left_regime(runs)) is not None:
-        return {}, left
     by_force: dict[float, list] = {}
     for i in range(runs.sizes["case"]):
         run = runs.isel(case=i)
         by_force.setdefault(float(run["F"]), []).append((float(run["K"]), run))
     if any(len(rows) < 2 for rows in by_force.values()):
         raise ValueError("the runs of group 'common_force' must give at least two spring constants at each force")
-    return {f: sorted(rows, key=lambda kv: kv[0]) for f, rows in sorted(by_force.items())}, None
+    return {f: sorted(rows, key=lambda kv: kv[0]) for f, rows in sorted(by_force.items())}
 
 
 NOT_COMPARED = ("the panels of Fig. 5 run at different forces (the configuration's fig5.F), so they are not "
@@ -36,14 +34,10 @@ NOT_COMPARED = ("the panels of Fig. 5 run at different forces (the configuration
                 "figure's release and compared at one force")
 
 
-def _decreasing_in_K(ev: Evidence, value, digits: int, unit: str) -> tuple[bool, str] | Verdict:
-    """Whether ``value(run)`` decreases with K at every common force, and the values in words; or the
-    verdict on a run that left the regime."""
-    by_force, left = common_force_runs(ev)
-    if left is not None:
-        return left
+def _decreasing_in_K(ev: Evidence, value, digits: int, unit: str) -> tuple[bool, str]:
+    """Whether ``value(run)`` decreases with K at every common force, and the values in words."""
     holds, parts = [], []
-    for force, rows in by_force.items():
+    for force, rows in common_force_runs(ev).items():
         values = [value(run) for _, run in rows]
         holds.append(all(a > b for a, b in zip(values, values[1:])))
         parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(x, digits)} {unit}"
@@ -51,14 +45,12 @@ def _decreasing_in_K(ev: Evidence, value, digits: int, unit: str) -> tuple[bool,
     return all(holds), "; ".join(parts)
 
 
-@check("fig5_amplitude_common_force", scenes=runs_only, args=("definition",))
+@check("fig5_amplitude_common_force", scenes=runs_of("common_force"), args=("definition",))
 def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
     """The converged amplitude (:func:`escapement.verdict.sec4_fig3.amplitude_of`) decreases with K at each
     common force."""
-    found = _decreasing_in_K(ev, lambda run: amplitude_of(run, claim["args"]["definition"]), 5, "m")
-    if isinstance(found, Verdict):
-        return found
-    return Verdict("converged amplitude: " + found[1], found[0], note=NOT_COMPARED)
+    holds, values = _decreasing_in_K(ev, lambda run: amplitude_of(run, claim["args"]["definition"]), 5, "m")
+    return Verdict("converged amplitude: " + values, holds, note=NOT_COMPARED)
 
 
 #: the speeds a "maximum velocity" may be: the columns of the checks dataset
@@ -66,25 +58,21 @@ SPEEDS = {"largest_speed": "largest |v| on the limit cycle (exact, from the clos
           "velocity": "velocity before the impact at a1 on the limit cycle"}
 
 
-@check("fig5_velocity_common_force", scenes=runs_only, args=("speed",))
+@check("fig5_velocity_common_force", scenes=runs_of("common_force"), args=("speed",))
 def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
     """The speed ``args: {speed}`` (a key of :data:`SPEEDS`) decreases with K at each common force."""
     speed = claim["args"]["speed"]
-    found = _decreasing_in_K(ev, lambda run: float(run[speed]), 6, "m/s")
-    if isinstance(found, Verdict):
-        return found
-    return Verdict(f"{SPEEDS[speed]}: " + found[1], found[0], note=NOT_COMPARED)
+    holds, values = _decreasing_in_K(ev, lambda run: float(run[speed]), 6, "m/s")
+    return Verdict(f"{SPEEDS[speed]}: " + values, holds, note=NOT_COMPARED)
 
 
-@check("fig5_recovery_common_force", scenes=runs_only, args=("measure",))
+@check("fig5_recovery_common_force", scenes=runs_of("common_force"), args=("measure",))
 def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
     """The recovery of the velocity before the impact at a1 (:func:`escapement.paper.corrected.velocity_recovery`
     at the converged velocity) is faster for smaller K at each common force, measured (``args: {measure}``) in
     ``seconds``, as a fraction of the ``period`` 2 pi/w, or by the distance covered as a fraction of the limit
     cycle's ``width`` (twice its amplitude)."""
-    by_force, left = common_force_runs(ev)
-    if left is not None:
-        return left
+    by_force = common_force_runs(ev)
     measure, holds, parts = claim["args"]["measure"], [], []
     unit = {"seconds": "s", "period": "of 2 pi/w", "width": "of the width"}[measure]
     for force, rows in by_force.items():
@@ -104,14 +92,13 @@ def _fig5(claim, ev: Evidence) -> dict[str, xr.Dataset]:
     return {f"Fig. 5 K = {label}": ds for label, ds in ev.fig5.items()}
 
 
-@check("fig5_dimensions", scenes=runs_only, threshold="'different' taken as apart by the tolerance of the larger")
+@check("fig5_dimensions", scenes=runs_of("common_force"),
+       threshold="'different' taken as apart by the tolerance of the larger")
 def fig5_dimensions(claim, ev: Evidence) -> Verdict:
     """The limit cycles of the spring constants differ in size at one common force: their half-widths
     (the converged amplitude) or half-heights (the largest speed on the last cycle, exact) differ by more
     than ``tolerance`` of the larger, for every pair, at every force."""
-    by_force, left = common_force_runs(ev)
-    if left is not None:
-        return left
+    by_force = common_force_runs(ev)
     differ, parts = [], []
     for force, runs in by_force.items():
         rows = [(k, float(run["largest_displacement"]), float(run["largest_speed"])) for k, run in runs]

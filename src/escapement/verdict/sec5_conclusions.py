@@ -11,16 +11,13 @@ import numpy as np
 
 from ..model.status import Status
 from ..paper.corrected import existence_threshold, map_constant
-from .evidence import (Evidence, Verdict, check, fmt, group_runs, model_of, release_run, runs_left_regime, runs_only,
-                       within)
+from .evidence import Evidence, Verdict, check, fmt, group_runs, model_of, release_run, runs_of, runs_only, within
 
 
-@check("asymmetric_dependence", scenes=runs_only)
+@check("asymmetric_dependence", scenes=runs_of("asymmetric"))
 def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
     """The rate of convergence (mu2) of the asymmetric runs depends on F or the positions: beyond the tolerance."""
     group = group_runs(ev, "asymmetric")
-    if (left := runs_left_regime(group)) is not None:
-        return left
     worst = float(np.max(np.abs(group["multiplier"].values - group["multiplier_eq21"].values)))
     v = group["velocity"].values
     return Verdict(
