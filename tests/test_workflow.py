@@ -216,12 +216,13 @@ def test_an_edit_of_any_file_a_job_loads_changes_the_digest_of_every_rule(run, t
     assert code_digest(where, package) == before
 
 
-@pytest.mark.parametrize("edit", ["src/escapement/pipeline/scores.py", "src/escapement/__init__.py",
+@pytest.mark.parametrize("edit", ["src/escapement/verdict/scores.py", "src/escapement/__init__.py",
                                   "workflow/scripts/plot.py"])
 def test_an_edit_replans_every_job(run, tmp_path, edit):
     """The edits the rules' hand-kept lists of layers once missed: the axis claims' autoscaling (scores.py), the
     package's __init__; and a script."""
     where = Path(shutil.copytree(run[0], tmp_path / "copy", symlinks=True))
+    assert (where / edit).is_file(), edit  # an edit, not a new file
     with open(where / edit, "a") as handle:
         handle.write("\n# an edit\n")
     assert set(planned_jobs(where)) - {"all"} == EVERY_JOB
