@@ -1,6 +1,6 @@
-"""Glue: rule check_claims -> escapement.pipeline.verdict.check_claims."""
+"""Glue: rule check_claims -> escapement.pipeline.claims.check_claims."""
 
-from escapement.pipeline.verdict import check_claims
+from escapement.pipeline.claims import check_claims
 
 check_claims(
     snakemake.input.register,

@@ -16,7 +16,7 @@ STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
 
 
 def read_claims(path: str) -> list[dict]:
-    """The verdict's table, written by the claims job (:mod:`escapement.pipeline.verdict`)."""
+    """The verdict's table, written by the claims job (:mod:`escapement.pipeline.claims`)."""
     return read_csv(path, COLUMNS)
 
 

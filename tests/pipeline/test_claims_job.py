@@ -17,7 +17,7 @@ from escapement.pipeline.readings import _formatted, score_table
 from escapement.verdict.scores import COLUMNS as SCORE_COLUMNS
 from escapement.io.netcdf import DatasetError
 from escapement.pipeline.tables import read_claims
-from escapement.pipeline.verdict import check_claims
+from escapement.pipeline.claims import check_claims
 from escapement.studies.readings import Reading
 
 #: the model's parameters and x0 as 0-d variables, as the scenes write them; the outcome as attributes
