@@ -7,17 +7,22 @@ current, every netCDF output against CF-1.11 and ACDD-1.3, and the report in a b
 
 from __future__ import annotations
 
+import csv
+import html
 import re
 import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 from snakemake.api import SnakemakeApi
 from snakemake.settings.types import OutputSettings, ResourceSettings
 from workflow_copies import copy_repository, planned_jobs, reduced_copy, snakemake, tracked_state
 
 from escapement.io.netcdf import read_netcdf
+from escapement.pipeline.article import write_article
+from escapement.pipeline.outputs import ARTICLE_FIGURES
 from escapement.pipeline.publish import check
 
 
@@ -158,11 +163,68 @@ def test_the_replication_s_poincare_map_follows_the_map_17_by_hand(run):
     assert ds.attrs["title"].endswith("(Fig. 3 of Mao, Fu & Li 2013)")
 
 
+def article_inputs(where: Path, claims: Path | None = None) -> dict[str, str]:
+    """The inputs of the rule article in the run ``where`` (its claims table replaced by ``claims``)."""
+    results = where / "results/replication"
+    return {"claims": str(claims or results / "claims.csv"), "checks": str(results / "checks.nc"),
+            "benchmark": str(results / "work_precision.csv"), "long_run": str(results / "long_run.nc"),
+            "long_run_timing": str(results / "long_run_timing.csv"), "stability": str(results / "stability_map.nc"),
+            "stability_timing": str(results / "stability_map_timing.csv"), "citation": str(where / "CITATION.cff"),
+            "template": str(where / "workflow/templates/article.typ"),
+            "bibliography": str(where / "workflow/templates/article.bib"),
+            **{f"figure_{name}": str(results / f"figures/{name}.svg") for name in ARTICLE_FIGURES}}
+
+
+def test_the_article_is_a_pdf_a_of_its_metadata_with_the_runs_numbers(run):
+    """The run writes the article: PDF/A-2b (its XMP says so), titled as metadata.yaml is, of four pages or more
+    and five figures or more, with the limit cycles' periods, velocities and multiplier of the checks dataset (read
+    here) and the headline counts of the documents."""
+    where = run[0] / "results/replication/article"
+    pdf, meta = (where / "article.pdf").read_bytes(), yaml.safe_load((where / "metadata.yaml").read_text())
+    assert b"<pdfaid:part>2</pdfaid:part><pdfaid:conformance>B</pdfaid:conformance>" in pdf
+    title = re.search(rb'<dc:title><rdf:Alt><rdf:li xml:lang="x-default">(.*?)</rdf:li>', pdf).group(1)
+    assert html.unescape(title.decode()) == meta["title"] and meta["title"].split()[0] in ("[Re]", "[¬Re]")
+    assert int(re.search(rb"/Type/Pages/Count (\d+)", pdf).group(1)) >= 4
+    source = (where / "article.typ").read_text(encoding="utf-8")
+    assert source.count("#figure(image(") >= 5 and meta["type"] == "Replication"
+    checks = read_netcdf(run[0] / "results/replication/checks.nc")
+    paper = checks["group"].values == "paper"
+    for value in (*checks["period"].values[paper], *checks["velocity"].values[paper]):
+        assert f"{value:.12g}" in source
+    assert f"{checks['multiplier'].values[paper][0]:.10g}" in source
+    counts = re.search(r"Of the (\d+) findings, (\d+) are reproduced, (\d+) consistent, (\d+) partially reproduced, "
+                       r"(\d+) not reproduced, (\d+) undetermined and (\d+) untestable",
+                       (run[0] / "results/replication/docs/README.md").read_text()).groups()
+    assert f"Of the {counts[0]} sentences the register quotes, {counts[1]} are reproduced" in meta["abstract"]
+
+
+def test_a_value_changed_in_the_claims_table_changes_the_article(run, tmp_path):
+    """One status flipped in the claims table: the article says the new one where it cites that row."""
+    rows = list(csv.DictReader((run[0] / "results/replication/claims.csv").open(encoding="utf-8")))
+    row = next(r for r in rows if r["claim_id"] == "fig4_impulse_and_energy")
+    was = row["status"]
+    row["status"] = "not_reproduced" if was != "not_reproduced" else "reproduced"
+    with (tmp_path / "claims.csv").open("w", encoding="utf-8", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    written = {}
+    for name, claims in (("before", None), ("after", tmp_path / "claims.csv")):
+        outputs = {key: str(tmp_path / name / file) for key, file in (("pdf", "article.pdf"), ("metadata", "m.yaml"),
+                   ("source", "article.typ"), ("bibliography", "article.bib"))}
+        (tmp_path / name).mkdir()
+        write_article(article_inputs(run[0], claims), outputs, str(tmp_path / f"{name}.log"))
+        written[name] = Path(outputs["source"]).read_text(encoding="utf-8")
+    said = "can be evaluated from the graph is"
+    assert f"{said}\n{was.replace('_', ' ')}." in written["before"].replace(" \n", "\n")
+    assert f"{said}\n{row['status'].replace('_', ' ')}." in written["after"].replace(" \n", "\n")
+
+
 SIMULATIONS = {"poincare_map", "shock_detail", "phase_diagrams", "escapement_error", "stability_map", "existence_map",
                "checks", "long_run", "readings", "work_precision", "run_stress"}
 PLOTS = {"plot_poincare_map", "plot_shock_detail", "plot_phase_diagrams", "plot_escapement_error", "plot_stability_map",
          "plot_existence_map", "plot_long_run", "plot_work_precision"}
-EVERY_JOB = SIMULATIONS | PLOTS | {"check_claims", "render_docs"}
+EVERY_JOB = SIMULATIONS | PLOTS | {"check_claims", "render_docs", "article"}
 
 
 def traces(where: Path) -> Path:
@@ -294,4 +356,5 @@ def test_the_jobs_of_seconds_run_beside_snakemake_and_every_simulation_goes_to_t
     # and every rule that runs code holds the digest of it all in its params (the package as the jobs load it)
     assert digests == dict.fromkeys(rules - {"publish"}, code_digest(where, where / "src/escapement")) | {
         "publish": None}
-    assert local == {rule for rule in rules if rule.startswith("plot_")} | {"check_claims", "render_docs", "publish"}
+    assert local == {rule for rule in rules if rule.startswith("plot_")} | {"check_claims", "render_docs", "article",
+                                                                            "publish"}

@@ -16,7 +16,7 @@ import yaml
 
 REPO = Path(__file__).resolve().parents[1]
 PARTS = ["Snakefile", "config", "profiles", "workflow", "src", "benchmarks", "README.md", "REPLICATION.md",
-         "figures", ".gitattributes", "environment/environment.yml"]
+         "figures", "article", "CITATION.cff", ".gitattributes", "environment/environment.yml"]
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
 #: the longest a Snakemake command of the tests may take before it is killed (the reduced run takes ~20 s)
 TIMEOUT = 240

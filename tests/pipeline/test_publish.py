@@ -27,7 +27,7 @@ def draw(folder: Path, name: str, scale: float = 1.0, label: str = "DOP853 rtol 
     ax.loglog(CYCLES, 1e-16 * CYCLES, marker=".", ms=3, label="exact solver")
     ax.loglog(CYCLES, scale * 3e-12 * CYCLES**1.5, marker=".", ms=3, label=label)
     ax.legend()
-    save_figure(fig, folder / f"{name}.png", folder / f"{name}.pdf")
+    save_figure(fig, folder / f"{name}.png", folder / f"{name}.pdf", folder / f"{name}.svg")
     return folder / f"{name}.png"
 
 
@@ -93,5 +93,19 @@ def test_the_check_says_which_tracked_file_differs_from_the_run(drawings, tmp_pa
 def test_every_tracked_file_is_published_from_the_replication_s_results():
     figures = ("fig3", "fig4", "fig5", "long_run", "stability_map", "escapement_error", "existence_map")
     expected = {"README.md", "REPLICATION.md"} | {f"figures/{f}.{e}" for f in figures for e in ("png", "pdf")}
-    assert set(PUBLISHED) == expected
+    article = {f"article/{name}" for name in ("article.pdf", "metadata.yaml", "article.typ", "article.bib")}
+    assert set(PUBLISHED) == expected | article
     assert all(path.startswith("results/replication/") for path in PUBLISHED.values())
+
+
+def test_the_article_s_pdf_is_judged_by_its_typst_source(tmp_path):
+    """The article's PDF carries the run's date, so publish judges it by its source: the same source keeps the
+    PDF whatever its bytes; a source whose text changed updates it."""
+    for side in ("tracked", "drawn"):
+        (tmp_path / side).mkdir()
+        (tmp_path / side / "article.pdf").write_bytes(f"%PDF {side}".encode())
+        (tmp_path / side / "article.typ").write_text("= Results\nThe period is 6.2957 s.\n")
+    assert compare(tmp_path / "tracked/article.pdf", tmp_path / "drawn/article.pdf") == (True, "text identical")
+    (tmp_path / "drawn/article.typ").write_text("= Results\nThe period is 6.3 s.\n")
+    same, detail = compare(tmp_path / "tracked/article.pdf", tmp_path / "drawn/article.pdf")
+    assert not same and "numbers printed differently" in detail

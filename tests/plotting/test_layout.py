@@ -95,8 +95,9 @@ def test_no_text_covers_another_or_data_and_the_title_has_at_most_two_lines(data
 def test_a_figure_saves_to_the_same_bytes_every_time(tmp_path, datasets, name):
     digests = []
     for i in range(2):
-        png, pdf = tmp_path / f"f{i}.png", tmp_path / f"f{i}.pdf"
-        save_figure(FIGURES[name](datasets), png, pdf)
-        digests.append([hashlib.sha256(p.read_bytes()).hexdigest() for p in (png, pdf)])
+        png, pdf, svg = tmp_path / f"f{i}.png", tmp_path / f"f{i}.pdf", tmp_path / f"f{i}.svg"
+        save_figure(FIGURES[name](datasets), png, pdf, svg)
+        digests.append([hashlib.sha256(p.read_bytes()).hexdigest() for p in (png, pdf, svg)])
     assert digests[0] == digests[1]
     assert b"CreationDate" not in (tmp_path / "f0.pdf").read_bytes()
+    assert b"<dc:date>" not in (tmp_path / "f0.svg").read_bytes()

@@ -51,6 +51,7 @@ rule plot_work_precision:
             labels={"figure": "work-precision"},
         ),
         pdf="results/replication/figures/work_precision.pdf",
+        svg="results/replication/figures/work_precision.svg",
     log:
         "results/logs/replication/plot_work_precision.log",
     localrule: True
@@ -68,6 +69,7 @@ use rule plot_work_precision as plot_work_precision_full with:
     output:
         png="results/replication/benchmark/work_precision_full.png",
         pdf="results/replication/benchmark/work_precision_full.pdf",
+        svg="results/replication/benchmark/work_precision_full.svg",
     log:
         "results/logs/replication/plot_work_precision_full.log",
     localrule: True
@@ -87,6 +89,7 @@ rule plot_long_run:
             labels={"figure": "long run"},
         ),
         pdf="results/replication/figures/long_run.pdf",
+        svg="results/replication/figures/long_run.svg",
     log:
         "results/logs/replication/plot_long_run.log",
     localrule: True

@@ -4,6 +4,7 @@ from pathlib import Path
 from escapement.pipeline import config as settings
 from escapement.pipeline import outputs
 from escapement.pipeline.publish import PUBLISHED
+from escapement.pipeline.outputs import ARTICLE_FIGURES
 from escapement.scenes.settings import KINDS
 
 

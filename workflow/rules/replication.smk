@@ -167,6 +167,40 @@ rule render_docs:
         "../scripts/render_docs.py"
 
 
+# The replication as a ReScience C article (escapement.pipeline.article): its metadata in the journal's fields, its
+# Typst source and bibliography, and the PDF/A-2b typeset from them with the figures the plotting jobs drew.
+rule article:
+    input:
+        **{
+            f"figure_{name}": f"results/replication/figures/{name}.svg"
+            for name in ARTICLE_FIGURES
+        },
+        claims="results/replication/claims.csv",
+        checks="results/replication/checks.nc",
+        benchmark="results/replication/work_precision.csv",
+        long_run="results/replication/long_run.nc",
+        long_run_timing="results/replication/long_run_timing.csv",
+        stability="results/replication/stability_map.nc",
+        stability_timing="results/replication/stability_map_timing.csv",
+        citation="CITATION.cff",
+        template="workflow/templates/article.typ",
+        bibliography="workflow/templates/article.bib",
+    output:
+        pdf="results/replication/article/article.pdf",
+        metadata="results/replication/article/metadata.yaml",
+        source="results/replication/article/article.typ",
+        bibliography="results/replication/article/article.bib",
+    log:
+        "results/logs/replication/article.log",
+    localrule: True
+    conda:
+        "../../environment/environment.yml"
+    params:
+        code=CODE,
+    script:
+        "../scripts/article.py"
+
+
 # The tracked figures and documents (figures/, README.md, REPLICATION.md), copied from results/replication/
 # where what they show changed (escapement.pipeline.publish: a figure beyond an RMS tolerance of its pixels,
 # its PDF with its PNG, a document where its text or a number at its printed digits differs). Only this

@@ -109,6 +109,7 @@ rule plot_poincare_map:
             labels={"figure": "Poincare map"},
         ),
         pdf="results/{study}/figures/poincare_map.pdf",
+        svg="results/{study}/figures/poincare_map.svg",
     log:
         "results/logs/{study}/plot_poincare_map.log",
     localrule: True
@@ -132,6 +133,7 @@ use rule plot_poincare_map as plot_phase_diagrams with:
             labels={"figure": "phase diagrams"},
         ),
         pdf="results/{study}/figures/phase_diagrams.pdf",
+        svg="results/{study}/figures/phase_diagrams.svg",
     log:
         "results/logs/{study}/plot_phase_diagrams.log",
     localrule: True
@@ -151,6 +153,7 @@ rule plot_shock_detail:
             labels={"figure": "shock detail"},
         ),
         pdf="results/{study}/figures/shock_detail.pdf",
+        svg="results/{study}/figures/shock_detail.svg",
     log:
         "results/logs/{study}/plot_shock_detail.log",
     localrule: True
@@ -173,6 +176,7 @@ use rule plot_shock_detail as plot_escapement_error with:
             labels={"figure": "escapement error"},
         ),
         pdf="results/{study}/figures/escapement_error.pdf",
+        svg="results/{study}/figures/escapement_error.svg",
     log:
         "results/logs/{study}/plot_escapement_error.log",
     localrule: True
@@ -189,6 +193,7 @@ use rule plot_shock_detail as plot_stability_map with:
             labels={"figure": "stability map"},
         ),
         pdf="results/{study}/figures/stability_map.pdf",
+        svg="results/{study}/figures/stability_map.svg",
     log:
         "results/logs/{study}/plot_stability_map.log",
     localrule: True
@@ -205,6 +210,7 @@ use rule plot_shock_detail as plot_existence_map with:
             labels={"figure": "existence map"},
         ),
         pdf="results/{study}/figures/existence_map.pdf",
+        svg="results/{study}/figures/existence_map.svg",
     log:
         "results/logs/{study}/plot_existence_map.log",
     localrule: True

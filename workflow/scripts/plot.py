@@ -12,5 +12,6 @@ plot(
     files,
     snakemake.output.png,
     snakemake.output.pdf,
+    snakemake.output.svg,
     snakemake.log[0],
 )

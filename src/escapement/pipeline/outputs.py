@@ -30,6 +30,9 @@ REPLICATION_DATA = ("checks.nc", "long_run.nc", "long_run_timing.csv", "readings
 DOCUMENTS = ("README.md", "REPLICATION.md", "timings.md", "landing.html", "verdict.html", "replication.html")
 #: the replication's figures beyond its scenes'
 EXTRA_FIGURES = ("long_run", "work_precision")
+#: the article's files (article/) and the figures it shows, in the order it shows them
+ARTICLE = ("article.pdf", "metadata.yaml", "article.typ", "article.bib")
+ARTICLE_FIGURES = ("poincare_map", "shock_detail", "phase_diagrams", "escapement_error", "work_precision", "long_run")
 #: the name of every figure a rule draws (a figure of another name is not a target of any configuration)
 FIGURE_NAMES = (*(kind.name for kind in KINDS.values()), *EXTRA_FIGURES, "work_precision_full")
 
@@ -47,15 +50,17 @@ def figure_files(study: str, blocks: Iterable[str]) -> list[str]:
 
 
 def study_targets(study: str, scenes: Mapping[str, Mapping[str, object]]) -> list[str]:
-    """Every file a study promises: each kind's data files and figure, PNG and PDF (and the replication's own data,
+    """Every file a study promises: each kind's data files and figure, PNG, PDF and SVG (and the replication's own data,
     figures and documents)."""
     found = [path for block, labelled in scenes.items() for path in data_files(study, block, labelled).values()]
-    found += [path for png in figure_files(study, scenes) for path in (png, png.removesuffix(".png") + ".pdf")]
+    found += [png.removesuffix(".png") + suffix for png in figure_files(study, scenes) for suffix in (".png", ".pdf",
+                                                                                                     ".svg")]
     if "stability_map" in scenes:
         found.append(f"results/{study}/stability_map_timing.csv")
     if study == REPLICATION:
         found += [f"results/{REPLICATION}/{name}" for name in REPLICATION_DATA]
         found += [f"results/replication/docs/{name}" for name in DOCUMENTS]
+        found += [f"results/replication/article/{name}" for name in ARTICLE]
     return found
 
 

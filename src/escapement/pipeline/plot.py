@@ -1,4 +1,4 @@
-"""The plotting jobs: netCDF files or tables in, a figure out (PNG and PDF), titled by the study.
+"""The plotting jobs: netCDF files or tables in, a figure out (PNG, PDF and SVG), titled by the study.
 
 The replication's paper figures are drawn with each printed panel's axes as the claims score them (the limits
 the data's rounded out to the printed ticks, :mod:`escapement.plotting.panel_axes`); a study of
@@ -29,10 +29,10 @@ def title(figure: str, study: str) -> str:
     return f"{shows} of the escapement model, study '{study}'"
 
 
-def plot(figure: str, study: str, inputs: Mapping[str, str], png: str, pdf: str, log: str) -> None:
+def plot(figure: str, study: str, inputs: Mapping[str, str], png: str, pdf: str, svg: str, log: str) -> None:
     """Draw ``figure`` (a file name: poincare_map, long_run, ...) of ``study`` from ``inputs`` (its files by their
     labels: the netCDF file of each scene, by its label for the figures of several scenes; ``""`` for the one
-    file of the others) to ``png`` and ``pdf``."""
+    file of the others) to ``png``, ``pdf`` and ``svg``."""
     from .. import plotting
 
     with logged(log, f"plot {figure}"):
@@ -55,4 +55,4 @@ def plot(figure: str, study: str, inputs: Mapping[str, str], png: str, pdf: str,
             fig = getattr(plotting, figure)(data, title(figure, study), axes)
         else:
             fig = getattr(plotting, figure)(read_netcdf(inputs[""]), title(figure, study))
-        plotting.save_figure(fig, png, pdf)
+        plotting.save_figure(fig, png, pdf, svg)

@@ -29,6 +29,8 @@ from collections.abc import Mapping, Sequence
 from decimal import Decimal
 from pathlib import Path
 
+from .outputs import ARTICLE
+
 __all__ = ["FIGURE_RMS_TOLERANCE", "PUBLISHED", "check", "compare", "main", "publish"]
 
 #: RMS pixel difference (of 255) within which a figure shows the same thing
@@ -43,6 +45,7 @@ PUBLISHED = {
        for ext in ("png", "pdf")},
     "README.md": "results/replication/docs/README.md",
     "REPLICATION.md": "results/replication/docs/REPLICATION.md",
+    **{f"article/{name}": f"results/replication/article/{name}" for name in ARTICLE},
 }
 #: a printed number: digits, an optional fraction and an optional exponent (a sign before it is text)
 _NUMBER = re.compile(r"\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
@@ -78,12 +81,14 @@ def _document(old: str, new: str) -> tuple[bool, str]:
 
 def compare(tracked: str | Path, drawn: str | Path) -> tuple[bool, str]:
     """Whether the tracked file shows what the newly drawn one shows, and the measured difference in words; a
-    PDF is judged by the PNG of the same figure."""
+    PDF is judged by its source: a figure's by its PNG, the article's by its Typst source (its PDF carries the
+    run's date)."""
     tracked, drawn = Path(tracked), Path(drawn)
     if not tracked.is_file():
         return False, "no tracked file to compare with"
     if tracked.suffix == ".pdf":
-        return compare(tracked.with_suffix(".png"), drawn.with_suffix(".png"))
+        source = ".typ" if tracked.with_suffix(".typ").name == "article.typ" else ".png"
+        return compare(tracked.with_suffix(source), drawn.with_suffix(source))
     if tracked.suffix == ".png":
         return _figure(tracked, drawn)
     return _document(tracked.read_text(encoding="utf-8"), drawn.read_text(encoding="utf-8"))

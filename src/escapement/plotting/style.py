@@ -58,12 +58,15 @@ def legend_below(fig, axes, ncols: int, **kwargs):
     return fig.legend(list(entries.values()), list(entries), loc="outside lower center", ncols=ncols, **kwargs)
 
 
-def save_figure(fig, png: str | os.PathLike, pdf: str | os.PathLike) -> None:
-    """Save as PNG and PDF with no software stamp or creation date, so that the same figure gives the
-    same bytes on every run, each file written beside its target and renamed into place."""
-    with style():
+def save_figure(fig, png: str | os.PathLike, pdf: str | os.PathLike, svg: str | os.PathLike) -> None:
+    """Save as PNG, PDF and SVG (the article's vector figures) with no software stamp or creation date and the
+    SVG's ids salted alike, so that the same figure gives the same bytes on every run, each file written beside
+    its target and renamed into place."""
+    with style(), matplotlib.rc_context({"svg.hashsalt": "escapement"}):
         with replaced(png) as tmp:
             fig.savefig(tmp, format="png", metadata={"Software": None})
         with replaced(pdf) as tmp:
             fig.savefig(tmp, format="pdf", metadata={"Creator": None, "Producer": None, "CreationDate": None})
+        with replaced(svg) as tmp:
+            fig.savefig(tmp, format="svg", metadata={"Creator": None, "Date": None})
     plt.close(fig)

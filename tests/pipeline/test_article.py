@@ -1,0 +1,42 @@
+"""The article's parts that need no run: the title's rule, the Typst escapes, and the journal's metadata from
+CITATION.cff (the article written by a run is tested in tests/test_workflow.py)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import yaml
+
+from escapement.pipeline.article import RULE, metadata, prefix, string, typ
+
+REPO = Path(__file__).resolve().parents[2]
+COUNTS = {"reproduced": 0, "consistent": 0, "partially_reproduced": 0, "not_reproduced": 0, "undetermined": 0,
+          "untestable": 0}
+
+
+@pytest.mark.parametrize("held, failed, expected", [((23, 9), (2, 11), "[Re]"), ((5, 1), (6, 0), "[¬Re]"),
+                                                    ((3, 3), (0, 7), "[¬Re]"), ((0, 1), (0, 0), "[Re]")])
+def test_the_title_says_re_when_the_findings_that_hold_outnumber_those_that_fail(held, failed, expected):
+    counts = {**COUNTS, "reproduced": held[0], "consistent": held[1], "partially_reproduced": failed[0],
+              "not_reproduced": failed[1], "undetermined": 40, "untestable": 9}  # neither counts
+    assert prefix(counts) == expected
+    assert "[Re]" in RULE and "[¬Re]" in RULE and "outnumber" in RULE
+
+
+def test_text_from_the_run_shows_as_it_is_in_typst():
+    assert typ("x1(k+1) = sqrt(v^2 - 2 f) [m/s] #1 @a $b_c* <d> // e") == (
+        r"x1(k\+1) \= sqrt(v^2 \- 2 f) \[m\/s\] \#1 \@a \$b\_c\* \<d\> \/\/ e")
+    assert string('a "quoted" \\ path') == 'a \\"quoted\\" \\\\ path'
+
+
+def test_the_metadata_has_the_journals_fields_and_invents_no_person():
+    citation = yaml.safe_load((REPO / "CITATION.cff").read_text(encoding="utf-8"))
+    meta = metadata(citation, "[Re] T", "An abstract.")
+    assert list(meta)[:12] == ["title", "authors", "affiliations", "keywords", "code", "data", "replication",
+                               "abstract", "bibliography", "type", "domain", "language"]
+    assert meta["type"] == "Replication" and meta["language"] == "Python" and meta["title"] == "[Re] T"
+    assert [a["name"] for a in meta["authors"]] == [a["name"] for a in citation["authors"]]
+    assert meta["replication"][3] == {"doi": "10.3233/SAV-130800"}
+    assert meta["code"][0] == {"url": citation.get("repository-code", "")}
+    assert meta["journal"][0] == {"name": "ReScience C"} and meta["contributors"][0]["name"] == ""
