@@ -22,8 +22,10 @@ from workflow_copies import copy_repository, planned_jobs, reduced_copy, snakema
 
 from escapement.io.netcdf import read_netcdf
 from escapement.pipeline.article import write_article
+from escapement.pipeline.facts import collect_facts
 from escapement.pipeline.outputs import ARTICLE_FIGURES
 from escapement.pipeline.publish import check
+from escapement.pipeline.tables import read_claims, read_timings, read_work_precision
 
 
 @pytest.fixture(scope="module")
@@ -163,13 +165,10 @@ def test_the_replication_s_poincare_map_follows_the_map_17_by_hand(run):
     assert ds.attrs["title"].endswith("(Fig. 3 of Mao, Fu & Li 2013)")
 
 
-def article_inputs(where: Path, claims: Path | None = None) -> dict[str, str]:
-    """The inputs of the rule article in the run ``where`` (its claims table replaced by ``claims``)."""
+def article_inputs(where: Path) -> dict[str, str]:
+    """The article's files in the run ``where``, as the documents' job hands them to it."""
     results = where / "results/replication"
-    return {"claims": str(claims or results / "claims.csv"), "checks": str(results / "checks.nc"),
-            "benchmark": str(results / "work_precision.csv"), "long_run": str(results / "long_run.nc"),
-            "long_run_timing": str(results / "long_run_timing.csv"), "stability": str(results / "stability_map.nc"),
-            "stability_timing": str(results / "stability_map_timing.csv"), "citation": str(where / "CITATION.cff"),
+    return {"checks": str(results / "checks.nc"), "citation": str(where / "CITATION.cff"),
             "template": str(where / "workflow/templates/article.typ"),
             "bibliography": str(where / "workflow/templates/article.bib"),
             **{f"figure_{name}": str(results / f"figures/{name}.svg") for name in ARTICLE_FIGURES}}
@@ -208,12 +207,16 @@ def test_a_value_changed_in_the_claims_table_changes_the_article(run, tmp_path):
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
+    results = run[0] / "results/replication"
+    facts, _ = collect_facts(read_work_precision(results / "work_precision.csv"), read_netcdf(results / "long_run.nc"),
+                             read_netcdf(results / "stability_map.nc"), read_timings(results / "long_run_timing.csv"),
+                             read_timings(results / "stability_map_timing.csv"))
     written = {}
-    for name, claims in (("before", None), ("after", tmp_path / "claims.csv")):
+    for name, claims in (("before", results / "claims.csv"), ("after", tmp_path / "claims.csv")):
         outputs = {key: str(tmp_path / name / file) for key, file in (("pdf", "article.pdf"), ("metadata", "m.yaml"),
                    ("source", "article.typ"), ("bibliography", "article.bib"))}
         (tmp_path / name).mkdir()
-        write_article(article_inputs(run[0], claims), outputs, str(tmp_path / f"{name}.log"))
+        write_article(read_claims(claims), facts, article_inputs(run[0]), outputs)
         written[name] = Path(outputs["source"]).read_text(encoding="utf-8")
     said = "can be evaluated from the graph is"
     assert f"{said}\n{was.replace('_', ' ')}." in written["before"].replace(" \n", "\n")
@@ -224,7 +227,7 @@ SIMULATIONS = {"poincare_map", "shock_detail", "phase_diagrams", "escapement_err
                "checks", "long_run", "readings", "work_precision", "run_stress"}
 PLOTS = {"plot_poincare_map", "plot_shock_detail", "plot_phase_diagrams", "plot_escapement_error", "plot_stability_map",
          "plot_existence_map", "plot_long_run", "plot_work_precision"}
-EVERY_JOB = SIMULATIONS | PLOTS | {"check_claims", "render_docs", "article"}
+EVERY_JOB = SIMULATIONS | PLOTS | {"check_claims", "render_docs"}
 
 
 def traces(where: Path) -> Path:
@@ -356,5 +359,4 @@ def test_the_jobs_of_seconds_run_beside_snakemake_and_every_simulation_goes_to_t
     # and every rule that runs code holds the digest of it all in its params (the package as the jobs load it)
     assert digests == dict.fromkeys(rules - {"publish"}, code_digest(where, where / "src/escapement")) | {
         "publish": None}
-    assert local == {rule for rule in rules if rule.startswith("plot_")} | {"check_claims", "render_docs", "article",
-                                                                            "publish"}
+    assert local == {rule for rule in rules if rule.startswith("plot_")} | {"check_claims", "render_docs", "publish"}

@@ -121,6 +121,10 @@ rule run_stress:
 
 rule render_docs:
     input:
+        **{
+            f"figure_{name}": f"results/replication/figures/{name}.svg"
+            for name in ARTICLE_FIGURES
+        },
         claims="results/replication/claims.csv",
         benchmark="results/replication/work_precision.csv",
         long_run="results/replication/long_run.nc",
@@ -132,6 +136,11 @@ rule render_docs:
         readme="workflow/templates/README.md",
         replication="workflow/templates/REPLICATION.md",
         timings="workflow/templates/timings.md",
+        # the ReScience C article: its numbers, template, bibliography, authors and figures
+        checks="results/replication/checks.nc",
+        citation="CITATION.cff",
+        article="workflow/templates/article.typ",
+        bibliography="workflow/templates/article.bib",
     output:
         readme="results/replication/docs/README.md",
         replication="results/replication/docs/REPLICATION.md",
@@ -156,6 +165,10 @@ rule render_docs:
             category="Verdict",
             labels={"table": "REPLICATION.md"},
         ),
+        article_pdf="results/replication/article/article.pdf",
+        article_metadata="results/replication/article/metadata.yaml",
+        article_source="results/replication/article/article.typ",
+        article_bibliography="results/replication/article/article.bib",
     log:
         "results/logs/replication/render_docs.log",
     localrule: True
@@ -165,40 +178,6 @@ rule render_docs:
         code=CODE,
     script:
         "../scripts/render_docs.py"
-
-
-# The replication as a ReScience C article (escapement.pipeline.article): its metadata in the journal's fields, its
-# Typst source and bibliography, and the PDF/A-2b typeset from them with the figures the plotting jobs drew.
-rule article:
-    input:
-        **{
-            f"figure_{name}": f"results/replication/figures/{name}.svg"
-            for name in ARTICLE_FIGURES
-        },
-        claims="results/replication/claims.csv",
-        checks="results/replication/checks.nc",
-        benchmark="results/replication/work_precision.csv",
-        long_run="results/replication/long_run.nc",
-        long_run_timing="results/replication/long_run_timing.csv",
-        stability="results/replication/stability_map.nc",
-        stability_timing="results/replication/stability_map_timing.csv",
-        citation="CITATION.cff",
-        template="workflow/templates/article.typ",
-        bibliography="workflow/templates/article.bib",
-    output:
-        pdf="results/replication/article/article.pdf",
-        metadata="results/replication/article/metadata.yaml",
-        source="results/replication/article/article.typ",
-        bibliography="results/replication/article/article.bib",
-    log:
-        "results/logs/replication/article.log",
-    localrule: True
-    conda:
-        "../../environment/environment.yml"
-    params:
-        code=CODE,
-    script:
-        "../scripts/article.py"
 
 
 # The tracked figures and documents (figures/, README.md, REPLICATION.md), copied from results/replication/

@@ -20,10 +20,7 @@ import yaml
 from ..io.netcdf import read_netcdf, replaced, write_text
 from ..verdict.engine import fmt
 from ..verdict.tally import ORDER, findings
-from .facts import collect_facts
-from .logs import logged
 from .outputs import ARTICLE_FIGURES
-from .tables import read_claims, read_timings, read_work_precision
 
 __all__ = ["RULE", "metadata", "prefix", "string", "typ", "write_article"]
 
@@ -102,62 +99,69 @@ def _numbers(rows: Sequence[Mapping], checks, facts: Mapping[str, str]) -> dict[
             "printed_period": claim["fig3_period_a"]["paper_value"], **facts}
 
 
+def _short(text: str, most: int = 110) -> str:
+    """The first clause of ``text`` (up to its first "; "), cut at a word to ``most`` characters."""
+    first = text.split("; ")[0]
+    return first if len(first) <= most else first[:most].rsplit(" ", 1)[0] + " …"
+
+
 def _tables(rows: Sequence[Mapping]) -> dict[str, str]:
-    """The tables of the article as Typst cells: the printed axes beside the run's, and the findings by section."""
+    """The tables of the article as Typst cells: the printed axes beside the run's (the limits the adopted reading
+    gives, autoscaled as printed), and the findings by section, each with what the run found."""
     axes = [r for r in rows if r["source"].startswith("Fig.") and r["origin"] == "paper"]
     found = findings(rows)
     return {
-        "axes": ",\n".join(f"[{typ(r['source'])}], [{typ(r['paper_value'])}], [{typ(r['status'].replace('_', ' '))}]"
+        "axes": ",\n".join(f"[{typ(r['source'])}], [{typ(r['paper_value'])}], "
+                           f"[{typ(re.split(r' [(][0-9]+ of [0-9]+ printed limits[)]', r['replicated_value'])[0])}], "
+                           f"[{typ(r['status'].replace('_', ' '))}]"
                            for r in axes),
         "findings": ",\n".join(f"[{typ(parts[0]['source'])}], [{typ(parts[0]['statement'])}], "
-                               f"[{typ(status.replace('_', ' '))}]" for status, parts in found.values()),
+                               f"[{typ(_short(parts[0]['replicated_value']))}], [{typ(status.replace('_', ' '))}]"
+                               for status, parts in found.values()),
     }
 
 
-def write_article(inputs: Mapping[str, str], outputs: Mapping[str, str], log: str) -> None:
-    """Write ``metadata.yaml``, ``article.typ``, ``article.bib`` and ``article.pdf`` to the paths of ``outputs``,
-    from the claims table, the checks dataset, the facts' inputs, the template, the bibliography, ``CITATION.cff``
-    and the figures (``figure_<name>``, the SVG the plotting jobs drew, which the source names by their path) of
-    ``inputs``."""
+def write_article(rows: Sequence[Mapping], facts: Mapping[str, str], inputs: Mapping[str, str],
+                  outputs: Mapping[str, str]) -> str:
+    """Write ``metadata.yaml``, ``article.typ``, ``article.bib`` and ``article.pdf`` (the keys ``metadata``,
+    ``source``, ``bibliography`` and ``pdf`` of ``outputs``) from the claims table's ``rows``, the documents'
+    ``facts`` and the files of ``inputs``: the checks dataset, ``CITATION.cff``, the template, the bibliography and
+    the figures (``figure_<name>``, the SVG the plotting jobs drew, which the source names by their path). Returns
+    the title."""
     import typst
 
     figures = {name: inputs[f"figure_{name}"] for name in ARTICLE_FIGURES}
-    with logged(log, "article") as logger:
-        rows = read_claims(inputs["claims"])
-        counts, n_findings, n_rows = _counts(rows)
-        facts, _ = collect_facts(read_work_precision(inputs["benchmark"]), read_netcdf(inputs["long_run"]),
-                                 read_netcdf(inputs["stability"]), read_timings(inputs["long_run_timing"]),
-                                 read_timings(inputs["stability_timing"]))
-        citation = yaml.safe_load(Path(inputs["citation"]).read_text(encoding="utf-8"))
-        original = next(r for r in citation["references"] if r.get("doi"))
-        title = f"{prefix(counts)} {original['title']}"
-        abstract = (
-            f"We replicate J. Mao, Y. Fu and P. Li, \"{original['title']}\" ({original['journal']}, "
-            f"{original['year']}), with an exact event-driven solver of its piecewise-linear model and a register of "
-            f"the paper's claims, each checked under every reading its words admit. Of the {n_findings} sentences "
-            f"the register quotes, {counts['reproduced']} are reproduced, {counts['consistent']} consistent, "
-            f"{counts['partially_reproduced']} partially reproduced, {counts['not_reproduced']} not reproduced, "
-            f"{counts['undetermined']} undetermined and {counts['untestable']} untestable.")
-        meta = metadata(citation, title, abstract)
-        names = {"meta": {k: typ(v) if isinstance(v, str) else v for k, v in meta.items()},
-                 "literal": {k: string(v) for k, v in meta.items() if isinstance(v, str)},
-                 "author_literals": [string(a["name"]) for a in meta["authors"]],
-                 "count": {k: str(v) for k, v in counts.items()}, "n_findings": str(n_findings), "n_rows": str(n_rows),
-                 "rule": typ(RULE), "number": {k: typ(v) for k, v in _numbers(rows, read_netcdf(inputs["checks"]),
-                                                                             facts).items()},
-                 "verdict": {r["claim_id"]: typ(r["status"].replace("_", " ")) for r in rows},
-                 "table": _tables(rows), "authors": [typ(a["name"]) for a in meta["authors"]],
-                 # the figures as the plotting jobs drew them, by their path from the source
-                 "figure": {name: string(os.path.relpath(path, Path(outputs["source"]).parent))
-                            for name, path in figures.items()}}
-        environment = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
-                                         autoescape=False)
-        source = environment.from_string(Path(inputs["template"]).read_text(encoding="utf-8")).render(names)
-        root = Path(os.path.commonpath([Path(p).resolve() for p in (outputs["source"], *figures.values())]))
-        write_text(Path(inputs["bibliography"]).read_text(encoding="utf-8"), outputs["bibliography"])
-        write_text(yaml.safe_dump(meta, sort_keys=False, allow_unicode=True, width=100), outputs["metadata"])
-        write_text(source, outputs["source"])
-        with replaced(outputs["pdf"]) as tmp:
-            typst.compile(str(outputs["source"]), output=str(tmp), root=str(root), pdf_standards="a-2b",
-                          ignore_system_fonts=True)  # its date the run's: publish compares the sources
-        logger.info("%s: %s", outputs["pdf"], title)
+    counts, n_findings, n_rows = _counts(rows)
+    citation = yaml.safe_load(Path(inputs["citation"]).read_text(encoding="utf-8"))
+    original = next(r for r in citation["references"] if r.get("doi"))
+    title = f"{prefix(counts)} {original['title']}"
+    abstract = (
+        f"We replicate J. Mao, Y. Fu and P. Li, \"{original['title']}\" ({original['journal']}, "
+        f"{original['year']}), with an exact event-driven solver of its piecewise-linear model and a register of "
+        f"the paper's claims, each checked under every reading its words admit. Of the {n_findings} sentences "
+        f"the register quotes, {counts['reproduced']} are reproduced, {counts['consistent']} consistent, "
+        f"{counts['partially_reproduced']} partially reproduced, {counts['not_reproduced']} not reproduced, "
+        f"{counts['undetermined']} undetermined and {counts['untestable']} untestable.")
+    meta = metadata(citation, title, abstract)
+    names = {"meta": {k: typ(v) if isinstance(v, str) else v for k, v in meta.items()},
+             "literal": {k: string(v) for k, v in meta.items() if isinstance(v, str)},
+             "author_literals": [string(a["name"]) for a in meta["authors"]],
+             "count": {k: str(v) for k, v in counts.items()}, "n_findings": str(n_findings), "n_rows": str(n_rows),
+             "rule": typ(RULE), "number": {k: typ(v) for k, v in _numbers(rows, read_netcdf(inputs["checks"]),
+                                                                         facts).items()},
+             "verdict": {r["claim_id"]: typ(r["status"].replace("_", " ")) for r in rows},
+             "table": _tables(rows), "authors": [typ(a["name"]) for a in meta["authors"]],
+             # the figures as the plotting jobs drew them, by their path from the source
+             "figure": {name: string(os.path.relpath(path, Path(outputs["source"]).parent))
+                        for name, path in figures.items()}}
+    environment = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
+                                     autoescape=False)
+    source = environment.from_string(Path(inputs["template"]).read_text(encoding="utf-8")).render(names)
+    root = Path(os.path.commonpath([Path(p).resolve() for p in (outputs["source"], *figures.values())]))
+    write_text(Path(inputs["bibliography"]).read_text(encoding="utf-8"), outputs["bibliography"])
+    write_text(yaml.safe_dump(meta, sort_keys=False, allow_unicode=True, width=100), outputs["metadata"])
+    write_text(source, outputs["source"])
+    with replaced(outputs["pdf"]) as tmp:
+        typst.compile(str(outputs["source"]), output=str(tmp), root=str(root), pdf_standards="a-2b",
+                      ignore_system_fonts=True)  # its date the run's: publish compares the sources
+    return title
