@@ -216,7 +216,7 @@ def test_a_value_changed_in_the_claims_table_changes_the_article(run, tmp_path):
         outputs = {key: str(tmp_path / name / file) for key, file in (("pdf", "article.pdf"), ("metadata", "m.yaml"),
                    ("source", "article.typ"), ("bibliography", "article.bib"))}
         (tmp_path / name).mkdir()
-        write_article(read_claims(claims), facts, article_inputs(run[0]), outputs)
+        write_article(read_claims(claims), facts, [], article_inputs(run[0]), outputs)
         written[name] = Path(outputs["source"]).read_text(encoding="utf-8")
     said = "can be evaluated from the graph is"
     assert f"{said}\n{was.replace('_', ' ')}." in written["before"].replace(" \n", "\n")

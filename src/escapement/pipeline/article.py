@@ -105,12 +105,21 @@ def _short(text: str, most: int = 110) -> str:
     return first if len(first) <= most else first[:most].rsplit(" ", 1)[0] + " …"
 
 
-def _tables(rows: Sequence[Mapping]) -> dict[str, str]:
-    """The tables of the article as Typst cells: the printed axes beside the run's (the limits the adopted reading
-    gives, autoscaled as printed), and the findings by section, each with what the run found."""
+def _cell(markdown: str) -> str:
+    """A cell of the documents' Markdown tables (bold, ``<br>`` breaks) as Typst markup."""
+    return " #linebreak() ".join(typ(part) for part in markdown.replace("**", "").split("<br>"))
+
+
+def _tables(rows: Sequence[Mapping], readings: Sequence[Mapping]) -> dict[str, str]:
+    """The tables of the article as Typst cells: the candidate readings of each printed panel that its axes support
+    best (``readings``, :func:`escapement.verdict.scores.best_readings_table`), the printed axes beside the run's
+    (the limits the adopted reading gives, autoscaled as printed), and the findings by section, each with what the
+    run found."""
     axes = [r for r in rows if r["source"].startswith("Fig.") and r["origin"] == "paper"]
     found = findings(rows)
     return {
+        "readings": ",\n".join(f"[{typ(r['figure'])} {typ(r['panel'])}], [{_cell(r['limits reproduced'])}], "
+                               f"[{_cell(r['best-supported readings'])}]" for r in readings),
         "axes": ",\n".join(f"[{typ(r['source'])}], [{typ(r['paper_value'])}], "
                            f"[{typ(re.split(r' [(][0-9]+ of [0-9]+ printed limits[)]', r['replicated_value'])[0])}], "
                            f"[{typ(r['status'].replace('_', ' '))}]"
@@ -121,13 +130,13 @@ def _tables(rows: Sequence[Mapping]) -> dict[str, str]:
     }
 
 
-def write_article(rows: Sequence[Mapping], facts: Mapping[str, str], inputs: Mapping[str, str],
-                  outputs: Mapping[str, str]) -> str:
+def write_article(rows: Sequence[Mapping], facts: Mapping[str, str], readings: Sequence[Mapping],
+                  inputs: Mapping[str, str], outputs: Mapping[str, str]) -> str:
     """Write ``metadata.yaml``, ``article.typ``, ``article.bib`` and ``article.pdf`` (the keys ``metadata``,
     ``source``, ``bibliography`` and ``pdf`` of ``outputs``) from the claims table's ``rows``, the documents'
-    ``facts`` and the files of ``inputs``: the checks dataset, ``CITATION.cff``, the template, the bibliography and
-    the figures (``figure_<name>``, the SVG the plotting jobs drew, which the source names by their path). Returns
-    the title."""
+    ``facts``, the best-supported ``readings`` of each printed panel and the files of ``inputs``: the checks
+    dataset, ``CITATION.cff``, the template, the bibliography and the figures (``figure_<name>``, the SVG the
+    plotting jobs drew, which the source names by their path). Returns the title."""
     import typst
 
     figures = {name: inputs[f"figure_{name}"] for name in ARTICLE_FIGURES}
@@ -150,7 +159,7 @@ def write_article(rows: Sequence[Mapping], facts: Mapping[str, str], inputs: Map
              "rule": typ(RULE), "number": {k: typ(v) for k, v in _numbers(rows, read_netcdf(inputs["checks"]),
                                                                          facts).items()},
              "verdict": {r["claim_id"]: typ(r["status"].replace("_", " ")) for r in rows},
-             "table": _tables(rows), "authors": [typ(a["name"]) for a in meta["authors"]],
+             "table": _tables(rows, readings), "authors": [typ(a["name"]) for a in meta["authors"]],
              # the figures as the plotting jobs drew them, by their path from the source
              "figure": {name: string(os.path.relpath(path, Path(outputs["source"]).parent))
                         for name, path in figures.items()}}

@@ -34,11 +34,12 @@ def render_docs(inputs: Mapping[str, str], outputs: Mapping[str, str], log: str)
             read_netcdf(inputs["stability"]), read_timings(inputs["long_run_timing"]),
             read_timings(inputs["stability_timing"]))
         stress = read_stress(inputs["stress"])
+        readings = best_readings_table(read_scores(inputs["readings"]))
         tables = {
             "stress": markdown_table(stress, ["regime", "outcome", "check", "passed", "detail"]),
             "findings": markdown_table(findings_table(rows), ["finding", "sentence", "verdict", "rows"]),
             "vocabulary": markdown_table(vocabulary_table(), ["word", "meaning"]),
-            "readings": markdown_table(best_readings_table(read_scores(inputs["readings"])),
+            "readings": markdown_table(readings,
                                        ["figure", "panel", "printed limits", "limits reproduced",
                                         "best-supported readings"]),
         }
@@ -51,7 +52,7 @@ def render_docs(inputs: Mapping[str, str], outputs: Mapping[str, str], log: str)
         write_text(landing_html(rows, stress), outputs["landing"])
         verdict = "<h1>The verdict</h1>\n" + verdict_html(rows, stress)
         write_text(html_document("The verdict", verdict), outputs["verdict"])
-        title = write_article(rows, facts, {**{k: v for k, v in inputs.items() if k.startswith("figure_")},
+        title = write_article(rows, facts, readings, {**{k: v for k, v in inputs.items() if k.startswith("figure_")},
                                             "checks": inputs["checks"], "citation": inputs["citation"],
                                             "template": inputs["article"], "bibliography": inputs["bibliography"]},
                               {k.removeprefix("article_"): v for k, v in outputs.items() if k.startswith("article_")})
