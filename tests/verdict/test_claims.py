@@ -20,15 +20,12 @@ import xarray as xr
 import yaml
 
 from escapement.model.parameters import Parameters
-from escapement.pipeline.sources import read_yaml
 from escapement.verdict import engine as cl
 from escapement.verdict.evidence import CHECKS, Evidence, Verdict, runs_only
 from escapement.solvers.exact import solve_exact
-from verdict.test_check_boundaries import GEOMETRY, probes, runs
+from verdict.test_check_boundaries import GEOMETRY, SETTINGS, probes, runs
 
 REGISTER = cl.REGISTER
-#: the runs the register names by ``runs``: the configuration's model and checks blocks
-SETTINGS = {key: read_yaml(cl.REGISTER.parents[3] / "config" / "paper.yaml")[key] for key in ("model", "checks")}
 REPO = Path(__file__).resolve().parents[2]
 
 

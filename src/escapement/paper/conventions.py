@@ -123,14 +123,6 @@ def departure(reading: Reading) -> str:
     return " + ".join(changed) if changed else "as read"
 
 
-
-
-
-
-
-
-
-
 def second_half_trials(p: Parameters, velocity: Mapping[str, float], simulated: float, tolerance: float,
                        formula: Callable[[float, pe.Symbols], float]) -> list[Trial]:
     """A formula of the second half period, ``formula(v_at_a3, symbols)``, under every reading, with the

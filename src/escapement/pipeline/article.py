@@ -18,7 +18,7 @@ import jinja2
 import yaml
 
 from ..io.netcdf import read_netcdf, replaced, write_text
-from ..verdict.engine import fmt
+from ..verdict.evidence import fmt
 from ..verdict.tally import ORDER, findings
 from .outputs import ARTICLE_FIGURES
 

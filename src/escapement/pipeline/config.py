@@ -271,7 +271,6 @@ def check_cases(paper: Mapping) -> list[dict]:
     return cases
 
 
-
 def check_model(model: Mapping, source: str) -> None:
     """The model block (laid over the paper's) by the model's own rules, :class:`Parameters` being the one
     statement of each parameter's bounds (the schema states only their types); :class:`ConfigError` naming

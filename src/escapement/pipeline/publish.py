@@ -87,7 +87,7 @@ def compare(tracked: str | Path, drawn: str | Path) -> tuple[bool, str]:
     if not tracked.is_file():
         return False, "no tracked file to compare with"
     if tracked.suffix == ".pdf":
-        source = ".typ" if tracked.with_suffix(".typ").name == "article.typ" else ".png"
+        source = ".typ" if tracked.stem == "article" else ".png"
         return compare(tracked.with_suffix(source), drawn.with_suffix(source))
     if tracked.suffix == ".png":
         return _figure(tracked, drawn)

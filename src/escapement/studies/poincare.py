@@ -160,7 +160,6 @@ def measure_cycle(params: Parameters, x0: float, n_cycles: int = 300) -> CycleMe
     )
 
 
-
 def ensemble_return_map(model: dict, b, F, v):
     """:func:`return_map` for arrays: ``(v_in, P(v_in), period, status codes)`` at every ``(b, F, v)``."""
     omega = math.sqrt(model["K"] / model["M"])

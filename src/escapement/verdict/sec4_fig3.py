@@ -290,8 +290,6 @@ def release_transient(claim, ev: Evidence) -> Verdict:
                    note="periods of the first and the last cycle of runs at one force that differ only in the release")
 
 
-
-
 def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) -> Verdict:
     """``rows``: per release ``x0`` the run's ``outcome`` and last ``velocity``, and the closed-form
     ``fixed_point``. Holds when every release converges to the fixed point (the note says where the
