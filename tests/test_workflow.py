@@ -238,8 +238,12 @@ def loaded(where: Path) -> dict[str, set[Path]]:
     """The files of the repository's copy each rule's jobs loaded, by rule (from the run's trace)."""
     found: dict[str, set[Path]] = {}
     for trace in traces(where).glob("*.txt"):
-        files = {Path(f).resolve() for f in trace.read_text().split("\n") if f}
-        assert not {f for f in files if "escapement" in f.parts and where.resolve() not in f.parents}, \
+        modules = dict(line.split("\t", 1) for line in trace.read_text().split("\n") if line)
+        files = {Path(f).resolve() for f in modules.values()}
+        # the package known by its modules' names, wherever it is installed (not by a folder's name: a clone lives
+        # in a folder named escapement, and so does its venv's site-packages)
+        package = {name: Path(f).resolve() for name, f in modules.items() if name.split(".")[0] == "escapement"}
+        assert package and all(where.resolve() / "src/escapement" in f.parents for f in package.values()), \
             f"{trace.name}: the job loaded the package from outside the copy"
         rule = trace.name.rsplit("-", 1)[0]
         found.setdefault(rule, set()).update(f for f in files if where.resolve() in f.parents)

@@ -63,17 +63,18 @@ def reduced_copy(dest: Path) -> Path:
     return where
 
 
-#: a sitecustomize module that, in each job's process, writes the files of the modules it loaded when it exits
+#: a sitecustomize module that, in each job's process, writes the name and file of each module it loaded on exit
 TRACER = """
 import atexit, os, sys
 
 def _loaded():
     job = getattr(sys.modules.get("__main__"), "snakemake", None)
     if job is not None:
-        files = sorted({m.__file__ for m in list(sys.modules.values()) if getattr(m, "__file__", None)})
+        loaded = sorted(f"{name}\\t{m.__file__}" for name, m in list(sys.modules.items())
+                        if getattr(m, "__file__", None))
         name = f"{job.rule}-{os.getpid()}.txt"
         with open(os.path.join(os.environ["ESCAPEMENT_TRACE"], name), "w") as handle:
-            handle.write("\\n".join(files))
+            handle.write("\\n".join(loaded))
 
 atexit.register(_loaded)
 """
