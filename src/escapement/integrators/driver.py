@@ -1,13 +1,9 @@
 """The integrators' loop: drives the automaton from event to event with a pluggable integrator (a *stepper*).
 
-The reference, high-precision and naive solvers integrate the equations of motion numerically, to check the
-exact solver along an independent path. A stepper answers one question: from ``(x, v)`` at time ``t`` in
-``mode``, which watched surface is reached first, when, and at what velocity (:meth:`Stepper.next_event`, a
-:class:`Step`)? Everything else, which surfaces are watched, the impact law, the next mode, the regime exits,
-the cycles and the limits of the run, comes from :mod:`escapement.model.automaton` and is done here; how a run
-ends is decided as for the exact solver (:mod:`escapement.solvers.outcomes`). A stepper that keeps a trajectory
-says how many bytes it stores per event (``trajectory_bytes_per_event``) and whatever the run's length
-(``fixed_bytes``): the loop counts them in the run's memory estimate.
+A stepper answers one question (:meth:`Stepper.next_event`): from ``(x, v)`` at time ``t`` in ``mode``, which
+watched surface is reached first, when, and at what velocity? The rest, the surfaces watched, the impact law, the
+next mode, the regime exits, the cycles and the run's limits, is the automaton's and is done here; a run ends as
+the exact solver's does (:mod:`escapement.solvers.outcomes`).
 """
 
 from __future__ import annotations
@@ -33,40 +29,32 @@ from ..solvers.result import Solution
 
 __all__ = ["HORIZON", "NO_EVENT", "Step", "Stepper", "drive"]
 
-NO_EVENT = 0
-HORIZON = -1
+NO_EVENT, HORIZON = 0, -1  #: a :class:`Step`'s kind where no watched surface is ever passed, or the end time comes
 _A1 = int(EventKind.IMPACT_A1)
-#: bytes per event of the loop's event log at its peak: t, x, v_before, v_after (8 bytes each) and kind (1) in
-#: growing buffers, and at the end the arrays and masks that pick the cycles' impacts (measured: 48-58 bytes an
-#: event with the naive stepper, with the cycles' 40)
-_FLOAT_EVENT_BYTES = 64
-#: bytes per cycle: its largest x and its period while running, its impact time and velocity at the end
-_FLOAT_CYCLE_BYTES = 40
-#: an mpmath number in a list: the pointer, the mpf object, its (sign, mantissa, exponent, bits) tuple and
-#: integers, and the object array it ends in; the high-precision solver's peak, per stored number, measured
-#: 197 bytes at 60 digits (199 bits), 263 at 210 and 518 at 1010 (3357 bits)
-_MPF_BYTES_BASE = 200
-_MPF_BYTES_PER_BIT = 0.12
+#: bytes at the peak per event (t, x, v_before, v_after, kind, and the masks that pick the cycles' impacts;
+#: measured 48-58 with the naive stepper) and per cycle (largest x, period, impact time and velocity)
+_FLOAT_EVENT_BYTES, _FLOAT_CYCLE_BYTES = 64, 40
+#: bytes per mpmath number in a list and the object array it ends in (the mpf, its tuple and integers): measured
+#: 197 at 60 digits (199 bits), 263 at 210 and 518 at 1010 (3357 bits)
+_MPF_BYTES_BASE, _MPF_BYTES_PER_BIT = 200, 0.12
 
 
 class Step(NamedTuple):
-    """What a stepper returns (a plain tuple of these six fields is accepted too). ``kind`` an
-    :class:`EventKind`: the surface reached after ``dt`` with velocity ``v``, ``x_max`` the largest displacement
-    on the way, ``t_abs`` the event's time as the integrator computed it (None: the loop sums the durations with
-    compensation); :data:`NO_EVENT`: no watched surface is ever passed, ``x_max`` the turning point (free flight:
-    the radius of the swing) reached ``dt`` after the start; :data:`HORIZON`: the end time comes first."""
+    """What a stepper returns (or a plain tuple of these fields). ``kind`` an :class:`EventKind`: the surface
+    reached after ``dt`` with velocity ``v``, ``x_max`` the largest displacement on the way; :data:`NO_EVENT`:
+    ``x_max`` is the turning point (free flight: the swing's radius) reached ``dt`` after the start."""
 
     kind: int
     dt: float
     v: float
     x_max: float
-    t_abs: float | None = None
+    t_abs: float | None = None  #: the event's time as the integrator computed it (None: the loop sums ``dt``)
     x_at: float | None = None  #: where the integrator applies the event (None: on the surface)
 
 
 class Stepper(Protocol):
-    """An integrator for the loop (see the module's docstring); it may also have an attribute
-    ``trajectory_bytes_per_event``, the bytes its trajectory keeps per event, and ``fixed_bytes``."""
+    """An integrator for the loop; it may also say the bytes its trajectory keeps per event
+    (``trajectory_bytes_per_event``) and whatever the run's length (``fixed_bytes``), for the memory estimate."""
 
     name: str
 
@@ -81,12 +69,8 @@ class Stepper(Protocol):
 
 def drive(spec: RunSpec, stepper: Stepper, number: Callable = float) -> Solution:
     """Run the automaton of ``spec`` from its release at ``t = 0`` until its limits or a regime exit, in the
-    arithmetic of ``number`` (``float``, or ``mpmath.mpf`` at the working precision).
-
-    Before any work, the result's size is estimated from the limits and refused above the memory budget
-    (:meth:`~escapement.model.limits.RunLimits.check_memory`). A run that ends ``completed`` holds only finite
-    numbers; one that does not raises :class:`FloatingPointError` (the input validation let through what it must
-    refuse)."""
+    arithmetic of ``number`` (``float``, or ``mpmath.mpf`` at the working precision); a result over the memory
+    budget is refused before any work."""
     params, limits, floats = spec.params, spec.limits, number is float
     stored = _MPF_BYTES_BASE + _MPF_BYTES_PER_BIT * mpmath.mp.prec  # bytes an mpmath number takes
     event_bytes = (_FLOAT_EVENT_BYTES if floats else 4 * stored + 1) + getattr(stepper, "trajectory_bytes_per_event", 0)

@@ -1,11 +1,10 @@
 """A high-precision reference in mpmath (50 significant digits by default), hand-written because no library
 integrates an impulsive system with events in arbitrary precision.
 
-It drives the same automaton as the float solvers (:func:`escapement.integrators.driver.drive`) but computes
-each arc its own way, for independence from :func:`escapement.model.kinematics.crossing`: the speed at a
-surface from energy, the time from the phase angles ``atan2(w, u)`` of the start and end points taken
-separately (the float solver uses the angle between them), in ``dps``-digit arithmetic. Its per-cycle arrays
-hold mpmath numbers (object arrays); ``float`` gives their nearest doubles.
+It drives the automaton through :func:`~escapement.integrators.driver.drive` but computes each arc its own way,
+independently of :func:`escapement.model.kinematics.crossing`: the speed at a surface from energy, the time from
+the phase angles ``atan2(w, u)`` of the start and the end taken separately (the float solver uses the angle
+between them).
 """
 
 from __future__ import annotations
@@ -13,11 +12,11 @@ from __future__ import annotations
 import mpmath
 
 from ..model import automaton
+from ..model.arguments import Numeric
 from ..model.automaton import Mode
 from ..model.events import EventKind
-from ..model.arguments import Numeric
 from ..model.kinematics import time_to_rest
-from ..model.limits import MAX_DIGITS, MIN_DIGITS, check_count, run_spec
+from ..model.limits import MAX_DIGITS, MIN_DIGITS, check_count, run_arguments, run_spec
 from ..model.parameters import Parameters
 from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
@@ -39,8 +38,7 @@ class MpmathStepper:
 
     def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
                    watched: tuple[EventKind, ...], t_stop: float) -> Step:
-        """The next event of ``watched`` on the arc about ``centre`` in ``mode`` from ``(t, x, v)``, or none
-        before ``t_stop`` (the loop's :class:`~escapement.integrators.driver.Step`)."""
+        """As :meth:`Stepper.next_event <escapement.integrators.driver.Stepper.next_event>`."""
         w, c = self.w, automaton.CENTRE_SIGN[int(mode)] * self.offset
         x = mpmath.mpf(x)
         start = mpmath.atan2(v / w, x - c)
@@ -73,19 +71,15 @@ class MpmathStepper:
         return None
 
 
+@run_arguments
 def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = 50,
                          t_end: float | None = None, max_events: int | None = None, dps: int = 50) -> Solution:
-    """Run the model in ``dps``-digit arithmetic (17 to 1000 digits) from ``(x0, v0)`` at ``t = 0+``;
-    the limits and outcomes are those of :func:`escapement.solvers.exact.solve_exact`.
+    """Run the model in ``dps``-digit arithmetic from ``(x0, v0)`` at ``t = 0+``; the limits and outcomes are
+    those of :func:`escapement.solvers.exact.solve_exact`.
 
     Parameters
     ----------
-    params : Parameters
-        The model's parameters (SI units: kg, N/m, N, 1, m).
-    x0 : float
-        Initial displacement at ``t = 0+``, m.
-    v0 : float, default 0
-        Initial velocity at ``t = 0+``, m/s.
+    {run_arguments}
     n_cycles : int or None, default 50
         Complete cycles to run (None: run to ``t_end``).
     t_end : float, optional
@@ -98,16 +92,13 @@ def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cy
     Returns
     -------
     Solution
-        The run; its event log and per-cycle arrays hold mpmath numbers (object arrays: ``float``
-        gives their nearest doubles), times in s, positions in m, velocities in m/s. No trajectory is
-        kept.
+        The run, without a trajectory; its event log and cycles hold mpmath numbers (object arrays: ``float``
+        gives their nearest doubles), times in s, positions in m, velocities in m/s.
 
     Raises
     ------
-    TypeError
-        If ``params`` is not a :class:`~escapement.Parameters`.
     ParameterError
-        If ``x0``, ``v0``, a limit or ``dps`` is invalid (the message names it).
+        If an argument is invalid, naming it (also a :class:`TypeError` for ``params`` not a Parameters).
 
     Examples
     --------

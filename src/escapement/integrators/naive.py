@@ -1,10 +1,8 @@
 """A naive fixed-step integrator, to show what not locating events costs (hand-written: a library's RK4 locates
 its events or is not this simple).
 
-Classical RK4 with a fixed step ``h``; an event is noticed when ``x`` has passed its surface
-at the end of a step, and applied there, without locating it. The escapement's rules are the
-automaton's, through the solver loop of :mod:`escapement.integrators.driver`. Errors are O(h): the
-impact is applied up to one step late, at a state up to one step past the surface.
+Classical RK4 with a fixed step ``h``, through the loop of :mod:`escapement.integrators.driver`: an event is
+applied at the end of the step that passes its surface, not located, so the errors are O(h).
 """
 
 from __future__ import annotations
@@ -13,9 +11,9 @@ import math
 
 from ..model import automaton
 from ..model.automaton import Mode
-from ..model.events import EventKind
 from ..model.arguments import Numeric, real_number
-from ..model.limits import run_spec
+from ..model.events import EventKind
+from ..model.limits import run_arguments, run_spec
 from ..model.parameters import Parameters
 from ..model.printing import exact
 from ..solvers.result import Solution
@@ -23,11 +21,8 @@ from .driver import NO_EVENT, Step, drive
 
 __all__ = ["STEPS_PER_PERIOD", "NaiveStepper", "solve_naive"]
 
-#: the fewest steps per natural period a run may take
-STEPS_PER_PERIOD = 20
-
-#: free flight of this many natural periods without an event: the escapement has stopped
-PERIODS_TO_STOP = 2.0
+STEPS_PER_PERIOD = 20  #: the fewest steps per natural period a run may take
+PERIODS_TO_STOP = 2.0  #: free flight of this many natural periods without an event: the escapement has stopped
 
 
 class NaiveStepper:
@@ -44,8 +39,7 @@ class NaiveStepper:
 
     def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
                    watched: tuple[EventKind, ...], t_stop: float) -> Step:
-        """The next event of ``watched`` on the arc about ``centre`` in ``mode`` from ``(t, x, v)``, or none
-        before ``t_stop`` (the loop's :class:`~escapement.integrators.driver.Step`)."""
+        """As :meth:`Stepper.next_event <escapement.integrators.driver.Stepper.next_event>`."""
         w2, h = self.w2, self.h
         h2, h6 = h / 2.0, h / 6.0
         t_start, largest = self.t, x
@@ -77,20 +71,14 @@ class NaiveStepper:
         return None
 
 
+@run_arguments
 def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int, step: float) -> Solution:
-    """Run ``n_cycles`` cycles with fixed RK4 steps of ``step`` seconds.
-
-    Events are applied at the end of the step that passes them, not located: the errors are of
-    the order of ``step`` (see the module's docstring). For comparison with the exact solver only.
+    """Run ``n_cycles`` cycles with fixed RK4 steps of ``step`` seconds, for comparison with the exact solver only:
+    an event is applied at the end of the step that passes it, not located, an error of the order of ``step``.
 
     Parameters
     ----------
-    params : Parameters
-        The model's parameters (SI units: kg, N/m, N, 1, m).
-    x0 : float
-        Initial displacement at ``t = 0+``, m.
-    v0 : float, default 0
-        Initial velocity at ``t = 0+``, m/s.
+    {run_arguments}
     n_cycles : int
         Complete cycles to run.
     step : float
@@ -103,10 +91,8 @@ def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
 
     Raises
     ------
-    TypeError
-        If ``params`` is not a :class:`~escapement.Parameters`.
     ParameterError
-        If ``step``, ``x0``, ``v0`` or ``n_cycles`` is invalid (the message names it).
+        If an argument is invalid, naming it (also a :class:`TypeError` for ``params`` not a Parameters).
 
     Examples
     --------

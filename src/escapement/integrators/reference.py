@@ -1,17 +1,12 @@
-"""Reference solver: numerical integration by SciPy's ``solve_ivp`` (or SUNDIALS CVODE) with terminal events.
+"""Reference solver: numerical integration by SciPy's ``solve_ivp`` (or SUNDIALS CVODE) with terminal events,
+sharing the automaton (through :mod:`escapement.integrators.driver`) but none of the closed forms.
 
-It checks the exact solver independently and measures what a general-purpose integrator costs: it shares the
-automaton (through the loop of :mod:`escapement.integrators.driver`) but none of the closed forms. The motion is
-integrated segment by segment, a segment ending at every event and every turning point, so that ``x`` is monotone
-inside it and a surface is crossed at most once; after each event the state is put exactly on the surface
-(SciPy reports a spurious event when a segment starts on a surface it watches).
-
-Grazing. An integrator finds an event only where the event function changes sign over a step: a step that spans
-the crossing of a zone's end and the turning point just beyond it shows none. So at the end of every segment
-each surface it watches that lies between its start and its end was crossed, and is located on the monotone
-stretch before the end (on the dense output with SciPy, integrating back with CVODE). Steps are kept below half a
-period, so no turning point is missed; an impact position is grazed only just after a turning point, where a
-segment starts. An escapement that stops is declared so only at a turning point with no watched surface ahead.
+The motion is integrated segment by segment, each ending at an event or a turning point, so that ``x`` is
+monotone inside it. An integrator finds an event only where the event function changes sign over a step, so a
+step that spans the crossing of a zone's end and the turning point just beyond it shows none: at the end of each
+segment a watched surface between its start and its end was crossed, and is located on that monotone stretch.
+Steps are kept below half a period, so no turning point is missed; an escapement that stops is declared so only
+at a turning point with no watched surface ahead.
 """
 
 from __future__ import annotations
@@ -22,9 +17,9 @@ import numpy as np
 
 from ..model import automaton
 from ..model.automaton import Mode
-from ..model.events import EventKind
 from ..model.arguments import Numeric, ParameterError, check_choice, real_number
-from ..model.limits import check_flag, run_spec
+from ..model.events import EventKind
+from ..model.limits import check_flag, run_arguments, run_spec
 from ..model.parameters import Parameters
 from ..solvers.result import Solution
 from .driver import HORIZON, NO_EVENT, Step, drive
@@ -32,13 +27,12 @@ from .segments import CvodeIntegrator, DenseSegments, Hit, SciPyIntegrator, Segm
 
 __all__ = ["METHODS", "DenseSegments", "IvpStepper", "solve_reference"]
 
-#: free half-swings in a row without an event after which the escapement has stopped
-#: (three turning points cover more than one whole revolution from any start)
+#: free half-swings in a row without an event after which the escapement has stopped (three turning points
+#: cover more than one whole revolution from any start)
 HALF_SWINGS_TO_STOP = 3
 #: the integrators a reference run may use: SciPy's solve_ivp methods and SUNDIALS CVODE's two
 METHODS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA", "CVODE-Adams", "CVODE-BDF")
-#: the event bound of a run to an end time alone that keeps its dense output (about 7 kB an event)
-DENSE_MAX_EVENTS = 100_000
+DENSE_MAX_EVENTS = 100_000  #: the event bound of a run to ``t_end`` alone that keeps its dense output (7 kB each)
 
 
 def _heading(centre: float, x: float, v: float) -> int:
@@ -58,8 +52,8 @@ class IvpStepper:
         self.surfaces = {kind: Watch(automaton.position(kind, params), s.direction)
                          for kind, s in automaton.SURFACES.items()}
         self.record = record_trajectory
-        #: bytes kept per event besides the loop's: each segment's dense output where the trajectory is kept
-        #: (measured about 6_400 an event); and whatever the run's length, SciPy's work arrays (about 190 kB)
+        #: bytes besides the loop's: each segment's dense output per event where kept (measured about 6_400),
+        #: and SciPy's work arrays whatever the run's length (about 190 kB)
         self.trajectory_bytes_per_event = 7_000 if record_trajectory else 0
         self.fixed_bytes = 256_000
         self.seg_t: list[float] = []
@@ -68,20 +62,16 @@ class IvpStepper:
 
     def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
                    watched: tuple[EventKind, ...], t_stop: float) -> Step:
-        """The next event of ``watched`` on the arc about ``centre`` in ``mode`` from ``(t, x, v)``, or none
-        before ``t_stop`` (the loop's :class:`~escapement.integrators.driver.Step`)."""
-        t_start = t
-        largest = x
-        rests = 0
+        """As :meth:`Stepper.next_event <escapement.integrators.driver.Stepper.next_event>`."""
+        t_start, largest, rests = t, x, 0
         # each pass ends in a return or a turning point; a free run stops after HALF_SWINGS_TO_STOP of
         # them, or one more if a watched surface lies ahead of the last (see _ahead)
         for _ in range(HALF_SWINGS_TO_STOP + 1):
             heading = _heading(centre, x, v)
-            # x is monotone inside a segment, so only the surfaces ahead can be crossed; one it
-            # starts on cannot, and watching it would only give scipy's spurious event at the
-            # start (the paper's initial condition is the state at t0+, after any jump).
-            kinds = [k for k in watched if self.surfaces[k].direction == heading]
-            kinds = [k for k in kinds if self.surfaces[k].value((x, v)) != 0.0]
+            # x is monotone inside a segment: only the surfaces ahead can be crossed, and not one it starts on
+            # (SciPy would report a spurious event at the start; the release is the state at t0+, after any jump)
+            kinds = [k for k in watched
+                     if self.surfaces[k].direction == heading and self.surfaces[k].value((x, v)) != 0.0]
             horizon = min(t + 0.75 * self.period, t_stop)
             watches = [self.surfaces[k] for k in kinds] + ([Watch(None, heading)] if heading else [])
             seg = Segment(self.omega2, centre, t, (x, v), horizon, tuple(watches))
@@ -108,17 +98,15 @@ class IvpStepper:
                 continue
             kind = kinds[hit.index]
             surface = self.surfaces[kind]
-            # the surface is crossed moving in its direction; near grazing the integrated velocity
-            # there is within the tolerance of zero, and may have the other sign: it is put at zero
+            # near grazing the integrated velocity is within the tolerance of zero and may have the wrong sign
             v_hit = surface.direction * max(surface.direction * hit.y[1], 0.0)
             return Step(kind, t - t_start, v_hit, max(largest, surface.position), t_abs=t)
         # free half-swings in a row without an event: the escapement has stopped
         return Step(NO_EVENT, math.inf, 0.0, abs(x))
 
     def _first_crossing(self, seg: Segment, hit: Hit, dense, heading: int) -> Hit:
-        """The segment's first event: ``hit``, or the crossing of a watched surface that lies between
-        the start and ``hit`` in the direction of motion and that the integrator missed (a step that
-        spans the crossing and the turning point just beyond it shows no change of sign)."""
+        """The segment's first event: ``hit``, or the crossing the integrator missed of a watched surface that
+        lies between the start and ``hit`` (see the module's docstring)."""
         x0, x1 = seg.y0[0], hit.y[0]
         passed = [i for i, w in enumerate(seg.watches)
                   if i != hit.index and w.position is not None
@@ -129,9 +117,8 @@ class IvpStepper:
         return self.integrator.crossing(seg, dense, hit, nearest)
 
     def _ahead(self, watched, centre: float, x: float) -> bool:
-        """True if, from a turning point at ``x``, a watched surface lies ahead in the direction of
-        the motion that follows (an impact position, a1 < 0 < a3, then lies between the turning point
-        and the free centre: the next segment crosses it)."""
+        """True if, from a turning point at ``x``, a watched surface lies ahead in the direction of the motion
+        that follows (between the turning point and the free centre: the next segment crosses it)."""
         heading = _heading(centre, x, 0.0)
         return any(self.surfaces[k].direction == heading and (self.surfaces[k].position - x) * heading > 0.0
                    for k in watched)
@@ -143,25 +130,16 @@ class IvpStepper:
         return DenseSegments(np.array(self.seg_t), tuple(self.seg_sol), np.array(self.seg_c), self.omega, t_final)
 
 
+@run_arguments
 def solve_reference(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = None,
                     t_end: float | None = None, max_events: int | None = None, method: str = "DOP853",
                     rtol: float = 1e-12, atol: float | None = None, record_trajectory: bool = True) -> Solution:
-    """Integrate the escapement model numerically, segment by segment.
-
-    ``method`` is a ``solve_ivp`` method ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA") or
-    "CVODE-Adams" / "CVODE-BDF" (SUNDIALS through scikit-sundae, no dense output): :data:`METHODS`.
-    ``atol`` defaults to ``rtol`` times a length scale (the largest of |x0|, |a_i|, F/K
-    and |v0|/omega) for x, and omega times that for v.  Same limits and outcomes as
+    """Integrate the escapement model numerically, segment by segment; the limits and outcomes are those of
     :func:`escapement.solvers.exact.solve_exact`.
 
     Parameters
     ----------
-    params : Parameters
-        The model's parameters (SI units: kg, N/m, N, 1, m).
-    x0 : float
-        Initial displacement at ``t = 0+``, m.
-    v0 : float, default 0
-        Initial velocity at ``t = 0+``, m/s.
+    {run_arguments}
     n_cycles : int, optional
         Complete cycles to run; at least one of ``n_cycles`` and ``t_end`` is given.
     t_end : float, optional
@@ -170,11 +148,12 @@ def solve_reference(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles:
         Bound on the number of events (default: as :func:`~escapement.solvers.exact.solve_exact`, but
         :data:`DENSE_MAX_EVENTS` for a run to ``t_end`` alone that keeps its dense output, about 0.7 GB).
     method : str, default "DOP853"
-        The integrator (see above).
+        A ``solve_ivp`` method or "CVODE-Adams" / "CVODE-BDF" (SUNDIALS, no dense output): :data:`METHODS`.
     rtol : float, default 1e-12
         Relative tolerance, dimensionless, in ``(0, 1)``.
     atol : float, optional
-        Absolute tolerance on ``x``, m (``omega`` times it on ``v``, m/s); default see above.
+        Absolute tolerance on ``x``, m (``omega`` times it on ``v``, m/s); default ``rtol`` times the largest of
+        ``|x0|``, ``|a_i|``, ``F/K`` and ``|v0|/omega``.
     record_trajectory : bool, default True
         Keep the dense output, for :meth:`Solution.sample <escapement.Solution.sample>` (not with CVODE).
 
@@ -185,11 +164,8 @@ def solve_reference(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles:
 
     Raises
     ------
-    TypeError
-        If ``params`` is not a :class:`~escapement.Parameters`.
     ParameterError
-        If an argument is invalid (the message names it): ``x0``, ``v0``, a limit, ``method``, ``rtol``
-        outside ``(0, 1)``, ``atol`` not > 0, or ``record_trajectory=True`` with a CVODE method.
+        If an argument is invalid, naming it (also a :class:`TypeError` for ``params`` not a Parameters).
     RuntimeError
         If the integrator fails.
 

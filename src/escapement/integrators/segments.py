@@ -86,12 +86,10 @@ class SciPyIntegrator:
         self.method, self.rtol, self.atol, self.dense = method, rtol, atol, dense
         self.name = f"solve_ivp {method} rtol={rtol:g}"
 
-    def segment(self, seg: Segment) -> tuple[Hit | None, Dense | None]:
-        """The first event of the segment (None: none before ``t1``) and, if kept, the dense output."""
-        return self._solve(seg, self.dense)
-
-    def _solve(self, seg: Segment, dense: bool) -> tuple[Hit | None, Dense | None]:
-        omega2, centre = seg.omega2, seg.centre
+    def segment(self, seg: Segment, dense: bool | None = None) -> tuple[Hit | None, Dense | None]:
+        """The first event of the segment (None: none before ``t1``) and, if kept (``dense``, by default as the
+        integrator was made), the dense output."""
+        omega2, centre, dense = seg.omega2, seg.centre, self.dense if dense is None else dense
 
         def rhs(_t, y):
             return [y[1], -omega2 * (y[0] - centre)]
@@ -108,17 +106,16 @@ class SciPyIntegrator:
                         events=functions or None, dense_output=dense, max_step=seg.max_step, **implicit)
         if sol.status == -1:
             raise RuntimeError(f"solve_ivp failed at t = {seg.t0:.12g} s: {sol.message}")
-        hits = [(te[0], i, ye[0]) for i, (te, ye) in enumerate(zip(sol.t_events or [], sol.y_events or [])) if len(te)]
-        first = min(hits, key=lambda h: h[0]) if hits else None
-        hit = None if first is None else Hit(float(first[0]), first[1], (float(first[2][0]), float(first[2][1])))
-        return hit, (sol.sol if dense else None)
+        hits = [Hit(float(te[0]), i, (float(ye[0][0]), float(ye[0][1])))
+                for i, (te, ye) in enumerate(zip(sol.t_events or [], sol.y_events or [])) if len(te)]
+        return min(hits, key=lambda hit: hit.t, default=None), (sol.sol if dense else None)
 
     def crossing(self, seg: Segment, dense: Dense | None, end: Hit, index: int) -> Hit:
         """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, on the segment's
         dense output, where ``x`` is monotone from the start to ``end``; the segment is integrated
         again with dense output if it was not kept (the same steps, so the same ``end``)."""
         if dense is None:
-            again, dense = self._solve(seg, True)
+            again, dense = self.segment(seg, True)
             if again != end:
                 raise RuntimeError(f"solve_ivp is not repeatable at t = {seg.t0:.12g} s: {again} != {end}")
         position = seg.watches[index].position
@@ -142,7 +139,7 @@ class CvodeIntegrator:
         self.name = f"CVODE {method} rtol={rtol:g}"
 
     def _solve(self, seg: Segment, watches: tuple[Watch, ...], directions: list[int], t_from: float, y_from,
-               t_to: float):
+               t_to: float) -> Hit | None:
         omega2, centre = seg.omega2, seg.centre
 
         def rhs(_t, y, yp):
@@ -204,9 +201,7 @@ class DenseSegments:
         """Displacement, velocity and acceleration at times ``t`` (NaN outside [0, t_final]); ``t`` is checked
         as :meth:`escapement.Solution.sample` says."""
         t = sample_times("t", t)
-        x = np.full(t.shape, np.nan)
-        v = np.full(t.shape, np.nan)
-        a = np.full(t.shape, np.nan)
+        x, v, a = (np.full(t.shape, np.nan) for _ in range(3))
         idx = np.searchsorted(self.t_start, t, side="right") - 1
         valid = (idx >= 0) & (t >= 0.0) & (t <= self.t_final)
         for i in np.unique(idx[valid]):

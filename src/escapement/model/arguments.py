@@ -1,12 +1,8 @@
-"""The checks of every argument of the public entry points: one rule per kind of argument, one error.
+"""The checks of the public entry points' arguments: one rule per kind of argument, one error
+(:class:`ParameterError`) naming the argument, its value as given and what it must be.
 
-Each entry point checks each argument here, before any work, and refuses a bad one with a
-:class:`ParameterError` naming the argument, its value as given and what it must be: a single finite real number
-(:func:`real_number`: not a bool, a string, a complex number, None, a masked value, an array or a sequence), an
-array of them (:func:`real_array`, the ensemble's inputs, refused element by element with the first bad
-element's flat index as the row: NumPy would turn ``[0.1, True]`` into ``[0.1, 1.0]`` silently), sample times,
-a yes or a no, a count, a row, a name from a list, an object of a class (:class:`ParameterTypeError`).
-Hand-written, because NumPy and the validation libraries coerce such values silently and name no row.
+Hand-written, because NumPy and the validation libraries coerce such values silently (``[0.1, True]`` becomes
+``[0.1, 1.0]``) and name no row.
 """
 
 from __future__ import annotations
@@ -21,8 +17,7 @@ import numpy as np
 __all__ = ["Numeric", "ParameterError", "ParameterTypeError", "check_choice", "check_count", "check_flag",
            "check_index", "check_type", "real_array", "real_number", "sample_times"]
 
-#: a real number as the closed forms of the model take it: a float, a NumPy array of them (element by
-#: element) or an mpmath number (the 50-digit solver); checked by the caller, not by the type
+#: a real number as the closed forms take it: a float, a NumPy array of them or an mpmath number
 Numeric: TypeAlias = Any
 _T = TypeVar("_T")
 
@@ -31,8 +26,6 @@ _MASKED = "a real number, not a masked element (it holds no value)"
 
 class ParameterError(ValueError):
     """An input value is outside its allowed range; the message names it.
-
-    ``row`` is the index of the offending trajectory when the input is an array of them.
 
     Parameters
     ----------
@@ -74,7 +67,7 @@ class ParameterTypeError(ParameterError, TypeError):
 
 
 def _refuse_masked(name: str, value: object) -> object:
-    """``value`` without its mask if nothing in it is masked, else raise naming the first masked element."""
+    """``value`` unmasked if nothing in it is masked, else refused naming the first masked element."""
     if not isinstance(value, np.ma.MaskedArray):
         return value
     mask = np.ma.getmaskarray(value)
@@ -99,8 +92,8 @@ def _element(name: str, item: object, row: int | None) -> float:
 
 def real_number(name: str, value: object, holds: Callable[[float], bool] | None = None,
                 requirement: str = "") -> float:
-    """``value`` as a float if it is a single finite real number and, when given, ``holds(value)``; else
-    raise :class:`ParameterError` naming ``name`` (``requirement`` says what ``holds`` asks)."""
+    """``value`` as a float if it is a single finite real number (not a bool, a string, a complex number, None, a
+    masked value or a sequence) and, when given, ``holds(value)``, which ``requirement`` says in words."""
     if isinstance(_refuse_masked(name, value), np.ndarray | list | tuple):
         raise ParameterError(name, value, "a single real number, not an array or a sequence")
     number = _element(name, value, None)
@@ -112,8 +105,8 @@ def real_number(name: str, value: object, holds: Callable[[float], bool] | None 
 
 
 def real_array(name: str, value: object) -> np.ndarray:
-    """``value`` (a real number or an array-like of them, any shape) as float64, or raise naming ``name``
-    (and, for an array, the first bad element's flat index as the row)."""
+    """``value`` (a real number or an array-like of them, any shape) as float64; a bad element is refused with
+    its flat index as the row."""
     if isinstance(value, bool | np.bool_ | str | bytes):
         raise ParameterError(name, value, "a real number")
     value = _refuse_masked(name, value)
@@ -139,8 +132,7 @@ def real_array(name: str, value: object) -> np.ndarray:
 
 
 def sample_times(name: str, value: object) -> np.ndarray:
-    """Times to sample a trajectory at: a real number or a 1-d array of them, finite (s), as float64 (0-d
-    for a number); else raise naming ``name``."""
+    """Times to sample a trajectory at (s): a real number (0-d) or a 1-d array of them, finite, as float64."""
     if value is None:
         raise ParameterError(name, value, "a real number or a 1-d array of them (s)")
     times = real_array(name, value)
@@ -150,16 +142,14 @@ def sample_times(name: str, value: object) -> np.ndarray:
 
 
 def check_flag(name: str, value: object) -> bool:
-    """``value`` as a bool if it is ``True`` or ``False`` (a NumPy bool too), else raise :class:`ParameterError`
-    naming ``name``: a string such as ``"no"`` or a number is not taken for a yes or a no."""
+    """``value`` as a bool if it is ``True`` or ``False`` (a NumPy bool too); ``"no"`` or 0 is not a no."""
     if not isinstance(value, bool | np.bool_):
         raise ParameterError(name, value, "True or False")
     return bool(value)
 
 
 def check_count(name: str, value: object, maximum: int, minimum: int = 1) -> int:
-    """``value`` as an int if it is an integer in ``[minimum, maximum]`` (a bool is not), else
-    raise :class:`ParameterError` naming ``name``."""
+    """``value`` as an int if it is an integer (not a bool) in ``[minimum, maximum]``."""
     if isinstance(value, bool | np.bool_) or not isinstance(value, Integral) or not minimum <= value <= maximum:
         least = "a positive integer" if minimum == 1 else f"an integer >= {minimum:_}"
         raise ParameterError(name, value, f"{least}, at most {maximum:_}")
@@ -167,8 +157,7 @@ def check_count(name: str, value: object, maximum: int, minimum: int = 1) -> int
 
 
 def check_index(name: str, value: object, size: int) -> int:
-    """``value`` as an int if it is an integer in ``[0, size)`` (a row of an ensemble of ``size``; a bool
-    is not one, nor a negative index), else raise :class:`ParameterError` naming ``name``."""
+    """``value`` as an int if it is a row of an ensemble of ``size``: an integer (not a bool) in ``[0, size)``."""
     if isinstance(value, bool | np.bool_) or not isinstance(value, Integral) or not 0 <= value < size:
         raise ParameterError(name, value, f"an integer in [0, {size - 1}], a row of the {size} trajectories"
                              if size else "a row of the trajectories, and there are none")
@@ -176,7 +165,7 @@ def check_index(name: str, value: object, size: int) -> int:
 
 
 def check_choice(name: str, value: object, choices: Iterable[str]) -> str:
-    """``value`` if it is one of the strings ``choices``, else raise :class:`ParameterError` naming ``name``."""
+    """``value`` if it is one of the strings ``choices``."""
     choices = tuple(choices)
     if not isinstance(value, str) or value not in choices:
         raise ParameterError(name, value, "one of " + ", ".join(repr(c) for c in choices))
@@ -184,7 +173,7 @@ def check_choice(name: str, value: object, choices: Iterable[str]) -> str:
 
 
 def check_type(name: str, value: object, kind: type[_T], requirement: str) -> _T:
-    """``value`` if it is an instance of ``kind``, else raise :class:`ParameterTypeError` naming ``name``."""
+    """``value`` if it is an instance of ``kind``, else a :class:`ParameterTypeError`."""
     if not isinstance(value, kind):
         raise ParameterTypeError(name, value, requirement)
     return value

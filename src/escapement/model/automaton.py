@@ -1,11 +1,9 @@
 """The escapement as a hybrid automaton, written once as data: every solver drives these tables.
 
-The state of the automaton is the kind of the last event (:data:`RELEASE` before the first). Each
-state is a row of :data:`ARCS`: the mode of the arc that follows (its centre of oscillation) and the
-surfaces that can end it. Each surface (:data:`SURFACES`) is a parameter's position, a direction of
-crossing and whether reaching it is an impact. The event reached is the next state. The impact law
-is Eqs. (A-2), (A-4): ``v+ = (1 - b) v-``. A run leaves the regime (:data:`EXIT_WITHOUT_EVENT`)
-where no watched surface is ever passed, or where an impact reverses the velocity (``b > 1``).
+The state is the kind of the last event (:data:`RELEASE` before the first); its row of :data:`ARCS` gives the
+mode of the arc that follows and the surfaces (:data:`SURFACES`) that can end it; the event reached is the next
+state. The impact law is Eqs. (A-2), (A-4): ``v+ = (1 - b) v-``. A run leaves the regime where no watched
+surface is ever passed (:data:`EXIT_WITHOUT_EVENT`) or where an impact reverses the velocity (``b > 1``).
 """
 
 from __future__ import annotations
@@ -64,9 +62,7 @@ class Arc:
     watched: tuple[EventKind, ...]
 
 
-#: the state before the first event
-RELEASE = 0
-
+RELEASE = 0  #: the state before the first event
 #: the arc after each state. The impulse follows an impact only (the escapement unlocks at the impact);
 #: from the release the escapement awaits whichever impact comes first.
 ARCS: dict[int, Arc] = {
@@ -86,8 +82,7 @@ ZONE_OF = {Mode.ZONE_RIGHT: ("(a1, a2)", EventKind.ZONE_END_A2), Mode.ZONE_LEFT:
 
 
 def cycle_plan() -> tuple[EventKind, ...]:
-    """The events of one cycle, after an impact at a1 up to the next: the rows of :data:`ARCS` followed from
-    a1 (each state after the release watches a single surface)."""
+    """The events of one cycle, after an impact at a1 up to the next, by the rows of :data:`ARCS`."""
     plan = []
     state = EventKind.IMPACT_A1
     for _ in range(len(SURFACES)):
@@ -114,9 +109,7 @@ def is_impact(kind: int) -> bool:
 
 
 def impact_factor(b: Numeric) -> Numeric:
-    """The impact law, Eqs. (A-2), (A-4): at an impact ``v+ = r v-`` with ``r = 1 - b``; the end of an impulse
-    zone leaves the velocity as it is. Every solver takes the jump from here (floats, arrays, mpmath numbers).
-    """
+    """The impact law, Eqs. (A-2), (A-4): ``v+ = r v-`` with ``r = 1 - b`` (floats, arrays, mpmath numbers)."""
     return 1.0 - b
 
 
@@ -131,7 +124,6 @@ def reverses(v_before: Numeric, v_after: Numeric) -> Numeric:
 
 
 def rebound_distance(kind: int, where: Numeric) -> Numeric:
-    """After a rebound at the impact ``kind`` at position ``where``, the distance from the free
-    centre (0) to it on the side the spring pushes towards (> 0 when the spring drives the mass
-    back to it)."""
+    """After a rebound at the impact ``kind`` at ``where``, its distance from the free centre (0) on the side
+    the spring pushes towards (> 0 when the spring drives the mass back to it)."""
     return -SURFACES[kind].direction * where

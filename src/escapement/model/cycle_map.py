@@ -1,6 +1,5 @@
-"""The return map of a cycle, ``v_{k+1}**2 = mu v_k**2 + c``: linear in the square of the velocity before
-the impact at a1, derived from the arcs of one cycle by energy (the one place its constants are computed).
-"""
+"""The return map of a cycle, ``v_{k+1}**2 = mu v_k**2 + c`` in the velocity before the impact at a1, derived
+from the arcs of one cycle by energy (the one place its constants are computed)."""
 
 from __future__ import annotations
 
@@ -59,30 +58,19 @@ class CycleMap:
 
 
 def cycle_map(params: Parameters) -> CycleMap:
-    """The constants of the return map ``v_{k+1}**2 = mu v_k**2 + c`` for any geometry.
+    """The constants of the return map ``v_{k+1}**2 = mu v_k**2 + c`` for any geometry (``c`` in m**2/s**2).
 
     A cycle runs from an impact at a1 through four harmonic arcs: a1 to a2 in the zone (a1, a2) (centre
     ``+F/K``), a2 to a3 free, a3 to a4 in the zone (a4, a3) (centre ``-F/K``), a4 to a1 free. On an arc from
     ``x`` to ``y`` about ``c`` energy gives ``v_y**2 = v_x**2 + w**2 (x - y)(x + y - 2 c)``, and each impact
-    multiplies ``v`` by the impact law's factor ``r`` (:func:`~escapement.model.automaton.impact_factor`:
-    ``1 - b``, Eqs. (A-2), (A-4)). With ``f = F/M``
-    and ``beta = r**2``:
+    multiplies ``v`` by the impact law's factor ``r = 1 - b`` (:func:`~escapement.model.automaton.impact_factor`).
+    With ``f = F/M`` and ``beta = r**2``:
 
     * ``mu = beta**2``, ``1 - mu = (1 - r)(1 + r)(1 + r**2)`` (``1 - r`` is exact for ``r >= 1/2``: no
       cancellation as ``b -> 0``);
     * ``c = (1 - beta) w**2 (a3**2 - a1**2) + 2 f [beta (a2 - a1) + (a3 - a4)]``;
     * the fixed point ``v***2 = c / (1 - mu)``; in the symmetric case (``a3 = -a1``, ``a4 = -a2``)
       ``v***2 = 2 f (a2 - a1) / (1 - beta) = 2 f (a2 - a1) / (b (2 - b))``.
-
-    Parameters
-    ----------
-    params : Parameters
-        The model's parameters.
-
-    Returns
-    -------
-    CycleMap
-        ``mu``, ``c`` (m**2/s**2) and ``1 - mu``; the fixed point ``c / (1 - mu)``.
     """
     w2, f = params.omega2, params.f
     r = automaton.impact_factor(params.b)

@@ -57,8 +57,7 @@ class EventKind(IntEnum):
 class EventLog:
     """Every event in time order: time [s], kind, position [m], velocity before and after [m/s].
 
-    The solvers make it (:attr:`escapement.Solution.events`); all five arrays have one entry per
-    event. The high-precision solver stores mpmath numbers (object arrays).
+    The solvers make it (:attr:`escapement.Solution.events`); the high-precision solver's holds mpmath numbers.
 
     Parameters
     ----------
@@ -97,8 +96,7 @@ class EventLog:
         return len(self.t)
 
     def __repr__(self) -> str:
-        """One line: the number of events of each kind and the times of the first and the last, never
-        the arrays."""
+        """One line: the events of each kind and the times of the first and the last, never the arrays."""
         n = len(self)
         head = f"<EventLog> {n} event{'' if n == 1 else 's'}"
         if not n:
@@ -110,18 +108,7 @@ class EventLog:
         return f"{head} {f'at t = {first} s' if n == 1 else f'from t = {first} s to {last} s'}: {kinds}"
 
     def of_kind(self, kind: EventKind) -> np.ndarray:
-        """Indices of the events of one kind.
-
-        Parameters
-        ----------
-        kind : EventKind
-            The kind of event.
-
-        Returns
-        -------
-        numpy.ndarray of int
-            Their indices into the log's arrays, in time order.
-        """
+        """The indices of the events of ``kind``, in time order."""
         return np.flatnonzero(self.kind == int(kind))
 
 

@@ -1,13 +1,11 @@
 """Closed-form kinematics of one harmonic arc, written once for floats, NumPy arrays and (where said) mpmath.
 
-Between events the motion obeys ``x'' = -omega**2 (x - c)`` with a constant centre ``c`` (0 in free flight,
-``+F/K`` or ``-F/K`` in an impulse zone). In the phase plane ``(u, w) = (x - c, v / omega)`` the state turns
-clockwise on a circle at the rate ``omega``. An event is the arrival at a position ``p`` moving in a given
-direction: its speed follows from energy, ``v**2 = v0**2 + omega**2 (x0 - p)(x0 + p - 2c)``, and its time is the
-clockwise angle between the start and the end divided by ``omega``, by ``atan2`` of their cross and dot products
-(no ``arccos``, which loses accuracy near a turning point): no step size, no root finding. Times are summed
-with Knuth's TwoSum (:func:`two_sum`). The rebounds of a chattering impact sum to a closed form
-(:func:`rebound_accumulation_time`), hand-written because no library sums ``atan(x r**n)`` in bounded time.
+Between events ``x'' = -omega**2 (x - c)`` about a constant centre ``c`` (0 free, ``+-F/K`` in an impulse zone):
+in the phase plane ``(x - c, v / omega)`` the state turns clockwise at the rate ``omega``. An event's speed
+follows from energy and its time from the clockwise angle between start and end (``atan2`` of their cross and
+dot products, not ``arccos``, which loses accuracy near a turning point): no step size, no root finding. The
+rebounds of a chattering impact sum to a closed form (:func:`rebound_accumulation_time`), hand-written because
+no library sums ``atan(x r**n)`` in bounded time.
 """
 
 from __future__ import annotations
@@ -27,9 +25,9 @@ TWO_PI = 2.0 * math.pi
 
 
 def arc_terms(centre: Numeric, x0: Numeric, omega: Numeric, target: Numeric) -> tuple[Numeric, Numeric, Numeric]:
-    """The terms of :func:`crossing` that depend on the arc's two positions only: ``u0 = x0 - c``,
-    ``q = target - c`` and ``k = omega**2 (x0 - target)(x0 + target - 2 c)`` (by energy, the arrival's
-    ``v**2 = v0**2 + k``). An arc from one surface to the next has them once per parameter set."""
+    """The terms of :func:`crossing` that depend on the arc's positions only (once per parameter set for an arc
+    between surfaces): ``x0 - c``, ``target - c`` and ``k = omega**2 (x0 - target)(x0 + target - 2 c)``, by
+    energy the arrival's ``v**2 - v0**2``."""
     return x0 - centre, target - centre, (omega * omega) * ((x0 - target) * (x0 + target - 2.0 * centre))
 
 
@@ -38,11 +36,10 @@ def crossing(u0: Numeric, q: Numeric, k: Numeric, v0: Numeric, omega: Numeric, d
     """First arrival at the target moving in ``direction`` (+1 right, -1 left), for an arc about a centre
     ``c`` from ``x0 = c + u0`` at velocity ``v0`` to ``target = c + q``, with ``k`` from :func:`arc_terms`.
 
-    Returns ``(reached, tau, v, angle)``: whether the arc passes the target strictly, the time
-    after the start, the velocity on arrival and the phase angle swept (``angle = omega * tau``).
-    Where ``reached`` is false (the turning point lies short of the target or exactly on it:
-    grazing) the other values are meaningless. ``xp`` is :mod:`math` for floats, :mod:`numpy` for
-    arrays (the same names, the same operations).
+    Returns ``(reached, tau, v, angle)``: whether the arc passes the target strictly (not where its turning
+    point lies short of it or on it: grazing; the other values are then meaningless), the time after the
+    start, the velocity on arrival and the phase angle swept. ``xp`` is :mod:`math` for floats, :mod:`numpy`
+    for arrays.
     """
     v_sq = v0 * v0 + k
     v1 = direction * xp.sqrt(abs(v_sq))
@@ -56,13 +53,11 @@ def crossing(u0: Numeric, q: Numeric, k: Numeric, v0: Numeric, omega: Numeric, d
 
 def arc_maximum(centre: Numeric, x0: Numeric, v0: Numeric, omega: Numeric, angle: Numeric, x1: Numeric,
                 v1: Numeric) -> Numeric:
-    """Largest ``x`` on the arc that starts at ``(x0, v0)``, sweeps ``angle`` (rad) and ends at ``(x1, v1)``
-    (arrays or numbers): the top of its circle, ``centre + R``, if the arc passes it, else the larger end.
+    """Largest ``x`` on the arc that starts at ``(x0, v0)``, sweeps ``angle`` (rad) and ends at ``(x1, v1)``:
+    the top of its circle, ``centre + R``, if the arc passes it, else the larger end.
 
-    In the phase plane ``(x - c, v / omega)`` the state turns clockwise, and the top is where ``v`` turns
-    from positive to negative. An arc of less than a full turn that starts moving right (or at rest at
-    the bottom) passes it if it arrives moving left or turns more than half a circle; one that starts
-    moving left passes it only if it turns more than half a circle and arrives moving left.
+    An arc of less than a turn that starts moving right (or at rest at the bottom) passes the top if it
+    arrives moving left or turns more than half a circle; one that starts moving left, if it does both.
     """
     u0 = x0 - centre
     right = (v0 > 0.0) | ((v0 == 0.0) & (u0 < 0.0))
@@ -73,26 +68,23 @@ def arc_maximum(centre: Numeric, x0: Numeric, v0: Numeric, omega: Numeric, angle
 
 
 def two_sum(a: Numeric, b: Numeric) -> tuple[Numeric, Numeric]:
-    """Knuth's TwoSum, without a branch (floats or arrays): ``s = fl(a + b)`` and its rounding error ``e``,
-    ``s + e == a + b`` exactly."""
+    """Knuth's TwoSum, without a branch (floats or arrays): ``s = fl(a + b)`` and ``e`` with ``s + e == a + b``."""
     s = a + b
     part = s - a
     return s, (a - (s - part)) + (b - part)
 
 
 def compensated_add(total: Numeric, error: Numeric, term: Numeric) -> tuple[Numeric, Numeric]:
-    """Add ``term`` to the compensated sum ``total + error`` (:func:`two_sum`); returns the new pair. The time of
-    an event, the sum of every duration before it, stays within an ulp or so of the exact sum however many
-    events there are."""
+    """``total + error + term`` as a new compensated pair (:func:`two_sum`): an event's time, the sum of every
+    duration before it, stays within an ulp or so of the exact sum however many events there are."""
     total, rounding = two_sum(total, term)
     return total, error + rounding
 
 
 def time_to_rest(centre: Numeric, x0: Numeric, v0: Numeric, omega: Numeric,
                  xp: ModuleType = math) -> tuple[Numeric, Numeric]:
-    """Time until the velocity next vanishes, and the position there: the top of the circle (phase 0) moving
-    right, its bottom (phase -pi) moving left, ``(0, x0)`` at rest. ``xp`` is :mod:`math`, :mod:`numpy` or
-    :mod:`mpmath`, as the numbers are."""
+    """Time until the velocity next vanishes, and the position there: the top of the circle moving right, its
+    bottom moving left, ``(0, x0)`` at rest. ``xp`` is :mod:`math`, :mod:`numpy` or :mod:`mpmath`."""
     u0, w0 = x0 - centre, v0 / omega
     radius = xp.hypot(u0, w0)
     right, left, rest = w0 > 0.0, w0 < 0.0, w0 == 0.0
@@ -117,15 +109,13 @@ def _sech_even_derivatives(max_order: int) -> list[list[int]]:
     ``t`` times an odd polynomial in ``s``; even orders an odd polynomial in ``s``.
     """
     even = [[1]]
-    current = [1]
     for _ in range(max_order // 2):
-        odd = [-(2 * j + 1) * a for j, a in enumerate(current)]  # coefficients of t s**(2j+1)
+        odd = [-(2 * j + 1) * a for j, a in enumerate(even[-1])]  # coefficients of t s**(2j+1)
         nxt = [0] * (len(odd) + 1)
         for j, a in enumerate(odd):
             nxt[j + 1] += (2 * j + 2) * a
             nxt[j] -= (2 * j + 1) * a
         even.append(nxt)
-        current = nxt
     return even
 
 
@@ -135,7 +125,7 @@ _EM_LAMBDA_MAX = 0.1
 #: arguments at or below this are summed by the power series in the argument
 _SERIES_ARGUMENT_MAX = 0.25
 _SERIES_TERMS = 16  # x**(2k) <= 16**-k < 1e-18 for k = 15
-_TI2_SERIES_TERMS = 25  # 4**-k / (2k+1)**2 < 2e-18 for k = 24
+_TI2_DENOMINATORS = tuple((2 * k + 1) * (2 * k + 1) for k in range(25))  # 4**-k / (2k+1)**2 < 2e-18 for k = 24
 _CLAUSEN_TERMS = 20
 _BERNOULLI = _bernoulli_numbers(2 * _CLAUSEN_TERMS)
 #: ``|B_2n| / (2n (2n+1)!)``, n = 1 .. _CLAUSEN_TERMS: the series of the Clausen function
@@ -180,11 +170,7 @@ def _inverse_tangent_integral(y: float) -> float:
     if y > 0.5:
         theta = math.atan(y)
         return theta * math.log(y) + 0.5 * (_clausen2(2.0 * theta) + _clausen2(math.pi - 2.0 * theta))
-    y_sq = y * y
-    total = 0.0
-    for k in reversed(range(_TI2_SERIES_TERMS)):
-        total = total * -y_sq + 1.0 / ((2 * k + 1) * (2 * k + 1))
-    return y * total
+    return _alternating_series(y, _TI2_DENOMINATORS)
 
 
 def _series_denominators(log_r: float) -> tuple[float, ...]:
@@ -192,13 +178,12 @@ def _series_denominators(log_r: float) -> tuple[float, ...]:
     return tuple((2 * k + 1) * -math.expm1((2 * k + 1) * log_r) for k in range(_SERIES_TERMS))
 
 
-def _atan_power_series_sum(x: float, denominators: tuple[float, ...]) -> float:
-    """``sum_{n>=0} atan(x r**n)`` for ``0 <= x <= 1/4``, given :func:`_series_denominators` of ``r``.
+def _alternating_series(x: float, denominators: tuple[float, ...]) -> float:
+    """``sum_k (-1)**k x**(2k+1) / denominators[k]`` by Horner's rule.
 
-    Summing the power series of ``atan`` over ``n`` (geometric sums, all convergent):
-    ``sum_k (-1)**k x**(2k+1) / ((2k+1)(1 - r**(2k+1)))``. The magnitudes fall by at least
-    ``x**2 <= 1/16`` per term (``(2k+1)(1 - r**(2k+1))`` grows with ``k``), so the alternating series
-    cut after 16 terms is within ``16**-16 < 1e-19`` of the sum, relative.
+    With :func:`_series_denominators` of ``r`` and ``0 <= x <= 1/4`` it is ``sum_{n>=0} atan(x r**n)``, the power
+    series of ``atan`` summed over ``n``: the magnitudes fall by at least ``x**2 <= 1/16`` per term, so the
+    16 terms are within ``16**-16 < 1e-19`` of the sum, relative.
     """
     x_sq = x * x
     total = 0.0
@@ -213,7 +198,7 @@ def _atan_direct_sum(w: float, ratio: float, denominators: tuple[float, ...]) ->
     total = 0.0
     for _ in range(_DIRECT_TERMS_MAX):
         if w <= _SERIES_ARGUMENT_MAX:
-            return total + _atan_power_series_sum(w, denominators)
+            return total + _alternating_series(w, denominators)
         total += math.atan(w)
         w *= ratio
     raise ArithmeticError(f"the direct sum of atan(w r**n) for r = {ratio!r} kept arguments above "
@@ -251,7 +236,7 @@ def _atan_geometric_sum(x: float, ratio: float) -> float:
     """``S(x, r) = sum_{n>=0} atan(x r**n)`` for ``x >= 0`` and ``0 <= r < 1``, in a bounded number of operations.
 
     Branches (``lam = -ln r``, as ``-log1p(r - 1)``, exact in ``r - 1`` for ``r >= 1/2``): ``x <= 1/4``, the power
-    series (:func:`_atan_power_series_sum`); ``lam <= 0.1`` (``r >= 0.905``), Euler-Maclaurin
+    series (:func:`_alternating_series`); ``lam <= 0.1`` (``r >= 0.905``), Euler-Maclaurin
     (:func:`_atan_euler_maclaurin_sum`); ``lam > 0.1`` and ``x <= 1``, at most 15 direct terms, then the power
     series; ``lam > 0.1`` and ``x > 1``: with ``N = ceil(ln(x)/lam)`` (the terms above 1 are ``n < N``),
     ``atan(y) = pi/2 - atan(1/y)`` turns them into ``N pi/2 - S(z, r) + S(z r**N, r)`` with ``z = 1/(x r**(N-1))``
@@ -268,7 +253,7 @@ def _atan_geometric_sum(x: float, ratio: float) -> float:
     log_r = math.log1p(ratio - 1.0) if ratio >= 0.5 else math.log(ratio)
     lam = -log_r
     if x <= _SERIES_ARGUMENT_MAX:
-        return _atan_power_series_sum(x, _series_denominators(log_r))
+        return _alternating_series(x, _series_denominators(log_r))
     if lam <= _EM_LAMBDA_MAX:
         return _atan_euler_maclaurin_sum(x, lam)
     denominators = _series_denominators(log_r)
@@ -310,9 +295,8 @@ def rebound_accumulation_time(omega: float, distance: float, speed: float, ratio
 
 def sample_arcs(t: np.ndarray, t_start: np.ndarray, centre: np.ndarray, x_start: np.ndarray, v_start: np.ndarray,
                 omega: float, t_final: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Displacement, velocity and (smooth) acceleration at times ``t``: arc ``i`` holds on
-    ``[t_start[i], t_start[i+1])``, the last one up to ``t_final``; NaN before 0 or after ``t_final``. The
-    acceleration excludes the impulsive part at impacts, which the event log carries."""
+    """Displacement, velocity and smooth acceleration (the impacts' impulses are the event log's) at times ``t``:
+    arc ``i`` holds from ``t_start[i]``, the last one up to ``t_final``; NaN before 0 or after ``t_final``."""
     t = np.asarray(t, dtype=float)
     idx = np.searchsorted(t_start, t, side="right") - 1
     valid = (idx >= 0) & (t <= t_final) & (t >= 0.0)
@@ -324,5 +308,4 @@ def sample_arcs(t: np.ndarray, t_start: np.ndarray, centre: np.ndarray, x_start:
     x = centre[idx] + u0 * c + (v0 / omega) * s
     v = v0 * c - omega * u0 * s
     a = -(omega * omega) * (x - centre[idx])
-    nan = np.nan
-    return np.where(valid, x, nan), np.where(valid, v, nan), np.where(valid, a, nan)
+    return np.where(valid, x, np.nan), np.where(valid, v, np.nan), np.where(valid, a, np.nan)

@@ -1,10 +1,6 @@
-"""What a run is asked to do, checked once before any work: its parameters, release and limits (:class:`RunSpec`,
-made by :func:`run_spec`, the first step of every solver entry point), and the memory its result may take.
-
-A run ends at the first of ``n_cycles`` cycles, the time ``t_end`` and ``max_events`` events (:class:`RunLimits`).
-Each entry point estimates, from the limits alone, the bytes its result will hold, and :func:`check_budget`
-refuses a run over its memory budget (:data:`MEMORY_BUDGET` unless the caller says otherwise) with a
-:class:`MemoryBudgetError` that names the count which sets the size and the most of it that fits.
+"""What a run is asked to do, checked once before any work (:func:`run_spec`, the first step of every solver entry
+point): its parameters, release and limits, and the memory its result may take, estimated from the limits alone
+and refused over its budget (:func:`check_budget`) naming the count that sets the size and the most that fits.
 """
 
 from __future__ import annotations
@@ -12,17 +8,20 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
 
-from .arguments import ParameterError, check_count, check_flag, real_number
-from .parameters import ParameterArrays, Parameters, check_initial_state, check_parameters, validate_arrays
+from .arguments import ParameterError, check_count, check_flag, check_type, real_number
+from .parameters import ParameterArrays, Parameters, check_initial_state, validate_arrays
 from .printing import texts
 from .quantities import MODEL_KEYS
 
 __all__ = ["EVENTS_PER_CYCLE", "MAX_CYCLES", "MAX_DIGITS", "MAX_EVENTS", "MAX_MEMORY_BUDGET", "MEMORY_BUDGET",
-           "MIN_DIGITS", "MemoryBudgetError", "RunLimits", "RunSpec", "check_budget", "check_count", "check_flag",
-           "events_for", "run_spec"]
+           "MIN_DIGITS", "RUN_ARGUMENTS", "MemoryBudgetError", "RunLimits", "RunSpec", "check_budget", "check_count",
+           "check_flag", "events_for", "run_arguments", "run_spec"]
+
+_F = TypeVar("_F", bound=Callable)
 
 EVENTS_PER_CYCLE = 4
 DEFAULT_MAX_EVENTS_FOR_TIME = 10_000_000
@@ -38,10 +37,25 @@ MEMORY_BUDGET = 2_000_000_000
 MAX_MEMORY_BUDGET = 1_000_000_000_000
 
 
+#: the docstring entries of the arguments every solver entry point passes to :func:`run_spec` first
+RUN_ARGUMENTS = """params : Parameters
+        The model's parameters (SI units: kg, N/m, N, 1, m).
+    x0 : float
+        Initial displacement at ``t = 0+``, m.
+    v0 : float, default 0
+        Initial velocity at ``t = 0+``, m/s."""
+
+
+def run_arguments(function: _F) -> _F:
+    """``function`` with ``{run_arguments}`` in its docstring replaced by :data:`RUN_ARGUMENTS`, written once for
+    every solver entry point (a docstring cannot name a constant, and the entries must be in it)."""
+    if function.__doc__:  # None when docstrings are stripped (python -OO)
+        function.__doc__ = function.__doc__.replace("{run_arguments}", RUN_ARGUMENTS)
+    return function
+
+
 class MemoryBudgetError(ParameterError):
-    """A run whose stored output would exceed its memory budget; a :class:`ParameterError` that names the count
-    which sets the size (``n_cycles``, ``max_events``, ``chunk``, the trajectories) or the budget, with the
-    estimate and the budget in bytes."""
+    """A run whose stored output would exceed its memory budget, with the estimate and the budget in bytes."""
 
     def __init__(self, name: str, value: object, requirement: str, estimate: int, budget: int) -> None:
         super().__init__(name, value, requirement)
@@ -50,19 +64,15 @@ class MemoryBudgetError(ParameterError):
 
 
 def events_for(n_cycles: int) -> int:
-    """The events of ``n_cycles`` cycles with a margin for the first ones (the default ``max_events``)."""
+    """The events of ``n_cycles`` cycles with a margin for the first ones."""
     return EVENTS_PER_CYCLE * (n_cycles + 2) + 8
 
 
 @dataclass(frozen=True)
 class RunLimits:
     """A run ends at the first of: ``n_cycles`` complete cycles (``n_cycles + 1`` impacts at a1), the time
-    ``t_end``, or ``max_events`` events.
-
-    ``n_cycles`` is at most :data:`MAX_CYCLES` and ``max_events`` at most :data:`MAX_EVENTS`; ``max_events``
-    defaults to the events of ``n_cycles`` cycles with a margin, or to 10**7 for a run to ``t_end`` alone.
-    ``memory_budget`` (bytes, at most :data:`MAX_MEMORY_BUDGET`) defaults to :data:`MEMORY_BUDGET`.
-    """
+    ``t_end`` (s), or ``max_events`` events (default :func:`events_for` ``n_cycles``, or 10**7 for a run to
+    ``t_end`` alone). ``memory_budget`` is in bytes."""
 
     n_cycles: int | None = None
     t_end: float | None = None
@@ -86,9 +96,9 @@ class RunLimits:
 
     def check_memory(self, event_bytes: float, cycle_bytes: float, stores: str, remedy: str,
                      fixed_bytes: int = 0) -> int:
-        """The bytes a run of these limits stores at most: ``event_bytes`` an event, ``cycle_bytes`` a cycle,
-        ``fixed_bytes`` whatever their number (:func:`check_budget`, which names ``n_cycles``, or
-        ``max_events`` where it binds)."""
+        """The bytes a run of these limits stores at most, ``event_bytes`` an event, ``cycle_bytes`` a cycle and
+        ``fixed_bytes`` besides, if within the budget (:func:`check_budget` on ``n_cycles``, or ``max_events``
+        where it binds)."""
         if self.n_cycles is not None and events_for(self.n_cycles) <= self.max_events:
             count = ("n_cycles", self.n_cycles,
                      lambda n: fixed_bytes + events_for(n) * event_bytes + n * cycle_bytes)
@@ -100,9 +110,8 @@ class RunLimits:
 
 @dataclass(frozen=True)
 class RunSpec:
-    """A run as asked, every part checked (:func:`run_spec` makes it): the parameters, the release at ``t = 0+``
-    and the limits. For an ensemble the parameters are :class:`ParameterArrays` and the release arrays, a row
-    per trajectory."""
+    """A run as asked, every part checked (:func:`run_spec`): for an ensemble the parameters are
+    :class:`ParameterArrays` and the release arrays, a row per trajectory."""
 
     params: Parameters | ParameterArrays
     x0: float | np.ndarray  #: m
@@ -113,16 +122,16 @@ class RunSpec:
 def run_spec(params: Parameters | Mapping[str, object], x0: object, v0: object = 0.0, *,
              n_cycles: int | None = None, t_end: float | None = None, max_events: int | None = None,
              memory_budget: int | None = None, rows: Callable[[int, int], float] | None = None) -> RunSpec:
-    """The checked run, or the first invalid argument refused, named: ``params`` (a :class:`Parameters`), the
-    release ``x0``, ``v0`` (:func:`~escapement.model.parameters.check_initial_state`), then the limits.
+    """The checked run, or the first invalid argument refused, named: ``params``, the release, then the limits.
 
     With ``rows`` (the ensemble's bytes for a number of trajectories and of cycles), ``params`` maps the model
     keys to numbers or arrays and ``x0``, ``v0`` may be arrays, all broadcast to one shape: the counts are
-    checked first, then the memory of the trajectories from the inputs' shapes alone (before any array is made
-    at their size), then every row by the rules of :class:`Parameters`.
+    checked first, then the memory from the inputs' shapes alone (before any array is made at their size),
+    then every row by the rules of :class:`Parameters`.
     """
     if rows is None:
-        params = check_parameters(params)
+        params = check_type("params", params, Parameters,
+                            "an escapement.Parameters (make one with Parameters(M=..., ...))")
         x, v = check_initial_state(x0, v0)
         return RunSpec(params, x, v, RunLimits(n_cycles, t_end, max_events, memory_budget))
     limits = RunLimits(n_cycles, t_end, max_events, memory_budget)
@@ -164,8 +173,7 @@ def check_budget(budget: int, stores: str, counts: Sequence[tuple[str, int, Call
 
 
 def _sizes(estimate: int, budget: int) -> str:
-    """``estimate`` bytes over the ``budget``, in bytes and, for 10 MB or more, in GB (with the digits that tell
-    the two apart)."""
+    """``estimate`` bytes over the ``budget``, in bytes and, from 10 MB, in GB with the digits that tell them apart."""
     if budget < 10**7:
         return f"{estimate:_} bytes, over the memory budget of {budget:_} byte{'' if budget == 1 else 's'}"
     estimate_gb, budget_gb = texts([estimate / 1e9, budget / 1e9], 3)

@@ -1,12 +1,10 @@
 """The model's parameters, validated when they are made: :class:`Parameters` for one run, :class:`ParameterArrays`
-for many (the ensemble), both by the one rule set of :func:`rules` and :func:`state_rules`.
+for the ensemble's many, both by the one rule set of :func:`rules` and :func:`state_rules`.
 
-The model (Mao, Fu & Li 2013, Sec. 2-3 and Appendix A): a mass ``M`` on a spring ``K`` moves freely,
-``x'' + omega**2 x = 0``, except at the impacts and over the impulse zones of :mod:`escapement.model.automaton`.
-The impact at ``a1`` is met moving right, the one at ``a3`` moving left, and the force acts from ``a1`` to ``a2``
-and from ``a3`` to ``a4``: so ``a1 < a2`` and ``a4 < a3``. The paper's geometry has ``a1 < 0 < a3`` (its jump set
-``x * xdot < 0``); the model reads the jump set by the direction of motion for any other placement too
-(:attr:`Parameters.paper_signs` says which).
+A mass ``M`` on a spring ``K`` (Mao, Fu & Li 2013, Sec. 2-3, Appendix A) meets the impact at ``a1`` moving right
+and the one at ``a3`` moving left, and the force ``F`` acts from ``a1`` to ``a2`` and from ``a3`` to ``a4``: so
+``a1 < a2`` and ``a4 < a3``. The paper has ``a1 < 0 < a3`` (its jump set ``x * xdot < 0``); the model reads the
+jump set by the direction of motion for any other placement too (:attr:`Parameters.paper_signs`).
 """
 
 from __future__ import annotations
@@ -17,17 +15,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .arguments import ParameterError, check_type, real_array, real_number
+from .arguments import ParameterError, real_array, real_number
 from .quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS, REQUIRED_KEYS, SYMMETRIC_DEFAULTS, quantity
 
 __all__ = ["B_SMALLEST", "LARGEST", "SIGNS", "SMALLEST", "ParameterArrays", "ParameterError", "Parameters",
-           "check_initial_state", "check_parameters", "real_array", "rules", "state_rules", "validate_arrays"]
+           "check_initial_state", "rules", "state_rules", "validate_arrays"]
 
-#: the smallest and largest magnitude of a non-zero dimensional input, in SI units (see :func:`rules`)
-SMALLEST = 1e-50
-LARGEST = 1e50
-#: the smallest impact coefficient: 1 - b keeps b to 4 significant digits
-B_SMALLEST = 1e-12
+SMALLEST, LARGEST = 1e-50, 1e50  #: the magnitudes of a non-zero dimensional input, SI units (see :func:`rules`)
+B_SMALLEST = 1e-12  #: the smallest impact coefficient: 1 - b keeps b to 4 significant digits
 
 #: the sign and order rules on the parameters, in words, as the messages and the docstring state them
 SIGNS = {"M": "> 0", "K": "> 0", "F": ">= 0", "b": "in the open interval (0, 2)", "a2": "> a1", "a4": "< a3"}
@@ -45,7 +40,7 @@ _POSITIONS = tuple(name for name, q in PARAMETERS.items() if q.units == quantity
 
 
 def _magnitude(name: str, values: np.ndarray, zero: bool) -> tuple[str, np.ndarray, str]:
-    """The rule that a dimensional input's magnitude lies in [SMALLEST, LARGEST] (or is 0)."""
+    """The rule that a dimensional input's magnitude lies in [SMALLEST, LARGEST] (or, with ``zero``, is 0)."""
     size = np.abs(values)
     holds = (size >= SMALLEST) & (size <= LARGEST)
     if zero:
@@ -60,7 +55,7 @@ def rules(v: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
     ``v`` maps every model key to a float64 array (all of one shape); ``holds`` is a boolean array of that
     shape; ``requirement`` may name other parameters as ``{a1}`` (filled with the offending row's values).
 
-    The range. The solvers form ``omega**2 = K/M``, ``F/K``, ``F/M``, ``v/omega``, squared speeds (the energy
+    The solvers form ``omega**2 = K/M``, ``F/K``, ``F/M``, ``v/omega``, squared speeds (the energy
     relation of :func:`~escapement.model.kinematics.crossing`), products of two phase-plane lengths, the work
     ``f (a2 - a1)``, the energies and sums of times. With every dimensional input 0 (where zero means
     something: not ``M`` or ``K``) or of magnitude in ``[1e-50, 1e50]`` (SI units), ``omega``, ``F/K``, ``F/M``
@@ -88,7 +83,7 @@ def rules(v: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
 
 
 def state_rules(s: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
-    """The rules on the initial state, like :func:`rules`: ``s`` maps ``x0`` and ``v0`` to float64 arrays."""
+    """The rules on the initial state ``x0`` and ``v0``, as :func:`rules`."""
     with np.errstate(all="ignore"):
         for name in INITIAL_STATE:
             yield _magnitude(name, s[name], zero=True)
@@ -117,10 +112,9 @@ def _check(checks: Iterable, shaped: Mapping[str, np.ndarray]) -> None:
 
 
 def validate_arrays(values: Mapping[str, object], single: bool = False, state: bool = False) -> dict[str, np.ndarray]:
-    """Check every model key (``a3``, ``a4`` None: the symmetric default) and, with ``state``, the initial
-    state ``x0`` and ``v0``; return float64 arrays broadcast to one shape. The first violation raises, naming
-    the row for arrays. One rule set serves a single model (``single``: every value a number) and an
-    ensemble (one row per element of the broadcast shape)."""
+    """Every model key (``a3``, ``a4`` None: the symmetric default) and, with ``state``, ``x0`` and ``v0``, checked
+    and broadcast to one shape of float64 arrays, for a single model (``single``: every value a number) or an
+    ensemble (a row per element); the first violation is refused, naming the row for arrays."""
     names = REQUIRED_KEYS + (tuple(INITIAL_STATE) if state else ())
     for key in names:
         if values.get(key) is None:
@@ -141,11 +135,10 @@ def validate_arrays(values: Mapping[str, object], single: bool = False, state: b
 
 @dataclass(frozen=True)
 class Parameters:
-    """Physical parameters of the escapement model, in the units of :mod:`escapement.model.quantities`.
+    """Physical parameters of the escapement model, each checked when made (:func:`rules`) and stored as a float.
 
     ``a3`` and ``a4`` default to the symmetric geometry ``a3 = -a1``, ``a4 = -a2``; give them to study the
-    paper's asymmetric map, Eq. (16). Every value is checked when the parameters are made (:func:`rules`) and
-    stored as a float.
+    paper's asymmetric map, Eq. (16).
 
     Parameters
     ----------
@@ -238,8 +231,7 @@ class Parameters:
 
 
 def _parameters_section() -> str:
-    """The entries of the Parameters section of :class:`Parameters`' docstring, one per row of the parameters
-    table: long name, units, sign rule (:data:`SIGNS`) and default."""
+    """The entries of :class:`Parameters`' docstring, from the table: long name, units, rule and default."""
     lines = []
     for name, q in PARAMETERS.items():
         mirror = SYMMETRIC_DEFAULTS.get(name)
@@ -257,9 +249,8 @@ if Parameters.__doc__:  # None when docstrings are stripped (python -OO)
 
 @dataclass(frozen=True)
 class ParameterArrays:
-    """The parameters of many runs, one per element of each flat float64 array (the ensemble's), checked row by
-    row by the rules of :class:`Parameters` (:func:`validate_arrays`); what the automaton's rows read of a
-    :class:`Parameters`, on arrays."""
+    """The parameters of the ensemble's runs, a row per element of each flat float64 array, checked row by row
+    by the rules of :class:`Parameters` (:func:`validate_arrays`)."""
 
     M: np.ndarray
     K: np.ndarray
@@ -282,13 +273,7 @@ class ParameterArrays:
 
 
 def check_initial_state(x0: object, v0: object) -> tuple[float, float]:
-    """Validate the initial displacement and velocity (:func:`state_rules`); return them as floats."""
+    """The initial displacement and velocity, checked (:func:`state_rules`), as floats."""
     state = {name: np.asarray(real_number(name, value)) for name, value in zip(INITIAL_STATE, (x0, v0))}
     _check(state_rules(state), state)
     return float(state["x0"]), float(state["v0"])
-
-
-def check_parameters(params: object) -> Parameters:
-    """``params`` if it is a :class:`Parameters`, else raise :class:`~escapement.model.arguments.ParameterTypeError`
-    (a :class:`ParameterError` and a :class:`TypeError`) naming it."""
-    return check_type("params", params, Parameters, "an escapement.Parameters (make one with Parameters(M=..., ...))")

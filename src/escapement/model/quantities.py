@@ -1,8 +1,5 @@
-"""Every quantity of the model by name: its symbol, units and long name, defined once.
-
-The configuration, :class:`~escapement.model.parameters.Parameters`, the netCDF writers and
-readers, the figure labels and the error messages all take names, units and descriptions from
-here. Units are UDUNITS strings (as CF requires) with a plain-text form for labels and messages.
+"""Every quantity of the model by name, defined once: its symbol, units and long name, which the configuration,
+:class:`~escapement.model.parameters.Parameters`, the netCDF files, the figures and the messages take from here.
 """
 
 from __future__ import annotations
@@ -15,31 +12,14 @@ __all__ = ["Quantity", "PARAMETERS", "INITIAL_STATE", "VARIABLES", "MODEL_KEYS",
 
 @dataclass(frozen=True)
 class Quantity:
-    """One named quantity.
+    """One named quantity."""
 
-    Parameters
-    ----------
-    name : str
-        The key in the configuration, in :class:`~escapement.model.parameters.Parameters` and in the
-        netCDF files.
-    symbol : str
-        The paper's symbol, for labels ("" where the paper gives none).
-    units : str
-        The units as a UDUNITS string (as CF requires).
-    unit_label : str
-        The same units as printed in axis labels, docstrings and messages.
-    long_name : str
-        What the quantity is, in words (the CF ``long_name`` and the configuration's ``title``).
-    short_name : str, optional
-        A shorter name for axis labels; default the long name.
-    """
-
-    name: str
-    symbol: str
-    units: str
-    unit_label: str
-    long_name: str
-    short_name: str = ""
+    name: str  #: the key in the configuration, in :class:`~escapement.model.parameters.Parameters` and in files
+    symbol: str  #: the paper's symbol, for labels ("" where the paper gives none)
+    units: str  #: UDUNITS, as CF requires
+    unit_label: str  #: the same units as printed in labels and messages
+    long_name: str  #: what it is, in words (the CF ``long_name``, the configuration's ``title``)
+    short_name: str = ""  #: for axis labels; default the long name
 
     @property
     def dimensionless(self) -> bool:
@@ -47,13 +27,7 @@ class Quantity:
         return self.units == "1"
 
     def axis_label(self) -> str:
-        """An axis label: the short name, capitalised, the symbol and the units.
-
-        Returns
-        -------
-        str
-            ``Force F (N)``; a pure number has no units: ``Impact coefficient b``.
-        """
+        """An axis label: ``Force F (N)``; a pure number has no units: ``Impact coefficient b``."""
         name = self.short_name or self.long_name
         text = " ".join(part for part in (name[:1].upper() + name[1:], self.symbol) if part)
         return text if self.dimensionless else f"{text} ({self.unit_label})"
@@ -63,7 +37,7 @@ def _table(*rows: Quantity) -> dict[str, Quantity]:
     return {q.name: q for q in rows}
 
 
-#: Model parameters (Sec. 2-3 of the paper)
+#: the model's parameters (Sec. 2-3 of the paper)
 PARAMETERS = _table(
     Quantity("M", "M", "kg", "kg", "mass"),
     Quantity("K", "K", "N m-1", "N/m", "spring constant"),
@@ -75,13 +49,13 @@ PARAMETERS = _table(
     Quantity("a4", "a\u2084", "m", "m", "end of the second impulse zone"),
 )
 
-#: The state at t = 0+ (Eq. (2): after any jump)
+#: the state at t = 0+ (Eq. (2): after any jump)
 INITIAL_STATE = _table(
     Quantity("x0", "x(0)", "m", "m", "initial displacement"),
     Quantity("v0", "v(0)", "m s-1", "m/s", "initial velocity"),
 )
 
-#: The computed variables of a run, by their names in the datasets: the trajectory, the impacts and
+#: the computed variables of a run, by their names in the datasets: the trajectory, the impacts and
 #: the Poincare map per cycle (cycle k starts at the k-th impact at a1)
 VARIABLES = _table(
     Quantity("t", "t", "s", "s", "time since release", "time"),
@@ -119,23 +93,7 @@ REQUIRED_KEYS = tuple(name for name in MODEL_KEYS if name not in SYMMETRIC_DEFAU
 
 
 def quantity(name: str) -> Quantity:
-    """The quantity called ``name``.
-
-    Parameters
-    ----------
-    name : str
-        A parameter, an initial-state component or a computed variable.
-
-    Returns
-    -------
-    Quantity
-        Its row of the table.
-
-    Raises
-    ------
-    KeyError
-        If no table has that name.
-    """
+    """The parameter, initial-state component or computed variable called ``name`` (:class:`KeyError`: none)."""
     for table in (PARAMETERS, INITIAL_STATE, VARIABLES):
         if name in table:
             return table[name]

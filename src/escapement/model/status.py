@@ -1,8 +1,5 @@
-"""How a run ended, as a typed outcome instead of an exception, with the integer code written to files.
-
-The codes are fixed in :data:`CODES`, not taken from the order of the members, and written to netCDF with CF
-``flag_values`` and ``flag_meanings`` (:func:`flag_attributes`). The messages are written where the outcomes
-are decided (:mod:`escapement.solvers.outcomes`).
+"""How a run ended, as a typed outcome instead of an exception, with the integer code written to files (fixed in
+:data:`CODES`, not taken from the members' order; CF ``flag_values`` and ``flag_meanings``: :func:`flag_attributes`).
 """
 
 from __future__ import annotations
@@ -16,7 +13,7 @@ __all__ = ["CODES", "Status", "flag_attributes", "succeeded"]
 
 
 class Status(str, Enum):
-    """How a run ended. ``value`` is the name written in text; :attr:`code` the stored integer.
+    """How a run ended: ``value`` is the name written in text, :attr:`code` the stored integer.
 
     Parameters
     ----------
