@@ -1,28 +1,29 @@
-"""The exact solver's event loop: the automaton's rows in numbers, one closed form per arc, one plain loop.
+"""The exact solver's event loop: the automaton's rows in numbers, one closed form per arc, in blocks of events.
 
-Per event the loop (:meth:`EventRun.advance`) reads the row of the state it is in (:func:`rows`: the arc's
-terms from its start to the surface it watches, the direction of crossing, whether it is an impact, the next
-state; the same rows, on arrays, serve the closed forms and the ensemble), asks
-:func:`~escapement.model.kinematics.crossing` when the surface is reached, adds the duration to a compensated sum,
-applies the impact law at impacts and stores three numbers: the event's time, the velocity before it and the
-angle its arc swept. Everything else (kinds, positions, velocities after, the arcs, the cycle table) follows
-after the loop, on arrays (:func:`event_block`, :func:`cycle_rows`). The run is resumable: a run in several
-passes gives the numbers of a run in one.
+A block (:meth:`EventRun.advance`) is two steps. The loop walks the rows of the automaton (:func:`rows`) and
+follows the velocity alone: by energy each arc arrives with ``v**2 = v0**2 + k``, in the direction of its surface,
+and the impact law jumps it at impacts; the loop stops where ``v**2`` is not positive (no surface is passed) or an
+impact reverses the velocity. Then, on the block's arrays, :func:`~escapement.model.kinematics.crossing` gives each
+arc's angle and duration, the events' times are the compensated (TwoSum) running sum of the durations, and the end
+time cuts the block where it falls. Each number is the one an event-by-event loop computes, bit for bit, and a run
+in several passes gives the numbers of a run in one. Everything else (kinds, positions, the arcs, the cycle table)
+follows on arrays (:func:`event_block`, :func:`cycle_rows`).
 """
 
 from __future__ import annotations
 
 import math
 from array import array
+from types import SimpleNamespace
 from typing import NamedTuple
 
 import numpy as np
 
 from ..model import automaton
+from ..model.arguments import Numeric
 from ..model.automaton import RELEASE, Mode
 from ..model.events import EventKind
 from ..model.kinematics import arc_maximum, arc_terms, crossing, time_to_rest, two_sum
-from ..model.arguments import Numeric
 from ..model.limits import RunSpec
 from ..model.parameters import ParameterArrays, Parameters
 from ..model.status import Status
@@ -30,14 +31,27 @@ from .describe import Exit
 from .outcomes import (Outcome, chattering_outcome, completed_outcome, event_limit_message, horizon_outcome,
                        no_event_outcome)
 
-__all__ = ["A1", "PLAN", "Block", "EventRun", "Row", "event_block", "cycle_rows", "kinds_from", "row", "rows"]
+__all__ = ["A1", "BLOCK_EVENTS", "PLAN", "Block", "EventRun", "Row", "event_block", "cycle_rows", "kinds_from", "row",
+           "rows"]
 
 A1 = int(EventKind.IMPACT_A1)
 #: the events of a cycle after the impact at a1, the last that impact
 PLAN = tuple(int(kind) for kind in automaton.cycle_plan())
-#: how a pass of the loop can end before its last event: no watched surface is reached, the end time comes
-#: first, an impact reversed the velocity
+#: the most events of a block: its arrays stay small, and a run to an end time computes at most this many past it
+BLOCK_EVENTS = 1 << 12
+#: how a block can end before its last event: no watched surface is reached, the end time comes first, an impact
+#: reversed the velocity
 NO_EVENT, HORIZON, REBOUND = "no event", "end time", "rebound"
+
+
+def _atan2(y: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """libm's ``atan2`` element by element: NumPy's ``arctan2`` may differ from it by an ulp where it uses SIMD."""
+    return np.fromiter(map(math.atan2, y.tolist(), x.tolist()), float, len(y))
+
+
+#: :func:`~escapement.model.kinematics.crossing` on arrays with the scalar closed form's numbers, bit for bit (NumPy's
+#: square root is correctly rounded, as math's)
+LIBM = SimpleNamespace(sqrt=np.sqrt, atan2=_atan2)
 
 
 class Row(NamedTuple):
@@ -99,13 +113,21 @@ class EventRun:
         self.outcome: Outcome | None = None
         self.open_arc = False  # the run ended inside an arc (no surface reached, or the end time)
         self.rows[RELEASE] = self.release_row()
-        # by event kind (the release at 0): the position, whether it is an impact, the centre of the arc after it
+        # by event kind (the release at 0): the position, whether it is an impact, the impact law's jump of the
+        # velocity (1 at the ends of the zones), the centre of the arc after it
         size = len(self.rows)
         self.position, self.impact, self.centre = np.full(size, math.nan), np.zeros(size, bool), np.zeros(size)
         for state, arc in automaton.ARCS.items():
             self.centre[state] = automaton.centre(arc.mode, params.zone_offset)
             if state != RELEASE:
                 self.position[state], self.impact[state] = automaton.position(state, params), automaton.is_impact(state)
+        self.jump = np.where(self.impact, automaton.impact_factor(self.b), 1.0)
+        # by state, the arc after it: for the loop (k, direction, the jump at its end, the next state), and its terms
+        # as arrays for the closed form (NaN where no arc follows)
+        self.loop = [None if r is None else (r.k, r.direction, float(self.jump[r.following]), r.following)
+                     for r in self.rows]
+        self.terms = {name: np.array([math.nan if r is None else getattr(r, name) for r in self.rows])
+                      for name in ("u0", "q", "k", "direction")}
 
     def release_row(self) -> Row | None:
         """The row of the release: of the surfaces it watches, the one reached first (None: neither). It sets
@@ -128,52 +150,63 @@ class EventRun:
         return (PLAN.index(A1) - PLAN.index(self.first)) % len(PLAN)
 
     def advance(self, n: int) -> None:
-        """Run at most ``n`` more events, or until the run ends (:attr:`outcome` set).
+        """Run at most ``n`` more events, in blocks of at most :data:`BLOCK_EVENTS`, or until the run ends
+        (:attr:`outcome` set).
 
         The stopping rules and the side of each boundary: an event is kept when its time as stored (the
         compensated sum ``t_sum + t_err``) is at most the end time, so an event exactly at ``t_end`` belongs to
         the run and one an ulp later ends it there (:data:`HORIZON`); the run holds at most :attr:`last` events
-        (``max_events``, or the events up to the ``(n_cycles + 1)``-th impact at a1 if fewer), and the pass stops
-        after the last of them without computing the next arc."""
-        if self.outcome is not None:
-            return
-        table, omega, b, t_stop = self.rows, self.omega, self.b, self.t_stop
-        factor = automaton.impact_factor(b)  # the impact law: v+ = factor v-
-        rebounds = automaton.reverses(1.0, factor)  # an impact reverses the velocity
-        put_t, put_v, put_angle = self.t.append, self.v_before.append, self.angle.append
-        state, v, t_sum, t_err, t = self.state, self.v, self.t_sum, self.t_err, self.time
-        ending, v1, i = None, v, -1
-        limit = min(n, self.last - self.events)
-        if table[state] is None:  # from the release, neither impact is reached
+        (``max_events``, or the events up to the ``(n_cycles + 1)``-th impact at a1 if fewer), and ends after the
+        last of them without computing the next arc."""
+        while n > 0 and self.outcome is None:
+            n -= self._block(min(n, BLOCK_EVENTS, self.last - self.events))
+
+    def _block(self, limit: int) -> int:
+        """At most ``limit`` events: the velocities by the loop, then the angles and times on arrays. Returns
+        the events kept."""
+        loop, state, v, sqrt, arrivals = self.loop, self.state, self.v, math.sqrt, array("d")
+        put, ending = arrivals.append, None
+        if loop[state] is None:  # from the release, neither impact is reached
             ending, limit = NO_EVENT, 0
-        for i in range(limit):
-            u0, q, k, direction, impact, following = table[state]
-            reached, dt, v1, angle = crossing(u0, q, k, v, omega, direction)
-            if not reached:
+        for _ in range(limit):
+            k, direction, jump, following = loop[state]
+            v_sq = v * v + k
+            if not v_sq > 0.0:  # the arc turns short of its surface (crossing's ``reached``)
                 ending = NO_EVENT
                 break
-            new_sum, rounding = two_sum(t_sum, dt)  # the compensated sum of the durations (compensated_add inline)
-            new_err = t_err + rounding
-            if new_sum + new_err > t_stop:  # the event's time, as it is stored, after the end time
-                ending = HORIZON
+            v1 = direction * sqrt(v_sq)
+            put(v1)
+            state, v = following, jump * v1
+            if jump < 0.0:  # the impact reversed the velocity (b > 1)
+                ending = REBOUND
                 break
-            t_sum, t_err = new_sum, new_err
-            t = t_sum + t_err
-            put_t(t)
-            put_v(v1)
-            put_angle(angle)
-            state, v = following, v1
-            if impact:
-                v = factor * v1
-                if rebounds:
-                    ending = REBOUND
-                    break
-        self.state, self.v, self.t_sum, self.t_err, self.time = state, v, t_sum, t_err, t
-        self.events += limit if ending is None else max(i, 0) + (ending == REBOUND)
-        self._end(ending, v1)
+        kept = len(arrivals)
+        if kept:
+            v_before = np.frombuffer(arrivals)
+            kind = kinds_from(self.first, self.events, kept)
+            start = np.concatenate(([self.state], kind[:-1]))  # the state each arc starts from
+            v_start = np.concatenate(([self.v], self.jump[kind[:-1]] * v_before[:-1]))
+            terms = {name: column[start] for name, column in self.terms.items()}
+            _, dt, _, angle = crossing(terms["u0"], terms["q"], terms["k"], v_start, self.omega, terms["direction"],
+                                       LIBM)
+            # the compensated sum event by event: t_sum the running sum, t_err that of each addition's rounding
+            t_sum = np.cumsum(np.concatenate(([self.t_sum], dt)))
+            t_err = np.cumsum(np.concatenate(([self.t_err], two_sum(t_sum[:-1], dt)[1])))
+            t = t_sum[1:] + t_err[1:]
+            late = np.flatnonzero(t > self.t_stop)
+            if len(late):  # the end time comes before event kept: the run ends there, inside its arc
+                kept, ending = int(late[0]), HORIZON
+                state, v = (int(kind[kept - 1]) if kept else self.state), float(v_start[kept])
+            for stored, column in ((self.t, t), (self.v_before, v_before), (self.angle, angle)):
+                stored.frombytes(column[:kept].view(np.uint8))
+            self.t_sum, self.t_err = float(t_sum[kept]), float(t_err[kept])
+            self.time = float(t[kept - 1]) if kept else self.time
+            self.state, self.v, self.events = state, v, self.events + kept
+        self._end(ending, arrivals[-1] if ending == REBOUND else math.nan)
+        return kept
 
     def _end(self, ending: str | None, v1: float) -> None:
-        """The outcome of a pass that ended with ``ending``, or at the run's last event. The event that ends the
+        """The outcome of a block that ended with ``ending``, or at the run's last event. The event that ends the
         last cycle completes the run, even where it is also the last event ``max_events`` allows or an impact
         that reverses the velocity; any other last allowed event ends it with :attr:`Status.EVENT_LIMIT`, even
         where the next event would come after the end time (it is not computed)."""
@@ -190,7 +223,6 @@ class EventRun:
         elif self.events >= self.last:
             message = event_limit_message(float(self.time), self.limits.max_events)
             self.outcome = Outcome(Status.EVENT_LIMIT, message, Exit(), self.time)
-
     def completed(self) -> bool:
         """The run's cycles are done: its last event is the (n_cycles + 1)-th impact at a1 (that impact, not the
         ``n_cycles``-th, ends the last cycle)."""
