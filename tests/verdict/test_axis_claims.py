@@ -33,8 +33,8 @@ def _evidence(axes: dict, readings: dict | None = None, fig5_K=(0.1, 1.0, 10.0),
 
 def _claim(figure: str, panel: str) -> dict:
     return {"id": f"fig{figure}_{panel}", "source": "S", "origin": "paper", "quote": "q", "statement": "s",
-            "paper_value": None, "readings": [{"reading": "as stated", "check": "printed_axes", "tolerance": None,
-                                               "args": {"figure": figure, "panel": panel}}]}
+            "paper_value": None, "readings": [{"reading": "as stated", "check": "figure_axes.printed_axes",
+                                               "tolerance": None, "args": {"figure": figure, "panel": panel}}]}
 
 
 def _row(figure: str, panel: str, limits: dict, scores: dict, **candidates) -> dict:

@@ -21,15 +21,16 @@ import math
 import numpy as np
 import pytest
 import xarray as xr
+import yaml
 
-from escapement.pipeline.sources import read_yaml
 from escapement.verdict import engine as cl
 from escapement.verdict.evidence import Evidence
 from escapement.verdict.rule import status_of
 
 REGISTER = cl.REGISTER
 #: the runs the register names by ``runs``: the configuration's model and checks blocks
-SETTINGS = {key: read_yaml(cl.REGISTER.parents[3] / "config" / "paper.yaml")[key] for key in ("model", "checks")}
+SETTINGS = {key: yaml.safe_load((cl.REGISTER.parents[3] / "config" / "paper.yaml").read_text())[key]
+            for key in ("model", "checks")}
 GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
 DONE = {"outcome": "completed", "outcome_message": "completed: a message"}
 #: the relative offsets from a tolerance at which a check is judged: inside, outside

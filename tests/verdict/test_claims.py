@@ -1,5 +1,6 @@
-"""The claims engine: the register against its schema and the paper's text, the one rule applied to the
-readings' outcomes, the kind of evidence computed from what each check consumes, and the rows it gives.
+"""The claims engine: the register against its schema and the paper's text, its checks named and resolved, the one
+rule applied to the readings' outcomes, the kind of evidence computed from what each check consumes, and the rows it
+gives.
 
 The checks themselves are judged at their tolerances in test_check_boundaries*.py; here they are run on
 scenes of the exact solver (the Fig. 3 cases) and on a synthetic checks dataset, or replaced by stubs
@@ -8,9 +9,12 @@ whose outcomes the test chooses.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import functools
+import importlib
 import os
+import pkgutil
 import re
 from pathlib import Path
 
@@ -19,9 +23,10 @@ import pytest
 import xarray as xr
 import yaml
 
+import escapement.verdict
 from escapement.model.parameters import Parameters
 from escapement.verdict import engine as cl
-from escapement.verdict.evidence import CHECKS, Evidence, Verdict, runs_only
+from escapement.verdict.evidence import Check, Evidence, Verdict, runs_only
 from escapement.solvers.exact import solve_exact
 from verdict.test_check_boundaries import GEOMETRY, SETTINGS, probes, runs
 
@@ -34,15 +39,32 @@ def register() -> list[dict]:
     return cl.load_claims(REGISTER, settings=SETTINGS)
 
 
+@functools.cache
+def written() -> dict:
+    """The register as written (before the loader adds its readings and resolves its runs)."""
+    return yaml.load(REGISTER.read_text(), Loader=yaml.CSafeLoader)
+
+
 def claim_of(claim_id: str) -> dict:
     return next(c for c in register() if c["id"] == claim_id)
+
+
+def checks_named() -> set[str]:
+    return {r["check"] for c in register() for r in c["readings"]}
 
 
 # --- the register ----------------------------------------------------------------------------------
 
 
-def test_the_register_uses_every_registered_check_and_no_other():
-    assert {r["check"] for c in register() for r in c["readings"]} == set(CHECKS)
+def test_each_check_of_the_package_is_named_by_the_register_as_module_function_where_it_is_defined():
+    """The register names every check the modules of escapement.verdict declare, each by the module that defines
+    it, and nothing else."""
+    declared = set()
+    for info in pkgutil.iter_modules(escapement.verdict.__path__):
+        module = importlib.import_module(f"escapement.verdict.{info.name}")
+        declared |= {f"{info.name}.{name}" for name, value in vars(module).items()
+                     if isinstance(value, Check) and value.function.__module__ == module.__name__}
+    assert checks_named() == declared
 
 
 def test_the_register_gives_the_fig3_cases_of_the_configuration():
@@ -54,19 +76,18 @@ def test_the_register_gives_the_fig3_cases_of_the_configuration():
             assert {str(x) for x in named} <= labels, c["id"]
 
 
-def test_every_quote_is_the_papers_text_and_every_sentence_is_quoted():
-    """Each sentence of the register, whitespace collapsed, is found in the paper's text as extracted (its
-    path in ESCAPEMENT_PAPER_TEXT, the variable of the other verbatim tests)."""
+def test_every_quote_and_cited_sentence_is_the_papers_text_and_every_cited_one_admits_a_reading():
+    """Each quote and each cited sentence of the register, whitespace collapsed, is found in the paper's text as
+    extracted (its path in ESCAPEMENT_PAPER_TEXT, the variable of the other verbatim tests)."""
+    cited = written()["cited"]
+    words = [r["words"] for c in written()["claims"] for r in c.get("readings", [])]
+    assert all(any(w in sentence for w in words) for sentence in cited.values())
     path = os.environ.get("ESCAPEMENT_PAPER_TEXT")
     if not path:
         pytest.skip("ESCAPEMENT_PAPER_TEXT does not name the paper's text file")
     text = " ".join(Path(path).read_text().split())
-    data = yaml.safe_load(REGISTER.read_text())
-    sentences = data["sentences"]
-    for name, sentence in {**sentences, **data["cited"]}.items():
-        assert " ".join(sentence.split()) in text, name
-    quoted = {c["quote"] for c in register() if c["origin"] == "paper"}
-    assert quoted == set(sentences.values())
+    for sentence in {*(c["quote"] for c in written()["claims"] if "quote" in c), *cited.values()}:
+        assert " ".join(sentence.split()) in text, sentence
 
 
 def test_reason_and_conclusion_are_parts_never_readings():
@@ -87,62 +108,100 @@ def test_reason_and_conclusion_are_parts_never_readings():
     assert {**first[0]["args"], "form": None} == {**second[0]["args"], "form": None}
 
 
-def test_every_row_read_several_ways_names_every_figure_it_tried():
-    """A row whose readings could part says which figures it tried: every figure of the paper (3, 4 and 5) is
-    named, unless the claim holds, or fails, under every reading alike (then no figure has anything to decide)."""
-    alike = re.compile(r"(holds|fails) (under both|under each|from either side)")
-    for c in register():
-        if len(c["readings"]) < 2 or alike.search(c["figures_tried"]):
-            continue
-        named = {d for span in re.findall(r"Figs?\. [0-9][0-9 ,and]*", c["figures_tried"]) for d in re.findall(
-            r"[0-9]", span)}
-        assert named >= {"3", "4", "5"}, (c["id"], named)
-
-
-def _written(tmp_path, mutate) -> Path:
-    data = yaml.safe_load(REGISTER.read_text())
-    mutate(data["claims"], {c["id"]: c for c in data["claims"]})
-    path = tmp_path / "claims.yaml"
-    path.write_text(yaml.safe_dump(data, allow_unicode=True))
-    return path
-
-
-@pytest.mark.parametrize("mutate, message", [
-    (lambda c, by: by["eq16_map"].pop("tolerance"), "claim 'eq16_map': .*'tolerance' is a required property"),
-    (lambda c, by: c.append(dict(c[0])), "a second claim with this id"),
-    (lambda c, by: by["eq19_fixed_point_case_b"].update(part="case (a)"), "a second claim with this part"),
-    (lambda c, by: by["eq16_map"].update(check="nonsense"), "'nonsense' is not a registered check"),
-    (lambda c, by: by["eq19_fixed_point_case_a"].pop("args"), "the check 'fixed_point' needs the args case"),
-    (lambda c, by: by["eq16_map"].pop("tolerance_reason"), "'tolerance_reason' is a required property"),
-    (lambda c, by: by["fig3_period_a"].update(tolerance_reason="  "), "does not match"),
-    (lambda c, by: by["eq4_jump_set"].update(tolerance_reason="a reason"),
+#: the claims of the register the refusals below mutate, in the register's order (a register of its own)
+SMALL = ("eq4_jump_set", "eq16_map", "eq19_fixed_point_case_a", "eq19_fixed_point_case_b", "eq20_map_derivative",
+         "fig5_recovery_small_K_faster", "airy_symmetric_impulse")
+RECOVERY = "fig5_recovery_small_K_faster"
+#: each refusal of the loader: a mutation of the small register, and the message, which names the claim
+REFUSALS = [
+    (lambda by: by["eq16_map"].pop("tolerance"), "claim 'eq16_map': .*'tolerance' is a required property"),
+    (lambda by: by["eq16_map"].pop("tolerance_reason"), "claim 'eq16_map': 'tolerance_reason' is a required"),
+    (lambda by: by["eq16_map"].update(tolerance_reason="  "), "claim 'eq16_map': '  ' does not match"),
+    (lambda by: by["eq4_jump_set"].update(tolerance_reason="a reason"),
      "claim 'eq4_jump_set': 'a reason' is a value this claim may not have"),
-    (lambda c, by: by["eq16_map"].update(tolerance=-1e-13), "less than the minimum of 0"),
-    (lambda c, by: by["eq16_map"].update(tolerance=True), "True is not of type"),
-    (lambda c, by: by["eq16_map"].pop("quote"), "'quote' is a required property"),
-    (lambda c, by: by["airy_symmetric_impulse"].update(quote="a sentence"), "'a sentence' is a value this claim may"),
-    (lambda c, by: by["eq16_map"].update(origin="elsewhere"), "'elsewhere' is not one of"),
-    (lambda c, by: by["eq16_map"].update(status="reproduced"), "'status' was unexpected"),
-    (lambda c, by: by["eq16_map"].update(evidence="independent"), "'evidence' was unexpected"),
-    (lambda c, by: by["eq16_map"].update(finding="map"), "'finding' was unexpected"),
-    (lambda c, by: by["fig5_recovery_small_K_faster"].pop("figures_tried"), "'figures_tried' is a required property"),
-    (lambda c, by: by["fig5_recovery_small_K_faster"].update(check="fixed_point"), "'fixed_point' is a value this"),
-])
-def test_a_malformed_register_is_refused_naming_the_claim(tmp_path, mutate, message):
-    """A status, a kind of evidence or a finding typed into the register is refused: they are computed."""
-    with pytest.raises(ValueError, match=message):
-        cl.load_claims(_written(tmp_path, mutate), settings=SETTINGS)
+    (lambda by: by["eq16_map"].update(tolerance=-1e-13), "claim 'eq16_map': .*less than the minimum of 0"),
+    (lambda by: by["eq16_map"].update(tolerance=True), "claim 'eq16_map': True is not of type"),
+    (lambda by: by["eq16_map"].pop("quote"), "claim 'eq16_map': 'quote' is a required property"),
+    (lambda by: by["airy_symmetric_impulse"].update(quote="a sentence"),
+     "claim 'airy_symmetric_impulse': 'a sentence' is a value this claim may not have"),
+    (lambda by: by["eq16_map"].update(origin="elsewhere"), "claim 'eq16_map': 'elsewhere' is not one of"),
+    # the status, the kind of evidence and the finding are computed, never typed into the register
+    (lambda by: by["eq16_map"].update(status="reproduced"), "claim 'eq16_map': .*'status' was unexpected"),
+    (lambda by: by["eq16_map"].update(evidence="independent"), "claim 'eq16_map': .*'evidence' was unexpected"),
+    (lambda by: by["eq16_map"].update(finding="map"), "claim 'eq16_map': .*'finding' was unexpected"),
+    (lambda by: by[RECOVERY].pop("figures_tried"), f"claim '{RECOVERY}': 'figures_tried' is a required property"),
+    (lambda by: by[RECOVERY].update(check="sec3_map.fixed_point"),
+     f"claim '{RECOVERY}': 'sec3_map.fixed_point' is a value this claim may not have"),
+    # what the schema cannot say
+    (lambda by: by["airy_symmetric_impulse"].update(id="eq16_map"), "claim 'eq16_map': a second claim with this id"),
+    (lambda by: by["eq19_fixed_point_case_b"].update(part="case (a)"),
+     "claim 'eq19_fixed_point_case_b': a second claim with this part"),
+    (lambda by: by["eq19_fixed_point_case_b"].update(quote=by["eq19_fixed_point_case_b"]["quote"] + "."),
+     "claim 'eq19_fixed_point_case_a': 1 claim\\(s\\) quote its sentence and it names a part: "),
+    (lambda by: by["eq16_map"].update(quote=by["eq19_fixed_point_case_a"]["quote"]),
+     "claim 'eq16_map': 3 claim\\(s\\) quote its sentence and it names no part: "),
+    (lambda by: by["eq16_map"].update(check="nonsense"),
+     "claim 'eq16_map': check = 'nonsense' must name a check of escapement.verdict as module.function$"),
+    (lambda by: by["eq16_map"].update(check="engine.evaluate"), "claim 'eq16_map': check = 'engine.evaluate' must"),
+    (lambda by: by["eq19_fixed_point_case_a"].pop("args"),
+     "claim 'eq19_fixed_point_case_a': the check 'sec3_map.fixed_point' needs the args case$"),
+    (lambda by: by["eq20_map_derivative"]["args"].update(runs="existance"),
+     "claim 'eq20_map_derivative': runs 'existance' must name an entry of the configuration's checks block, one of "
+     "airy, asymmetric, existence, "),
+    (lambda by: by[RECOVERY]["readings"][0].update(words="the speed of recovery"),
+     f"claim '{RECOVERY}': the words 'the speed of recovery' of the reading 'in seconds' are in no quote and no "
+     "sentence the register cites$"),
+    (lambda by: by[RECOVERY].update(figures_tried="Fig. 5 is a phase diagram; Fig. 3 shows one point per cycle"),
+     f"claim '{RECOVERY}': its figures_tried names no Fig. 4: every printed figure is tried"),
+]
+
+
+def test_a_malformed_register_is_refused_naming_the_claim(tmp_path):
+    """Each refusal of :data:`REFUSALS` on a small register of the register's own claims, which loads as it is."""
+    path = tmp_path / "claims.yaml"
+
+    def loaded(mutate=lambda by: None, settings=SETTINGS):
+        data = copy.deepcopy({**written(), "claims": [c for c in written()["claims"] if c["id"] in SMALL]})
+        mutate({c["id"]: c for c in data["claims"]})
+        path.write_text(yaml.dump(data, Dumper=yaml.CSafeDumper, allow_unicode=True))
+        return cl.load_claims(path, settings=settings)
+
+    assert [c["id"] for c in loaded()] == list(SMALL)
+    for mutate, message in REFUSALS:
+        with pytest.raises(ValueError, match=f"^{path}: {message}"):
+            loaded(mutate)
+    with pytest.raises(ValueError, match="claim 'eq20_map_derivative': runs 'return_map' must name an entry of the "
+                                         "configuration's checks block$"):
+        loaded(settings=None)
+
+
+def test_the_runs_a_reading_names_are_the_configurations_stated_once():
+    """A reading's ``runs: <name>`` takes the numbers of its runs from the configuration's checks block (on the
+    model's M, K and b), so the register repeats none of them."""
+    named = [(c["id"], r.get("args", {})) for c in written()["claims"]
+             for r in c.get("readings", [{"args": c.get("args", {})}])]
+    runs = {args["runs"] for _, args in named if "runs" in args}
+    assert runs >= {"existence", "release_boundary", "grazing", "airy", "short_runs", "return_map", "phase_shift"}
+    for claim_id, args in named:
+        if "runs" in args:
+            assert not set(args) & set(SETTINGS["checks"][args["runs"]]), claim_id  # not repeated in the register
+    grazing = claim_of("solution_exists_unique")["readings"][0]["args"]
+    assert grazing["positions"] == SETTINGS["checks"]["grazing"]["positions"] and grazing["M"] == SETTINGS["model"]["M"]
 
 
 # --- the one rule, on the register's own claims -------------------------------------------------------
 
 
 def stubbed(monkeypatch, outcome) -> None:
-    """Every check replaced by a stub that reads no scene and answers ``outcome(claim id, reading)``."""
-    for name, c in list(CHECKS.items()):
-        def answer(spec, ev):
-            return Verdict(f"{spec['reading']}", outcome(spec["id"], spec["reading"]))
-        monkeypatch.setitem(CHECKS, name, dataclasses.replace(c, function=answer, scenes=runs_only))
+    """Every check the register names replaced by a stub that reads no scene and answers ``outcome(claim id,
+    reading)``."""
+    def answer(spec, ev):
+        return Verdict(f"{spec['reading']}", outcome(spec["id"], spec["reading"]))
+
+    for name in checks_named():
+        module, function = name.split(".")
+        monkeypatch.setattr(importlib.import_module(f"escapement.verdict.{module}"), function,
+                            dataclasses.replace(cl.resolved(name), function=answer, scenes=runs_only))
 
 
 def row_of(rows: list[dict], claim_id: str) -> dict:
@@ -151,8 +210,8 @@ def row_of(rows: list[dict], claim_id: str) -> dict:
 
 def test_changing_one_readings_outcome_changes_the_status(monkeypatch):
     """fig5_recovery_small_K_faster under its three readings: holds under every one, reproduced; under
-    some, undetermined; under none, not reproduced."""
-    claim = claim_of("fig5_recovery_small_K_faster")
+    some, undetermined (and no figure decides); under none, not reproduced."""
+    claim = claim_of(RECOVERY)
     readings = [r["reading"] for r in claim["readings"]]
     for holding, status in ((readings, "reproduced"), (readings[1:], "undetermined"), ([], "not_reproduced"),
                             (readings[:1], "undetermined")):
@@ -161,6 +220,10 @@ def test_changing_one_readings_outcome_changes_the_status(monkeypatch):
         assert row["status"] == status, holding
         assert row["readings"] == "; ".join(f'{r} (the paper: "{w}"): {"holds" if r in holding else "fails"}'
                                             for r, w in zip(readings, (r["words"] for r in claim["readings"])))
+        decides = "no figure decides between the readings" if status == "undetermined" else "the figures"
+        assert row["note"].endswith(f"; {decides}: {claim['figures_tried']}")
+    assert cl.figures_named("Fig. 3 (a), Figs. 4 and 5") == {"3", "4", "5"} == set(cl.FIGURES)
+    assert cl.figures_named("Figs. 3, 4 and 5; Fig. 2 is a sketch") == {"2", "3", "4", "5"}
 
 
 def test_an_agreement_on_fitted_or_constructed_evidence_is_consistent_and_a_disagreement_stays(monkeypatch):
@@ -265,22 +328,14 @@ def scenes(side: float) -> Evidence:
     return Evidence(fig3=fig3, fig4=None, fig5={}, checks=checks.assign(short_runs_of_the_register(fig3["a"])))
 
 
-def test_a_check_that_reads_a_fitted_input_declares_it():
-    """Every reading of the register whose check declares no fitted input runs to its end on evidence whose
-    fitted parts refuse to be read; so no check can rest on them and be counted independent."""
+def test_a_check_that_declares_no_fitted_input_reads_none_and_answers_alike_from_either_release_side():
+    """Every reading of the register whose check declares no fitted input runs to its end on evidence whose fitted
+    parts refuse to be read (so no check can rest on them and be counted independent), and answers alike from
+    either side of the release of Fig. 3, which was chosen from the printed axes."""
     for claim in register():
         for reading in claim["readings"]:
-            if CHECKS[reading["check"]].fitted is None:
-                cl.verdict(claim, reading, Guarded(scenes(-1.0)))  # raises, naming the claim, if it reads one
-
-
-def test_a_check_that_declares_no_fitted_input_answers_alike_from_either_release_side():
-    """The release side of Fig. 3 was chosen from the printed axes; a check that declares no fitted input
-    must not depend on it."""
-    for claim in register():
-        for reading in claim["readings"]:
-            if CHECKS[reading["check"]].fitted is None:
-                sides = [cl.verdict(claim, reading, scenes(side)).holds for side in (-1.0, 1.0)]
+            if cl.resolved(reading["check"]).fitted is None:  # raises, naming the claim, if it reads a fitted part
+                sides = [cl.verdict(claim, reading, Guarded(scenes(side))).holds for side in (-1.0, 1.0)]
                 assert sides[0] == sides[1], (claim["id"], reading["reading"])
 
 
@@ -288,10 +343,11 @@ def test_a_check_that_declares_no_fitted_input_answers_alike_from_either_release
 
 
 def test_a_check_that_raises_or_answers_no_outcome_fails_the_evaluation_naming_the_claim(monkeypatch):
+    from escapement.verdict import sec3_map
     claim = claim_of("eq16_map")
     for function, cause in ((lambda spec, ev: 1 / 0, ZeroDivisionError), (lambda spec, ev: Verdict("x", "yes"), None)):
-        monkeypatch.setitem(CHECKS, "map_eq16", dataclasses.replace(CHECKS["map_eq16"], function=function))
-        with pytest.raises(cl.ClaimError, match="claim 'eq16_map'") as info:
+        monkeypatch.setattr(sec3_map, "map_eq16", dataclasses.replace(sec3_map.map_eq16, function=function))
+        with pytest.raises(cl.ClaimError, match="claim 'eq16_map': check 'sec3_map.map_eq16' ") as info:
             cl.evaluate([claim], scenes(-1.0))
         assert cause is None or isinstance(info.value.__cause__, cause)
     with pytest.raises(cl.ClaimError, match="claim 'eq19_fixed_point_case_a'.*case 'c'"):
@@ -300,39 +356,31 @@ def test_a_check_that_raises_or_answers_no_outcome_fails_the_evaluation_naming_t
 
 
 @pytest.mark.parametrize("outcome", ["stopped", "chattering", "turned_back_in_zone", "event_limit"])
-def test_every_check_reading_a_scene_fails_one_that_left_the_regime_with_its_message(outcome):
+def test_every_check_fails_when_a_scene_or_a_run_it_reads_left_the_regime_unless_the_outcome_is_an_answer(outcome):
+    """One rule, in the engine: a check that reads a scene that left the escapement regime fails with the scene's
+    message; one that reads runs of the checks dataset (tables of runs) fails when one left it, unless the check
+    declares that outcome one of its answers (chattering for the stability over b, every outcome for whether the
+    runs converge)."""
     left = solved_fig3(1.0, -1.0, n=2).assign_attrs(outcome=outcome, outcome_message=f"{outcome}: a message")
-    ev = Evidence(fig3={"a": left, "b": left}, fig4=left, fig5={"1": left.assign(K=1.0)}, checks=checks_dataset())
-    for claim in register():
-        for reading in claim["readings"]:
-            if any("case" not in ds.dims for ds in CHECKS[reading["check"]].scenes({**claim, **reading}, ev).values()):
-                result = cl.verdict(claim, reading, ev)
-                assert result.holds is False, claim["id"]
-                assert result.replicated_value.endswith(f"left the escapement regime ({outcome})"), claim["id"]
-                assert f"{outcome}: a message" in result.note, claim["id"]
-
-
-@pytest.mark.parametrize("outcome", ["stopped", "chattering", "turned_back_in_zone", "event_limit"])
-def test_every_check_reading_runs_fails_when_one_left_the_regime_unless_its_outcome_is_an_answer(outcome):
-    """One rule, in the engine, for the runs of the checks dataset too: a check that reads runs (its scenes are
-    tables of runs) is not evaluated when one of them left the regime, unless the check declares that outcome
-    one of its answers (chattering for the stability over b, every outcome for whether the runs converge)."""
-    fig3 = solved_fig3(1.0, -1.0, n=2)
     checks = checks_dataset()
-    left = checks.assign(outcome=checks["outcome"].where(False, outcome),
-                         outcome_message=checks["outcome_message"].where(False, f"{outcome}: m"))
-    ev = Evidence(fig3={"a": fig3, "b": fig3}, fig4=fig3, fig5={"1": fig3.assign(K=1.0)}, checks=left)
+    checks = checks.assign(outcome=checks["outcome"].where(False, outcome),
+                           outcome_message=checks["outcome_message"].where(False, f"{outcome}: m"))
+    ev = Evidence(fig3={"a": left, "b": left}, fig4=left, fig5={"1": left.assign(K=1.0)}, checks=checks)
     judged = set()
     for claim in register():
         for reading in claim["readings"]:
-            c = CHECKS[reading["check"]]
-            tables = [ds for ds in c.scenes({**claim, **reading}, ev).values() if "case" in ds.dims]
-            if tables:
-                result = cl.verdict(claim, reading, ev)
-                answered = outcome in c.answers
+            check = cl.resolved(reading["check"])
+            read = check.scenes({**claim, **reading}, ev).values()
+            result = cl.verdict(claim, reading, ev) if read else None
+            if any("case" not in ds.dims for ds in read):
+                assert result.holds is False, claim["id"]
+                assert result.replicated_value.endswith(f"left the escapement regime ({outcome})"), claim["id"]
+                assert f"{outcome}: a message" in result.note, claim["id"]
+            elif read:
+                answered = outcome in check.answers
                 assert result.replicated_value.startswith("not evaluated: ") is not answered, claim["id"]
                 assert answered or (result.holds is False and f"{outcome}: m" in result.note), claim["id"]
-                judged.add(c.name)
+                judged.add(reading["check"].split(".")[1])
     assert {"multiplier_paper_cases", "multiplier_only_b", "stable_velocity_scaling", "runs_converge"} <= judged
 
 
@@ -381,71 +429,12 @@ def part_of(source: str) -> int:
 
 def test_a_checks_module_follows_from_the_source_of_its_claims():
     """Each check sits in the module of the earliest part of the paper among the sources of the claims that use it,
-    so a reader finds a claim's check from its source; ``untestable`` alone, the check of every claim the paper gives
-    nothing to compute against, sits with the engine's evidence."""
+    so a reader finds a claim's check from its source; ``evidence.untestable`` alone, the check of every claim the
+    paper gives nothing to compute against, sits with the evidence."""
     users: dict[str, list[str]] = {}
-    for claim in cl.load_claims(REGISTER, settings=SETTINGS):
+    for claim in register():
         for reading in claim["readings"]:
             users.setdefault(reading["check"], []).append(claim["source"])
-    where = {name: c.function.__module__.rsplit(".", 1)[1] for name, c in cl.CHECKS.items()}
     expected = {name: PARTS[min(part_of(s) for s in sources)][0] for name, sources in users.items()}
-    assert {n: m for n, m in where.items() if n != "untestable"} == {n: m for n, m in expected.items()
-                                                                     if n != "untestable"}
-    assert where["untestable"] == "evidence" and set(users) == set(where)
+    assert {name: name.split(".")[0] for name in users} == {**expected, "evidence.untestable": "evidence"}
     assert part_of("Sec. 4; Fig. 4") == 6 and part_of("Sec. 4; Fig. 3 (beyond the paper)") == 10
-
-
-def test_a_reading_cites_the_papers_words_and_words_not_the_papers_are_refused(tmp_path):
-    """Every reading names the paper's words that admit it, found in the claim's quote or in a sentence the
-    register quotes or cites (each checked verbatim against the paper's text above); a reading whose words are
-    the project's is refused, naming the claim."""
-    data = yaml.safe_load(REGISTER.read_text())
-    readings = [r for c in data["claims"] for r in c.get("readings", [])]
-    assert len(readings) >= 40 and all(r["words"].strip() for r in readings)
-    text = REGISTER.read_text().replace('words: "the converging speed is different"',
-                                        'words: "the speed of convergence"', 1)
-    (tmp_path / "claims.yaml").write_text(text)
-    with pytest.raises(ValueError, match="claim 'fig3_converging_speed_depends_on_force': the words 'the speed of "
-                                         "convergence'"):
-        cl.load_claims(tmp_path / "claims.yaml", settings=SETTINGS)
-
-
-def test_the_runs_a_reading_names_are_the_configurations_stated_once(tmp_path):
-    """A reading's ``runs: <name>`` takes the numbers of its runs from the configuration's checks block (on the
-    model's M, K and b), so the register repeats none of them; an unknown name, or no configuration, is refused."""
-    written = yaml.safe_load(REGISTER.read_text())
-    named = [(c["id"], r.get("args", {})) for c in written["claims"]
-             for r in c.get("readings", [{"args": c.get("args", {})}])]
-    runs = {args["runs"] for _, args in named if "runs" in args}
-    assert runs >= {"existence", "release_boundary", "grazing", "airy", "short_runs", "return_map", "phase_shift"}
-    for claim_id, args in named:
-        if "runs" in args:
-            assert not set(args) & set(SETTINGS["checks"][args["runs"]]), claim_id  # not repeated in the register
-    resolved = {c["id"]: c["readings"] for c in register()}
-    grazing = resolved["solution_exists_unique"][0]["args"]
-    assert grazing["positions"] == SETTINGS["checks"]["grazing"]["positions"] and grazing["M"] == SETTINGS["model"]["M"]
-    with pytest.raises(ValueError, match="claim 'eq3a_state_matrix': runs 'short_runs' must name an entry of the "
-                                         "configuration's checks block$"):
-        cl.load_claims(REGISTER)
-    text = REGISTER.read_text().replace("args: { runs: existence }", "args: { runs: existance }", 1)
-    (tmp_path / "claims.yaml").write_text(text)
-    with pytest.raises(ValueError, match="runs 'existance' must name an entry of the configuration's checks block, "
-                                         "one of airy, asymmetric, existence, "):
-        cl.load_claims(tmp_path / "claims.yaml", settings=SETTINGS)
-
-
-def test_no_figure_decides_only_after_every_figure_was_tried(monkeypatch, tmp_path):
-    """A row with readings names the printed figures tried (every one: any row may come out undetermined in some
-    run) and, when undetermined, says that none decides; a register whose figures_tried leaves out a printed figure
-    (here Fig. 4 of fig5_recovery_small_K_faster) is refused."""
-    assert cl.figures_named("Fig. 3 (a), Figs. 4 and 5") == {"3", "4", "5"} == set(cl.FIGURES)
-    assert cl.figures_named("Figs. 3, 4 and 5; Fig. 2 is a sketch") == {"2", "3", "4", "5"}
-    stubbed(monkeypatch, lambda claim_id, reading: reading == "in seconds")
-    claim = claim_of("fig5_recovery_small_K_faster")
-    row = cl.evaluate([claim], Evidence({}, None, {}, None))[0]
-    assert row["status"] == "undetermined" and "; no figure decides between the readings: Fig. 5" in row["note"]
-    text = REGISTER.read_text()
-    (tmp_path / "claims.yaml").write_text(text.replace(claim["figures_tried"], "Fig. 5 is a phase diagram; Fig. 3 "
-                                                                               "shows one point per cycle", 1))
-    with pytest.raises(ValueError, match="claim 'fig5_recovery_small_K_faster': its figures_tried names no Fig. 4: "):
-        cl.load_claims(tmp_path / "claims.yaml", settings=SETTINGS)

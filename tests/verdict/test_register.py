@@ -124,7 +124,7 @@ def status(c: dict, ev: Evidence | None = None) -> str:
 
 @pytest.mark.parametrize("equation", ["10", "11", "12", "13", "15"])
 def test_printed_step(equation):
-    c = claim("printed_step", tolerance=1e-12, equation=equation)
+    c = claim("sec3_steps.printed_step", tolerance=1e-12, equation=equation)
     assert status(c) == "reproduced"
     broken = evidence(fig3={"a": fig3(off=1e-6)})  # the velocity at a2 of cycle 2 is off, the later steps follow it
     assert status(c, broken) == ("not_reproduced" if equation == "11" else "reproduced")
@@ -132,11 +132,11 @@ def test_printed_step(equation):
 
 def test_printed_step_names_an_unknown_equation():
     with pytest.raises(cl.ClaimError, match="no printed step equation"):
-        outcome(claim("printed_step", equation="14"))
+        outcome(claim("sec3_steps.printed_step", equation="14"))
 
 
 def test_map_eq17():
-    c = claim("map_eq17", tolerance=1e-13)
+    c = claim("sec3_map.map_eq17", tolerance=1e-13)
     assert status(c) == "reproduced"
     assert status(c, evidence(fig3={"a": fig3(F=1.2)})) == "reproduced"
     moved = fig3()
@@ -150,24 +150,25 @@ def test_derivative_eq20_against_the_simulated_return_map():
     """The checks dataset's slopes, Eq. (20) by hand off by 1e-11 (the rounding of central differences of the
     simulated map): within 1e-8, not within 1e-14."""
     ev = evidence(checks=runs({}).assign(probes(slopes={0.5: 1 + 1e-11, 2.0: 1 - 1e-11})))
-    assert status(claim("derivative_eq20", case="a", velocities=[0.5, 2.0]), ev) == "reproduced"
-    assert status(claim("derivative_eq20", tolerance=1e-14, case="a", velocities=[0.5, 2.0]), ev) == "not_reproduced"
+    assert status(claim("sec3_map.derivative_eq20", case="a", velocities=[0.5, 2.0]), ev) == "reproduced"
+    wider = claim("sec3_map.derivative_eq20", tolerance=1e-14, case="a", velocities=[0.5, 2.0])
+    assert status(wider, ev) == "not_reproduced"
     with pytest.raises(cl.ClaimError, match="0 runs of map_slope"):
-        outcome(claim("derivative_eq20", case="a", velocities=[0.7]), ev)
+        outcome(claim("sec3_map.derivative_eq20", case="a", velocities=[0.7]), ev)
 
 
 # --- Sec. 4: period, stable velocity, first cycles ------------------------------------------------
 
 
 def test_natural_period():
-    c = claim("natural_period", tolerance=5e-5)
+    c = claim("sec4_fig3.natural_period", tolerance=5e-5)
     assert status(c, evidence(fig3={"a": fig3(period=2 * math.pi + 1e-5)})) == "reproduced"
     result = outcome(c, evidence(fig3={"a": fig3(period=6.2957)}))
     assert result.holds is False and "2 pi sqrt(M/K) = 6.283185307 s" in result.replicated_value
 
 
 def test_daily_rate():
-    c = claim("daily_rate", tolerance=0.69, paper_period=6.2832)
+    c = claim("beyond.daily_rate", tolerance=0.69, paper_period=6.2832)
     assert status(c, evidence(fig3={"a": fig3(period=6.2832)})) == "reproduced"
     result = outcome(c, evidence(fig3={"a": fig3(period=6.29567363)}))
     assert result.holds is False and result.replicated_value.startswith("a: -171.4 s/day")
@@ -178,7 +179,7 @@ def test_initial_order(side):
     """Released from rest at side |x0|: from -1 m the first swing meets a1 at sqrt(1 - 0.01) m/s (w = 1), from
     -3 m at sqrt(9 - 0.01); from +|x0| the first impact is at a3 and a1 comes after an impulse (the checks
     dataset's first swings, by hand)."""
-    c = claim("initial_order", tolerance=None, cases=["a", "b"], side=side)
+    c = claim("sec4_fig3.initial_order", tolerance=None, cases=["a", "b"], side=side)
     ev = evidence(checks=runs({}).assign(probes()))
     result = outcome(c, ev)
     assert result.holds is True
@@ -188,7 +189,7 @@ def test_initial_order(side):
 
 
 def test_stable_velocity_scaling():
-    c = claim("stable_velocity_scaling", groups=["paper", "symmetric"])
+    c = claim("sec4_fig3.stable_velocity_scaling", groups=["paper", "symmetric"])
     star = math.sqrt(0.3 / 0.19)  # v*/sqrt(F) for (a1, a2) = (-0.1, 0.05), b = 0.1
     rows = [{"F": F, "x0": x0, "velocity": star * math.sqrt(F)} for F, x0 in ((1.0, -1.0), (1.0, 3.0), (0.5, 1.0))]
     wide = {"group": "symmetric", "F": 2.0, "a1": -0.3, "a2": 0.2, "a3": 0.3, "a4": -0.2,
@@ -223,11 +224,11 @@ def released(c: dict) -> Evidence:
 
 def test_existence_sign_change_with_the_solver():
     # F* = 0.19 * 0.08 / (2 (0.81 * 0.05 + 0.05)) = 0.0839779 N
-    c = claim("existence_sign_change", forces=[0.05, 0.1], **ASYMMETRIC)
+    c = claim("sec5_conclusions.existence_sign_change", forces=[0.05, 0.1], **ASYMMETRIC)
     result = outcome(c, released(c))
     assert result.holds is True and "= 0.0839779 N" in result.note
     assert "F = 0.05 N (C = -0.00615 m^2/s^2): stopped" in result.replicated_value
-    c = claim("existence_sign_change", forces=[0.1, 0.2], **ASYMMETRIC)
+    c = claim("sec5_conclusions.existence_sign_change", forces=[0.1, 0.2], **ASYMMETRIC)
     assert status(c, released(c)) == "not_reproduced"
     with pytest.raises(cl.ClaimError, match="0 runs of release_outcome"):
         outcome(c, evidence(checks=release_runs({**c["args"], "n_cycles": 20})))
@@ -246,7 +247,7 @@ def test_release_verdict_on_synthetic_numbers():
 
 
 def test_release_boundary_with_the_solver():
-    c = claim("release_boundary", releases=[-1.0, 0.1001], n_cycles=200, **PAPER_CASE)
+    c = claim("sec4_fig3.release_boundary", releases=[-1.0, 0.1001], n_cycles=200, **PAPER_CASE)
     assert status(c, released(c)) == "reproduced"
     for other in ({"releases": [-1.0, 0.1001, -0.0999]}, {"n_cycles": 5}):  # inside the boundary; not yet converged
         c_other = {**c, "args": {**c["args"], **other}}
@@ -268,7 +269,7 @@ def test_grazing_verdict_on_synthetic_numbers():
 
 def test_grazing_uniqueness_with_the_solver():
     args = dict(positions=[-0.1, 0.05, 0.3, -0.05], F=0.1, deltas=[1e-4, 1e-12], n_cycles=3)
-    c = claim("grazing_uniqueness", **args)
+    c = claim("sec3_equations.grazing_uniqueness", **args)
     result = outcome(c, released(c))
     # A^2 = 0.01 + (0.09 - 0.01 - 0.03) / 0.81; the continuation after a touch counted as an impact:
     # v1^2 = 0.09 - 0.01 + 2 * 0.1 * 0.35 = 0.15
@@ -276,7 +277,8 @@ def test_grazing_uniqueness_with_the_solver():
     assert f"A = {math.sqrt(0.01 + 0.05 / 0.81):.10g} m" in result.replicated_value
     assert f"next v1 = {math.sqrt(0.15):.10g} m/s" in result.replicated_value
     with pytest.raises(cl.ClaimError, match="no release grazes a3"):
-        outcome(claim("grazing_uniqueness", **{**args, "positions": [-0.1, 0.05, 0.1, -0.05]}), released(c))
+        outcome(claim("sec3_equations.grazing_uniqueness", **{**args, "positions": [-0.1, 0.05, 0.1, -0.05]}),
+                released(c))
 
 
 # --- Figs. 4 and 5, the Poincare section ---------------------------------------------------------
@@ -287,7 +289,7 @@ def test_window_impact_holds_under_every_reading_of_the_grid(monkeypatch):
     every one meets a1 or a3 within 80-87 s and within 81-85 s (found so by a separate event simulation written
     for the review of this check; for K = 0.1 N/m, whose impacts come about 31 s apart, it is a property of
     these releases, not of the geometry)."""
-    c = claim("window_impact", tolerance=None)
+    c = claim("sec4_fig4.window_impact", tolerance=None)
     grid = [{**GEOMETRY, "F": F, "K": K, "x0": x0} for F in (0.5, 1.0) for K in (0.1, 1.0, 10.0)
             for x0 in (-3.0, -1.0, 1.0, 3.0)]
     ev = evidence(fig3={"a": fig3(), "b": fig3(F=0.5, v0=3.0, x0=-3.0)},
@@ -303,7 +305,7 @@ def test_window_impact_holds_under_every_reading_of_the_grid(monkeypatch):
 
 
 def test_section_crossings():
-    c = claim("section_crossings", tolerance=None, samples_per_period=400)
+    c = claim("sec3_map.section_crossings", tolerance=None, samples_per_period=400)
     cases = [{**GEOMETRY, "F": F, "x0": x0, "label": label, "n_cycles": 4} for label, F, x0 in (("a", 1.0, -1.0),
                                                                                              ("b", 0.5, -3.0))]
     result = outcome(c, evidence(checks=xr.Dataset(probe_variables({"crossings": {"cases": cases,
@@ -326,7 +328,7 @@ def common(*sizes) -> xr.Dataset:
 
 
 def test_fig5_dimensions_compares_the_spring_constants_at_one_force():
-    c = claim("fig5_dimensions", tolerance=0.05)
+    c = claim("sec4_fig5.fig5_dimensions", tolerance=0.05)
     apart = common((0.5, 0.1, 2.8, 0.89), (0.5, 1.0, 0.89, 0.89), (1.0, 0.1, 4.0, 1.26), (1.0, 1.0, 1.26, 1.26))
     result = outcome(c, evidence(checks=apart))
     assert result.holds is True and "not compared with each other" in result.note
@@ -340,7 +342,7 @@ def test_fig5_dimensions_compares_the_spring_constants_at_one_force():
 
 def test_fig5_impact_visible():
     # b v1 over the printed velocity ranges 3, 2 and 7 m/s of panels (a), (b), (c)
-    c = claim("fig5_impact_visible", tolerance=0.02)
+    c = claim("sec4_fig5.fig5_impact_visible", tolerance=0.02)
     panels = {"a": fig5(0.1, v_last=1.0), "b": fig5(1.0, v_last=1.0)}
     assert status(c, evidence(fig5={**panels, "c": fig5(10.0, v_last=2.0)})) == "reproduced"  # 2.9 % in (c)
     assert status(c, evidence(fig5={**panels, "c": fig5(10.0, v_last=1.0)})) == "not_reproduced"  # 1.4 % in (c)
@@ -368,7 +370,7 @@ def test_airy_verdict_on_synthetic_numbers():
 
 def test_airy_order_with_the_solver():
     zones = {"symmetric": [-0.1, 0.1], "before": [-0.2, -0.05], "after": [0.05, 0.2]}
-    c = claim("airy_order", tolerance=0.01, zones=zones, forces=[0.1, 0.01, 0.001], release=1.0)
+    c = claim("beyond.airy_order", tolerance=0.01, zones=zones, forces=[0.1, 0.01, 0.001], release=1.0)
     result = outcome(c, passages(c))
     assert result.holds is True
     assert "(shortens)" in result.replicated_value and "(lengthens)" in result.replicated_value
@@ -396,9 +398,10 @@ def test_the_state_matrix_as_printed_holds_only_where_omega_is_1():
     which the arcs do only at K = 1 N/m."""
     ev = evidence(checks=made_short_runs([1.0, 4.0], []))
     for entry, holds in (("omega", False), ("omega2", True)):
-        result = model_verdict("state_matrix", ev, tolerance=1e-10, case="a", entry=entry, K=[1.0, 4.0])
+        result = model_verdict("sec3_equations.state_matrix", ev, tolerance=1e-10, case="a", entry=entry, K=[1.0, 4.0])
         assert result.holds is holds and "K = 4 N/m (omega_n = 2 rad/s)" in result.replicated_value
-    assert model_verdict("state_matrix", ev, tolerance=1e-10, case="a", entry="omega", K=[1.0]).holds is True
+    one = model_verdict("sec3_equations.state_matrix", ev, tolerance=1e-10, case="a", entry="omega", K=[1.0])
+    assert one.holds is True
 
 
 def made_short_runs(springs: list[float], releases: list[float]) -> xr.Dataset:
@@ -410,41 +413,42 @@ def made_short_runs(springs: list[float], releases: list[float]) -> xr.Dataset:
 
 
 def test_each_mode_keeps_its_energy_in_the_events_of_the_printed_steps():
-    assert model_verdict("modes_linear").holds is True
-    assert model_verdict("modes_linear", evidence(fig3={"a": fig3(off=1e-6)})).holds is False
+    assert model_verdict("sec3_equations.modes_linear").holds is True
+    assert model_verdict("sec3_equations.modes_linear", evidence(fig3={"a": fig3(off=1e-6)})).holds is False
 
 
 def test_the_impact_matrix_holds_for_the_law_and_fails_for_another():
-    assert model_verdict("impact_matrix", tolerance=1e-14).holds is True
+    assert model_verdict("sec3_equations.impact_matrix", tolerance=1e-14).holds is True
     ds = fig3()
     after = ds["event_velocity_after"].values.copy()
     after[0] = 0.8 * ds["event_velocity_before"].values[0]  # v+ = 0.8 v-: a jump of -0.2 v-, not -0.1 v-
     broken = evidence(fig3={"a": ds.assign(event_velocity_after=("event", after))})
-    assert model_verdict("impact_matrix", broken, tolerance=1e-14).holds is False
+    assert model_verdict("sec3_equations.impact_matrix", broken, tolerance=1e-14).holds is False
 
 
 def test_the_jump_set_needs_x_xdot_negative_at_every_impact():
-    assert model_verdict("jump_set").holds is True
+    assert model_verdict("sec3_equations.jump_set").holds is True
     ds = fig3()
     before = ds["event_velocity_before"].values.copy()
     before[2] = -before[2]  # the impact at a3 = 0.1 met moving right: x xdot > 0
-    result = model_verdict("jump_set", evidence(fig3={"a": ds.assign(event_velocity_before=("event", before))}))
+    result = model_verdict("sec3_equations.jump_set",
+                           evidence(fig3={"a": ds.assign(event_velocity_before=("event", before))}))
     assert result.holds is False and result.replicated_value.startswith("8 of 9 impacts")
 
 
 def test_the_impulse_sets_need_the_events_in_their_order():
-    assert model_verdict("impulse_sets").holds is True
+    assert model_verdict("sec3_equations.impulse_sets").holds is True
     ds = fig3()
     kinds = ds["event_kind"].values.copy()
     kinds[[1, 2]] = kinds[[2, 1]]  # a3 before a2: a zone entered otherwise than through its impact
-    result = model_verdict("impulse_sets", evidence(fig3={"a": ds.assign(event_kind=("event", kinds))}))
+    result = model_verdict("sec3_equations.impulse_sets", evidence(fig3={"a": ds.assign(event_kind=("event", kinds))}))
     assert result.holds is False and result.replicated_value.startswith("15 of 17 events")
 
 
 def test_the_supplementary_sets_miss_the_ends_of_the_zones_and_the_turning_points():
     """Four cycles of the case a and b scenes: each has two zone ends (a2 moving right, a4 moving left) and two
     turning points, none of them in S, S1 or S2."""
-    result = model_verdict("complement_sets")
+    result = model_verdict("sec3_equations.complement_sets")
     assert result.holds is False
     assert result.replicated_value.startswith("16 of 34 event states in none of S, S1, S2")
     assert "the 16 turning points" in result.replicated_value
@@ -452,16 +456,17 @@ def test_the_supplementary_sets_miss_the_ends_of_the_zones_and_the_turning_point
 
 def test_the_force_is_switched_on_where_the_state_is_not_at_given_times():
     ev = evidence(checks=made_short_runs([], [-1.0, -1.5]))
-    assert model_verdict("autonomous", ev, tolerance=1e-9, case="a", releases=[-1.0, -1.5]).holds is False
-    assert model_verdict("autonomous", ev, tolerance=1e-9, case="a", releases=[-1.0, -1.0]).holds is True
+    for releases, holds in (([-1.0, -1.5], False), ([-1.0, -1.0], True)):
+        result = model_verdict("sec3_equations.autonomous", ev, tolerance=1e-9, case="a", releases=releases)
+        assert result.holds is holds
 
 
 def test_the_map_8_has_the_eigenvalues_0_and_g_prime_not_1():
     """At the fixed point of the paper's case (a), g' = (1 - b)^4 = 0.6561: 1 is not an eigenvalue within 1e-8,
     and is within 0.35 (|0.6561 - 1| = 0.3439)."""
-    result = model_verdict("map8_eigenvalues", tolerance=1e-8, case="a")
+    result = model_verdict("sec3_map.map8_eigenvalues", tolerance=1e-8, case="a")
     assert result.holds is False and result.replicated_value.endswith(": 0, 0.6561")
-    assert model_verdict("map8_eigenvalues", tolerance=0.35, case="a").holds is True
+    assert model_verdict("sec3_map.map8_eigenvalues", tolerance=0.35, case="a").holds is True
 
 
 def test_a_speed_perturbed_by_1_percent_returns_to_the_cycle_with_a_phase_shift():
@@ -471,12 +476,12 @@ def test_a_speed_perturbed_by_1_percent_returns_to_the_cycle_with_a_phase_shift(
     star = float(ds["velocity_before_impact"].values[-1])
     ev = evidence(fig3={"a": ds}, checks=runs({}).assign(probes(star=star, shift=-0.000848)))
     args = dict(case="a", perturbation=0.01, n_cycles=100)
-    orbital = model_verdict("phase_shift", ev, tolerance=1e-8, sense="orbital", **args)
-    lyapunov = model_verdict("phase_shift", ev, tolerance=1e-8, sense="lyapunov", **args)
+    orbital = model_verdict("sec3_map.phase_shift", ev, tolerance=1e-8, sense="orbital", **args)
+    lyapunov = model_verdict("sec3_map.phase_shift", ev, tolerance=1e-8, sense="lyapunov", **args)
     assert (orbital.holds, lyapunov.holds) == (True, False)
     assert "impact times -0.000848 s apart" in lyapunov.replicated_value
     with pytest.raises(cl.ClaimError, match="not those of the claim"):
-        model_verdict("phase_shift", ev, tolerance=1e-8, sense="orbital", **{**args, "n_cycles": 50})
+        model_verdict("sec3_map.phase_shift", ev, tolerance=1e-8, sense="orbital", **{**args, "n_cycles": 50})
 
 
 def scene_of_case_a() -> xr.Dataset:
@@ -485,9 +490,9 @@ def scene_of_case_a() -> xr.Dataset:
 
 
 def test_an_untestable_claim_gives_its_reason_and_the_register_weighs_it_untestable():
-    result = model_verdict("untestable", reason="no measurement of an escapement")
+    result = model_verdict("evidence.untestable", reason="no measurement of an escapement")
     assert result.holds is None and result.note == "no measurement of an escapement"
-    c = claim("untestable", tolerance=None, reason="r")
+    c = claim("evidence.untestable", tolerance=None, reason="r")
     row = cl.evaluate([{**c, "readings": [c]}], evidence())[0]
     assert (row["status"], row["evidence"]) == ("untestable", "none")
 
@@ -535,15 +540,15 @@ def test_lipschitz_near_holds_at_the_release_and_fails_at_the_end_of_a_zone():
     (half-width 0.9 (1 - 1e-9) m) the quotient is 1; at a2 moving right it reaches 1 + 10 f / 1e-6 = 1e7 + 1. The
     row is undetermined, on evidence by construction (the paper's own A and g)."""
     ds = scene_of_case_a()
-    release = model_verdict("lipschitz_near", evidence(fig3={"a": ds}), at="release")
+    release = model_verdict("sec3_equations.lipschitz_near", evidence(fig3={"a": ds}), at="release")
     assert release.holds is True and "half-width 0.9: largest |g(y1) - g(y2)| 0 m/s^2, largest quotient 1" in (
         release.replicated_value)
-    edge = model_verdict("lipschitz_near", evidence(fig3={"a": ds}), at="zone_end")
+    edge = model_verdict("sec3_equations.lipschitz_near", evidence(fig3={"a": ds}), at="zone_end")
     assert edge.holds is False and "half-width 1e-06: largest |g(y1) - g(y2)| 1 m/s^2, largest quotient 1e+07" in (
         edge.replicated_value)
     with pytest.raises(cl.ClaimError, match="at = 'nowhere'"):
-        model_verdict("lipschitz_near", evidence(fig3={"a": ds}), at="nowhere")
-    readings = [claim("lipschitz_near", tolerance=1e-12, at=at) for at in ("release", "zone_end")]
+        model_verdict("sec3_equations.lipschitz_near", evidence(fig3={"a": ds}), at="nowhere")
+    readings = [claim("sec3_equations.lipschitz_near", tolerance=1e-12, at=at) for at in ("release", "zone_end")]
     row = cl.evaluate([{**readings[0], "readings": readings, "figures_tried": "Figs. 3, 4 and 5"}],
                       evidence(fig3={"a": ds}))[0]
     assert (row["status"], row["evidence"]) == ("undetermined", "by_construction")

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from escapement.verdict.rule import EVIDENCE, STATUSES, evidence_of, finding_status, status_of, weakest, weighed
+from escapement.verdict.rule import EVIDENCE, STATUSES, evidence_of, finding_status, row_status, status_of, weighed
 
 
 @pytest.mark.parametrize("outcomes, status", [
@@ -53,9 +53,12 @@ def test_an_agreement_by_construction_or_on_fitted_evidence_is_only_consistent(s
     assert weighed(status, evidence) == weighed_status
 
 
-def test_the_weakest_evidence_and_unknown_words():
-    assert weakest(["independent", "fitted"]) == "fitted"
-    assert weakest(["fitted", "by_construction", "independent"]) == "by_construction"
+def test_a_rows_evidence_is_its_weakest_readings_and_its_status_every_outcome_weighed():
+    fitted, law = (None, "Fig. 5's force", None), ("the impact law", None, None)
+    assert row_status([(None, None, None, True), (*fitted, True)]) == ("fitted", "consistent")
+    assert row_status([(*fitted, True), (*law, True), (None, None, None, True)]) == ("by_construction", "consistent")
+    assert row_status([(None, None, None, {"a": True, "b": False})]) == ("independent", "undetermined")
+    assert row_status([(*law, False), (*law, {"a": False})]) == ("by_construction", "not_reproduced")
     assert {weighed(s, e) for s in ("reproduced", "not_reproduced", "undetermined") for e in EVIDENCE} <= set(STATUSES)
     with pytest.raises(ValueError, match="not words of the vocabulary"):
         weighed("fine", "independent")

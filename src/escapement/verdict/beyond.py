@@ -27,7 +27,8 @@ import math
 from collections.abc import Mapping, Sequence
 
 from ..model.parameters import Parameters
-from ..paper.corrected import daily_rate, first_order_zone_change, zone_amplitude
+from ..paper import corrected
+from ..paper.corrected import first_order_zone_change, zone_amplitude
 from .evidence import Evidence, Verdict, check, fig3_all, fmt, params_of, probe, runs_only, within
 
 
@@ -65,7 +66,7 @@ def airy_verdict(zones: Mapping[str, Mapping], tolerance: float) -> Verdict:
         paper_value="Airy: symmetric impulse O(f^2); before the equilibrium shortens, after lengthens")
 
 
-@check("airy_order", scenes=runs_only, args=("zones", "forces", "release", "M", "K", "b"))
+@check(scenes=runs_only, args=("zones", "forces", "release", "M", "K", "b"))
 def airy_order(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     release, made = float(args["release"]), ev.checks["airy_zone_shift"].attrs
@@ -88,8 +89,8 @@ def airy_order(claim, ev: Evidence) -> Verdict:
     return airy_verdict(zones, claim["tolerance"])
 
 
-@check("daily_rate", scenes=fig3_all, args=("paper_period",))
-def daily_rate_check(claim, ev: Evidence) -> Verdict:
+@check(scenes=fig3_all, args=("paper_period",))
+def daily_rate(claim, ev: Evidence) -> Verdict:
     """The paper's period and the replicated ones as seconds per day against 2 pi sqrt(M/K)."""
     paper = float(claim["args"]["paper_period"])
     rates, parts = [], []
@@ -97,7 +98,7 @@ def daily_rate_check(claim, ev: Evidence) -> Verdict:
         p = params_of(ds)
         t0 = 2 * math.pi * math.sqrt(p.M / p.K)
         period = float(ds["period"].values[-1])
-        rates.append((daily_rate(period, t0), daily_rate(paper, t0)))
+        rates.append((corrected.daily_rate(period, t0), corrected.daily_rate(paper, t0)))
         parts.append(f"{label}: {fmt(rates[-1][0], 4)} s/day (T = {fmt(period)} s)")
     worst = max(abs(r - q) for r, q in rates)
     return Verdict(

@@ -1,22 +1,21 @@
 """The claims register evaluated: each of the paper's claims checked under every reading of its words.
 
-``claims.yaml`` (beside this module) lists the claims, checked against ``claims.schema.yaml``
-(:func:`load_claims`). :func:`evaluate` runs each reading's check (registered by its decorator in the
-modules imported below) and gives one row per claim, with exactly the columns of :data:`COLUMNS`: the
-status follows from the readings' outcomes and the kind of evidence from what the checks consume, by the
-rules of :mod:`escapement.verdict.rule`, never from the register; rows that quote one sentence are its
-parts and share its finding, named after the first of them.
-
-* a reading whose scene left the escapement regime (its ``outcome`` is not ``completed``) fails, with the
-  scene's outcome message, and its check is not run;
-* a check that raises is a defect of the code or of its inputs, never a verdict: :func:`evaluate` raises
-  :class:`ClaimError` naming the claim, chained to the original error.
+:func:`load_claims` reads ``claims.yaml`` (beside this module) against ``claims.schema.yaml``; :func:`evaluate`
+runs each reading's check, which the register names ``module.function`` (:func:`resolved`, imported only then),
+and gives one row per claim with the columns of :data:`COLUMNS`. A scene or a run that left the escapement
+regime fails the reading with its outcome's message, and the check is not run (:func:`verdict`); a check that
+raises is a defect, never a verdict (:class:`ClaimError`, naming the claim). The status and the kind of evidence
+follow from the outcomes and the checks' declarations by :func:`escapement.verdict.rule.row_status`; rows that
+quote one sentence are its parts and share its finding, named after the first of them.
 """
 
 from __future__ import annotations
 
+import importlib
+import importlib.util
 import os
 import re
+from collections import Counter
 from collections.abc import Mapping
 from dataclasses import replace
 from pathlib import Path
@@ -26,13 +25,10 @@ import numpy as np
 import yaml
 
 from ..paper.printed_axes import PANELS
-# the modules of the checks, one per part of the paper: importing them registers their checks in CHECKS
-from . import beyond, figure_axes, sec2_model, sec3_equations, sec3_map, sec3_period, sec3_steps  # noqa: F401
-from . import sec4_fig3, sec4_fig4, sec4_fig5, sec5_conclusions  # noqa: F401
-from .evidence import CHECKS, COMPLETED, Evidence, Verdict, fmt, runs_left_regime
-from .rule import UNDETERMINED, evidence_of, status_of, weakest, weighed
+from .evidence import COMPLETED, Check, Evidence, Verdict, fmt
+from .rule import UNDETERMINED, row_status
 
-__all__ = ["CHECKS", "COLUMNS", "SCHEMA", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims"]
+__all__ = ["COLUMNS", "SCHEMA", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims", "resolved"]
 
 COLUMNS = ["claim_id", "source", "origin", "quote", "part", "finding", "evidence", "statement", "readings",
            "paper_value", "replicated_value", "tolerance", "status", "note"]
@@ -40,62 +36,74 @@ COLUMNS = ["claim_id", "source", "origin", "quote", "part", "finding", "evidence
 REGISTER, SCHEMA = (Path(__file__).with_name(name) for name in ("claims.yaml", "claims.schema.yaml"))
 #: the reading of a claim checked under one reading only
 AS_STATED = "as stated"
+#: the figures whose printed axes could tell readings apart
+FIGURES = sorted({p.figure for p in PANELS})
 
 
 class ClaimError(RuntimeError):
     """A check could not compute its verdict on a claim; the message names the claim."""
 
 
-def _schema(path: str | os.PathLike) -> dict:
-    """The register's schema, with the names of the registered checks."""
-    schema = yaml.safe_load(Path(path).read_text())
-    schema["$defs"]["check"]["properties"]["check"] = {"enum": sorted(CHECKS)}
-    return schema
+def resolved(name: str) -> Check:
+    """The check the register names ``module.function``, a module of this package imported when first named."""
+    module, _, function = name.partition(".")
+    found = (getattr(importlib.import_module(f"{__package__}.{module}"), function, None) if re.fullmatch(
+        r"\w+\.\w+", name) and importlib.util.find_spec(f"{__package__}.{module}") else None)
+    if not isinstance(found, Check):
+        raise ValueError(f"check = {name!r} must name a check of escapement.verdict as module.function")
+    return found
 
 
 def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, settings: Mapping | None = None
                 ) -> list[dict]:
     """The claims of the register at ``path``, checked against ``schema``, each with its ``readings`` (one,
-    ``as stated``, for a claim checked under one reading); ValueError naming the claim if the register is
-    malformed, if two claims share an id, if two parts of one sentence share a name, if a reading's words are
-    not the paper's, if the figures tried leave out a printed figure, or if a check lacks its args (the five things
-    a schema cannot say). Args that name their
-    ``runs`` take them from ``settings`` (the configuration's ``model`` and ``checks`` blocks)."""
+    ``as stated``, for a claim checked under one reading) and the ``args`` of their ``runs`` taken from
+    ``settings`` (the configuration's ``model`` and ``checks`` blocks). ValueError naming the claim for what the
+    schema cannot say too: two claims with one id, or with one sentence and part; a part alone on its sentence;
+    a reading's words not the paper's; figures tried that leave out a printed figure; a check not named, or
+    lacking its args."""
     data = yaml.load(Path(path).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
-    error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(_schema(schema)).iter_errors(data))
+    error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(
+        yaml.safe_load(Path(schema).read_text())).iter_errors(data))
     if error is not None:
         where = list(error.absolute_path)
         claim = data["claims"][where[1]] if where[:1] == ["claims"] and len(where) > 1 else {}
         name = f"claim '{claim['id']}'" if isinstance(claim, dict) and "id" in claim else "/".join(map(str, where))
-        message = (f"{error.instance!r} is a value this claim may not have" if error.validator is None else
-                   f"{error.instance!r} is not a registered check" if where[-1:] == ["check"] else error.message)
+        message = f"{error.instance!r} is a value this claim may not have" if error.validator is None else error.message
         raise ValueError(f"{path}: {name}: {message} (at {'/'.join(map(str, where[2:])) or 'the claim'})")
+    quoted = Counter(claim.get("quote") for claim in data["claims"])
+    paper = [*quoted, *data.get("cited", {}).values()]
     seen: dict[str, set] = {"id": set(), "part": set()}
-    paper = [*data.get("sentences", {}).values(), *data.get("cited", {}).values()]
     for claim in data["claims"]:
+        where = f"{path}: claim '{claim['id']}'"
+        if "quote" in claim and ("part" in claim) != (quoted[claim["quote"]] > 1):
+            raise ValueError(f"{where}: {quoted[claim['quote']]} claim(s) quote its sentence and it names "
+                             f"{'a' if 'part' in claim else 'no'} part: the claims that quote one sentence are its "
+                             "parts, each naming its part")
         if "readings" in claim and (missed := set(FIGURES) - figures_named(claim["figures_tried"])):
-            raise ValueError(f"{path}: claim '{claim['id']}': its figures_tried names no Fig. "
-                             f"{', '.join(sorted(missed))}: every printed figure is tried before a row may say that "
-                             "none decides")
+            raise ValueError(f"{where}: its figures_tried names no Fig. {', '.join(sorted(missed))}: every printed "
+                             "figure is tried before a row may say that none decides")
         for reading in claim.get("readings", []):
-            if not any(reading["words"] in text for text in (claim.get("quote", ""), *paper)):
-                raise ValueError(f"{path}: claim '{claim['id']}': the words {reading['words']!r} of the reading "
-                                 f"{reading['reading']!r} are in neither its quote nor a sentence the register cites")
-        keys = [("id", claim["id"])] + ([("part", (claim["quote"], claim.get("part")))] if "quote" in claim else [])
-        for key, value in keys:
+            if not any(reading["words"] in text for text in paper if text):
+                raise ValueError(f"{where}: the words {reading['words']!r} of the reading {reading['reading']!r} "
+                                 "are in no quote and no sentence the register cites")
+        for key, value in [("id", claim["id"])] + ([("part", (claim["quote"], claim.get("part")))]
+                                                   if "quote" in claim else []):
             if value in seen[key]:
-                raise ValueError(f"{path}: claim '{claim['id']}': a second claim with this {key} ({value!r}); "
-                                 "the rows that quote one sentence name each its part")
+                raise ValueError(f"{where}: a second claim with this {key} ({value!r}); the rows that quote one "
+                                 "sentence name each its part")
             seen[key].add(value)
         if "readings" not in claim:
             spec = {k: claim.pop(k) for k in ("check", "args", "tolerance", "tolerance_reason") if k in claim}
             claim["readings"] = [{"reading": AS_STATED, **spec}]
         for reading in claim["readings"]:
-            reading["args"] = _resolved(reading.get("args", {}), settings, f"{path}: claim '{claim['id']}'")
-            missing = [a for a in CHECKS[reading["check"]].args if a not in reading["args"]]
+            reading["args"] = _resolved(reading.get("args", {}), settings, where)
+            try:
+                missing = [a for a in resolved(reading["check"]).args if a not in reading["args"]]
+            except ValueError as err:
+                raise ValueError(f"{where}: {err}") from None
             if missing:
-                raise ValueError(f"{path}: claim '{claim['id']}': the check '{reading['check']}' needs the args "
-                                 f"{', '.join(missing)}")
+                raise ValueError(f"{where}: the check '{reading['check']}' needs the args {', '.join(missing)}")
     return data["claims"]
 
 
@@ -112,32 +120,40 @@ def _resolved(args: Mapping, settings: Mapping | None, where: str) -> dict:
     return {**model, **settings["checks"][name], **{k: v for k, v in args.items() if k != "runs"}}
 
 
+def left_regime(name: str, ds, answers: tuple[str, ...]) -> Verdict | None:
+    """The verdict when the scene ``name``, or a run of a table of runs (a ``case`` dimension), left the
+    escapement regime: an outcome neither completed nor one of the check's ``answers``; else None."""
+    if "case" not in ds.dims:
+        outcome = ds.attrs["outcome"]
+        return None if outcome == COMPLETED else Verdict(
+            f"not evaluated: {name} left the escapement regime ({outcome})", False,
+            note=f"{name} ended with outcome '{outcome}': {ds.attrs['outcome_message']}; the claim concerns the "
+                 "escapement regime")
+    left = np.flatnonzero(~np.isin(ds["outcome"].values, [COMPLETED, *answers]))
+    return None if not len(left) else Verdict(
+        f"not evaluated: {len(left)} of {ds.sizes['case']} runs left the escapement regime", False,
+        note="; ".join(f"{lab} ended with outcome '{o}': {m}" for lab, o, m in zip(
+            *(ds[k].values[left] for k in ("label", "outcome", "outcome_message")))))
+
+
 def verdict(claim: Mapping, reading: Mapping, evidence: Evidence) -> Verdict:
     """The verdict of the check of one ``reading`` of the claim; :class:`ClaimError` naming the claim if the
     check fails or answers no outcome."""
-    registered, spec = CHECKS[reading["check"]], {**claim, **reading}
+    check, spec = resolved(reading["check"]), {**claim, **reading}
     try:
-        for name, ds in registered.scenes(spec, evidence).items():  # one rule for a run that left the regime
-            if "case" in ds.dims and (left := runs_left_regime(ds, registered.answers)) is not None:
-                return left  # a table of runs of the checks dataset
-            if "case" not in ds.dims and (outcome := ds.attrs["outcome"]) != COMPLETED:
-                return Verdict(f"not evaluated: {name} left the escapement regime ({outcome})", False,
-                               note=f"{name} ended with outcome '{outcome}': {ds.attrs['outcome_message']}; the "
-                                    "claim concerns the escapement regime")
-        result = registered.function(spec, evidence)
+        for name, ds in check.scenes(spec, evidence).items():
+            if (left := left_regime(name, ds, check.answers)) is not None:
+                return left
+        result = check(spec, evidence)
     except Exception as err:  # re-raised naming the claim: a failing check is never a verdict
-        raise ClaimError(f"claim '{claim['id']}': check '{registered.name}' failed: {type(err).__name__}: {err}"
+        raise ClaimError(f"claim '{claim['id']}': check '{reading['check']}' failed: {type(err).__name__}: {err}"
                          ) from err
     holds, truth = result.holds, (bool, np.bool_)
     if not (holds is None or isinstance(holds, truth) or (
             isinstance(holds, Mapping) and holds and all(isinstance(h, truth) for h in holds.values()))):
-        raise ClaimError(f"claim '{claim['id']}': check '{registered.name}' answered holds = {holds!r}")
+        raise ClaimError(f"claim '{claim['id']}': check '{reading['check']}' answered holds = {holds!r}")
     return replace(result, holds=holds if holds is None else {k: bool(h) for k, h in holds.items()}
                    if isinstance(holds, Mapping) else bool(holds))
-
-
-#: the figures whose printed axes could tell readings apart
-FIGURES = sorted({p.figure for p in PANELS})
 
 
 def figures_named(text: str) -> set[str]:
@@ -146,11 +162,11 @@ def figures_named(text: str) -> set[str]:
     return {digit for run in runs for digit in re.findall(r"\d", run)}
 
 
-def _outcomes(name: str, holds) -> tuple[list, str]:
-    """The outcomes of one reading (a grid's, if the check walked one), and them in words."""
+def _said(holds) -> str:
+    """One reading's outcome in words (a grid's, if the check walked one)."""
     if isinstance(holds, Mapping):
-        return list(holds.values()), f"{name}: holds under {sum(holds.values())} of the {len(holds)} readings of a grid"
-    return [holds], f"{name}: " + ("nothing to compute" if holds is None else "holds" if holds else "fails")
+        return f"holds under {sum(holds.values())} of the {len(holds)} readings of a grid"
+    return "nothing to compute" if holds is None else "holds" if holds else "fails"
 
 
 def _joined(pairs: list[tuple[str, str]]) -> str:
@@ -164,22 +180,14 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
     rows, findings = [], {}
     for claim in claims:
         results = [(reading, verdict(claim, reading, evidence)) for reading in claim["readings"]]
-        outcomes, words, kinds = [], [], []
-        for reading, result in results:
-            cited = f' (the paper: "{reading["words"]}")' if "words" in reading else ""
-            found, said = _outcomes(reading["reading"] + cited, result.holds)
-            outcomes += found
-            words.append(said)
-            c = CHECKS[reading["check"]]
-            kinds.append(evidence_of(c.law, c.fitted, c.threshold, result.holds))
-        kind = weakest(kinds)
+        declared = [resolved(reading["check"]) for reading, _ in results]
+        kind, status = row_status((c.law, c.fitted, c.threshold, r.holds) for c, (_, r) in zip(declared, results))
         paper = claim["paper_value"]
         if paper is None:
             paper = next((r.paper_value for _, r in results if r.paper_value), "")
         elif isinstance(paper, list):
             paper = "[" + ", ".join(fmt(x) for x in paper) + "]"
         named = [reading["reading"] for reading, _ in results]
-        status = weighed(status_of(outcomes), kind)
         figures = ("" if len(named) == 1 else f"; no figure decides between the readings: {claim['figures_tried']}"
                    if status == UNDETERMINED else f"; the figures: {claim['figures_tried']}")
         rows.append({
@@ -191,7 +199,8 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
             "finding": findings.setdefault(claim["quote"], claim["id"]) if claim["origin"] == "paper" else "",
             "evidence": kind,
             "statement": claim["statement"],
-            "readings": "; ".join(words),
+            "readings": "; ".join(reading["reading"] + (f' (the paper: "{reading["words"]}")' if "words" in reading
+                                                        else "") + ": " + _said(r.holds) for reading, r in results),
             "paper_value": fmt(paper) if not isinstance(paper, str) else paper,
             "replicated_value": _joined([(n, r.replicated_value) for n, (_, r) in zip(named, results)]),
             "tolerance": _joined([(n, "" if r["tolerance"] is None else fmt(r["tolerance"]))

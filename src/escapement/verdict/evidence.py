@@ -100,13 +100,13 @@ Scenes = Callable[[Mapping, Evidence], dict[str, xr.Dataset]]
 
 @dataclass(frozen=True)
 class Check:
-    """A registered check: its function, the scenes it reads, the ``args`` it needs from the register, and what
-    it consumes besides the simulation, from which the kind of its evidence follows
-    (:func:`escapement.verdict.rule.evidence_of`): the model's ``law`` it restates, what it reads that was
-    ``fitted`` to the printed axes, the ``threshold`` on the claim's words the register's tolerance sets; and the
-    outcomes of its runs other than ``completed`` that are ``answers`` of the check, not exits from the regime."""
+    """A check of the register, its function with what it declares (:func:`check`); the register names it
+    ``module.function``. Besides the ``scenes`` it reads and the ``args`` it needs, what it consumes gives the kind
+    of its evidence (:func:`escapement.verdict.rule.evidence_of`): the model's ``law`` it restates, what it reads
+    that was ``fitted`` to the printed axes, the ``threshold`` on the claim's words the register's tolerance sets;
+    and ``answers`` are the outcomes of its runs other than ``completed`` that answer it, not exits from the
+    regime."""
 
-    name: str
     function: Callable[[Mapping, Evidence], Verdict]
     scenes: Scenes
     args: tuple[str, ...] = ()
@@ -115,23 +115,14 @@ class Check:
     threshold: str | None = None
     answers: tuple[str, ...] = ()
 
+    def __call__(self, claim: Mapping, ev: Evidence) -> Verdict:
+        return self.function(claim, ev)
 
-#: every check of the register by its name, filled by :func:`check` as the modules of the checks are imported
-CHECKS: dict[str, Check] = {}
 
-
-def check(name: str, *, scenes: Scenes, args: tuple[str, ...] = (), law: str | None = None,
-          fitted: str | None = None, threshold: str | None = None, answers: tuple[str, ...] = ()) -> Callable:
-    """Register the decorated function as the check ``name`` of the register (see :class:`Check`); a
-    function may be registered under several names. A name registered twice is refused."""
-
-    def mark(function: Callable) -> Callable:
-        if name in CHECKS:
-            raise ValueError(f"two checks are named '{name}'")
-        CHECKS[name] = Check(name, function, scenes, tuple(args), law, fitted, threshold, tuple(answers))
-        return function
-
-    return mark
+def check(*, scenes: Scenes, args: tuple[str, ...] = (), law: str | None = None, fitted: str | None = None,
+          threshold: str | None = None, answers: tuple[str, ...] = ()) -> Callable[[Callable], Check]:
+    """The decorated function as a :class:`Check` declaring what it reads and consumes, beside its code."""
+    return lambda function: Check(function, scenes, tuple(args), law, fitted, threshold, tuple(answers))
 
 
 def fig3_labelled(ev: Evidence, label: str) -> xr.Dataset:
@@ -165,8 +156,7 @@ def runs_only(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
 
 def runs_of(*groups: str) -> Scenes:
     """The scenes of a check that reads runs of the checks dataset: the groups named here, else those of the claim's
-    ``args`` (``group``, ``groups``, ``by_force`` and ``by_release``); none, every run. The engine judges the runs
-    (:func:`runs_left_regime`) before the check reads them."""
+    ``args`` (``group``, ``groups``, ``by_force`` and ``by_release``); none, every run."""
 
     def scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
         args = claim["args"]
@@ -232,21 +222,6 @@ def probe(ev: Evidence, name: str, dim: str, **where) -> xr.DataArray:
     return ev.checks[name].isel({dim: int(np.flatnonzero(match)[0])})
 
 
-def runs_left_regime(runs: xr.Dataset, answers: tuple[str, ...] = ()) -> Verdict | None:
-    """The verdict when a run of the checks dataset left the escapement regime (an outcome neither completed nor
-    one of the check's ``answers``), else None."""
-    left = np.flatnonzero(~np.isin(runs["outcome"].values, [COMPLETED, *answers]))
-    if not len(left):
-        return None
-    labels, outcomes = runs["label"].values[left], runs["outcome"].values[left]
-    messages = runs["outcome_message"].values[left]
-    return Verdict(
-        f"not evaluated: {len(left)} of {runs.sizes['case']} runs left the escapement regime",
-        False,
-        note="; ".join(f"{lab} ended with outcome '{o}': {m}" for lab, o, m in zip(labels, outcomes, messages)),
-    )
-
-
 def model_of(args: Mapping, F: float, positions: Sequence[float] | None = None) -> Parameters:
     a1, a2, a3, a4 = positions if positions is not None else args["positions"]
     return Parameters(M=float(args["M"]), K=float(args["K"]), F=float(F), b=float(args["b"]), a1=float(a1),
@@ -261,7 +236,7 @@ def release_run(ev: Evidence, p: Parameters, x0: float, n_cycles) -> dict:
             for name in ("outcome", "cycles", "velocity", "next_velocity")}
 
 
-@check("untestable", scenes=runs_only, args=("reason",))
+@check(scenes=runs_only, args=("reason",))
 def untestable(claim, ev: Evidence) -> Verdict:
     """A claim the paper gives no evidence for: the reason is the register's."""
     return Verdict("nothing to compute", None, note=str(claim["args"]["reason"]), paper_value="no measurement given")

@@ -68,7 +68,7 @@ def _ties(best: int, out_of: int, groups: list[tuple[str, ...]], n: int) -> str:
             f"plot different values, so the reading is undetermined: {named}")
 
 
-@check("printed_axes", scenes=panel_scenes, args=("figure", "panel"),
+@check(scenes=panel_scenes, args=("figure", "panel"),
        fitted="the readings of the paper's open choices, fitted to the printed axes")
 def printed_axes(claim, ev: Evidence) -> Verdict:
     """Some candidate reading of the grid gives every printed limit of the panel (the best one is

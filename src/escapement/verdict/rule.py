@@ -13,10 +13,10 @@ parts, and the sentence is one **finding**, whose status follows from its parts 
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 
 __all__ = ["CONSISTENT", "EVIDENCE", "NOT", "ORIGINS", "PARTIAL", "REPRODUCED", "STATUSES", "UNDETERMINED",
-    "UNTESTABLE", "evidence_of", "finding_status", "status_of", "weakest", "weighed"]
+    "UNTESTABLE", "evidence_of", "finding_status", "row_status", "status_of", "weighed"]
 
 #: every status a row or a finding may have, with what it means
 STATUSES: dict[str, str] = {
@@ -58,12 +58,6 @@ def evidence_of(law: str | None, fitted: str | None, threshold: str | None, hold
     return "by_construction" if law else "fitted" if (fitted or threshold) else "independent"
 
 
-def weakest(kinds: Iterable[str]) -> str:
-    """The weakest of the kinds of evidence (the last in :data:`EVIDENCE`'s order)."""
-    order = list(EVIDENCE)
-    return max(kinds, key=order.index)
-
-
 def status_of(outcomes: Iterable[bool | None]) -> str:
     """The one rule: the status of a claim from whether it holds under each reading of its words.
 
@@ -86,6 +80,15 @@ def weighed(status: str, evidence: str) -> str:
     if status not in STATUSES or evidence not in EVIDENCE:
         raise ValueError(f"status = {status!r}, evidence = {evidence!r}: not words of the vocabulary")
     return CONSISTENT if status == REPRODUCED and evidence in ("fitted", "by_construction") else status
+
+
+def row_status(readings: Iterable[tuple]) -> tuple[str, str]:
+    """A row's kind of evidence, the weakest of its readings' (:func:`evidence_of` of each ``(law, fitted,
+    threshold, holds)``), and its status: :func:`status_of` over every outcome (each of a grid's), weighed by it."""
+    readings = list(readings)
+    kind = max((evidence_of(*reading) for reading in readings), key=list(EVIDENCE).index)
+    outcomes = [o for *_, holds in readings for o in (holds.values() if isinstance(holds, Mapping) else [holds])]
+    return kind, weighed(status_of(outcomes), kind)
 
 
 def finding_status(statuses: Iterable[str]) -> str:

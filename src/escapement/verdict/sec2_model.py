@@ -56,7 +56,7 @@ def _shares_text(s: dict, case: str) -> str:
             f"{fmt(s['impacts'], 4)} s and the impulses {fmt(s['impulses'], 4)} s")
 
 
-@check("period_mainly_spring", scenes=fig3_case, args=("case",),
+@check(scenes=fig3_case, args=("case",),
        threshold="'mainly determined' taken as a period within the tolerance of 2 pi sqrt(M/K)")
 def period_mainly_spring(claim, ev: Evidence) -> Verdict:
     """Sec. 2: the period is mainly set by the spring: ``|T - 2 pi/w| / (2 pi/w)`` within the tolerance."""
@@ -65,7 +65,7 @@ def period_mainly_spring(claim, ev: Evidence) -> Verdict:
                    within(abs(s["period"] - s["natural"]) / s["natural"], claim["tolerance"]))
 
 
-@check("period_shares", scenes=fig3_case, args=("case",))
+@check(scenes=fig3_case, args=("case",))
 def period_shares(claim, ev: Evidence) -> Verdict:
     """Sec. 2: the period is changed by the impacts and by the impulses, each by a share measured from the
     simulated phases, both far above what the measurement leaves unexplained."""

@@ -17,31 +17,33 @@ from .evidence import (COMPLETED, Evidence, Verdict, check, fig3_all, fig3_case,
                        runs_of, within)
 
 
-#: each printed map: its formula, whether it asks the symmetric geometry, and the reading stated
-MAPS = {"map_eq16": (pe.poincare_map_16, False, ""),
-        "map_eq17": (pe.poincare_map_17, True, "read as x1(k+1) = sqrt((1-b)^4 x1(k)^2 + 2 (b^2 - 2b + 2)(a2 - a1) f), "
-                                               "Eq. (16) with a3 = -a1, a4 = -a2")}
-
-
-@check("map_eq17", scenes=fig3_all)
-@check("map_eq16", scenes=fig3_all)
-def printed_map(claim, ev: Evidence) -> Verdict:
-    """The printed map of the check's name (:data:`MAPS`) fed each simulated velocity before the impact at a1."""
-    formula, symmetric, note = MAPS[claim["check"]]
+def _printed_map(claim, ev: Evidence, equation: str, formula, note: str = "") -> Verdict:
+    """The printed map ``formula`` of Eq. (``equation``) fed each simulated velocity before the impact at a1."""
     worst, pairs = 0.0, 0
     for label, ds in ev.fig3.items():
         p, v = params_of(ds), ds["velocity_before_impact"].values
-        if symmetric and not (p.a3 == -p.a1 and p.a4 == -p.a2):
+        if equation == "17" and not (p.a3 == -p.a1 and p.a4 == -p.a2):
             raise ValueError(f"Fig. 3 case {label} is not symmetric (a3 = -a1, a4 = -a2): Eq. (17) does not apply")
         predicted = np.array([formula(float(x), p) for x in v[:-1]])
         worst = max(worst, float(np.max(np.abs(v[1:] - predicted) / predicted)))
         pairs += len(predicted)
     return Verdict(
         f"max relative difference {fmt(worst, 3)} over {pairs} simulated cycle pairs (Fig. 3 {', '.join(ev.fig3)})",
-        within(worst, claim["tolerance"]), note=note, paper_value=f"g of Eq. ({claim['check'][-2:]})")
+        within(worst, claim["tolerance"]), note=note, paper_value=f"g of Eq. ({equation})")
 
 
-@check("fixed_point", scenes=fig3_case, args=("case",))
+@check(scenes=fig3_all)
+def map_eq16(claim, ev: Evidence) -> Verdict:
+    return _printed_map(claim, ev, "16", pe.poincare_map_16)
+
+
+@check(scenes=fig3_all)
+def map_eq17(claim, ev: Evidence) -> Verdict:
+    return _printed_map(claim, ev, "17", pe.poincare_map_17, "read as x1(k+1) = sqrt((1-b)^4 x1(k)^2 + 2 (b^2 - 2b + "
+                        "2)(a2 - a1) f), Eq. (16) with a3 = -a1, a4 = -a2")
+
+
+@check(scenes=fig3_case, args=("case",))
 def fixed_point(claim, ev: Evidence) -> Verdict:
     ds = ev.fig3[claim["args"]["case"]]
     formula = pe.fixed_point_19(params_of(ds))
@@ -55,7 +57,7 @@ def fixed_point(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("multiplier_paper_cases", scenes=runs_of("paper"))
+@check(scenes=runs_of("paper"))
 def multiplier_paper_cases(claim, ev: Evidence) -> Verdict:
     paper = group_runs(ev, "paper")
     mu = paper["multiplier"].values
@@ -66,7 +68,7 @@ def multiplier_paper_cases(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("stability_over_b", scenes=runs_of("b"), answers=("chattering",))
+@check(scenes=runs_of("b"), answers=("chattering",))
 def stability_over_b(claim, ev: Evidence) -> Verdict:
     """Every b of the group converges with mu2 = (1 - b)^4: the motion's own return map, for 0 < b < 2."""
     group = group_runs(ev, "b")
@@ -84,7 +86,7 @@ def stability_over_b(claim, ev: Evidence) -> Verdict:
         "|mu2| < 1 there says nothing about the motion, whose impacts accumulate in finite time"))
 
 
-@check("multiplier_group", scenes=runs_of(), args=("group",))
+@check(scenes=runs_of(), args=("group",))
 def multiplier_group(claim, ev: Evidence) -> Verdict:
     """mu2 = (1 - b)^4 in every run of the group: the rate of convergence depends on nothing else."""
     group = group_runs(ev, claim["args"]["group"])
@@ -94,7 +96,7 @@ def multiplier_group(claim, ev: Evidence) -> Verdict:
                    f"{', '.join(fmt(f, 3) for f in forces)} N)", within(worst, claim["tolerance"]))
 
 
-@check("multiplier_only_b", scenes=runs_of(), answers=("chattering",))
+@check(scenes=runs_of(), answers=("chattering",))
 def multiplier_only_b(claim, ev: Evidence) -> Verdict:
     """Sec. 3.4, the stability determined only by b: mu2 = (1 - b)^4 in every run of the checks dataset that
     converges, whatever its force, spring, positions or release, and the runs that do not converge chatter, every
@@ -115,7 +117,7 @@ def multiplier_only_b(claim, ev: Evidence) -> Verdict:
              "parameter and in the release; whether the limit cycle exists is another question (Sec. 5)")
 
 
-@check("derivative_eq20", scenes=fig3_case, args=("case", "velocities"))
+@check(scenes=fig3_case, args=("case", "velocities"))
 def derivative_eq20(claim, ev: Evidence) -> Verdict:
     p = params_of(ev.fig3[claim["args"]["case"]])
     if ev.checks["map_slope"].attrs["case"] != str(claim["args"]["case"]):
@@ -134,7 +136,7 @@ def derivative_eq20(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("trivial_multiplier", scenes=runs_of(), args=("group",))
+@check(scenes=runs_of(), args=("group",))
 def trivial_multiplier(claim, ev: Evidence) -> Verdict:
     """Eq. (8): mu1 = 1. Both Floquet multipliers measured from the flow over one period (checks dataset,
     ``floquet_major``, ``floquet_minor``) against 1 and (1 - b)^4, independent of the return map."""
@@ -154,7 +156,7 @@ def trivial_multiplier(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("map8_eigenvalues", scenes=fig3_case, args=("case",))
+@check(scenes=fig3_case, args=("case",))
 def map8_eigenvalues(claim, ev: Evidence) -> Verdict:
     """One of the eigenvalues of the map (8) as printed, at the fixed point of (16), is 1 (within the tolerance)."""
     p = params_of(ev.fig3[claim["args"]["case"]])
@@ -175,7 +177,7 @@ def map8_eigenvalues(claim, ev: Evidence) -> Verdict:
         paper_value="Therefore mu1 = 1")
 
 
-@check("phase_shift", scenes=fig3_case, args=("case", "sense", "perturbation", "n_cycles"))
+@check(scenes=fig3_case, args=("case", "sense", "perturbation", "n_cycles"))
 def phase_shift(claim, ev: Evidence) -> Verdict:
     """The run from the section (a1, v*) and the run from (a1, (1 + perturbation) v*), v* the case's converged
     speed: ``sense: orbital`` holds when their speeds before the impact at a1 agree after ``n_cycles`` (relative,
@@ -205,7 +207,7 @@ def phase_shift(claim, ev: Evidence) -> Verdict:
         paper_value="the solution is asymptotically stable")
 
 
-@check("section_crossings", scenes=fig3_all)
+@check(scenes=fig3_all)
 def section_crossings(claim, ev: Evidence) -> Verdict:
     rows = []
     for label in ev.fig3:

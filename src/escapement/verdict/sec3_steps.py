@@ -49,11 +49,9 @@ PRINTED_STEPS: dict[str, Step] = {
 _FIELD = {"before": "event_velocity_before", "after": "event_velocity_after"}
 
 
-@check("impact_step", scenes=fig3_all, args=("equation",), law="the impact law v+ = (1 - b) v- (Eq. (A-2))")
-@check("printed_step", scenes=fig3_all, args=("equation",))
+@check(scenes=fig3_all, args=("equation",))
 def printed_step(claim, ev: Evidence) -> Verdict:
-    """One step equation as printed, fed the simulated state before its step (``impact_step``: the equations
-    that restate the impact law)."""
+    """One step equation as printed, fed the simulated state before its step."""
     equation = str(claim["args"]["equation"])
     if equation not in PRINTED_STEPS:
         raise ValueError(f"no printed step equation ({equation}); known: {', '.join(PRINTED_STEPS)}")
@@ -74,6 +72,11 @@ def printed_step(claim, ev: Evidence) -> Verdict:
         note=f"read as {text}, fed the simulated state before the step",
         paper_value=f"Eq. ({equation})",
     )
+
+
+#: the step equations that restate the impact law
+impact_step = check(scenes=fig3_all, args=("equation",), law="the impact law v+ = (1 - b) v- (Eq. (A-2))")(
+    printed_step.function)
 
 
 def describe(trials: list[Trial]) -> str:
@@ -100,7 +103,7 @@ def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple
                    f"every reading: {listing}")
 
 
-@check("eq14_conventions", scenes=fig3_case, args=("case",))
+@check(scenes=fig3_case, args=("case",))
 def eq14_conventions(claim, ev: Evidence) -> Verdict:
     """Eq. (14) at the simulated last cycle under each convention: the velocity at a4 from the one after
     the impact at a3 (by the energy balance from the simulated velocity at a1, Eqs. (10)-(13))."""

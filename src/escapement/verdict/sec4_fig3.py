@@ -19,7 +19,7 @@ from .evidence import (Evidence, Verdict, check, fig3_all, fig3_case, fig3_cases
                        probe, rel, release_run, runs_of, runs_only, within)
 
 
-@check("both_converge", scenes=fig3_all)
+@check(scenes=fig3_all)
 def both_converge(claim, ev: Evidence) -> Verdict:
     changes = {k: rel(ds["velocity_before_impact"].values[-1], ds["velocity_before_impact"].values[-2])
                for k, ds in ev.fig3.items()}
@@ -43,7 +43,7 @@ def converged_amplitudes(ds: xr.Dataset) -> dict[str, float]:
             "left turning point": float(np.hypot(p.a4, v5 / p.omega))}
 
 
-@check("compare_cases", scenes=fig3_cases, args=("cases", "quantity"))
+@check(scenes=fig3_cases, args=("cases", "quantity"))
 def compare_cases(claim, ev: Evidence) -> Verdict:
     """The first case of ``cases`` converges to a greater ``quantity`` than the second: a variable of the Fig. 3
     datasets, or ``amplitude`` under the definition ``args: {definition}`` (:func:`converged_amplitudes`)."""
@@ -64,7 +64,7 @@ def energy_rate(v: np.ndarray) -> float:
     return float(np.median(d[usable + 1] / d[usable]))
 
 
-@check("convergence_rates", scenes=fig3_cases, args=("cases",))
+@check(scenes=fig3_cases, args=("cases",))
 def convergence_rates(claim, ev: Evidence) -> Verdict:
     """The asymptotic rates of convergence of x1^2 of the two cases differ beyond the tolerance."""
     rates = {str(k): energy_rate(ev.fig3[str(k)]["velocity_before_impact"].values) for k in claim["args"]["cases"]}
@@ -77,7 +77,7 @@ def convergence_rates(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("cycles_to_converge", scenes=runs_of(), args=("group",),
+@check(scenes=runs_of(), args=("group",),
        threshold="the convergence criterion by which the checks dataset counts the cycles to converge")
 def cycles_to_converge(claim, ev: Evidence) -> Verdict:
     """Runs released alike that differ only in F take different numbers of cycles to converge."""
@@ -88,7 +88,7 @@ def cycles_to_converge(claim, ev: Evidence) -> Verdict:
                    len(set(cycles.tolist())) > 1)
 
 
-@check("converged_period", scenes=fig3_case, args=("case",))
+@check(scenes=fig3_case, args=("case",))
 def converged_period(claim, ev: Evidence) -> Verdict:
     ds = ev.fig3[claim["args"]["case"]]
     p = params_of(ds)
@@ -103,7 +103,7 @@ def converged_period(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("period_difference", scenes=fig3_cases, args=("cases",))
+@check(scenes=fig3_cases, args=("cases",))
 def period_difference(claim, ev: Evidence) -> Verdict:
     first, second = (str(c) for c in claim["args"]["cases"])
     a, b = (float(ev.fig3[c]["period"].values[-1]) for c in (first, second))
@@ -114,7 +114,7 @@ def period_difference(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("period_initial_condition", scenes=runs_of("paper", "initial_condition"))
+@check(scenes=runs_of("paper", "initial_condition"))
 def period_initial_condition(claim, ev: Evidence) -> Verdict:
     paper, other = group_runs(ev, "paper"), group_runs(ev, "initial_condition")
     worst = 0.0
@@ -133,7 +133,7 @@ def period_initial_condition(claim, ev: Evidence) -> Verdict:
     return Verdict("; ".join(parts), within(worst, claim["tolerance"]), note=f"largest difference {fmt(worst, 2)} s")
 
 
-@check("natural_period", scenes=fig3_all)
+@check(scenes=fig3_all)
 def natural_period(claim, ev: Evidence) -> Verdict:
     rows = []
     for label, ds in ev.fig3.items():
@@ -151,7 +151,7 @@ def natural_period(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("initial_order", scenes=fig3_cases, args=("cases", "side"))
+@check(scenes=fig3_cases, args=("cases", "side"))
 def initial_order(claim, ev: Evidence) -> Verdict:
     """The first case of ``cases`` has the smaller first velocity before the impact at a1, both released from rest
     at ``side`` (-1 or +1) times their initial amplitude |x0| (the paper gives the amplitude, not the side)."""
@@ -169,7 +169,7 @@ def initial_order(claim, ev: Evidence) -> Verdict:
                    paper_value=f"({a}) smaller at the beginning")
 
 
-@check("stable_velocity_scaling", scenes=runs_of(), args=("groups",))
+@check(scenes=runs_of(), args=("groups",))
 def stable_velocity_scaling(claim, ev: Evidence) -> Verdict:
     """Eq. (19) derived on paper: v* = sqrt(2 (a2 - a1) F / (M (2b - b^2))), so v*/sqrt(F) depends on the
     geometry, b and M only: not on x0."""
@@ -220,7 +220,7 @@ def amplitude_of(run, definition: str) -> float:
     raise ValueError(f"no amplitude is defined as {definition!r}; known: largest x, h0")
 
 
-@check("force_amplitude", scenes=runs_of(), args=("groups", "definition"))
+@check(scenes=runs_of(), args=("groups", "definition"))
 def force_amplitude(claim, ev: Evidence) -> Verdict:
     """Sec. 4, "the system with greater force has greater amplitude": within each family of runs that
     differ only in F, the converged amplitude grows with F."""
@@ -240,7 +240,7 @@ def force_amplitude(claim, ev: Evidence) -> Verdict:
                    "in the force")
 
 
-@check("amplitude_by_force", scenes=runs_of(), args=("by_force", "by_release", "definition"))
+@check(scenes=runs_of(), args=("by_force", "by_release", "definition"))
 def amplitude_by_force(claim, ev: Evidence) -> Verdict:
     """Sec. 4, the converged amplitude "also determined by the external force": runs that differ only in F (groups
     ``by_force``) converge to amplitudes apart by more than the tolerance (relative), runs that differ only in the
@@ -271,7 +271,7 @@ def amplitude_by_force(claim, ev: Evidence) -> Verdict:
         "changes with F and not with x0, at one escapement (it depends on the positions and on K too)"))
 
 
-@check("release_transient", scenes=runs_of(), args=("group",))
+@check(scenes=runs_of(), args=("group",))
 def release_transient(claim, ev: Evidence) -> Verdict:
     """Sec. 4: the period of every cycle, the first too, is independent of the release, among runs that differ
     only in x0: the first cycles' periods within the tolerance (s) of each other."""
@@ -310,7 +310,7 @@ def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) 
         paper_value="convergence independent of the initial amplitude")
 
 
-@check("release_boundary", scenes=runs_only, args=("positions", "F", "releases", "n_cycles", "M", "K", "b"))
+@check(scenes=runs_only, args=("positions", "F", "releases", "n_cycles", "M", "K", "b"))
 def release_boundary(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     p = model_of(args, args["F"])

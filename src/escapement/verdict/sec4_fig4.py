@@ -11,7 +11,7 @@ from ..paper.printed_axes import FIG5_PANEL_K, panel
 from .evidence import Evidence, Verdict, check, fig3_all, fig4_scene, fmt, probe, within
 
 
-@check("shock_readout", scenes=fig4_scene, law="the impact law v+ = (1 - b) v- (Eq. (A-2))",
+@check(scenes=fig4_scene, law="the impact law v+ = (1 - b) v- (Eq. (A-2))",
        fitted="Fig. 4's force, spring and release")
 def shock_readout(claim, ev: Evidence) -> Verdict:
     ds = ev.fig4
@@ -36,7 +36,7 @@ def shock_readout(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check("impact_force_step", scenes=fig4_scene, fitted="Fig. 4's force, spring and release")
+@check(scenes=fig4_scene, fitted="Fig. 4's force, spring and release")
 def impact_force_step(claim, ev: Evidence) -> Verdict:
     """A finite impact force read off the acceleration graph: the step of the sampled acceleration at each impact
     is compared with F/M, the escape wheel's force switching on; the claim holds if some step is not F/M."""
@@ -55,7 +55,7 @@ def impact_force_step(claim, ev: Evidence) -> Verdict:
         paper_value="the impact force evaluated from the graph")
 
 
-@check("window_impact", scenes=fig3_all)
+@check(scenes=fig3_all)
 def window_impact(claim, ev: Evidence) -> Verdict:
     """Under every reading of Fig. 4's grid (every force and release magnitude of the Fig. 3 cases, either side,
     every spring constant of Fig. 5), an impact lies in each printed time window; each run exactly to the

@@ -45,7 +45,7 @@ def _decreasing_in_K(ev: Evidence, value, digits: int, unit: str) -> tuple[bool,
     return all(holds), "; ".join(parts)
 
 
-@check("fig5_amplitude_common_force", scenes=runs_of("common_force"), args=("definition",))
+@check(scenes=runs_of("common_force"), args=("definition",))
 def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
     """The converged amplitude (:func:`escapement.verdict.sec4_fig3.amplitude_of`) decreases with K at each
     common force."""
@@ -58,7 +58,7 @@ SPEEDS = {"largest_speed": "largest |v| on the limit cycle (exact, from the clos
           "velocity": "velocity before the impact at a1 on the limit cycle"}
 
 
-@check("fig5_velocity_common_force", scenes=runs_of("common_force"), args=("speed",))
+@check(scenes=runs_of("common_force"), args=("speed",))
 def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
     """The speed ``args: {speed}`` (a key of :data:`SPEEDS`) decreases with K at each common force."""
     speed = claim["args"]["speed"]
@@ -66,7 +66,7 @@ def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
     return Verdict(f"{SPEEDS[speed]}: " + values, holds, note=NOT_COMPARED)
 
 
-@check("fig5_recovery_common_force", scenes=runs_of("common_force"), args=("measure",))
+@check(scenes=runs_of("common_force"), args=("measure",))
 def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
     """The recovery of the velocity before the impact at a1 (:func:`escapement.paper.corrected.velocity_recovery`
     at the converged velocity) is faster for smaller K at each common force, measured (``args: {measure}``) in
@@ -92,7 +92,7 @@ def _fig5(claim, ev: Evidence) -> dict[str, xr.Dataset]:
     return {f"Fig. 5 K = {label}": ds for label, ds in ev.fig5.items()}
 
 
-@check("fig5_dimensions", scenes=runs_of("common_force"),
+@check(scenes=runs_of("common_force"),
        threshold="'different' taken as apart by the tolerance of the larger")
 def fig5_dimensions(claim, ev: Evidence) -> Verdict:
     """The limit cycles of the spring constants differ in size at one common force: their half-widths
@@ -123,7 +123,7 @@ def _panel_of(k: float) -> str:
     raise ValueError(f"no printed panel of Fig. 5 has K = {k:g} N/m")
 
 
-@check("fig5_impact_visible", scenes=_fig5, fitted="Fig. 5's force and release, and the whole trajectory drawn",
+@check(scenes=_fig5, fitted="Fig. 5's force and release, and the whole trajectory drawn",
        threshold="'clearly shown' taken as a jump of the tolerance of the printed velocity range")
 def fig5_impact_visible(claim, ev: Evidence) -> Verdict:
     """The impact is shown in a panel when a velocity jump the panel draws (each impact at a1 of the

@@ -14,7 +14,7 @@ from ..paper.corrected import existence_threshold, map_constant
 from .evidence import Evidence, Verdict, check, fmt, group_runs, model_of, release_run, runs_of, runs_only, within
 
 
-@check("asymmetric_dependence", scenes=runs_of("asymmetric"))
+@check(scenes=runs_of("asymmetric"))
 def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
     """The rate of convergence (mu2) of the asymmetric runs depends on F or the positions: beyond the tolerance."""
     group = group_runs(ev, "asymmetric")
@@ -60,7 +60,7 @@ def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: floa
         paper_value="the limit cycle's existence depends on F and a1..a4")
 
 
-@check("existence_sign_change", scenes=runs_only, args=("positions", "forces", "x0", "n_cycles", "M", "K", "b"))
+@check(scenes=runs_only, args=("positions", "forces", "x0", "n_cycles", "M", "K", "b"))
 def existence_sign_change(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     rows = []
