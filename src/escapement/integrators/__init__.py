@@ -1,11 +1,7 @@
-"""General-purpose integrators that check the exact solvers: numerical integration of the same automaton
-by SciPy's ``solve_ivp`` and SUNDIALS CVODE (:mod:`.reference`), in 50-digit arithmetic (:mod:`.high_precision`)
-and by fixed-step Runge-Kutta (:mod:`.naive`), each a stepper of the one integrators' loop (:mod:`.driver`).
-They share the model, the outcomes and the result type with :mod:`escapement.solvers`, none of its closed
-forms of the arcs but what the 50-digit stepper writes out on its own.
-
-The names are imported on first use (PEP 562): a job that runs only the exact solver loads neither
-SciPy's integrators nor mpmath.
+"""General-purpose integrators that check the exact solvers along an independent path, each a stepper of one loop
+(:mod:`.driver`): SciPy's ``solve_ivp`` and SUNDIALS CVODE (:mod:`.reference`), 50-digit arithmetic
+(:mod:`.high_precision`) and fixed-step Runge-Kutta (:mod:`.naive`). The names are imported on first use
+(PEP 562): a job that runs only the exact solver loads neither SciPy's integrators nor mpmath.
 """
 
 from .._lazy import lazy_exports

@@ -22,14 +22,15 @@ from ..model.events import EventKind, EventLog
 from ..model.kinematics import compensated_add
 from ..model.limits import RunSpec
 from ..model.status import Status
-from ..solvers.describe import CycleTable, Exit, Trajectory
+from ..solvers.describe import CycleTable, Exit
 from ..solvers.outcomes import (Outcome, chattering_outcome, completed_outcome, event_limit_message, finish,
                                 horizon_outcome, no_event_outcome)
 from ..solvers.result import Solution
 
 __all__ = ["HORIZON", "NO_EVENT", "Step", "Stepper", "drive"]
 
-NO_EVENT, HORIZON = 0, -1  #: a :class:`Step`'s kind where no watched surface is ever passed, or the end time comes
+#: a :class:`Step`'s kind where no watched surface is ever passed, and where the end time comes first
+NO_EVENT, HORIZON = 0, -1
 _A1 = int(EventKind.IMPACT_A1)
 #: bytes at the peak per event (t, x, v_before, v_after, kind, and the masks that pick the cycles' impacts;
 #: measured 48-58 with the naive stepper) and per cycle (largest x, period, impact time and velocity)
@@ -40,7 +41,7 @@ _MPF_BYTES_BASE, _MPF_BYTES_PER_BIT = 200, 0.12
 
 
 class Step(NamedTuple):
-    """What a stepper returns (or a plain tuple of these fields). ``kind`` an :class:`EventKind`: the surface
+    """What a stepper returns (or a plain tuple of these six fields). ``kind`` an :class:`EventKind`: the surface
     reached after ``dt`` with velocity ``v``, ``x_max`` the largest displacement on the way; :data:`NO_EVENT`:
     ``x_max`` is the turning point (free flight: the swing's radius) reached ``dt`` after the start."""
 
@@ -53,8 +54,9 @@ class Step(NamedTuple):
 
 
 class Stepper(Protocol):
-    """An integrator for the loop; it may also say the bytes its trajectory keeps per event
-    (``trajectory_bytes_per_event``) and whatever the run's length (``fixed_bytes``), for the memory estimate."""
+    """An integrator for the loop. One that keeps the motion has ``trajectory(t_final)``, a
+    :class:`~escapement.solvers.describe.Trajectory` up to ``t_final`` (or None), and may say the bytes it keeps
+    per event (``trajectory_bytes_per_event``) and whatever the run's length (``fixed_bytes``)."""
 
     name: str
 
@@ -62,9 +64,6 @@ class Stepper(Protocol):
                    watched: tuple[EventKind, ...], t_stop: float) -> Step:
         """The next event of ``watched`` on the arc about ``centre`` in ``mode`` from ``(t, x, v)``, or none
         before ``t_stop``."""
-
-    def trajectory(self, t_final: float) -> Trajectory | None:
-        """The motion up to ``t_final``, if the integrator keeps it."""
 
 
 def drive(spec: RunSpec, stepper: Stepper, number: Callable = float) -> Solution:
@@ -90,16 +89,14 @@ def drive(spec: RunSpec, stepper: Stepper, number: Callable = float) -> Solution
     columns = {name: array("d") if floats else [] for name in ("t", "x", "v_before", "v_after", "max", "period")}
     kinds = array("b")
     cycle_max, impacts_a1, state, outcome = -math.inf, 0, RELEASE, None
-    t_sum = t_err = t = elapsed = t_final = number(0)  # elapsed: since the last impact at a1, for an exact period
+    t_sum = t_err = t = elapsed = number(0)  # elapsed: since the last impact at a1, for an exact period
 
     for _ in range(limits.max_events):
         mode, c, watched = arcs[state]
-        step = stepper.next_event(mode, c, t, x, v, watched, t_stop)
-        kind = step[0]
+        kind, dt, v_before, x_max, t_abs, x_at = stepper.next_event(mode, c, t, x, v, watched, t_stop)
         if kind == NO_EVENT:
-            outcome = no_event_outcome(params, state, c, t, step.dt, step.x_max, t_stop, impacts_a1)
+            outcome = no_event_outcome(params, state, c, t, dt, x_max, t_stop, impacts_a1)
             break
-        _, dt, v_before, x_max, t_abs, x_at = step
         # the event's time, compared with the end time as it is stored
         new_sum, new_err = compensated_add(t_sum, t_err, dt) if t_abs is None else (t_abs, t_err)
         t_new = new_sum + new_err if t_abs is None else t_abs
@@ -114,7 +111,6 @@ def drive(spec: RunSpec, stepper: Stepper, number: Callable = float) -> Solution
         for name, value in (("t", t), ("x", x), ("v_before", v_before), ("v_after", v_after)):
             columns[name].append(value)
         kinds.append(kind)
-        t_final = t
         if kind == _A1:
             impacts_a1 += 1
             if impacts_a1 > 1:
@@ -129,7 +125,7 @@ def drive(spec: RunSpec, stepper: Stepper, number: Callable = float) -> Solution
             break
         state, v = int(kind), v_after
     else:
-        outcome = Outcome(Status.EVENT_LIMIT, event_limit_message(float(t), limits.max_events), Exit(), t_final)
+        outcome = Outcome(Status.EVENT_LIMIT, event_limit_message(float(t), limits.max_events), Exit(), t)
 
     def numbers(name: str) -> np.ndarray:  # a view of a float buffer (no second copy); an object array of mpf
         column = columns[name]
@@ -142,4 +138,5 @@ def drive(spec: RunSpec, stepper: Stepper, number: Callable = float) -> Solution
     impacts = events.of_kind(EventKind.IMPACT_A1)[:len(periods)]  # complete cycles only
     cycles = CycleTable(impact_time=events.t[impacts], velocity_before_impact=events.v_before[impacts],
                         period=periods, largest_displacement=numbers("max"))
-    return finish(spec, stepper.name, outcome, events, cycles, stepper.trajectory(float(outcome.t_final)))
+    keeps = getattr(stepper, "trajectory", None)
+    return finish(spec, stepper.name, outcome, events, cycles, keeps(float(outcome.t_final)) if keeps else None)

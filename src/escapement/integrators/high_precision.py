@@ -66,10 +66,6 @@ class MpmathStepper:
         x_max = c + radius if to_top <= angle else max(x, target)
         return Step(kind, dt, v_end, x_max)
 
-    def trajectory(self, t_final: float) -> None:
-        """None: this integrator keeps no trajectory to sample."""
-        return None
-
 
 @run_arguments
 def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = 50,

@@ -66,10 +66,6 @@ class NaiveStepper:
             largest = max(largest, x)
         return Step(NO_EVENT, math.inf, 0.0, math.hypot(x, v / math.sqrt(w2)))
 
-    def trajectory(self, t_final: float) -> None:
-        """None: this integrator keeps no trajectory to sample."""
-        return None
-
 
 @run_arguments
 def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int, step: float) -> Solution:

@@ -45,20 +45,15 @@ class IvpStepper:
 
     def __init__(self, params: Parameters, integrator: SciPyIntegrator | CvodeIntegrator,
                  record_trajectory: bool) -> None:
-        self.omega, self.omega2 = params.omega, params.omega2
-        self.period = params.natural_period
-        self.name = integrator.name
-        self.integrator = integrator
+        self.omega, self.omega2, self.period = params.omega, params.omega2, params.natural_period
+        self.name, self.integrator, self.record = integrator.name, integrator, record_trajectory
         self.surfaces = {kind: Watch(automaton.position(kind, params), s.direction)
                          for kind, s in automaton.SURFACES.items()}
-        self.record = record_trajectory
         #: bytes besides the loop's: each segment's dense output per event where kept (measured about 6_400),
         #: and SciPy's work arrays whatever the run's length (about 190 kB)
         self.trajectory_bytes_per_event = 7_000 if record_trajectory else 0
         self.fixed_bytes = 256_000
-        self.seg_t: list[float] = []
-        self.seg_sol: list = []
-        self.seg_c: list[float] = []
+        self.seg_t, self.seg_sol, self.seg_c = [], [], []  # each segment's start, dense output and centre
 
     def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
                    watched: tuple[EventKind, ...], t_stop: float) -> Step:

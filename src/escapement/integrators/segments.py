@@ -1,7 +1,6 @@
-"""The integration backends of the reference solver: one segment of the motion by SciPy's ``solve_ivp``
-(:class:`SciPyIntegrator`, with dense output) or by SUNDIALS CVODE (:class:`CvodeIntegrator`), each ending at the
-first surface it watches (:class:`Watch`), and the crossing of a surface located inside a segment (hand-written:
-neither library reports a crossing that a step passes together with the turning point just beyond it).
+"""The reference solver's backends: one segment of the motion, ending at the first surface it watches, by SciPy's
+``solve_ivp`` or SUNDIALS CVODE, and the crossing of a surface inside it (hand-written: neither library reports a
+crossing that a step passes together with the turning point just beyond it).
 """
 
 from __future__ import annotations
@@ -21,8 +20,7 @@ __all__ = ["MAX_STEP_HALF_PERIODS", "ROOT_TOLERANCE", "CvodeIntegrator", "DenseS
 
 #: a segment's dense output (SciPy's ``OdeSolution``): the state ``(x, v)`` at a time
 Dense: TypeAlias = Callable[[float], np.ndarray]
-#: the longest step, in half periods: the velocity's zeros are half a period apart, so a step
-#: shorter than that holds at most one of them and changes the velocity's sign across it
+#: the longest step, in half periods: the velocity's zeros are half a period apart, so a step holds at most one
 MAX_STEP_HALF_PERIODS = 0.9
 #: relative and absolute tolerance of the root finding on a dense output (scipy's own for events)
 ROOT_TOLERANCE = 4.0 * np.finfo(float).eps
@@ -48,7 +46,7 @@ class Watch:
 
 @dataclass(frozen=True)
 class Hit:
-    """An event a segment met: its time, the index of its watch and the state ``(x, v)`` there."""
+    """An event a segment met: its time, its watch's index and the state ``(x, v)`` there."""
 
     t: float
     index: int
@@ -57,8 +55,7 @@ class Hit:
 
 @dataclass(frozen=True)
 class Segment:
-    """One segment to integrate: ``x'' = -omega2 (x - centre)`` from ``y0`` at ``t0`` up to ``t1``
-    at most, ending at the first of ``watches``."""
+    """``x'' = -omega2 (x - centre)`` from ``y0`` at ``t0`` to ``t1`` at most, ending at the first of ``watches``."""
 
     omega2: float
     centre: float
@@ -77,8 +74,7 @@ class SciPyIntegrator:
     """One segment with ``scipy.integrate.solve_ivp``."""
 
     def __init__(self, method: str, rtol: float, atol: np.ndarray, dense: bool) -> None:
-        # SciPy's integrators are loaded here, when a reference run starts, not when the solvers are
-        # imported: a job that runs only the exact solver does not pay their import (about 0.7 s)
+        # loaded when a reference run starts: a job that runs only the exact solver does not pay for it (0.7 s)
         from scipy.integrate import solve_ivp
         from scipy.optimize import brentq
 
@@ -111,9 +107,8 @@ class SciPyIntegrator:
         return min(hits, key=lambda hit: hit.t, default=None), (sol.sol if dense else None)
 
     def crossing(self, seg: Segment, dense: Dense | None, end: Hit, index: int) -> Hit:
-        """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, on the segment's
-        dense output, where ``x`` is monotone from the start to ``end``; the segment is integrated
-        again with dense output if it was not kept (the same steps, so the same ``end``)."""
+        """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, on the segment's dense output
+        (integrated again if it was not kept: the same steps, so the same ``end``)."""
         if dense is None:
             again, dense = self.segment(seg, True)
             if again != end:
@@ -143,15 +138,13 @@ class CvodeIntegrator:
         omega2, centre = seg.omega2, seg.centre
 
         def rhs(_t, y, yp):
-            yp[0] = y[1]
-            yp[1] = -omega2 * (y[0] - centre)
+            yp[0], yp[1] = y[1], -omega2 * (y[0] - centre)
 
         def events(_t, y, out):
             for i, w in enumerate(watches):
                 out[i] = w.value(y)
 
-        events.terminal = [True] * len(watches)
-        events.direction = directions
+        events.terminal, events.direction = [True] * len(watches), directions
         solver = self._cvode(rhs, method=self.method, rtol=self.rtol, atol=self.atol, eventsfn=events,
                              num_events=len(watches), max_num_steps=1_000_000, max_step=seg.max_step)
         result = solver.solve([t_from, t_to], np.array(y_from, dtype=float))
@@ -168,8 +161,8 @@ class CvodeIntegrator:
         return self._solve(seg, seg.watches, [w.crossing for w in seg.watches], seg.t0, seg.y0, seg.t1), None
 
     def crossing(self, seg: Segment, dense: Dense | None, end: Hit, index: int) -> Hit:
-        """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, by integrating
-        back from ``end`` towards the start: ``x`` is monotone on that stretch, which holds one crossing."""
+        """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, integrating back from ``end``
+        (``x`` is monotone on that stretch, which holds one crossing)."""
         watch = seg.watches[index]
         back = self._solve(seg, (watch,), [0], end.t, end.y, seg.t0)
         if back is None:
@@ -198,8 +191,7 @@ class DenseSegments:
                 f"t_final = {end} s, omega = {number(self.omega, 'rad/s')}")
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Displacement, velocity and acceleration at times ``t`` (NaN outside [0, t_final]); ``t`` is checked
-        as :meth:`escapement.Solution.sample` says."""
+        """Displacement, velocity and acceleration at times ``t`` (NaN outside [0, t_final])."""
         t = sample_times("t", t)
         x, v, a = (np.full(t.shape, np.nan) for _ in range(3))
         idx = np.searchsorted(self.t_start, t, side="right") - 1

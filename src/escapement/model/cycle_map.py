@@ -18,16 +18,7 @@ __all__ = ["CycleMap", "cycle_map"]
 @dataclass(frozen=True)
 class CycleMap:
     """The return map of the velocity before the impact at a1, linear in its square:
-    ``v_{k+1}**2 = mu v_k**2 + c`` (:func:`cycle_map` derives it).
-
-    Examples
-    --------
-    >>> from escapement import Parameters
-    >>> from escapement.model.cycle_map import cycle_map
-    >>> m = cycle_map(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05))
-    >>> round(m.mu, 12), round(m.c, 12), round(m.fixed_point_sq, 12)  # 1, m**2/s**2, m**2/s**2
-    (0.6561, 0.543, 1.578947368421)
-    """
+    ``v_{k+1}**2 = mu v_k**2 + c`` (:func:`cycle_map` derives it)."""
 
     mu: float  #: ``r**4``, the multiplier of ``v**2`` (``r = 1 - b``, the impact law's factor)
     c: float  #: the constant, m**2/s**2
@@ -38,12 +29,6 @@ class CycleMap:
     def fixed_point_sq(self) -> float:
         """``v***2 = c / (1 - mu)``, m**2/s**2 (not positive: no fixed point)."""
         return self.c / self.one_minus_mu
-
-    @property
-    def fixed_point(self) -> float:
-        """``v*``, m/s; NaN where ``v***2 <= 0``."""
-        sq = self.fixed_point_sq
-        return math.sqrt(sq) if sq > 0.0 else math.nan
 
     def velocity_sq(self, v1: float, k: ArrayLike) -> np.ndarray:
         """``v_k**2 = v***2 + (v1**2 - v***2) mu**(k-1)`` for the cycle numbers ``k`` (1 for the first).

@@ -12,7 +12,7 @@ from typing import TypeVar
 
 import numpy as np
 
-from .arguments import ParameterError, check_count, check_flag, check_type, real_number
+from .arguments import ParameterError, ParameterTypeError, check_count, check_flag, real_number
 from .parameters import ParameterArrays, Parameters, check_initial_state, validate_arrays
 from .printing import texts
 from .quantities import MODEL_KEYS
@@ -23,19 +23,13 @@ __all__ = ["EVENTS_PER_CYCLE", "MAX_CYCLES", "MAX_DIGITS", "MAX_EVENTS", "MAX_ME
 
 _F = TypeVar("_F", bound=Callable)
 
-EVENTS_PER_CYCLE = 4
-DEFAULT_MAX_EVENTS_FOR_TIME = 10_000_000
+EVENTS_PER_CYCLE, DEFAULT_MAX_EVENTS_FOR_TIME = 4, 10_000_000
 #: the most cycles a run may ask for (the workflow's longest run is 10**6 cycles, its schema allows 10**8)
 MAX_CYCLES = 1_000_000_000
-#: the most events a run may take: room for the default bound of :data:`MAX_CYCLES` cycles
-MAX_EVENTS = 5_000_000_000
-#: the significant digits the high-precision solver may work with: more than float64's 16, at most 1000
-MIN_DIGITS, MAX_DIGITS = 17, 1000
-#: the bytes a run's result may hold unless the caller says otherwise: 2 GB, a quarter of a laptop's 8 GB
-MEMORY_BUDGET = 2_000_000_000
-#: the largest memory budget a caller may give: 1 TB
-MAX_MEMORY_BUDGET = 1_000_000_000_000
-
+MAX_EVENTS = 5_000_000_000  #: the most events a run may take: room for the default of :data:`MAX_CYCLES` cycles
+MIN_DIGITS, MAX_DIGITS = 17, 1000  #: the high-precision solver's digits: more than float64's 16, at most 1000
+MEMORY_BUDGET = 2_000_000_000  #: the bytes a result may hold by default: 2 GB, a quarter of a laptop's 8 GB
+MAX_MEMORY_BUDGET = 1_000_000_000_000  #: the largest memory budget a caller may give: 1 TB
 
 #: the docstring entries of the arguments every solver entry point passes to :func:`run_spec` first
 RUN_ARGUMENTS = """params : Parameters
@@ -59,8 +53,7 @@ class MemoryBudgetError(ParameterError):
 
     def __init__(self, name: str, value: object, requirement: str, estimate: int, budget: int) -> None:
         super().__init__(name, value, requirement)
-        self.estimate = estimate
-        self.budget = budget
+        self.estimate, self.budget = estimate, budget
 
 
 def events_for(n_cycles: int) -> int:
@@ -86,11 +79,9 @@ class RunLimits:
             object.__setattr__(self, "n_cycles", check_count("n_cycles", self.n_cycles, MAX_CYCLES))
         if self.t_end is not None:
             object.__setattr__(self, "t_end", real_number("t_end", self.t_end, lambda t: t > 0, "> 0 (s)"))
-        if self.max_events is None:
-            bound = DEFAULT_MAX_EVENTS_FOR_TIME if self.n_cycles is None else events_for(self.n_cycles)
-            object.__setattr__(self, "max_events", bound)
-        else:
-            object.__setattr__(self, "max_events", check_count("max_events", self.max_events, MAX_EVENTS))
+        default = DEFAULT_MAX_EVENTS_FOR_TIME if self.n_cycles is None else events_for(self.n_cycles)
+        events = default if self.max_events is None else check_count("max_events", self.max_events, MAX_EVENTS)
+        object.__setattr__(self, "max_events", events)
         budget = MEMORY_BUDGET if self.memory_budget is None else self.memory_budget
         object.__setattr__(self, "memory_budget", check_count("memory_budget", budget, MAX_MEMORY_BUDGET))
 
@@ -100,8 +91,7 @@ class RunLimits:
         ``fixed_bytes`` besides, if within the budget (:func:`check_budget` on ``n_cycles``, or ``max_events``
         where it binds)."""
         if self.n_cycles is not None and events_for(self.n_cycles) <= self.max_events:
-            count = ("n_cycles", self.n_cycles,
-                     lambda n: fixed_bytes + events_for(n) * event_bytes + n * cycle_bytes)
+            count = ("n_cycles", self.n_cycles, lambda n: fixed_bytes + events_for(n) * event_bytes + n * cycle_bytes)
         else:
             count = ("max_events", self.max_events,
                      lambda n: fixed_bytes + n * event_bytes + n // EVENTS_PER_CYCLE * cycle_bytes)
@@ -130,8 +120,9 @@ def run_spec(params: Parameters | Mapping[str, object], x0: object, v0: object =
     then every row by the rules of :class:`Parameters`.
     """
     if rows is None:
-        params = check_type("params", params, Parameters,
-                            "an escapement.Parameters (make one with Parameters(M=..., ...))")
+        if not isinstance(params, Parameters):
+            raise ParameterTypeError("params", params,
+                                     "an escapement.Parameters (make one with Parameters(M=..., ...))")
         x, v = check_initial_state(x0, v0)
         return RunSpec(params, x, v, RunLimits(n_cycles, t_end, max_events, memory_budget))
     limits = RunLimits(n_cycles, t_end, max_events, memory_budget)
