@@ -30,6 +30,12 @@ class CycleMap:
         """``v***2 = c / (1 - mu)``, m**2/s**2 (not positive: no fixed point)."""
         return self.c / self.one_minus_mu
 
+    @property
+    def fixed_point(self) -> float:
+        """``v*``, m/s; NaN where ``v***2 <= 0``."""
+        sq = self.fixed_point_sq
+        return math.sqrt(sq) if sq > 0.0 else math.nan
+
     def velocity_sq(self, v1: float, k: ArrayLike) -> np.ndarray:
         """``v_k**2 = v***2 + (v1**2 - v***2) mu**(k-1)`` for the cycle numbers ``k`` (1 for the first).
 
