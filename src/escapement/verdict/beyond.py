@@ -1,24 +1,12 @@
-"""Airy's theorem on the escapement error, checked on the exact solver's runs (beyond the paper).
+"""Airy's theorem on the escapement error, checked on the exact solver's runs (beyond the paper), and the period
+as a daily rate.
 
-Airy (1830): an impulse delivered symmetrically about the equilibrium leaves the period unchanged to
-first order in the impulse; one delivered before the equilibrium shortens it (the clock gains), one
-after lengthens it (the clock loses). In this model the impulse is the force ``f`` over the zone
-(a1, a2); its effect on the period is the zone's time less the phase it advances,
-
-``dT2 = (t_a2 - t_a1) - [phi(a2, v2) - phi(a1, v1+)] / w``,  ``phi(x, v) = atan2(x, v / w)``,
-
-the sine phase of the free motion, which advances at exactly ``w`` in free flight (the corrected
-Eq. (25), :mod:`escapement.paper.corrected`). To first order in ``f`` (derived on paper: inside the
-zone ``phi`` advances at ``w - f x / (w A**2)``) a zone from ``a`` to ``c`` on an arc of amplitude
-``A`` costs ``dT2 = f / (w**3 A**2) (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) + O(f**2)``: zero for a
-zone symmetric about 0, negative before the equilibrium, positive after
-(:func:`escapement.paper.corrected.first_order_zone_change`).
-
-The checks scene measures ``dT2`` on one passage of the exact solver at a fixed amplitude
-(:func:`escapement.scenes.probes.zone_shift`, the ``airy_zone_shift`` of the checks dataset; the setting of Airy's
-theorem; on the limit cycle the amplitude itself changes with ``f``). The check
-``airy_order`` compares it with the closed form as ``f -> 0``; ``daily_rate`` restates a period as
-seconds gained per day.
+Airy (1830): an impulse symmetric about the equilibrium leaves the period unchanged to first order; one before the
+equilibrium shortens it, one after lengthens it. Here the impulse is the force ``f`` over a zone (a, c); its effect
+on the period, ``dT2``, is the zone's time less the sine phase ``atan2(x, v/w)`` it advances over ``w`` (the
+corrected Eq. (25)), and to first order (derived on paper) ``f (sqrt(A^2 - a^2) - sqrt(A^2 - c^2)) / (w^3 A^2)`` on
+an arc of amplitude ``A`` (:func:`escapement.paper.corrected.first_order_zone_change`). The checks scene measures
+``dT2`` on one passage at a fixed amplitude (``airy_zone_shift`` of the checks dataset).
 """
 
 from __future__ import annotations
@@ -29,7 +17,7 @@ from collections.abc import Mapping, Sequence
 from ..model.parameters import Parameters
 from ..paper import corrected
 from ..paper.corrected import first_order_zone_change, zone_amplitude
-from .evidence import Evidence, Verdict, check, fig3_all, fmt, params_of, probe, runs_only, within
+from .evidence import Evidence, Verdict, check, fig3_scenes, fmt, params_of, probe, runs_only, within
 
 
 def _order(f: Sequence[float], shift: Sequence[float]) -> float:
@@ -39,10 +27,9 @@ def _order(f: Sequence[float], shift: Sequence[float]) -> float:
 
 
 def airy_verdict(zones: Mapping[str, Mapping], tolerance: float) -> Verdict:
-    """``zones``: per zone its ``zone`` (a, c), first-order coefficient ``kappa`` (dT2 / f as f -> 0,
-    s per m/s^2; 0 for a symmetric zone), and the measured ``f`` and ``shift`` (dT2, s) at each force.
-    A zone agrees with Airy when its measured order in ``f`` is 2 (symmetric) or 1 with ``dT2 / f``
-    within ``tolerance`` of ``kappa`` (relative, at the smallest force). Holds when every zone agrees."""
+    """Holds when every zone (its ``zone``, first-order coefficient ``kappa``, 0 when symmetric, and the measured
+    ``shift`` at each ``f``) has the order 2 in ``f`` if symmetric, else 1 with ``dT2 / f`` within ``tolerance`` of
+    ``kappa`` (relative, at the smallest force)."""
     agree, parts = [], []
     for name, z in zones.items():
         order = _order(z["f"], z["shift"])
@@ -89,7 +76,7 @@ def airy_order(claim, ev: Evidence) -> Verdict:
     return airy_verdict(zones, claim["tolerance"])
 
 
-@check(scenes=fig3_all, args=("paper_period",))
+@check(scenes=fig3_scenes, args=("paper_period",))
 def daily_rate(claim, ev: Evidence) -> Verdict:
     """The paper's period and the replicated ones as seconds per day against 2 pi sqrt(M/K)."""
     paper = float(claim["args"]["paper_period"])

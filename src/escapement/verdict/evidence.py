@@ -1,14 +1,12 @@
 """What every check reads and answers: the datasets (:class:`Evidence`), the verdict under one reading
-(:class:`Verdict`), the registry the checks join by :func:`check`, the scenes a check declares it reads, and the
-helpers that find a run of the checks dataset (:func:`probe`, :func:`group_runs`, :func:`release_run`). The status
-of a row follows from the verdicts by the one rule of :mod:`escapement.verdict.rule`, in
-:func:`escapement.verdict.engine.evaluate`.
+(:class:`Verdict`), a check's declaration (:func:`check`) with the scenes it may declare, and the helpers that find
+a run of the checks dataset (:func:`probe`, :func:`group_runs`, :func:`release_run`).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -20,6 +18,8 @@ from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 
 COMPLETED = Status.COMPLETED.value
+#: the steps of a cycle, from the impact at a1
+STEPS = ("zone_right", "a2_to_a3", "zone_left", "a4_to_a1")
 #: every outcome of a run
 OUTCOMES = tuple(s.value for s in Status)
 
@@ -125,28 +125,16 @@ def check(*, scenes: Scenes, args: tuple[str, ...] = (), law: str | None = None,
     return lambda function: Check(function, scenes, tuple(args), law, fitted, threshold, tuple(answers))
 
 
-def fig3_labelled(ev: Evidence, label: str) -> xr.Dataset:
-    if label not in ev.fig3:
-        raise ValueError(f"the register names Fig. 3 case '{label}'; the evidence holds {', '.join(ev.fig3)}")
-    return ev.fig3[label]
-
-
-def fig3_case(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
-    """The Fig. 3 case of ``args: {case: ...}``."""
-    label = str(claim["args"]["case"])
-    return {f"Fig. 3 case {label}": fig3_labelled(ev, label)}
-
-
-def fig3_cases(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
-    """The two Fig. 3 cases of ``args: {cases: [first, second]}``, in that order."""
-    labels = [str(c) for c in claim["args"]["cases"]]
-    if len(labels) != 2:
+def fig3_scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
+    """The Fig. 3 cases of ``args: {case: ...}``, or of ``{cases: [first, second]}`` in that order, else every case."""
+    args = claim["args"]
+    labels = ([str(args["case"])] if "case" in args else [str(c) for c in args["cases"]] if "cases" in args
+              else list(ev.fig3))
+    if "cases" in args and len(labels) != 2:
         raise ValueError(f"args 'cases' must name two Fig. 3 cases, not {labels}")
-    return {f"Fig. 3 case {c}": fig3_labelled(ev, c) for c in labels}
-
-
-def fig3_all(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
-    return {f"Fig. 3 case {c}": ds for c, ds in ev.fig3.items()}
+    if missing := [c for c in labels if c not in ev.fig3]:
+        raise ValueError(f"the register names Fig. 3 case '{missing[0]}'; the evidence holds {', '.join(ev.fig3)}")
+    return {f"Fig. 3 case {c}": ev.fig3[c] for c in labels}
 
 
 def runs_only(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
@@ -181,14 +169,20 @@ def events_of(ds: xr.Dataset, kind: EventKind) -> np.ndarray:
 
 def cycle_durations(ds: xr.Dataset) -> dict[str, np.ndarray]:
     """Simulated durations inside each complete cycle: a1 -> a2 -> a3 -> a4 -> a1."""
-    t = ds["event_time"].values
-    starts = events_of(ds, EventKind.IMPACT_A1)[:-1]
-    return {
-        "zone_right": t[starts + 1] - t[starts],
-        "a2_to_a3": t[starts + 2] - t[starts + 1],
-        "zone_left": t[starts + 3] - t[starts + 2],
-        "a4_to_a1": t[starts + 4] - t[starts + 3],
-    }
+    t, starts = ds["event_time"].values, events_of(ds, EventKind.IMPACT_A1)[:-1]
+    return {name: t[starts + i + 1] - t[starts + i] for i, name in enumerate(STEPS)}
+
+
+def successive_ratios(values: np.ndarray) -> np.ndarray:
+    """``(u[k+2] - u[k+1]) / (u[k+1] - u[k])`` where both differences are well above rounding (1e-7 of u)."""
+    d = np.diff(values)
+    usable = (np.abs(d[:-1]) > 1e-7 * np.abs(values[-1])) & (np.abs(d[1:]) > 1e-7 * np.abs(values[-1]))
+    return d[1:][usable] / d[:-1][usable]
+
+
+def mu2_off(runs: xr.Dataset) -> float:
+    """The largest ``|mu2 - (1 - b)^4|`` over the runs: the measured multiplier against Eq. (21)."""
+    return float(np.max(np.abs(runs["multiplier"].values - runs["multiplier_eq21"].values)))
 
 
 def rel(a: float, b: float) -> float:
@@ -222,10 +216,10 @@ def probe(ev: Evidence, name: str, dim: str, **where) -> xr.DataArray:
     return ev.checks[name].isel({dim: int(np.flatnonzero(match)[0])})
 
 
-def model_of(args: Mapping, F: float, positions: Sequence[float] | None = None) -> Parameters:
-    a1, a2, a3, a4 = positions if positions is not None else args["positions"]
-    return Parameters(M=float(args["M"]), K=float(args["K"]), F=float(F), b=float(args["b"]), a1=float(a1),
-                      a2=float(a2), a3=float(a3), a4=float(a4))
+def model_of(args: Mapping, F: float) -> Parameters:
+    """The model of a claim's own runs: M, K, b and the ``positions`` of its ``args``, at the force ``F``."""
+    return Parameters(F=float(F), **{k: float(args[k]) for k in ("M", "K", "b")},
+                      **dict(zip(("a1", "a2", "a3", "a4"), map(float, args["positions"]))))
 
 
 def release_run(ev: Evidence, p: Parameters, x0: float, n_cycles) -> dict:

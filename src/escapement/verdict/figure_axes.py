@@ -1,20 +1,11 @@
 """The axis claims: each printed panel of Figs. 3-5 against the pipeline's own outputs.
 
-A printed axis is evidence of what the paper plotted: with limits rounded out to the ticks (the
-default of the software the figures appear to be drawn in), the outermost tick labels are the
-rounded extent of the data. So an axis matches only when the values, autoscaled the same way with
-the printed tick step imposed, give exactly the printed limits, not when they merely lie inside them.
-
-The readings the paper leaves open were chosen by fitting these same axes, so a match confirms
-nothing: it shows that the choice is consistent (the check declares the fitted reading it reads, so the
-row's evidence is fitted). What the axes can show is a mismatch over the whole grid of candidate
-readings: the claim holds when the best candidate of the grid (``Evidence.readings``) gives every printed
-limit, and the row
-names every candidate tied at the best score, grouping those that plot the same values (equivalent
-readings no axis can tell apart), and the score with the plotting program's own tick step. The
-pipeline's output, the reading adopted, is reported beside it (``Evidence.axes``, autoscaled by
-:func:`escapement.plotting.panel_axes.scene_axes`); the printed limits come from
-:mod:`escapement.paper.printed_axes`.
+With limits rounded out to the ticks, a printed axis's outermost tick labels are the rounded extent of the data, so
+an axis matches only when the values, autoscaled so with the printed tick step imposed, give exactly the printed
+limits. The readings the paper leaves open were fitted to these axes, so a match is only consistent; a claim holds
+when the best candidate reading of the grid (``Evidence.readings``) gives every printed limit, and the row names the
+readings tied at the best (those that plot the same values grouped) beside the adopted output's limits
+(``Evidence.axes``) and the printed ones (:mod:`escapement.paper.printed_axes`).
 """
 
 from __future__ import annotations
@@ -25,7 +16,7 @@ from collections.abc import Mapping
 import xarray as xr
 
 from ..paper.printed_axes import FIG5_PANEL_K, Panel, panel
-from .evidence import Evidence, Verdict, check, fig3_labelled, fmt
+from .evidence import Evidence, Verdict, check, fig3_scenes, fmt
 
 
 def _limits(lo: float, hi: float) -> str:
@@ -44,7 +35,7 @@ def panel_scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     figure, name = str(claim["args"]["figure"]), str(claim["args"]["panel"])
     if figure == "3":
         case = name.split("/")[0]
-        return {f"Fig. 3 case {case}": fig3_labelled(ev, case)}
+        return fig3_scenes({"args": {"case": case}}, ev)
     if figure == "4":
         return {"Fig. 4": ev.fig4}
     found = _fig5_dataset(ev, name)

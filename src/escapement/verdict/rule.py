@@ -1,14 +1,8 @@
 """The words of the verdict and the one rule that gives them: statuses, kinds of evidence, origins.
 
-A row of the claims register checks one part of one of the paper's sentences (its ``quote``) under
-each reading its words admit. Its **status** follows from the readings by :func:`status_of`: holds
-under every reading, reproduced; under some, undetermined; under none, not reproduced; nothing to
-compute, untestable. Its **evidence** follows from what its checks consume (:func:`evidence_of`):
-a check that restates the model's own law is by construction, one that reads a scene or a score
-fitted to the paper's printed axes, or a threshold the project chose, is fitted; an agreement of
-either kind is only ``consistent`` (:func:`weighed`). The rows that quote one sentence are its
-parts, and the sentence is one **finding**, whose status follows from its parts by
-:func:`finding_status`; only there can a status be ``partially_reproduced``.
+A row checks one part of one of the paper's sentences under each reading its words admit; its status and kind of
+evidence follow from its readings' outcomes and what its checks consume (:func:`row_status`), and a sentence, one
+finding, takes its status from its parts' (:func:`finding_status`, the only place a status is partial).
 """
 
 from __future__ import annotations
@@ -50,22 +44,16 @@ ORIGINS: dict[str, str] = {
 
 
 def evidence_of(law: str | None, fitted: str | None, threshold: str | None, holds) -> str:
-    """The kind of evidence of one reading, from what its check consumes: the model's ``law`` it restates,
-    what it reads that was ``fitted`` to the printed axes, the ``threshold`` the project chose; ``holds`` None
-    (nothing computed) is no evidence."""
+    """The kind of evidence of one reading, from the model's ``law`` its check restates, what it reads that was
+    ``fitted``, the ``threshold`` the project chose; none when it computed nothing (``holds`` None)."""
     if holds is None:
         return "none"
     return "by_construction" if law else "fitted" if (fitted or threshold) else "independent"
 
 
 def status_of(outcomes: Iterable[bool | None]) -> str:
-    """The one rule: the status of a claim from whether it holds under each reading of its words.
-
-    Raises
-    ------
-    ValueError
-        If there is no outcome, or if some readings computed nothing and others did.
-    """
+    """The one rule: the status of a claim from whether it holds under each reading of its words; ValueError if
+    there is no outcome, or if some readings computed nothing and others did."""
     outcomes = list(outcomes)
     if not outcomes or (None in outcomes and any(o is not None for o in outcomes)):
         raise ValueError(f"outcomes = {outcomes!r}: every reading computes an outcome, or none does")
@@ -92,13 +80,10 @@ def row_status(readings: Iterable[tuple]) -> tuple[str, str]:
 
 
 def finding_status(statuses: Iterable[str]) -> str:
-    """A sentence's status from its parts' (its rows'), one rule for every part: every part holds, reproduced
-    (consistent if one part holds only so); no part fails under every reading, undetermined (a part without a
-    verdict, undetermined or untestable, leaves the sentence without one); some part fails under every reading,
-    partially reproduced if another part is reproduced, else not reproduced. A consistent part confirms nothing, so
-    it never lifts a failing finding: {consistent, not reproduced} is not reproduced, as {not reproduced} alone; an
-    untestable part never counts as holding: {reproduced, untestable} is undetermined. Untestable alone when every
-    part is."""
+    """A sentence's status from its parts': every part holds, reproduced (consistent if one holds only so); none
+    fails under every reading, undetermined; one does, partially reproduced if another is reproduced, else not
+    reproduced (a consistent part confirms nothing, an untestable one never counts as holding); untestable when
+    every part is."""
     statuses = list(statuses)
     if all(s == UNTESTABLE for s in statuses):
         return UNTESTABLE

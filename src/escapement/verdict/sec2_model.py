@@ -9,20 +9,14 @@ import math
 import xarray as xr
 
 from ..model.events import EventKind
-from .evidence import Evidence, Verdict, check, events_of, fig3_case, fmt, params_of, within
+from .evidence import Evidence, Verdict, check, events_of, fig3_scenes, fmt, params_of, within
 
 
 def phase_shares(ds: xr.Dataset) -> dict[str, float]:
-    """The last cycle's period split by the sine phase ``phi = atan2(x, v/w)`` of the simulated states.
-
-    In free flight ``phi`` advances at exactly ``w``; over one cycle of the limit cycle it advances by
-    ``2 pi`` in all, so ``T = 2 pi/w + impacts + impulses + drift`` with ``impacts`` the phase lost at the two
-    impacts over ``w`` (a delay), ``impulses`` each zone's time less its phase advance over ``w``, and
-    ``drift`` the phase the cycle's end state lacks from its start state over ``w`` (0 on the limit
-    cycle). Every term is read off the simulated events (positions, velocities before and after, times);
-    ``residual`` is the simulated period less the sum, which measures how far the free flight of the
-    simulation advances the phase at ``w``.
-    """
+    """The last cycle's period split by the sine phase ``atan2(x, v/w)`` of its simulated events, which free flight
+    advances at ``w``: ``T = 2 pi/w + impacts + impulses + drift``, the phase the two impacts step back, each zone's
+    time less its phase advance, and the phase the cycle's end lacks from its start (each over ``w``); ``residual``
+    is the simulated period less that sum."""
     p = params_of(ds)
     w = p.omega
     t, x = ds["event_time"].values, ds["event_position"].values
@@ -56,19 +50,18 @@ def _shares_text(s: dict, case: str) -> str:
             f"{fmt(s['impacts'], 4)} s and the impulses {fmt(s['impulses'], 4)} s")
 
 
-@check(scenes=fig3_case, args=("case",),
+@check(scenes=fig3_scenes, args=("case",),
        threshold="'mainly determined' taken as a period within the tolerance of 2 pi sqrt(M/K)")
 def period_mainly_spring(claim, ev: Evidence) -> Verdict:
-    """Sec. 2: the period is mainly set by the spring: ``|T - 2 pi/w| / (2 pi/w)`` within the tolerance."""
+    """Sec. 2: ``|T - 2 pi/w| / (2 pi/w)`` within the tolerance."""
     s = phase_shares(ev.fig3[claim["args"]["case"]])
     return Verdict(_shares_text(s, claim["args"]["case"]),
                    within(abs(s["period"] - s["natural"]) / s["natural"], claim["tolerance"]))
 
 
-@check(scenes=fig3_case, args=("case",))
+@check(scenes=fig3_scenes, args=("case",))
 def period_shares(claim, ev: Evidence) -> Verdict:
-    """Sec. 2: the period is changed by the impacts and by the impulses, each by a share measured from the
-    simulated phases, both far above what the measurement leaves unexplained."""
+    """Sec. 2: the impacts and the impulses each change the period by a share far above the residual."""
     s = phase_shares(ev.fig3[claim["args"]["case"]])
     both = bool(abs(s["impacts"]) > 1e3 * abs(s["residual"]) and abs(s["impulses"]) > 1e3 * abs(s["residual"]))
     return Verdict(

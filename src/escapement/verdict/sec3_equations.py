@@ -19,8 +19,8 @@ from ..model.automaton import CENTRE_SIGN, Mode
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..paper.corrected import grazing_limit, grazing_release
-from .evidence import (COMPLETED, Evidence, OUTCOMES, Verdict, check, fig3_all, fig3_case, fmt, group_runs, model_of,
-                       params_of, probe, release_run, runs_of, runs_only, within)
+from .evidence import (COMPLETED, Evidence, OUTCOMES, Verdict, check, fig3_scenes, fmt, group_runs, model_of,
+                       params_of, probe, release_run, runs_of, runs_only, successive_ratios, within)
 
 A1, A2, A3, A4 = (int(k) for k in (EventKind.IMPACT_A1, EventKind.ZONE_END_A2, EventKind.IMPACT_A3,
                                   EventKind.ZONE_END_A4))
@@ -88,7 +88,7 @@ def _short_run(ev: Evidence, case: str, K: float, x0: float) -> dict[str, np.nda
     return {name: values[last] for name, values in events.items()}
 
 
-@check(scenes=fig3_case, args=("case", "entry", "K"))
+@check(scenes=fig3_scenes, args=("case", "entry", "K"))
 def state_matrix(claim, ev: Evidence) -> Verdict:
     """The free motion conserves ``v**2 + k x**2`` with ``k`` the entry of A read as printed (``omega``) or with
     its square (``omega2``), at every spring constant of the paper (args ``K``), from the case's release."""
@@ -109,7 +109,7 @@ def state_matrix(claim, ev: Evidence) -> Verdict:
         paper_value="A = [[0, 1], [-omega_n, 0]]")
 
 
-@check(scenes=fig3_all, law="the mode equations x'' + omega_n^2 x = sigma f, Eqs. (A-1), (A-3), (A-5)")
+@check(scenes=fig3_scenes, law="the mode equations x'' + omega_n^2 x = sigma f, Eqs. (A-1), (A-3), (A-5)")
 def modes_linear(claim, ev: Evidence) -> Verdict:
     """Each arc between events conserves the energy of its linear mode."""
     worst = max(arc_invariant_error(params_of(ds), *_events(ds), params_of(ds).omega2, free_only=False)
@@ -119,7 +119,7 @@ def modes_linear(claim, ev: Evidence) -> Verdict:
                    note="each mode is the linear equation the model integrates (by construction)")
 
 
-@check(scenes=fig3_all, law="the impact law v+ = (1 - b) v- (Eq. (A-2))")
+@check(scenes=fig3_scenes, law="the impact law v+ = (1 - b) v- (Eq. (A-2))")
 def impact_matrix(claim, ev: Evidence) -> Verdict:
     """The jump of the velocity at every impact is B y = (0, -b xdot)."""
     worst, n = 0.0, 0
@@ -133,7 +133,7 @@ def impact_matrix(claim, ev: Evidence) -> Verdict:
                    note="the position does not jump", paper_value="B = [[0, 0], [0, -b]]")
 
 
-@check(scenes=fig3_all, law="the solver's impact surfaces, S")
+@check(scenes=fig3_scenes, law="the solver's impact surfaces, S")
 def jump_set(claim, ev: Evidence) -> Verdict:
     """Every impact is on S = {x in {a1, a3}, x xdot < 0}: at a1 moving right (a1 < 0), at a3 moving left."""
     bad = n = 0
@@ -146,7 +146,7 @@ def jump_set(claim, ev: Evidence) -> Verdict:
                    paper_value="S = {y : x in {a1, a3}, x x' < 0}")
 
 
-@check(scenes=fig3_all, law="the impulse after the impact, the solver's reading of S2")
+@check(scenes=fig3_scenes, law="the impulse after the impact, the solver's reading of S2")
 def impulse_sets(claim, ev: Evidence) -> Verdict:
     """The force acts in S2 read literally (x in (a1, a2) moving right, or in (a4, a3) moving left) or after the
     impact only: the two coincide when every entry into a zone is its impact, the events running a1, a2, a3, a4."""
@@ -163,7 +163,7 @@ def impulse_sets(claim, ev: Evidence) -> Verdict:
                    paper_value="S2 = {x in (a1, a2), x' > 0} u {x in (a4, a3), x' < 0}")
 
 
-@check(scenes=fig3_all)
+@check(scenes=fig3_scenes)
 def complement_sets(claim, ev: Evidence) -> Verdict:
     """Every state of the motion lies in S (4) or in S1 u S2 (5), its supplementary set: the events' states are
     classified (the turning points, xdot = 0, lie in neither, since every set asks xdot > 0 or xdot < 0)."""
@@ -184,7 +184,7 @@ def complement_sets(claim, ev: Evidence) -> Verdict:
                         "state space", paper_value="S-bar = S1 u S2")
 
 
-@check(scenes=fig3_case, args=("case", "releases"))
+@check(scenes=fig3_scenes, args=("case", "releases"))
 def autonomous(claim, ev: Evidence) -> Verdict:
     """g is a function of time alone when every solution has the force switched on at the same times: two
     releases of one system (args ``releases``) are compared, impulse by impulse."""
@@ -205,7 +205,7 @@ def autonomous(claim, ev: Evidence) -> Verdict:
         paper_value="A(t), g(t) functions of time")
 
 
-@check(scenes=fig3_all, args=("at",),
+@check(scenes=fig3_scenes, args=("at",),
        law="A of Eq. (3a) with omega_n^2 and g of Eq. (3b) on the sets of Eq. (5), which the model's modes restate")
 def lipschitz_near(claim, ev: Evidence) -> Verdict:
     """A y + g is Lipschitz in a neighbourhood of the initial state y0, for each Fig. 3 case. ``at: release``: y0
@@ -245,14 +245,7 @@ def lipschitz_near(claim, ev: Evidence) -> Verdict:
         paper_value="A and g Lipschitz near (t0, y0)")
 
 
-def _successive_ratios(values: np.ndarray) -> np.ndarray:
-    """``(u[k+2] - u[k+1]) / (u[k+1] - u[k])`` where both differences are well above rounding (1e-7 of u)."""
-    d = np.diff(values)
-    usable = (np.abs(d[:-1]) > 1e-7 * np.abs(values[-1])) & (np.abs(d[1:]) > 1e-7 * np.abs(values[-1]))
-    return d[1:][usable] / d[:-1][usable]
-
-
-@check(scenes=fig3_all, args=("claim",))
+@check(scenes=fig3_scenes, args=("claim",))
 def piecewise_linear(claim, ev: Evidence) -> Verdict:
     """The whole system is linear only if its return map is affine in v, whose successive differences then
     shrink by one constant ratio, its slope: the ratios measured on the Fig. 3 transients are compared, and a
@@ -261,7 +254,7 @@ def piecewise_linear(claim, ev: Evidence) -> Verdict:
     parts, spread = [], 0.0
     for label, ds in ev.fig3.items():
         v = ds["velocity_before_impact"].values
-        in_v, in_v2 = _successive_ratios(v), _successive_ratios(v**2)
+        in_v, in_v2 = successive_ratios(v), successive_ratios(v**2)
         if len(in_v) < 2:
             raise ValueError(f"Fig. 3 case {label} has fewer than three cycles of transient to measure the map's slope")
         spread = max(spread, float(np.ptp(in_v)))

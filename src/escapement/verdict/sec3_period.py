@@ -12,10 +12,10 @@ from ..paper import corrected as derived
 from ..paper import printed as pe
 from ..paper.conventions import Reading, departure, second_half_trials, symbols, try_readings
 from .sec3_steps import conventions_verdict, describe
-from .evidence import Evidence, Verdict, check, cycle_durations, fig3_all, fig3_case, fmt, params_of, rel, within
+from .evidence import Evidence, Verdict, check, cycle_durations, fig3_scenes, fmt, params_of, rel, within
 
 
-@check(scenes=fig3_all)
+@check(scenes=fig3_scenes)
 def eq22_abcd(claim, ev: Evidence) -> Verdict:
     worst = 0.0
     for ds in ev.fig3.values():
@@ -38,7 +38,7 @@ def eq22_abcd(claim, ev: Evidence) -> Verdict:
     )
 
 
-@check(scenes=fig3_case, args=("case",))
+@check(scenes=fig3_scenes, args=("case",))
 def eq22e(claim, ev: Evidence) -> Verdict:
     case = claim["args"]["case"]
     ds = ev.fig3[case]
@@ -74,7 +74,7 @@ def _terms_23(p, velocity, reading: Reading) -> dict[str, float]:
     return out
 
 
-@check(scenes=fig3_case, args=("case",))
+@check(scenes=fig3_scenes, args=("case",))
 def eq23(claim, ev: Evidence) -> Verdict:
     """Eq. (23) on the last cycle: the whole period under each reading; each step's terms are also tried
     against the simulated step time, to say where the conventions part."""
@@ -101,7 +101,7 @@ def eq23(claim, ev: Evidence) -> Verdict:
 X1_PLUS = "'the velocity after impact is x1+(k) = (1 - b) x1(k)' (Eq. (10))"
 
 
-@check(scenes=fig3_case, args=("case", "form"))
+@check(scenes=fig3_scenes, args=("case", "form"))
 def eq24(claim, ev: Evidence) -> Verdict:
     """Eq. (24) at the last cycle, read in one convention for the whole equation: x1+ the velocity after the
     impact, as Eq. (10) defines it, x1 the one before, and the positions signed or the magnitudes of Sec. 4, alike
@@ -152,7 +152,7 @@ def eq24(claim, ev: Evidence) -> Verdict:
         paper_value="dT1, first form" if form == "first" else "dT1, second form, equal to the first")
 
 
-@check(scenes=fig3_case, args=("case",))
+@check(scenes=fig3_scenes, args=("case",))
 def eq25(claim, ev: Evidence) -> Verdict:
     """2 pi/w + 2 (dT1 + dT2) of Eqs. (24)-(25) at the simulated last cycle, under each reading (positions;
     the velocity entering the zone after the impact, as printed, or before it), against the simulated

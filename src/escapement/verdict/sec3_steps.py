@@ -18,7 +18,7 @@ from ..model.parameters import Parameters
 from ..paper import corrected as derived
 from ..paper import printed as pe
 from ..paper.conventions import AS_READ, Trial, departure, second_half_trials
-from .evidence import Evidence, Verdict, check, events_of, fig3_all, fig3_case, fmt, params_of, within
+from .evidence import Evidence, Verdict, check, events_of, fig3_scenes, fmt, params_of, within
 
 
 def _sqrt(value: float) -> float:
@@ -49,7 +49,7 @@ PRINTED_STEPS: dict[str, Step] = {
 _FIELD = {"before": "event_velocity_before", "after": "event_velocity_after"}
 
 
-@check(scenes=fig3_all, args=("equation",))
+@check(scenes=fig3_scenes, args=("equation",))
 def printed_step(claim, ev: Evidence) -> Verdict:
     """One step equation as printed, fed the simulated state before its step."""
     equation = str(claim["args"]["equation"])
@@ -75,7 +75,7 @@ def printed_step(claim, ev: Evidence) -> Verdict:
 
 
 #: the step equations that restate the impact law
-impact_step = check(scenes=fig3_all, args=("equation",), law="the impact law v+ = (1 - b) v- (Eq. (A-2))")(
+impact_step = check(scenes=fig3_scenes, args=("equation",), law="the impact law v+ = (1 - b) v- (Eq. (A-2))")(
     printed_step.function)
 
 
@@ -103,7 +103,7 @@ def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple
                    f"every reading: {listing}")
 
 
-@check(scenes=fig3_case, args=("case",))
+@check(scenes=fig3_scenes, args=("case",))
 def eq14_conventions(claim, ev: Evidence) -> Verdict:
     """Eq. (14) at the simulated last cycle under each convention: the velocity at a4 from the one after
     the impact at a3 (by the energy balance from the simulated velocity at a1, Eqs. (10)-(13))."""

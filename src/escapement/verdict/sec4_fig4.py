@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..paper.printed_axes import FIG5_PANEL_K, panel
-from .evidence import Evidence, Verdict, check, fig3_all, fig4_scene, fmt, probe, within
+from .evidence import Evidence, Verdict, check, fig3_scenes, fig4_scene, fmt, probe, within
 
 
 @check(scenes=fig4_scene, law="the impact law v+ = (1 - b) v- (Eq. (A-2))",
@@ -55,7 +55,7 @@ def impact_force_step(claim, ev: Evidence) -> Verdict:
         paper_value="the impact force evaluated from the graph")
 
 
-@check(scenes=fig3_all)
+@check(scenes=fig3_scenes)
 def window_impact(claim, ev: Evidence) -> Verdict:
     """Under every reading of Fig. 4's grid (every force and release magnitude of the Fig. 3 cases, either side,
     every spring constant of Fig. 5), an impact lies in each printed time window; each run exactly to the

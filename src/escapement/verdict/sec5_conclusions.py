@@ -11,14 +11,15 @@ import numpy as np
 
 from ..model.status import Status
 from ..paper.corrected import existence_threshold, map_constant
-from .evidence import Evidence, Verdict, check, fmt, group_runs, model_of, release_run, runs_of, runs_only, within
+from .evidence import (Evidence, Verdict, check, fmt, group_runs, model_of, mu2_off, release_run, runs_of, runs_only,
+                       within)
 
 
 @check(scenes=runs_of("asymmetric"))
 def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
     """The rate of convergence (mu2) of the asymmetric runs depends on F or the positions: beyond the tolerance."""
     group = group_runs(ev, "asymmetric")
-    worst = float(np.max(np.abs(group["multiplier"].values - group["multiplier_eq21"].values)))
+    worst = mu2_off(group)
     v = group["velocity"].values
     return Verdict(
         f"mu2 = (1-b)^4 within {fmt(worst, 2)} in all {group.sizes['case']} asymmetric runs; fixed points "

@@ -1,9 +1,7 @@
-"""The headline of the verdict: the paper's sentences counted as findings, from the claims table.
+"""The headline of the verdict: the paper's sentences counted as findings, read from the claims table alone.
 
-Each sentence of the paper the register quotes is one finding, however many rows check its parts (the rows
-share its ``finding``); its status follows from its rows' by
-:func:`escapement.verdict.rule.finding_status`. Rows beyond the paper are not findings. Reads the
-claims table only (a group-by in plain Python: the table has a few dozen rows).
+Each sentence the register quotes is one finding, however many rows (its parts, which share its ``finding``) check
+it, with the status :func:`escapement.verdict.rule.finding_status` gives; rows beyond the paper are not findings.
 """
 
 from __future__ import annotations
@@ -19,13 +17,8 @@ ORDER = ("reproduced", "consistent", "partially_reproduced", "not_reproduced", "
 
 
 def findings(rows: Iterable[Mapping[str, str]]) -> dict[str, tuple[str, list[Mapping[str, str]]]]:
-    """Each finding (a sentence of the paper) with its status and its rows, in the table's order.
-
-    Raises
-    ------
-    ValueError
-        If a row has a status outside the vocabulary.
-    """
+    """Each finding (a sentence of the paper) with its status and its rows, in the table's order; ValueError if a
+    row has a status outside the vocabulary."""
     grouped: dict[str, list[Mapping[str, str]]] = {}
     for row in rows:
         if row["status"] not in STATUSES:
