@@ -5,9 +5,8 @@ from snakemake.utils import min_version
 min_version("8.0")
 
 
-# The replication's scenes are config/paper.yaml, your own config/config.yaml (with --configfile and --config): both
-# read by workflow/rules/common.smk, with the project's own reader (Snakemake's configfile directive would read the
-# file first, unbounded).
+# The replication's scenes are config/paper.yaml, your own config/config.yaml (with --configfile and --config laid
+# over it): both read by workflow/rules/common.smk's configfile directives, and checked there before any job.
 
 
 report: "workflow/report/workflow.rst"

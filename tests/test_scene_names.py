@@ -18,7 +18,7 @@ from pathlib import Path
 import yaml
 
 from escapement.cli import DEFAULTS, main
-from escapement.pipeline.config import replication_scenes, study_scenes
+from escapement.pipeline.plan import replication_scenes, study_scenes
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIG = yaml.safe_load((ROOT / "config/paper.yaml").read_text())

@@ -317,7 +317,7 @@ def test_a_deleted_output_is_made_again_by_a_plain_run(run, tmp_path):
     ("model={b: 0.3}", {"poincare_map": 2, "shock_detail": 1, "phase_diagrams": 3, "escapement_error": 1,
                         "existence_map": 1}, "your study 'own': stability_map does not run: b is its axis"),
     ("fig3={cases: {c: {F: 0.75, x0: -2.0}}}", {"poincare_map": 3}, None),  # the paper's a and b, and c
-    ("model={F: 2.0}", {}, "does not run: nothing you changed (model.F = 2) reaches a scene"),
+    ("model={F: 2.0}", {}, "does not run: nothing you changed (model.F = 2 N (paper: absent)) reaches a scene"),
 ])
 def test_a_study_runs_only_the_kinds_its_changes_reach_and_says_why_of_the_others(run, config, planned, said):
     result = snakemake(run[0], "--dry-run", "--cores", "2", "--config", config)
@@ -336,15 +336,20 @@ def test_a_target_no_rule_makes_is_refused_in_one_line_naming_what_the_study_dra
     result = snakemake(run[0], "--dry-run", "--cores", "2", "results/own/figures/phase_diagrams.png", "--config",
                        "fig3={n_cycles: 20}", check=False)
     assert result.returncode == 1 and "Traceback" not in result.stderr + result.stdout
-    assert "the study 'own' draws poincare_map.png (and .pdf)" in result.stderr
+    assert "the study 'own' draws poincare_map (each as .png, .pdf and .svg)" in result.stderr
 
 
-def test_an_invalid_configuration_stops_before_any_job_in_one_line(run):
+@pytest.mark.parametrize("config, message", [
+    ("model={M: 0}", "the configuration: model.M = 0.0 is invalid: M must be > 0 (kg)"),
+    ("escapement_error={F:0.7}", "the configuration: escapement_error: unknown key 'F:0.7' (a flow mapping needs a "
+                                 "space after each colon: {F: 0.7})"),
+])
+def test_an_invalid_configuration_stops_before_any_job_in_one_line(run, config, message):
     """Each refusal's words are tested on the configuration's functions (tests/pipeline/test_config.py); here,
-    that Snakemake stops on one before planning any job."""
-    message = "the configuration: model.M = 0.0 is invalid: M must be > 0 (kg)"
-    result = snakemake(run[0], "--dry-run", "--cores", "2", "--config", "model={M: 0}", check=False)
-    assert result.returncode != 0 and message in result.stdout + result.stderr and "Job stats" not in result.stdout
+    that Snakemake stops on one before planning any job, a --config entry read as a file's."""
+    result = snakemake(run[0], "--dry-run", "--cores", "2", "--config", config, check=False)
+    assert result.returncode != 0 and "Job stats" not in result.stdout
+    assert [line for line in (result.stdout + result.stderr).splitlines() if "the configuration" in line] == [message]
 
 
 def test_the_jobs_of_seconds_run_beside_snakemake_and_every_simulation_goes_to_the_executor(tmp_path):

@@ -8,10 +8,10 @@ from pathlib import Path
 from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal
 
 import pytest
+import yaml
 
 from escapement.paper.printed_axes import PANELS
 from escapement.verdict.evidence import Candidates
-from escapement.pipeline.config import read_yaml
 from escapement.pipeline.readings import COLUMNS, limits_match, score_readings, score_table
 from escapement.verdict.scores import (DEFAULT_LOCATOR, PRINTED_STEP, best_readings_table, joint_candidates,
                                       panel_candidates, read_scores)
@@ -163,7 +163,7 @@ def test_a_joint_reading_is_scored_over_both_panels():
 @pytest.fixture(scope="module")
 def paper_rows():
     """The whole grid at the paper's settings (about a second)."""
-    paper = read_yaml(Path(__file__).resolve().parents[2] / "config/paper.yaml")
+    paper = yaml.safe_load((Path(__file__).resolve().parents[2] / "config/paper.yaml").read_text())
     return score_table(all_readings({key: paper[key] for key in ("model", "fig3", "fig4", "fig5")}))
 
 

@@ -1,64 +1,43 @@
 import sys
 from pathlib import Path
 
+from snakemake.common.configfile import load_configfile
+
 from escapement.pipeline import config as settings
+from escapement.pipeline import plan
 from escapement.pipeline import outputs
 from escapement.pipeline.publish import PUBLISHED
 from escapement.pipeline.outputs import ARTICLE_FIGURES
 from escapement.scenes.settings import KINDS
 
-
-def checked(data, schema, source):
-    """``data`` against the JSON schema ``schema`` of workflow/schemas by Snakemake's validate, its first violation
-    in one line naming the key (an unknown key with the closest valid one)."""
-    settings.validated(
-        data, Path(workflow.basedir, "workflow", "schemas", schema), source
-    )
-
-
-# A refusal is one line on the console, before any job: a SystemExit's message (Snakemake prints a WorkflowError
-# with the Snakefile's line and a traceback). The user's sources (config/config.yaml unless
-# --replace-workflow-config, then --configfile and --config) read again by the project's one reader: bounded in
-# size, depth and items, no anchors or aliases, a key given twice refused, numbers the same from a file and from
-# --config; then each source against its schema; then every scene built and checked.
+# The configuration: the replication (config/paper.yaml), the user's own (config/config.yaml), then Snakemake's
+# --configfile and --config laid over them; checked once against the schema, then every scene built and checked by
+# the model's rules before any job (escapement.pipeline.config, .plan). A refusal is one line on the console: a
+# SystemExit's message (Snakemake prints a WorkflowError with a traceback).
 try:
-    replaced = (
-        workflow.config_settings.replace_workflow_config
-        and workflow.config_settings.overwrite_config
-    )
-    own = settings.user_config(
-        [
-            *([] if replaced else ["config/config.yaml"]),
-            *workflow.config_settings.configfiles,
-        ],
-        workflow.config_settings.config_args,
-    )
-    config.clear()  # every source as the project reads it, in place of Snakemake's reading
-    config.update(own)
-    PAPER = settings.read_yaml("config/paper.yaml")
-    checked(config, "config.schema.yaml", "the configuration")
-    checked(PAPER, "paper.schema.yaml", "config/paper.yaml")
-    settings.check_model(PAPER["model"], "config/paper.yaml")
-    settings.check_model(
-        {**PAPER["model"], **config.get("model", {})}, "the configuration"
-    )
-    NAME = config.get("name", "own")
-    STUDIES = {"replication": settings.study_scenes("replication", PAPER)}
-    OWN = settings.own_blocks(config, PAPER)
-    # each kind the user's changes do not reach, and why
-    for note in settings.study_notes(config, PAPER):
-        print(note, file=sys.stderr)
-    # the paper's bounds hold on the study, the user's cases and zones joined to the paper's
-    if len(OWN) > 1:
-        checked(
-            settings.laid_over(config, PAPER),
-            "paper.schema.yaml",
-            f"your study '{NAME}'",
-        )
-        STUDIES[NAME] = settings.study_scenes(NAME, OWN)
-    RUNS = settings.replication_scenes(PAPER)
+    settings.refuse_aliases("config/config.yaml")
 except settings.ConfigError as err:
     sys.exit(str(err))
+
+
+configfile: "config/paper.yaml"
+configfile: "config/config.yaml"
+
+
+PAPER = load_configfile("config/paper.yaml")
+SCHEMA = Path(workflow.basedir, "workflow/schemas/config.schema.yaml")
+try:
+    settings.typed_config(config, workflow.config_settings.config_args)
+    settings.validated(PAPER, SCHEMA, "config/paper.yaml")
+    settings.validated(config, SCHEMA, "the configuration")
+    STUDIES, notes = plan.plan(config, PAPER)
+    RUNS = plan.replication_scenes(PAPER)
+except settings.ConfigError as err:
+    sys.exit(str(err))
+for note in notes:  # what the user's study changed, and each kind it does not reach
+    print(note, file=sys.stderr)
+NAME = config.get("name", "own")
+OWN = list(STUDIES.get(NAME, {}))
 
 
 wildcard_constraints:

@@ -72,25 +72,24 @@ def targets(studies: Mapping[str, Mapping[str, Mapping[str, object]]]) -> list[s
 
 def not_a_target(path: str, studies: Mapping[str, Mapping[str, Mapping[str, object]]]) -> str:
     """One line for a target this configuration does not make: what it makes instead, and the closest name."""
-    made = targets(studies)
     parts = Path(path).parts
     study = parts[1] if len(parts) > 2 and parts[0] == "results" else None
     if study is not None and study not in studies:
         return (f"{path} is not made by this configuration: it runs the studies {', '.join(studies)} (a study of "
                 f"your own is named by `name` and runs only with a configuration that differs from the paper's)")
+    study = study or REPLICATION
+    drawn = [Path(p).stem for p in figure_files(study, studies[study])]
     tracked = {f"fig{kind.figure[5:]}": kind.name for kind in KINDS.values() if kind.figure}
-    stem = Path(path).stem
-    hint = ""
+    stem, hint = Path(path).stem, ""
     if stem in tracked:
         hint = f" (the paper's {stem.replace('fig', 'Fig. ')} is drawn as {tracked[stem]}.png; figures/{stem}.png " \
                f"is its tracked copy, updated by the publish target)"
-    else:
-        close = difflib.get_close_matches(path, made, n=1, cutoff=0.6)
-        hint = f" (did you mean {close[0]}?)" if close else ""
-    study = study or REPLICATION
-    names = ", ".join(Path(p).name for p in figure_files(study, studies[study]))
-    return (f"{path} is not made by this configuration{hint}; the study '{study}' draws {names} (and .pdf) in "
-            f"results/{study}/figures/, each from its data in results/{study}/")
+    elif stem in FIGURE_NAMES and stem not in drawn:
+        hint = f" (the study '{study}' does not draw {stem}: what its configuration changes does not reach it)"
+    elif close := difflib.get_close_matches(stem, drawn, n=1, cutoff=0.6):
+        hint = f" (did you mean {close[0]}{Path(path).suffix}?)"
+    return (f"{path} is not made by this configuration{hint}; the study '{study}' draws {', '.join(drawn)} (each as "
+            f".png, .pdf and .svg) in results/{study}/figures/, each from its data in results/{study}/")
 
 
 def code_digest(root: str | Path, package: str | Path | None = None) -> str:
