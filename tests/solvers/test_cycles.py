@@ -32,7 +32,7 @@ def params(**changes) -> Parameters:
 
 def assert_closed_form_agrees(p: Parameters, x0: float, n: int):
     run = solve_cycles(p, x0, n_cycles=n)
-    assert run.method == CLOSED_FORM and not run.fell_back and run.fallback is None, run.fallback
+    assert run.method == CLOSED_FORM and run.fallback is None, run.fallback
     assert run.status is Status.COMPLETED and run.message == f"completed {n} cycles" and len(run.cycles) == n
     gaps = cross_check(run, rtol=1e-14)  # raises beyond 1e-14 relative, on every quantity of every cycle
     assert set(gaps) == {*COLUMNS, "t_final"} and max(gaps.values()) <= 1e-14
@@ -42,7 +42,7 @@ def assert_closed_form_agrees(p: Parameters, x0: float, n: int):
 
 def assert_same_as_exact(run, p: Parameters, x0: float, n: int):
     exact = solve_exact(p, x0, n_cycles=n, record_trajectory=False)
-    assert run.method == "exact" and run.fell_back and run.fallback
+    assert run.method == "exact" and run.fallback
     assert (run.status, run.message, run.t_final, run.exit) == (exact.status, exact.message, exact.t_final, exact.exit)
     for name in COLUMNS:
         assert np.array_equal(getattr(run.cycles, name), getattr(exact.cycles, name))

@@ -17,7 +17,7 @@ import pytest
 
 from escapement import EventKind, Parameters, ParameterError, Status, iter_cycles, solve_ensemble, solve_exact
 from escapement.model.limits import MAX_CYCLES, MAX_EVENTS, MemoryBudgetError
-from escapement.solvers.stream import PASS_EVENTS
+from escapement.solvers.kernel import BLOCK_EVENTS as PASS_EVENTS
 
 #: Fig. 3 (a) as the configuration runs it (w = 1 rad/s), released from rest at x0 = -1 m
 FIG3A = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)

@@ -1,8 +1,6 @@
-"""The exact solvers: one event loop over the model's automaton, its streams, the ensemble and the per-cycle
-closed forms, and the one result type.
-
-The names are imported on first use (PEP 562): a job that needs only the exact solver does not
-load SciPy's integrators (the reference solver's ``solve_ivp``, about 0.7 s) or mpmath.
+"""The exact solvers: one event loop over the model's automaton, its streams, the ensemble, the per-cycle closed
+forms and the one result type. The names are imported on first use (PEP 562): a job that needs only the exact
+solver does not load SciPy's integrators (about 0.7 s) or mpmath.
 """
 
 from .._lazy import lazy_exports

@@ -1,17 +1,14 @@
 """The closed forms of whole cycles, the engine of :mod:`escapement.solvers.cycles`.
 
-From the first impact at a1 (the event loop's) every cycle follows from the return map of ``v**2``
-(:func:`~escapement.model.cycle_map.cycle_map`): the velocities before each impact at a1 for every cycle at once,
-then the four arcs of the distinct cycles in one :func:`~escapement.model.kinematics.crossing` call on ``(4, m)``
-arrays, with the event loop's rows. From some cycle on ``v_k**2`` is the float ``v***2`` (rounding is monotone),
-so only the distinct cycles are computed (about ``45 / -log10(mu)``). Impact times
-``t_k = t_1 + (k-1) T + sum_{j<k} (T_j - T)``, ``T`` the last period, in exact parts added with TwoSum: within
-about an ulp of the exact sum of the floats.
+From the first impact at a1 (the event loop's) the return map of ``v**2``
+(:func:`~escapement.model.cycle_map.cycle_map`) gives the velocity before each impact at a1, and one
+:func:`~escapement.model.kinematics.crossing` call on ``(4, m)`` arrays the four arcs of each distinct cycle: from
+some cycle on ``v_k**2`` is the float ``v***2``, so only about ``45 / -log10(mu)`` cycles are computed. Impact
+times ``t_k = t_1 + (k-1) T + sum_{j<k} (T_j - T)``, ``T`` the last period, are added in exact parts with TwoSum.
 
-The closed form does not apply (a string says why) where ``b`` is outside ``(0, 1]``, the first partial cycle
-does not complete, ``v_k**2`` is not positive, an arc cannot reach its end, or it grazes its end (arrives with
-``v**2 <= GRAZING_SPEED_SQ`` times its largest), where the closed form and the event loop would no longer agree
-to 1e-14.
+The closed form does not apply (a string says why) where an impact reverses the velocity, the first partial cycle
+does not complete, ``v_k**2`` is not positive, or an arc cannot reach its end or grazes it (arrives with ``v**2``
+at most :data:`GRAZING_SPEED_SQ` times its largest, where it would no longer agree with the event loop to 1e-14).
 """
 
 from __future__ import annotations
@@ -30,7 +27,7 @@ from ..model.status import Status
 from .describe import CycleTable
 from .kernel import A1, PLAN, EventRun, kinds_from, rows
 
-__all__ = ["GRAZING_SPEED_SQ", "Cycles", "Prepared", "closed_form_cycles", "distinct_cycles", "first_impact",
+__all__ = ["GRAZING_SPEED_SQ", "Cycles", "closed_form_cycles", "distinct_cycles", "first_impact",
            "prepared", "table_rows"]
 
 #: an arc grazes where it arrives with ``v**2`` at most this times its largest, ``w**2 (x - c)**2 + v0**2``
@@ -41,17 +38,9 @@ _SPLIT = float(2**31 + 1)
 _ARCS = ("the force arc a1 -> a2", "the free swing a2 -> a3", "the force arc a3 -> a4", "the free swing a4 -> a1")
 
 
-class Prepared(NamedTuple):
-    """What a run needs from its parameters alone: the map, the rows of a cycle's arcs (from the impact at
-    a1), whether the event that starts each is an impact, and the arcs' terms as ``(4, 1)`` columns."""
-
-    cycle_map: CycleMap
-    jumps: tuple
-    columns: dict
-
-
-def prepared(params: Parameters) -> Prepared:
-    """The four arcs of a cycle from the impact at a1, as the event loop's rows give them, with the map."""
+def prepared(params: Parameters) -> dict[str, np.ndarray]:
+    """The terms of a cycle's four arcs from the impact at a1, as the event loop's rows give them, as ``(4, 1)``
+    columns, with whether the event that starts each is an impact."""
     table = rows(params)
     states = (A1, *PLAN[:-1])  # the event that starts each arc
     plan = [table[state] for state in states]
@@ -59,7 +48,8 @@ def prepared(params: Parameters) -> Prepared:
     columns["target"] = np.array([[automaton.position(row.following, params)] for row in plan])
     columns["centre"] = np.array([[automaton.centre(automaton.ARCS[s].mode, params.zone_offset)] for s in states])
     columns["x_from"] = np.array([[automaton.position(s, params)] for s in states])
-    return Prepared(cycle_map(params), tuple(automaton.is_impact(s) for s in states), columns)
+    columns["impact"] = np.array([[automaton.is_impact(s)] for s in states])
+    return columns
 
 
 class Cycles(NamedTuple):
@@ -81,8 +71,7 @@ class Cycles(NamedTuple):
 
 
 def first_impact(params: Parameters, x: float, v: float) -> tuple[float, float, int] | str:
-    """Time and velocity of the first impact at a1 from the release, by the event loop run for one cycle,
-    and the events up to it, that impact included; or why the closed form does not apply from the start."""
+    """Time, velocity and events up to the first impact at a1 (the event loop's), or why there is none."""
     if automaton.reverses(1.0, automaton.impact_factor(params.b)):
         return f"b = {params.b!r}: the impact reverses the velocity (the run chatters)"
     run = EventRun(RunSpec(params, x, v, RunLimits(n_cycles=1)))
@@ -97,8 +86,7 @@ def first_impact(params: Parameters, x: float, v: float) -> tuple[float, float, 
 
 
 def _transient(cmap: CycleMap, v1: float, n: int) -> int:
-    """How many of the first cycles to evaluate ``v_k**2`` for: past them it is the float ``v***2`` (checked
-    by the caller, who evaluates them all where this bound does not hold)."""
+    """The first cycles whose ``v_k**2`` may differ from the float ``v***2`` (the caller checks)."""
     star, delta, mu = cmap.fixed_point_sq, v1 * v1 - cmap.fixed_point_sq, cmap.mu
     if delta == 0.0 or mu == 0.0:
         return min(n, 2)
@@ -127,52 +115,36 @@ def _window(values: np.ndarray, start: int, stop: int) -> np.ndarray:
     """Entries ``start .. stop - 1`` of ``values`` extended for ever by repeating its last."""
     if len(values) >= stop:
         return values[start:stop]
-    out = np.empty(stop - start)
-    head = values[start:] if start < len(values) else values[:0]
-    out[:len(head)] = head
-    out[len(head):] = values[-1]
-    return out
+    return np.concatenate((values[start:], np.full(stop - max(start, len(values)), values[-1])))
 
 
-def _arcs(params: Parameters, prep: Prepared, v: np.ndarray):
-    """The four arcs of the cycles that start with the velocities ``v`` before the impact at a1, in one
-    :func:`~escapement.model.kinematics.crossing` call on ``(4, m)`` arrays: ``(start velocities, reached,
-    times, arrival velocities, angles)``. The arrival of each arc, the start of the next, is computed as
-    ``crossing`` computes it (``d sqrt(v**2 + k)``), the impact law applied where the event is an impact."""
-    b, col = params.b, prep.columns
-    starts = np.empty((len(prep.jumps), len(v)))
+def _arcs(params: Parameters, col: dict[str, np.ndarray], v: np.ndarray):
+    """The four arcs of the cycles of velocities ``v`` at a1, as ``crossing`` on ``(4, m)`` arrays."""
+    starts = np.empty((len(col["impact"]), len(v)))
     speed = v
-    for i, jump in enumerate(prep.jumps):
-        speed = automaton.velocity_after(speed, b) if jump else speed
+    for i, impact in enumerate(col["impact"][:, 0]):
+        speed = automaton.velocity_after(speed, params.b) if impact else speed
         starts[i] = speed
-        speed = col["direction"][i, 0] * np.sqrt(abs(speed * speed + col["k"][i, 0]))
+        speed = col["direction"][i, 0] * np.sqrt(abs(speed * speed + col["k"][i, 0]))  # as crossing arrives
     reached, dt, arrival, angle = crossing(col["u0"], col["q"], col["k"], starts, params.omega, col["direction"], np)
     return starts, reached, dt, arrival, angle
 
 
-def distinct_cycles(params: Parameters, prep: Prepared, t1: float, v1: float, n: int,
+def distinct_cycles(params: Parameters, col: dict[str, np.ndarray], t1: float, v1: float, n: int,
                      most: int | None = None) -> Cycles | str:
     """The distinct cycles of ``n`` from the first impact at a1 ``(t1, v1)``, or why the closed form does not
-    apply (a string): also where more than ``most`` cycles would have to be evaluated at once (a streamed
-    run's memory budget: the transient, not the run, sets how many). Under ``np.errstate(all="ignore")``: a
-    NaN is a decision here, not a warning."""
-    cmap, col = prep.cycle_map, prep.columns
-    star = cmap.fixed_point_sq
-    count = _transient(cmap, v1, n)
-    longer = (f"the transient lasts more than the {most:_} cycles the memory budget holds at once (mu = "
-              f"{cmap.mu!r}): the closed form evaluates it in one piece") if most is not None else ""
-    if most is not None and count > most:
-        return longer
-    v_sq = cmap.velocity_sq(v1, np.arange(1, count + 1))
-    same = v_sq == star
-    same[0] = False  # the first is the event solver's v1
-    if count < n and not same[-1]:  # the bound did not hold: every cycle
-        if most is not None and n > most:
-            return longer
-        count = n
-        v_sq = cmap.velocity_sq(v1, np.arange(1, n + 1))
-        same = v_sq == star
-        same[0] = False
+    apply (a string), also where more than ``most`` cycles would be evaluated at once (a streamed run's memory
+    budget). Under ``np.errstate(all="ignore")``: a NaN is a decision here, not a warning."""
+    cmap = cycle_map(params)
+    for count in (_transient(cmap, v1, n), n):  # where the bound does not hold, every cycle
+        if most is not None and count > most:
+            return (f"the transient lasts more than the {most:_} cycles the memory budget holds at once (mu = "
+                    f"{cmap.mu!r}): the closed form evaluates it in one piece")
+        v_sq = cmap.velocity_sq(v1, np.arange(1, count + 1))
+        same = v_sq == cmap.fixed_point_sq
+        same[0] = False  # the first is the event solver's v1
+        if count == n or same[-1]:
+            break
     differ = np.flatnonzero(~same)
     m = int(differ[-1]) + 1  # cycles 1 .. m differ from the fixed point; m + 1 .. n are it
     fixed = m < n  # the last distinct cycle stands for cycles m + 1 .. n, at the fixed point
@@ -186,7 +158,7 @@ def distinct_cycles(params: Parameters, prep: Prepared, t1: float, v1: float, n:
         m, fixed = max(q, 1), False
     v = np.sqrt(v_sq[:m])
     v[0] = v1
-    starts, reached, dt, arrival, angle = _arcs(params, prep, v)
+    starts, reached, dt, arrival, angle = _arcs(params, col, v)
     omega = params.omega
     largest = (omega * (col["x_from"] - col["centre"])) ** 2 + starts * starts
     ok = reached & (arrival * arrival > GRAZING_SPEED_SQ * largest)
@@ -229,11 +201,8 @@ def table_rows(c: Cycles, start: int, stop: int) -> tuple[CycleTable, float]:
     return table, float(t[-1])
 
 
-
-
 def closed_form_cycles(spec: RunSpec, most: int | None = None) -> Cycles | str:
-    """The distinct cycles of the run ``spec`` from its first impact at a1 (:func:`first_impact`,
-    :func:`distinct_cycles`, at most ``most`` at once), or why the closed form does not apply."""
+    """The distinct cycles of the run ``spec`` (at most ``most`` at once), or why there are none."""
     first = first_impact(spec.params, spec.x0, spec.v0)
     if isinstance(first, str):
         return first

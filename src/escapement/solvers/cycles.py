@@ -1,11 +1,7 @@
-"""Per-cycle closed forms: a run's cycle table from the return map of ``v**2``, without walking its events.
-
-:func:`solve_cycles` gives the cycle table of :func:`~escapement.solvers.exact.solve_exact` from the closed forms
-of each cycle (:mod:`escapement.solvers.closed_form`); :func:`iter_closed_form_cycles` the same table in chunks,
-in constant memory however many cycles. Where the closed form does not apply, the event solver makes the run,
-and the result says why. :func:`cross_check` compares a run with ``solve_exact`` on every quantity; they agree
-within 1e-14 down to ``b`` of about 0.015 (below, the event solver's own rounding, damped only by
-``mu = (1 - b)**4``, grows like ``eps / b``).
+"""Per-cycle closed forms: :func:`~escapement.solvers.exact.solve_exact`'s cycle table from the return map of
+``v**2`` (:func:`solve_cycles`; :func:`iter_closed_form_cycles` in chunks), or from the event solver where they do
+not apply. The two agree within 1e-14 (:func:`cross_check`) down to ``b`` of about 0.015: below, the event solver's
+own rounding, damped only by ``mu = (1 - b)**4``, grows like ``eps / b``.
 """
 
 from __future__ import annotations
@@ -20,7 +16,7 @@ from ..model.limits import run_spec
 from ..model.parameters import Parameters
 from ..model.printing import compared
 from ..model.status import Status
-from .closed_form import GRAZING_SPEED_SQ, Cycles, closed_form_cycles, table_rows
+from .closed_form import Cycles, closed_form_cycles, table_rows
 from .describe import CYCLE_COLUMNS, CycleTable, Exit
 from .exact import solve_exact
 from .kernel import PLAN
@@ -28,16 +24,15 @@ from .result import Ended, Solution
 from .stream import CHUNK_BYTES_PER_CYCLE, DEFAULT_CHUNK, ChunkIterator, CycleStream, StreamSummary, check_chunk
 from .stream import iter_cycles
 
-__all__ = ["CHUNK_BYTES_PER_CYCLE", "CLOSED_FORM", "CROSS_CHECK_RTOL", "GRAZING_SPEED_SQ", "PEAK_BYTES_PER_CYCLE",
-           "CrossCheckError", "CycleChunks", "CycleMap", "CycleRun", "compare_tables", "cross_check", "cycle_map",
-           "iter_closed_form_cycles", "solve_cycles"]
+__all__ = ["CHUNK_BYTES_PER_CYCLE", "CLOSED_FORM", "CROSS_CHECK_RTOL", "PEAK_BYTES_PER_CYCLE", "CrossCheckError",
+           "CycleChunks", "CycleRun", "compare_tables", "cross_check", "iter_closed_form_cycles", "solve_cycles"]
 
 #: the method's name (in :attr:`CycleRun.method` and the benchmark's rows)
 CLOSED_FORM = "closed-form cycles"
 #: the relative difference :func:`cross_check` accepts on every quantity
 CROSS_CHECK_RTOL = 1e-14
-#: bytes per cycle at the peak of a run whose every cycle is distinct (the transient's arcs and work arrays, 357
-#: measured with tracemalloc); a run that reaches the fixed point takes less (its columns, about 100)
+#: bytes per cycle at the peak of a run whose every cycle is distinct (the transient's arcs and work arrays,
+#: tracemalloc measured 357); a run that reaches the fixed point takes less (its columns, about 100)
 PEAK_BYTES_PER_CYCLE = 400
 
 
@@ -47,8 +42,7 @@ class CrossCheckError(AssertionError):
 
 @dataclass(frozen=True, repr=False)
 class CycleRun(Ended):
-    """A run's cycle table from :func:`solve_cycles`: from the closed forms, or from the event solver where they
-    do not apply (:attr:`fallback` says why; :attr:`solution` is then ``solve_exact``'s whole run)."""
+    """A run's cycle table by the closed forms, or by the event solver where they do not apply."""
 
     params: Parameters
     x0: float  #: initial displacement, m
@@ -57,21 +51,16 @@ class CycleRun(Ended):
     status: Status
     message: str
     cycles: CycleTable  #: impact time (s), velocity before impact (m/s), period (s), largest displacement (m)
-    t_final: float  #: time of the impact at a1 that ends the last cycle (the event solver's t_final), s
+    t_final: float  #: time of the impact at a1 that ends the last cycle, s
     method: str  #: ``"closed-form cycles"``, or ``"exact"`` on a fallback
-    fallback: str | None  #: why the event solver made the whole run; None where the closed form did
+    fallback: str | None  #: why the event solver made the run; None where the closed form did
     cycle_map: CycleMap
-    #: largest relative difference between the closed form's ``v_{k+1}`` and the arcs' arrival at a1 from ``v_k``
-    #: (the map against the energy of the arcs; NaN on a fallback)
+    #: largest relative difference of the map's ``v_{k+1}`` from the arcs' arrival at a1 from ``v_k`` (NaN on a
+    #: fallback)
     map_residual: float = math.nan
     distinct_cycles: int = 0  #: cycles whose arcs were computed (the rest repeat the fixed point's)
     exit: Exit = Exit()
     solution: Solution | None = None  #: the event solver's run, on a fallback
-
-    @property
-    def fell_back(self) -> bool:
-        """True where the event solver made the whole run."""
-        return self.fallback is not None
 
     def __repr__(self) -> str:
         how = self.method if self.fallback is None else f"{self.method}, fell back: {self.fallback}"
@@ -81,30 +70,23 @@ class CycleRun(Ended):
 
 def solve_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int, memory_budget: int | None = None,
                  check: bool = False, rtol: float = CROSS_CHECK_RTOL) -> CycleRun:
-    """The cycle table of :func:`~escapement.solvers.exact.solve_exact` for ``n_cycles`` cycles from the closed
-    forms of each cycle, in a few vectorised NumPy calls (see the module's docstring).
+    """:func:`~escapement.solvers.exact.solve_exact`'s cycle table for ``n_cycles`` cycles, from the closed forms.
 
-    The first partial cycle (from the release to the first impact at a1) is the event solver's; every cycle from
-    there follows from the return map ``v_{k+1}**2 = mu v_k**2 + c``. Where the closed form does not apply
-    (``b > 1``, a run that stops, turns back or chatters, a grazing arc) the event solver makes the whole run,
-    ``solve_exact(params, x0, v0, n_cycles=n_cycles, record_trajectory=False)``, whose numbers the result then
-    holds exactly; :attr:`CycleRun.fallback` says why. The arguments are ``solve_exact``'s (``memory_budget``:
-    :data:`PEAK_BYTES_PER_CYCLE` a cycle); with ``check``, the run is compared with ``solve_exact``
-    (:func:`cross_check`) and :class:`CrossCheckError` raised beyond ``rtol``.
+    The first partial cycle, up to the first impact at a1, is the event solver's; every later one follows from the
+    return map ``v_{k+1}**2 = mu v_k**2 + c``. Where the closed form does not apply (an impact that reverses the
+    velocity, a run that stops or turns back, a grazing arc) the result holds ``solve_exact``'s run without its
+    trajectory, and :attr:`CycleRun.fallback` says why. ``memory_budget`` holds :data:`PEAK_BYTES_PER_CYCLE` a
+    cycle; with ``check`` the run is compared with ``solve_exact`` (:func:`cross_check`) within ``rtol``.
 
     Examples
     --------
     >>> from escapement import Parameters
     >>> from escapement.solvers.cycles import solve_cycles
-    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-    >>> run = solve_cycles(p, x0=1.0, n_cycles=50, check=True)
-    >>> run.method, run.status.value, len(run.cycles)
-    ('closed-form cycles', 'completed', 50)
-    >>> round(float(run.cycles.period[-1]), 4)  # s
-    6.2957
-    >>> chattering = solve_cycles(Parameters(M=1.0, K=1.0, F=1.0, b=1.5, a1=-0.1, a2=0.05), x0=1.0, n_cycles=5)
-    >>> chattering.method, chattering.status.value, chattering.fell_back
-    ('exact', 'chattering', True)
+    >>> run = solve_cycles(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=50, check=True)
+    >>> run.method, run.status.value, len(run.cycles), round(float(run.cycles.period[-1]), 4)
+    ('closed-form cycles', 'completed', 50, 6.2957)
+    >>> solve_cycles(Parameters(M=1.0, K=1.0, F=1.0, b=1.5, a1=-0.1, a2=0.05), x0=1.0, n_cycles=5).fallback
+    'b = 1.5: the impact reverses the velocity (the run chatters)'
     """
     spec = run_spec(params, x0, v0, n_cycles=n_cycles, memory_budget=memory_budget)
     spec.limits.check_memory(0.0, PEAK_BYTES_PER_CYCLE, "its cycle table and the closed form's work arrays",
@@ -125,8 +107,7 @@ def solve_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: in
 
 
 class CycleChunks(ChunkIterator):
-    """:func:`solve_cycles`'s cycle table in chunks (see :func:`iter_closed_form_cycles`); once it is exhausted,
-    :attr:`summary` says how the run ended."""
+    """:func:`solve_cycles`'s cycle table in chunks (see :func:`iter_closed_form_cycles`)."""
 
     def __init__(self, cycles: Cycles | None, n: int, chunk: int, fallback: CycleStream | None, reason: str | None,
                  cmap: CycleMap) -> None:
@@ -166,26 +147,20 @@ class CycleChunks(ChunkIterator):
 
 def iter_closed_form_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int,
                             chunk: int = DEFAULT_CHUNK, memory_budget: int | None = None) -> CycleChunks:
-    """The cycle table of :func:`solve_cycles` for the same arguments, in chunks of at most ``chunk`` cycles, in
-    memory that does not grow with the run: the distinct cycles are computed once, and each chunk's rows from
-    them (every row from its own cycle number alone, so the chunks put together are ``solve_cycles``'s table
-    number for number). The distinct cycles are those of the transient (about ``45 / -log10(mu)``, whatever the
-    run's length); where they would not fit the memory budget beside a chunk (:data:`CHUNK_BYTES_PER_CYCLE` a
+    """:func:`solve_cycles`'s cycle table in chunks of at most ``chunk`` cycles, number for number, in memory that
+    does not grow with the run: the distinct cycles of the transient are computed once, and each row from its own
+    cycle number. Where they would not fit the memory budget beside a chunk (:data:`CHUNK_BYTES_PER_CYCLE` a
     cycle), or the closed form does not apply, the event solver streams the run
     (:func:`~escapement.solvers.stream.iter_cycles`) and :attr:`CycleChunks.fallback` says why.
 
     Examples
     --------
-    >>> import numpy as np
     >>> from escapement import Parameters
-    >>> from escapement.solvers.cycles import iter_closed_form_cycles, solve_cycles
-    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-    >>> chunks = iter_closed_form_cycles(p, x0=1.0, n_cycles=250, chunk=100)
-    >>> times = [c.impact_time for c in chunks]  # s
-    >>> [len(t) for t in times], chunks.method, chunks.summary.status.value
+    >>> from escapement.solvers.cycles import iter_closed_form_cycles
+    >>> chunks = iter_closed_form_cycles(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0,
+    ...                                  n_cycles=250, chunk=100)
+    >>> [len(c) for c in chunks], chunks.method, chunks.summary.status.value
     ([100, 100, 50], 'closed-form cycles', 'completed')
-    >>> bool(np.array_equal(np.concatenate(times), solve_cycles(p, x0=1.0, n_cycles=250).cycles.impact_time))
-    True
     """
     spec = run_spec(params, x0, v0, n_cycles=n_cycles, memory_budget=memory_budget)
     chunk, chunk_bytes = check_chunk(chunk, spec.limits.memory_budget)
@@ -205,18 +180,16 @@ def _relative(a, b) -> np.ndarray:
 
 
 def compare_tables(table: CycleTable, reference: CycleTable) -> dict[str, float]:
-    """The largest relative difference of each column of ``table`` from ``reference`` over the cycles both hold
-    (NaN where a value is NaN; 0.0 for no common cycle)."""
+    """The largest relative difference of each column from ``reference``'s over the cycles both hold."""
     n = min(len(table), len(reference))
     return {name: float(np.max(_relative(getattr(table, name)[:n], getattr(reference, name)[:n]))) if n else 0.0
             for name in CYCLE_COLUMNS}
 
 
 def cross_check(run: CycleRun, rtol: float = CROSS_CHECK_RTOL) -> dict[str, float]:
-    """Compare ``run`` with :func:`~escapement.solvers.exact.solve_exact` for the same arguments: the same outcome
-    and number of cycles, and every quantity of every cycle (and ``t_final``) within ``rtol`` (relative). Returns
-    the largest relative difference of each; raises :class:`CrossCheckError` naming the quantity, the cycle and
-    both values otherwise."""
+    """The largest relative difference of ``run`` from :func:`~escapement.solvers.exact.solve_exact`'s run on each
+    quantity (and ``t_final``); :class:`CrossCheckError` names the quantity, the cycle and both values where the
+    outcome or the number of cycles differ or a difference exceeds ``rtol``."""
     exact = solve_exact(run.params, run.x0, run.v0, n_cycles=run.n_cycles, record_trajectory=False)
     if exact.status is not run.status or len(exact.cycles) != len(run.cycles):
         raise CrossCheckError(f"{run.method}: {run.status.value} after {len(run.cycles)} cycles, but solve_exact: "
@@ -225,9 +198,8 @@ def cross_check(run: CycleRun, rtol: float = CROSS_CHECK_RTOL) -> dict[str, floa
     gaps["t_final"] = float(_relative(run.t_final, exact.t_final))
     for name, gap in gaps.items():
         if not gap <= rtol:
-            if name == "t_final":
-                where, mine, theirs = "t_final", run.t_final, exact.t_final
-            else:
+            where, mine, theirs = "t_final", run.t_final, exact.t_final
+            if name != "t_final":
                 column, reference = getattr(run.cycles, name), getattr(exact.cycles, name)
                 each = _relative(column, reference)
                 i = int(np.argmax(np.where(np.isnan(each), np.inf, each)))
@@ -236,4 +208,3 @@ def cross_check(run: CycleRun, rtol: float = CROSS_CHECK_RTOL) -> dict[str, floa
                                   f"{float(theirs)!r}, a relative difference of {compared(gap, [rtol], 3)} "
                                   f"> rtol = {float(rtol)!r}")
     return gaps
-

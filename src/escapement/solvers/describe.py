@@ -1,10 +1,6 @@
-"""The tables a run is made of and how they describe themselves: the per-cycle table, the harmonic arcs and the
-numbers of a regime exit, with their columns' names (the fields), units and long names (from
-:mod:`escapement.model.quantities`), the same in a run's data frames and datasets.
-
-Their ``repr`` and the summary lines of :mod:`escapement.solvers.result` print every number true as printed
-(:mod:`escapement.model.printing`): an input as it can be typed back, a computed value to a few significant
-digits, with more where two values that differ would otherwise print alike; zero without a sign.
+"""The tables a run is made of: the per-cycle table, the harmonic arcs and the numbers of a regime exit, with their
+columns' names, units and long names (from :mod:`escapement.model.quantities`), the same in data frames and
+datasets. Their summaries print every number true as printed (:mod:`escapement.model.printing`).
 """
 
 from __future__ import annotations
@@ -31,13 +27,12 @@ class Trajectory(Protocol):
     t_final: float
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Displacement, velocity and acceleration at times ``t`` (NaN outside ``[0, t_final]``)."""
+        """Displacement, velocity and acceleration at times ``t`` (NaN outside [0, t_final])."""
 
 
 @dataclass(frozen=True, repr=False)
 class CycleTable:
-    """One entry per complete cycle ``k = 1 .. N`` (arrays; mpmath numbers in an object array for the
-    high-precision solver; a row per trajectory for the ensemble). The fields are the columns' names."""
+    """One entry per complete cycle ``k = 1 .. N``; for the ensemble, a row per trajectory."""
 
     impact_time: np.ndarray  #: time of impact k at a1, s
     velocity_before_impact: np.ndarray  #: velocity just before impact k, m/s
@@ -71,8 +66,7 @@ EXIT_UNITS = {"turning_point": "m", "margin": "m", "t_accumulation": "s"}
 
 @dataclass(frozen=True, repr=False)
 class ArcTable:
-    """The motion as a table of harmonic arcs: arc i starts at t_start[i] from (x_start[i], v_start[i]) and
-    turns about centre[i] until the next arc starts."""
+    """The motion as harmonic arcs: arc i starts at t_start[i] from (x_start[i], v_start[i]) about centre[i]."""
 
     t_start: np.ndarray
     centre: np.ndarray
@@ -106,21 +100,16 @@ class ArcTable:
 class Exit:
     """The numbers behind a regime exit; NaN where they do not apply to the outcome.
 
-    * ``stopped``: ``turning_point`` is the radius of the free swing (it turns at ``-turning_point`` and
-      ``+turning_point``), ``margin`` how far short of the awaited impact position it turns (0 when it grazes).
-    * ``turned_back_in_zone``: ``turning_point`` is where the motion turns inside the zone, ``margin`` its
-      distance from the zone's end.
-    * ``chattering``: ``t_accumulation`` is the time at which the rebounds accumulate (NaN when they do not).
-
     Parameters
     ----------
     turning_point : float
-        Where the motion turns, m (see above); NaN if it does not apply.
+        Where the motion turns, m: the radius of a ``stopped`` run's free swing (it turns at both signs), the
+        turning point of a ``turned_back_in_zone`` run inside the zone.
     margin : float
-        How far short of the awaited position the motion turns, m; NaN if it does not apply.
+        How far short of the awaited position the motion turns, m (0 when it grazes): the awaited impact position
+        of a ``stopped`` run, the zone's end of a ``turned_back_in_zone`` run.
     t_accumulation : float
-        Time at which the rebounds of a chattering run accumulate (a Zeno point), s; NaN if they do not, or if
-        the run did not chatter.
+        Time at which the rebounds of a ``chattering`` run accumulate (a Zeno point), s; NaN if they do not.
 
     Examples
     --------
@@ -140,8 +129,7 @@ class Exit:
     t_accumulation: float = math.nan
 
     def summary(self, printed: dict[str, str] | None = None) -> str:
-        """The numbers that apply, with their units (empty if none does); ``printed`` gives the text of those
-        already printed beside other numbers."""
+        """The numbers that apply, with their units; ``printed`` gives those already printed."""
         printed = printed or {}
         return ", ".join(f"{name} = {with_unit(printed.get(name) or number(getattr(self, name)), unit)}"
                          for name, unit in EXIT_UNITS.items() if not math.isnan(getattr(self, name)))
@@ -153,8 +141,7 @@ class Exit:
 
 
 def line(label: str, text: str, column: int = 12, wrap: bool = False) -> str:
-    """One line of a summary: the label in a column ``column`` wide, ``text`` beside it (wrapped at 120
-    columns with ``wrap``)."""
+    """One line of a summary: the label in a column ``column`` wide, ``text`` beside it."""
     head = f"{label + ':':<{column}}"
     if not wrap:
         return head + text

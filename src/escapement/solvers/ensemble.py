@@ -1,17 +1,15 @@
-"""The exact solver for many trajectories at once, one per array element, in lock-step: each pass moves every
-running trajectory by one event, with the automaton's rows (:func:`~escapement.solvers.kernel.rows`, on arrays)
-and the closed forms of the scalar event loop.
+"""The exact solver for many trajectories at once, in lock-step: each pass moves every running trajectory by one
+event, with the automaton's rows on arrays (:func:`~escapement.solvers.kernel.rows`) and the scalar closed forms.
 
 After its first event a trajectory's state goes round the automaton's cycle, so the trajectories whose first
-event is the same share their state at every pass. They are put side by side (sorted by their first event, and
-put back in the order of the inputs at the end), and each pass moves such a group as one slice of the arrays,
-with its row's direction and jump as numbers. A trajectory that ends (its cycles done, stopped, turned back,
-chattering) leaves its group; the event bound ends them all.
+event is the same share their state at every pass: sorted by their first event (and put back in the order of the
+inputs at the end), each such group moves as one slice of the arrays. A trajectory that ends leaves its group.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from types import SimpleNamespace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -46,8 +44,7 @@ def ensemble_bytes(n_trajectories: int, n_cycles: int) -> int:
 
 @dataclass
 class _Group:
-    """Trajectories whose states agree at every pass: ``members`` (a slice while each of them runs, else their
-    indices), the state after their last event, their first event and their impacts at a1 so far."""
+    """Trajectories whose states agree at every pass (a slice while all run), and what they share."""
 
     members: slice | np.ndarray
     state: int
@@ -60,42 +57,16 @@ class _Group:
         return np.arange(m.start, m.stop) if isinstance(m, slice) else m
 
 
-@dataclass
-class _State:
-    """The trajectories, a row each in the order of their first event: their numbers, how each ended and the
-    cycle tables, a row per cycle while they are filled."""
-
-    omega: np.ndarray  #: rad/s
-    factor: np.ndarray  #: the impact law's factor 1 - b
-    x: np.ndarray  #: position at the release, m (after it, each event's surface gives it)
-    v: np.ndarray  #: velocity after the last event, m/s
-    t: np.ndarray  #: time of the last event, t + t_err compensated, s
-    t_err: np.ndarray
-    elapsed: np.ndarray  #: time since the last impact at a1, s
-    cycle_max: np.ndarray  #: largest x since the last impact at a1, m
-    status: np.ndarray  #: Status codes, _RUNNING while running
-    t_final: np.ndarray
-    turning: np.ndarray
-    margin: np.ndarray
-    t_acc: np.ndarray
-    impact_time: np.ndarray  #: shape (n_cycles, N), as the fields of CycleTable
-    velocity_before_impact: np.ndarray
-    period: np.ndarray
-    largest_displacement: np.ndarray
-
-
 def solve_ensemble(M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: ArrayLike, a2: ArrayLike,
                    a3: ArrayLike | None = None, a4: ArrayLike | None = None, x0: ArrayLike = 1.0, v0: ArrayLike = 0.0,
                    *, n_cycles: int, max_events: int | None = None, largest_displacement: bool = True,
                    memory_budget: int | None = None) -> EnsembleSolution:
     """Integrate every trajectory for ``n_cycles`` complete cycles (or until it leaves the regime).
 
-    The model's inputs and the initial state are numbers or arrays, broadcast to one shape; each element is one
-    trajectory (the result's rows follow the flattened shape). They are checked by the rules of
-    :class:`escapement.Parameters` row by row, and the counts as the scalar solvers check them
-    (:func:`~escapement.model.limits.run_spec`), before any work; the first invalid row is named. The run's size,
-    :func:`ensemble_bytes`, is at most ``memory_budget`` bytes, or a
-    :class:`~escapement.model.limits.MemoryBudgetError` says so before any array is made at that size.
+    The model's inputs and the initial state are numbers or arrays, broadcast to one shape, an element a
+    trajectory (the result's rows follow the flattened shape). Before any work they are checked row by row by the
+    rules of :class:`escapement.Parameters` (the first invalid row is named), the counts as the scalar solvers
+    check them, and the run's size (:func:`ensemble_bytes`) against ``memory_budget``.
 
     Parameters
     ----------
@@ -134,12 +105,6 @@ def solve_ensemble(M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: A
         One row per trajectory: outcomes, end times (s), the per-cycle table (impact time in s, velocity before
         impact in m/s, period in s, largest displacement in m) of shape ``(N, n_cycles)``.
 
-    Raises
-    ------
-    ParameterError
-        If an input is invalid (the message names it and the row), or
-        (:class:`~escapement.model.limits.MemoryBudgetError`) the run would exceed ``memory_budget``.
-
     Examples
     --------
     Two forces (N) at once:
@@ -160,7 +125,7 @@ def solve_ensemble(M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: A
 
 
 class _Ensemble:
-    """One ensemble run: its trajectories (:class:`_State`) sorted by their first event, its groups, its rows."""
+    """One ensemble run: its trajectories sorted by their first event, its groups, its rows."""
 
     def __init__(self, spec: RunSpec, amplitude: bool) -> None:
         self.n_cycles, self.max_events, self.amplitude = spec.limits.n_cycles, spec.limits.max_events, amplitude
@@ -168,7 +133,10 @@ class _Ensemble:
         self.order = np.argsort(first, kind="stable")
         p = ParameterArrays(**{k: getattr(spec.params, k)[self.order] for k in MODEL_KEYS})
         n, cells = len(first), (self.n_cycles, len(first))
-        self.s = _State(omega=p.omega, factor=automaton.impact_factor(p.b), x=spec.x0[self.order],
+        # a row per trajectory in the order of the first events: the release x, after the last event v and the
+        # time t + t_err (compensated), since the last impact at a1 the time elapsed and the largest x, how the
+        # run ended (Status codes, _RUNNING while running) and the exit's numbers; the cycle tables, a row a cycle
+        self.s = SimpleNamespace(omega=p.omega, factor=automaton.impact_factor(p.b), x=spec.x0[self.order],
                         v=spec.v0[self.order], t=np.zeros(n), t_err=np.zeros(n), elapsed=np.zeros(n),
                         cycle_max=np.zeros(n), status=np.full(n, _RUNNING, dtype=np.int8),
                         t_final=np.full(n, np.nan), turning=np.full(n, np.nan), margin=np.full(n, np.nan),
@@ -220,8 +188,7 @@ class _Ensemble:
                                 exit_t_accumulation=s.t_acc[back])
 
     def _pass(self, g: _Group) -> bool:
-        """One event of each trajectory of ``g``: the closed form of its row, the regime exits, the impact law,
-        the cycle tables at the impacts at a1. False once none of the group runs on."""
+        """One event of each trajectory of ``g``; False once none of the group runs on."""
         s, m, state = self.s, g.members, g.state
         arc = self.release_rows[g.first] if state == RELEASE else self.rows[state]
         v, omega = s.v[m], s.omega[m]
@@ -267,8 +234,7 @@ class _Ensemble:
         g.impacts = c + 1
 
     def _leave(self, g: _Group, gone: np.ndarray, status: Status) -> bool:
-        """The members ``gone`` (a mask over them) end with ``status``; the cycle their last impact at a1 began
-        is no cycle. True while others run."""
+        """The members ``gone`` end with ``status`` (their unfinished cycle is no cycle); True while others run."""
         ids, s = g.indices(), self.s
         left = ids[gone]
         s.status[left] = status.code
@@ -281,8 +247,7 @@ class _Ensemble:
         return bool(len(g.members))
 
     def _exit(self, g: _Group, gone: np.ndarray) -> bool:
-        """Members that pass no surface watched in the group's state: the escapement stopped (free flight), or
-        the mass turned back in a zone. True while others run."""
+        """Members that pass no surface: stopped, or turned back in a zone; True while others run."""
         s, state = self.s, g.state
         ids = g.indices()[gone]
         arc = automaton.ARCS[state]
@@ -310,8 +275,7 @@ class _Ensemble:
 
 
 def _first_events(spec: RunSpec) -> np.ndarray:
-    """The kind of each trajectory's first event: of the impacts the release watches, the one reached first (the
-    first watched where both are reached at once), 0 where neither is."""
+    """Each trajectory's first event: the impact the release reaches first (0: neither)."""
     p, x, v, release = spec.params, spec.x0, spec.v0, automaton.ARCS[RELEASE]
     first, earliest = np.zeros(len(x), dtype=np.intp), np.full(len(x), np.inf)
     for kind in release.watched:

@@ -1,13 +1,11 @@
 """The exact solver's event loop: the automaton's rows in numbers, one closed form per arc, in blocks of events.
 
-A block (:meth:`EventRun.advance`) is two steps. The loop walks the rows of the automaton (:func:`rows`) and
-follows the velocity alone: by energy each arc arrives with ``v**2 = v0**2 + k``, in the direction of its surface,
-and the impact law jumps it at impacts; the loop stops where ``v**2`` is not positive (no surface is passed) or an
-impact reverses the velocity. Then, on the block's arrays, :func:`~escapement.model.kinematics.crossing` gives each
-arc's angle and duration, the events' times are the compensated (TwoSum) running sum of the durations, and the end
-time cuts the block where it falls. Each number is the one an event-by-event loop computes, bit for bit, and a run
-in several passes gives the numbers of a run in one. Everything else (kinds, positions, the arcs, the cycle table)
-follows on arrays (:func:`event_block`, :func:`cycle_rows`).
+In a block the loop walks the automaton's rows (:func:`rows`) following the velocity alone: by energy each arc
+arrives with ``v**2 = v0**2 + k`` in its surface's direction, the impact law jumps it at impacts, and the loop stops
+where ``v**2`` is not positive (no surface is passed) or an impact reverses it. On the block's arrays
+:func:`~escapement.model.kinematics.crossing` then gives each arc's angle and duration, the events' times are the
+compensated (TwoSum) running sum of the durations, and the end time cuts the block where it falls: the numbers of
+an event-by-event loop, bit for bit. Kinds, positions, arcs and cycles follow on arrays (:func:`event_block`).
 """
 
 from __future__ import annotations
@@ -39,8 +37,7 @@ A1 = int(EventKind.IMPACT_A1)
 PLAN = tuple(int(kind) for kind in automaton.cycle_plan())
 #: the most events of a block: its arrays stay small, and a run to an end time computes at most this many past it
 BLOCK_EVENTS = 1 << 12
-#: how a block can end before its last event: no watched surface is reached, the end time comes first, an impact
-#: reversed the velocity
+#: how a block can end before its last event: no watched surface is passed, the end time, a rebound
 NO_EVENT, HORIZON, REBOUND = "no event", "end time", "rebound"
 
 
@@ -55,8 +52,7 @@ LIBM = SimpleNamespace(sqrt=np.sqrt, atan2=_atan2)
 
 
 class Row(NamedTuple):
-    """The arc that follows a state, in numbers for one parameter set (or arrays, one per run): from the state's
-    surface (or the release) about the centre of its mode, to the surface it watches."""
+    """The arc after a state, to the surface it watches (numbers, or arrays a run each)."""
 
     u0: Numeric  #: where the arc starts, from its centre, m
     q: Numeric  #: where it ends, from its centre, m
@@ -67,8 +63,7 @@ class Row(NamedTuple):
 
 
 def rows(params: Parameters | ParameterArrays) -> list[Row | None]:
-    """The rows of :data:`~escapement.model.automaton.ARCS` for ``params``, by state; ``None`` for the release,
-    which watches two surfaces (:meth:`EventRun.release_row` picks the one reached first)."""
+    """The arcs of :data:`~escapement.model.automaton.ARCS` by state; ``None`` for the release."""
     table: list[Row | None] = [None] * (len(automaton.SURFACES) + 1)
     for state, arc in automaton.ARCS.items():
         if len(arc.watched) == 1:
@@ -79,14 +74,13 @@ def rows(params: Parameters | ParameterArrays) -> list[Row | None]:
 def row(params: Parameters | ParameterArrays, start: Numeric, mode: Mode, kind: EventKind) -> Row:
     """The arc from ``start`` in ``mode`` to the surface ``kind``."""
     surface = automaton.SURFACES[kind]
-    target = automaton.position(kind, params)
-    u0, q, k = arc_terms(automaton.centre(mode, params.zone_offset), start, params.omega, target)
+    u0, q, k = arc_terms(automaton.centre(mode, params.zone_offset), start, params.omega,
+                         automaton.position(kind, params))
     return Row(u0, q, k, float(surface.direction), surface.impact, int(kind))
 
 
 def kinds_from(first: int, start: int, n: int) -> np.ndarray:
-    """The kinds of the events ``start .. start + n - 1`` of a run whose first event is ``first``: after it,
-    each row has one surface, so the kinds go round the cycle's :data:`PLAN`."""
+    """The kinds of the events ``start .. start + n - 1``: after the first they go round :data:`PLAN`."""
     shift = (PLAN.index(first) + start) % len(PLAN)
     return np.tile(np.array(PLAN[shift:] + PLAN[:shift], dtype=np.intp), n // len(PLAN) + 1)[:n]
 
@@ -98,10 +92,8 @@ class EventRun:
 
     def __init__(self, spec: RunSpec) -> None:
         params, x, v, limits = spec.params, spec.x0, spec.v0, spec.limits
-        self.params, self.limits = params, limits
-        self.omega, self.b = params.omega, params.b
+        self.params, self.limits, self.omega, self.b = params, limits, params.omega, params.b
         self.release = (RELEASE, x, v)  # the state before the first event
-        self.rows = rows(params)
         self.t_stop = math.inf if limits.t_end is None else limits.t_end
         self.state, self.v = RELEASE, v  # the last event's kind, and the velocity after it
         self.t_sum = self.t_err = self.time = 0.0
@@ -112,9 +104,10 @@ class EventRun:
         self.t, self.v_before, self.angle = array("d"), array("d"), array("d")
         self.outcome: Outcome | None = None
         self.open_arc = False  # the run ended inside an arc (no surface reached, or the end time)
+        self.rows = rows(params)
         self.rows[RELEASE] = self.release_row()
-        # by event kind (the release at 0): the position, whether it is an impact, the impact law's jump of the
-        # velocity (1 at the ends of the zones), the centre of the arc after it
+        # by event kind (the release at 0): position, impact or not, the jump of the velocity (1 at a zone's end)
+        # and the centre of the arc after it
         size = len(self.rows)
         self.position, self.impact, self.centre = np.full(size, math.nan), np.zeros(size, bool), np.zeros(size)
         for state, arc in automaton.ARCS.items():
@@ -122,16 +115,15 @@ class EventRun:
             if state != RELEASE:
                 self.position[state], self.impact[state] = automaton.position(state, params), automaton.is_impact(state)
         self.jump = np.where(self.impact, automaton.impact_factor(self.b), 1.0)
-        # by state, the arc after it: for the loop (k, direction, the jump at its end, the next state), and its terms
-        # as arrays for the closed form (NaN where no arc follows)
+        # by state, the arc after it: for the loop (k, direction, the jump at its end, the next state), and its
+        # terms as arrays (NaN where none follows)
         self.loop = [None if r is None else (r.k, r.direction, float(self.jump[r.following]), r.following)
                      for r in self.rows]
         self.terms = {name: np.array([math.nan if r is None else getattr(r, name) for r in self.rows])
                       for name in ("u0", "q", "k", "direction")}
 
     def release_row(self) -> Row | None:
-        """The row of the release: of the surfaces it watches, the one reached first (None: neither). It sets
-        :attr:`first`, that event's kind, and :attr:`last`, the events of the whole run."""
+        """The release's arc to the impact reached first (None: neither); sets :attr:`first`, :attr:`last`."""
         best = None
         for kind in automaton.ARCS[RELEASE].watched:
             arc = row(self.params, self.release[1], automaton.ARCS[RELEASE].mode, kind)
@@ -146,24 +138,17 @@ class EventRun:
         return best[1]
 
     def _before_a1(self) -> int:
-        """The events before the first impact at a1: the first event, then the kinds go round :data:`PLAN`."""
+        """The events before the first impact at a1."""
         return (PLAN.index(A1) - PLAN.index(self.first)) % len(PLAN)
 
     def advance(self, n: int) -> None:
-        """Run at most ``n`` more events, in blocks of at most :data:`BLOCK_EVENTS`, or until the run ends
-        (:attr:`outcome` set).
-
-        The stopping rules and the side of each boundary: an event is kept when its time as stored (the
-        compensated sum ``t_sum + t_err``) is at most the end time, so an event exactly at ``t_end`` belongs to
-        the run and one an ulp later ends it there (:data:`HORIZON`); the run holds at most :attr:`last` events
-        (``max_events``, or the events up to the ``(n_cycles + 1)``-th impact at a1 if fewer), and ends after the
-        last of them without computing the next arc."""
+        """Run at most ``n`` more events, or until the run ends (:attr:`outcome` set); an event is kept where its
+        time as stored is at most the end time (the sides of the boundaries: :func:`~escapement.solve_exact`)."""
         while n > 0 and self.outcome is None:
             n -= self._block(min(n, BLOCK_EVENTS, self.last - self.events))
 
     def _block(self, limit: int) -> int:
-        """At most ``limit`` events: the velocities by the loop, then the angles and times on arrays. Returns
-        the events kept."""
+        """At most ``limit`` events: the velocities by the loop, then angles and times on arrays; the events kept."""
         loop, state, v, sqrt, arrivals = self.loop, self.state, self.v, math.sqrt, array("d")
         put, ending = arrivals.append, None
         if loop[state] is None:  # from the release, neither impact is reached
@@ -186,15 +171,14 @@ class EventRun:
             kind = kinds_from(self.first, self.events, kept)
             start = np.concatenate(([self.state], kind[:-1]))  # the state each arc starts from
             v_start = np.concatenate(([self.v], self.jump[kind[:-1]] * v_before[:-1]))
-            terms = {name: column[start] for name, column in self.terms.items()}
-            _, dt, _, angle = crossing(terms["u0"], terms["q"], terms["k"], v_start, self.omega, terms["direction"],
-                                       LIBM)
-            # the compensated sum event by event: t_sum the running sum, t_err that of each addition's rounding
+            u0, q, k, direction = (column[start] for column in self.terms.values())
+            _, dt, _, angle = crossing(u0, q, k, v_start, self.omega, direction, LIBM)
+            # the compensated sum as the loop would add it: the running sum, and that of each addition's rounding
             t_sum = np.cumsum(np.concatenate(([self.t_sum], dt)))
             t_err = np.cumsum(np.concatenate(([self.t_err], two_sum(t_sum[:-1], dt)[1])))
             t = t_sum[1:] + t_err[1:]
             late = np.flatnonzero(t > self.t_stop)
-            if len(late):  # the end time comes before event kept: the run ends there, inside its arc
+            if len(late):  # the end time comes before event ``kept``: the run ends inside its arc
                 kept, ending = int(late[0]), HORIZON
                 state, v = (int(kind[kept - 1]) if kept else self.state), float(v_start[kept])
             for stored, column in ((self.t, t), (self.v_before, v_before), (self.angle, angle)):
@@ -206,16 +190,10 @@ class EventRun:
         return kept
 
     def _end(self, ending: str | None, v1: float) -> None:
-        """The outcome of a block that ended with ``ending``, or at the run's last event. The event that ends the
-        last cycle completes the run, even where it is also the last event ``max_events`` allows or an impact
-        that reverses the velocity; any other last allowed event ends it with :attr:`Status.EVENT_LIMIT`, even
-        where the next event would come after the end time (it is not computed)."""
-        if ending == NO_EVENT:
+        """The outcome of a block that ended with ``ending``, or at the run's last event."""
+        if ending in (NO_EVENT, HORIZON):
             self.open_arc = True
-            self.outcome = self._no_event()
-        elif ending == HORIZON:
-            self.open_arc = True
-            self.outcome = horizon_outcome(self.t_stop, self.impacts_a1())
+            self.outcome = self._no_event() if ending == NO_EVENT else horizon_outcome(self.t_stop, self.impacts_a1())
         elif self.completed():  # the last cycle ends here, whatever the impact does next
             self.outcome = completed_outcome(self.limits.n_cycles, self.time)
         elif ending == REBOUND:
@@ -223,15 +201,13 @@ class EventRun:
         elif self.events >= self.last:
             message = event_limit_message(float(self.time), self.limits.max_events)
             self.outcome = Outcome(Status.EVENT_LIMIT, message, Exit(), self.time)
+
     def completed(self) -> bool:
-        """The run's cycles are done: its last event is the (n_cycles + 1)-th impact at a1 (that impact, not the
-        ``n_cycles``-th, ends the last cycle)."""
+        """The run's last event is the (n_cycles + 1)-th impact at a1, which ends the last cycle."""
         return self.limits.n_cycles is not None and self.impacts_a1() == self.limits.n_cycles + 1
 
     def _no_event(self) -> Outcome:
-        """No watched surface is passed from the state after the last event: the turning point of the arc. A turn
-        back inside a zone exactly at the end time is that exit; only an end time strictly before the turn
-        completes the run there (:func:`~escapement.solvers.outcomes.no_event_outcome`)."""
+        """No watched surface is passed from the last state: the turning point of its arc."""
         x = self.release[1] if self.state == RELEASE else automaton.position(self.state, self.params)
         mode = automaton.ARCS[self.state].mode
         centre = automaton.centre(mode, self.params.zone_offset)
@@ -249,16 +225,15 @@ class EventRun:
         return (self.events - self._before_a1() - 1) // len(PLAN) + 1
 
     def take(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The events stored since the last call: times (s), velocities before (m/s) and angles swept (rad), as
-        arrays over the loop's buffers (no copy: they keep them alive); new buffers take the next events."""
-        columns = tuple(np.frombuffer(column, dtype=float) if len(column) else np.zeros(0)
+        """The events stored since the last call (t, v_before, angle), as arrays over the buffers."""
+        columns = tuple(np.frombuffer(column) if len(column) else np.zeros(0)
                         for column in (self.t, self.v_before, self.angle))
         self.t, self.v_before, self.angle = array("d"), array("d"), array("d")
         return columns
 
 
 class Block(NamedTuple):
-    """Consecutive events of a run, each with the arc that ends at it, all on arrays."""
+    """Consecutive events of a run, each with the arc that ends at it, on arrays."""
 
     kind: np.ndarray
     t: np.ndarray  #: s
@@ -274,33 +249,27 @@ class Block(NamedTuple):
 
 def event_block(run: EventRun, start: int, t: np.ndarray, v_before: np.ndarray, angle: np.ndarray,
                 before: tuple[int, float, float]) -> Block:
-    """The events ``start ..`` of ``run`` from what the loop stored, ``before`` the state before the first of
-    them (the last event's kind, or the release, and the position and velocity after it)."""
+    """The events ``start ..`` of ``run`` on arrays; ``before`` is the state before the first."""
     n = len(t)
     kind = kinds_from(run.first, start, n) if n else np.zeros(0, dtype=np.intp)
-    x = run.position[kind]
-    v_after = np.where(run.impact[kind], automaton.velocity_after(v_before, run.b), v_before)
-    state_before, x_before, v_after_before = before
-    arc_centre = np.concatenate(([run.centre[state_before]], run.centre[kind]))
-    arc_x = np.concatenate(([x_before], x))
-    arc_v = np.concatenate(([v_after_before], v_after))
+    x, v_after = run.position[kind], run.jump[kind] * v_before
+    arc_centre = np.concatenate(([run.centre[before[0]]], run.centre[kind]))
+    arc_x, arc_v = np.concatenate(([before[1]], x)), np.concatenate(([before[2]], v_after))
     arc_max = arc_maximum(arc_centre[:n], arc_x[:n], arc_v[:n], run.omega, angle, x, v_before)
     return Block(kind.astype(np.int8), t, x, v_before, v_after, angle / run.omega, arc_max, arc_centre, arc_x, arc_v)
 
 
 def cycle_rows(block: Block) -> tuple[tuple[np.ndarray, ...], int]:
-    """The complete cycles in ``block`` (from an impact at a1 to the next): their impact times, velocities
-    before the impact, periods (the arcs' durations summed in order) and amplitudes (the largest x from the
-    impact at a1 on); and the index in the block of the impact at a1 that begins the unfinished cycle (the
-    block's length where there is none)."""
+    """The complete cycles in ``block`` (an impact at a1 to the next): impact times, velocities before them,
+    periods (the arcs' durations summed in order) and amplitudes (the largest x from the impact on); and the
+    index of the impact at a1 that begins the unfinished cycle (the block's length where there is none)."""
     at_a1 = np.flatnonzero(block.kind == A1)
     if len(at_a1) < 2:
         return tuple(np.zeros(0) for _ in range(4)), (int(at_a1[0]) if len(at_a1) else len(block.t))
     first, m, width = int(at_a1[0]), len(at_a1) - 1, len(PLAN)
     arcs = slice(first + 1, first + 1 + m * width)
     dt, arc_max = block.dt[arcs].reshape(m, width), block.arc_max[arcs].reshape(m, width)
-    period = dt[:, 0].copy()
-    amplitude = np.maximum(block.x[at_a1[:-1]], arc_max[:, 0])
+    period, amplitude = dt[:, 0].copy(), np.maximum(block.x[at_a1[:-1]], arc_max[:, 0])
     for j in range(1, width):  # in the order of the events, as a running sum and maximum
         period += dt[:, j]
         amplitude = np.maximum(amplitude, arc_max[:, j])

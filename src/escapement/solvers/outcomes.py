@@ -1,11 +1,5 @@
-"""How a run ends, shared by the exact event loop and the integrators' loop: the outcomes (:class:`Outcome`) of
-the automaton's exits, with their messages, and :func:`finish`, which makes the :class:`Solution` and refuses a
-completed run that holds a non-finite number.
-
-The messages print every number true as printed (:mod:`escapement.model.printing`): the inputs (b, the impact
-positions, the end time) as they can be typed back, the computed times and positions with the digits that tell
-them apart from the bounds they are compared with, zero without a sign.
-"""
+"""How a run ends, for the event loop and the integrators' loop alike: the automaton's exits with their messages
+(the inputs as typed back, computed numbers with the digits that tell them from their bounds), and :func:`finish`."""
 
 from __future__ import annotations
 
@@ -29,9 +23,9 @@ __all__ = ["Outcome", "chattering_outcome", "completed_outcome", "event_limit_me
            "no_event_outcome"]
 
 
+
 class Outcome(NamedTuple):
-    """How a run ended: its status and message, the numbers behind a regime exit, and the end of its
-    trajectory."""
+    """How a run ended: its status and message, the numbers behind a regime exit, the end of its trajectory."""
 
     status: Status
     message: str
@@ -46,54 +40,26 @@ _DIGITS = 12
 
 
 def stopped_message(t: float, radius: float, missed: dict[str, float]) -> str:
-    """``missed`` maps the name of each impact position the swing cannot reach to its value (an input);
-    the swing's turning points ``-radius`` and ``radius`` are printed unlike the positions they miss."""
-    bounds = [abs(value) for value in missed.values()]
+    """The swing turns at ``-radius``, ``radius``, short of the positions ``missed`` (name: value)."""
     names = " or ".join(f"{name} = {exact(value)} m ({_DIRECTION[name]})" for name, value in missed.items())
-    turn = compared(radius, bounds, _DIGITS)
-    left = "0" if turn == "0" else f"-{turn}"
-    return (
-        f"the escapement stopped at t = {texts([t], _DIGITS)[0]} s: the free swing turns at x = {left} m and "
-        f"x = {turn} m and never passes the next impact position, {names}; from then on the mass oscillates freely"
-    )
+    turn = compared(radius, [abs(value) for value in missed.values()], _DIGITS)
+    return (f"the escapement stopped at t = {texts([t], _DIGITS)[0]} s: the free swing turns at x = "
+            f"{'0' if turn == '0' else '-' + turn} m and x = {turn} m and never passes the next impact position, "
+            f"{names}; from then on the mass oscillates freely")
 
 
 def turned_back_message(t: float, zone: str, turning_point: float, centre: float, end: float) -> str:
     """The motion turned at ``turning_point``, short of the zone's ``end`` (an input), about ``centre``."""
-    return (
-        f"the mass turned back inside the impulse zone {zone} at t = {texts([t], _DIGITS)[0]} s: about the "
-        f"zone's centre x = {compared(centre, [end], _DIGITS)} m (F/K) the motion turns at "
-        f"x = {compared(turning_point, [end, centre], _DIGITS)} m, short of the zone's end at {exact(end)} m; "
-        "the escapement model does not cover this"
-    )
-
-
-def chattering_message(t: float, position: str, b: float, ratio: float, t_accumulation: float) -> str:
-    """``ratio`` is v+/v- of the impact that reversed the velocity (printed unlike 0 and -1, its bounds);
-    ``t_accumulation`` the time at which the rebounds accumulate (printed unlike ``t``), finite whenever
-    the spring drives the mass back to the impact position (the rebound durations then shrink
-    geometrically, by ``|ratio| < 1``), and NaN where it does not (the centre of oscillation at the impact
-    position or in the direction of the rebound)."""
-    t_text, t_acc_text = texts([t, t_accumulation], _DIGITS)
-    head = (
-        f"the impact at {position} at t = {t_text} s reversed the velocity (b = {exact(b)} > 1, "
-        f"v+ = {compared(ratio, [0.0, -1.0], _DIGITS)} v-): the mass rebounds instead of entering the impulse zone"
-    )
-    if math.isnan(t_accumulation):
-        return head + (f"; the centre of oscillation lies at {position} or in the direction of the rebound, so the "
-                       f"spring does not drive the mass back to {position} (no Zeno point), and the escapement "
-                       "regime has ended")
-    return (
-        head + f"; the spring drives it back to {position} and the impacts accumulate at t = "
-        f"{t_acc_text} s (a Zeno point), past which the impulsive model has no solution"
-    )
+    return (f"the mass turned back inside the impulse zone {zone} at t = {texts([t], _DIGITS)[0]} s: about the "
+            f"zone's centre x = {compared(centre, [end], _DIGITS)} m (F/K) the motion turns at "
+            f"x = {compared(turning_point, [end, centre], _DIGITS)} m, short of the zone's end at {exact(end)} m; "
+            "the escapement model does not cover this")
 
 
 def event_limit_message(t: float, max_events: int) -> str:
     """The run reached ``max_events`` (an input) at ``t``."""
-    events = "event" if max_events == 1 else "events"
-    return (f"ended after max_events = {max_events} {events} at t = {texts([t], _DIGITS)[0]} s; raise max_events "
-            "to go on")
+    return (f"ended after max_events = {max_events} event{'' if max_events == 1 else 's'} at t = "
+            f"{texts([t], _DIGITS)[0]} s; raise max_events to go on")
 
 
 def no_event_outcome(params: Parameters, state: int, centre: Numeric, t: Numeric, dt: Numeric, turning: Numeric,
@@ -108,14 +74,12 @@ def no_event_outcome(params: Parameters, state: int, centre: Numeric, t: Numeric
         return horizon_outcome(t_stop, impacts_a1)
     if status is Status.STOPPED:
         missed = {automaton.SURFACES[kind].position: float(automaton.position(kind, params)) for kind in arc.watched}
-        message = stopped_message(float(t), float(turning), missed)
         exit_ = Exit(turning_point=float(turning), margin=float(min(abs(m) for m in missed.values()) - turning))
-        return Outcome(status, message, exit_, math.inf)
+        return Outcome(status, stopped_message(float(t), float(turning), missed), exit_, math.inf)
     zone, end_kind = automaton.ZONE_OF[arc.mode]
     end = automaton.position(end_kind, params)
-    t_final = t + dt
-    message = turned_back_message(float(t_final), zone, float(turning), float(centre), float(end))
-    return Outcome(status, message, Exit(turning_point=float(turning), margin=float(abs(end - turning))), t_final)
+    message = turned_back_message(float(t + dt), zone, float(turning), float(centre), float(end))
+    return Outcome(status, message, Exit(turning_point=float(turning), margin=float(abs(end - turning))), t + dt)
 
 
 def horizon_outcome(t_stop: float, impacts_a1: int) -> Outcome:
@@ -131,42 +95,45 @@ def completed_outcome(n_cycles: int, t: Numeric) -> Outcome:
 
 def chattering_outcome(params: Parameters, kind: EventKind, t: Numeric, v_before: Numeric, v_after: Numeric
                        ) -> Outcome:
-    """The impact ``kind`` at time ``t`` reversed the velocity: the rebounds accumulate (or not)."""
+    """The impact ``kind`` at ``t`` reversed the velocity: do the rebounds accumulate (a Zeno point)?"""
     distance = automaton.rebound_distance(kind, automaton.position(kind, params))
-    t_acc = math.nan  # unless the spring drives the mass back to the impact position
     ratio = float(v_after / v_before)  # the impact law's v+/v-, negative: a rebound
+    t_acc = math.nan
     if distance > 0.0:
         t_acc = float(t) + rebound_accumulation_time(params.omega, distance, abs(float(v_after)), abs(ratio))
     position = automaton.SURFACES[EventKind(kind)].position
-    message = chattering_message(float(t), position, params.b, ratio, t_acc)
+    t_text, t_acc_text = texts([float(t), t_acc], _DIGITS)
+    message = (f"the impact at {position} at t = {t_text} s reversed the velocity (b = {exact(params.b)} > 1, "
+               f"v+ = {compared(ratio, [0.0, -1.0], _DIGITS)} v-): the mass rebounds instead of entering the "
+               "impulse zone")
+    if math.isnan(t_acc):
+        message += (f"; the centre of oscillation lies at {position} or in the direction of the rebound, so the "
+                    f"spring does not drive the mass back to {position} (no Zeno point), and the escapement regime "
+                    "has ended")
+    else:
+        message += (f"; the spring drives it back to {position} and the impacts accumulate at t = {t_acc_text} s "
+                    "(a Zeno point), past which the impulsive model has no solution")
     return Outcome(Status.CHATTERING, message, Exit(t_accumulation=t_acc), t)
 
 
 def finish(spec: RunSpec, method: str, outcome: Outcome, events: EventLog, cycles: CycleTable,
            trajectory: Trajectory | None) -> Solution:
-    """The :class:`Solution` of the run ``spec`` that ended with ``outcome``; a completed run holding a non-finite
-    number raises :class:`FloatingPointError` (the input validation let through what it must refuse)."""
+    """The run's :class:`Solution`; a completed run holding a non-finite number raises."""
     t_final = float(outcome.t_final)
     if outcome.status is Status.COMPLETED:
-        _check_finite(method, events, cycles, trajectory, t_final)
+        columns = {f"events.{field}": getattr(events, field) for field, units, _ in EVENT_COLUMNS.values() if units}
+        columns.update({f"cycles.{name}": getattr(cycles, name) for name in CYCLE_COLUMNS})
+        if isinstance(trajectory, ArcTable):
+            columns.update({f"trajectory.{name}": getattr(trajectory, name)
+                            for name in ("t_start", "centre", "x_start", "v_start", "omega")})
+        columns["t_final"] = t_final
+        for name, values in columns.items():
+            doubles = np.atleast_1d(np.asarray(values, dtype=float))  # mpmath numbers as their nearest doubles
+            bad = np.flatnonzero(~np.isfinite(doubles))
+            if len(bad):
+                raise FloatingPointError(
+                    f"{method}: a completed run holds a non-finite {name}[{bad[0]}] = {float(doubles[bad[0]])!r}; "
+                    "the input validation (escapement.model.parameters) must refuse the inputs that lead to it")
     return Solution(params=spec.params, x0=spec.x0, v0=spec.v0, method=method, status=outcome.status,
                     message=outcome.message, events=events, cycles=cycles, trajectory=trajectory, t_final=t_final,
                     exit=outcome.exit)
-
-
-def _check_finite(method: str, events: EventLog, cycles: CycleTable, trajectory, t_final: float) -> None:
-    columns = {f"events.{field}": getattr(events, field) for field, units, _ in EVENT_COLUMNS.values() if units}
-    columns.update({f"cycles.{name}": getattr(cycles, name) for name in CYCLE_COLUMNS})
-    if isinstance(trajectory, ArcTable):
-        columns.update({f"trajectory.{name}": getattr(trajectory, name) for name in ("t_start", "centre", "x_start",
-                                                                                    "v_start", "omega")})
-    columns["t_final"] = t_final
-    for name, values in columns.items():
-        doubles = np.atleast_1d(np.asarray(values, dtype=float))  # mpmath numbers as their nearest doubles
-        finite = np.isfinite(doubles)
-        if not finite.all():
-            index = int(np.flatnonzero(~finite)[0])
-            raise FloatingPointError(
-                f"{method}: a completed run holds a non-finite {name}[{index}] = {float(doubles[index])!r}; the "
-                "input validation (escapement.model.parameters) must refuse the inputs that lead to it"
-            )

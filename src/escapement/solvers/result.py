@@ -1,11 +1,5 @@
-"""The result of every solver: :class:`Solution` for one run, :class:`EnsembleSolution` for many.
-
-Both carry how the run ended (``status``, ``message``, ``success``), the numbers behind a regime exit
-(:class:`~escapement.solvers.describe.Exit`) and the per-cycle table of the Poincare map on the section
-``x = a1, v > 0`` (cycle ``k`` runs from the ``k``-th impact at a1 to the next); a single run also its events and,
-where kept, its trajectory. Their ``repr`` is a summary of a few lines, whatever the length of the run;
-:meth:`Solution.to_dataframe` gives the cycles or events as a table.
-"""
+"""The result of every solver: :class:`Solution` for one run, :class:`EnsembleSolution` for many, each with a
+summary of a few lines for a ``repr``, whatever the length of the run."""
 
 from __future__ import annotations
 
@@ -44,9 +38,7 @@ class Ended:
 class Solution(Ended):
     """A run: how it ended, its events, its cycles and its trajectory.
 
-    Every solver (:func:`~escapement.solve_exact`, :func:`~escapement.solve_reference`,
-    :func:`~escapement.solve_high_precision`, :func:`~escapement.solve_naive`) returns one; a run that leaves the
-    escapement regime is not an error but an outcome (``status``, ``message``, ``exit``).
+    Every scalar solver returns one; a run that leaves the escapement regime is an outcome, not an error.
 
     Parameters
     ----------
@@ -65,13 +57,12 @@ class Solution(Ended):
     events : EventLog
         Every event in time order: time (s), kind, position (m), velocity before and after (m/s).
     cycles : CycleTable
-        The Poincare map per complete cycle: impact time at a1 (s), velocity just before it (m/s), period (s)
-        and largest displacement (m).
+        The Poincare map per complete cycle (cycle ``k`` from the ``k``-th impact at a1 to the next): impact
+        time (s), velocity just before it (m/s), period (s) and largest displacement (m).
     trajectory : Trajectory or None
         The motion between the events, where kept (``record_trajectory=True``); see :meth:`sample`.
     t_final : float
-        End of the computed trajectory, s (``inf`` when the escapement stopped and the free oscillation goes on
-        for ever).
+        End of the computed trajectory, s (``inf`` when the escapement stopped: the free swing goes on for ever).
     exit : Exit
         The numbers behind a regime exit (NaN where they do not apply).
 
@@ -89,8 +80,6 @@ class Solution(Ended):
     trajectory: kept (201 harmonic arcs)
     initial:    x0 = -1 m, v0 = 0 m/s
     parameters: M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m, a3 = 0.1 m, a4 = -0.05 m
-    >>> run.success, len(run.cycles), len(run.events)
-    (True, 50, 201)
     """
 
     params: Parameters
@@ -115,39 +104,26 @@ class Solution(Ended):
         if len(ev):
             events += f" at t = {event_times[0]} s" if len(ev) == 1 else \
                 f" from t = {event_times[0]} s to {event_times[1]} s"
-        counted = f"{len(cycles)}"
-        if len(cycles):
-            counted += (f"; the last: period {number(cycles.period[-1], 's')}, velocity before impact "
-                        f"{number(cycles.velocity_before_impact[-1], 'm/s')}, largest displacement "
-                        f"{number(cycles.largest_displacement[-1], 'm')}")
-        if self.trajectory is None:
-            kept = "not kept"
-        elif isinstance(self.trajectory, ArcTable):
-            kept = f"kept ({len(self.trajectory)} harmonic arc{'' if len(self.trajectory) == 1 else 's'})"
-        else:
-            kept = "kept"
+        counted = f"{len(cycles)}" + (f"; the last: period {number(cycles.period[-1], 's')}, velocity before impact "
+                                      f"{number(cycles.velocity_before_impact[-1], 'm/s')}, largest displacement "
+                                      f"{number(cycles.largest_displacement[-1], 'm')}" if len(cycles) else "")
+        arcs = len(self.trajectory) if isinstance(self.trajectory, ArcTable) else None
+        kept = "not kept" if self.trajectory is None else "kept" if arcs is None else \
+            f"kept ({arcs} harmonic arc{'' if arcs == 1 else 's'})"
         state = {"x0": self.x0, "v0": self.v0}
-        lines = [
-            f"<escapement.Solution> {self.status.value} ({self.method})",
-            line("message", self.message, wrap=True),
-            line("time span", f"t = {zero} .. {t_final} s (t_final)"),
-            line("events", events),
-            line("cycles", counted),
-            line("trajectory", kept),
-            line("initial", ", ".join(f"{k} = {exact(v, INITIAL_STATE[k].unit_label)}" for k, v in state.items())),
-            line("parameters", ", ".join(f"{name} = {exact(value, PARAMETERS[name].unit_label)}"
-                                         for name, value in self.params.as_dict().items())),
-        ]
+        lines = [f"<escapement.Solution> {self.status.value} ({self.method})", line("message", self.message, wrap=True),
+                 line("time span", f"t = {zero} .. {t_final} s (t_final)"), line("events", events),
+                 line("cycles", counted), line("trajectory", kept),
+                 line("initial", ", ".join(f"{k} = {exact(v, INITIAL_STATE[k].unit_label)}" for k, v in state.items())),
+                 line("parameters", ", ".join(f"{name} = {exact(value, PARAMETERS[name].unit_label)}"
+                                              for name, value in self.params.as_dict().items()))]
         if self.exit.summary():
             lines.append(line("exit", self.exit.summary({"t_accumulation": t_acc})))
         return "\n".join(lines)
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Displacement [m], velocity [m/s] and acceleration [m/s^2] at times ``t`` [s] (NaN outside
-        ``[0, t_final]``), each of the shape of ``t``.
-
-        ``t`` is a real number or a 1-d array of them, finite (:func:`~escapement.model.arguments.sample_times`);
-        anything else, and a run that kept no trajectory, raises :class:`~escapement.ParameterError` naming it."""
+        """Displacement [m], velocity [m/s] and acceleration [m/s^2] at times ``t`` [s], a finite real number or
+        1-d array of them (NaN outside ``[0, t_final]``); a run that kept no trajectory refuses."""
         times = sample_times("t", t)
         if self.trajectory is None:
             raise ParameterError("record_trajectory", False, "True in the solve that made this run, to sample "
@@ -157,11 +133,9 @@ class Solution(Ended):
     def to_dataframe(self, table: str = "cycles") -> pd.DataFrame:
         """The run's cycles or events as a :class:`pandas.DataFrame`.
 
-        The columns are the variables of the run's CF dataset, the same names, values and units
-        (:data:`~escapement.solvers.describe.CYCLE_COLUMNS`, the fields of the cycle table, indexed by the cycle
-        number ``cycle``, 1 .. N; :data:`~escapement.solvers.describe.EVENT_COLUMNS`, indexed by ``event`` from 0,
-        the kind as the :class:`~escapement.EventKind` code). ``df.attrs["units"]`` maps each column with units to
-        its UDUNITS string, ``df.attrs["long_names"]`` each column to its description. The high-precision solver's
+        The columns are the variables of the run's CF dataset (names, values, units): the cycles indexed by
+        ``cycle`` from 1, the events by ``event`` from 0, the kind as its :class:`~escapement.EventKind` code;
+        ``df.attrs["units"]`` gives each column's UDUNITS string, ``df.attrs["long_names"]`` its description.
         mpmath numbers become their nearest doubles.
 
         Parameters
@@ -173,11 +147,6 @@ class Solution(Ended):
         -------
         pandas.DataFrame
             One row per cycle or per event.
-
-        Raises
-        ------
-        ParameterError
-            If ``table`` is neither ``"cycles"`` nor ``"events"`` (a :class:`ValueError`).
 
         Examples
         --------
@@ -208,11 +177,7 @@ class Solution(Ended):
 
 @dataclass(frozen=True, repr=False)
 class EnsembleSolution:
-    """Many runs at once: the fields of :class:`Solution` with one row per trajectory.
-
-    Per-cycle arrays have shape ``(N, n_cycles)``, NaN where a trajectory ended earlier; ``status`` holds
-    :attr:`Status.code` values. Events and trajectories are not kept. Its ``repr`` is a summary of a few lines,
-    whatever the number of trajectories.
+    """Many runs at once: the fields of :class:`Solution` with one row per trajectory (no events, no trajectory).
 
     Parameters
     ----------
@@ -236,12 +201,8 @@ class EnsembleSolution:
     --------
     >>> from escapement import solve_ensemble
     >>> runs = solve_ensemble(M=1.0, K=1.0, F=[0.5, 1.0], b=0.1, a1=-0.1, a2=0.05, x0=-1.0, n_cycles=3)
-    >>> runs.success
-    array([ True,  True])
-    >>> runs.cycles.period.shape
-    (2, 3)
-    >>> runs.outcome(1)
-    <Status.COMPLETED: 'completed'>
+    >>> runs.success, runs.cycles.period.shape, runs.outcome(1)
+    (array([ True,  True]), (2, 3), <Status.COMPLETED: 'completed'>)
     """
 
     status: np.ndarray
