@@ -106,7 +106,7 @@ def test_the_command_line_help_names_its_defaults_as_the_scene_they_are(capsys):
 
 def test_the_blocks_that_run_fig3_a_by_name_run_exactly_it():
     """The benchmark, the long run and the command line run Fig. 3 (a) as the fig3 block defines it."""
-    scene = study_scenes("replication", CONFIG)["fig3"]["a"]
+    scene = study_scenes("replication", CONFIG)["fig3"]["a"].settings
     runs = replication_scenes(CONFIG)
     keys = ("M", "K", "F", "b", "a1", "a2", "x0")
     for block in (runs["benchmark"], runs["long_run"], DEFAULTS):

@@ -72,27 +72,28 @@ def test_the_changes_are_said_once_as_dotted_keys_and_each_kind_they_do_not_reac
 
 def test_a_third_case_joins_the_paper_s_two_and_every_scene_of_a_study_carries_what_reaches_its_kind():
     studies, _ = planned({"fig3": {"cases": {"c": {"F": 0.75, "x0": -2.0}}}, "stability_map": {"F": {"n": 50}}})
-    cases = studies["own"]["fig3"]
+    cases = {label: planned.settings for label, planned in studies["own"]["fig3"].items()}
     assert list(cases) == ["a", "b", "c"] and cases["c"]["F"] == 0.75 and cases["b"]["x0"] == -3.0
+    assert studies["own"]["fig3"]["c"].checked.params.F == 0.75  # the settings the job runs, checked
     assert cases["a"]["changes"] == "fig3.cases.c.F = 0.75 N (paper: absent); fig3.cases.c.x0 = -2 m (paper: absent)"
-    axis = studies["own"]["stability_map"][""]
+    axis = studies["own"]["stability_map"][""].settings
     assert axis["F"] == {"start": 0.01, "stop": 2.0, "n": 50} and axis["changes"] == \
         "stability_map.F.n = 50 (paper: 200)"
     studies, _ = planned({"fig5": {"K": [0.1, 1.0, 5.0]}, "model": {"b": 0.3}})
-    assert studies["own"]["fig5"]["5"]["changes"] == \
+    assert studies["own"]["fig5"]["5"].settings["changes"] == \
         "model.b = 0.3 (paper: 0.1); fig5.K = [0.1, 1, 5] N/m (paper: [0.1, 1, 10] N/m)"
-    assert studies["own"]["escapement_error"][""]["changes"] == "model.b = 0.3 (paper: 0.1)"
+    assert studies["own"]["escapement_error"][""].settings["changes"] == "model.b = 0.3 (paper: 0.1)"
 
 
 def test_the_dataset_of_a_study_scene_names_its_changes_and_the_replication_s_none(tmp_path):
     studies, _ = planned({"name": "asym", "model": {"a3": 0.12, "a4": -0.03}, "fig3": {"n_cycles": 5}})
-    scene = studies["asym"]["fig3"]["a"]
+    scene = studies["asym"]["fig3"]["a"].checked
     expected = "model.a3 = 0.12 m (paper: 0.1 m); model.a4 = -0.03 m (paper: -0.05 m); fig3.n_cycles = 5 (paper: 50)"
-    assert scene["changes"] == expected
+    assert scene.study.changes == expected
     ds = read_netcdf(write_netcdf(poincare_map(scene), tmp_path / "case_a.nc"))
     assert ds.attrs["study_changes"] == expected and ds.attrs["study"] == "asym"
     assert float(ds["a3"]) == 0.12 and float(ds["a4"]) == -0.03  # what it names is what ran
-    replication = studies["replication"]["fig3"]["a"]
+    replication = studies["replication"]["fig3"]["a"].settings
     assert "changes" not in replication
     assert "study_changes" not in poincare_map({**replication, "n_cycles": 2}).attrs
 

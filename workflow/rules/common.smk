@@ -56,16 +56,17 @@ def refuse(path):
     sys.exit(outputs.not_a_target(path, STUDIES))
 
 
-def settings_of(block, path):
-    """The settings of the scene of ``block`` that writes ``path`` (its label a wildcard, for the kinds of several
-    scenes), as the rule's params; one line if the study or its scene does not exist."""
+def planned(block, path, part):
+    """The ``part`` of the planned scene of ``block`` that writes ``path`` (its label a wildcard, for the kinds of
+    several scenes): its ``settings`` (which Snakemake compares to rerun the job) or its ``checked`` settings object
+    (which the job runs); one line if the study or its scene does not exist."""
 
     def params(w):
         labelled = STUDIES.get(w.study, {}).get(block, {})
         label = w.get("label", "")
         if label not in labelled:
             refuse(path.format(**w))
-        return labelled[label]
+        return getattr(labelled[label], part)
 
     return params
 

@@ -13,7 +13,10 @@ rule poincare_map:
         "../../environment/environment.yml"
     params:
         kind="poincare_map",
-        scene=settings_of("fig3", "results/{study}/poincare_map/case_{label}.nc"),
+        settings=planned(
+            "fig3", "results/{study}/poincare_map/case_{label}.nc", "settings"
+        ),
+        scene=planned("fig3", "results/{study}/poincare_map/case_{label}.nc", "checked"),
         code=CODE,
     script:
         "../scripts/simulate.py"
@@ -28,7 +31,8 @@ rule shock_detail:
         "../../environment/environment.yml"
     params:
         kind="shock_detail",
-        scene=settings_of("fig4", "results/{study}/shock_detail.nc"),
+        settings=planned("fig4", "results/{study}/shock_detail.nc", "settings"),
+        scene=planned("fig4", "results/{study}/shock_detail.nc", "checked"),
         code=CODE,
     script:
         "../scripts/simulate.py"
@@ -43,7 +47,10 @@ rule phase_diagrams:
         "../../environment/environment.yml"
     params:
         kind="phase_diagram",
-        scene=settings_of("fig5", "results/{study}/phase_diagrams/K_{label}.nc"),
+        settings=planned(
+            "fig5", "results/{study}/phase_diagrams/K_{label}.nc", "settings"
+        ),
+        scene=planned("fig5", "results/{study}/phase_diagrams/K_{label}.nc", "checked"),
         code=CODE,
     script:
         "../scripts/simulate.py"
@@ -58,7 +65,12 @@ rule escapement_error:
         "../../environment/environment.yml"
     params:
         kind="escapement_error",
-        scene=settings_of("escapement_error", "results/{study}/escapement_error.nc"),
+        settings=planned(
+            "escapement_error", "results/{study}/escapement_error.nc", "settings"
+        ),
+        scene=planned(
+            "escapement_error", "results/{study}/escapement_error.nc", "checked"
+        ),
         code=CODE,
     script:
         "../scripts/simulate.py"
@@ -73,7 +85,10 @@ rule existence_map:
         "../../environment/environment.yml"
     params:
         kind="existence_map",
-        scene=settings_of("existence_map", "results/{study}/existence_map.nc"),
+        settings=planned(
+            "existence_map", "results/{study}/existence_map.nc", "settings"
+        ),
+        scene=planned("existence_map", "results/{study}/existence_map.nc", "checked"),
         code=CODE,
     script:
         "../scripts/simulate.py"
@@ -89,7 +104,10 @@ rule stability_map:
         "../../environment/environment.yml"
     params:
         kind="stability_map",
-        scene=settings_of("stability_map", "results/{study}/stability_map.nc"),
+        settings=planned(
+            "stability_map", "results/{study}/stability_map.nc", "settings"
+        ),
+        scene=planned("stability_map", "results/{study}/stability_map.nc", "checked"),
         code=CODE,
     script:
         "../scripts/simulate.py"

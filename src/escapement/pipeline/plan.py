@@ -12,6 +12,7 @@ the paper's (:func:`changes`); each kind's scenes carry those that reach it, whi
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass
 
 from ..model.parameters import ParameterError, Parameters
 from ..model.quantities import INITIAL_STATE, PARAMETERS, SYMMETRIC_DEFAULTS
@@ -30,7 +31,7 @@ from ..scenes.settings import (
 )
 from .config import ConfigError
 
-__all__ = ["BLOCKS", "REPLICATION_ONLY", "changes", "check_cases", "check_probes", "leaves", "plan",
+__all__ = ["BLOCKS", "REPLICATION_ONLY", "Planned", "changes", "check_cases", "check_probes", "leaves", "plan",
            "replication_scenes", "study_scenes"]
 
 #: the blocks a study may change, and the replication's own, which only config/paper.yaml sets
@@ -41,6 +42,15 @@ SETTINGS = {"fig3": PoincareScene, "fig4": ShockScene, "fig5": PhaseScene, "esca
             "existence_map": ExistenceMapScene, "stability_map": StabilityMapScene}
 #: the keys of a scene's mapping that place it, not settings of its run
 PLACING = ("study", "label", "changes")
+
+
+@dataclass(frozen=True)
+class Planned:
+    """A scene as planned: its flat ``settings`` (a rule's param, which Snakemake compares by its text to rerun a
+    job) and the settings object built and checked from them at planning (a rule's param the job runs)."""
+
+    settings: dict
+    checked: object
 
 
 def leaves(values: Mapping, prefix: str = "") -> dict:
@@ -122,9 +132,9 @@ def _scene_mappings(block: str, model: Mapping, b: Mapping, extra: Mapping, pape
     return {"": {**_flat(model, b, extra), **nested}}
 
 
-def study_scenes(study: str, blocks: Mapping, paper: Mapping | None = None) -> dict[str, dict[str, dict]]:
-    """Every scene of ``blocks`` (the model and the kinds' blocks), by kind and label: its flat mapping (the rule's
-    params), each checked by its settings here; :class:`ConfigError` naming the block for the first that fails."""
+def study_scenes(study: str, blocks: Mapping, paper: Mapping | None = None) -> dict[str, dict[str, Planned]]:
+    """Every scene of ``blocks`` (the model and the kinds' blocks), by kind and label, built and checked by its
+    settings class; :class:`ConfigError` naming the block for the first that fails."""
     scenes, tag = {}, "" if study == REPLICATION else f"your study '{study}': "
     for block in KINDS:
         if block not in blocks:
@@ -132,13 +142,11 @@ def study_scenes(study: str, blocks: Mapping, paper: Mapping | None = None) -> d
         try:
             found = _scene_mappings(block, blocks["model"], blocks[block], {"study": study},
                                     (paper or {}).get(block, {}))
-            for settings in found.values():
-                SETTINGS[block].from_mapping(settings)
+            scenes[block] = {label: Planned(s, SETTINGS[block].from_mapping(s)) for label, s in found.items()}
         except ParameterError as err:
             raise ConfigError(f"{tag}{block}: {err}") from None
         except ConfigError as err:
             raise ConfigError(f"{tag}{err}") from None
-        scenes[block] = found
     return scenes
 
 

@@ -33,15 +33,16 @@ def write_timings(timings: Mapping[str, float], path: str) -> None:
     write_csv([{"measurement": k, "seconds": repr(float(v))} for k, v in timings.items()], TIMING_COLUMNS, path)
 
 
-def simulate(kind: str, scene: Mapping, outputs: Mapping[str, str], log: str, rule: str = "") -> None:
-    """Make the dataset of the scene ``scene`` (its settings) of the kind ``kind`` and write it to
+def simulate(kind: str, scene, outputs: Mapping[str, str], log: str, rule: str = "") -> None:
+    """Make the dataset of the scene ``scene`` (its settings, checked at planning, or their mapping) of the kind
+    ``kind`` and write it to
     ``outputs["nc"]`` (its wall times, if it measures any, to ``outputs["timing"]``); the file's history names the
     rule and the file."""
     module, name = SCENES[kind]
     make = getattr(import_module(f"..scenes.{module}", __package__), name)
     with logged(log, kind) as logger:
-        logger.info("%s: settings %s", outputs["nc"], dict(scene))
-        made = make(scene["cases"], scene["n_cycles"], scene.get("probes")) if kind == "checks" else make(dict(scene))
+        logger.info("%s: settings %s", outputs["nc"], scene)
+        made = make(scene["cases"], scene["n_cycles"], scene.get("probes")) if kind == "checks" else make(scene)
         ds, timings = made if isinstance(made, tuple) else (made, {})
         if "outcome" in ds.attrs:
             logger.info("outcome: %s: %s", ds.attrs["outcome"], ds.attrs["outcome_message"])
