@@ -1,5 +1,5 @@
-"""The article's parts that need no run: the title's rule, the Typst escapes, and the journal's metadata from
-CITATION.cff (the article written by a run is tested in tests/test_workflow.py)."""
+"""The article's parts that need no run: the title's rule, the Typst escapes, the journal's metadata from
+CITATION.cff, and its tables from typed columns (the article written by a run is tested in tests/test_workflow.py)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from escapement.pipeline.article import RULE, metadata, prefix, string, typ
+from escapement.pipeline.article import RULE, _axes, _readings, metadata, prefix, string, typ
+from escapement.verdict.scores import CLAIM_AUTOSCALE, TICKS
 
 REPO = Path(__file__).resolve().parents[2]
 COUNTS = {"reproduced": 0, "consistent": 0, "partially_reproduced": 0, "not_reproduced": 0, "undetermined": 0,
@@ -40,3 +41,23 @@ def test_the_metadata_has_the_journals_fields_and_invents_no_person():
     assert meta["replication"][3] == {"doi": "10.3233/SAV-130800"}
     assert meta["code"][0] == {"url": citation.get("repository-code", "")}
     assert meta["journal"][0] == {"name": "ReScience C"} and meta["contributors"][0]["name"] == ""
+
+
+def test_the_axes_table_cites_the_limits_the_claim_judged_beside_the_printed_ones_never_the_rows_words():
+    """Fig. 4's velocity panel: its one scored axis, printed -0.1 to 0.9 m/s, the run's limits from the table beside
+    the claims; the row's words carry no number."""
+    rows = [{"claim_id": "v_axis", "source": "Fig. 4, velocity panel", "status": "not_reproduced",
+             "replicated_value": "words only", "paper_value": "words only"}]
+    limits = [{"claim_id": "v_axis", "figure": "4", "panel": "velocity", "axis": "y", "low": "0.1", "high": "0.9"}]
+    assert _axes(rows, limits) == (r"[Fig. 4, velocity panel], [Velocity (m\/s): \[\-0.1, 0.9\]], "
+                                   r"[Velocity (m\/s): \[0.1, 0.9\]], [not reproduced]")
+
+
+@pytest.mark.parametrize("same, said", [
+    ("r2", r"undetermined: 2 readings tie, plotting different values of 2: #linebreak() r1 #linebreak() r2"),
+    ("r1", r"2 equivalent readings (identical values) of 2: #linebreak() r1 \= r2")])
+def test_the_readings_table_names_the_readings_tied_at_the_best_score(same, said):
+    scores = [{"figure": "5", "panel": "b", "axis": axis, "reading": name, "autoscale": CLAIM_AUTOSCALE,
+               "ticks": ticks, "matches": 2, "same_values_as": same if name == "r2" else "r1"}
+              for axis in ("x", "y") for name in ("r1", "r2") for ticks in TICKS]
+    assert _readings(scores) == f"[5 b], [4 of 4 (4 with the default locator)], [{said}]"

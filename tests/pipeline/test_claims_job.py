@@ -1,4 +1,5 @@
-"""The check_claims job on tiny netCDF files, and the claims table's CSV round trip."""
+"""The check_claims job on tiny netCDF files (the claims table, and the axis limits beside it), and the claims
+table's CSV round trip."""
 
 from __future__ import annotations
 
@@ -9,16 +10,14 @@ import pytest
 import xarray as xr
 import yaml
 
-from escapement.io.netcdf import write_csv
-from escapement.io.netcdf import write_netcdf
-from escapement.verdict.evidence import CHECKS
-from escapement.verdict.engine import COLUMNS, ClaimError
-from escapement.pipeline.readings import _formatted, score_table
-from escapement.verdict.scores import COLUMNS as SCORE_COLUMNS
-from escapement.io.netcdf import DatasetError
-from escapement.pipeline.tables import read_claims
+from escapement.io.netcdf import DatasetError, read_csv, write_csv, write_netcdf
 from escapement.pipeline.claims import check_claims
+from escapement.pipeline.readings import _formatted, score_table
+from escapement.pipeline.tables import LIMIT_COLUMNS, read_claims
 from escapement.studies.readings import Reading
+from escapement.verdict import sec3_map
+from escapement.verdict.engine import COLUMNS, ClaimError
+from escapement.verdict.scores import COLUMNS as SCORE_COLUMNS
 
 #: the model's parameters and x0 as 0-d variables, as the scenes write them; the outcome as attributes
 MODEL = {k: ((), v) for k, v in {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1,
@@ -65,26 +64,28 @@ def files(tmp_path) -> dict:
     weight = {"origin": "paper", "quote": "a sentence"}
     claims = [
         {"id": "fixed_point_first", "source": "Eq. (19)", **weight, "part": "the first", "statement": "s",
-         "paper_value": None, "tolerance": 1e-8, "tolerance_reason": "r", "check": "fixed_point",
+         "paper_value": None, "tolerance": 1e-8, "tolerance_reason": "r", "check": "sec3_map.fixed_point",
          "args": {"case": "first"}},
         {"id": "multiplier", "source": "Eq. (21)", **weight, "part": "the multiplier", "statement": "s",
-         "paper_value": 0.6561, "tolerance": 1e-8, "tolerance_reason": "r", "check": "multiplier_paper_cases"},
+         "paper_value": 0.6561, "tolerance": 1e-8, "tolerance_reason": "r", "check": "sec3_map.multiplier_paper_cases"},
         {"id": "fig5b_axes", "source": "Fig. 5 (b)", "origin": "paper", "quote": "Fig. 5.", "statement": "s",
-         "paper_value": None, "tolerance": None, "check": "printed_axes", "args": {"figure": "5", "panel": "b"}},
+         "paper_value": None, "tolerance": None, "check": "figure_axes.printed_axes",
+         "args": {"figure": "5", "panel": "b"}},
     ]
-    register.write_text(yaml.safe_dump({"version": 2, "claims": claims}))
+    register.write_text(yaml.safe_dump({"version": 3, "claims": claims}))
     # the grid of candidate readings of Fig. 5 (b): the same ellipse, and one twice as large (-2 .. 2 on both axes)
     readings = [Reading("5", "b", "as simulated", 0.9 * np.cos(phase), -0.95 * np.sin(phase)),
                 Reading("5", "b", "twice as large", 1.8 * np.cos(phase), -1.9 * np.sin(phase))]
     scores = tmp_path / "axis_scores.csv"
     write_csv([_formatted(r) for r in score_table(readings)], SCORE_COLUMNS, scores)
     return {"register": str(register), "fig3": {"first": str(paths["fig3"])}, "fig4": str(paths["fig4"]),
-            "fig5": {"1": str(paths["fig5"])}, "checks": str(paths["checks"]), "readings": str(scores)}
+            "fig5": {"1": str(paths["fig5"])}, "checks": str(paths["checks"]), "readings": str(scores),
+            "limits": str(tmp_path / "panel_limits.csv")}
 
 
-def test_the_job_writes_one_row_per_claim_with_the_configured_label(tmp_path):
-    output = tmp_path / "claims.csv"
-    check_claims(**files(tmp_path), output=str(output), log=str(tmp_path / "log"))
+def test_the_job_writes_one_row_per_claim_with_the_configured_label_and_the_limits_its_axis_claim_judged(tmp_path):
+    output, inputs = tmp_path / "claims.csv", files(tmp_path)
+    check_claims(**inputs, output=str(output), log=str(tmp_path / "log"))
     rows = read_claims(output)
     assert [r["claim_id"] for r in rows] == ["fixed_point_first", "multiplier", "fig5b_axes"]
     # the axes were fitted: a match is consistent, not reproduced; the first two rows are parts of one sentence
@@ -95,14 +96,18 @@ def test_the_job_writes_one_row_per_claim_with_the_configured_label(tmp_path):
     assert rows[2]["replicated_value"].startswith(
         "Displacement (m): [-1, 1]; Velocity (m/s): [-1, 1] (4 of 4 printed limits); best of the 2 candidate "
         "readings: 4 of 4, by one reading [as simulated]")
+    # the same limits as numbers, one row per scored axis of the panel the claim's args name
+    assert [(r["claim_id"], r["figure"], r["panel"], r["axis"], float(r["low"]), float(r["high"]))
+            for r in read_csv(inputs["limits"], LIMIT_COLUMNS)] == [("fig5b_axes", "5", "b", "x", -1.0, 1.0),
+                                                                   ("fig5b_axes", "5", "b", "y", -1.0, 1.0)]
 
 
 def test_the_job_fails_naming_the_claim_when_a_check_raises(tmp_path, monkeypatch):
     def broken(claim, ev):
         raise ZeroDivisionError("float division by zero")
 
-    monkeypatch.setitem(CHECKS, "multiplier_paper_cases",
-                        dataclasses.replace(CHECKS["multiplier_paper_cases"], function=broken))
+    monkeypatch.setattr(sec3_map, "multiplier_paper_cases",
+                        dataclasses.replace(sec3_map.multiplier_paper_cases, function=broken))
     output, log = tmp_path / "claims.csv", tmp_path / "log"
     with pytest.raises(ClaimError, match="claim 'multiplier'.*ZeroDivisionError") as info:
         check_claims(**files(tmp_path), output=str(output), log=str(log))

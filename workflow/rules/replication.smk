@@ -85,6 +85,8 @@ rule check_claims:
             category="Verdict",
             labels={"table": "claims register"},
         ),
+        # the limits each axis claim judged, which the article cites
+        limits="results/replication/panel_limits.csv",
     log:
         "results/logs/replication/check_claims.log",
     localrule: True
@@ -119,28 +121,21 @@ rule run_stress:
         "../scripts/stress.py"
 
 
+# The documents, in three jobs of few inputs each: the Markdown documents, the report's HTML (from REPLICATION.md
+# as rendered), and the ReScience C article (escapement.pipeline.docs and .article).
 rule render_docs:
     input:
-        **{
-            f"figure_{name}": f"results/replication/figures/{name}.svg"
-            for name in ARTICLE_FIGURES
-        },
         claims="results/replication/claims.csv",
+        stress="results/replication/stress.csv",
+        readings="results/replication/readings.csv",
         benchmark="results/replication/work_precision.csv",
         long_run="results/replication/long_run.nc",
         long_run_timing="results/replication/long_run_timing.csv",
         stability="results/replication/stability_map.nc",
         stability_timing="results/replication/stability_map_timing.csv",
-        stress="results/replication/stress.csv",
-        readings="results/replication/readings.csv",
         readme="workflow/templates/README.md",
         replication="workflow/templates/REPLICATION.md",
         timings="workflow/templates/timings.md",
-        # the ReScience C article: its numbers, template, bibliography, authors and figures
-        checks="results/replication/checks.nc",
-        citation="CITATION.cff",
-        article="workflow/templates/article.typ",
-        bibliography="workflow/templates/article.bib",
     output:
         readme="results/replication/docs/README.md",
         replication="results/replication/docs/REPLICATION.md",
@@ -150,6 +145,23 @@ rule render_docs:
             category="Speed and accuracy",
             labels={"document": "measured times"},
         ),
+    log:
+        "results/logs/replication/render_docs.log",
+    localrule: True
+    conda:
+        "../../environment/environment.yml"
+    params:
+        code=CODE,
+    script:
+        "../scripts/render_docs.py"
+
+
+rule render_report:
+    input:
+        claims="results/replication/claims.csv",
+        stress="results/replication/stress.csv",
+        replication="results/replication/docs/REPLICATION.md",
+    output:
         # the verdict's headline, for the report's landing page (workflow/report/workflow.rst)
         landing="results/replication/docs/landing.html",
         # the claims register and REPLICATION.md as HTML documents, items of the report
@@ -165,12 +177,35 @@ rule render_docs:
             category="Verdict",
             labels={"table": "REPLICATION.md"},
         ),
-        article_pdf="results/replication/article/article.pdf",
-        article_metadata="results/replication/article/metadata.yaml",
-        article_source="results/replication/article/article.typ",
-        article_bibliography="results/replication/article/article.bib",
     log:
-        "results/logs/replication/render_docs.log",
+        "results/logs/replication/render_report.log",
+    localrule: True
+    conda:
+        "../../environment/environment.yml"
+    params:
+        code=CODE,
+    script:
+        "../scripts/render_docs.py"
+
+
+rule render_article:
+    input:
+        claims="results/replication/claims.csv",
+        limits="results/replication/panel_limits.csv",
+        checks="results/replication/checks.nc",
+        readings="results/replication/readings.csv",
+        benchmark="results/replication/work_precision.csv",
+        citation="CITATION.cff",
+        template="workflow/templates/article.typ",
+        bibliography="workflow/templates/article.bib",
+        figures=[f"results/replication/figures/{name}.svg" for name in ARTICLE_FIGURES],
+    output:
+        pdf="results/replication/article/article.pdf",
+        metadata="results/replication/article/metadata.yaml",
+        source="results/replication/article/article.typ",
+        bibliography="results/replication/article/article.bib",
+    log:
+        "results/logs/replication/render_article.log",
     localrule: True
     conda:
         "../../environment/environment.yml"

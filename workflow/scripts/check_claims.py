@@ -10,6 +10,7 @@ check_claims(
     snakemake.input.checks,
     snakemake.input.readings,
     snakemake.output.csv,
+    snakemake.output.limits,
     snakemake.log[0],
     schema=snakemake.input.schema,
     settings=snakemake.params.settings,

@@ -1,5 +1,8 @@
-"""Glue: rule render_docs -> escapement.pipeline.render.render_docs."""
+"""Glue: rules render_docs and render_report -> escapement.pipeline.docs, rule render_article ->
+escapement.pipeline.article.write_article."""
 
-from escapement.pipeline.render import render_docs
+from escapement.pipeline.article import write_article
+from escapement.pipeline.docs import render_docs, render_report
 
-render_docs(dict(snakemake.input), dict(snakemake.output), snakemake.log[0])
+job = {"render_docs": render_docs, "render_report": render_report, "render_article": write_article}[snakemake.rule]
+job(dict(snakemake.input), dict(snakemake.output), snakemake.log[0])

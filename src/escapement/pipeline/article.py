@@ -1,10 +1,9 @@
 """The replication as a ReScience C article, written by the run: ``metadata.yaml`` in the journal's own fields and
 ``article.typ`` from the template ``workflow/templates/article.typ``, typeset by Typst (a compiler in a wheel, no
-TeX) to ``article.pdf``, PDF/A-2b with its fonts embedded.
-
-The PDF is built from the metadata: its title, authors, keywords and abstract are the file's. Every number of the
-text comes from the claims table, the checks dataset and the facts of the documents, formatted once here; the
-template holds none. The title's prefix follows one stated rule from the verdict's headline (:data:`RULE`).
+TeX) to ``article.pdf``, PDF/A-2b with its fonts embedded; its title, authors, keywords and abstract are the
+metadata's. Every number of the text is read from a dataset or a typed column (the checks dataset, the benchmark,
+the axis limits beside the claims table, the readings' scores, the paper's printed axes) and formatted once here;
+the claims table gives the statuses. The title's prefix follows one stated rule from the findings (:data:`RULE`).
 """
 
 from __future__ import annotations
@@ -17,12 +16,15 @@ from pathlib import Path
 import jinja2
 import yaml
 
-from ..io.netcdf import read_netcdf, replaced, write_text
+from ..io.netcdf import read_csv, read_netcdf, replaced, write_text
+from ..paper.printed_axes import panel
 from ..verdict.evidence import fmt
+from ..verdict.scores import joint_candidates, panel_candidates, read_scores, summary
 from ..verdict.tally import ORDER, findings
-from .outputs import ARTICLE_FIGURES
+from .logs import logged
+from .tables import LIMIT_COLUMNS, read_claims, read_work_precision
 
-__all__ = ["RULE", "metadata", "prefix", "string", "typ", "write_article"]
+__all__ = ["RULE", "keywords", "metadata", "prefix", "string", "typ", "write_article"]
 
 #: the rule that names the article a replication or a failed one, from the findings' statuses
 RULE = ("the title reads [Re] when the paper's findings that hold (reproduced or consistent) outnumber those that "
@@ -48,6 +50,11 @@ def prefix(counts: Mapping[str, int]) -> str:
     return "[Re]" if held > failed else "[¬Re]"
 
 
+def keywords(citation: Mapping) -> list[str]:
+    """The journal's two keywords, ``CITATION.cff``'s and the language."""
+    return list(dict.fromkeys(["rescience c", "replication", *citation["keywords"], "python"]))
+
+
 def metadata(citation: Mapping, title: str, abstract: str) -> dict:
     """The article's ``metadata.yaml`` in ReScience C's field names: the authors as ``CITATION.cff`` names them
     (placeholders stay placeholders), its code url and doi, and the original's citation."""
@@ -60,15 +67,12 @@ def metadata(citation: Mapping, title: str, abstract: str) -> dict:
         "authors": [{"name": a.get("name") or f"{a['given-names']} {a['family-names']}", "orcid": a.get("orcid", ""),
                      "email": a.get("email", ""), "affiliations": "1,*"} for a in citation["authors"]],
         "affiliations": [{"code": 1, "name": citation["authors"][0].get("affiliation", ""), "address": ""}],
-        "keywords": ", ".join(dict.fromkeys(["rescience c", "replication", *citation["keywords"], "python"])),
+        "keywords": ", ".join(keywords(citation)),
         "code": [{"url": citation.get("repository-code", "")}, {"doi": citation.get("doi", "")}, {"swh": ""}],
         "data": [{"url": ""}, {"doi": ""}],
         "replication": [{"cite": cite}, {"bib": "mao2013"}, {"url": f"https://doi.org/{original['doi']}"},
                         {"doi": original["doi"]}],
-        "abstract": abstract,
-        "bibliography": "article.bib",
-        "type": "Replication",
-        "domain": "Nonlinear dynamics",
+        "abstract": abstract, "bibliography": "article.bib", "type": "Replication", "domain": "Nonlinear dynamics",
         "language": "Python",
         # filled in after acceptance, by the editor: left empty, as the journal's template has them
         "review": [{"url": ""}],
@@ -79,98 +83,97 @@ def metadata(citation: Mapping, title: str, abstract: str) -> dict:
     }
 
 
-def _counts(rows: Sequence[Mapping]) -> tuple[dict[str, int], int, int]:
-    """The number of findings of each status, of findings, and of the rows that check them."""
-    found = findings(rows)
-    return ({s: sum(status == s for status, _ in found.values()) for s in ORDER}, len(found),
-            sum(len(parts) for _, parts in found.values()))
-
-
-def _numbers(rows: Sequence[Mapping], checks, facts: Mapping[str, str]) -> dict[str, str]:
-    """The numbers the text cites, each formatted once: the limit cycles of the paper's two cases (the checks
-    dataset's group ``paper``), the printed period, and the facts of the documents."""
+def _numbers(checks, benchmark: Sequence[Mapping]) -> dict:
+    """The numbers the text cites, each formatted once: the limit cycle of each of the paper's cases (the checks
+    dataset's group ``paper``, by label) and the exact solver's error in the velocity (the benchmark's row)."""
     paper = checks["group"].values == "paper"
-    cases = dict(zip(checks["label"].values[paper], zip(*(checks[k].values[paper] for k in
-                                                          ("period", "velocity", "multiplier")))))
-    (ta, va, ma), (tb, vb, mb) = cases["fig3a"], cases["fig3b"]
-    claim = {r["claim_id"]: r for r in rows}
-    return {"period_a": fmt(ta, 12), "period_b": fmt(tb, 12), "velocity_a": fmt(va, 12), "velocity_b": fmt(vb, 12),
-            "multiplier_a": fmt(ma, 10), "multiplier_b": fmt(mb, 10),
-            "printed_period": claim["fig3_period_a"]["paper_value"], **facts}
+    exact = next(row for row in benchmark if row["method"] == "exact")
+    return {**{name: {label: typ(fmt(value, digits)) for label, value in zip(checks["label"].values[paper],
+                                                                              checks[name].values[paper])}
+               for name, digits in (("period", 12), ("velocity", 12), ("multiplier", 10))},
+            "exact_error_velocity": typ(fmt(float(exact["error_velocity"]), 2))}
 
 
-def _short(text: str, most: int = 110) -> str:
-    """The first clause of ``text`` (up to its first "; "), cut at a word to ``most`` characters."""
-    first = text.split("; ")[0]
-    return first if len(first) <= most else first[:most].rsplit(" ", 1)[0] + " …"
+def _axes(rows: Sequence[Mapping], limits: Sequence[Mapping]) -> str:
+    """Each axis claim's panel as Typst cells: its printed limits (the scored axes), the run's it judged, its status."""
+    claim, judged = {r["claim_id"]: r for r in rows}, {}
+    for row in limits:
+        judged.setdefault((row["claim_id"], row["figure"], row["panel"]), {})[row["axis"]] = (row["low"], row["high"])
+    cells = []
+    for (claim_id, figure, name), run in judged.items():
+        printed = {axis: a for axis, a in panel(figure, name).axes.items() if a.scored}
+        shown = ["; ".join(f"{a.label}: [{fmt(float(low), 6)}, {fmt(float(high), 6)}]" for a, (low, high) in
+                           zip(printed.values(), ends)) for ends in ([(a.low, a.high) for a in printed.values()],
+                                                                     [run[axis] for axis in printed])]
+        cells.append(f"[{typ(claim[claim_id]['source'])}], [{typ(shown[0])}], [{typ(shown[1])}], "
+                     f"[{typ(claim[claim_id]['status'].replace('_', ' '))}]")
+    return ",\n".join(cells)
 
 
-def _cell(markdown: str) -> str:
-    """A cell of the documents' Markdown tables (bold, ``<br>`` breaks) as Typst markup."""
-    return " #linebreak() ".join(typ(part) for part in markdown.replace("**", "").split("<br>"))
+def _readings(scores: Sequence[Mapping]) -> str:
+    """The candidate readings each printed panel's axes support best (and Fig. 4's two panels together) as Typst
+    cells: the best score, and the readings tied at it, equivalent ones joined by ``=``."""
+    candidates = panel_candidates(scores)
+    if any(figure == "4" for figure, _ in candidates):
+        candidates[("4", "both panels")] = joint_candidates(scores, "4")
+    cells = []
+    for (figure, name), c in sorted(candidates.items(), key=lambda item: item[0][0]):
+        best, groups = c.tied()
+        lead = (f"undetermined: {len(groups)} readings tie, plotting different values" if len(groups) > 1 else
+                "one reading" if len(groups[0]) == 1 else f"{len(groups[0])} equivalent readings (identical values)")
+        cells.append(f"[{typ(figure)} {typ(name)}], [{typ(summary(c)[0])}], [{typ(lead)} of {len(c.scores)}:"
+                     + "".join(f" #linebreak() {typ(' = '.join(group))}" for group in groups) + "]")
+    return ",\n".join(cells)
 
 
-def _tables(rows: Sequence[Mapping], readings: Sequence[Mapping]) -> dict[str, str]:
-    """The tables of the article as Typst cells: the candidate readings of each printed panel that its axes support
-    best (``readings``, :func:`escapement.verdict.scores.best_readings_table`), the printed axes beside the run's
-    (the limits the adopted reading gives, autoscaled as printed), and the findings by section, each with what the
-    run found."""
-    axes = [r for r in rows if r["source"].startswith("Fig.") and r["origin"] == "paper"]
-    found = findings(rows)
-    return {
-        "readings": ",\n".join(f"[{typ(r['figure'])} {typ(r['panel'])}], [{_cell(r['limits reproduced'])}], "
-                               f"[{_cell(r['best-supported readings'])}]" for r in readings),
-        "axes": ",\n".join(f"[{typ(r['source'])}], [{typ(r['paper_value'])}], "
-                           f"[{typ(re.split(r' [(][0-9]+ of [0-9]+ printed limits[)]', r['replicated_value'])[0])}], "
-                           f"[{typ(r['status'].replace('_', ' '))}]"
-                           for r in axes),
-        "findings": ",\n".join(f"[{typ(parts[0]['source'])}], [{typ(parts[0]['statement'])}], "
-                               f"[{typ(_short(parts[0]['replicated_value']))}], [{typ(status.replace('_', ' '))}]"
-                               for status, parts in found.values()),
-    }
-
-
-def write_article(rows: Sequence[Mapping], facts: Mapping[str, str], readings: Sequence[Mapping],
-                  inputs: Mapping[str, str], outputs: Mapping[str, str]) -> str:
-    """Write ``metadata.yaml``, ``article.typ``, ``article.bib`` and ``article.pdf`` (the keys ``metadata``,
-    ``source``, ``bibliography`` and ``pdf`` of ``outputs``) from the claims table's ``rows``, the documents'
-    ``facts``, the best-supported ``readings`` of each printed panel and the files of ``inputs``: the checks
-    dataset, ``CITATION.cff``, the template, the bibliography and the figures (``figure_<name>``, the SVG the
-    plotting jobs drew, which the source names by their path). Returns the title."""
+def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[str, str], log: str) -> str:
+    """The job of rule ``render_article``: write ``metadata.yaml``, ``article.typ``, ``article.bib`` and
+    ``article.pdf`` (the keys ``metadata``, ``source``, ``bibliography`` and ``pdf`` of ``outputs``) from the files
+    of ``inputs``: the claims table and the axis limits beside it (``claims``, ``limits``), the ``checks`` dataset,
+    the ``readings``' scores, the ``benchmark``, the ``citation``, the ``template``, the ``bibliography`` and the
+    ``figures`` (the SVG the plotting jobs drew, which the source names by their path). Returns the title."""
     import typst
 
-    figures = {name: inputs[f"figure_{name}"] for name in ARTICLE_FIGURES}
-    counts, n_findings, n_rows = _counts(rows)
-    citation = yaml.safe_load(Path(inputs["citation"]).read_text(encoding="utf-8"))
-    original = next(r for r in citation["references"] if r.get("doi"))
-    title = f"{prefix(counts)} {original['title']}"
-    abstract = (
-        f"We replicate J. Mao, Y. Fu and P. Li, \"{original['title']}\" ({original['journal']}, "
-        f"{original['year']}), with an exact event-driven solver of its piecewise-linear model and a register of "
-        f"the paper's claims, each checked under every reading its words admit. Of the {n_findings} sentences "
-        f"the register quotes, {counts['reproduced']} are reproduced, {counts['consistent']} consistent, "
-        f"{counts['partially_reproduced']} partially reproduced, {counts['not_reproduced']} not reproduced, "
-        f"{counts['undetermined']} undetermined and {counts['untestable']} untestable.")
-    meta = metadata(citation, title, abstract)
-    names = {"meta": {k: typ(v) if isinstance(v, str) else v for k, v in meta.items()},
-             "literal": {k: string(v) for k, v in meta.items() if isinstance(v, str)},
-             "author_literals": [string(a["name"]) for a in meta["authors"]],
-             "count": {k: str(v) for k, v in counts.items()}, "n_findings": str(n_findings), "n_rows": str(n_rows),
-             "rule": typ(RULE), "number": {k: typ(v) for k, v in _numbers(rows, read_netcdf(inputs["checks"]),
-                                                                         facts).items()},
-             "verdict": {r["claim_id"]: typ(r["status"].replace("_", " ")) for r in rows},
-             "table": _tables(rows, readings), "authors": [typ(a["name"]) for a in meta["authors"]],
-             # the figures as the plotting jobs drew them, by their path from the source
-             "figure": {name: string(os.path.relpath(path, Path(outputs["source"]).parent))
-                        for name, path in figures.items()}}
-    environment = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
-                                     autoescape=False)
-    source = environment.from_string(Path(inputs["template"]).read_text(encoding="utf-8")).render(names)
-    root = Path(os.path.commonpath([Path(p).resolve() for p in (outputs["source"], *figures.values())]))
-    write_text(Path(inputs["bibliography"]).read_text(encoding="utf-8"), outputs["bibliography"])
-    write_text(yaml.safe_dump(meta, sort_keys=False, allow_unicode=True, width=100), outputs["metadata"])
-    write_text(source, outputs["source"])
-    with replaced(outputs["pdf"]) as tmp:
-        typst.compile(str(outputs["source"]), output=str(tmp), root=str(root), pdf_standards="a-2b",
-                      ignore_system_fonts=True)  # its date the run's: publish compares the sources
+    with logged(log, "render_article") as logger:
+        rows, figures = read_claims(inputs["claims"]), {Path(path).stem: path for path in inputs["figures"]}
+        found = findings(rows)
+        counts = {s: sum(status == s for status, _ in found.values()) for s in ORDER}
+        citation = yaml.safe_load(Path(inputs["citation"]).read_text(encoding="utf-8"))
+        original = next(r for r in citation["references"] if r.get("doi"))
+        title = f"{prefix(counts)} {original['title']}"
+        meta = metadata(citation, title, (
+            f"We replicate J. Mao, Y. Fu and P. Li, \"{original['title']}\" ({original['journal']}, "
+            f"{original['year']}), with an exact event-driven solver of its piecewise-linear model and a register of "
+            f"the paper's claims, each checked under every reading its words admit. Of the {len(found)} sentences "
+            f"the register quotes, {counts['reproduced']} are reproduced, {counts['consistent']} consistent, "
+            f"{counts['partially_reproduced']} partially reproduced, {counts['not_reproduced']} not reproduced, "
+            f"{counts['undetermined']} undetermined and {counts['untestable']} untestable."))
+        names = {"meta": {k: typ(v) if isinstance(v, str) else v for k, v in meta.items()},
+                 "literal": {k: string(v) for k, v in meta.items() if isinstance(v, str)},
+                 "author_literals": [string(a["name"]) for a in meta["authors"]],
+                 "keyword_literals": [string(k) for k in keywords(citation)],
+                 "authors": [typ(a["name"]) for a in meta["authors"]], "rule": typ(RULE),
+                 "count": {k: str(v) for k, v in counts.items()}, "n_findings": str(len(found)),
+                 "n_rows": str(sum(len(parts) for _, parts in found.values())),
+                 "number": _numbers(read_netcdf(inputs["checks"]), read_work_precision(inputs["benchmark"])),
+                 "verdict": {r["claim_id"]: typ(r["status"].replace("_", " ")) for r in rows},
+                 "table": {"axes": _axes(rows, read_csv(inputs["limits"], LIMIT_COLUMNS)),
+                           "readings": _readings(read_scores(inputs["readings"])),
+                           "findings": ",\n".join(f"[{typ(parts[0]['source'])}], [{typ(parts[0]['statement'])}], "
+                                                  f"[{typ(status.replace('_', ' '))}]" for status, parts in
+                                                  found.values())},
+                 # the figures as the plotting jobs drew them, by their path from the source
+                 "figure": {name: string(os.path.relpath(path, Path(outputs["source"]).parent))
+                            for name, path in figures.items()}}
+        environment = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
+                                         autoescape=False)
+        source = environment.from_string(Path(inputs["template"]).read_text(encoding="utf-8")).render(names)
+        root = Path(os.path.commonpath([Path(p).resolve() for p in (outputs["source"], *figures.values())]))
+        write_text(Path(inputs["bibliography"]).read_text(encoding="utf-8"), outputs["bibliography"])
+        write_text(yaml.safe_dump(meta, sort_keys=False, allow_unicode=True, width=100), outputs["metadata"])
+        write_text(source, outputs["source"])
+        with replaced(outputs["pdf"]) as tmp:
+            typst.compile(str(outputs["source"]), output=str(tmp), root=str(root), pdf_standards="a-2b",
+                          ignore_system_fonts=True)  # its date the run's: publish compares the sources
+        logger.info("the article: %s", title)
     return title

@@ -1,9 +1,9 @@
 """The verdict: the claims register evaluated on the replication's netCDF outputs, written as
-``results/replication/claims.csv``.
+``results/replication/claims.csv``, and beside it the axis limits its axis claims judged
+(``results/replication/panel_limits.csv``), which the documents read as numbers (:mod:`.tables`).
 
-:func:`check_claims` is the job of the workflow rule ``check_claims``; the documents read the table back
-(:func:`escapement.pipeline.tables.read_claims`).  A check that fails makes the job fail, naming the claim
-(:class:`escapement.verdict.engine.ClaimError`); it never becomes a row of the table.
+A check that fails makes the job fail, naming the claim (:class:`escapement.verdict.engine.ClaimError`); it never
+becomes a row of the table.
 """
 
 from __future__ import annotations
@@ -15,34 +15,35 @@ from ..plotting.autoscale import VARIANTS
 from ..plotting.panel_axes import scene_axes
 from ..verdict.engine import COLUMNS, SCHEMA, evaluate, load_claims
 from ..verdict.evidence import Evidence
-from .logs import logged
 from ..verdict.scores import CLAIM_AUTOSCALE, panel_candidates, read_scores
+from .logs import logged
+from .tables import LIMIT_COLUMNS
 
 __all__ = ["check_claims"]
 
 
 def check_claims(
     register: str, fig3: Mapping[str, str], fig4: str, fig5: Mapping[str, str], checks: str, readings: str,
-    output: str, log: str, schema: str = SCHEMA, settings: Mapping | None = None,
+    output: str, limits: str, log: str, schema: str = SCHEMA, settings: Mapping | None = None,
 ) -> None:
-    """Evaluate the register on the outputs (``fig3`` and ``fig5`` keyed by their configured labels)
-    and the score table of the candidate readings (``readings``), the runs the register names taken from
-    ``settings`` (the configuration's ``model`` and ``checks`` blocks), and write the table; raise, naming
-    the claim, when a check fails (a variable an output lacks among the causes)."""
+    """The job of rule ``check_claims``: evaluate the register on the outputs (``fig3`` and ``fig5`` keyed by their
+    configured labels) and the score table of the candidate readings (``readings``), the runs the register names
+    taken from ``settings`` (the configuration's ``model`` and ``checks`` blocks), and write the table to
+    ``output``, and to ``limits`` the limits of each printed panel a claim's args name (``figure``, ``panel``) as it
+    judged them; raise, naming the claim, when a check fails (a variable an output lacks among the causes)."""
     with logged(log, "check_claims") as logger:
-        fig3_data = {label: read_netcdf(path) for label, path in fig3.items()}
+        fig3_data, fig5_data = ({label: read_netcdf(path) for label, path in paths.items()} for paths in (fig3, fig5))
         fig4_data = read_netcdf(fig4)
-        fig5_data = {label: read_netcdf(path) for label, path in fig5.items()}
-        evidence = Evidence(
-            fig3=fig3_data,
-            fig4=fig4_data,
-            fig5=fig5_data,
-            checks=read_netcdf(checks),
-            axes=scene_axes(fig3_data, fig4_data, fig5_data, VARIANTS[CLAIM_AUTOSCALE]),
-            readings=panel_candidates(read_scores(readings)),
-        )
-        rows = evaluate(load_claims(register, schema, settings), evidence)
+        evidence = Evidence(fig3=fig3_data, fig4=fig4_data, fig5=fig5_data, checks=read_netcdf(checks),
+                            axes=scene_axes(fig3_data, fig4_data, fig5_data, VARIANTS[CLAIM_AUTOSCALE]),
+                            readings=panel_candidates(read_scores(readings)))
+        claims = load_claims(register, schema, settings)
+        panels = dict.fromkeys((claim["id"], str(r["args"]["figure"]), str(r["args"]["panel"])) for claim in claims
+                               for r in claim["readings"] if {"figure", "panel"} <= set(r["args"]))
+        rows = evaluate(claims, evidence)
         for row in rows:
             logger.info("%s: %s: %s", row["claim_id"], row["status"], row["replicated_value"])
         write_csv(rows, COLUMNS, output)
-
+        write_csv([{"claim_id": claim, "figure": figure, "panel": panel, "axis": axis, "low": float(low),
+                    "high": float(high)} for claim, figure, panel in panels
+                   for axis, (low, high) in evidence.axes[(figure, panel)].items()], LIMIT_COLUMNS, limits)

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from ..model.status import succeeded
 from ..verdict.evidence import fmt
 
 __all__ = ["collect_facts"]
@@ -19,20 +20,18 @@ def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: x
     """The deterministic facts and the measured ones, each by its name in the templates."""
     facts: dict[str, str] = {}
     measured: dict[str, str] = {}
-    exact = next(row for row in benchmark_rows if row["method"] == "exact")
+    exact = next(float(row["wall_s"]) for row in benchmark_rows if row["method"] == "exact")
     for row in benchmark_rows:
         key = f"bench_{row['method']}_{row['setting'] or 'none'}".replace("-", "_").replace(".", "p")
-        measured[f"{key}_wall"] = fmt(float(row["wall_s"]), 3)
-        measured[f"{key}_ratio"] = fmt(float(row["wall_s"]) / float(exact["wall_s"]), 3)
-        facts[f"{key}_error_velocity"] = fmt(float(row["error_velocity"]), 2)
-        facts[f"{key}_error_time"] = fmt(float(row["error_time"]), 2)
+        wall = float(row["wall_s"])
+        measured.update({f"{key}_wall": fmt(wall, 3), f"{key}_ratio": fmt(wall / exact, 3)})
+        facts.update({f"{key}_error_{of}": fmt(float(row[f"error_{of}"]), 2) for of in ("velocity", "time")})
     slowest = max(float(r["wall_s"]) for r in benchmark_rows if r["method"] not in ("exact", "map16"))
-    measured["bench_slowest_ratio"] = fmt(slowest / float(exact["wall_s"]), 3)
+    measured["bench_slowest_ratio"] = fmt(slowest / exact, 3)
 
     a = long_run.attrs
     facts.update(
-        long_n_cycles=f"{int(a['n_cycles']):,}".replace(",", " "),
-        long_ivp_cycles=str(int(a["ivp_cycles"])),
+        long_n_cycles=f"{int(a['n_cycles']):,}".replace(",", " "), long_ivp_cycles=str(int(a["ivp_cycles"])),
         long_velocity_deviation=fmt(float(long_run["max_velocity_deviation"]), 2),
         long_period_deviation=fmt(float(long_run["max_period_deviation"]), 2),
         long_converged_after=str(int(a["converged_after"])),
@@ -40,24 +39,15 @@ def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: x
         long_nan="none" if not a["any_nan"] else "some",
     )
     for solver in ("exact", "closed_form", "ivp"):
-        drift = long_run[f"drift_{solver}"].dropna("cycle")
-        facts[f"long_{solver}_last_cycle"] = str(int(drift["cycle"].values[-1]))
-        facts[f"long_{solver}_last_drift"] = fmt(abs(float(drift.values[-1])), 2)
+        facts[f"long_{solver}_last_drift"] = fmt(abs(float(long_run[f"drift_{solver}"].dropna("cycle").values[-1])), 2)
         facts[f"long_{solver}_max_error_time"] = fmt(float(long_run[f"error_time_{solver}"].max()), 2)
         measured[f"long_{solver}_wall"] = fmt(long_run_timings[f"{solver}_seconds"], 3)
 
     mu, mu21 = stability["multiplier"].values, stability["multiplier_eq21"].values
-    outcome = stability["outcome"].values
-    completed = outcome == stability["outcome"].attrs["flag_meanings"].split().index("completed")
-    left_b = stability["b"].values[(~completed).any(axis=1)]
-    facts.update(
-        stab_points=f"{outcome.size:,}".replace(",", " "),
-        stab_shape=f"{stability.sizes['b']} x {stability.sizes['F']}",
-        stab_max_deviation=fmt(float(np.nanmax(np.abs(mu - mu21))), 2),
-        stab_completed=str(int(completed.sum())),
-        stab_left=str(int((~completed).sum())),
-        stab_left_b_min=fmt(float(left_b.min()), 4) if left_b.size else "none",
-    )
+    left_b = stability["b"].values[(~succeeded(stability["outcome"].values)).any(axis=1)]
+    facts.update(stab_shape=f"{stability.sizes['b']} x {stability.sizes['F']}",
+                 stab_max_deviation=fmt(float(np.nanmax(np.abs(mu - mu21))), 2),
+                 stab_left_b_min=fmt(float(left_b.min()), 4) if left_b.size else "none")
     t = stability_timings
     measured.update(stab_speedup=fmt(t["ensemble_speedup_per_trajectory"], 3),
                     stab_ensemble_per_trajectory=fmt(t["ensemble_seconds_per_trajectory"], 2),

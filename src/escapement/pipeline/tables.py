@@ -6,13 +6,15 @@ from ..io.netcdf import read_csv
 from ..verdict.engine import COLUMNS
 from .simulate import TIMING_COLUMNS
 
-__all__ = ["SPEED_COLUMNS", "STRESS_COLUMNS", "WORK_PRECISION_COLUMNS", "read_claims", "read_stress", "read_timings",
-           "read_work_precision"]
+__all__ = ["LIMIT_COLUMNS", "SPEED_COLUMNS", "STRESS_COLUMNS", "WORK_PRECISION_COLUMNS", "read_claims", "read_stress",
+           "read_timings", "read_work_precision"]
 
 WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "repeats", "error_velocity", "error_time"]
 #: the speed table: a ratio of two wall times (or of two peak memories) measured side by side
 SPEED_COLUMNS = ["name", "n", "ratio", "time_s", "reference_s", "repeats", "bytes", "reference_bytes", "note"]
 STRESS_COLUMNS = ["case", "regime", "outcome", "check", "passed", "detail"]
+#: beside the verdict's table, the limits each axis claim judged: the run's, autoscaled as printed, per scored axis
+LIMIT_COLUMNS = ["claim_id", "figure", "panel", "axis", "low", "high"]
 
 
 def read_claims(path: str) -> list[dict]:
