@@ -1,12 +1,9 @@
 """The claims register evaluated: each of the paper's claims checked under every reading of its words.
 
-:func:`load_claims` reads ``claims.yaml`` (beside this module) against ``claims.schema.yaml``; :func:`evaluate`
-runs each reading's check, which the register names ``module.function`` (:func:`resolved`, imported only then),
-and gives one row per claim with the columns of :data:`COLUMNS`. A scene or a run that left the escapement
-regime fails the reading with its outcome's message, and the check is not run (:func:`verdict`); a check that
-raises is a defect, never a verdict (:class:`ClaimError`, naming the claim). The status and the kind of evidence
-follow from the outcomes and the checks' declarations by :func:`escapement.verdict.rule.row_status`; rows that
-quote one sentence are its parts and share its finding, named after the first of them.
+:func:`load_claims` reads the register; :func:`evaluate` runs each reading's check (:func:`resolved` from its name,
+``module.function``) and gives one row per claim. A scene or a run that left the escapement regime fails the
+reading with its outcome's message (:func:`left_regime`); a check that raises is a defect, never a verdict
+(:class:`ClaimError`, naming the claim).
 """
 
 from __future__ import annotations
@@ -56,19 +53,17 @@ def resolved(name: str) -> Check:
 
 def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, settings: Mapping | None = None
                 ) -> list[dict]:
-    """The claims of the register at ``path``, checked against ``schema``, each with its ``readings`` (one,
-    ``as stated``, for a claim checked under one reading) and the ``args`` of their ``runs`` taken from
-    ``settings`` (the configuration's ``model`` and ``checks`` blocks). ValueError naming the claim for what the
-    schema cannot say too: two claims with one id, or with one sentence and part; a part alone on its sentence;
-    a reading's words not the paper's; figures tried that leave out a printed figure; a check not named, or
-    lacking its args."""
-    data = yaml.load(Path(path).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
-    error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(
-        yaml.safe_load(Path(schema).read_text())).iter_errors(data))
+    """The claims of the register at ``path``, each with its ``readings`` (one, ``as stated``, for a claim checked
+    under one reading), the ``runs`` of their args taken from ``settings`` (the configuration's ``model`` and
+    ``checks`` blocks); ValueError naming the claim against ``schema`` and what it cannot say (ids, parts, words,
+    figures tried, checks and their args)."""
+    data, schema = (yaml.load(Path(p).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+                    for p in (path, schema))
+    error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(schema).iter_errors(data))
     if error is not None:
         where = list(error.absolute_path)
         claim = data["claims"][where[1]] if where[:1] == ["claims"] and len(where) > 1 else {}
-        name = f"claim '{claim['id']}'" if isinstance(claim, dict) and "id" in claim else "/".join(map(str, where))
+        name = f"claim '{claim['id']}'" if "id" in claim else "/".join(map(str, where))
         message = f"{error.instance!r} is a value this claim may not have" if error.validator is None else error.message
         raise ValueError(f"{path}: {name}: {message} (at {'/'.join(map(str, where[2:])) or 'the claim'})")
     quoted = Counter(claim.get("quote") for claim in data["claims"])
@@ -121,8 +116,8 @@ def _resolved(args: Mapping, settings: Mapping | None, where: str) -> dict:
 
 
 def left_regime(name: str, ds, answers: tuple[str, ...]) -> Verdict | None:
-    """The verdict when the scene ``name``, or a run of a table of runs (a ``case`` dimension), left the
-    escapement regime: an outcome neither completed nor one of the check's ``answers``; else None."""
+    """The verdict when the scene ``name``, or a run of a table of runs, left the escapement regime (an outcome
+    neither completed nor one of the check's ``answers``), else None."""
     if "case" not in ds.dims:
         outcome = ds.attrs["outcome"]
         return None if outcome == COMPLETED else Verdict(
@@ -137,8 +132,7 @@ def left_regime(name: str, ds, answers: tuple[str, ...]) -> Verdict | None:
 
 
 def verdict(claim: Mapping, reading: Mapping, evidence: Evidence) -> Verdict:
-    """The verdict of the check of one ``reading`` of the claim; :class:`ClaimError` naming the claim if the
-    check fails or answers no outcome."""
+    """The verdict of one ``reading`` of the claim; :class:`ClaimError` if its check fails or answers no outcome."""
     check, spec = resolved(reading["check"]), {**claim, **reading}
     try:
         for name, ds in check.scenes(spec, evidence).items():
@@ -164,9 +158,8 @@ def figures_named(text: str) -> set[str]:
 
 def _said(holds) -> str:
     """One reading's outcome in words (a grid's, if the check walked one)."""
-    if isinstance(holds, Mapping):
-        return f"holds under {sum(holds.values())} of the {len(holds)} readings of a grid"
-    return "nothing to compute" if holds is None else "holds" if holds else "fails"
+    return (f"holds under {sum(holds.values())} of the {len(holds)} readings of a grid" if isinstance(holds, Mapping)
+            else "nothing to compute" if holds is None else "holds" if holds else "fails")
 
 
 def _joined(pairs: list[tuple[str, str]]) -> str:

@@ -18,8 +18,6 @@ from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 
 COMPLETED = Status.COMPLETED.value
-#: the steps of a cycle, from the impact at a1
-STEPS = ("zone_right", "a2_to_a3", "zone_left", "a4_to_a1")
 #: every outcome of a run
 OUTCOMES = tuple(s.value for s in Status)
 
@@ -35,30 +33,22 @@ def fmt(x: float, digits: int = 10) -> str:
 
 @dataclass(frozen=True)
 class Candidates:
-    """Every candidate reading of one printed panel, scored against the panel's printed axes.
-
-    ``scores`` counts, per reading (by its name), the printed limits its values reproduce when
-    autoscaled with the printed tick step imposed; ``default_scores`` the same with the plotting
-    program's own choice of tick step; ``equivalent`` groups readings that plot the same values (a
-    mirror image read at the mirrored section, for example), which no axis can tell apart.
-    """
+    """Every candidate reading of one printed panel: per reading, the printed limits its values reproduce when
+    autoscaled with the printed tick step imposed (``scores``) or the plotting program's own (``default_scores``);
+    ``equivalent`` groups readings that plot the same values, which no axis can tell apart."""
 
     out_of: int
     scores: Mapping[str, int]
     default_scores: Mapping[str, int] = field(default_factory=dict)
     equivalent: tuple[tuple[str, ...], ...] = ()
 
-    def tied(self, default: bool = False) -> tuple[int, list[tuple[str, ...]]]:
-        """The best score and the readings tied at it, as groups of equivalent readings (readings that
-        plot the same values form one group; each other reading a group of its own), in the order of
-        the scores; ``default`` for the scores with the plotting program's own tick step. More than one
-        group: the axes cannot tell the readings apart."""
-        scores = self.default_scores if default else self.scores
-        if not scores:
-            raise ValueError("the grid of candidate readings holds no score"
-                             + (" with the default tick step" if default else ""))
-        best = max(scores.values())
-        tied = [name for name, score in scores.items() if score == best]
+    def tied(self) -> tuple[int, list[tuple[str, ...]]]:
+        """The best score (the printed tick step imposed) and the readings tied at it, in groups of equivalent
+        readings, in the order of the scores: more than one group, and the axes cannot tell the readings apart."""
+        if not self.scores:
+            raise ValueError("the grid of candidate readings holds no score")
+        best = max(self.scores.values())
+        tied = [name for name, score in self.scores.items() if score == best]
         group_of = {name: group for group in self.equivalent for name in group}
         groups: list[tuple[str, ...]] = []
         for name in tied:
@@ -85,9 +75,8 @@ class Evidence:
 
 @dataclass(frozen=True)
 class Verdict:
-    """What a check finds under one reading: the replicated value, whether the claim ``holds`` (True or False;
-    a mapping of each reading of a grid the check walks to its outcome; None when nothing can be computed),
-    a note, and the paper's value where the paper gives a formula rather than a number."""
+    """What a check finds under one reading: the replicated value, whether the claim ``holds`` (a bool; per reading of
+    a grid it walks; None, nothing to compute), a note, and the paper's value where it gives a formula."""
 
     replicated_value: str
     holds: bool | None | Mapping[str, bool]
@@ -100,12 +89,10 @@ Scenes = Callable[[Mapping, Evidence], dict[str, xr.Dataset]]
 
 @dataclass(frozen=True)
 class Check:
-    """A check of the register, its function with what it declares (:func:`check`); the register names it
-    ``module.function``. Besides the ``scenes`` it reads and the ``args`` it needs, what it consumes gives the kind
-    of its evidence (:func:`escapement.verdict.rule.evidence_of`): the model's ``law`` it restates, what it reads
-    that was ``fitted`` to the printed axes, the ``threshold`` on the claim's words the register's tolerance sets;
-    and ``answers`` are the outcomes of its runs other than ``completed`` that answer it, not exits from the
-    regime."""
+    """A check of the register (named ``module.function``) and what it declares: the ``scenes`` it reads, the
+    ``args`` it needs, the model's ``law`` it restates, what it reads that was ``fitted`` to the printed axes, the
+    ``threshold`` on the claim's words (these give its kind of evidence, :func:`.rule.evidence_of`), and the
+    outcomes of its runs besides ``completed`` that are its ``answers``, not exits from the regime."""
 
     function: Callable[[Mapping, Evidence], Verdict]
     scenes: Scenes
@@ -138,13 +125,13 @@ def fig3_scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
 
 
 def runs_only(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
-    """No scene dataset: the check reads the runs of the checks dataset, one outcome per run."""
+    """No scene: the check reads runs of its own from the checks dataset (:func:`release_run`, :func:`probe`)."""
     return {}
 
 
 def runs_of(*groups: str) -> Scenes:
-    """The scenes of a check that reads runs of the checks dataset: the groups named here, else those of the claim's
-    ``args`` (``group``, ``groups``, ``by_force`` and ``by_release``); none, every run."""
+    """The runs of the checks dataset a check reads: the groups named here, else those of its ``args`` (``group``,
+    ``groups``, ``by_force``, ``by_release``); none, every run."""
 
     def scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
         args = claim["args"]
@@ -170,7 +157,8 @@ def events_of(ds: xr.Dataset, kind: EventKind) -> np.ndarray:
 def cycle_durations(ds: xr.Dataset) -> dict[str, np.ndarray]:
     """Simulated durations inside each complete cycle: a1 -> a2 -> a3 -> a4 -> a1."""
     t, starts = ds["event_time"].values, events_of(ds, EventKind.IMPACT_A1)[:-1]
-    return {name: t[starts + i + 1] - t[starts + i] for i, name in enumerate(STEPS)}
+    return {name: t[starts + i + 1] - t[starts + i]
+            for i, name in enumerate(("zone_right", "a2_to_a3", "zone_left", "a4_to_a1"))}
 
 
 def successive_ratios(values: np.ndarray) -> np.ndarray:

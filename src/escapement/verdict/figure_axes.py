@@ -23,32 +23,22 @@ def _limits(lo: float, hi: float) -> str:
     return f"[{fmt(lo, 6)}, {fmt(hi, 6)}]"
 
 
-def _fig5_dataset(ev: Evidence, name: str) -> tuple[str, xr.Dataset] | None:
-    for label, ds in ev.fig5.items():
-        if math.isclose(float(ds["K"]), FIG5_PANEL_K[name], rel_tol=1e-12):
-            return label, ds
-    return None
-
-
 def panel_scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     """The output that holds the printed panel of ``args: {figure, panel}``."""
     figure, name = str(claim["args"]["figure"]), str(claim["args"]["panel"])
     if figure == "3":
-        case = name.split("/")[0]
-        return fig3_scenes({"args": {"case": case}}, ev)
+        return fig3_scenes({"args": {"case": name.split("/")[0]}}, ev)
     if figure == "4":
         return {"Fig. 4": ev.fig4}
-    found = _fig5_dataset(ev, name)
-    return {} if found is None else {f"Fig. 5 (K = {found[0]})": found[1]}
+    return {f"Fig. 5 (K = {label})": ds for label, ds in ev.fig5.items()
+            if math.isclose(float(ds["K"]), FIG5_PANEL_K[name], rel_tol=1e-12)}
 
 
 def _reading(figure: str, ds: xr.Dataset) -> str:
     """The reading of the paper's unstated choices that the output was made with."""
-    parts = [f"F = {fmt(float(ds['F']), 4)} N", f"K = {fmt(float(ds['K']), 4)} N/m",
-             f"released from rest at x0 = {fmt(float(ds['x0']), 4)} m"]
-    if figure == "3":
-        parts.append(f"amplitude: {ds.attrs['amplitude_variable']}")
-    return ", ".join(parts)
+    return ", ".join([f"F = {fmt(float(ds['F']), 4)} N", f"K = {fmt(float(ds['K']), 4)} N/m",
+                      f"released from rest at x0 = {fmt(float(ds['x0']), 4)} m"]
+                     + ([f"amplitude: {ds.attrs['amplitude_variable']}"] if figure == "3" else []))
 
 
 def _ties(best: int, out_of: int, groups: list[tuple[str, ...]], n: int) -> str:

@@ -1,8 +1,6 @@
-"""The score table of the readings of the printed axes, read back and summarised per panel: every
-reading tied at the best score, readings that plot the same values grouped as equivalent.
-
-Imports neither the solvers nor matplotlib: the jobs that write the documents and the claims read
-the table that :mod:`escapement.pipeline.readings` wrote.
+"""The score table of the readings of the printed axes (written by :mod:`escapement.pipeline.readings`), read back
+and summarised per panel: every reading tied at the best score, readings that plot the same values grouped as
+equivalent. Imports neither the solvers nor matplotlib.
 """
 
 from __future__ import annotations
@@ -77,10 +75,8 @@ def _equivalent(groups: Mapping[str, str]) -> tuple[tuple[str, ...], ...]:
 
 
 def panel_candidates(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> dict[tuple[str, str], Candidates]:
-    """Every candidate reading of each printed panel, keyed ``(figure, panel)``: the printed limits
-    each reproduces with the printed tick step imposed (``scores``) and with the plotting program's
-    own (``default_scores``), under the margin ``autoscale``, and the groups of readings that plot
-    the same values (``equivalent``)."""
+    """The :class:`~.evidence.Candidates` of each printed panel, keyed ``(figure, panel)``, under the margin
+    ``autoscale``."""
     found = _panel_scores(rows, autoscale)
     return {key: Candidates(out_of=2 * len(p["axes"]), scores=dict(p[PRINTED_STEP]),
                             default_scores=dict(p[DEFAULT_LOCATOR]), equivalent=_equivalent(p["groups"]))
@@ -88,9 +84,8 @@ def panel_candidates(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) 
 
 
 def joint_candidates(rows: Iterable[Mapping], figure: str, autoscale: str = CLAIM_AUTOSCALE) -> Candidates:
-    """The readings of Fig. ``figure`` that every one of its panels scores under one name (a Fig. 4
-    reading names the case, K, release and windows of both panels), scored over all its panels;
-    readings are equivalent when they are in every panel."""
+    """The readings every panel of Fig. ``figure`` scores under one name (a Fig. 4 reading names both panels'
+    scene), scored over all its panels; equivalent when they are in every panel."""
     found = _panel_scores(rows, autoscale)
     panels = [p for (fig, _), p in found.items() if fig == str(figure)]
     if not panels:
@@ -119,20 +114,16 @@ def summary(candidates: Candidates) -> tuple[str, str]:
 
 
 def best_readings_table(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> list[dict[str, str]]:
-    """One row per printed panel for the documents (and one for Fig. 4's two panels together, whose
-    readings are scored under one name): its printed limits, the best score with the printed tick
-    step imposed and with the default locator, and every reading tied at the best, equivalent
-    readings joined by ``=``."""
-    rows = list(rows)
-    table = []
+    """One row per printed panel for the documents (and one for Fig. 4's two panels together): its printed limits
+    and :func:`summary` of its readings."""
+    rows, table = list(rows), []
     for (figure, name), c in panel_candidates(rows, autoscale).items():
         printed = next(p for p in PANELS if (p.figure, p.name) == (figure, name))
         limits = "; ".join(f"{axis} {a.low:g} to {a.high:g}" for axis, a in printed.axes.items() if a.scored)
         score, readings = summary(c)
         table.append({"figure": figure, "panel": name, "printed limits": limits, "limits reproduced": score,
                       "best-supported readings": readings})
-    figures = {row["figure"] for row in table}
-    if "4" in figures:
+    if "4" in {row["figure"] for row in table}:
         score, readings = summary(joint_candidates(rows, "4", autoscale))
         at = max(i for i, row in enumerate(table) if row["figure"] == "4") + 1
         limits = "; ".join(f"{row['panel']}: {row['printed limits']}" for row in table if row["figure"] == "4")

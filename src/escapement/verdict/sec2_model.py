@@ -17,8 +17,7 @@ def phase_shares(ds: xr.Dataset) -> dict[str, float]:
     advances at ``w``: ``T = 2 pi/w + impacts + impulses + drift``, the phase the two impacts step back, each zone's
     time less its phase advance, and the phase the cycle's end lacks from its start (each over ``w``); ``residual``
     is the simulated period less that sum."""
-    p = params_of(ds)
-    w = p.omega
+    p, w = params_of(ds), params_of(ds).omega
     t, x = ds["event_time"].values, ds["event_position"].values
     before, after = ds["event_velocity_before"].values, ds["event_velocity_after"].values
     start = events_of(ds, EventKind.IMPACT_A1)[-2]
@@ -37,8 +36,7 @@ def phase_shares(ds: xr.Dataset) -> dict[str, float]:
     impulses = sum((t[i + 1] - t[i]) - turned(phase(i, after[i]), phase(i + 1, before[i + 1])) / w
                    for i in (start, start + 2))
     end = start + 4
-    drift = turned(phase(start, before[start]), phase(end, before[end])) / w
-    period = t[end] - t[start]
+    drift, period = turned(phase(start, before[start]), phase(end, before[end])) / w, t[end] - t[start]
     return {"period": period, "natural": p.natural_period, "impacts": float(impacts), "impulses": float(impulses),
             "drift": drift, "residual": period - (p.natural_period + impacts + impulses + drift)}
 

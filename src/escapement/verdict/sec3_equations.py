@@ -1,11 +1,6 @@
-"""The checks of Eqs. (2)-(5) and of the words of Sec. 3.3: the model's definitions, the system
-called linear, and the existence and uniqueness of its solution.
-
-The model is built from the impact matrix (3c), the jump set (4), the impulse set S2 of (5) read as "after the
-impact" and the mode equations (A-1), (A-3), (A-5): the checks on them restate the law they name (by construction).
-The state matrix (3a) is printed with -omega_n where the motion needs -omega_n**2, the complement S1 u S2 of (5)
-misses states every cycle passes through, and g of (2) is a function of the state, not of time: each is checked
-against the exact motion. That A y + g is Lipschitz near an initial state is checked on the paper's own A and g.
+"""The checks of Eqs. (2)-(5) and of the words of Sec. 3.3: the model's definitions (the impact matrix, the jump
+set, the impulse set and the modes restate the law the model is built on), the state matrix, the complement of the
+jump set and g against the exact motion, the system called linear, and the existence and uniqueness of its solution.
 """
 
 from __future__ import annotations
@@ -27,9 +22,8 @@ A1, A2, A3, A4 = (int(k) for k in (EventKind.IMPACT_A1, EventKind.ZONE_END_A2, E
 
 
 def arc_invariant_error(p: Parameters, kind, x, v_after, v_before, stiffness: float, free_only: bool) -> float:
-    """The largest relative change, over the arcs between successive events, of ``v**2 + k (x - c)**2``, the
-    invariant of ``x'' = -k (x - c)`` with ``k`` = ``stiffness`` and ``c`` the arc's centre (0 in free flight,
-    ``sigma f / k`` after an impact); ``free_only`` for the free arcs alone."""
+    """The largest relative change over the arcs between events (``free_only``: the free ones) of ``v**2 + k (x -
+    c)**2``, the invariant of ``x'' = -k (x - c)``, ``k`` the ``stiffness`` and ``c`` the arc's centre."""
     sigma = {A1: 1.0, A3: -1.0, A2: 0.0, A4: 0.0}
     worst = 0.0
     for i in range(len(kind) - 1):
@@ -44,9 +38,8 @@ def arc_invariant_error(p: Parameters, kind, x, v_after, v_before, stiffness: fl
 
 
 def g_eq3b(p: Parameters, x, v) -> np.ndarray:
-    """The second entry of g of Eq. (3b) at the states (x, v): sigma f on S2 of Eq. (5) read as regions of the
-    state space (x in (a1, a2) moving right, sigma = +1; x in (a4, a3) moving left, sigma = -1), 0 elsewhere;
-    sigma f is the model's force in the zone's mode, omega_n^2 times the mode's centre."""
+    """The second entry of g of Eq. (3b) at the states (x, v): sigma f on S2 of Eq. (5) read as regions of the state
+    space (x in (a1, a2) moving right, sigma = +1; x in (a4, a3) moving left, sigma = -1), 0 elsewhere."""
     x, v = np.asarray(x, dtype=float), np.asarray(v, dtype=float)
     mode = np.select([(v > 0) & (x > p.a1) & (x < p.a2), (v < 0) & (x > p.a4) & (x < p.a3)],
                      [int(Mode.ZONE_RIGHT), int(Mode.ZONE_LEFT)], int(Mode.FREE))
@@ -54,10 +47,9 @@ def g_eq3b(p: Parameters, x, v) -> np.ndarray:
 
 
 def lipschitz_quotients(p: Parameters, x0: float, v0: float, radius: float, n: int = 21) -> tuple[float, float]:
-    """Over an ``n`` x ``n`` grid of the states in the square of half-width ``radius`` about (x0, v0): the largest
-    ``|g(y1) - g(y2)|`` and the largest ``|h(y1) - h(y2)| / |y1 - y2|`` for ``h(y) = A y + g(y)``, with A of Eq. (3a)
-    as the motion has it, ``[[0, 1], [-omega_n^2, 0]]``, and g of Eq. (3b) (:func:`g_eq3b`). The differences are
-    taken as ``A (y1 - y2) + g(y1) - g(y2)`` from the offsets, free of cancellation."""
+    """Over an ``n`` x ``n`` grid of the square of half-width ``radius`` about (x0, v0): the largest ``|g(y1) - g(y2)|``
+    and the largest ``|h(y1) - h(y2)| / |y1 - y2|``, ``h(y) = A y + g(y)`` with A = ``[[0, 1], [-omega_n^2, 0]]`` and
+    g of :func:`g_eq3b`, the differences taken from the offsets, free of cancellation."""
     offset = np.linspace(-radius, radius, n)
     dx, dv = (a.ravel() for a in np.meshgrid(offset, offset))
     g = g_eq3b(p, x0 + dx, v0 + dv)
@@ -77,8 +69,7 @@ def _events(ds) -> tuple:
 
 
 def _short_run(ev: Evidence, case: str, K: float, x0: float) -> dict[str, np.ndarray]:
-    """The events (``time``, ``kind``, ``position``, ``velocity_before``, ``velocity_after``) of the checks
-    dataset's short run of the Fig. 3 case at ``K`` from rest at ``x0``, over three cycles."""
+    """The events of the checks dataset's short run (three cycles) of the Fig. 3 case at ``K`` from rest at ``x0``."""
     made = ev.checks["short_K"].attrs
     if (made["case"], int(made["n_cycles"])) != (case, 3):
         raise ValueError(f"the checks dataset's short runs are of case {made['case']} over {made['n_cycles']} cycles")
@@ -186,13 +177,10 @@ def complement_sets(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes, args=("case", "releases"))
 def autonomous(claim, ev: Evidence) -> Verdict:
-    """g is a function of time alone when every solution has the force switched on at the same times: two
-    releases of one system (args ``releases``) are compared, impulse by impulse."""
-    ds = ev.fig3[claim["args"]["case"]]
-    p = params_of(ds)
-    starts = []
+    """g is a function of time alone when two ``releases`` of one system switch the force on at the same times."""
+    K, starts = float(ev.fig3[claim["args"]["case"]]["K"]), []
     for x0 in claim["args"]["releases"]:
-        e = _short_run(ev, str(claim["args"]["case"]), p.K, float(x0))
+        e = _short_run(ev, str(claim["args"]["case"]), K, float(x0))
         starts.append(e["time"][(e["kind"] == A1) | (e["kind"] == A3)][:4])
     worst = float(np.max(np.abs(starts[0] - starts[1])))
     return Verdict(
@@ -208,12 +196,9 @@ def autonomous(claim, ev: Evidence) -> Verdict:
 @check(scenes=fig3_scenes, args=("at",),
        law="A of Eq. (3a) with omega_n^2 and g of Eq. (3b) on the sets of Eq. (5), which the model's modes restate")
 def lipschitz_near(claim, ev: Evidence) -> Verdict:
-    """A y + g is Lipschitz in a neighbourhood of the initial state y0, for each Fig. 3 case. ``at: release``: y0
-    the release at rest (x0, 0), over the square of half-width just under the distance from x0 to the impulse
-    zones (closed form; from a release inside a zone, the half-widths below). ``at: zone_end``: y0 the state at
-    a2 moving right of the last cycle (the end of the zone (a1, a2)), over squares of half-width ``radii`` (args,
-    default 1e-2, 1e-4, 1e-6 m). Holds when g is constant there and the largest quotient is ||A|| =
-    max(1, omega_n^2) (within the tolerance, relative)."""
+    """A y + g is Lipschitz near y0 in each Fig. 3 case: g constant and the largest quotient ||A|| = max(1, omega_n^2)
+    (within the tolerance, relative), y0 the release (``at: release``, over a square reaching just short of the
+    impulse zones) or the end of the zone (a1, a2) on the last cycle (``at: zone_end``, half-widths ``radii``)."""
     at, parts, holds = claim["args"]["at"], [], True
     if at not in ("release", "zone_end"):
         raise ValueError(f"at = {at!r} must be release or zone_end")
@@ -222,8 +207,7 @@ def lipschitz_near(claim, ev: Evidence) -> Verdict:
         norm = max(1.0, p.omega2)
         if at == "release":
             y0 = (float(ds["x0"]), 0.0)
-            zones = [(p.a1, p.a2), (p.a4, p.a3)]
-            reach = min(max(lo - y0[0], y0[0] - hi, 0.0) for lo, hi in zones)
+            reach = min(max(lo - y0[0], y0[0] - hi, 0.0) for lo, hi in [(p.a1, p.a2), (p.a4, p.a3)])
             radii = [reach * (1 - 1e-9)] if reach > 0 else [1e-2, 1e-4, 1e-6]
         else:
             ends = np.flatnonzero(ds["event_kind"].values == A2)
@@ -247,10 +231,9 @@ def lipschitz_near(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes, args=("claim",))
 def piecewise_linear(claim, ev: Evidence) -> Verdict:
-    """The whole system is linear only if its return map is affine in v, whose successive differences then
-    shrink by one constant ratio, its slope: the ratios measured on the Fig. 3 transients are compared, and a
-    spread beyond the tolerance shows the whole is not linear. ``args: {claim: linear}`` holds when the spread is
-    within the tolerance, ``nonlinear`` when it is beyond."""
+    """The whole system is linear only if its return map is affine in v, its successive differences shrinking by one
+    ratio: ``claim: linear`` holds when the ratios' spread on the Fig. 3 transients is within the tolerance,
+    ``nonlinear`` when beyond."""
     parts, spread = [], 0.0
     for label, ds in ev.fig3.items():
         v = ds["velocity_before_impact"].values
@@ -261,20 +244,16 @@ def piecewise_linear(claim, ev: Evidence) -> Verdict:
         parts.append(f"case {label}: slope of the return map {fmt(in_v.min(), 5)} to {fmt(in_v.max(), 5)} over "
                      f"{len(in_v) + 2} transient cycles (ratio in v^2 {fmt(in_v2.min(), 6)} to {fmt(in_v2.max(), 6)})")
     linear = within(spread, claim["tolerance"])
-    return Verdict(
-        "; ".join(parts), linear if claim["args"]["claim"] == "linear" else not linear,
-        note=(f"the return map's slope in v changes by {fmt(spread, 3)} along the transient (an affine map has one "
-              "slope), while the map is affine in v^2: the system is piecewise linear, switched at events whose times "
-              "depend on the state"),
-    )
+    return Verdict("; ".join(parts), linear if claim["args"]["claim"] == "linear" else not linear, note=(
+        f"the return map's slope in v changes by {fmt(spread, 3)} along the transient (an affine map has one slope), "
+        "while the map is affine in v^2: the system is piecewise linear, switched at events whose times depend on the "
+        "state"))
 
 
 def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> Verdict:
-    """``rows``: per offset ``delta`` of the release from the grazing one, ``above`` (released at
-    ``-A (1 + delta)``: its ``outcome`` and ``v_next``, the velocity before its second impact at a1) and
-    ``below`` (at ``-A (1 - delta)``: its ``outcome``). Holds when the run above at the smallest ``delta``
-    continues to the closed-form continuation ``limit``: one continuation from the grazing state, the strict
-    jump set x xdot < 0 counting a touch at rest as no impact."""
+    """Holds when, of the runs released ``delta`` above and below the grazing release (``rows``: each ``outcome``,
+    and ``v_next`` before the second impact at a1), the one above at the smallest ``delta`` continues to the
+    closed-form continuation ``limit``."""
     smallest = min(rows, key=lambda r: r["delta"])
     error = abs(smallest["above"]["v_next"] - limit) / limit
     text = "; ".join(
@@ -296,13 +275,11 @@ def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     p = model_of(args, args["F"])
     release = grazing_release(p)
-
-    def run(x0: float) -> dict:
-        found = release_run(ev, p, x0, args["n_cycles"])
-        return {"outcome": found["outcome"], "v_next": found["next_velocity"]}
-
-    rows = [{"delta": float(d), "above": run(-release * (1 + float(d))), "below": run(-release * (1 - float(d)))}
-            for d in args["deltas"]]
+    runs = {x0: release_run(ev, p, x0, args["n_cycles"]) for d in args["deltas"]
+            for x0 in (-release * (1 + float(d)), -release * (1 - float(d)))}
+    rows = [{"delta": float(d), **{side: {"outcome": runs[x0]["outcome"], "v_next": runs[x0]["next_velocity"]}
+                                   for side, x0 in (("above", -release * (1 + float(d))),
+                                                    ("below", -release * (1 - float(d))))}} for d in args["deltas"]]
     verdict = grazing_verdict(rows, grazing_limit(p), claim["tolerance"])
     return Verdict(f"grazing release A = {fmt(release)} m (closed form); " + verdict.replicated_value, verdict.holds,
                    note=verdict.note, paper_value=verdict.paper_value)

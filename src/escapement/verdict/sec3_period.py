@@ -1,7 +1,6 @@
-"""The checks of the period formulas, Eqs. (22)-(25): each printed form against the simulated step
-durations and periods of Fig. 3; (22e)-(25) under each convention the paper uses
-(:mod:`escapement.paper.conventions`): a printed formula holds when one of them reproduces it, and one equation is
-read under one convention for all its forms.
+"""The checks of the period formulas, Eqs. (22)-(25), against the simulated step durations and periods of Fig. 3;
+(22e)-(25) hold when one convention of the paper (:mod:`escapement.paper.conventions`) reproduces them, one equation
+read in one convention for all its forms.
 """
 
 from __future__ import annotations
@@ -19,37 +18,35 @@ from .evidence import Evidence, Verdict, check, cycle_durations, fig3_scenes, fm
 def eq22_abcd(claim, ev: Evidence) -> Verdict:
     worst = 0.0
     for ds in ev.fig3.values():
-        p = params_of(ds)
-        durations = cycle_durations(ds)
-        v = ds["velocity_before_impact"].values
+        p, durations, v = params_of(ds), cycle_durations(ds), ds["velocity_before_impact"].values
         for k in range(len(durations["zone_right"])):
             h0 = math.hypot(p.a1, v[k] / p.omega)
             times = pe.step_times_22(v[k], p, h0)
-            worst = max(worst, rel(times["22b"], durations["zone_right"][k]))
-            worst = max(worst, rel(times["22c"] + times["22d"], durations["a2_to_a3"][k]))
+            worst = max(worst, rel(times["22b"], durations["zone_right"][k]),
+                        rel(times["22c"] + times["22d"], durations["a2_to_a3"][k]))
             if k > 0:  # step 1 ends at the impact of cycle k, after the left swing of cycle k - 1
-                left = durations["a4_to_a1"][k - 1] - math.acos(-p.a4 / h0) / p.omega
-                worst = max(worst, rel(times["22a"], left))
+                worst = max(worst, rel(times["22a"], durations["a4_to_a1"][k - 1] - math.acos(-p.a4 / h0) / p.omega))
     return Verdict(
         f"max relative difference {fmt(worst, 2)} against the simulated step durations (Fig. 3 {', '.join(ev.fig3)})",
-        within(worst, claim["tolerance"]),
-        note="(22a) is compared with the time from the left turning point to a1",
-        paper_value="Eqs. (22a)-(22d)",
-    )
+        within(worst, claim["tolerance"]), note="(22a) is compared with the time from the left turning point to a1",
+        paper_value="Eqs. (22a)-(22d)")
+
+
+def _last_cycle(claim, ev: Evidence) -> tuple:
+    """The Fig. 3 case of ``args: {case}``, its model and its last velocity before the impact at a1."""
+    ds = ev.fig3[claim["args"]["case"]]
+    return ds, params_of(ds), float(ds["velocity_before_impact"].values[-1])
 
 
 @check(scenes=fig3_scenes, args=("case",))
 def eq22e(claim, ev: Evidence) -> Verdict:
-    case = claim["args"]["case"]
-    ds = ev.fig3[case]
-    p = params_of(ds)
-    velocity = derived.cycle_velocities(float(ds["velocity_before_impact"].values[-1]), p)
-    simulated = float(cycle_durations(ds)["zone_left"][-1])
+    ds, p, v1 = _last_cycle(claim, ev)
+    velocity, simulated = derived.cycle_velocities(v1, p), float(cycle_durations(ds)["zone_left"][-1])
     trials = second_half_trials(p, velocity, simulated, claim["tolerance"], pe.zone_left_time_22e)
     holds, note = conventions_verdict(trials, f"the simulated impulse time {fmt(simulated)} s", "Eq. (22e)")
     if not holds:
         note += "; (22e) needs + acos((a4 + f/w^2)/h3) instead of -, the mirror image of (22b)"
-    return Verdict(f"{fmt(simulated)} s (simulated, last cycle of case {case})", holds, note=note,
+    return Verdict(f"{fmt(simulated)} s (simulated, last cycle of case {claim['args']['case']})", holds, note=note,
                    paper_value=f"{fmt(trials[0].value)} s as read")
 
 
@@ -78,13 +75,10 @@ def _terms_23(p, velocity, reading: Reading) -> dict[str, float]:
 def eq23(claim, ev: Evidence) -> Verdict:
     """Eq. (23) on the last cycle: the whole period under each reading; each step's terms are also tried
     against the simulated step time, to say where the conventions part."""
-    ds = ev.fig3[claim["args"]["case"]]
-    p = params_of(ds)
-    velocity = derived.cycle_velocities(float(ds["velocity_before_impact"].values[-1]), p)
-    simulated = float(ds["period"].values[-1])
-    tolerance = claim["tolerance"]
-    axes = ("positions", "force", "half", "velocity")
-    whole = try_readings(lambda r: math.fsum(_terms_23(p, velocity, r).values()), simulated, tolerance, axes)
+    ds, p, v1 = _last_cycle(claim, ev)
+    velocity, simulated, tolerance = derived.cycle_velocities(v1, p), float(ds["period"].values[-1]), claim["tolerance"]
+    whole = try_readings(lambda r: math.fsum(_terms_23(p, velocity, r).values()), simulated, tolerance,
+                         ("positions", "force", "half", "velocity"))
     holds, note = conventions_verdict(whole, f"the simulated period {fmt(simulated)} s", "Eq. (23)")
     durations = {k: float(v[-1]) for k, v in cycle_durations(ds).items()}
     working = {part: [t.reading for t in try_readings(lambda r, part=part: _terms_23(p, velocity, r)[part],
@@ -103,23 +97,15 @@ X1_PLUS = "'the velocity after impact is x1+(k) = (1 - b) x1(k)' (Eq. (10))"
 
 @check(scenes=fig3_scenes, args=("case", "form"))
 def eq24(claim, ev: Evidence) -> Verdict:
-    """Eq. (24) at the last cycle, read in one convention for the whole equation: x1+ the velocity after the
-    impact, as Eq. (10) defines it, x1 the one before, and the positions signed or the magnitudes of Sec. 4, alike
-    in both forms. Against the jump of the sine phase across the impact, at the simulated state before and after
-    it (:func:`escapement.paper.corrected.impact_phase_jump`, a closed form of the definition, not a timing of the
-    run; the escapement-error study checks the corrected Eqs. (24)-(25) against the exact solver's periods).
-    ``form: first`` holds when a convention reproduces the first form; ``form: second`` when one reproduces both
-    (the second form equals the first in the equation's one convention). The note also gives both forms with
-    x1+ read as the velocity before the impact (x1 the one after), which Eq. (10) excludes."""
-    ds = ev.fig3[claim["args"]["case"]]
+    """Eq. (24) at the last cycle, in one convention for the whole equation (x1+ the velocity after the impact, as
+    Eq. (10) defines it; the positions signed or Sec. 4's magnitudes, alike in both forms), against the jump of the
+    sine phase across the simulated impact (:func:`escapement.paper.corrected.impact_phase_jump`). ``form: first``
+    holds when a convention reproduces the first form, ``form: second`` when one reproduces both."""
     form = claim["args"]["form"]
     if form not in ("first", "second"):
         raise ValueError(f"form = {form!r} must be first or second")
-    p = params_of(ds)
-    v1 = float(ds["velocity_before_impact"].values[-1])
-    v1p = (1 - p.b) * v1
-    measured = derived.impact_phase_jump(p.a1, v1, p)
-    tolerance = claim["tolerance"]
+    _, p, v1 = _last_cycle(claim, ev)
+    v1p, measured, tolerance = (1 - p.b) * v1, derived.impact_phase_jump(p.a1, v1, p), claim["tolerance"]
 
     def forms(reading: Reading, plus: float, plain: float) -> tuple[float, float]:
         """Both forms with x1+ = ``plus`` and x1 = ``plain``."""
@@ -143,8 +129,7 @@ def eq24(claim, ev: Evidence) -> Verdict:
                          "(this part, a misprint) rather than not reproduced as a whole"))
     return Verdict(
         f"phase delay of the impact {fmt(measured)} s; with x1+ after the impact: first form {fmt(first[0].value)} s, "
-        f"second form {fmt(second[0].value)} s",
-        holds,
+        f"second form {fmt(second[0].value)} s", holds,
         note=(f"{lead}; the first form under each convention of the positions: {describe(first)}; the second: "
               f"{describe(second)}; with x1+ read as the velocity before the impact (x1 the one after), which Eq. (10) "
               f"excludes, the first form gives {fmt(swapped[0])} s and the second {fmt(swapped[1])} s: no one reading "
@@ -154,14 +139,10 @@ def eq24(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes, args=("case",))
 def eq25(claim, ev: Evidence) -> Verdict:
-    """2 pi/w + 2 (dT1 + dT2) of Eqs. (24)-(25) at the simulated last cycle, under each reading (positions;
-    the velocity entering the zone after the impact, as printed, or before it), against the simulated
-    period of the symmetric limit cycle."""
-    ds = ev.fig3[claim["args"]["case"]]
-    p = params_of(ds)
-    v1 = float(ds["velocity_before_impact"].values[-1])
-    v1p = (1 - p.b) * v1
-    simulated = float(ds["period"].values[-1])
+    """2 pi/w + 2 (dT1 + dT2) of Eqs. (24)-(25) at the last cycle under each reading (the positions; the velocity
+    entering the zone after the impact, as printed, or before it) against the simulated period."""
+    ds, p, v1 = _last_cycle(claim, ev)
+    v1p, simulated = (1 - p.b) * v1, float(ds["period"].values[-1])
 
     def period(reading: Reading) -> float:
         s = symbols(p, reading, False)[0]
@@ -171,13 +152,8 @@ def eq25(claim, ev: Evidence) -> Verdict:
     trials = try_readings(period, simulated, claim["tolerance"], ("positions", "velocity"))
     holds, note = conventions_verdict(trials, f"the simulated period {fmt(simulated)} s", "2 pi/w + 2 (dT1 + dT2)")
     corrected = derived.period_from_perturbations(v1, p)
-    return Verdict(
-        f"{fmt(simulated)} s (simulated)",
-        holds,
-        note=(
-            f"{note}; with the phase taken as atan(position/velocity) in (25) (the sine phase, which advances at w "
-            f"in free flight), 2 pi/w + 2 (dT1 + dT2) = {fmt(corrected)} s, relative difference "
-            f"{fmt(rel(corrected, simulated), 2)}"
-        ),
-        paper_value=f"{fmt(trials[0].value)} s as read",
-    )
+    return Verdict(f"{fmt(simulated)} s (simulated)", holds, note=(
+        f"{note}; with the phase taken as atan(position/velocity) in (25) (the sine phase, which advances at w in "
+        f"free flight), 2 pi/w + 2 (dT1 + dT2) = {fmt(corrected)} s, relative difference "
+        f"{fmt(rel(corrected, simulated), 2)}"),
+        paper_value=f"{fmt(trials[0].value)} s as read")

@@ -1,9 +1,6 @@
-"""The checks of the step equations (10)-(15) as printed, each fed the simulated state before its step,
-and of Eq. (14) under each convention the paper uses (:mod:`escapement.paper.conventions`).
-
-The text has the squares garbled into "2 2 2 2"; the reading is the one that makes each step an energy balance,
-stated per equation. A printed formula holds when one of the paper's conventions reproduces it
-(:func:`conventions_verdict`, also used by :mod:`.sec3_period`).
+"""The checks of the step equations (10)-(15) as printed, each fed the simulated state before its step (the
+squares the text garbles into "2 2 2 2" read so that each step is an energy balance), and of Eq. (14) under each
+convention of the paper (:func:`conventions_verdict`, also used by :mod:`.sec3_period`).
 """
 
 from __future__ import annotations
@@ -25,16 +22,10 @@ def _sqrt(value: float) -> float:
     return math.sqrt(value) if value >= 0.0 else math.nan
 
 
-# Each step: the printed formula (velocity out from velocity in), where its input and output are in a
-# cycle's events (offset from the impact at a1: 0 a1, 1 a2, 2 a3, 3 a4, 4 the next a1; and "before" or
-# "after" the event), and the printed text as read.
-Step = tuple[Callable[[float, Parameters], float], tuple[int, str], tuple[int, str], str]
-
-
 _IMPACT_LAW = "the impact law (A-2) the model is built on"
-
-
-PRINTED_STEPS: dict[str, Step] = {
+#: each step: the printed formula (velocity out from velocity in), where its input and output are among a cycle's
+#: events (offset from the impact at a1, 4 the next a1; before or after the event), and the printed text as read
+PRINTED_STEPS: dict[str, tuple[Callable[[float, Parameters], float], tuple[int, str], tuple[int, str], str]] = {
     "10": (lambda v, p: (1 - p.b) * v, (0, "before"), (0, "after"), f"x1+ = (1 - b) x1, {_IMPACT_LAW}"),
     "11": (lambda v, p: _sqrt(v * v + (p.a1**2 - p.a2**2) * p.omega2 - 2 * (p.a1 - p.a2) * p.f),
            (0, "after"), (1, "before"), "x2 = sqrt(x1+^2 + (a1^2 - a2^2) w^2 - 2 (a1 - a2) f)"),
@@ -44,8 +35,6 @@ PRINTED_STEPS: dict[str, Step] = {
     "15": (lambda v, p: _sqrt(v * v + (p.a4**2 - p.a1**2) * p.omega2),
            (3, "before"), (4, "before"), "x1(k+1) = sqrt(x5^2 + (a4^2 - a1^2) w^2)"),
 }
-
-
 _FIELD = {"before": "event_velocity_before", "after": "event_velocity_after"}
 
 
@@ -58,20 +47,16 @@ def printed_step(claim, ev: Evidence) -> Verdict:
     formula, (i_in, f_in), (i_out, f_out), text = PRINTED_STEPS[equation]
     worst, n = 0.0, 0
     for ds in ev.fig3.values():
-        p = params_of(ds)
-        starts = events_of(ds, EventKind.IMPACT_A1)
+        p, starts = params_of(ds), events_of(ds, EventKind.IMPACT_A1)
         starts = starts[starts + 4 < ds.sizes["event"]]
-        v_in = ds[_FIELD[f_in]].values[starts + i_in]
-        v_out = ds[_FIELD[f_out]].values[starts + i_out]
+        v_in, v_out = ds[_FIELD[f_in]].values[starts + i_in], ds[_FIELD[f_out]].values[starts + i_out]
         predicted = np.array([formula(float(v), p) for v in v_in])
         worst = max(worst, float(np.max(np.abs(predicted - v_out) / np.abs(v_out))))
         n += len(starts)
-    return Verdict(
-        f"max relative difference {fmt(worst, 3)} over {n} simulated steps (Fig. 3 {', '.join(ev.fig3)})",
-        within(worst, claim["tolerance"]),
-        note=f"read as {text}, fed the simulated state before the step",
-        paper_value=f"Eq. ({equation})",
-    )
+    return Verdict(f"max relative difference {fmt(worst, 3)} over {n} simulated steps (Fig. 3 {', '.join(ev.fig3)})",
+                   within(worst, claim["tolerance"]),
+                   note=f"read as {text}, fed the simulated state before the step",
+                   paper_value=f"Eq. ({equation})")
 
 
 #: the step equations that restate the impact law
@@ -89,28 +74,24 @@ def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple
     adopted reading first), and a note that says which."""
     if not trials or trials[0].reading != AS_READ:
         raise ValueError("trials must start with the adopted reading AS_READ")
-    working = [t for t in trials if t.reproduces]
-    listing = describe(trials)
+    working, listing = [t for t in trials if t.reproduces], describe(trials)
     if trials[0].reproduces:
         return True, f"{what} reproduces {simulated} as read; every reading: {listing}"
     if working:
-        return True, (
-            f"{what} as read ({AS_READ}) gives {fmt(trials[0].value)} against {simulated}; it is reproduced with "
-            f"{' or '.join(departure(t.reading) for t in working)}: two conventions of the paper mixed, not a wrong "
-            f"formula; every reading (relative difference): {listing}"
-        )
+        return True, (f"{what} as read ({AS_READ}) gives {fmt(trials[0].value)} against {simulated}; it is reproduced "
+                      f"with {' or '.join(departure(t.reading) for t in working)}: two conventions of the paper mixed, "
+                      f"not a wrong formula; every reading (relative difference): {listing}")
     return False, (f"no convention of the paper reproduces {simulated} with {what}: a wrong formula; "
                    f"every reading: {listing}")
 
 
 @check(scenes=fig3_scenes, args=("case",))
 def eq14_conventions(claim, ev: Evidence) -> Verdict:
-    """Eq. (14) at the simulated last cycle under each convention: the velocity at a4 from the one after
-    the impact at a3 (by the energy balance from the simulated velocity at a1, Eqs. (10)-(13))."""
+    """Eq. (14) at the last cycle under each convention: the velocity at a4 from the one after the impact at a3 (the
+    energy balance from the simulated velocity at a1, Eqs. (10)-(13))."""
     case = claim["args"]["case"]
     ds = ev.fig3[case]
-    p = params_of(ds)
-    i = events_of(ds, EventKind.IMPACT_A1)[-2]
+    p, i = params_of(ds), events_of(ds, EventKind.IMPACT_A1)[-2]
     v1, v5 = float(ds["event_velocity_before"].values[i]), float(ds["event_velocity_before"].values[i + 3])
     trials = second_half_trials(p, derived.cycle_velocities(v1, p), v5, claim["tolerance"], pe.v5_14)
     holds, note = conventions_verdict(trials, f"the simulated velocity at a4, {fmt(v5)} m/s", "Eq. (14)")

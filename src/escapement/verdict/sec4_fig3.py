@@ -23,17 +23,14 @@ from .evidence import (Evidence, Verdict, check, fig3_scenes, fmt, group_runs, m
 def both_converge(claim, ev: Evidence) -> Verdict:
     changes = {k: rel(ds["velocity_before_impact"].values[-1], ds["velocity_before_impact"].values[-2])
                for k, ds in ev.fig3.items()}
-    return Verdict(
-        "; ".join(f"case {k}: last change {fmt(c, 2)}" for k, c in changes.items()),
-        within(max(changes.values()), claim["tolerance"]),
-        note="relative change of the velocity before impact between the last two cycles",
-    )
+    return Verdict("; ".join(f"case {k}: last change {fmt(c, 2)}" for k, c in changes.items()),
+                   within(max(changes.values()), claim["tolerance"]),
+                   note="relative change of the velocity before impact between the last two cycles")
 
 
 def converged_amplitudes(ds: xr.Dataset) -> dict[str, float]:
-    """The last cycle's amplitude under each definition, from its events: the Step-1 amplitude ``h0`` of the
-    free arc that ends in the impact at a1, the right turning point (the largest x) of the free arc after a2,
-    and the left one (|x|) of the free arc after a4."""
+    """The last cycle's amplitude under each definition, from its events: the Step-1 amplitude ``h0`` (the free arc
+    into the impact at a1) and the right and left turning points (the free arcs after a2 and a4)."""
     p = params_of(ds)
     kind, before = ds["event_kind"].values.astype(int), ds["event_velocity_before"].values
     v2 = before[np.flatnonzero(kind == int(EventKind.ZONE_END_A2))[-1]]
@@ -61,12 +58,10 @@ def convergence_rates(claim, ev: Evidence) -> Verdict:
     rates = {str(k): float(np.median(successive_ratios(ev.fig3[str(k)]["velocity_before_impact"].values ** 2)))
              for k in claim["args"]["cases"]}
     first, second = rates.values()
-    return Verdict(
-        "rate of convergence of x1^2 per cycle: " + ", ".join(f"{k}: {fmt(r, 7)}" for k, r in rates.items()),
-        not within(abs(first - second), claim["tolerance"]),
-        note=("the map is linear in x1^2, so x1^2 approaches its limit by the factor (1-b)^4 per cycle whatever the "
-              "force; x1 itself does not (its ratio of successive differences tends to (1-b)^4 only near the limit)"),
-    )
+    return Verdict("rate of convergence of x1^2 per cycle: " + ", ".join(f"{k}: {fmt(r, 7)}" for k, r in rates.items()),
+                   not within(abs(first - second), claim["tolerance"]), note=(
+        "the map is linear in x1^2, so x1^2 approaches its limit by the factor (1-b)^4 per cycle whatever the force; "
+        "x1 itself does not (its ratio of successive differences tends to (1-b)^4 only near the limit)"))
 
 
 @check(scenes=runs_of(), args=("group",),
@@ -83,34 +78,25 @@ def cycles_to_converge(claim, ev: Evidence) -> Verdict:
 @check(scenes=fig3_scenes, args=("case",))
 def converged_period(claim, ev: Evidence) -> Verdict:
     ds = ev.fig3[claim["args"]["case"]]
-    p = params_of(ds)
-    simulated = float(ds["period"].values[-1])
-    return Verdict(
-        f"{fmt(simulated)} s",
-        within(abs(simulated - float(claim["paper_value"])), claim["tolerance"]),
-        note=(
-            f"2 pi/w = {fmt(p.natural_period)} s; the two impacts delay each cycle and the two impulses advance it, "
-            f"by {fmt(simulated - p.natural_period, 4)} s in all (Eqs. (24)-(25), corrected)"
-        ),
-    )
+    p, simulated = params_of(ds), float(ds["period"].values[-1])
+    return Verdict(f"{fmt(simulated)} s", within(abs(simulated - float(claim["paper_value"])), claim["tolerance"]),
+                   note=f"2 pi/w = {fmt(p.natural_period)} s; the two impacts delay each cycle and the two impulses "
+                        f"advance it, by {fmt(simulated - p.natural_period, 4)} s in all (Eqs. (24)-(25), corrected)")
 
 
 @check(scenes=fig3_scenes, args=("cases",))
 def period_difference(claim, ev: Evidence) -> Verdict:
     first, second = (str(c) for c in claim["args"]["cases"])
     a, b = (float(ev.fig3[c]["period"].values[-1]) for c in (first, second))
-    return Verdict(
-        f"{fmt(abs(a - b), 6)} s ({first}: {fmt(a)} s, {second}: {fmt(b)} s)",
-        within(abs(a - b), claim["tolerance"]),
-        note="the period depends on the force through the perturbations of Eqs. (24)-(25)",
-    )
+    return Verdict(f"{fmt(abs(a - b), 6)} s ({first}: {fmt(a)} s, {second}: {fmt(b)} s)",
+                   within(abs(a - b), claim["tolerance"]),
+                   note="the period depends on the force through the perturbations of Eqs. (24)-(25)")
 
 
 @check(scenes=runs_of("paper", "initial_condition"))
 def period_initial_condition(claim, ev: Evidence) -> Verdict:
     paper, other = group_runs(ev, "paper"), group_runs(ev, "initial_condition")
-    worst = 0.0
-    parts = []
+    worst, parts = 0.0, []
     for i in range(other.sizes["case"]):
         run = other.isel(case=i)
         same_force = np.flatnonzero(paper["F"].values == run["F"].values)
@@ -118,29 +104,21 @@ def period_initial_condition(claim, ev: Evidence) -> Verdict:
             continue
         ref = paper.isel(case=same_force[0])
         worst = max(worst, abs(float(run["period"]) - float(ref["period"])))
-        parts.append(
-            f"F = {fmt(run['F'], 3)} N from x0 = {fmt(run['x0'], 3)} m: "
-            f"{fmt(run['period'])} s (from x0 = {fmt(ref['x0'], 3)} m: {fmt(ref['period'])} s)"
-        )
+        parts.append(f"F = {fmt(run['F'], 3)} N from x0 = {fmt(run['x0'], 3)} m: {fmt(run['period'])} s (from x0 = "
+                     f"{fmt(ref['x0'], 3)} m: {fmt(ref['period'])} s)")
     return Verdict("; ".join(parts), within(worst, claim["tolerance"]), note=f"largest difference {fmt(worst, 2)} s")
 
 
 @check(scenes=fig3_scenes)
 def natural_period(claim, ev: Evidence) -> Verdict:
-    rows = []
-    for label, ds in ev.fig3.items():
-        p = params_of(ds)
-        rows.append((label, float(ds["period"].values[-1]), 2 * math.pi * math.sqrt(p.M / p.K)))
-    worst = max(abs(t - t0) for _, t, t0 in rows)
-    t0 = rows[0][2]
-    return Verdict(
-        "; ".join(f"{label}: {fmt(t)} s ({fmt(t - t0, 4)} s above)" for label, t, t0 in rows)
-        + f"; 2 pi sqrt(M/K) = {fmt(t0)} s",
-        within(worst, claim["tolerance"]),
-        note=("the printed 6.2832 s is 2 pi sqrt(M/K) to its digits; the converged period exceeds it because each "
-              "impact delays the cycle (Eq. (24)) by more than the impulse advances it (Eq. (25))"),
-        paper_value=f"2 pi sqrt(M/K) = {fmt(t0)} s",
-    )
+    rows = [(label, float(ds["period"].values[-1]), 2 * math.pi * math.sqrt(float(ds["M"]) / float(ds["K"])))
+            for label, ds in ev.fig3.items()]
+    worst, t0 = max(abs(t - t0) for _, t, t0 in rows), rows[0][2]
+    return Verdict("; ".join(f"{label}: {fmt(t)} s ({fmt(t - t0, 4)} s above)" for label, t, t0 in rows)
+                   + f"; 2 pi sqrt(M/K) = {fmt(t0)} s", within(worst, claim["tolerance"]),
+                   note=("the printed 6.2832 s is 2 pi sqrt(M/K) to its digits; the converged period exceeds it "
+                         "because each impact delays the cycle (Eq. (24)) by more than the impulse advances it "
+                         "(Eq. (25))"), paper_value=f"2 pi sqrt(M/K) = {fmt(t0)} s")
 
 
 @check(scenes=fig3_scenes, args=("cases", "side"))
@@ -148,13 +126,9 @@ def initial_order(claim, ev: Evidence) -> Verdict:
     """The first case of ``cases`` has the smaller first velocity before the impact at a1, both released from rest
     at ``side`` (-1 or +1) times their initial amplitude |x0| (the paper gives the amplitude, not the side)."""
     side = float(claim["args"]["side"])
-    first = {}
-    for case in (str(c) for c in claim["args"]["cases"]):
-        ds = ev.fig3[case]
-        x0 = side * abs(float(ds["x0"]))
-        first[case] = (x0, float(probe(ev, "first_swing_velocity", "first_swing", first_swing_case=case,
-                                       first_swing_x0=x0)))
-    (a, (xa, va)), (b, (xb, vb)) = first.items()
+    releases = {str(c): side * abs(float(ev.fig3[str(c)]["x0"])) for c in claim["args"]["cases"]}
+    (a, xa, va), (b, xb, vb) = ((case, x0, float(probe(ev, "first_swing_velocity", "first_swing", first_swing_case=case,
+                                                       first_swing_x0=x0))) for case, x0 in releases.items())
     return Verdict(f"first velocity before impact released at {fmt(xa, 3)} m ({a}): {fmt(va, 6)} m/s, at "
                    f"{fmt(xb, 3)} m ({b}): {fmt(vb, 6)} m/s", bool(va < vb),
                    note="the smaller initial amplitude gives the smaller first swing",
@@ -163,8 +137,8 @@ def initial_order(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=runs_of(), args=("groups",))
 def stable_velocity_scaling(claim, ev: Evidence) -> Verdict:
-    """Eq. (19) derived on paper: v* = sqrt(2 (a2 - a1) F / (M (2b - b^2))), so v*/sqrt(F) depends on the
-    geometry, b and M only: not on x0."""
+    """v* of Eq. (19), sqrt(2 (a2 - a1) F / (M (2b - b^2))), in every run: v*/sqrt(F) depends on the geometry, b and M
+    only, not on x0."""
     runs = [group_runs(ev, g) for g in claim["args"]["groups"]]
     worst, per_geometry, per_release = 0.0, {}, {}
     for group in runs:
@@ -214,10 +188,8 @@ def amplitude_of(run, definition: str) -> float:
 
 @check(scenes=runs_of(), args=("groups", "definition"))
 def force_amplitude(claim, ev: Evidence) -> Verdict:
-    """Sec. 4, "the system with greater force has greater amplitude": within each family of runs that
-    differ only in F, the converged amplitude grows with F."""
-    holds, parts = [], []
-    definition = claim["args"]["definition"]
+    """Within each family of runs that differ only in F, the converged amplitude grows with F."""
+    holds, parts, definition = [], [], claim["args"]["definition"]
     for group in claim["args"]["groups"]:
         runs = group_runs(ev, group)
         for rows in _families(runs, "F").values():
@@ -228,17 +200,15 @@ def force_amplitude(claim, ev: Evidence) -> Verdict:
                 f"F = {fmt(runs['F'].values[i], 3)} N: {fmt(a, 5)} m" for i, a in zip(order, amplitude)))
     if not holds:
         raise ValueError(f"the groups {claim['args']['groups']} hold no runs that differ only in F")
-    return Verdict("; ".join(parts), all(holds), note=f"converged amplitude ({definition}) of runs that differ only "
-                   "in the force")
+    return Verdict("; ".join(parts), all(holds),
+                   note=f"converged amplitude ({definition}) of runs that differ only in the force")
 
 
 @check(scenes=runs_of(), args=("by_force", "by_release", "definition"))
 def amplitude_by_force(claim, ev: Evidence) -> Verdict:
-    """Sec. 4, the converged amplitude "also determined by the external force": runs that differ only in F (groups
-    ``by_force``) converge to amplitudes apart by more than the tolerance (relative), runs that differ only in the
-    release (the groups ``by_release`` together) to amplitudes within it."""
-    definition, parts, holds = claim["args"]["definition"], [], []
-    tolerance = claim["tolerance"]
+    """Runs that differ only in F (groups ``by_force``) converge to amplitudes apart by more than the tolerance
+    (relative), runs that differ only in the release (groups ``by_release``, together) to amplitudes within it."""
+    definition, parts, holds, tolerance = claim["args"]["definition"], [], [], claim["tolerance"]
     for key, groups in (("F", claim["args"]["by_force"]), ("x0", claim["args"]["by_release"])):
         runs = xr.concat([group_runs(ev, g) for g in groups], dim="case")
         families = _families(runs, key)
@@ -265,8 +235,7 @@ def amplitude_by_force(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=runs_of(), args=("group",))
 def release_transient(claim, ev: Evidence) -> Verdict:
-    """Sec. 4: the period of every cycle, the first too, is independent of the release, among runs that differ
-    only in x0: the first cycles' periods within the tolerance (s) of each other."""
+    """Among runs that differ only in x0, the first cycles' periods within the tolerance (s) of each other."""
     runs = group_runs(ev, claim["args"]["group"])
     families = _families(runs, "x0")
     if not families:
@@ -283,9 +252,8 @@ def release_transient(claim, ev: Evidence) -> Verdict:
 
 
 def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) -> Verdict:
-    """``rows``: per release ``x0`` the run's ``outcome`` and last ``velocity``, and the closed-form
-    ``fixed_point``. Holds when every release converges to the fixed point (the note says where the
-    releases inside ``boundary`` stand)."""
+    """Holds when every release (``rows``: its ``x0``, ``outcome``, last ``velocity``) converges to the closed-form
+    ``fixed_point``."""
 
     def converged(r) -> bool:
         return r["outcome"] == Status.COMPLETED.value and abs(r["velocity"] - r["fixed_point"]) <= (
@@ -307,8 +275,6 @@ def release_boundary(claim, ev: Evidence) -> Verdict:
     args = claim["args"]
     p = model_of(args, args["F"])
     star = math.sqrt(map_constant(p) / (1 - (1 - p.b) ** 4))
-    rows = []
-    for x0 in args["releases"]:
-        run = release_run(ev, p, float(x0), args["n_cycles"])
-        rows.append({"x0": float(x0), "outcome": run["outcome"], "velocity": run["velocity"], "fixed_point": star})
+    rows = [{"x0": float(x0), "fixed_point": star, **{k: run[k] for k in ("outcome", "velocity")}}
+            for x0, run in ((x0, release_run(ev, p, float(x0), args["n_cycles"])) for x0 in args["releases"])]
     return release_verdict(rows, min(-p.a1, p.a3), claim["tolerance"])

@@ -1,6 +1,5 @@
-"""The checks of Sec. 4 on Fig. 4, the shock detail: the velocity jump read off the graph, the step of
-the acceleration at the impact (the escape wheel's force, not an impact force), and an impact in each printed time
-window under every reading of the figure's grid.
+"""The checks of Sec. 4 on Fig. 4, the shock detail: the velocity jump read off the graph, the step of the
+acceleration at the impact, and an impact in each printed time window under every reading of the figure's grid.
 """
 
 from __future__ import annotations
@@ -15,25 +14,18 @@ from .evidence import Evidence, Verdict, check, fig3_scenes, fig4_scene, fmt, pr
        fitted="Fig. 4's force, spring and release")
 def shock_readout(claim, ev: Evidence) -> Verdict:
     ds = ev.fig4
-    m, b = float(ds["M"]), float(ds["b"])
-    vb = ds["velocity_before"].values
+    m, b, vb = float(ds["M"]), float(ds["b"]), ds["velocity_before"].values
     j, e = ds["impulse"].values, ds["energy_dissipated"].values
     if not len(j):
         return Verdict("no impact in the window", False, note="the shock detail holds no impact to read off",
                        paper_value="no number given")
-    consistent = np.allclose(j, -b * m * vb, rtol=1e-12, atol=0) and np.allclose(
-        e, 0.5 * m * vb**2 * (2 * b - b * b), rtol=1e-12, atol=0
-    )
+    consistent = (np.allclose(j, -b * m * vb, rtol=1e-12, atol=0)
+                  and np.allclose(e, 0.5 * m * vb**2 * (2 * b - b * b), rtol=1e-12, atol=0))
     return Verdict(
         f"{len(j)} impacts in the window: |impulse| {fmt(np.min(np.abs(j)), 4)}-{fmt(np.max(np.abs(j)), 4)} N s, "
-        f"energy dissipated {fmt(np.min(e), 4)}-{fmt(np.max(e), 4)} J per impact",
-        bool(consistent),
-        note=(
-            "read off the velocity jump: impulse M (v+ - v-) = -b M v-, energy M v-^2 (2b - b^2)/2; "
-            "the figure labels both"
-        ),
-        paper_value="no number given",
-    )
+        f"energy dissipated {fmt(np.min(e), 4)}-{fmt(np.max(e), 4)} J per impact", bool(consistent),
+        note="read off the velocity jump: impulse M (v+ - v-) = -b M v-, energy M v-^2 (2b - b^2)/2; the figure "
+             "labels both", paper_value="no number given")
 
 
 @check(scenes=fig4_scene, fitted="Fig. 4's force, spring and release")
@@ -42,10 +34,8 @@ def impact_force_step(claim, ev: Evidence) -> Verdict:
     is compared with F/M, the escape wheel's force switching on; the claim holds if some step is not F/M."""
     ds = ev.fig4
     t, a, f = ds["t"].values, ds["acceleration"].values, float(ds["F"]) / float(ds["M"])
-    steps = []
-    for time in ds["impact_time"].values:
-        i = int(np.searchsorted(t, time))  # the sample at the impact; the one before is the largest float below
-        steps.append((float(a[i - 1]), float(a[i])))
+    at = [int(np.searchsorted(t, time)) for time in ds["impact_time"].values]  # the sample at each impact
+    steps = [(float(a[i - 1]), float(a[i])) for i in at]
     worst = max((abs((after - before) - f) / f for before, after in steps), default=0.0)
     return Verdict(
         "; ".join(f"acceleration {fmt(b, 4)} -> {fmt(a_, 4)} m/s^2 at the impact" for b, a_ in steps)
@@ -57,21 +47,18 @@ def impact_force_step(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes)
 def window_impact(claim, ev: Evidence) -> Verdict:
-    """Under every reading of Fig. 4's grid (every force and release magnitude of the Fig. 3 cases, either side,
-    every spring constant of Fig. 5), an impact lies in each printed time window; each run exactly to the
-    windows' end, with the model's other parameters those of the Fig. 3 cases."""
+    """Under every reading of Fig. 4's grid (the forces and release magnitudes of the Fig. 3 cases, either side, the
+    spring constants of Fig. 5) an impact lies in each printed time window."""
     windows = [(a.low, a.high) for a in (panel("4", "velocity").x, panel("4", "acceleration").x)]
     if (t_end := ev.checks["window_impact_time"].attrs["t_end"]) < max(w[1] for w in windows):
         raise ValueError(f"the checks dataset's runs for Fig. 4 end at {t_end} s, before the windows")
-    forces = sorted({float(ds["F"]) for ds in ev.fig3.values()})
     magnitudes = sorted({abs(float(ds["x0"])) for ds in ev.fig3.values()})
     held = {}
-    for F in forces:
-        for K in FIG5_PANEL_K.values():
-            for x0 in (side * m for m in magnitudes for side in (-1.0, 1.0)):
-                impacts = probe(ev, "window_impact_time", "window_run", window_F=F, window_K=K, window_x0=x0).values
-                held[f"F = {fmt(F, 3)} N, K = {fmt(K, 3)} N/m, x0 = {fmt(x0, 3)} m"] = all(
-                    bool(np.any((impacts >= lo) & (impacts <= hi))) for lo, hi in windows)
+    for F, K, x0 in ((F, K, side * m) for F in sorted({float(ds["F"]) for ds in ev.fig3.values()})
+                     for K in FIG5_PANEL_K.values() for m in magnitudes for side in (-1.0, 1.0)):
+        impacts = probe(ev, "window_impact_time", "window_run", window_F=F, window_K=K, window_x0=x0).values
+        held[f"F = {fmt(F, 3)} N, K = {fmt(K, 3)} N/m, x0 = {fmt(x0, 3)} m"] = all(
+            bool(np.any((impacts >= lo) & (impacts <= hi))) for lo, hi in windows)
     return Verdict(
         f"an impact in both windows ({'; '.join(f'{fmt(lo, 3)}-{fmt(hi, 3)} s' for lo, hi in windows)}) under "
         f"{sum(held.values())} of the {len(held)} readings of the grid"
@@ -79,5 +66,4 @@ def window_impact(claim, ev: Evidence) -> Verdict:
         note=(f"the grid: every force and release magnitude of the Fig. 3 cases, either side, every spring constant "
               f"of the paper (K = {', '.join(fmt(k, 3) for k in FIG5_PANEL_K.values())} N/m), since the printed axes "
               "leave Fig. 4's reading undetermined (REPLICATION.md, Sec. 3)"),
-        paper_value="the window holds the impact",
-    )
+        paper_value="the window holds the impact")

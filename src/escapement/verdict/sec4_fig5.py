@@ -1,6 +1,6 @@
-"""The checks of Sec. 4 on Fig. 5, the spring-constant sweep: the amplitude, velocity, recovery and size
-of the limit cycles compared between spring constants at one common force (the panels run at different forces, so
-they are not compared with each other), and the impact shown in each panel.
+"""The checks of Sec. 4 on Fig. 5, the spring-constant sweep: the amplitude, velocity, recovery and size of the
+limit cycles compared between spring constants at one common force (the panels, at different forces, are not
+compared with each other), and the impact shown in each panel.
 """
 
 from __future__ import annotations
@@ -17,12 +17,9 @@ from .evidence import Evidence, Verdict, check, fmt, group_runs, params_of, runs
 
 
 def common_force_runs(ev: Evidence) -> dict[float, list[tuple[float, xr.Dataset]]]:
-    """The runs of group ``common_force`` by force, each list ordered by K. The panels of Fig. 5 run at different
-    forces: only runs at one force are compared."""
-    runs = group_runs(ev, "common_force")
-    by_force: dict[float, list] = {}
-    for i in range(runs.sizes["case"]):
-        run = runs.isel(case=i)
+    """The runs of group ``common_force`` by force, each list ordered by K: only runs at one force are compared."""
+    runs, by_force = group_runs(ev, "common_force"), {}
+    for run in (runs.isel(case=i) for i in range(runs.sizes["case"])):
         by_force.setdefault(float(run["F"]), []).append((float(run["K"]), run))
     if any(len(rows) < 2 for rows in by_force.values()):
         raise ValueError("the runs of group 'common_force' must give at least two spring constants at each force")
@@ -47,8 +44,7 @@ def _decreasing_in_K(ev: Evidence, value, digits: int, unit: str) -> tuple[bool,
 
 @check(scenes=runs_of("common_force"), args=("definition",))
 def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
-    """The converged amplitude (:func:`escapement.verdict.sec4_fig3.amplitude_of`) decreases with K at each
-    common force."""
+    """The converged amplitude (:func:`.sec4_fig3.amplitude_of`) decreases with K at each common force."""
     holds, values = _decreasing_in_K(ev, lambda run: amplitude_of(run, claim["args"]["definition"]), 5, "m")
     return Verdict("converged amplitude: " + values, holds, note=NOT_COMPARED)
 
@@ -68,14 +64,12 @@ def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=runs_of("common_force"), args=("measure",))
 def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
-    """The recovery of the velocity before the impact at a1 (:func:`escapement.paper.corrected.velocity_recovery`
-    at the converged velocity) is faster for smaller K at each common force, measured (``args: {measure}``) in
-    ``seconds``, as a fraction of the ``period`` 2 pi/w, or by the distance covered as a fraction of the limit
-    cycle's ``width`` (twice its amplitude)."""
-    by_force = common_force_runs(ev)
+    """The recovery of the velocity before the impact at a1 (:func:`escapement.paper.corrected.velocity_recovery`)
+    is faster for smaller K at each common force, in ``seconds``, as a fraction of the ``period`` 2 pi/w, or of the
+    limit cycle's ``width`` (``args: {measure}``)."""
     measure, holds, parts = claim["args"]["measure"], [], []
     unit = {"seconds": "s", "period": "of 2 pi/w", "width": "of the width"}[measure]
-    for force, rows in by_force.items():
+    for force, rows in common_force_runs(ev).items():
         values = []
         for k, run in rows:
             p = params_of(run)
@@ -95,25 +89,21 @@ def _fig5(claim, ev: Evidence) -> dict[str, xr.Dataset]:
 @check(scenes=runs_of("common_force"),
        threshold="'different' taken as apart by the tolerance of the larger")
 def fig5_dimensions(claim, ev: Evidence) -> Verdict:
-    """The limit cycles of the spring constants differ in size at one common force: their half-widths
-    (the converged amplitude) or half-heights (the largest speed on the last cycle, exact) differ by more
-    than ``tolerance`` of the larger, for every pair, at every force."""
-    by_force = common_force_runs(ev)
+    """At every common force, every pair of limit cycles differs in half-width (the converged amplitude) or
+    half-height (the largest speed) by more than ``tolerance`` of the larger."""
     differ, parts = [], []
-    for force, runs in by_force.items():
+    for force, runs in common_force_runs(ev).items():
         rows = [(k, float(run["largest_displacement"]), float(run["largest_speed"])) for k, run in runs]
         for i, (_, x1, v1) in enumerate(rows):
             for _, x2, v2 in rows[i + 1:]:
                 differ.append(max(abs(x1 - x2) / max(x1, x2), abs(v1 - v2) / max(v1, v2)) > claim["tolerance"])
         parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(
             f"K = {fmt(k, 3)}: {fmt(x, 4)} m x {fmt(v, 4)} m/s" for k, x, v in rows))
-    return Verdict(
-        "limit cycle half-width (amplitude) x half-height (largest speed): " + "; ".join(parts),
-        bool(differ) and all(differ),
-        note=(f"two limit cycles differ when their amplitudes or largest speeds differ by more than "
-              f"{fmt(100 * claim['tolerance'], 3)} % of the larger; {NOT_COMPARED}"),
-        paper_value="the limit cycles have different dimensions",
-    )
+    return Verdict("limit cycle half-width (amplitude) x half-height (largest speed): " + "; ".join(parts),
+                   bool(differ) and all(differ),
+                   note=(f"two limit cycles differ when their amplitudes or largest speeds differ by more than "
+                         f"{fmt(100 * claim['tolerance'], 3)} % of the larger; {NOT_COMPARED}"),
+                   paper_value="the limit cycles have different dimensions")
 
 
 def _panel_of(k: float) -> str:
@@ -126,26 +116,18 @@ def _panel_of(k: float) -> str:
 @check(scenes=_fig5, fitted="Fig. 5's force and release, and the whole trajectory drawn",
        threshold="'clearly shown' taken as a jump of the tolerance of the printed velocity range")
 def fig5_impact_visible(claim, ev: Evidence) -> Verdict:
-    """The impact is shown in a panel when a velocity jump the panel draws (each impact at a1 of the
-    whole trajectory, b x1) is at least ``tolerance`` of the panel's printed velocity range."""
+    """The impact shows in a panel when a velocity jump it draws (b x1 at each impact at a1 of the whole
+    trajectory) is at least ``tolerance`` of its printed velocity range."""
     rows = []
     for k, ds in sorted(((float(ds["K"]), ds) for ds in ev.fig5.values()), key=lambda kv: kv[0]):
-        name = _panel_of(k)
-        axis = panel("5", name).y
-        span = axis.high - axis.low
-        jumps = float(ds["b"]) * np.abs(ds["velocity_before_impact"].values)
-        rows.append((k, name, float(jumps.max()), float(jumps[-1]), span))
-    shown = [largest / span >= claim["tolerance"] for _, _, largest, _, span in rows]
+        name, jumps = _panel_of(k), float(ds["b"]) * np.abs(ds["velocity_before_impact"].values)
+        rows.append((k, name, float(jumps.max()), float(jumps[-1]), panel("5", name).y.high - panel("5", name).y.low))
     return Verdict(
         "largest velocity jump drawn (impacts at a1 of the whole trajectory), and on the limit cycle: " + "; ".join(
             f"({name}) K = {fmt(k, 3)}: {fmt(largest, 3)} m/s, {fmt(100 * largest / span, 3)} % of the printed "
-            f"{fmt(span, 3)} m/s (limit cycle {fmt(100 * last / span, 3)} %)"
-            for k, name, largest, last, span in rows),
-        all(shown),
+            f"{fmt(span, 3)} m/s (limit cycle {fmt(100 * last / span, 3)} %)" for k, name, largest, last, span in rows),
+        all(largest / span >= claim["tolerance"] for _, _, largest, _, span in rows),
         note=(f"the jump b x1 (the impact law) at each impact at a1 against the panel's printed velocity range; "
-              "'clearly shown' "
-              f"taken as at least {fmt(100 * claim['tolerance'], 3)} % of it (about a millimetre on a panel 5 cm "
-              "tall) for some jump the panel draws; the panels draw the whole trajectory, whose early impacts, far "
-              "from the limit cycle, jump most"),
-        paper_value="impact clearly shown",
-    )
+              f"'clearly shown' taken as at least {fmt(100 * claim['tolerance'], 3)} % of it (about a millimetre on a "
+              "panel 5 cm tall) for some jump the panel draws; the panels draw the whole trajectory, whose early "
+              "impacts, far from the limit cycle, jump most"), paper_value="impact clearly shown")

@@ -19,37 +19,23 @@ from .evidence import (Evidence, Verdict, check, fmt, group_runs, model_of, mu2_
 def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
     """The rate of convergence (mu2) of the asymmetric runs depends on F or the positions: beyond the tolerance."""
     group = group_runs(ev, "asymmetric")
-    worst = mu2_off(group)
-    v = group["velocity"].values
-    return Verdict(
-        f"mu2 = (1-b)^4 within {fmt(worst, 2)} in all {group.sizes['case']} asymmetric runs; fixed points "
-        f"{fmt(np.min(v), 4)}-{fmt(np.max(v), 4)} m/s",
-        not within(worst, claim["tolerance"]),
-        note=("Eq. (16) is linear in x1^2: g' = (1-b)^4 x1/g(x1) = (1-b)^4 at any fixed point, with or without "
-              "symmetry; what depends on F and the positions is the fixed point and whether it exists"),
-    )
+    worst, v = mu2_off(group), group["velocity"].values
+    return Verdict(f"mu2 = (1-b)^4 within {fmt(worst, 2)} in all {group.sizes['case']} asymmetric runs; fixed points "
+                   f"{fmt(np.min(v), 4)}-{fmt(np.max(v), 4)} m/s", not within(worst, claim["tolerance"]), note=(
+        "Eq. (16) is linear in x1^2: g' = (1-b)^4 x1/g(x1) = (1-b)^4 at any fixed point, with or without symmetry; "
+        "what depends on F and the positions is the fixed point and whether it exists"))
 
 
 def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: float) -> Verdict:
-    """``rows``: per force ``F``, the closed-form ``C`` and ``fixed_point`` and the run's ``outcome``,
-    ``cycles`` and last ``velocity``. Holds when every run agrees with the sign of C (C > 0: converges to
-    the fixed point; C < 0: stops) and the forces lie on both sides of F*."""
-    agree = []
-    for r in rows:
-        if r["C"] > 0:
-            ok = r["outcome"] == Status.COMPLETED.value and abs(r["velocity"] - r["fixed_point"]) <= (
-                tolerance * r["fixed_point"])
-        else:
-            ok = r["outcome"] == Status.STOPPED.value
-        agree.append(ok)
-    parts = []
-    for r in rows:
-        if r["outcome"] == Status.COMPLETED.value:
-            parts.append(f"F = {fmt(r['F'], 4)} N (C = {fmt(r['C'], 4)} m^2/s^2): converges, v1 = {fmt(r['velocity'])} "
-                         f"m/s after {r['cycles']} cycles (closed form {fmt(r['fixed_point'])})")
-        else:
-            parts.append(f"F = {fmt(r['F'], 4)} N (C = {fmt(r['C'], 4)} m^2/s^2): {r['outcome']} after "
-                         f"{r['cycles']} complete cycles")
+    """Holds when every run (``rows``: per force ``F``, the closed-form ``C`` and ``fixed_point``, the run's
+    ``outcome``, ``cycles`` and last ``velocity``) agrees with the sign of C (C > 0: converges to the fixed point;
+    C < 0: stops) and the forces lie on both sides of F*."""
+    agree = [r["outcome"] == Status.COMPLETED.value and abs(r["velocity"] - r["fixed_point"]) <= (
+        tolerance * r["fixed_point"]) if r["C"] > 0 else r["outcome"] == Status.STOPPED.value for r in rows]
+    parts = [f"F = {fmt(r['F'], 4)} N (C = {fmt(r['C'], 4)} m^2/s^2): " + (
+        f"converges, v1 = {fmt(r['velocity'])} m/s after {r['cycles']} cycles (closed form {fmt(r['fixed_point'])})"
+        if r["outcome"] == Status.COMPLETED.value else f"{r['outcome']} after {r['cycles']} complete cycles")
+        for r in rows]
     both_sides = any(r["C"] > 0 for r in rows) and any(r["C"] < 0 for r in rows)
     holds = all(agree) and both_sides
     why = ("the runs agree with the sign of C on both sides of F*" if holds else

@@ -54,11 +54,10 @@ def headline(rows: Iterable[Mapping[str, str]]) -> str:
 def findings_table(rows: Iterable[Mapping[str, str]]) -> list[dict[str, str]]:
     """One row per finding: its name, the sentence it quotes, its status, and its rows each with its part and
     status."""
-    found = findings(rows)
     return [{"finding": name, "sentence": parts[0]["quote"], "verdict": status.replace("_", " "),
              "rows": ", ".join(f"`{r['claim_id']}`" + (f" ({r['part']}: {r['status'].replace('_', ' ')})"
                                                        if len(parts) > 1 else "") for r in parts)}
-            for name, (status, parts) in sorted(found.items(), key=lambda kv: (ORDER.index(kv[1][0]), kv[0]))]
+            for name, (status, parts) in sorted(findings(rows).items(), key=lambda kv: (ORDER.index(kv[1][0]), kv[0]))]
 
 
 def vocabulary_table() -> list[dict[str, str]]:
