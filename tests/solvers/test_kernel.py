@@ -25,7 +25,8 @@ from escapement.model.status import Status
 from escapement.integrators.driver import NO_EVENT, Step, drive
 from escapement.solvers.exact import solve_exact
 from escapement.integrators.high_precision import solve_high_precision
-from escapement.solvers.kernel import A1, PLAN, EventRun, cycle_rows, event_block, kinds_from, rows
+from escapement.model.kinematics import arc_maximum
+from escapement.solvers.kernel import A1, PLAN, EventRun, event_block, kinds_from, rows
 
 A2, A3, A4 = (int(k) for k in (EventKind.ZONE_END_A2, EventKind.IMPACT_A3, EventKind.ZONE_END_A4))
 PAPER = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
@@ -274,11 +275,12 @@ def test_the_times_are_the_compensated_sums_of_the_arcs():
 
 
 def test_the_block_derives_the_events_and_the_cycles_after_the_loop():
-    """event_block: positions, the impact law and the arcs from the automaton; cycle_rows: each period the
-    four arcs' durations summed in the order of the events, each amplitude their largest x."""
+    """event_block: positions, the impact law and the arcs from the automaton; each period the four arcs'
+    durations summed in the order of the events, each amplitude their largest x."""
     run = EventRun(RunSpec(ASYMMETRIC, -0.8, 0.3, RunLimits(n_cycles=50)))
     run.advance(10**9)
-    block = event_block(run, 0, *run.take(), before=run.release)
+    t, v_before, angle = run.take()
+    block = event_block(run, 0, t, v_before, angle, before=run.release)
     positions = np.array([math.nan, ASYMMETRIC.a1, ASYMMETRIC.a2, ASYMMETRIC.a3, ASYMMETRIC.a4])
     assert np.array_equal(block.x, positions[block.kind])
     impact = np.isin(block.kind, [A1, A3])
@@ -286,13 +288,16 @@ def test_the_block_derives_the_events_and_the_cycles_after_the_loop():
     assert np.array_equal(block.v_after[~impact], block.v_before[~impact])
     assert np.array_equal(block.arc_x, np.concatenate(([-0.8], block.x)))
     assert np.array_equal(block.arc_v, np.concatenate(([0.3], block.v_after)))
-    (impact_time, velocity, period, amplitude), begins = cycle_rows(block)
+    (impact_time, velocity, period, amplitude), begins = block.cycles, block.begins
+    dt = angle / ASYMMETRIC.omega
+    arc_max = arc_maximum(block.arc_centre[:-1], block.arc_x[:-1], block.arc_v[:-1], ASYMMETRIC.omega, angle, block.x,
+                          block.v_before)
     at_a1 = np.flatnonzero(block.kind == A1)
     assert len(period) == 50 and begins == at_a1[-1] == len(block.t) - 1
     assert np.array_equal(impact_time, block.t[at_a1[:-1]])
     assert np.array_equal(velocity, block.v_before[at_a1[:-1]])
     for j, i in enumerate(at_a1[:-1]):
-        d = block.dt[i + 1:i + 5]
+        d = dt[i + 1:i + 5]
         assert period[j] == ((d[0] + d[1]) + d[2]) + d[3]
         assert period[j] == pytest.approx(block.t[i + 4] - block.t[i], rel=1e-14)
-        assert amplitude[j] == max(ASYMMETRIC.a1, *block.arc_max[i + 1:i + 5])
+        assert amplitude[j] == max(ASYMMETRIC.a1, *arc_max[i + 1:i + 5])

@@ -1,14 +1,8 @@
-"""The closed forms of whole cycles, the engine of :mod:`escapement.solvers.cycles`.
-
-From the first impact at a1 (the event loop's) the return map of ``v**2``
-(:func:`~escapement.model.cycle_map.cycle_map`) gives the velocity before each impact at a1, and one
-:func:`~escapement.model.kinematics.crossing` call on ``(4, m)`` arrays the four arcs of each distinct cycle: from
-some cycle on ``v_k**2`` is the float ``v***2``, so only about ``45 / -log10(mu)`` cycles are computed. Impact
-times ``t_k = t_1 + (k-1) T + sum_{j<k} (T_j - T)``, ``T`` the last period, are added in exact parts with TwoSum.
-
-The closed form does not apply (a string says why) where an impact reverses the velocity, the first partial cycle
-does not complete, ``v_k**2`` is not positive, or an arc cannot reach its end or grazes it (arrives with ``v**2``
-at most :data:`GRAZING_SPEED_SQ` times its largest, where it would no longer agree with the event loop to 1e-14).
+"""The closed forms of whole cycles, the engine of :mod:`escapement.solvers.cycles`: from the event loop's first
+impact at a1, the return map of ``v**2`` gives each cycle's velocity, one ``crossing`` call on ``(4, m)`` arrays
+the arcs of the distinct cycles (``v_k**2`` is the float ``v***2`` after about ``45 / -log10(mu)`` of them), and
+TwoSum the impact times. It does not apply (a string says why) where an impact reverses the velocity, the first
+cycle does not complete, ``v_k**2`` is not positive, or an arc does not reach its end or grazes it.
 """
 
 from __future__ import annotations
@@ -30,7 +24,8 @@ from .kernel import A1, PLAN, EventRun, kinds_from, rows
 __all__ = ["GRAZING_SPEED_SQ", "Cycles", "closed_form_cycles", "distinct_cycles", "first_impact",
            "prepared", "table_rows"]
 
-#: an arc grazes where it arrives with ``v**2`` at most this times its largest, ``w**2 (x - c)**2 + v0**2``
+#: an arc grazes where it arrives with ``v**2`` at most this times its largest, ``w**2 (x - c)**2 + v0**2``: there
+#: the closed form and the event loop would no longer agree to 1e-14
 GRAZING_SPEED_SQ = 1e-3
 #: ``2**31 + 1``: the split of a period into its 22 leading bits and the rest, for exact products
 _SPLIT = float(2**31 + 1)
@@ -39,8 +34,7 @@ _ARCS = ("the force arc a1 -> a2", "the free swing a2 -> a3", "the force arc a3 
 
 
 def prepared(params: Parameters) -> dict[str, np.ndarray]:
-    """The terms of a cycle's four arcs from the impact at a1, as the event loop's rows give them, as ``(4, 1)``
-    columns, with whether the event that starts each is an impact."""
+    """The terms of a cycle's four arcs from the impact at a1 (the event loop's rows) as ``(4, 1)`` columns."""
     table = rows(params)
     states = (A1, *PLAN[:-1])  # the event that starts each arc
     plan = [table[state] for state in states]
@@ -53,9 +47,8 @@ def prepared(params: Parameters) -> dict[str, np.ndarray]:
 
 
 class Cycles(NamedTuple):
-    """A closed-form run's distinct cycles (``distinct`` of them; the last stands for every later cycle once
-    at the fixed point) and what its impact times need: the first ``t1``, the last period ``big`` and its 22
-    leading bits ``big_hi``, the compensated prefix sums ``hi + lo`` of the periods less ``big``."""
+    """A run's ``distinct`` cycles (the last stands for every later one at the fixed point), and for the impact
+    times the first ``t1``, the last period ``big`` (``big_hi`` its 22 leading bits), the prefix sums ``hi + lo``."""
 
     v: np.ndarray
     period: np.ndarray
@@ -99,9 +92,8 @@ def _transient(cmap: CycleMap, v1: float, n: int) -> int:
 
 
 def _prefix_sums(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Exclusive prefix sums ``D_i = sum_{j<i} d_j``, ``i = 0 .. len(d)``, as ``hi + lo``, compensated: ``hi`` is
-    ``cumsum``, and with ``r_j = hi_j + d_j - hi_{j+1}`` exactly (TwoSum of ``hi_j + d_j``, less ``hi_{j+1}``,
-    which is that sum's rounding: the difference is exact) ``D_i = hi_i + sum_{j<i} r_j``; ``lo`` is that sum."""
+    """Prefix sums ``D_i = sum_{j<i} d_j`` as ``hi + lo``: ``hi`` is ``cumsum``, ``lo`` the sum of its roundings
+    ``r_j = hi_j + d_j - hi_{j+1}``, each exact (TwoSum's error)."""
     hi = np.zeros(len(d) + 1)
     np.cumsum(d, out=hi[1:])
     before, after = hi[:-1], hi[1:]
@@ -132,9 +124,8 @@ def _arcs(params: Parameters, col: dict[str, np.ndarray], v: np.ndarray):
 
 def distinct_cycles(params: Parameters, col: dict[str, np.ndarray], t1: float, v1: float, n: int,
                      most: int | None = None) -> Cycles | str:
-    """The distinct cycles of ``n`` from the first impact at a1 ``(t1, v1)``, or why the closed form does not
-    apply (a string), also where more than ``most`` cycles would be evaluated at once (a streamed run's memory
-    budget). Under ``np.errstate(all="ignore")``: a NaN is a decision here, not a warning."""
+    """The distinct cycles of ``n`` from the first impact at a1 ``(t1, v1)``, or why the closed form does not apply,
+    also where more than ``most`` would be evaluated at once; a NaN is a decision here (``np.errstate``)."""
     cmap = cycle_map(params)
     for count in (_transient(cmap, v1, n), n):  # where the bound does not hold, every cycle
         if most is not None and count > most:
@@ -174,8 +165,7 @@ def distinct_cycles(params: Parameters, col: dict[str, np.ndarray], t1: float, v
     if negative is not None:
         return negative
     period = ((dt[0] + dt[1]) + dt[2]) + dt[3]  # the event solver's order
-    amplitude = np.max(arc_maximum(col["centre"], col["x_from"], starts, omega, angle, col["target"], arrival),
-                       axis=0)
+    amplitude = np.max(arc_maximum(col["centre"], col["x_from"], starts, omega, angle, col["target"], arrival), axis=0)
     amplitude = np.maximum(amplitude, col["x_from"][0, 0])  # the impact at a1 begins the cycle
     # the map against the arcs: the arrival at a1 from cycle j is v_{j+1} (and at the fixed point, itself)
     following = np.append(v[1:], v[-1]) if fixed else v[1:]
@@ -188,9 +178,8 @@ def distinct_cycles(params: Parameters, col: dict[str, np.ndarray], t1: float, v
 
 
 def table_rows(c: Cycles, start: int, stop: int) -> tuple[CycleTable, float]:
-    """Cycles ``start + 1 .. stop`` of the run (table rows ``start .. stop - 1``), and the time of the impact
-    at a1 that ends cycle ``stop``. Impact times: ``t_k = t1 + (k - 1) T + D_{k-1}``, ``D`` the prefix sums of
-    ``T_j - T``; each entry from its own ``k`` alone, so that any window of cycles is the same numbers."""
+    """Cycles ``start + 1 .. stop`` and the time that ends cycle ``stop``, each from its own ``k`` alone (any window
+    is the same numbers): ``t_k = t1 + (k - 1) T + D_{k-1}``, ``D`` the prefix sums of ``T_j - T``."""
     k = np.arange(start, stop + 1, dtype=float)  # k - 1 for cycles start + 1 .. stop, and stop for the end
     s, e1 = two_sum(k * c.big_hi, c.t1)
     s, e2 = two_sum(s, _window(c.hi, start, stop + 1))

@@ -1,8 +1,7 @@
 """Per-cycle closed forms: :func:`~escapement.solvers.exact.solve_exact`'s cycle table from the return map of
-``v**2`` (:func:`solve_cycles`; :func:`iter_closed_form_cycles` in chunks), or from the event solver where they do
-not apply. The two agree within 1e-14 (:func:`cross_check`) down to ``b`` of about 0.015: below, the event solver's
-own rounding, damped only by ``mu = (1 - b)**4``, grows like ``eps / b``.
-"""
+``v**2`` (:func:`solve_cycles`, in chunks :func:`iter_closed_form_cycles`), or from the event solver where they do
+not apply. They agree within 1e-14 down to ``b`` of about 0.015 (below, the event solver's rounding grows as
+``eps / b``, damped only by ``mu = (1 - b)**4``)."""
 
 from __future__ import annotations
 
@@ -55,8 +54,7 @@ class CycleRun(Ended):
     method: str  #: ``"closed-form cycles"``, or ``"exact"`` on a fallback
     fallback: str | None  #: why the event solver made the run; None where the closed form did
     cycle_map: CycleMap
-    #: largest relative difference of the map's ``v_{k+1}`` from the arcs' arrival at a1 from ``v_k`` (NaN on a
-    #: fallback)
+    #: largest relative difference of the map's ``v_{k+1}`` from the arcs' arrival at a1 from ``v_k`` (or NaN)
     map_residual: float = math.nan
     distinct_cycles: int = 0  #: cycles whose arcs were computed (the rest repeat the fixed point's)
     exit: Exit = Exit()
@@ -72,22 +70,10 @@ def solve_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: in
                  check: bool = False, rtol: float = CROSS_CHECK_RTOL) -> CycleRun:
     """:func:`~escapement.solvers.exact.solve_exact`'s cycle table for ``n_cycles`` cycles, from the closed forms.
 
-    The first partial cycle, up to the first impact at a1, is the event solver's; every later one follows from the
-    return map ``v_{k+1}**2 = mu v_k**2 + c``. Where the closed form does not apply (an impact that reverses the
-    velocity, a run that stops or turns back, a grazing arc) the result holds ``solve_exact``'s run without its
-    trajectory, and :attr:`CycleRun.fallback` says why. ``memory_budget`` holds :data:`PEAK_BYTES_PER_CYCLE` a
-    cycle; with ``check`` the run is compared with ``solve_exact`` (:func:`cross_check`) within ``rtol``.
-
-    Examples
-    --------
-    >>> from escapement import Parameters
-    >>> from escapement.solvers.cycles import solve_cycles
-    >>> run = solve_cycles(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=50, check=True)
-    >>> run.method, run.status.value, len(run.cycles), round(float(run.cycles.period[-1]), 4)
-    ('closed-form cycles', 'completed', 50, 6.2957)
-    >>> solve_cycles(Parameters(M=1.0, K=1.0, F=1.0, b=1.5, a1=-0.1, a2=0.05), x0=1.0, n_cycles=5).fallback
-    'b = 1.5: the impact reverses the velocity (the run chatters)'
-    """
+    The event solver makes the first partial cycle, up to the first impact at a1, and the return map
+    ``v_{k+1}**2 = mu v_k**2 + c`` every later one. Where the closed form does not apply (an impact that reverses
+    the velocity, a run that stops or turns back, a grazing arc) the result holds ``solve_exact``'s run, and
+    :attr:`CycleRun.fallback` says why. With ``check`` the run is compared with ``solve_exact`` within ``rtol``."""
     spec = run_spec(params, x0, v0, n_cycles=n_cycles, memory_budget=memory_budget)
     spec.limits.check_memory(0.0, PEAK_BYTES_PER_CYCLE, "its cycle table and the closed form's work arrays",
                              "stream the cycles in constant memory with escapement.solvers.iter_cycles")
@@ -109,11 +95,11 @@ def solve_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: in
 class CycleChunks(ChunkIterator):
     """:func:`solve_cycles`'s cycle table in chunks (see :func:`iter_closed_form_cycles`)."""
 
-    def __init__(self, cycles: Cycles | None, n: int, chunk: int, fallback: CycleStream | None, reason: str | None,
-                 cmap: CycleMap) -> None:
+    def __init__(self, done: Cycles | str, n: int, chunk: int, fallback: CycleStream | None, cmap: CycleMap) -> None:
+        cycles = None if fallback is not None else done
         self._cycles, self._n, self._chunk, self._fallback, self._done = cycles, n, chunk, fallback, 0
-        self.method = "exact" if fallback is not None else CLOSED_FORM  #: which solver makes the chunks
-        self.fallback = reason  #: why the event solver makes the run; None where the closed forms do
+        self.method = CLOSED_FORM if cycles else "exact"  #: which solver makes the chunks
+        self.fallback = None if cycles else done  #: why the event solver makes the run; None where the closed forms do
         self.cycle_map = cmap
         self.distinct_cycles = 0 if cycles is None else cycles.distinct  #: cycles whose arcs were computed
         self.map_residual = math.nan if cycles is None else cycles.residual  #: as :attr:`CycleRun.map_residual`
@@ -148,28 +134,16 @@ class CycleChunks(ChunkIterator):
 def iter_closed_form_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int,
                             chunk: int = DEFAULT_CHUNK, memory_budget: int | None = None) -> CycleChunks:
     """:func:`solve_cycles`'s cycle table in chunks of at most ``chunk`` cycles, number for number, in memory that
-    does not grow with the run: the distinct cycles of the transient are computed once, and each row from its own
-    cycle number. Where they would not fit the memory budget beside a chunk (:data:`CHUNK_BYTES_PER_CYCLE` a
-    cycle), or the closed form does not apply, the event solver streams the run
-    (:func:`~escapement.solvers.stream.iter_cycles`) and :attr:`CycleChunks.fallback` says why.
-
-    Examples
-    --------
-    >>> from escapement import Parameters
-    >>> from escapement.solvers.cycles import iter_closed_form_cycles
-    >>> chunks = iter_closed_form_cycles(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0,
-    ...                                  n_cycles=250, chunk=100)
-    >>> [len(c) for c in chunks], chunks.method, chunks.summary.status.value
-    ([100, 100, 50], 'closed-form cycles', 'completed')
-    """
+    does not grow with the run (the transient's distinct cycles once, each row from its own cycle number). Where
+    they would not fit the memory budget beside a chunk, or the closed form does not apply, the event solver
+    streams the run (:func:`~escapement.solvers.stream.iter_cycles`) and :attr:`CycleChunks.fallback` says why."""
     spec = run_spec(params, x0, v0, n_cycles=n_cycles, memory_budget=memory_budget)
     chunk, chunk_bytes = check_chunk(chunk, spec.limits.memory_budget)
     done = closed_form_cycles(spec, most=(spec.limits.memory_budget - chunk_bytes) // PEAK_BYTES_PER_CYCLE)
     n, cmap = spec.limits.n_cycles, cycle_map(spec.params)
-    if isinstance(done, str):
-        stream = iter_cycles(spec.params, spec.x0, spec.v0, n_cycles=n, chunk=chunk, memory_budget=memory_budget)
-        return CycleChunks(None, n, chunk, stream, done, cmap)
-    return CycleChunks(done, n, chunk, None, None, cmap)
+    stream = iter_cycles(spec.params, spec.x0, spec.v0, n_cycles=n, chunk=chunk, memory_budget=memory_budget) \
+        if isinstance(done, str) else None
+    return CycleChunks(done, n, chunk, stream, cmap)
 
 
 def _relative(a, b) -> np.ndarray:
@@ -187,9 +161,8 @@ def compare_tables(table: CycleTable, reference: CycleTable) -> dict[str, float]
 
 
 def cross_check(run: CycleRun, rtol: float = CROSS_CHECK_RTOL) -> dict[str, float]:
-    """The largest relative difference of ``run`` from :func:`~escapement.solvers.exact.solve_exact`'s run on each
-    quantity (and ``t_final``); :class:`CrossCheckError` names the quantity, the cycle and both values where the
-    outcome or the number of cycles differ or a difference exceeds ``rtol``."""
+    """The largest relative difference from :func:`~escapement.solvers.exact.solve_exact`'s run of each quantity;
+    :class:`CrossCheckError` names the quantity, cycle and values where one exceeds ``rtol`` or the outcomes differ."""
     exact = solve_exact(run.params, run.x0, run.v0, n_cycles=run.n_cycles, record_trajectory=False)
     if exact.status is not run.status or len(exact.cycles) != len(run.cycles):
         raise CrossCheckError(f"{run.method}: {run.status.value} after {len(run.cycles)} cycles, but solve_exact: "

@@ -1,12 +1,9 @@
-"""The tables a run is made of: the per-cycle table, the harmonic arcs and the numbers of a regime exit, with their
-columns' names, units and long names (from :mod:`escapement.model.quantities`), the same in data frames and
-datasets. Their summaries print every number true as printed (:mod:`escapement.model.printing`).
-"""
+"""The tables a run is made of (cycles, harmonic arcs, a regime exit's numbers), their columns' names, units and
+long names (:mod:`escapement.model.quantities`), and summaries that print every number true as printed."""
 
 from __future__ import annotations
 
 import math
-import textwrap
 from dataclasses import dataclass, fields
 from typing import Protocol
 
@@ -18,7 +15,7 @@ from ..model.kinematics import sample_arcs
 from ..model.printing import number, span, texts, with_unit
 from ..model.quantities import VARIABLES
 
-__all__ = ["CYCLE_COLUMNS", "EVENT_COLUMNS", "EXIT_UNITS", "ArcTable", "CycleTable", "Exit", "Trajectory", "line"]
+__all__ = ["CYCLE_COLUMNS", "EVENT_COLUMNS", "EXIT_UNITS", "ArcTable", "CycleTable", "Exit", "Trajectory"]
 
 
 class Trajectory(Protocol):
@@ -32,7 +29,8 @@ class Trajectory(Protocol):
 
 @dataclass(frozen=True, repr=False)
 class CycleTable:
-    """One entry per complete cycle ``k = 1 .. N``; for the ensemble, a row per trajectory."""
+    """One entry per complete cycle ``k = 1 .. N`` (mpmath numbers for the high-precision solver; for the ensemble,
+    a row per trajectory)."""
 
     impact_time: np.ndarray  #: time of impact k at a1, s
     velocity_before_impact: np.ndarray  #: velocity just before impact k, m/s
@@ -118,10 +116,8 @@ class Exit:
     >>> from escapement import Parameters, solve_exact
     >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
     >>> run = solve_exact(p, x0=0.01, n_cycles=5)
-    >>> run.status
-    <Status.STOPPED: 'stopped'>
-    >>> run.exit.turning_point, round(run.exit.margin, 12), run.exit.t_accumulation
-    (0.01, 0.09, nan)
+    >>> run.status.value, run.exit.turning_point, round(run.exit.margin, 12), run.exit.t_accumulation
+    ('stopped', 0.01, 0.09, nan)
     """
 
     turning_point: float = math.nan
@@ -135,14 +131,5 @@ class Exit:
                          for name, unit in EXIT_UNITS.items() if not math.isnan(getattr(self, name)))
 
     def __repr__(self) -> str:
-        """The call that makes this exit, each number as typed back (zero without a sign)."""
         values = ", ".join(f"{name}={float(getattr(self, name)) + 0.0!r}" for name in EXIT_UNITS)
         return f"Exit({values})"
-
-
-def line(label: str, text: str, column: int = 12, wrap: bool = False) -> str:
-    """One line of a summary: the label in a column ``column`` wide, ``text`` beside it."""
-    head = f"{label + ':':<{column}}"
-    if not wrap:
-        return head + text
-    return textwrap.fill(text, 120, initial_indent=head, subsequent_indent=" " * column, break_on_hyphens=False)

@@ -1,9 +1,6 @@
 """The exact solver for many trajectories at once, in lock-step: each pass moves every running trajectory by one
-event, with the automaton's rows on arrays (:func:`~escapement.solvers.kernel.rows`) and the scalar closed forms.
-
-After its first event a trajectory's state goes round the automaton's cycle, so the trajectories whose first
-event is the same share their state at every pass: sorted by their first event (and put back in the order of the
-inputs at the end), each such group moves as one slice of the arrays. A trajectory that ends leaves its group.
+event, with the automaton's rows on arrays and the scalar closed forms. The trajectories whose first event is the
+same share their state at every pass: sorted by it, each such group moves as one slice of the arrays.
 """
 
 from __future__ import annotations
@@ -52,7 +49,6 @@ class _Group:
     impacts: int = 0
 
     def indices(self) -> np.ndarray:
-        """The members' indices."""
         m = self.members
         return np.arange(m.start, m.stop) if isinstance(m, slice) else m
 
@@ -63,10 +59,9 @@ def solve_ensemble(M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: A
                    memory_budget: int | None = None) -> EnsembleSolution:
     """Integrate every trajectory for ``n_cycles`` complete cycles (or until it leaves the regime).
 
-    The model's inputs and the initial state are numbers or arrays, broadcast to one shape, an element a
-    trajectory (the result's rows follow the flattened shape). Before any work they are checked row by row by the
-    rules of :class:`escapement.Parameters` (the first invalid row is named), the counts as the scalar solvers
-    check them, and the run's size (:func:`ensemble_bytes`) against ``memory_budget``.
+    The inputs are numbers or arrays broadcast to one shape, an element a trajectory (a row of the result). Before
+    any work they are checked row by row as :class:`escapement.Parameters` (naming the first invalid row), the
+    counts as the scalar solvers check them, and the run's size (:func:`ensemble_bytes`) against its budget.
 
     Parameters
     ----------
@@ -107,12 +102,8 @@ def solve_ensemble(M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: A
 
     Examples
     --------
-    Two forces (N) at once:
-
     >>> from escapement import solve_ensemble
-    >>> runs = solve_ensemble(M=1.0, K=1.0, F=[0.5, 1.0], b=0.1, a1=-0.1, a2=0.05, x0=1.0, n_cycles=3)
-    >>> runs.cycles.period.shape, bool(runs.success.all())
-    ((2, 3), True)
+    >>> runs = solve_ensemble(M=1.0, K=1.0, F=[0.5, 1.0], b=0.1, a1=-0.1, a2=0.05, x0=1.0, n_cycles=3)  # two forces
     >>> runs.cycles.period[:, -1].round(4)  # s
     array([6.2991, 6.2979])
     """
@@ -136,11 +127,11 @@ class _Ensemble:
         # a row per trajectory in the order of the first events: the release x, after the last event v and the
         # time t + t_err (compensated), since the last impact at a1 the time elapsed and the largest x, how the
         # run ended (Status codes, _RUNNING while running) and the exit's numbers; the cycle tables, a row a cycle
-        self.s = SimpleNamespace(omega=p.omega, factor=automaton.impact_factor(p.b), x=spec.x0[self.order],
-                        v=spec.v0[self.order], t=np.zeros(n), t_err=np.zeros(n), elapsed=np.zeros(n),
-                        cycle_max=np.zeros(n), status=np.full(n, _RUNNING, dtype=np.int8),
-                        t_final=np.full(n, np.nan), turning=np.full(n, np.nan), margin=np.full(n, np.nan),
-                        t_acc=np.full(n, np.nan), **{name: np.full(cells, np.nan) for name in CYCLE_COLUMNS})
+        self.s = SimpleNamespace(
+            omega=p.omega, factor=automaton.impact_factor(p.b), x=spec.x0[self.order], v=spec.v0[self.order],
+            t=np.zeros(n), t_err=np.zeros(n), elapsed=np.zeros(n), cycle_max=np.zeros(n),
+            status=np.full(n, _RUNNING, dtype=np.int8), t_final=np.full(n, np.nan), turning=np.full(n, np.nan),
+            margin=np.full(n, np.nan), t_acc=np.full(n, np.nan), **{c: np.full(cells, np.nan) for c in CYCLE_COLUMNS})
         self.rebounds = bool(automaton.reverses(1.0, self.s.factor).any())  # some impacts reverse the velocity
         # the rows of the arcs after each state (after the release, by the impact reached first), where each arc
         # starts and the centre it turns about; each event kind's position

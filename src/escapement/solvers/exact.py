@@ -8,7 +8,7 @@ from ..model.events import EventLog
 from ..model.limits import check_flag, run_spec
 from ..model.parameters import Parameters
 from .describe import ArcTable, CycleTable
-from .kernel import EventRun, cycle_rows, event_block
+from .kernel import EventRun, event_block
 from .outcomes import finish
 from .result import Solution
 
@@ -23,7 +23,6 @@ ARC_BYTES = 8
 CYCLE_BYTES = 64
 #: bytes whatever the run's length
 PASS_BYTES = 1 << 16
-_REMEDY = "raise memory_budget, or stream the cycles in constant memory with escapement.solvers.iter_cycles"
 
 
 def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = None,
@@ -69,24 +68,17 @@ def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     >>> from escapement import Parameters, solve_exact
     >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
     >>> run = solve_exact(p, x0=-1.0, n_cycles=50)
-    >>> run.status, len(run.cycles)
-    (<Status.COMPLETED: 'completed'>, 50)
-    >>> round(float(run.cycles.period[-1]), 4)  # s
-    6.2957
+    >>> run.status.value, len(run.cycles), round(float(run.cycles.period[-1]), 4)  # the period in s
+    ('completed', 50, 6.2957)
     >>> x, v, a = run.sample([0.0, 1.0])  # m, m/s, m/s**2
     >>> round(float(x[1]), 6)
     -0.540302
-
-    A release too close to the centre never reaches an impact position:
-
-    >>> solve_exact(p, x0=-0.01, n_cycles=5).status
-    <Status.STOPPED: 'stopped'>
     """
-    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events,
-                    memory_budget=memory_budget)
+    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
     record_trajectory = check_flag("record_trajectory", record_trajectory)
     contents = "its event log, cycle table and arcs" if record_trajectory else "its event log and cycle table"
-    remedy = ("pass record_trajectory=False, " if record_trajectory else "") + _REMEDY
+    remedy = ("pass record_trajectory=False, " if record_trajectory else "") + \
+        "raise memory_budget, or stream the cycles in constant memory with escapement.solvers.iter_cycles"
     spec.limits.check_memory(EVENT_BYTES + (ARC_BYTES if record_trajectory else 0), CYCLE_BYTES, contents, remedy,
                              fixed_bytes=PASS_BYTES)
     run = EventRun(spec)
@@ -98,4 +90,4 @@ def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
         n = len(block.t) + run.open_arc
         trajectory = ArcTable(np.concatenate(([0.0], block.t))[:n], block.arc_centre[:n], block.arc_x[:n],
                               block.arc_v[:n], spec.params.omega, float(run.outcome.t_final))
-    return finish(spec, "exact", run.outcome, log, CycleTable(*cycle_rows(block)[0]), trajectory)
+    return finish(spec, "exact", run.outcome, log, CycleTable(*block.cycles), trajectory)

@@ -1,11 +1,8 @@
-"""The exact solver's event loop: the automaton's rows in numbers, one closed form per arc, in blocks of events.
-
-In a block the loop walks the automaton's rows (:func:`rows`) following the velocity alone: by energy each arc
-arrives with ``v**2 = v0**2 + k`` in its surface's direction, the impact law jumps it at impacts, and the loop stops
-where ``v**2`` is not positive (no surface is passed) or an impact reverses it. On the block's arrays
-:func:`~escapement.model.kinematics.crossing` then gives each arc's angle and duration, the events' times are the
-compensated (TwoSum) running sum of the durations, and the end time cuts the block where it falls: the numbers of
-an event-by-event loop, bit for bit. Kinds, positions, arcs and cycles follow on arrays (:func:`event_block`).
+"""The exact solver's event loop, in blocks of events: the loop walks the automaton's rows (:func:`rows`) following
+the velocity alone (by energy each arc arrives with ``v**2 = v0**2 + k``, the impact law jumps it at impacts) until
+no surface is passed or an impact reverses it; then, on the block's arrays, ``crossing`` gives each arc's angle and
+duration, the compensated (TwoSum) running sum the events' times, and the end time cuts the block where it falls:
+an event-by-event loop's numbers, bit for bit. Kinds, positions, arcs and cycles follow (:func:`event_block`).
 """
 
 from __future__ import annotations
@@ -29,8 +26,7 @@ from .describe import Exit
 from .outcomes import (Outcome, chattering_outcome, completed_outcome, event_limit_message, horizon_outcome,
                        no_event_outcome)
 
-__all__ = ["A1", "BLOCK_EVENTS", "PLAN", "Block", "EventRun", "Row", "event_block", "cycle_rows", "kinds_from", "row",
-           "rows"]
+__all__ = ["A1", "BLOCK_EVENTS", "PLAN", "Block", "EventRun", "Row", "event_block", "kinds_from", "row", "rows"]
 
 A1 = int(EventKind.IMPACT_A1)
 #: the events of a cycle after the impact at a1, the last that impact
@@ -46,8 +42,7 @@ def _atan2(y: np.ndarray, x: np.ndarray) -> np.ndarray:
     return np.fromiter(map(math.atan2, y.tolist(), x.tolist()), float, len(y))
 
 
-#: :func:`~escapement.model.kinematics.crossing` on arrays with the scalar closed form's numbers, bit for bit (NumPy's
-#: square root is correctly rounded, as math's)
+#: ``crossing`` on arrays with the scalar closed form's numbers, bit for bit (NumPy's sqrt is correctly rounded)
 LIBM = SimpleNamespace(sqrt=np.sqrt, atan2=_atan2)
 
 
@@ -86,9 +81,8 @@ def kinds_from(first: int, start: int, n: int) -> np.ndarray:
 
 
 class EventRun:
-    """One run of the exact solver, resumable: :meth:`advance` runs at most a given number of events and keeps
-    the state for the next call. The events are stored in :attr:`t`, :attr:`v_before` and :attr:`angle`
-    until :meth:`take` hands them over; :attr:`outcome` is set when the run ends."""
+    """One run of the exact solver, resumable: :meth:`advance` runs at most a given number of events, which
+    :meth:`take` hands over; :attr:`outcome` is set when the run ends."""
 
     def __init__(self, spec: RunSpec) -> None:
         params, x, v, limits = spec.params, spec.x0, spec.v0, spec.limits
@@ -97,8 +91,7 @@ class EventRun:
         self.t_stop = math.inf if limits.t_end is None else limits.t_end
         self.state, self.v = RELEASE, v  # the last event's kind, and the velocity after it
         self.t_sum = self.t_err = self.time = 0.0
-        self.events = 0
-        self.first: int | None = None  # the first event's kind
+        self.events, self.first = 0, None  # the events so far, and the first one's kind
         self.last = limits.max_events  # the events of the whole run (n_cycles: up to the last impact at a1)
         # per event: its time (s), the velocity before it (m/s), the angle its arc swept (rad)
         self.t, self.v_before, self.angle = array("d"), array("d"), array("d")
@@ -106,15 +99,13 @@ class EventRun:
         self.open_arc = False  # the run ended inside an arc (no surface reached, or the end time)
         self.rows = rows(params)
         self.rows[RELEASE] = self.release_row()
-        # by event kind (the release at 0): position, impact or not, the jump of the velocity (1 at a zone's end)
-        # and the centre of the arc after it
-        size = len(self.rows)
-        self.position, self.impact, self.centre = np.full(size, math.nan), np.zeros(size, bool), np.zeros(size)
-        for state, arc in automaton.ARCS.items():
-            self.centre[state] = automaton.centre(arc.mode, params.zone_offset)
-            if state != RELEASE:
-                self.position[state], self.impact[state] = automaton.position(state, params), automaton.is_impact(state)
-        self.jump = np.where(self.impact, automaton.impact_factor(self.b), 1.0)
+        # by event kind (the release at 0): position, the jump of the velocity (the impact law's factor at impacts,
+        # 1 at the ends of the zones) and the centre of the arc after it
+        kinds, factor = range(1, len(self.rows)), automaton.impact_factor(self.b)
+        self.position = np.array([math.nan, *(automaton.position(kind, params) for kind in kinds)])
+        self.jump = np.array([1.0, *(factor if automaton.is_impact(kind) else 1.0 for kind in kinds)])
+        self.centre = np.array([automaton.centre(automaton.ARCS[state].mode, params.zone_offset)
+                                for state in range(len(self.rows))])
         # by state, the arc after it: for the loop (k, direction, the jump at its end, the next state), and its
         # terms as arrays (NaN where none follows)
         self.loop = [None if r is None else (r.k, r.direction, float(self.jump[r.following]), r.following)
@@ -142,8 +133,7 @@ class EventRun:
         return (PLAN.index(A1) - PLAN.index(self.first)) % len(PLAN)
 
     def advance(self, n: int) -> None:
-        """Run at most ``n`` more events, or until the run ends (:attr:`outcome` set); an event is kept where its
-        time as stored is at most the end time (the sides of the boundaries: :func:`~escapement.solve_exact`)."""
+        """Run at most ``n`` more events, or until the run ends (:attr:`outcome` set)."""
         while n > 0 and self.outcome is None:
             n -= self._block(min(n, BLOCK_EVENTS, self.last - self.events))
 
@@ -194,7 +184,7 @@ class EventRun:
         if ending in (NO_EVENT, HORIZON):
             self.open_arc = True
             self.outcome = self._no_event() if ending == NO_EVENT else horizon_outcome(self.t_stop, self.impacts_a1())
-        elif self.completed():  # the last cycle ends here, whatever the impact does next
+        elif self.limits.n_cycles is not None and self.impacts_a1() == self.limits.n_cycles + 1:  # the last cycle
             self.outcome = completed_outcome(self.limits.n_cycles, self.time)
         elif ending == REBOUND:
             self.outcome = chattering_outcome(self.params, EventKind(self.state), self.time, v1, self.v)
@@ -202,27 +192,20 @@ class EventRun:
             message = event_limit_message(float(self.time), self.limits.max_events)
             self.outcome = Outcome(Status.EVENT_LIMIT, message, Exit(), self.time)
 
-    def completed(self) -> bool:
-        """The run's last event is the (n_cycles + 1)-th impact at a1, which ends the last cycle."""
-        return self.limits.n_cycles is not None and self.impacts_a1() == self.limits.n_cycles + 1
-
     def _no_event(self) -> Outcome:
         """No watched surface is passed from the last state: the turning point of its arc."""
         x = self.release[1] if self.state == RELEASE else automaton.position(self.state, self.params)
         mode = automaton.ARCS[self.state].mode
         centre = automaton.centre(mode, self.params.zone_offset)
-        if mode == Mode.FREE:
-            return no_event_outcome(self.params, self.state, centre, self.time, math.inf,
-                                    math.hypot(x - centre, self.v / self.omega))
-        dt, turning_point = time_to_rest(centre, x, self.v, self.omega)
-        return no_event_outcome(self.params, self.state, centre, self.time, dt, turning_point, self.t_stop,
-                                self.impacts_a1())
+        if mode == Mode.FREE:  # the swing's radius, for ever
+            dt, turning = math.inf, math.hypot(x - centre, self.v / self.omega)
+        else:
+            dt, turning = time_to_rest(centre, x, self.v, self.omega)
+        return no_event_outcome(self.params, self.state, centre, self.time, dt, turning, self.t_stop, self.impacts_a1())
 
     def impacts_a1(self) -> int:
-        """The impacts at a1 so far."""
-        if self.first is None or self.events <= self._before_a1():
-            return 0
-        return (self.events - self._before_a1() - 1) // len(PLAN) + 1
+        """The impacts at a1 so far: one in each :data:`PLAN` of events from the first."""
+        return 0 if self.first is None else (self.events - self._before_a1() + len(PLAN) - 1) // len(PLAN)
 
     def take(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The events stored since the last call (t, v_before, angle), as arrays over the buffers."""
@@ -233,44 +216,38 @@ class EventRun:
 
 
 class Block(NamedTuple):
-    """Consecutive events of a run, each with the arc that ends at it, on arrays."""
+    """Consecutive events of a run, each with the arc that ends at it, on arrays, and the cycles they complete."""
 
     kind: np.ndarray
     t: np.ndarray  #: s
     x: np.ndarray  #: m
     v_before: np.ndarray  #: m/s
     v_after: np.ndarray  #: m/s
-    dt: np.ndarray  #: the duration of the arc, s
-    arc_max: np.ndarray  #: the largest x on the arc, m
     arc_centre: np.ndarray  #: the centre of the arc, m (one more than the events: the arc after the last)
     arc_x: np.ndarray  #: where the arc starts, m (likewise)
     arc_v: np.ndarray  #: the velocity it starts with, m/s (likewise)
+    cycles: tuple  #: impact times (s), velocities before them (m/s), periods (s) and amplitudes (m)
+    begins: int  #: the index of the impact at a1 that begins the unfinished cycle (the events' number: none)
 
 
 def event_block(run: EventRun, start: int, t: np.ndarray, v_before: np.ndarray, angle: np.ndarray,
                 before: tuple[int, float, float]) -> Block:
-    """The events ``start ..`` of ``run`` on arrays; ``before`` is the state before the first."""
+    """The events ``start ..`` of ``run`` on arrays (``before`` is the state before the first) and their complete
+    cycles, from an impact at a1 to the next: the arcs' durations summed in order, the largest x from the impact."""
     n = len(t)
     kind = kinds_from(run.first, start, n) if n else np.zeros(0, dtype=np.intp)
     x, v_after = run.position[kind], run.jump[kind] * v_before
     arc_centre = np.concatenate(([run.centre[before[0]]], run.centre[kind]))
     arc_x, arc_v = np.concatenate(([before[1]], x)), np.concatenate(([before[2]], v_after))
-    arc_max = arc_maximum(arc_centre[:n], arc_x[:n], arc_v[:n], run.omega, angle, x, v_before)
-    return Block(kind.astype(np.int8), t, x, v_before, v_after, angle / run.omega, arc_max, arc_centre, arc_x, arc_v)
-
-
-def cycle_rows(block: Block) -> tuple[tuple[np.ndarray, ...], int]:
-    """The complete cycles in ``block`` (an impact at a1 to the next): impact times, velocities before them,
-    periods (the arcs' durations summed in order) and amplitudes (the largest x from the impact on); and the
-    index of the impact at a1 that begins the unfinished cycle (the block's length where there is none)."""
-    at_a1 = np.flatnonzero(block.kind == A1)
-    if len(at_a1) < 2:
-        return tuple(np.zeros(0) for _ in range(4)), (int(at_a1[0]) if len(at_a1) else len(block.t))
-    first, m, width = int(at_a1[0]), len(at_a1) - 1, len(PLAN)
-    arcs = slice(first + 1, first + 1 + m * width)
-    dt, arc_max = block.dt[arcs].reshape(m, width), block.arc_max[arcs].reshape(m, width)
-    period, amplitude = dt[:, 0].copy(), np.maximum(block.x[at_a1[:-1]], arc_max[:, 0])
+    at_a1, width = np.flatnonzero(kind == A1), len(PLAN)
+    m = max(len(at_a1) - 1, 0)
+    arcs = slice(at_a1[0] + 1, at_a1[0] + 1 + m * width) if m else slice(0, 0)  # the arcs of the complete cycles
+    dt = (angle[arcs] / run.omega).reshape(m, width)
+    arc_max = arc_maximum(arc_centre[arcs], arc_x[arcs], arc_v[arcs], run.omega, angle[arcs], x[arcs], v_before[arcs])
+    arc_max = arc_max.reshape(m, width)
+    period, amplitude = dt[:, 0].copy(), np.maximum(x[at_a1[:m]], arc_max[:, 0])
     for j in range(1, width):  # in the order of the events, as a running sum and maximum
         period += dt[:, j]
         amplitude = np.maximum(amplitude, arc_max[:, j])
-    return (block.t[at_a1[:-1]], block.v_before[at_a1[:-1]], period, amplitude), int(at_a1[-1])
+    return Block(kind.astype(np.int8), t, x, v_before, v_after, arc_centre, arc_x, arc_v,
+                 (t[at_a1[:m]], v_before[at_a1[:m]], period, amplitude), int(at_a1[-1]) if len(at_a1) else n)

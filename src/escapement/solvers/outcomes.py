@@ -64,10 +64,8 @@ def event_limit_message(t: float, max_events: int) -> str:
 
 def no_event_outcome(params: Parameters, state: int, centre: Numeric, t: Numeric, dt: Numeric, turning: Numeric,
                      t_stop: float = math.inf, impacts_a1: int = 0) -> Outcome:
-    """No surface watched in ``state`` (a row of :data:`~escapement.model.automaton.ARCS`) is ever passed
-    from time ``t``: in free flight the escapement stopped (``turning`` is the radius of the swing; known at
-    ``t``), in a zone the mass turned back at ``turning``, ``dt`` after ``t``, unless the end time ``t_stop``
-    comes first (the run then completes there, after ``impacts_a1`` impacts at a1)."""
+    """No surface watched in ``state`` is ever passed from ``t``: in free flight the escapement stopped (``turning``
+    the swing's radius), in a zone the mass turns back at ``turning`` ``dt`` later, unless the end time comes first."""
     arc = automaton.ARCS[state]
     status = automaton.EXIT_WITHOUT_EVENT[arc.mode]
     if status is Status.TURNED_BACK_IN_ZONE and t + dt > t_stop:

@@ -3,6 +3,7 @@ summary of a few lines for a ``repr``, whatever the length of the run."""
 
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -14,13 +15,17 @@ from ..model.parameters import Parameters
 from ..model.printing import exact, number, span, texts
 from ..model.quantities import INITIAL_STATE, PARAMETERS
 from ..model.status import Status, succeeded
-from .describe import (CYCLE_COLUMNS, CYCLE_UNITS, EVENT_COLUMNS, EXIT_UNITS, ArcTable, CycleTable, Exit, Trajectory,
-                       line)
+from .describe import CYCLE_COLUMNS, CYCLE_UNITS, EVENT_COLUMNS, EXIT_UNITS, ArcTable, CycleTable, Exit, Trajectory
 
 if TYPE_CHECKING:  # pandas is imported on use (see Solution.to_dataframe)
     import pandas as pd
 
 __all__ = ["ArcTable", "CycleTable", "EnsembleSolution", "Ended", "Exit", "Solution", "Trajectory"]
+
+
+def _line(label: str, text: str, column: int = 12) -> str:
+    """One line of a summary: the label in a column ``column`` wide, ``text`` beside it."""
+    return f"{label + ':':<{column}}{text}"
 
 
 class Ended:
@@ -57,8 +62,7 @@ class Solution(Ended):
     events : EventLog
         Every event in time order: time (s), kind, position (m), velocity before and after (m/s).
     cycles : CycleTable
-        The Poincare map per complete cycle (cycle ``k`` from the ``k``-th impact at a1 to the next): impact
-        time (s), velocity just before it (m/s), period (s) and largest displacement (m).
+        The Poincare map on ``x = a1, v > 0``, per complete cycle (from an impact at a1 to the next).
     trajectory : Trajectory or None
         The motion between the events, where kept (``record_trajectory=True``); see :meth:`sample`.
     t_final : float
@@ -78,8 +82,7 @@ class Solution(Ended):
     events:     201 (101 impacts) from t = 1.47063 s to 316.275 s
     cycles:     50; the last: period 6.29567 s, velocity before impact 1.25656 m/s, largest displacement 1.26053 m
     trajectory: kept (201 harmonic arcs)
-    initial:    x0 = -1 m, v0 = 0 m/s
-    parameters: M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m, a3 = 0.1 m, a4 = -0.05 m
+    ...
     """
 
     params: Parameters
@@ -110,20 +113,21 @@ class Solution(Ended):
         arcs = len(self.trajectory) if isinstance(self.trajectory, ArcTable) else None
         kept = "not kept" if self.trajectory is None else "kept" if arcs is None else \
             f"kept ({arcs} harmonic arc{'' if arcs == 1 else 's'})"
-        state = {"x0": self.x0, "v0": self.v0}
-        lines = [f"<escapement.Solution> {self.status.value} ({self.method})", line("message", self.message, wrap=True),
-                 line("time span", f"t = {zero} .. {t_final} s (t_final)"), line("events", events),
-                 line("cycles", counted), line("trajectory", kept),
-                 line("initial", ", ".join(f"{k} = {exact(v, INITIAL_STATE[k].unit_label)}" for k, v in state.items())),
-                 line("parameters", ", ".join(f"{name} = {exact(value, PARAMETERS[name].unit_label)}"
-                                              for name, value in self.params.as_dict().items()))]
+        state = (("x0", self.x0), ("v0", self.v0))
+        message = textwrap.fill(self.message, 120, initial_indent=_line("message", ""), subsequent_indent=" " * 12,
+                                break_on_hyphens=False)
+        lines = [f"<escapement.Solution> {self.status.value} ({self.method})", message,
+                 _line("time span", f"t = {zero} .. {t_final} s (t_final)"), _line("events", events),
+                 _line("cycles", counted), _line("trajectory", kept),
+                 _line("initial", ", ".join(f"{k} = {exact(v, INITIAL_STATE[k].unit_label)}" for k, v in state)),
+                 _line("parameters", ", ".join(f"{k} = {exact(v, PARAMETERS[k].unit_label)}"
+                                               for k, v in self.params.as_dict().items()))]
         if self.exit.summary():
-            lines.append(line("exit", self.exit.summary({"t_accumulation": t_acc})))
+            lines.append(_line("exit", self.exit.summary({"t_accumulation": t_acc})))
         return "\n".join(lines)
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Displacement [m], velocity [m/s] and acceleration [m/s^2] at times ``t`` [s], a finite real number or
-        1-d array of them (NaN outside ``[0, t_final]``); a run that kept no trajectory refuses."""
+        """Displacement [m], velocity [m/s] and acceleration [m/s^2] at times ``t`` [s] (NaN outside [0, t_final])."""
         times = sample_times("t", t)
         if self.trajectory is None:
             raise ParameterError("record_trajectory", False, "True in the solve that made this run, to sample "
@@ -133,10 +137,8 @@ class Solution(Ended):
     def to_dataframe(self, table: str = "cycles") -> pd.DataFrame:
         """The run's cycles or events as a :class:`pandas.DataFrame`.
 
-        The columns are the variables of the run's CF dataset (names, values, units): the cycles indexed by
-        ``cycle`` from 1, the events by ``event`` from 0, the kind as its :class:`~escapement.EventKind` code;
-        ``df.attrs["units"]`` gives each column's UDUNITS string, ``df.attrs["long_names"]`` its description.
-        mpmath numbers become their nearest doubles.
+        The columns are the run's CF dataset's variables, indexed by ``cycle`` from 1 or ``event`` from 0;
+        ``df.attrs["units"]`` and ``df.attrs["long_names"]`` give their UDUNITS strings and descriptions.
 
         Parameters
         ----------
@@ -160,7 +162,6 @@ class Solution(Ended):
         4
         """
         import pandas as pd  # imported on use: a job that only solves does not load it
-
         if check_choice("table", table, ("cycles", "events")) == "cycles":
             index = pd.Index(self.cycles.cycle, name="cycle")
             columns = {name: (getattr(self.cycles, name), *described) for name, described in CYCLE_COLUMNS.items()}
@@ -184,8 +185,7 @@ class EnsembleSolution:
     status : numpy.ndarray of int, shape (N,)
         How each run ended, as :attr:`Status.code` values.
     cycles : CycleTable
-        The per-cycle table, each column of shape ``(N, n_cycles)``: impact time at a1 (s), velocity before it
-        (m/s), period (s), largest displacement (m); NaN after a trajectory ended.
+        The per-cycle table, each column of shape ``(N, n_cycles)``, NaN after a trajectory ended.
     t_final : numpy.ndarray of float, shape (N,)
         End of each computed trajectory, s (``inf`` where the escapement stopped).
     exit_turning_point : numpy.ndarray of float, shape (N,)
@@ -228,10 +228,10 @@ class EnsembleSolution:
         shape = np.shape(self.cycles.period)
         lines = [f"<escapement.EnsembleSolution> {len(self.status)} trajectories, "
                  f"{shape[-1] if len(shape) == 2 else 0} cycles ({self.method})",
-                 line("outcomes", outcomes or "none", 25), line("t_final", span(self.t_final, "s"), 25)]
-        lines += [line(name, span(getattr(self.cycles, name), unit), 25) for name, unit in CYCLE_UNITS.items()]
+                 _line("outcomes", outcomes or "none", 25), _line("t_final", span(self.t_final, "s"), 25)]
+        lines += [_line(name, span(getattr(self.cycles, name), unit), 25) for name, unit in CYCLE_UNITS.items()]
         for name, unit in EXIT_UNITS.items():
             values = getattr(self, f"exit_{name}")
             if not np.isnan(np.asarray(values, dtype=float)).all():
-                lines.append(line(f"exit_{name}", span(values, unit), 25))
+                lines.append(_line(f"exit_{name}", span(values, unit), 25))
         return "\n".join(lines)

@@ -13,7 +13,7 @@ from ..model.limits import check_budget, check_count, run_spec
 from ..model.parameters import Parameters
 from ..model.status import Status
 from .describe import CycleTable, Exit
-from .kernel import BLOCK_EVENTS, EventRun, cycle_rows, event_block
+from .kernel import BLOCK_EVENTS, EventRun, event_block
 from .result import Ended
 
 __all__ = ["CHUNK_BYTES_PER_CYCLE", "DEFAULT_CHUNK", "MAX_CHUNK", "ChunkIterator", "CycleStream", "StreamSummary",
@@ -46,15 +46,9 @@ class ChunkIterator(Iterator[CycleTable]):
     _summary: StreamSummary | None = None
 
     def __iter__(self) -> ChunkIterator:
-        """The iterator itself."""
         return self
 
-    def _progress(self) -> str:
-        """What has been handed over so far."""
-        raise NotImplementedError
-
     def __repr__(self) -> str:
-        """One line: the chunk size, the cycles handed over and, once exhausted, how the run ended."""
         ended = "" if self._summary is None else f"; ended {self._summary.status.value}"
         return f"<{type(self).__name__}> {self._progress()}{ended}"
 
@@ -74,7 +68,6 @@ class CycleStream(ChunkIterator):
         self._cycles = 0  # complete cycles handed over
         self._carry: tuple | None = None  # the events from the impact at a1 that begins the cycle under way
         self._ready: list[tuple[np.ndarray, ...]] = []  # cycles derived, not yet handed over
-        self._pending = 0
 
     def _progress(self) -> str:
         return f"chunks of {self._chunk} cycles, {self._cycles} handed over"
@@ -82,10 +75,10 @@ class CycleStream(ChunkIterator):
     def __next__(self) -> CycleTable:
         """The next chunk of the per-cycle table; :class:`StopIteration` once the run has ended."""
         run = self._run
-        while self._pending < self._chunk and run.outcome is None:
+        while sum(len(part[0]) for part in self._ready) < self._chunk and run.outcome is None:
             run.advance(BLOCK_EVENTS)
             self._derive(run.take())
-        if not self._pending:
+        if not self._ready:
             if self._summary is None:
                 outcome = run.outcome
                 self._summary = StreamSummary(outcome.status, outcome.message, outcome.exit,
@@ -94,24 +87,20 @@ class CycleStream(ChunkIterator):
         columns = [np.concatenate(parts) for parts in zip(*self._ready)]
         rest = [column[self._chunk:] for column in columns]
         self._ready = [tuple(rest)] if len(rest[0]) else []
-        self._pending = len(rest[0])
         head = CycleTable(*(column[:self._chunk] for column in columns))
         self._cycles += len(head)
         return head
 
     def _derive(self, stored: tuple[np.ndarray, np.ndarray, np.ndarray]) -> None:
-        """The cycles a block completes; the events of the cycle under way carry to the next."""
-        run = self._run
-        start, before, carried = self._carry or (0, run.release, None)
-        columns = stored if carried is None else tuple(np.concatenate(pair) for pair in zip(carried, stored))
-        block = event_block(run, start, *columns, before=before)
-        cycles, begins = cycle_rows(block)
-        if len(cycles[0]):
-            self._ready.append(cycles)
-            self._pending += len(cycles[0])
-        if begins:  # the state after the event before that impact at a1
-            before = (int(block.kind[begins - 1]), block.arc_x[begins], block.arc_v[begins])
-        self._carry = (start + begins, before, tuple(column[begins:].copy() for column in columns))
+        """The cycles a block completes, after the events of the cycle under way carried from the last block."""
+        start, before, carried = self._carry or (0, self._run.release, None)
+        columns = tuple(np.concatenate(pair) for pair in zip(carried, stored)) if carried else stored
+        block = event_block(self._run, start, *columns, before=before)
+        if len(block.cycles[0]):
+            self._ready.append(block.cycles)
+        if block.begins:  # the state after the event before the impact at a1 that begins the cycle under way
+            before = (int(block.kind[block.begins - 1]), block.arc_x[block.begins], block.arc_v[block.begins])
+        self._carry = (start + block.begins, before, tuple(column[block.begins:].copy() for column in columns))
 
 
 def iter_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = None,
@@ -156,8 +145,7 @@ def iter_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     >>> bool(np.array_equal(np.concatenate(periods), solve_exact(p, x0=1.0, n_cycles=250).cycles.period))
     True
     """
-    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events,
-                    memory_budget=memory_budget)
+    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
     chunk, _ = check_chunk(chunk, spec.limits.memory_budget)
     return CycleStream(EventRun(spec), chunk)
 
