@@ -1,3 +1,6 @@
+"""The reference solver (SciPy's solve_ivp, SUNDIALS CVODE) against the exact one: the same outcomes and events,
+times and velocities within the integrator's tolerance, grazing crossings and turning points not missed."""
+
 import math
 
 import numpy as np
@@ -14,97 +17,76 @@ from escapement.integrators.reference import solve_reference
 AGREEMENT = 1e-8
 
 
-def _scales(p: Parameters, x0: float, v0: float) -> tuple[float, float]:
-    length = max(abs(x0), abs(p.a1), abs(p.a2), abs(p.a3), abs(p.a4), p.zone_offset, abs(v0) / p.omega)
-    return p.natural_period, length * p.omega
-
-
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=10, deadline=None)
 @given(p=parameters(), x0=initial_displacement, v0=initial_velocity)
 def test_exact_and_reference_agree_to_1e8(p, x0, v0):
     """Same outcome, same events; times and velocities within 1e-8 of their scales."""
-    exact = solve_exact(p, x0, v0, n_cycles=4)
-    t_scale, v_scale = _scales(p, x0, v0)
-    # Grazing (a turning point within a hair of a surface) is decided by rounding; it has its own tests.
-    # Near grazing the event time is ill-conditioned: solve_ivp places x within atol = 1e-12 L of the
-    # surface, which moves the time by 1e-12 L / |v|; that stays below 1e-8 T = 1e-8 (2 pi / w) only for
-    # |v| > 1.6e-5 L w, so runs with an event slower than 1e-4 v_scale are left to the grazing tests.
-    margin = exact.exit.margin
-    assume(math.isnan(margin) or margin > 1e-4 * v_scale / p.omega)
+    exact = solve_exact(p, x0, v0, n_cycles=3)
+    length = max(abs(x0), abs(p.a1), abs(p.a2), abs(p.a3), abs(p.a4), p.zone_offset, abs(v0) / p.omega)
+    t_scale, v_scale = p.natural_period, length * p.omega
+    # Grazing is decided by rounding and has its own tests: solve_ivp places x within atol = 1e-12 L of a surface,
+    # which moves an event slower than 1e-4 v_scale by more than 1e-8 T, so such runs are left out.
+    assume(math.isnan(exact.exit.margin) or exact.exit.margin > 1e-4 * v_scale / p.omega)
     assume(len(exact.events) == 0 or np.min(np.abs(exact.events.v_before)) > 1e-4 * v_scale)
-    ref = solve_reference(p, x0, v0, n_cycles=4, rtol=1e-12)
+    ref = solve_reference(p, x0, v0, n_cycles=3, rtol=1e-12)
     assert ref.status == exact.status, (ref.message, exact.message)
     assert np.array_equal(ref.events.kind, exact.events.kind)
     assert np.max(np.abs(ref.events.t - exact.events.t), initial=0.0) < AGREEMENT * t_scale
-    assert np.max(np.abs(ref.events.v_before - exact.events.v_before), initial=0.0) < AGREEMENT * v_scale
-    assert np.max(np.abs(ref.events.v_after - exact.events.v_after), initial=0.0) < AGREEMENT * v_scale
+    for name in ("v_before", "v_after"):
+        gap = np.abs(getattr(ref.events, name) - getattr(exact.events, name))
+        assert np.max(gap, initial=0.0) < AGREEMENT * v_scale
     gap = np.max(np.abs(ref.cycles.largest_displacement - exact.cycles.largest_displacement), initial=0.0)
     assert gap < AGREEMENT * v_scale / p.omega
     if exact.status == Status.TURNED_BACK_IN_ZONE:
         assert abs(ref.t_final - exact.t_final) < AGREEMENT * t_scale
 
 
-def test_paper_case_a_over_50_cycles(case_a):
-    exact = solve_exact(case_a, 1.0, n_cycles=50)
-    ref = solve_reference(case_a, 1.0, n_cycles=50)
+def test_paper_case_a_over_20_cycles(case_a):
+    exact = solve_exact(case_a, 1.0, n_cycles=20)
+    ref = solve_reference(case_a, 1.0, n_cycles=20)
     assert ref.status == Status.COMPLETED
+    assert list(ref.events.kind[:4]) == [EventKind.IMPACT_A3, EventKind.ZONE_END_A4, EventKind.IMPACT_A1,
+                                         EventKind.ZONE_END_A2]
     assert ref.cycles.period == pytest.approx(exact.cycles.period, rel=1e-10)
     assert ref.cycles.velocity_before_impact == pytest.approx(exact.cycles.velocity_before_impact, rel=1e-10)
 
 
-def test_dense_output_matches_the_exact_arcs(case_b):
-    exact = solve_exact(case_b, 3.0, t_end=40.0)
-    ref = solve_reference(case_b, 3.0, t_end=40.0)
-    t = np.linspace(0.0, 40.0, 2001)
+def test_a_run_to_an_end_time_samples_as_the_exact_arcs(case_b):
+    exact = solve_exact(case_b, 3.0, t_end=20.0)
+    ref = solve_reference(case_b, 3.0, t_end=20.0)
+    assert ref.status == exact.status == Status.COMPLETED and ref.t_final == 20.0
+    t = np.linspace(0.0, 20.0, 1001)
     for a, b in zip(ref.sample(t), exact.sample(t)):
         assert a == pytest.approx(b, abs=1e-9)
 
 
-def test_stopped_turned_back_and_chattering_are_reported_as_by_the_exact_solver():
-    cases = [
-        (Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 0.05, Status.STOPPED),
-        (Parameters(M=1, K=100, F=0.01, b=0.1, a1=-0.02, a2=0.1), 0.021, Status.TURNED_BACK_IN_ZONE),
-        (Parameters(M=1, K=1, F=1, b=1.5, a1=-0.1, a2=0.05), 1.0, Status.CHATTERING),
-        (Parameters(M=1, K=1, F=0.0, b=0.1, a1=-0.1, a2=0.05, a3=0.3, a4=0.0), 1.0, Status.STOPPED),
-    ]
-    for p, x0, status in cases:
-        ref = solve_reference(p, x0, n_cycles=100)
-        exact = solve_exact(p, x0, n_cycles=100)
-        assert ref.status == exact.status == status
-        assert len(ref.events) == len(exact.events)
+@pytest.mark.parametrize("p, x0, status", [
+    (Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 0.05, Status.STOPPED),
+    (Parameters(M=1, K=100, F=0.01, b=0.1, a1=-0.02, a2=0.1), 0.021, Status.TURNED_BACK_IN_ZONE),
+    (Parameters(M=1, K=1, F=1, b=1.5, a1=-0.1, a2=0.05), 1.0, Status.CHATTERING),
+    (Parameters(M=1, K=1, F=0.0, b=0.1, a1=-0.1, a2=0.05, a3=0.3, a4=0.0), 1.0, Status.STOPPED),
+], ids=["stopped", "turned back", "chattering", "stopped after cycles"])
+def test_regime_exits_are_those_of_the_exact_solver(p, x0, status):
+    ref, exact = solve_reference(p, x0, n_cycles=100), solve_exact(p, x0, n_cycles=100)
+    assert ref.status == exact.status == status and len(ref.events) == len(exact.events)
+    assert ref.exit.t_accumulation == pytest.approx(exact.exit.t_accumulation, rel=1e-9, nan_ok=True)
 
 
-def test_reference_event_order(case_a):
-    ref = solve_reference(case_a, 1.0, n_cycles=3)
-    assert list(ref.events.kind[:4]) == [
-        EventKind.IMPACT_A3,
-        EventKind.ZONE_END_A4,
-        EventKind.IMPACT_A1,
-        EventKind.ZONE_END_A2,
-    ]
-
-
-def test_cvode_agrees_and_keeps_no_trajectory(case_a):
-    exact = solve_exact(case_a, 1.0, n_cycles=5)
-    ref = solve_reference(case_a, 1.0, n_cycles=5, method="CVODE-Adams", rtol=1e-10, record_trajectory=False)
+def test_cvode_agrees_keeps_no_trajectory_and_takes_numpy_tolerances(case_a):
+    exact = solve_exact(case_a, 1.0, n_cycles=3)
+    ref = solve_reference(case_a, 1.0, n_cycles=3, method="CVODE-Adams", rtol=np.float32(1e-10),
+                          atol=np.float64(1e-12), record_trajectory=False)
     assert ref.status == Status.COMPLETED and ref.trajectory is None
     assert ref.cycles.impact_time == pytest.approx(exact.cycles.impact_time, rel=1e-7)
-
-
-def test_chattering_exit_time_is_the_exact_one():
-    p = Parameters(M=1, K=1, F=1, b=1.5, a1=-0.1, a2=0.05)
-    ref = solve_reference(p, 1.0, n_cycles=5)
-    exact = solve_exact(p, 1.0, n_cycles=5)
-    assert ref.exit.t_accumulation == pytest.approx(exact.exit.t_accumulation, rel=1e-9)
 
 
 def test_a_loose_tolerance_misses_no_turning_point(case_a):
     """At rtol 0.1 DOP853 would take steps of more than half a period, over two zeros of the velocity
     (no change of sign across the step: no turning point found, and the run stopped after two events);
     steps are kept below half a period, so each holds at most one."""
-    exact = solve_exact(case_a, 1.0, n_cycles=5)
+    exact = solve_exact(case_a, 1.0, n_cycles=3)
     for record in (True, False):
-        ref = solve_reference(case_a, 1.0, n_cycles=5, rtol=0.1, record_trajectory=record)
+        ref = solve_reference(case_a, 1.0, n_cycles=3, rtol=0.1, record_trajectory=record)
         assert ref.status == Status.COMPLETED, ref.message
         assert np.array_equal(ref.events.kind, exact.events.kind)
 
@@ -124,9 +106,3 @@ def test_a_zone_end_passed_just_before_the_turning_point_is_not_missed():
         assert ref.status == exact.status == Status.COMPLETED, ref.message
         assert list(ref.events.kind[:2]) == [EventKind.IMPACT_A1, EventKind.ZONE_END_A2]
         assert np.array_equal(ref.events.kind, exact.events.kind)
-
-
-def test_numpy_tolerances_are_real_numbers(case_a):
-    run = solve_reference(case_a, 1.0, n_cycles=1, rtol=np.float32(1e-9), atol=np.float64(1e-12),
-                          record_trajectory=False)
-    assert run.status.value == "completed"

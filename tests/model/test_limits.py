@@ -1,8 +1,6 @@
 """What a run is asked, checked once (escapement.model.limits): the run spec every solver entry point starts
 with, the limits and their defaults, and the memory budget's one check."""
 
-from __future__ import annotations
-
 import math
 
 import numpy as np
@@ -50,16 +48,14 @@ def test_the_run_spec_refuses_each_bad_argument_naming_it(changes, name, require
     assert not isinstance(err.value, MemoryBudgetError)
 
 
-def test_the_spec_holds_the_checked_run_and_the_limits_their_defaults():
+def test_the_spec_holds_the_checked_run_or_rows_and_the_limits_their_defaults():
     spec = run_spec(P, 1, np.float32(0.5), n_cycles=np.int32(3))
     assert (spec.params, spec.x0, spec.v0) == (P, 1.0, 0.5) and type(spec.x0) is float
     assert spec.limits == RunLimits(n_cycles=3, max_events=4 * (3 + 2) + 8, memory_budget=MEMORY_BUDGET)
     assert type(spec.limits.n_cycles) is int
     assert run_spec(P, 1.0, t_end=5).limits == RunLimits(t_end=5.0, max_events=10**7)
     assert events_for(0) == 16 and events_for(10) == 56  # four events a cycle and a margin for the first ones
-
-
-def test_an_ensembles_spec_holds_its_rows_checked_and_flat():
+    # an ensemble's: its rows checked and flat
     spec = run_spec(dict(M=1.0, K=[[1.0, 4.0]], F=0.5, b=0.1, a1=-0.1, a2=0.05), [1.0, 2.0], 0.0, n_cycles=2,
                     rows=lambda n, k: 0)
     assert isinstance(spec.params, ParameterArrays)

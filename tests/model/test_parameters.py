@@ -1,6 +1,7 @@
 """Parameters and the initial state: the rules, checked when the parameters are made, one rule set for a single
 run and for the rows of an ensemble, and the floating-point range in which they keep every computed quantity."""
 
+import itertools
 import math
 from fractions import Fraction
 
@@ -14,10 +15,10 @@ VALID = dict(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 RANGE = "[1e-50, 1e+50]"
 WHY = ", so that the squares and products the solvers form"
 
-#: every kind of refusal of Parameters: the inputs changed, the name refused, the start of its requirement
+#: every kind of refusal of Parameters: the inputs changed, the name refused, the start of its requirement (the
+#: refusals of what is not a real number are escapement.model.arguments', tested there: one here shows them used)
 REFUSED = [
     ({"M": 0.0}, "M", "> 0 (kg)"),
-    ({"M": -1.0}, "M", "> 0 (kg)"),
     ({"K": 0.0}, "K", "> 0 (N/m)"),
     ({"F": -0.1}, "F", ">= 0 (N)"),
     ({"b": 0.0}, "b", "in the open interval (0, 2)"),
@@ -39,11 +40,8 @@ REFUSED = [
     ({"M": math.nan}, "M", "finite"),
     ({"F": -math.inf}, "F", "finite"),
     ({"b": "0.1"}, "b", "a real number"),
-    ({"F": True}, "F", "a real number"),
-    ({"a3": "x"}, "a3", "a real number"),
     ({"a2": None}, "a2", "given"),
     ({"F": [1.0, 2.0]}, "F", "a single real number, not an array or a sequence"),
-    ({"K": 10**400}, "K", "a real number within the float64 range"),
 ]
 
 
@@ -96,9 +94,6 @@ def test_the_initial_state_is_refused_naming_it(x0, v0, name, requirement):
     with pytest.raises(ParameterError) as err:
         check_initial_state(x0, v0)
     assert err.value.name == name and err.value.requirement.startswith(requirement)
-
-
-def test_the_initial_state_within_the_range_is_taken_as_floats():
     assert check_initial_state(1, -2) == (1.0, -2.0)
     assert check_initial_state(1e50, -1e-50) == (1e50, -1e-50) and check_initial_state(0.0, 0.0) == (0.0, 0.0)
 
@@ -107,26 +102,21 @@ def test_at_the_corners_of_the_range_every_derived_quantity_is_a_normal_float():
     """omega, F/K, F/M and the squares formed from them stay in float64's normal range (2.2e-308 .. 1.8e308),
     whichever corner of the range the inputs sit at."""
     tiny, huge = np.finfo(float).tiny, np.finfo(float).max
-    for M in (1e-50, 1e50):
-        for K in (1e-50, 1e50):
-            for F in (1e-50, 1e50):
-                for a in (1e-50, 1e50):
-                    p = Parameters(M=M, K=K, F=F, b=0.1, a1=-a, a2=0.0)
-                    for x in (1e-50, 1e50):
-                        for v in (1e-50, 1e50):
-                            w = v / p.omega
-                            derived = [p.omega, p.omega2, p.f, p.zone_offset, p.natural_period, w, w * w,
-                                       p.omega2 * x * x, p.omega2 * p.zone_offset**2, p.f * a, 0.5 * p.M * v * v,
-                                       0.5 * p.K * x * x, x * p.zone_offset, w * p.zone_offset]
-                            assert all(tiny <= abs(q) <= huge for q in derived), (M, K, F, a, x, v)
+    for M, K, F, a, x, v in itertools.product((1e-50, 1e50), repeat=6):
+        p = Parameters(M=M, K=K, F=F, b=0.1, a1=-a, a2=0.0)
+        w = v / p.omega
+        derived = [p.omega, p.omega2, p.f, p.zone_offset, p.natural_period, w, w * w, p.omega2 * x * x,
+                   p.omega2 * p.zone_offset**2, p.f * a, 0.5 * p.M * v * v, 0.5 * p.K * x * x, x * p.zone_offset,
+                   w * p.zone_offset]
+        assert all(tiny <= abs(q) <= huge for q in derived), (M, K, F, a, x, v)
 
 
-@pytest.mark.parametrize("factor", [1.0, 1.37, 1e3, 1e11])
-def test_every_accepted_impact_coefficient_survives_the_impact_law_to_4_digits(factor):
+def test_every_accepted_impact_coefficient_survives_the_impact_law_to_4_digits():
     """v+ = (1 - b) v- loses b's low digits in 1 - b: from the smallest b accepted up, the b recovered from the
     velocity after a unit impact agrees to 4 digits."""
-    p = Parameters(**{**VALID, "b": B_SMALLEST * factor})
-    assert abs((1.0 - (1.0 - p.b) * 1.0) / p.b - 1.0) < 1e-4
+    for factor in (1.0, 1.37, 1e3, 1e11):
+        p = Parameters(**{**VALID, "b": B_SMALLEST * factor})
+        assert abs((1.0 - (1.0 - p.b) * 1.0) / p.b - 1.0) < 1e-4
 
 
 # --- one rule set for the rows of an ensemble --------------------------------------------------------

@@ -2,7 +2,6 @@
 documentation and configuration schema that state the same names and units."""
 
 import dataclasses
-import inspect
 import re
 from pathlib import Path
 
@@ -11,16 +10,8 @@ import yaml
 from cf_units import Unit
 
 from escapement.model.parameters import ParameterError, Parameters
-from escapement.model.quantities import (
-    INITIAL_STATE,
-    MODEL_KEYS,
-    PARAMETERS,
-    REQUIRED_KEYS,
-    SYMMETRIC_DEFAULTS,
-    VARIABLES,
-    Quantity,
-    quantity,
-)
+from escapement.model.quantities import (INITIAL_STATE, MODEL_KEYS, PARAMETERS, REQUIRED_KEYS, SYMMETRIC_DEFAULTS,
+                                         VARIABLES, Quantity, quantity)
 
 SCHEMA = yaml.safe_load((Path(__file__).parents[2] / "workflow/schemas/config.schema.yaml").read_text())
 ALL = {**PARAMETERS, **INITIAL_STATE, **VARIABLES}
@@ -38,12 +29,8 @@ MASS, LENGTH, TIME = Unit("kg"), Unit("m"), Unit("s")
 RELATIONS = {
     "the mass is in kilograms": lambda: (unit("M"), MASS),
     "a position is a length": lambda: (unit("displacement"), LENGTH),
-    "the initial displacement is a position": lambda: (unit("x0"), unit("displacement")),
-    "a1 is a position": lambda: (unit("a1"), unit("displacement")),
-    "a2 is a position": lambda: (unit("a2"), unit("displacement")),
-    "a3 is a position": lambda: (unit("a3"), unit("displacement")),
-    "a4 is a position": lambda: (unit("a4"), unit("displacement")),
-    "the amplitude is a position": lambda: (unit("largest_displacement"), unit("displacement")),
+    **{f"{name} is a position": lambda name=name: (unit(name), unit("displacement"))
+       for name in ("x0", "a1", "a2", "a3", "a4", "largest_displacement", "event_position")},
     "time is in seconds": lambda: (unit("t"), TIME),
     "the period is a time": lambda: (unit("period"), unit("t")),
     "an impact time is a time": lambda: (unit("impact_time"), unit("t")),
@@ -59,7 +46,6 @@ RELATIONS = {
     "the impulse is M (v+ - v-)": lambda: (unit("impulse"), unit("M") * unit("velocity")),
     "the energy dissipated is M v**2 / 2": lambda: (unit("energy_dissipated"), unit("M") * unit("velocity") ** 2),
     "an event's time is a time": lambda: (unit("event_time"), unit("t")),
-    "an event's position is a position": lambda: (unit("event_position"), unit("displacement")),
     "the velocity before an event is a velocity": lambda: (unit("event_velocity_before"), unit("velocity")),
     "the velocity after an event is a velocity": lambda: (unit("event_velocity_after"), unit("velocity")),
     "an event's kind is a code": lambda: (unit("event_kind"), Unit("1")),
@@ -80,21 +66,20 @@ def test_each_quantity_is_found_by_its_name_and_its_printed_units_mean_its_uduni
     assert q.dimensionless == (Unit(q.units) == Unit("1"))
 
 
-def test_the_model_keys_are_the_fields_of_parameters_in_order():
+def test_the_model_keys_are_the_fields_of_parameters_in_order_and_no_other_name_is_a_quantity():
     assert tuple(f.name for f in dataclasses.fields(Parameters)) == MODEL_KEYS
+    with pytest.raises(KeyError):
+        quantity("omega")
 
 
 @pytest.mark.parametrize("name", MODEL_KEYS)
 def test_a_key_may_be_left_out_exactly_when_it_has_a_symmetric_default(name):
-    values = {**VALID, "a3": 0.2, "a4": -0.01}
-    values.pop(name)
+    values = {key: value for key, value in {**VALID, "a3": 0.2, "a4": -0.01}.items() if key != name}
     if name in REQUIRED_KEYS:
-        with pytest.raises(ParameterError) as err:
+        with pytest.raises(ParameterError, match=f"^{name} = None is invalid"):
             Parameters.from_mapping(values)
-        assert err.value.name == name
     else:
-        mirror = SYMMETRIC_DEFAULTS[name]
-        assert getattr(Parameters.from_mapping(values), name) == -values[mirror]
+        assert getattr(Parameters.from_mapping(values), name) == -values[SYMMETRIC_DEFAULTS[name]]
 
 
 def test_an_axis_label_shows_the_symbol_and_units_except_for_pure_numbers():
@@ -103,37 +88,17 @@ def test_an_axis_label_shows_the_symbol_and_units_except_for_pure_numbers():
     assert Quantity("w", "\u03c9", "s-1", "1/s", "angular frequency").axis_label() == "Angular frequency \u03c9 (1/s)"
 
 
-def test_an_unknown_name_raises():
-    with pytest.raises(KeyError):
-        quantity("omega")
-
-
 # --- the documentation and the configuration state the table's names and units ------------------
 
 
-def _docstring_entries(doc: str) -> dict[str, str]:
-    """The entries of the Parameters section of a numpydoc docstring: name to type line and text."""
-    text = inspect.cleandoc(doc)
-    section = text.split("Parameters\n----------\n", 1)[1].split("\n\n", 1)[0]
-    entries: dict[str, str] = {}
-    for line in section.splitlines():
-        head = re.fullmatch(r"(\w+) : (.+)", line)
-        if head:
-            name = head.group(1)
-            entries[name] = line
-        else:
-            entries[name] += "\n" + line.strip()
-    return entries
-
-
 def test_the_docstring_of_parameters_documents_each_parameter_with_its_long_name_and_units():
-    entries = _docstring_entries(Parameters.__doc__)
-    assert list(entries) == list(PARAMETERS)
-    for name, q in PARAMETERS.items():
-        entry = entries[name].lower()
-        assert q.long_name.lower() in entry, name
-        assert ("dimensionless" if q.dimensionless else f", {q.unit_label.lower()}") in entry, name
-        assert ("optional" in entry.splitlines()[0]) == (name not in REQUIRED_KEYS), name
+    entries = re.findall(r"^ *(\w+) : (.*)\n *(.*)$", Parameters.__doc__, re.M)
+    assert [name for name, _, _ in entries] == list(PARAMETERS)
+    for name, kind, text in entries:
+        q = PARAMETERS[name]
+        assert q.long_name.lower() in text.lower(), name
+        assert ("dimensionless" if q.dimensionless else f", {q.unit_label}") in text, name
+        assert ("optional" in kind) == (name not in REQUIRED_KEYS), name
 
 
 #: the quantities a configuration gives
@@ -165,18 +130,15 @@ def _described(node, key=None):
 DESCRIBED = [(text, name) for text, name in _described(SCHEMA) if name and not CONFIGURED[name].dimensionless]
 
 
-def test_the_schema_describes_the_dimensional_parameters_in_several_places():
+def test_the_schema_describes_the_dimensional_parameters_in_several_places_and_titles_them_by_their_long_names():
     described = [name for _, name in DESCRIBED]
     assert set(described) == {"M", "K", "F", "a1", "a2", "a3", "a4", "x0"}
     assert described.count("K") > 1 and described.count("F") > 1
+    assert {name: SCHEMA["$defs"]["model"]["properties"][name]["title"] for name in MODEL_KEYS} == {
+        name: q.long_name for name, q in PARAMETERS.items()}
 
 
 @pytest.mark.parametrize("text, name", DESCRIBED)
 def test_each_description_of_a_quantity_in_the_schema_states_the_tables_units(text, name):
     stated = re.findall(r"\(([^()]*)\)", text)
     assert CONFIGURED[name].unit_label in stated, f"{name}: {text!r} does not state {CONFIGURED[name].unit_label}"
-
-
-@pytest.mark.parametrize("name", MODEL_KEYS)
-def test_the_schema_titles_each_parameter_with_its_long_name(name):
-    assert SCHEMA["$defs"]["model"]["properties"][name]["title"] == PARAMETERS[name].long_name

@@ -18,12 +18,9 @@ def test_codes_are_fixed_and_round_trip():
             Status.from_code(code)
 
 
-def test_only_a_completed_run_is_a_success_alone_or_in_arrays():
+def test_only_a_completed_run_is_a_success_and_the_flag_attributes_follow_the_codes():
     assert [s.value for s in Status if s.success] == ["completed"]
     assert succeeded(np.array([0, 1, 2, 3, 4, 0], dtype=np.int8)).tolist() == [True] + [False] * 4 + [True]
-
-
-def test_flag_attributes_follow_the_codes():
     attrs = flag_attributes()
     assert attrs["flag_values"].tolist() == [0, 1, 2, 3, 4] and attrs["flag_values"].dtype.name == "int8"
     assert attrs["flag_meanings"] == "completed stopped turned_back_in_zone chattering event_limit"

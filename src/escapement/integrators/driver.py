@@ -1,9 +1,6 @@
-"""The integrators' loop: drives the automaton from event to event with a pluggable integrator (a *stepper*).
-
-A stepper answers one question (:meth:`Stepper.next_event`): from ``(x, v)`` at time ``t`` in ``mode``, which
-watched surface is reached first, when, and at what velocity? The rest, the surfaces watched, the impact law, the
-next mode, the regime exits, the cycles and the run's limits, is the automaton's and is done here; a run ends as
-the exact solver's does (:mod:`escapement.solvers.outcomes`).
+"""The integrators' loop: drives the automaton from event to event with a pluggable integrator, a stepper, that
+says only which watched surface is reached first, when and at what velocity (:meth:`Stepper.next_event`); the
+rest is the automaton's, and a run ends as the exact solver's does (:mod:`escapement.solvers.outcomes`).
 """
 
 from __future__ import annotations

@@ -1,10 +1,8 @@
 """A high-precision reference in mpmath (50 significant digits by default), hand-written because no library
 integrates an impulsive system with events in arbitrary precision.
 
-It drives the automaton through :func:`~escapement.integrators.driver.drive` but computes each arc its own way,
-independently of :func:`escapement.model.kinematics.crossing`: the speed at a surface from energy, the time from
-the phase angles ``atan2(w, u)`` of the start and the end taken separately (the float solver uses the angle
-between them).
+Each arc is computed its own way, independently of :func:`escapement.model.kinematics.crossing`: the time from
+the phase angles ``atan2(w, u)`` of the start and the end taken separately, not from the angle between them.
 """
 
 from __future__ import annotations

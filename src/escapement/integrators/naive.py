@@ -1,8 +1,5 @@
-"""A naive fixed-step integrator, to show what not locating events costs (hand-written: a library's RK4 locates
-its events or is not this simple).
-
-Classical RK4 with a fixed step ``h``, through the loop of :mod:`escapement.integrators.driver`: an event is
-applied at the end of the step that passes its surface, not located, so the errors are O(h).
+"""A naive fixed-step RK4, to show what not locating events costs: an event is applied at the end of the step that
+passes its surface, so the errors are O(h) (hand-written: a library's RK4 locates its events or is not this simple).
 """
 
 from __future__ import annotations
@@ -53,9 +50,8 @@ class NaiveStepper:
             self.t += h
             for kind in watched:
                 target, direction = self.surfaces[kind]
-                passed = x < target <= x_new if direction > 0 else x > target >= x_new
                 if mode == Mode.FREE:
-                    passed = passed and v_new * direction > 0
+                    passed = (x < target <= x_new if direction > 0 else x > target >= x_new) and v_new * direction > 0
                 else:
                     passed = x_new * direction >= target * direction
                 if passed:

@@ -58,10 +58,10 @@ class IvpStepper:
     def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
                    watched: tuple[EventKind, ...], t_stop: float) -> Step:
         """As :meth:`Stepper.next_event <escapement.integrators.driver.Stepper.next_event>`."""
-        t_start, largest, rests = t, x, 0
+        t_start, largest = t, x
         # each pass ends in a return or a turning point; a free run stops after HALF_SWINGS_TO_STOP of
         # them, or one more if a watched surface lies ahead of the last (see _ahead)
-        for _ in range(HALF_SWINGS_TO_STOP + 1):
+        for rests in range(1, HALF_SWINGS_TO_STOP + 2):
             heading = _heading(centre, x, v)
             # x is monotone inside a segment: only the surfaces ahead can be crossed, and not one it starts on
             # (SciPy would report a spurious event at the start; the release is the state at t0+, after any jump)
@@ -87,7 +87,6 @@ class IvpStepper:
                 if mode != Mode.FREE:
                     return Step(NO_EVENT, t - t_start, 0.0, x)
                 largest = max(largest, x)
-                rests += 1
                 if rests >= HALF_SWINGS_TO_STOP and not self._ahead(watched, centre, x):
                     break
                 continue

@@ -1,9 +1,6 @@
-"""The checks of the public entry points' arguments: one rule per kind of argument, one error
-(:class:`ParameterError`) naming the argument, its value as given and what it must be.
-
-Hand-written, because NumPy and the validation libraries coerce such values silently (``[0.1, True]`` becomes
-``[0.1, 1.0]``) and name no row.
-"""
+"""The checks of the public entry points' arguments, one rule per kind, one error naming the argument, its value
+and what it must be; hand-written, because NumPy and the validation libraries coerce silently (``[0.1, True]``
+becomes ``[0.1, 1.0]``) and name no row."""
 
 from __future__ import annotations
 
@@ -55,8 +52,7 @@ class ParameterError(ValueError):
 
 
 class ParameterTypeError(ParameterError, TypeError):
-    """An argument of the wrong class (``params`` not a :class:`~escapement.Parameters`): a
-    :class:`ParameterError` of the same shape that is also a :class:`TypeError`."""
+    """An argument of the wrong class: a :class:`ParameterError` of the same shape that is also a TypeError."""
 
 
 def _refuse_masked(name: str, value: object) -> object:

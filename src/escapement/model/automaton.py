@@ -1,9 +1,6 @@
-"""The escapement as a hybrid automaton, written once as data: every solver drives these tables.
-
-The state is the kind of the last event (:data:`RELEASE` before the first); its row of :data:`ARCS` gives the
-mode of the arc that follows and the surfaces (:data:`SURFACES`) that can end it; the event reached is the next
-state. The impact law is Eqs. (A-2), (A-4): ``v+ = (1 - b) v-``. A run leaves the regime where no watched
-surface is ever passed (:data:`EXIT_WITHOUT_EVENT`) or where an impact reverses the velocity (``b > 1``).
+"""The escapement as a hybrid automaton, written once as data that every solver drives: the state is the kind of
+the last event (:data:`RELEASE` before the first), its row of :data:`ARCS` the arc that follows and the surfaces
+that can end it; the event reached is the next state.
 """
 
 from __future__ import annotations
@@ -83,8 +80,7 @@ ZONE_OF = {Mode.ZONE_RIGHT: ("(a1, a2)", EventKind.ZONE_END_A2), Mode.ZONE_LEFT:
 
 def cycle_plan() -> tuple[EventKind, ...]:
     """The events of one cycle, after an impact at a1 up to the next, by the rows of :data:`ARCS`."""
-    plan = []
-    state = EventKind.IMPACT_A1
+    plan, state = [], EventKind.IMPACT_A1
     for _ in range(len(SURFACES)):
         (state,) = ARCS[state].watched
         plan.append(state)

@@ -76,8 +76,7 @@ class EventLog:
     Examples
     --------
     >>> from escapement import EventKind, Parameters, solve_exact
-    >>> run = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=2)
-    >>> log = run.events
+    >>> log = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=2).events
     >>> len(log), [EventKind(k).name for k in log.kind[:3]]
     (11, ['IMPACT_A3', 'ZONE_END_A4', 'IMPACT_A1'])
     >>> i = log.of_kind(EventKind.IMPACT_A1)[0]

@@ -1,10 +1,7 @@
-"""Closed-form kinematics of one harmonic arc, written once for floats, NumPy arrays and (where said) mpmath.
-
-Between events ``x'' = -omega**2 (x - c)`` about a constant centre ``c`` (0 free, ``+-F/K`` in an impulse zone):
-in the phase plane ``(x - c, v / omega)`` the state turns clockwise at the rate ``omega``. An event's speed
-follows from energy and its time from the clockwise angle between start and end (``atan2`` of their cross and
-dot products, not ``arccos``, which loses accuracy near a turning point): no step size, no root finding. The
-rebounds of a chattering impact sum to a closed form (:func:`rebound_accumulation_time`), hand-written because
+"""Closed-form kinematics of one harmonic arc ``x'' = -omega**2 (x - c)`` (centre 0 free, ``+-F/K`` in an impulse
+zone), written once for floats, NumPy arrays and (where said) mpmath: in the phase plane ``(x - c, v / omega)`` the
+state turns clockwise at the rate ``omega``, so an event's speed follows from energy and its time from an angle.
+The rebounds of a chattering impact sum to a closed form (:func:`rebound_accumulation_time`), hand-written because
 no library sums ``atan(x r**n)`` in bounded time.
 """
 
@@ -33,8 +30,9 @@ def arc_terms(centre: Numeric, x0: Numeric, omega: Numeric, target: Numeric) -> 
 
 def crossing(u0: Numeric, q: Numeric, k: Numeric, v0: Numeric, omega: Numeric, direction: Numeric,
              xp: ModuleType = math) -> tuple[Numeric, Numeric, Numeric, Numeric]:
-    """First arrival at the target moving in ``direction`` (+1 right, -1 left), for an arc about a centre
-    ``c`` from ``x0 = c + u0`` at velocity ``v0`` to ``target = c + q``, with ``k`` from :func:`arc_terms`.
+    """First arrival at the target moving in ``direction`` (+1 right, -1 left), for an arc about a centre ``c`` from
+    ``x0 = c + u0`` at velocity ``v0`` to ``target = c + q``, with ``k`` from :func:`arc_terms`: the clockwise angle
+    between start and end by ``atan2`` of their cross and dot products (``arccos`` loses accuracy near a turn).
 
     Returns ``(reached, tau, v, angle)``: whether the arc passes the target strictly (not where its turning
     point lies short of it or on it: grazing; the other values are then meaningless), the time after the
@@ -43,8 +41,7 @@ def crossing(u0: Numeric, q: Numeric, k: Numeric, v0: Numeric, omega: Numeric, d
     """
     v_sq = v0 * v0 + k
     v1 = direction * xp.sqrt(abs(v_sq))
-    w0 = v0 / omega
-    w1 = v1 / omega
+    w0, w1 = v0 / omega, v1 / omega
     # Clockwise angle from (u0, w0) to (q, w1), in (0, 2 pi].
     angle = xp.atan2(w0 * q - u0 * w1, u0 * q + w0 * w1)
     angle = angle + TWO_PI * (angle <= 0.0)  # arithmetic, not a branch: floats and arrays alike
@@ -93,8 +90,7 @@ def time_to_rest(centre: Numeric, x0: Numeric, v0: Numeric, omega: Numeric,
 
 
 def _bernoulli_numbers(n_max: int) -> list[Fraction]:
-    """Bernoulli numbers ``B_0 .. B_n_max`` (``B_1 = -1/2``), exactly, by the recurrence
-    ``sum_{k=0}^{m} C(m+1, k) B_k = 0``."""
+    """Bernoulli numbers ``B_0 .. B_n_max`` exactly, by ``sum_{k=0}^{m} C(m+1, k) B_k = 0``."""
     numbers = [Fraction(1)]
     for m in range(1, n_max + 1):
         numbers.append(-sum(math.comb(m + 1, k) * numbers[k] for k in range(m)) / (m + 1))
@@ -102,12 +98,8 @@ def _bernoulli_numbers(n_max: int) -> list[Fraction]:
 
 
 def _sech_even_derivatives(max_order: int) -> list[list[int]]:
-    """Integer coefficients ``a[i][j]``, ``sech^(2i)(u) = sum_j a[i][j] sech(u)**(2j+1)``, for ``2i <= max_order``.
-
-    With ``s = sech u`` and ``t = tanh u``: ``s' = -s t`` and ``t' = s**2``, so the derivative of
-    ``s**n`` is ``-n s**n t`` and that of ``t s**n`` is ``(n+1) s**(n+2) - n s**n``. Odd orders are
-    ``t`` times an odd polynomial in ``s``; even orders an odd polynomial in ``s``.
-    """
+    """Integer coefficients ``a[i][j]``, ``sech^(2i)(u) = sum_j a[i][j] sech(u)**(2j+1)``, for ``2i <= max_order``:
+    with ``s = sech u``, ``t = tanh u``, ``(s**n)' = -n s**n t`` and ``(t s**n)' = (n+1) s**(n+2) - n s**n``."""
     even = [[1]]
     for _ in range(max_order // 2):
         odd = [-(2 * j + 1) * a for j, a in enumerate(even[-1])]  # coefficients of t s**(2j+1)
@@ -137,20 +129,14 @@ _EM_CORRECTIONS = tuple(
     (float(_BERNOULLI[2 * k] / math.factorial(2 * k)), tuple(float(a) for a in coefficients))
     for k, coefficients in enumerate(_sech_even_derivatives(2 * _EM_TERMS - 2), start=1)
 )
-#: at most this many direct terms per sum of arguments <= 1/ratio, for lambda > _EM_LAMBDA_MAX:
-#: 1 + ln(4) / 0.1 < 15
-_DIRECT_TERMS_MAX = 16
+_DIRECT_TERMS_MAX = 16  #: direct terms of a sum of arguments <= 1/ratio at lambda > 0.1: 1 + ln(4) / 0.1 < 15
 
 
 def _clausen2(theta: float) -> float:
-    """Clausen's function ``Cl2(theta) = -int_0^theta ln(2 sin(t/2)) dt`` for ``0 < theta <= 2.22``.
-
-    Series ``Cl2 = theta - theta ln(theta) + sum_n |B_2n| theta**(2n+1) / (2n (2n+1)!)``; its terms
-    fall like ``(theta / 2 pi)**(2n) / n**2``, so at ``theta <= 2.22`` the part beyond 20 terms is
-    below 1e-20.
+    """Clausen's function ``Cl2(theta) = -int_0^theta ln(2 sin(t/2)) dt`` for ``0 < theta <= 2.22``, by the series
+    ``theta - theta ln(theta) + sum_n |B_2n| theta**(2n+1) / (2n (2n+1)!)``, whose terms beyond 20 are below 1e-20.
     """
-    theta_sq = theta * theta
-    tail = 0.0
+    theta_sq, tail = theta * theta, 0.0
     for c in reversed(_CLAUSEN_COEFFICIENTS):
         tail = (tail + c) * theta_sq
     return theta - theta * math.log(theta) + theta * tail
@@ -179,22 +165,17 @@ def _series_denominators(log_r: float) -> tuple[float, ...]:
 
 
 def _alternating_series(x: float, denominators: tuple[float, ...]) -> float:
-    """``sum_k (-1)**k x**(2k+1) / denominators[k]`` by Horner's rule.
-
-    With :func:`_series_denominators` of ``r`` and ``0 <= x <= 1/4`` it is ``sum_{n>=0} atan(x r**n)``, the power
-    series of ``atan`` summed over ``n``: the magnitudes fall by at least ``x**2 <= 1/16`` per term, so the
-    16 terms are within ``16**-16 < 1e-19`` of the sum, relative.
-    """
-    x_sq = x * x
-    total = 0.0
+    """``sum_k (-1)**k x**(2k+1) / denominators[k]``. With :func:`_series_denominators` of ``r`` and ``x <= 1/4``,
+    ``sum_{n>=0} atan(x r**n)`` (the power series of ``atan`` summed over ``n``) within ``16**-16`` relative."""
+    x_sq, total = x * x, 0.0
     for denominator in reversed(denominators):
         total = total * -x_sq + 1.0 / denominator
     return x * total
 
 
 def _atan_direct_sum(w: float, ratio: float, denominators: tuple[float, ...]) -> float:
-    """``sum_{n>=0} atan(w r**n)`` for ``0 <= w <= ~1/r`` and ``-ln(r) > _EM_LAMBDA_MAX``: the terms
-    with argument above 1/4 directly (at most ``1 + ln(4)/0.1 < 15``), the rest by the power series."""
+    """``sum_{n>=0} atan(w r**n)`` for ``0 <= w <= ~1/r`` and ``-ln(r) > 0.1``: the terms with arguments above 1/4
+    directly, the rest by the power series."""
     total = 0.0
     for _ in range(_DIRECT_TERMS_MAX):
         if w <= _SERIES_ARGUMENT_MAX:
@@ -213,16 +194,12 @@ def _atan_euler_maclaurin_sum(x: float, lam: float) -> float:
 
     ``S = Ti2(x)/lam + atan(x)/2 + (1/2) sum_{k=1}^{8} B_2k/(2k)! lam**(2k-1) sech^(2k-2)(L) + R``,
 
-    with (DLMF 2.10.1, the periodic Bernoulli function bounded by ``|B_16|``)
-    ``|R| <= |B_16|/16! int_0^inf |f^(16)| <= |B_16|/16! lam**15 C``, where
-    ``C = (1/2) int_R |sech^(15)| = 6.26410e8`` (the total variation of ``sech^(14)`` on ``[0, inf)``).
-    Since the sum exceeds the integral, ``S >= Ti2(x)/lam > Ti2(1/4)/lam = 0.2465/lam``, so
+    with (DLMF 2.10.1) ``|R| <= |B_16|/16! lam**15 C``, ``C = (1/2) int_R |sech^(15)| = 6.26410e8`` (the total
+    variation of ``sech^(14)`` on ``[0, inf)``); since ``S >= Ti2(x)/lam > 0.2465/lam``,
     ``|R| / S <= |B_16|/16! C lam**16 / 0.2465 <= 8.7e-20`` at ``lam <= 0.1``.
     """
     s = 2.0 / (x + 1.0 / x)  # sech(ln x)
-    s_sq = s * s
-    correction = 0.0
-    lam_power = lam
+    s_sq, correction, lam_power = s * s, 0.0, lam
     for weight, coefficients in _EM_CORRECTIONS:
         poly = 0.0
         for a in reversed(coefficients):
@@ -271,11 +248,9 @@ def rebound_accumulation_time(omega: float, distance: float, speed: float, ratio
     """Total time of an infinite sequence of rebounds that shrink geometrically (a Zeno point).
 
     After an impact reverses the velocity, the spring brings the mass back to the impact position, ``distance > 0``
-    from the centre of oscillation on the side the spring pushes towards; it arrives with the speed it left with
-    and rebounds again with ``ratio = |1 - b| < 1`` times it. The ``n``-th flight lasts
-    ``(2/omega) atan(ratio**n x)``, ``x = speed / (omega * distance)``, so the flights sum to
-    ``(2/omega) S(x, ratio)`` (:func:`_atan_geometric_sum`): a finite float for every ``r < 1`` (``~ Ti2(x) / (1 - r)``
-    as ``r -> 1``), within a few units of 2**-53 (relative) of the exact sum, in at most 64 elementary functions.
+    from the centre on the side the spring pushes towards, where it rebounds with ``ratio = |1 - b| < 1`` times
+    its speed: the ``n``-th flight lasts ``(2/omega) atan(ratio**n x)``, ``x = speed / (omega * distance)``, and
+    the flights sum to ``(2/omega) S(x, ratio)`` (:func:`_atan_geometric_sum`), finite for every ``ratio < 1``.
     """
     checks = (
         ("omega", omega, math.isfinite(omega) and omega > 0.0, "finite and > 0 (rad/s)"),

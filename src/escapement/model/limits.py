@@ -1,7 +1,5 @@
-"""What a run is asked to do, checked once before any work (:func:`run_spec`, the first step of every solver entry
-point): its parameters, release and limits, and the memory its result may take, estimated from the limits alone
-and refused over its budget (:func:`check_budget`) naming the count that sets the size and the most that fits.
-"""
+"""What a run is asked to do, checked before any work by :func:`run_spec`, the first step of every solver entry
+point: its parameters, release and limits, and the memory its result may take (:func:`check_budget`)."""
 
 from __future__ import annotations
 

@@ -42,9 +42,7 @@ _POSITIONS = tuple(name for name, q in PARAMETERS.items() if q.units == quantity
 def _magnitude(name: str, values: np.ndarray, zero: bool) -> tuple[str, np.ndarray, str]:
     """The rule that a dimensional input's magnitude lies in [SMALLEST, LARGEST] (or, with ``zero``, is 0)."""
     size = np.abs(values)
-    holds = (size >= SMALLEST) & (size <= LARGEST)
-    if zero:
-        holds = holds | (size == 0.0)
+    holds = ((size >= SMALLEST) & (size <= LARGEST)) | (zero & (size == 0.0))
     allowed = f"0 or of magnitude in [{SMALLEST:.0e}, {LARGEST:.0e}]" if zero else f"in [{SMALLEST:.0e}, {LARGEST:.0e}]"
     return name, holds, f"{allowed} ({_unit(name)}), {_WHY}"
 
@@ -55,16 +53,14 @@ def rules(v: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
     ``v`` maps every model key to a float64 array (all of one shape); ``holds`` is a boolean array of that
     shape; ``requirement`` may name other parameters as ``{a1}`` (filled with the offending row's values).
 
-    The solvers form ``omega**2 = K/M``, ``F/K``, ``F/M``, ``v/omega``, squared speeds (the energy
-    relation of :func:`~escapement.model.kinematics.crossing`), products of two phase-plane lengths, the work
-    ``f (a2 - a1)``, the energies and sums of times. With every dimensional input 0 (where zero means
-    something: not ``M`` or ``K``) or of magnitude in ``[1e-50, 1e50]`` (SI units), ``omega``, ``F/K``, ``F/M``
-    and ``v0/omega`` lie in ``[1e-100, 1e100]``; an impact only takes energy away (``|1 - b| < 1``), each zone
+    The solvers form ``omega**2 = K/M``, ``F/K``, ``F/M``, ``v/omega``, squared speeds, products of two
+    phase-plane lengths, the work ``f (a2 - a1)``, energies and sums of times. With every dimensional input 0
+    (where zero means something: not ``M`` or ``K``) or of magnitude in ``[1e-50, 1e50]`` (SI units), ``omega``,
+    ``F/K``, ``F/M`` and ``v0/omega`` lie in ``[1e-100, 1e100]``; an impact only takes energy away and each zone
     adds at most ``4e150`` to ``v**2``, so over :data:`~escapement.model.limits.MAX_EVENTS` events every square
-    stays below about ``1e260`` and every non-zero product above ``1e-200``: normal float64 numbers, with a
-    margin of 1e40 at both ends. The bounds are absolute, not relative to the geometry: what overflows is a
-    product of absolute values. The paper's values lie some 48 orders of magnitude inside. ``b`` is at least
-    :data:`B_SMALLEST`, so that ``1 - b`` keeps it to 4 digits (below about 1e-16, ``1 - b`` rounds to 1).
+    stays below about ``1e260`` and every non-zero product above ``1e-200``: normal float64 numbers with a margin
+    of 1e40 (the paper's values lie some 48 orders of magnitude inside). ``b`` is at least :data:`B_SMALLEST`,
+    so that ``1 - b`` keeps it to 4 digits.
     """
     with np.errstate(all="ignore"):
         yield "M", v["M"] > 0, f"{SIGNS['M']} ({_unit('M')})"

@@ -1,8 +1,5 @@
-"""Numbers as text that is true as printed: an input as it can be typed back (:func:`exact`), a computed value
-to a few digits, with more where fewer would print two that differ alike or in the wrong order (:func:`texts`)
-or misstate how it compares with a bound (:func:`compared`); zero without a sign. Hand-written, because
-Python's formats print a fixed number of digits, not the fewest that keep an order true.
-"""
+"""Numbers as text that is true as printed, zero without a sign; hand-written, because Python's formats print a
+fixed number of digits, not the fewest that keep an order true."""
 
 from __future__ import annotations
 

@@ -68,16 +68,14 @@ VARIABLES = _table(
     Quantity("velocity_before_impact", "", "m s-1", "m/s", "velocity just before impact k at a1",
              "velocity before impact"),
     Quantity("period", "", "s", "s", "time from impact k to impact k+1 at a1", "period"),
-    Quantity("largest_displacement", "", "m", "m",
-             "largest displacement between impact k and impact k+1 (right turning point)",
-             "largest displacement"),
+    Quantity("largest_displacement", "", "m", "m", "largest displacement between impact k and impact k+1 (right "
+             "turning point)", "largest displacement"),
     Quantity("amplitude_h0", "h\u2080", "m", "m",
              "Step-1 amplitude h0(k) = sqrt(a1^2 + (v_k / omega)^2) of the free arc that ends in impact k at a1 "
              "(k = 1 .. N+1; Eqs. (9b), (22a))", "amplitude"),
     Quantity("amplitude_h4", "h\u2084", "m", "m",
              "Step-8 amplitude h4(k) = h0(k+1) of the free arc that ends cycle k (k = 1 .. N)", "amplitude"),
-    Quantity("largest_abs_displacement", "", "m", "m", "largest |x| between impact k and impact k+1",
-             "largest |x|"),
+    Quantity("largest_abs_displacement", "", "m", "m", "largest |x| between impact k and impact k+1", "largest |x|"),
     Quantity("event_time", "", "s", "s", "time of the event", "event time"),
     Quantity("event_kind", "", "1", "1", "kind of event"),
     Quantity("event_position", "", "m", "m", "position of the event"),
@@ -86,8 +84,7 @@ VARIABLES = _table(
 )
 
 MODEL_KEYS = tuple(PARAMETERS)
-#: the parameters that may be left out, each defaulting to minus its mirror: the symmetric geometry
-#: a3 = -a1, a4 = -a2
+#: the parameters that may be left out, each defaulting to minus its mirror: a3 = -a1, a4 = -a2
 SYMMETRIC_DEFAULTS = {"a3": "a1", "a4": "a2"}
 REQUIRED_KEYS = tuple(name for name in MODEL_KEYS if name not in SYMMETRIC_DEFAULTS)
 

@@ -82,8 +82,6 @@ def succeeded(codes: ArrayLike) -> np.ndarray:
 
 def flag_attributes() -> dict:
     """CF attributes of a variable holding :attr:`Status.code` values."""
-    ordered = sorted(CODES.items(), key=lambda item: item[1])
-    return {
-        "flag_values": np.array([code for _, code in ordered], dtype=np.int8),
-        "flag_meanings": " ".join(status.value for status, _ in ordered),
-    }
+    ordered = sorted(CODES, key=CODES.get)
+    return {"flag_values": np.array([CODES[status] for status in ordered], dtype=np.int8),
+            "flag_meanings": " ".join(status.value for status in ordered)}
