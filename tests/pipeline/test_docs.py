@@ -5,8 +5,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from escapement.pipeline.docs import claims_table, markdown_html, render, verdict_html
-from escapement.pipeline.facts import collect_facts
+from escapement.pipeline.docs import claims_table, collect_facts, markdown_html, render, verdict_html
 
 WEIGHT = {"origin": "paper", "finding": "f", "evidence": "independent"}
 ROWS = [

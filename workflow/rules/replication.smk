@@ -121,8 +121,8 @@ rule run_stress:
         "../scripts/stress.py"
 
 
-# The documents, in three jobs of few inputs each: the Markdown documents, the report's HTML (from REPLICATION.md
-# as rendered), and the ReScience C article (escapement.pipeline.docs and .article).
+# The documents, in two jobs of few inputs each: the Markdown documents with the report's HTML (the landing text,
+# the claims register, REPLICATION.md), and the ReScience C article (escapement.pipeline.docs and .article).
 rule render_docs:
     input:
         claims="results/replication/claims.csv",
@@ -145,23 +145,6 @@ rule render_docs:
             category="Speed and accuracy",
             labels={"document": "measured times"},
         ),
-    log:
-        "results/logs/replication/render_docs.log",
-    localrule: True
-    conda:
-        "../../environment/environment.yml"
-    params:
-        code=CODE,
-    script:
-        "../scripts/render_docs.py"
-
-
-rule render_report:
-    input:
-        claims="results/replication/claims.csv",
-        stress="results/replication/stress.csv",
-        replication="results/replication/docs/REPLICATION.md",
-    output:
         # the verdict's headline, for the report's landing page (workflow/report/workflow.rst)
         landing="results/replication/docs/landing.html",
         # the claims register and REPLICATION.md as HTML documents, items of the report
@@ -178,7 +161,7 @@ rule render_report:
             labels={"table": "REPLICATION.md"},
         ),
     log:
-        "results/logs/replication/render_report.log",
+        "results/logs/replication/render_docs.log",
     localrule: True
     conda:
         "../../environment/environment.yml"

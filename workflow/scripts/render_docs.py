@@ -1,8 +1,8 @@
-"""Glue: rules render_docs and render_report -> escapement.pipeline.docs, rule render_article ->
+"""Glue: rule render_docs -> escapement.pipeline.docs.render_docs, rule render_article ->
 escapement.pipeline.article.write_article."""
 
 from escapement.pipeline.article import write_article
-from escapement.pipeline.docs import render_docs, render_report
+from escapement.pipeline.docs import render_docs
 
-job = {"render_docs": render_docs, "render_report": render_report, "render_article": write_article}[snakemake.rule]
+job = {"render_docs": render_docs, "render_article": write_article}[snakemake.rule]
 job(dict(snakemake.input), dict(snakemake.output), snakemake.log[0])

@@ -1,9 +1,6 @@
-"""The replication as a ReScience C article, written by the run: ``metadata.yaml`` in the journal's own fields and
-``article.typ`` from the template ``workflow/templates/article.typ``, typeset by Typst (a compiler in a wheel, no
-TeX) to ``article.pdf``, PDF/A-2b with its fonts embedded; its title, authors, keywords and abstract are the
-metadata's. Every number of the text is read from a dataset or a typed column (the checks dataset, the benchmark,
-the axis limits beside the claims table, the readings' scores, the paper's printed axes) and formatted once here;
-the claims table gives the statuses. The title's prefix follows one stated rule from the findings (:data:`RULE`).
+"""The replication as a ReScience C article, written by the run: ``metadata.yaml`` in the journal's fields, and
+``article.typ`` from ``workflow/templates/article.typ``, typeset by Typst (no TeX) to ``article.pdf``, PDF/A-2b.
+Its numbers are read from datasets and typed columns and formatted once here; the claims table gives the statuses.
 """
 
 from __future__ import annotations
@@ -51,7 +48,6 @@ def prefix(counts: Mapping[str, int]) -> str:
 
 
 def keywords(citation: Mapping) -> list[str]:
-    """The journal's two keywords, ``CITATION.cff``'s and the language."""
     return list(dict.fromkeys(["rescience c", "replication", *citation["keywords"], "python"]))
 
 
@@ -71,9 +67,8 @@ def metadata(citation: Mapping, title: str, abstract: str) -> dict:
         "code": [{"url": citation.get("repository-code", "")}, {"doi": citation.get("doi", "")}, {"swh": ""}],
         "data": [{"url": ""}, {"doi": ""}],
         "replication": [{"cite": cite}, {"bib": "mao2013"}, {"url": f"https://doi.org/{original['doi']}"},
-                        {"doi": original["doi"]}],
-        "abstract": abstract, "bibliography": "article.bib", "type": "Replication", "domain": "Nonlinear dynamics",
-        "language": "Python",
+                        {"doi": original["doi"]}], "abstract": abstract,
+        "bibliography": "article.bib", "type": "Replication", "domain": "Nonlinear dynamics", "language": "Python",
         # filled in after acceptance, by the editor: left empty, as the journal's template has them
         "review": [{"url": ""}],
         "contributors": [{"name": "", "orcid": "", "role": role} for role in ("editor", "reviewer", "reviewer")],
@@ -83,42 +78,27 @@ def metadata(citation: Mapping, title: str, abstract: str) -> dict:
     }
 
 
-def _numbers(checks, benchmark: Sequence[Mapping]) -> dict:
-    """The numbers the text cites, each formatted once: the limit cycle of each of the paper's cases (the checks
-    dataset's group ``paper``, by label) and the exact solver's error in the velocity (the benchmark's row)."""
-    paper = checks["group"].values == "paper"
-    exact = next(row for row in benchmark if row["method"] == "exact")
-    return {**{name: {label: typ(fmt(value, digits)) for label, value in zip(checks["label"].values[paper],
-                                                                              checks[name].values[paper])}
-               for name, digits in (("period", 12), ("velocity", 12), ("multiplier", 10))},
-            "exact_error_velocity": typ(fmt(float(exact["error_velocity"]), 2))}
-
-
 def _axes(rows: Sequence[Mapping], limits: Sequence[Mapping]) -> str:
-    """Each axis claim's panel as Typst cells: its printed limits (the scored axes), the run's it judged, its status."""
+    """Each axis claim as Typst cells: the printed limits and the run's it judged (each scored axis), its status."""
     claim, judged = {r["claim_id"]: r for r in rows}, {}
     for row in limits:
-        judged.setdefault((row["claim_id"], row["figure"], row["panel"]), {})[row["axis"]] = (row["low"], row["high"])
-    cells = []
-    for (claim_id, figure, name), run in judged.items():
-        printed = {axis: a for axis, a in panel(figure, name).axes.items() if a.scored}
-        shown = ["; ".join(f"{a.label}: [{fmt(float(low), 6)}, {fmt(float(high), 6)}]" for a, (low, high) in
-                           zip(printed.values(), ends)) for ends in ([(a.low, a.high) for a in printed.values()],
-                                                                     [run[axis] for axis in printed])]
-        cells.append(f"[{typ(claim[claim_id]['source'])}], [{typ(shown[0])}], [{typ(shown[1])}], "
-                     f"[{typ(claim[claim_id]['status'].replace('_', ' '))}]")
-    return ",\n".join(cells)
+        axis = panel(row["figure"], row["panel"]).axes[row["axis"]]
+        for kind, low, high in (("printed", axis.low, axis.high), ("run", float(row["low"]), float(row["high"]))):
+            judged.setdefault(row["claim_id"], {}).setdefault(kind, []).append(
+                f"{axis.label}: [{fmt(low, 6)}, {fmt(high, 6)}]")
+    return ",\n".join(f"[{typ(claim[c]['source'])}], [{typ('; '.join(shown['printed']))}], "
+                      f"[{typ('; '.join(shown['run']))}], [{typ(claim[c]['status'].replace('_', ' '))}]"
+                      for c, shown in judged.items())
 
 
 def _readings(scores: Sequence[Mapping]) -> str:
-    """The candidate readings each printed panel's axes support best (and Fig. 4's two panels together) as Typst
-    cells: the best score, and the readings tied at it, equivalent ones joined by ``=``."""
+    """Per printed panel (and Fig. 4's two together) as Typst cells: the best score, the readings tied at it."""
     candidates = panel_candidates(scores)
     if any(figure == "4" for figure, _ in candidates):
         candidates[("4", "both panels")] = joint_candidates(scores, "4")
     cells = []
     for (figure, name), c in sorted(candidates.items(), key=lambda item: item[0][0]):
-        best, groups = c.tied()
+        _, groups = c.tied()
         lead = (f"undetermined: {len(groups)} readings tie, plotting different values" if len(groups) > 1 else
                 "one reading" if len(groups[0]) == 1 else f"{len(groups[0])} equivalent readings (identical values)")
         cells.append(f"[{typ(figure)} {typ(name)}], [{typ(summary(c)[0])}], [{typ(lead)} of {len(c.scores)}:"
@@ -127,11 +107,9 @@ def _readings(scores: Sequence[Mapping]) -> str:
 
 
 def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[str, str], log: str) -> str:
-    """The job of rule ``render_article``: write ``metadata.yaml``, ``article.typ``, ``article.bib`` and
-    ``article.pdf`` (the keys ``metadata``, ``source``, ``bibliography`` and ``pdf`` of ``outputs``) from the files
-    of ``inputs``: the claims table and the axis limits beside it (``claims``, ``limits``), the ``checks`` dataset,
-    the ``readings``' scores, the ``benchmark``, the ``citation``, the ``template``, the ``bibliography`` and the
-    ``figures`` (the SVG the plotting jobs drew, which the source names by their path). Returns the title."""
+    """The job of rule ``render_article``: the ``metadata``, ``source``, ``bibliography`` and ``pdf`` of ``outputs``
+    from the files of ``inputs`` (the claims table and the axis limits beside it, the checks dataset, the readings'
+    scores, the benchmark, ``CITATION.cff``, the template, the bibliography and the figures' SVG). Returns the title."""
     import typst
 
     with logged(log, "render_article") as logger:
@@ -148,14 +126,19 @@ def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[st
             f"the register quotes, {counts['reproduced']} are reproduced, {counts['consistent']} consistent, "
             f"{counts['partially_reproduced']} partially reproduced, {counts['not_reproduced']} not reproduced, "
             f"{counts['undetermined']} undetermined and {counts['untestable']} untestable."))
+        checks = read_netcdf(inputs["checks"])
+        cases = checks.isel(case=checks["group"].values == "paper")  # the paper's two cases, by their label
+        exact = next(row for row in read_work_precision(inputs["benchmark"]) if row["method"] == "exact")
+        number = {name: {label: typ(fmt(v, digits)) for label, v in zip(cases["label"].values, cases[name].values)}
+                  for name, digits in (("period", 12), ("velocity", 12), ("multiplier", 10))}
         names = {"meta": {k: typ(v) if isinstance(v, str) else v for k, v in meta.items()},
                  "literal": {k: string(v) for k, v in meta.items() if isinstance(v, str)},
                  "author_literals": [string(a["name"]) for a in meta["authors"]],
                  "keyword_literals": [string(k) for k in keywords(citation)],
                  "authors": [typ(a["name"]) for a in meta["authors"]], "rule": typ(RULE),
-                 "count": {k: str(v) for k, v in counts.items()}, "n_findings": str(len(found)),
-                 "n_rows": str(sum(len(parts) for _, parts in found.values())),
-                 "number": _numbers(read_netcdf(inputs["checks"]), read_work_precision(inputs["benchmark"])),
+                 "count": counts, "n_findings": len(found), "n_rows": sum(len(parts) for _, parts in found.values()),
+                 # the limit cycles, and the exact solver's error in the benchmark
+                 "number": {**number, "exact_error_velocity": typ(fmt(float(exact["error_velocity"]), 2))},
                  "verdict": {r["claim_id"]: typ(r["status"].replace("_", " ")) for r in rows},
                  "table": {"axes": _axes(rows, read_csv(inputs["limits"], LIMIT_COLUMNS)),
                            "readings": _readings(read_scores(inputs["readings"])),
@@ -165,9 +148,8 @@ def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[st
                  # the figures as the plotting jobs drew them, by their path from the source
                  "figure": {name: string(os.path.relpath(path, Path(outputs["source"]).parent))
                             for name, path in figures.items()}}
-        environment = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
-                                         autoescape=False)
-        source = environment.from_string(Path(inputs["template"]).read_text(encoding="utf-8")).render(names)
+        source = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True, autoescape=False
+                                    ).from_string(Path(inputs["template"]).read_text(encoding="utf-8")).render(names)
         root = Path(os.path.commonpath([Path(p).resolve() for p in (outputs["source"], *figures.values())]))
         write_text(Path(inputs["bibliography"]).read_text(encoding="utf-8"), outputs["bibliography"])
         write_text(yaml.safe_dump(meta, sort_keys=False, allow_unicode=True, width=100), outputs["metadata"])

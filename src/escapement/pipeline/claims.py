@@ -1,10 +1,6 @@
-"""The verdict: the claims register evaluated on the replication's netCDF outputs, written as
-``results/replication/claims.csv``, and beside it the axis limits its axis claims judged
-(``results/replication/panel_limits.csv``), which the documents read as numbers (:mod:`.tables`).
-
-A check that fails makes the job fail, naming the claim (:class:`escapement.verdict.engine.ClaimError`); it never
-becomes a row of the table.
-"""
+"""The job of rule ``check_claims``: the claims register evaluated on the replication's outputs, written as
+``results/replication/claims.csv``, and beside it the limits its axis claims judged (``panel_limits.csv``), which
+the documents read as numbers. A check that fails fails the job, naming the claim; it never becomes a row."""
 
 from __future__ import annotations
 
@@ -26,11 +22,9 @@ def check_claims(
     register: str, fig3: Mapping[str, str], fig4: str, fig5: Mapping[str, str], checks: str, readings: str,
     output: str, limits: str, log: str, schema: str = SCHEMA, settings: Mapping | None = None,
 ) -> None:
-    """The job of rule ``check_claims``: evaluate the register on the outputs (``fig3`` and ``fig5`` keyed by their
-    configured labels) and the score table of the candidate readings (``readings``), the runs the register names
-    taken from ``settings`` (the configuration's ``model`` and ``checks`` blocks), and write the table to
-    ``output``, and to ``limits`` the limits of each printed panel a claim's args name (``figure``, ``panel``) as it
-    judged them; raise, naming the claim, when a check fails (a variable an output lacks among the causes)."""
+    """Evaluate the register on the outputs (``fig3`` and ``fig5`` by their labels) and the readings' scores, the runs
+    it names from ``settings`` (the configuration's ``model`` and ``checks`` blocks); write the table to ``output``,
+    and to ``limits`` the limits of the printed panel each claim's args name (``figure``, ``panel``), as judged."""
     with logged(log, "check_claims") as logger:
         fig3_data, fig5_data = ({label: read_netcdf(path) for label, path in paths.items()} for paths in (fig3, fig5))
         fig4_data = read_netcdf(fig4)
