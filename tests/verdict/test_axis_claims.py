@@ -110,8 +110,3 @@ def test_missing_evidence_fails_loudly():
             [_claim("3", "a/velocity")],
             _evidence({("3", "a/velocity"): {"x": (0, 50), "y": (1, 2)}},
                       {("3", "a/velocity"): Candidates(2, {"r": 2})}))
-
-
-def test_a_scene_that_left_the_regime_is_not_evaluated():
-    row = cl.evaluate([_claim("3", "a/velocity")], _evidence({}, outcome="stopped"))[0]
-    assert row["status"] == "not_reproduced" and row["replicated_value"].startswith("not evaluated")

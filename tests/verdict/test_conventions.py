@@ -21,6 +21,7 @@ from escapement.verdict import sec3_period, sec3_steps
 from escapement.paper import printed as pe
 from escapement.verdict.evidence import Evidence
 from escapement.model.parameters import Parameters
+from verdict.test_check_boundaries import fig3 as scene
 
 GEOMETRY = {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
 V4P = -math.sqrt(0.8991)
@@ -33,19 +34,9 @@ def fig3(v_last: float = 1.0, zone_left: float = 1.0, period: float = 6.3, v5: f
     ``zone_left``; the velocity before the event at a4 is ``v5``."""
     durations = np.ones((3, 4))
     durations[-1] = [steps[0], steps[1], zone_left, steps[2]]
-    kinds = np.array([1, 2, 3, 4] * 3 + [1], dtype=np.int8)
-    return xr.Dataset(
-        {
-            "velocity_before_impact": ("cycle", np.full(3, v_last)),
-            "period": ("cycle", np.full(3, period)),
-            "event_time": ("event", np.concatenate([[0.0], np.cumsum(durations.ravel())])),
-            "event_kind": ("event", kinds),
-            "event_velocity_before": ("event", np.select([kinds == 1, kinds == 4], [v_last, v5], 0.0)),
-            **{k: ((), v) for k, v in GEOMETRY.items()},
-        },
-        coords={"cycle": np.arange(1, 4)},
-        attrs={"outcome": "completed", "outcome_message": "completed"},
-    )
+    kinds = np.array([1, 2, 3, 4] * 3 + [1])
+    return scene([v_last] * 3, period=period, durations=durations,
+                 before=np.select([kinds == 1, kinds == 4], [v_last, v5], 0.0))
 
 
 def verdict(check, ds: xr.Dataset, tolerance: float = 1e-9, **args):
