@@ -25,7 +25,7 @@ __all__ = ["EXTRA_FIGURES", "FIGURE_NAMES", "FILES", "code_digest", "data_files"
 FILES = {"fig3": "poincare_map/case_{}.nc", "fig5": "phase_diagrams/K_{}.nc"}
 #: the replication's data beyond its scenes: the claims' runs, the long run, the readings, the tables
 REPLICATION_DATA = ("checks.nc", "long_run.nc", "long_run_timing.csv", "readings.csv", "work_precision.csv",
-                    "claims.csv", "stress.csv")
+                    "claims.csv", "panel_limits.csv", "stress.csv")
 #: the documents the replication renders (docs/): the pages, the measured times, the report's landing text and items
 DOCUMENTS = ("README.md", "REPLICATION.md", "timings.md", "landing.html", "verdict.html", "replication.html")
 #: the replication's figures beyond its scenes'
