@@ -1,10 +1,6 @@
 """The axis claims: a printed panel's claim holds when the best reading of the whole grid gives every printed
-limit (a match under a fitted reading is only consistent), and a tie between readings that plot different
-values is reported as a tie.
-
-The autoscaled limits of the adopted output and the scores of the candidate readings are given as
-evidence (the workflow computes them with matplotlib); the printed limits are those of
-escapement.paper.printed_axes, written out here by hand.
+limit (a match under a fitted reading is only consistent), and a tie between readings that plot different values is
+reported as a tie; the autoscaled limits and the scores are given, the printed limits written out here by hand.
 """
 
 from __future__ import annotations
@@ -15,18 +11,16 @@ import xarray as xr
 
 from escapement.verdict import engine as cl
 from escapement.verdict.evidence import Candidates, Evidence
+from verdict.test_check_boundaries import DONE, scalars
 
 
-def _ds(K: float = 1.0, outcome: str = "completed", **extra) -> xr.Dataset:
-    values = {"M": 1.0, "K": K, "F": 0.5, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05, "x0": -1.0}
-    variables = {name: ((), value) for name, value in values.items()}
-    return xr.Dataset({**variables, **extra}, attrs={"outcome": outcome, "outcome_message": outcome})
+def _ds(K: float = 1.0, **extra) -> xr.Dataset:
+    return xr.Dataset({**scalars(K=K, F=0.5), **extra}, attrs=DONE)
 
 
-def _evidence(axes: dict, readings: dict | None = None, fig5_K=(0.1, 1.0, 10.0), outcome="completed") -> Evidence:
+def _evidence(axes: dict, readings: dict | None = None, fig5_K=(0.1, 1.0, 10.0)) -> Evidence:
     amplitude = xr.DataArray(np.ones(3), dims="amplitude_cycle")
-    fig3 = {c: _ds(outcome=outcome, amplitude_h0=amplitude).assign_attrs(amplitude_variable="amplitude_h0")
-            for c in ("a", "b")}
+    fig3 = {c: _ds(amplitude_h0=amplitude).assign_attrs(amplitude_variable="amplitude_h0") for c in ("a", "b")}
     return Evidence(fig3=fig3, fig4=_ds(K=0.1), fig5={f"{k:g}": _ds(K=k) for k in fig5_K}, checks=_ds(), axes=axes,
                     readings=readings or {})
 
@@ -38,8 +32,7 @@ def _claim(figure: str, panel: str) -> dict:
 
 
 def _row(figure: str, panel: str, limits: dict, scores: dict, **candidates) -> dict:
-    out_of = 2 * len(limits)
-    ev = _evidence({(figure, panel): limits}, {(figure, panel): Candidates(out_of, scores, **candidates)})
+    ev = _evidence({(figure, panel): limits}, {(figure, panel): Candidates(2 * len(limits), scores, **candidates)})
     return cl.evaluate([_claim(figure, panel)], ev)[0]
 
 
@@ -98,15 +91,15 @@ def test_the_row_gives_the_printed_and_the_autoscaled_limits_and_the_reading():
     assert "K = 0.1 N/m" in row["note"] and "x0 = -1 m" in row["note"]
 
 
-def test_missing_evidence_fails_loudly():
-    with pytest.raises(cl.ClaimError, match="no Fig. 5 output has the spring constant of panel"):
-        cl.evaluate([_claim("5", "c")], _evidence({}, fig5_K=(0.1, 1.0)))
-    with pytest.raises(cl.ClaimError, match="no autoscaled limits for Fig. 3 panel 'a/velocity'"):
-        cl.evaluate([_claim("3", "a/velocity")], _evidence({}))
-    with pytest.raises(cl.ClaimError, match="no scored candidate readings for Fig. 3 panel 'a/velocity'"):
-        cl.evaluate([_claim("3", "a/velocity")], _evidence({("3", "a/velocity"): {"x": (0, 50), "y": (1, 2)}}))
-    with pytest.raises(cl.ClaimError, match="scored out of 2 limits; the panel has 4"):
-        cl.evaluate(
-            [_claim("3", "a/velocity")],
-            _evidence({("3", "a/velocity"): {"x": (0, 50), "y": (1, 2)}},
-                      {("3", "a/velocity"): Candidates(2, {"r": 2})}))
+@pytest.mark.parametrize("panel, given, message", [
+    (("5", "c"), _evidence({}, fig5_K=(0.1, 1.0)), "no Fig. 5 output has the spring constant of panel"),
+    (("3", "a/velocity"), _evidence({}), "no autoscaled limits for Fig. 3 panel 'a/velocity'"),
+    (("3", "a/velocity"), _evidence({("3", "a/velocity"): {"x": (0, 50), "y": (1, 2)}}),
+     "no scored candidate readings for Fig. 3 panel 'a/velocity'"),
+    (("3", "a/velocity"), _evidence({("3", "a/velocity"): {"x": (0, 50), "y": (1, 2)}},
+                                    {("3", "a/velocity"): Candidates(2, {"r": 2})}),
+     "scored out of 2 limits; the panel has 4"),
+])
+def test_missing_evidence_fails_loudly(panel, given, message):
+    with pytest.raises(cl.ClaimError, match=message):
+        cl.evaluate([_claim(*panel)], given)

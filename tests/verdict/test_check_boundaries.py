@@ -1,15 +1,10 @@
-"""Every check of the register that compares a measured number with a tolerance, judged just inside
-and just outside the tolerance the register gives its claim (on both sides where the comparison is
-two-sided): the checks on the model and the equations of Sec. 3 here, those of Sec. 4 and beyond in
-test_check_boundaries_sec4.py, which uses the synthetic evidence built here.
-
-Each test reads a claim (one of its readings) from the register, asserts its tolerance is the one the test
-was written for, and builds datasets shaped as the workflow writes them, with numbers chosen so that the
-check's measured quantity lies just inside or just outside that tolerance; the reading's outcome is given
-as the status the one rule makes of it alone (reproduced: it holds; not reproduced: it fails). The paper's
-symmetric geometry (M = K = 1, b = 0.1, a1 = -0.1, a2 = 0.05, a3 = 0.1, a4 = -0.05) gives by hand: the map (16)-(17)
-x1(k+1)^2 = 0.6561 x1(k)^2 + 0.543 F, its fixed point x*^2 = 0.3 F / 0.19, and the steps
-(11) v2^2 = v1+^2 + 0.0075 + 0.3 F, (12) v4^2 = v2^2 - 0.0075, (15) v1'^2 = v5^2 - 0.0075.
+"""Every check of the register that compares a measured number with a tolerance, judged just inside and just
+outside the tolerance the register gives its claim (:func:`bounded`, on both sides where the comparison is
+two-sided), on datasets shaped as the workflow writes them: the checks of Sec. 3 here, those of Sec. 4 and beyond in
+test_check_boundaries_sec4.py. The paper's symmetric geometry (M = K = 1, b = 0.1, a1 = -0.1, a2 = 0.05, a3 = 0.1,
+a4 = -0.05) gives by hand: the map (16)-(17) x1(k+1)^2 = 0.6561 x1(k)^2 + 0.543 F, its fixed point
+x*^2 = 0.3 F / 0.19, and the steps (11) v2^2 = v1+^2 + 0.0075 + 0.3 F, (12) v4^2 = v2^2 - 0.0075,
+(15) v1'^2 = v5^2 - 0.0075.
 """
 
 from __future__ import annotations
@@ -43,17 +38,11 @@ def _register() -> list[dict]:
 
 
 def register_row(claim_id: str, tolerance: float | None, reading: int = 0) -> dict:
-    """The register's claim ``claim_id`` under its reading ``reading`` (its check, args and tolerance merged into
-    the claim), after checking that the tolerance is still ``tolerance`` (None: the reading has none, its
-    threshold is the check's), so that a tolerance changed in the register is noticed here and the test
-    re-derived."""
-    rows = [c for c in _register() if c["id"] == claim_id]
-    assert len(rows) == 1, claim_id
-    row = copy.deepcopy({**rows[0], **rows[0]["readings"][reading]})
-    if tolerance is None:
-        assert row["tolerance"] is None, (claim_id, row["tolerance"])
-    else:
-        assert row["tolerance"] == pytest.approx(tolerance, rel=1e-15), (claim_id, row["tolerance"])
+    """The register's claim ``claim_id`` under its reading ``reading`` (merged into the claim), after checking that
+    its tolerance is still ``tolerance`` (None: the check's threshold), so that a tolerance changed in the register
+    is noticed here and the test re-derived."""
+    (row,) = [copy.deepcopy({**c, **c["readings"][reading]}) for c in _register() if c["id"] == claim_id]
+    assert row["tolerance"] == (tolerance if tolerance is None else pytest.approx(tolerance, rel=1e-15)), claim_id
     return row
 
 
@@ -77,15 +66,13 @@ def fig3(velocity, period=6.3, before=None, after=None, durations=None, **over) 
     n = len(velocity)
     kinds = np.array([1, 2, 3, 4] * n + [1], dtype=np.int8)
     steps = np.ones(4 * n) if durations is None else np.asarray(durations, dtype=float).ravel()
-    default_before = np.ones(len(kinds))
-    default_after = np.where((kinds == 1) | (kinds == 3), 0.9, 1.0)
     return xr.Dataset(
         {"velocity_before_impact": ("cycle", velocity), "period": ("cycle", np.broadcast_to(period, n).copy()),
          "amplitude_h0": ("cycle", np.ones(n)), "event_time": ("event", np.concatenate([[0.0], np.cumsum(steps)])),
-         "event_kind": ("event", kinds),
-         "event_velocity_before": ("event", default_before if before is None else np.asarray(before, dtype=float)),
-         "event_velocity_after": ("event", default_after if after is None else np.asarray(after, dtype=float)),
-         **scalars(**over)},
+         "event_kind": ("event", kinds), "event_velocity_before": ("event", np.ones(len(kinds)) if before is None
+                                                                   else np.asarray(before, dtype=float)),
+         "event_velocity_after": ("event", np.where((kinds == 1) | (kinds == 3), 0.9, 1.0) if after is None
+                                  else np.asarray(after, dtype=float)), **scalars(**over)},
         coords={"cycle": np.arange(1, n + 1)}, attrs={**DONE, "amplitude_variable": "amplitude_h0"})
 
 
@@ -165,8 +152,17 @@ def short_runs(times: dict, kinds=(1, 3, 1, 3)) -> xr.Dataset:
                            ("velocity_after", table))}})
 
 
+def made_short_runs(springs, releases, x0: float = -1.0) -> dict:
+    """The checks dataset's short runs of Fig. 3 (a) (F = 1 N) from rest at ``x0`` at each of ``springs`` and, at
+    K = 1 N/m, from each of ``releases``, three cycles each, as the checks scene makes them."""
+    from escapement.scenes.probes import probe_variables
+    case = {**GEOMETRY, "F": 1.0, "label": "a", "n_cycles": 3}
+    pairs = dict.fromkeys([(K, x0) for K in springs] + [(1.0, r) for r in releases])
+    return probe_variables({"short_runs": [{**case, "K": K, "x0": r} for K, r in pairs]})
+
+
 def evidence(fig3s=None, fig5s=None, checks=None) -> Evidence:
-    """Evidence holding only what a check reads; the rest left empty."""
+    """Evidence holding only what a check reads."""
     return Evidence(fig3=fig3s or {}, fig4=None, fig5=fig5s or {}, checks=checks)
 
 
@@ -175,13 +171,19 @@ def g17(x: float, F: float = 1.0) -> float:
     return math.sqrt(0.6561 * x * x + 0.543 * F)
 
 
+def around(tolerance: float, margin: float = 1e-6, signs=(1.0, -1.0)) -> list[tuple[float, bool]]:
+    """Offsets of ``tolerance`` times 1 - ``margin`` (just inside) and 1 + ``margin`` (just outside), of each of
+    ``signs``, each with whether it is inside."""
+    return [(sign * factor * tolerance, inside) for factor, inside in ((1 - margin, True), (1 + margin, False))
+            for sign in signs]
+
+
 def bounded(row: dict, at, inside: str = "reproduced", outside: str = "not_reproduced", margin: float = 1e-6,
             signs=(1.0, -1.0)) -> None:
-    """``row`` judged on the evidence ``at(offset)``, the offset its tolerance times 1 - ``margin`` (just inside)
-    and 1 + ``margin`` (just outside), of each of ``signs``: ``inside``, then ``outside``."""
-    for factor, expected in ((1 - margin, inside), (1 + margin, outside)):
-        for sign in signs:
-            assert judged(row, at(sign * factor * row["tolerance"])) == expected, (factor, sign)
+    """``row`` judged on the evidence ``at(offset)`` at each offset of :func:`around` its tolerance: ``inside``
+    within it, ``outside`` beyond."""
+    for off, within in around(row["tolerance"], margin, signs):
+        assert judged(row, at(off)) == (inside if within else outside), off
 
 
 # --- the comparison every check shares ------------------------------------------------------------
@@ -189,9 +191,8 @@ def bounded(row: dict, at, inside: str = "reproduced", outside: str = "not_repro
 
 def test_within_keeps_a_value_equal_to_the_tolerance():
     from escapement.verdict.evidence import within
-    assert within(0.25, 0.25) is True  # 0.25 exact in binary: equality itself, no rounding
-    assert within(math.nextafter(0.25, 1.0), 0.25) is False
-    assert within(0.0, 0.0) is True
+    # 0.25 exact in binary: equality itself, no rounding
+    assert (within(0.25, 0.25), within(math.nextafter(0.25, 1.0), 0.25), within(0.0, 0.0)) == (True, False, True)
 
 
 def test_a_printed_reading_reproduces_up_to_its_relative_tolerance_of_the_simulated_value():
@@ -308,8 +309,18 @@ def test_the_system_is_linear_only_while_the_slopes_of_its_map_agree_to_the_tole
     def at(spread):
         return evidence({"a": fig3(1.5 + np.concatenate([[0.0], np.cumsum([0.02, 0.01, 0.01 * (0.5 + spread)])]))})
 
-    bounded(register_row("sec33_linear_non_homogeneous", 1e-6, 1), at, margin=1e-4, signs=(1.0,))
-    bounded(register_row("conclusions_nonlinear_behavior", 1e-6), at, "not_reproduced", "reproduced", 1e-4, (1.0,))
+    linear, nonlinear = register_row("sec33_linear_non_homogeneous", 1e-6, 1), register_row(
+        "conclusions_nonlinear_behavior", 1e-6)
+    bounded(linear, at, margin=1e-4, signs=(1.0,))
+    bounded(nonlinear, at, "not_reproduced", "reproduced", 1e-4, (1.0,))
+    # an affine map (v -> 2 + (v - 2)/2) is linear; the escapement's, affine in v^2 (F = 1), is not
+    assert judged(linear, evidence({"a": fig3([2.0 + 0.5**k for k in range(30)])})) == "reproduced"
+    v = [0.3]
+    for _ in range(40):
+        v.append(g17(v[-1]))
+    assert "ratio in v^2 0.6561 to 0.6561" in cl.verdict(linear, linear, evidence({"a": fig3(v)})).replicated_value
+    assert (judged(linear, evidence({"a": fig3(v)})), judged(nonlinear, evidence({"a": fig3(v)}))) == (
+        "not_reproduced", "reproduced")
 
 
 # --- the printed step equations (10)-(15) --------------------------------------------------------
@@ -473,8 +484,6 @@ def test_one_eigenvalue_of_the_map_8_is_1_while_within_the_tolerance(monkeypatch
     eigenvalues 0 and 1 - t f (central differences of a line: rounding 2e-11 relative, margin 10 %)."""
     from escapement.paper import printed
     from escapement.verdict import sec3_map as stability
-    # the inference from the map (8) is the reason, a part of the sentence of its own: reason and conclusion are
-    # parts everywhere
     row = register_row("eq8_map_reason", 1e-8)
     star = math.sqrt(0.3 / 0.19)
     assert stability.pe is printed

@@ -154,8 +154,6 @@ def test_eq24_is_read_in_one_convention_for_both_forms(monkeypatch, form):
     # Eq. (10) defines it; the second form with the same x1+ = 0.9 gives atan(0.1 * 0.1 * 0.9 / (0.01 + 0.9 * 0.81))
     # instead (it needs x1 = 1, the velocity before: a misprint). With x1+ read as the velocity before the impact
     # (x1 after) the first form gives minus the delay and the second the delay: no one reading gives both.
-    # (The second form was judged with the velocity before the impact and the first with the one after: one
-    # symbol read two ways in one equation; now one convention holds for the whole equation.)
     delay = math.atan(0.1 / 0.9) - math.atan(0.1)
     second_as_printed = math.atan(0.1 * 0.1 * 0.9 / (0.01 + 0.9 * 0.81))
     result = verdict(sec3_period.eq24, fig3(), tolerance=1e-12, form=form)

@@ -1,12 +1,14 @@
 """The one rule of the verdict, as tables: a claim's status from its readings' outcomes, weighed by the kind
 of evidence, a reading's kind of evidence from what its check consumes, and a finding's status from its
-parts'."""
+parts'; and the headline, which counts sentences, not rows (on synthetic rows whose findings are known by
+construction)."""
 
 from __future__ import annotations
 
 import pytest
 
 from escapement.verdict.rule import EVIDENCE, STATUSES, evidence_of, finding_status, row_status, status_of, weighed
+from escapement.verdict.tally import findings, findings_table, headline, vocabulary_table
 
 
 @pytest.mark.parametrize("outcomes, status", [
@@ -28,37 +30,34 @@ def test_no_outcome_or_a_reading_that_computed_nothing_beside_others_is_refused(
         status_of(outcomes)
 
 
-@pytest.mark.parametrize("law, fitted, threshold, holds, kind", [
-    (None, None, None, True, "independent"),
-    (None, None, None, False, "independent"),
-    (None, "Fig. 5's force", None, True, "fitted"),
-    (None, None, "'clearly' as 2 %", True, "fitted"),
-    ("the impact law", None, None, True, "by_construction"),
-    ("the impact law", "Fig. 4's scene", None, True, "by_construction"),
-    (None, None, None, None, "none"),
+#: what a check consumes: a fitted input, a threshold the project chose, a law of the model
+FITTED, THRESHOLD, LAW = (None, "Fig. 5's force", None), (None, None, "'clearly' 2 %"), ("the impact law", None, None)
+
+
+@pytest.mark.parametrize("readings, kind, status", [
+    ([(None, None, None, True)], "independent", "reproduced"),
+    ([(None, None, None, False)], "independent", "not_reproduced"),
+    ([(*FITTED, True)], "fitted", "consistent"),
+    ([(*THRESHOLD, True)], "fitted", "consistent"),
+    ([(*FITTED, False)], "fitted", "not_reproduced"),
+    ([(*LAW, True)], "by_construction", "consistent"),
+    ([("the impact law", "Fig. 4's scene", None, True)], "by_construction", "consistent"),
+    ([(*LAW, True), (*LAW, False)], "by_construction", "undetermined"),
+    ([(None, None, None, None)], "none", "untestable"),
+    # the weakest reading's kind; every outcome of a grid a check walks
+    ([(None, None, None, True), (*FITTED, True)], "fitted", "consistent"),
+    ([(*FITTED, True), (*LAW, True), (None, None, None, True)], "by_construction", "consistent"),
+    ([(None, None, None, {"a": True, "b": False})], "independent", "undetermined"),
+    ([(*LAW, False), (*LAW, {"a": False})], "by_construction", "not_reproduced"),
 ])
-def test_the_kind_of_evidence_follows_from_what_the_check_consumes(law, fitted, threshold, holds, kind):
-    assert evidence_of(law, fitted, threshold, holds) == kind
+def test_the_evidence_follows_from_what_the_checks_consume_and_a_fitted_or_constructed_agreement_is_consistent(
+        readings, kind, status):
+    assert row_status(readings) == (kind, status)
+    if len(readings) == 1:
+        assert evidence_of(*readings[0]) == kind
 
 
-@pytest.mark.parametrize("status, evidence, weighed_status", [
-    ("reproduced", "independent", "reproduced"),
-    ("reproduced", "fitted", "consistent"),
-    ("reproduced", "by_construction", "consistent"),
-    ("undetermined", "by_construction", "undetermined"),
-    ("not_reproduced", "fitted", "not_reproduced"),
-    ("untestable", "none", "untestable"),
-])
-def test_an_agreement_by_construction_or_on_fitted_evidence_is_only_consistent(status, evidence, weighed_status):
-    assert weighed(status, evidence) == weighed_status
-
-
-def test_a_rows_evidence_is_its_weakest_readings_and_its_status_every_outcome_weighed():
-    fitted, law = (None, "Fig. 5's force", None), ("the impact law", None, None)
-    assert row_status([(None, None, None, True), (*fitted, True)]) == ("fitted", "consistent")
-    assert row_status([(*fitted, True), (*law, True), (None, None, None, True)]) == ("by_construction", "consistent")
-    assert row_status([(None, None, None, {"a": True, "b": False})]) == ("independent", "undetermined")
-    assert row_status([(*law, False), (*law, {"a": False})]) == ("by_construction", "not_reproduced")
+def test_the_weighing_keeps_the_vocabulary():
     assert {weighed(s, e) for s in ("reproduced", "not_reproduced", "undetermined") for e in EVIDENCE} <= set(STATUSES)
     with pytest.raises(ValueError, match="not words of the vocabulary"):
         weighed("fine", "independent")
@@ -100,3 +99,69 @@ def test_the_finding_rule_is_one_rule_over_every_combination_of_parts():
             assert alone == {"reproduced": "consistent", "untestable": "undetermined"}.get(found, found), parts
             assert (found == "partially_reproduced") == ("reproduced" in parts and "not_reproduced" in parts)
             assert (found in ("reproduced", "consistent")) == (set(parts) <= {"reproduced", "consistent"}), parts
+
+
+# --- the headline: the findings counted -------------------------------------------------------------
+
+
+def row(claim, status, finding, part="", origin="paper") -> dict:
+    return {"claim_id": claim, "status": status, "finding": finding if origin == "paper" else "", "part": part,
+            "origin": origin, "quote": f"The sentence of {finding}." if origin == "paper" else ""}
+
+
+ROWS = [
+    row("p1", "not_reproduced", "period", "case (a)"),
+    row("p2", "not_reproduced", "period", "case (b)"),
+    row("m1", "reproduced", "map", "case (a)"),
+    row("m2", "reproduced", "map", "case (b)"),
+    row("s1", "consistent", "sets", "S2"),
+    row("s2", "not_reproduced", "sets", "S-bar"),
+    row("ax", "consistent", "axes"),
+    row("law", "consistent", "law"),
+    row("u1", "undetermined", "linear"),
+    row("u2", "undetermined", "stable", "b = 0.1"),
+    row("u3", "not_reproduced", "stable", "0 < b < 2"),
+    row("r1", "undetermined", "release", "the amplitude"),
+    row("r2", "reproduced", "release", "the force"),
+    row("t", "untestable", "accuracy"),
+    row("airy", "reproduced", "", origin="beyond"),
+    row("rate", "not_reproduced", "", origin="beyond"),
+]
+#: each finding's status by the rule, worked out by hand
+EXPECTED = {"period": "not_reproduced", "map": "reproduced", "sets": "not_reproduced", "axes": "consistent",
+            "law": "consistent", "linear": "undetermined", "stable": "not_reproduced", "release": "undetermined",
+            "accuracy": "untestable"}
+
+
+def test_each_sentence_is_one_finding_with_the_status_of_its_parts():
+    found = findings(ROWS)
+    assert {name: status for name, (status, _) in found.items()} == EXPECTED
+    assert [r["claim_id"] for r in found["period"][1]] == ["p1", "p2"]
+
+
+def test_the_headline_says_its_rule_and_the_counts():
+    text = headline(ROWS)
+    assert "quotes 9 sentences of the paper, checked in 14 rows. Each sentence is one finding" in text
+    assert "partially reproduced when a part is reproduced and another fails under every reading" in text
+    assert ("Of the 9 findings, 1 are reproduced, 2 consistent, 0 partially reproduced, 3 not reproduced, 2 "
+            "undetermined and 1 untestable. Beyond the paper, and not counted: 2 rows.") in text
+
+
+def test_the_findings_table_lists_each_finding_once_with_its_parts():
+    table = findings_table(ROWS)
+    assert [r["finding"] for r in table] == ["map", "axes", "law", "period", "sets", "stable", "linear", "release",
+                                             "accuracy"]
+    assert table[4] == {"finding": "sets", "sentence": "The sentence of sets.", "verdict": "not reproduced",
+                        "rows": "`s1` (S2: consistent), `s2` (S-bar: not reproduced)"}
+    assert table[1]["rows"] == "`ax`"
+
+
+def test_a_status_outside_the_vocabulary_is_refused():
+    with pytest.raises(ValueError, match="claim 'x' has status = 'maybe'"):
+        findings([row("x", "maybe", "f")])
+
+
+def test_the_vocabulary_table_defines_every_word():
+    words = [r["word"] for r in vocabulary_table()]
+    assert "status: partially reproduced" in words and "evidence: by construction" in words
+    assert "origin: beyond" in words and all(r["meaning"] for r in vocabulary_table())
