@@ -1,8 +1,5 @@
-"""Re-exports imported on first use (PEP 562), for the package and its layers' ``__init__``.
-
-Kept rather than plain imports: ``import escapement`` costs about 40 ms of CPU time this way, 190 ms
-with every layer imported (NumPy, the solvers, SciPy), which a plotting or netCDF job would then load.
-"""
+"""Re-exports imported on first use (PEP 562), for the package and its layers' ``__init__``: ``import escapement``
+costs about 40 ms of CPU time this way, 190 ms with every layer imported (NumPy, the solvers, SciPy)."""
 
 from __future__ import annotations
 
@@ -13,11 +10,9 @@ from typing import Any
 
 def lazy_exports(package: str, exports: Mapping[str, str], namespace: dict[str, Any]
                  ) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
-    """``__getattr__`` and ``__dir__`` for ``package``, whose public names ``exports`` maps to the
-    submodule (relative to ``package``) that defines each; a name is imported on first use and kept
-    in ``namespace`` (the package's globals). ``dir(package)`` lists the exported names, the other
-    names of the package's ``__all__`` and the module's dunder attributes, not its private names or
-    its submodules."""
+    """``__getattr__`` and ``__dir__`` for ``package``, whose public names ``exports`` maps to the submodule that
+    defines each; a name is imported on first use and kept in ``namespace`` (the package's globals). ``dir`` lists
+    the exported names, the rest of ``__all__`` and the dunder attributes, not private names or submodules."""
 
     def __getattr__(name: str) -> Any:
         if name not in exports:

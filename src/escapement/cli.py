@@ -1,22 +1,10 @@
 """The command line: ``escapement solve`` (or ``python -m escapement solve``) runs the exact solver for one set of
-parameters; ``escapement --version`` prints the installed distribution's version.
-
-It prints how the run ended and its per-cycle table (cycle ``k`` starts at the ``k``-th impact at a1; the columns
-are the cycle table's fields, the names the netCDF file and ``Solution.to_dataframe`` use), and writes the run
-as CF netCDF (``--netcdf``, whose ``history`` records the command) or its cycle table as CSV (``--csv``).
-Parameters are given under the paper's symbols, in SI units (names, units and descriptions from
-:mod:`escapement.model.quantities`). The defaults (:data:`DEFAULTS`) are Fig. 3 (a) as the workflow runs it
-(``config/paper.yaml``: the model block and ``fig3.cases.a``): released from rest at x0 = -1 m, the left turning
-point (the paper's Step 1).
-
-Everything is checked before any work: the parameters, the number of cycles and the output paths (each must name
-a regular file, new or not, in an existing directory that takes a new file, as a temporary file made there shows;
-the two outputs must be two files, their symbolic links resolved). An output that is a symbolic link is written
-through it: the link stays, the file it names gets the data. A refusal is one line on standard error naming the
-option as typed, its value and what it must be. The exit statuses (:data:`EXIT_STATUSES`): 0 the run completed,
-1 it left the escapement's regime (its typed outcome is printed), 2 invalid input, 3 an output that cannot be
-written. A Ctrl-C ends the process by the signal, as Python does, within seconds even while a file is written,
-and leaves no partial file (:func:`escapement.io.netcdf.interrupt_deferred`).
+parameters (the paper's symbols, SI units; defaults :data:`DEFAULTS`, Fig. 3 (a) as the workflow runs it), prints
+how the run ended and its per-cycle table, and writes the run as CF netCDF (``--netcdf``) or its cycles as CSV
+(``--csv``); ``escapement --version`` prints the installed version. Everything is checked before any work (the
+parameters, the cycles, each output a regular file in a directory that takes a new file, the two outputs two
+files); a refusal is one line on standard error naming the option as typed, its value and what it must be. The
+exit statuses are :data:`EXIT_STATUSES`; a Ctrl-C ends the process by the signal, leaving no partial file.
 """
 
 from __future__ import annotations
@@ -122,9 +110,8 @@ def _parser(prog: str) -> argparse.ArgumentParser:
 
 
 def _check_output(option: str, text: str) -> Path:
-    """The file ``text`` names (its symbolic links resolved: the data go through them), or a refusal of a path
-    that names no file (empty, a directory, a device), or of one where no file can be written: a missing folder
-    or one that takes no new file (tried with a temporary file, as the write makes), a read-only file."""
+    """The file ``text`` names (its symbolic links resolved), or a refusal of a path that names no file (empty, a
+    directory, a device) or where none can be written (a missing folder, one that takes no new file, read-only)."""
     from .io.netcdf import writable_target
 
     if not text or "\0" in text:
@@ -149,21 +136,6 @@ def _check_output(option: str, text: str) -> Path:
     return target
 
 
-def _check_outputs(args: argparse.Namespace) -> None:
-    """Each output path checked (:func:`_check_output`), and no two of them the same file."""
-    seen: dict[Path, str] = {}
-    for option in ("--netcdf", "--csv"):
-        text = getattr(args, option.removeprefix("--"))
-        if text is None:
-            continue
-        target = _check_output(option, text)
-        if target in seen:
-            other = seen[target]
-            raise Refusal(EXIT_INVALID_INPUT, option, text, f"another file than {other} "
-                          f"{getattr(args, other.removeprefix('--'))!r}: both name {target}")
-        seen[target] = option
-
-
 def _run(args: argparse.Namespace, command: str) -> tuple[int, str]:
     """Check the inputs and outputs, solve, write the files asked for; the exit status and the text to print."""
     try:
@@ -175,7 +147,14 @@ def _run(args: argparse.Namespace, command: str) -> tuple[int, str]:
         for name, option in OPTIONS.items():
             requirement = re.sub(rf"\b{name}\b", option, requirement)
         raise Refusal(EXIT_INVALID_INPUT, OPTIONS.get(err.name, f"--{err.name}"), err.value, requirement) from err
-    _check_outputs(args)
+    seen: dict[Path, str] = {}  # each output checked, and no two of them the same file
+    for option in ("--netcdf", "--csv"):
+        if (text := getattr(args, option.removeprefix("--"))) is not None:
+            if (target := _check_output(option, text)) in seen:
+                other = seen[target]
+                raise Refusal(EXIT_INVALID_INPUT, option, text, f"another file than {other} "
+                              f"{getattr(args, other.removeprefix('--'))!r}: both name {target}")
+            seen[target] = option
     try:
         run = solve_exact(params, args.x0, args.v0, n_cycles=args.cycles, record_trajectory=False)
     except ParameterError as err:  # the initial state, the run's memory estimate
@@ -183,24 +162,22 @@ def _run(args: argparse.Namespace, command: str) -> tuple[int, str]:
                       err.requirement) from err
     table = run.to_dataframe("cycles")
     written = []
-    if args.netcdf is not None:
-        from .io.netcdf import DatasetError, write_netcdf  # xarray only where a netCDF file is written
-        from .scenes.cf import run_dataset
+    for option, path in (("--netcdf", args.netcdf), ("--csv", args.csv)):
+        if path is None:
+            continue
+        from .io.netcdf import DatasetError, replaced, write_netcdf  # xarray only where a netCDF file is written
 
         try:
-            write_netcdf(run_dataset(run), args.netcdf, history=command)
+            if option == "--netcdf":
+                from .scenes.cf import run_dataset
+
+                write_netcdf(run_dataset(run), path, history=command)
+            else:
+                with replaced(path) as tmp:
+                    table.to_csv(tmp, float_format="%.17g")
         except (DatasetError, OSError) as err:  # what the file system says once the run is solved
-            raise Refusal(EXIT_CANNOT_WRITE, "--netcdf", args.netcdf, f"writable ({err})") from err
-        written.append(args.netcdf)
-    if args.csv is not None:
-        from .io.netcdf import replaced
-
-        try:
-            with replaced(args.csv) as tmp:
-                table.to_csv(tmp, float_format="%.17g")
-        except OSError as err:
-            raise Refusal(EXIT_CANNOT_WRITE, "--csv", args.csv, f"writable ({err})") from err
-        written.append(args.csv)
+            raise Refusal(EXIT_CANNOT_WRITE, option, path, f"writable ({err})") from err
+        written.append(path)
     head = f"# {run.status.value}: {run.message}" + (f"; wrote {', '.join(written)}" if written else "")
     body = table.to_csv(sep="\t", float_format="%.17g", lineterminator="\n").rstrip("\n")
     return (EXIT_COMPLETED if run.success else EXIT_LEFT_REGIME), f"{head}\n{body}"

@@ -19,115 +19,32 @@ from escapement.io.netcdf import (DatasetError, read_netcdf, stale_partials, wri
 
 
 def small_dataset():
-    return xr.Dataset(
-        {"v": ("t", np.arange(5.0), {"units": "m s-1", "long_name": "velocity"})},
-        coords={"t": ("t", np.linspace(0, 1, 5), {"units": "s", "long_name": "time"})},
-        attrs={"title": "test"},
-    )
+    return xr.Dataset({"v": ("t", np.arange(5.0), {"units": "m s-1", "long_name": "velocity"})},
+                      coords={"t": ("t", np.linspace(0, 1, 5), {"units": "s", "long_name": "time"})},
+                      attrs={"title": "test"})
 
 
-def test_round_trip_compressed_without_fill_value_on_coordinates(tmp_path):
-    path = write_netcdf(small_dataset(), tmp_path / "x.nc", history="a test")
+def test_round_trip_compressed_checksummed_without_fill_value_on_coordinates_and_as_the_umask_says(tmp_path):
+    old = os.umask(0o022)
+    try:
+        path = write_netcdf(small_dataset(), tmp_path / "x.nc", history="a test")
+    finally:
+        os.umask(old)
+    assert (path.stat().st_mode & 0o777) == 0o644
     with netCDF4.Dataset(path) as nc:
-        assert "_FillValue" not in nc["t"].ncattrs()
-        assert nc["v"].filters()["zlib"] is True
+        assert "_FillValue" not in nc["t"].ncattrs() and nc["v"].filters()["zlib"] is True
+        assert {name: nc[name].filters()["fletcher32"] for name in ("v", "t")} == {"v": True, "t": True}
     back = read_netcdf(path, required=("v", "t"))
     assert back["v"].values.tolist() == [0, 1, 2, 3, 4]
     assert back.attrs["title"] == "test" and back.attrs["history"].endswith(": a test")
 
 
-def test_written_file_respects_the_umask(tmp_path):
-    old = os.umask(0o022)
-    try:
-        path = write_netcdf(small_dataset(), tmp_path / "x.nc")
-    finally:
-        os.umask(old)
-    assert (path.stat().st_mode & 0o777) == 0o644
-
-
-def test_failed_write_leaves_nothing_behind(tmp_path):
+def test_a_write_that_fails_leaves_nothing_and_names_the_file(tmp_path, monkeypatch):
     bad = small_dataset()
     bad.attrs["bad"] = {"a dict": "cannot be an attribute"}
     with pytest.raises(Exception):
         write_netcdf(bad, tmp_path / "x.nc")
-    assert list(tmp_path.iterdir()) == []
 
-
-def test_truncated_file_is_named_in_the_error(tmp_path):
-    path = write_netcdf(small_dataset(), tmp_path / "x.nc")
-    data = path.read_bytes()
-    path.write_bytes(data[: len(data) // 3])
-    with pytest.raises(DatasetError, match=r"x\.nc: not a readable netCDF file"):
-        read_netcdf(path)
-
-
-def test_garbage_file_is_named_in_the_error(tmp_path):
-    path = tmp_path / "junk.nc"
-    path.write_text("this is not netCDF")
-    with pytest.raises(DatasetError, match=r"junk\.nc"):
-        read_netcdf(path)
-
-
-def test_missing_file_and_missing_variable(tmp_path):
-    with pytest.raises(DatasetError, match="no such netCDF file"):
-        read_netcdf(tmp_path / "none.nc")
-    path = write_netcdf(small_dataset(), tmp_path / "x.nc")
-    with pytest.raises(DatasetError, match=r"x\.nc: lacks the variable\(s\) w"):
-        read_netcdf(path, required=("v", "w"))
-
-
-# -- checksums ---------------------------------------------------------------------------------------------------------
-
-#: distinctive values of a coordinate, found in the file by their bytes (stored uncompressed)
-TIMES = np.array([1.2345678901234e10 + i for i in range(5)])
-
-
-def flip_bit(path, pattern: bytes, offset: int = 10) -> None:
-    """Flip one bit of ``path`` inside the only occurrence of ``pattern``."""
-    data = bytearray(path.read_bytes())
-    assert data.count(pattern) == 1
-    data[data.find(pattern) + offset] ^= 0x04
-    path.write_bytes(data)
-
-
-def test_every_variable_is_checksummed(tmp_path):
-    path = write_netcdf(small_dataset(), tmp_path / "x.nc")
-    with netCDF4.Dataset(path) as nc:
-        assert {name: nc[name].filters()["fletcher32"] for name in ("v", "t")} == {"v": True, "t": True}
-
-
-def test_flipped_bit_in_an_uncompressed_variable_fails_its_checksum(tmp_path):
-    ds = xr.Dataset({"v": ("t", np.arange(5.0))}, coords={"t": ("t", TIMES)})
-    path = write_netcdf(ds, tmp_path / "x.nc")
-    flip_bit(path, TIMES.tobytes())
-    with pytest.raises(DatasetError, match=r"x\.nc: not a readable netCDF file"):
-        read_netcdf(path)
-    # The same file without the checksum: the flipped bit is read back as data.
-    bare = tmp_path / "bare.nc"
-    ds.to_netcdf(bare, engine="netcdf4", encoding={"t": {"_FillValue": None}})
-    flip_bit(bare, TIMES.tobytes())
-    with xr.open_dataset(bare, engine="netcdf4") as back:
-        changed = back["t"].values != TIMES
-    assert changed.tolist() == [False, True, False, False, False]
-
-
-def test_flipped_bit_in_a_compressed_variable_is_detected(tmp_path):
-    """Random bytes do not compress: zlib stores them as they come from the shuffle filter (byte k of
-    every value, then byte k + 1), where they can be found. zlib's own check would catch this flip too."""
-    values = np.random.default_rng(1).integers(-(2**62), 2**62, size=512, dtype=np.int64)
-    path = write_netcdf(xr.Dataset({"v": ("n", values)}), tmp_path / "x.nc")
-    with netCDF4.Dataset(path) as nc:
-        assert nc["v"].filters()["zlib"] and nc["v"].filters()["shuffle"]
-    shuffled = np.frombuffer(values.tobytes(), np.uint8).reshape(-1, 8).T.tobytes()
-    flip_bit(path, shuffled[2000:2064])
-    with pytest.raises(DatasetError, match=r"x\.nc: not a readable netCDF file"):
-        read_netcdf(path)
-
-
-# -- failures of the netCDF library --------------------------------------------------------------------------------
-
-
-def test_other_netcdf_failure_names_the_file(tmp_path, monkeypatch):
     def fail(*args, **kwargs):
         raise RuntimeError("NetCDF: Not a valid data type or _FillValue type mismatch")
 
@@ -137,35 +54,78 @@ def test_other_netcdf_failure_names_the_file(tmp_path, monkeypatch):
     assert list(tmp_path.iterdir()) == []
 
 
-# -- interrupts, killed writes, symbolic links -------------------------------------------------------------------------
+@pytest.mark.parametrize("damage, message", [
+    (lambda path: path.write_bytes(path.read_bytes()[: path.stat().st_size // 3]), r"x\.nc: not a readable netCDF"),
+    (lambda path: path.write_text("this is not netCDF"), r"x\.nc: not a readable netCDF file"),
+    (lambda path: path.unlink(), r"x\.nc: no such netCDF file"),
+], ids=["truncated", "garbage", "missing"])
+def test_a_damaged_or_missing_file_is_named_in_the_error(tmp_path, damage, message):
+    path = write_netcdf(small_dataset(), tmp_path / "x.nc")
+    damage(path)
+    with pytest.raises(DatasetError, match=message):
+        read_netcdf(path)
 
-#: a process that writes ``sys.argv[1]`` for about a second and a half (random numbers do not compress)
+
+def test_a_missing_variable_is_named(tmp_path):
+    with pytest.raises(DatasetError, match=r"x\.nc: lacks the variable\(s\) w"):
+        read_netcdf(write_netcdf(small_dataset(), tmp_path / "x.nc"), required=("v", "w"))
+
+
+def flip_bit(path, pattern: bytes) -> None:
+    """Flip one bit of ``path`` inside the only occurrence of ``pattern``."""
+    data = bytearray(path.read_bytes())
+    assert data.count(pattern) == 1
+    data[data.find(pattern) + 10] ^= 0x04
+    path.write_bytes(data)
+
+
+def test_a_flipped_bit_in_an_uncompressed_variable_fails_its_checksum(tmp_path):
+    times = np.array([1.2345678901234e10 + i for i in range(5)])  # found in the file by their bytes
+    ds = xr.Dataset({"v": ("t", np.arange(5.0))}, coords={"t": ("t", times)})
+    flip_bit(path := write_netcdf(ds, tmp_path / "x.nc"), times.tobytes())
+    with pytest.raises(DatasetError, match=r"x\.nc: not a readable netCDF file"):
+        read_netcdf(path)
+    # The same file without the checksum: the flipped bit is read back as data.
+    ds.to_netcdf(bare := tmp_path / "bare.nc", engine="netcdf4", encoding={"t": {"_FillValue": None}})
+    flip_bit(bare, times.tobytes())
+    with xr.open_dataset(bare, engine="netcdf4") as back:
+        assert (back["t"].values != times).tolist() == [False, True, False, False, False]
+
+
+def test_a_flipped_bit_in_a_compressed_variable_is_detected(tmp_path):
+    """Random bytes do not compress: zlib stores them as they come from the shuffle filter (byte k of every value,
+    then byte k + 1), where they can be found. zlib's own check would catch this flip too."""
+    values = np.random.default_rng(1).integers(-(2**62), 2**62, size=512, dtype=np.int64)
+    path = write_netcdf(xr.Dataset({"v": ("n", values)}), tmp_path / "x.nc")
+    with netCDF4.Dataset(path) as nc:
+        assert nc["v"].filters()["zlib"] and nc["v"].filters()["shuffle"]
+    flip_bit(path, np.frombuffer(values.tobytes(), np.uint8).reshape(-1, 8).T.tobytes()[2000:2064])
+    with pytest.raises(DatasetError, match=r"x\.nc: not a readable netCDF file"):
+        read_netcdf(path)
+
+
+#: a process that writes ``sys.argv[1]`` for about half a second (random numbers do not compress)
 SLOW_WRITE = """
 import sys
 import numpy as np
 import xarray as xr
 from escapement.io.netcdf import write_netcdf
 
-values = np.random.default_rng(0).random((10, 1_000_000))
+values = np.random.default_rng(0).random((3, 1_000_000))
 ds = xr.Dataset({f"v{i}": ("n", row) for i, row in enumerate(values)})
 write_netcdf(ds, sys.argv[1], history="a slow write")
 """
 
 
-def start_slow_write(target):
-    """The process of :data:`SLOW_WRITE` on ``target``, once its temporary file exists (the write has begun)."""
+def test_a_ctrl_c_during_a_write_ends_the_process_within_seconds_and_leaves_no_file(tmp_path):
+    target = tmp_path / "x.nc"
     proc = subprocess.Popen([sys.executable, "-c", SLOW_WRITE, str(target)], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 60
-    while not stale_partials(target):
+    while not stale_partials(target):  # the write has begun once its temporary file exists
         assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
         time.sleep(0.01)
-    time.sleep(0.2)  # inside the netCDF library's write
-    return proc
-
-
-def test_a_ctrl_c_during_a_write_ends_the_process_within_seconds_and_leaves_no_file(tmp_path):
-    proc = start_slow_write(tmp_path / "x.nc")
+    time.sleep(0.1)  # inside the netCDF library's write
     proc.send_signal(signal.SIGINT)
     sent = time.monotonic()
     try:
@@ -179,16 +139,7 @@ def test_a_ctrl_c_during_a_write_ends_the_process_within_seconds_and_leaves_no_f
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.fixture
-def python_sigint():
-    """Python's own SIGINT handler (KeyboardInterrupt), whatever the test runner installed, put back after."""
-    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
-    signal.signal(signal.SIGINT, previous)
-
-
-def test_a_ctrl_c_inside_the_write_is_raised_once_it_returns_and_nothing_is_left(tmp_path, monkeypatch,
-                                                                                 python_sigint):
+def test_a_ctrl_c_inside_the_write_is_raised_once_it_returns_and_nothing_is_left(tmp_path, monkeypatch):
     to_netcdf, finished = xr.Dataset.to_netcdf, []
 
     def interrupted(self, *args, **kwargs):
@@ -198,10 +149,14 @@ def test_a_ctrl_c_inside_the_write_is_raised_once_it_returns_and_nothing_is_left
         return result
 
     monkeypatch.setattr(xr.Dataset, "to_netcdf", interrupted)
-    with pytest.raises(KeyboardInterrupt):
-        write_netcdf(small_dataset(), tmp_path / "x.nc")
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)  # Python's own, whatever the runner's
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            write_netcdf(small_dataset(), tmp_path / "x.nc")
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # put back
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert finished == [True] and list(tmp_path.iterdir()) == []
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # put back
     monkeypatch.undo()
     assert read_netcdf(write_netcdf(small_dataset(), tmp_path / "x.nc"))["v"].values.tolist() == [0, 1, 2, 3, 4]
 
@@ -214,34 +169,36 @@ def test_a_write_outside_the_main_thread_leaves_the_signals_alone(tmp_path):
     assert done == [tmp_path / "x.nc"] and read_netcdf(tmp_path / "x.nc")["v"].size == 5
 
 
-#: a process that reads ``sys.argv[1]`` forty times, most of the time inside netCDF4's read
-MANY_READS = """
-import sys
-from escapement.io.netcdf import read_netcdf
+def test_a_ctrl_c_during_a_read_is_not_lost(tmp_path):
+    """netCDF4 loses an interrupt that comes while it reads: the reads would go on to the end of the loop."""
+    path = write_netcdf(xr.Dataset({"v": ("n", np.random.default_rng(0).random(1_000_000))}), tmp_path / "x.nc")
+    read_netcdf(path)
+    timer = threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGINT))  # a Ctrl-C, most likely inside a read
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)  # Python's own, whatever the runner's
+    try:
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            for _ in range(400):
+                read_netcdf(path)
+    finally:
+        timer.cancel()
+        signal.signal(signal.SIGINT, previous)
 
-read_netcdf(sys.argv[1])
-print("reading", flush=True)
-for _ in range(40):
-    read_netcdf(sys.argv[1])
+
+#: a process killed inside a write of ``sys.argv[1]``: its temporary file stays
+KILLED_WRITE = """
+import os, signal, sys
+from escapement.io.netcdf import replaced
+
+with replaced(sys.argv[1]) as tmp:
+    tmp.write_text("half a file")
+    os.kill(os.getpid(), signal.SIGKILL)
 """
 
 
-def test_a_ctrl_c_during_a_read_is_not_lost(tmp_path):
-    """netCDF4 loses an interrupt that comes while it reads: the process would read on to the end."""
-    path = write_netcdf(xr.Dataset({"v": ("n", np.random.default_rng(0).random(2_000_000))}), tmp_path / "x.nc")
-    proc = subprocess.Popen([sys.executable, "-c", MANY_READS, str(path)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
-    assert proc.stdout.readline() == "reading\n"
-    time.sleep(0.3)
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    assert proc.returncode == -signal.SIGINT and err.rstrip().endswith("KeyboardInterrupt")
-
-
 def test_a_killed_write_leaves_a_partial_file_that_the_next_write_of_its_target_removes(tmp_path):
-    proc = start_slow_write(tmp_path / "x.nc")
-    proc.kill()
-    proc.communicate()
+    proc = subprocess.run([sys.executable, "-c", KILLED_WRITE, str(tmp_path / "x.nc")])
+    assert proc.returncode == -signal.SIGKILL
     (left,) = stale_partials(tmp_path / "x.nc")
     assert left.name.startswith(".x.nc.") and left.name.endswith(".partial")
     write_netcdf(small_dataset(), tmp_path / "x.nc")
@@ -268,8 +225,7 @@ def test_a_symbolic_link_is_written_through_and_stays(tmp_path):
     link.symlink_to("data/x.nc")  # dangling until the first write
     for _ in range(2):  # made, then replaced
         write_netcdf(small_dataset(), link)
-        assert link.is_symlink() and os.readlink(link) == "data/x.nc" and target.is_file()
-        assert read_netcdf(target)["v"].size == 5
+        assert link.is_symlink() and os.readlink(link) == "data/x.nc" and read_netcdf(target)["v"].size == 5
     write_text("a line\n", tmp_path / "t.txt")
     (tmp_path / "t_link.txt").symlink_to(tmp_path / "t.txt")
     write_csv([{"a": 1}], ["a"], tmp_path / "t_link.txt")

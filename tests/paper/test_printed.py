@@ -141,11 +141,19 @@ def test_eq23_as_printed(name):
     assert pe.period_23(s.cycles.velocity_before_impact[-1], p) == pytest.approx(s.cycles.period[-1], rel=1e-6)
 
 
+def eq24(v, p):
+    """Eq. (24), first form, at ``v`` before the impact at a1 and ``(1 - b) v`` after."""
+    return pe.phase_jump_24(v, (1 - p.b) * v, pe.symbols_of(p))
+
+
 @pytest.mark.parametrize("name", list(CASES))
-def test_eq24_first_form_is_the_phase_jump_of_the_impact(name):
+def test_eq24_first_form_is_the_phase_jump_of_the_impact_and_its_second_form_with_the_velocity_before(name):
     p, _ = CASES[name]
+    w, b, a1 = p.omega, p.b, p.a1
     for v in (0.5, 1.25, 2.0):
-        assert pe.period_perturbation_24(v, p) == pytest.approx(d.impact_phase_jump(p.a1, v, p), rel=1e-13)
+        assert eq24(v, p) == pytest.approx(d.impact_phase_jump(a1, v, p), rel=1e-13)
+        # the second form, -(1/w) atan(a1 w b v / (a1^2 w^2 + (1 - b) v^2)), with v the velocity before the impact
+        assert -math.atan(a1 * w * b * v / (a1**2 * w**2 + (1 - b) * v**2)) / w == pytest.approx(eq24(v, p), rel=1e-13)
 
 
 @paper_fails("Eq. (24) second form as printed uses the velocity after the impact")
@@ -153,7 +161,7 @@ def test_eq24_first_form_is_the_phase_jump_of_the_impact(name):
 def test_eq24_second_form_as_printed(name):
     p, _ = CASES[name]
     v = 1.25
-    assert pe.period_perturbation_24_closed(v, p) == pytest.approx(pe.period_perturbation_24(v, p), rel=1e-6)
+    assert pe.phase_jump_24_closed((1 - p.b) * v, p.b, pe.symbols_of(p)) == pytest.approx(eq24(v, p), rel=1e-6)
 
 
 @paper_fails(
@@ -163,7 +171,7 @@ def test_eq24_second_form_as_printed(name):
 def test_eq24_plus_25_as_printed_give_the_limit_cycle_period(name):
     p, s = converged(name)
     v = pe.fixed_point_19(p)
-    predicted = p.natural_period + 2 * (pe.period_perturbation_24(v, p) + pe.period_perturbation_25(v, p))
+    predicted = p.natural_period + 2 * (eq24(v, p) + pe.zone_change_25((1 - p.b) * v, pe.symbols_of(p)))
     assert predicted == pytest.approx(s.cycles.period[-1], rel=1e-6)
 
 

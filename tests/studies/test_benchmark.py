@@ -1,9 +1,12 @@
+"""The work-precision benchmark: every method against the 50-digit reference, the rows and ratios it times (on a
+clock of set durations), and its refusals of bad arguments before any run."""
+
 import math
 from types import SimpleNamespace
 
 import pytest
 
-from escapement.model.parameters import ParameterError, Parameters
+from escapement.model.parameters import Parameters
 from escapement.integrators.high_precision import solve_high_precision
 from escapement.studies import benchmark
 from escapement.studies.benchmark import (
@@ -62,19 +65,6 @@ def test_the_first_impact_from_the_left_is_the_free_swing_to_a1():
     assert v == pytest.approx(math.sqrt(0.99), rel=1e-15) and t == pytest.approx(math.acos(0.1), rel=1e-15)
 
 
-@pytest.mark.parametrize("n_cycles", [0, -1, 1.5, True])
-def test_closed_form_map_needs_a_positive_number_of_cycles(n_cycles):
-    with pytest.raises(ParameterError, match=rf"^n_cycles = {n_cycles!r} is invalid: n_cycles must be a positive"):
-        closed_form_map(P, -1.0, n_cycles)
-
-
-@pytest.mark.parametrize("x0", [0.05, -0.05, 0.1, -0.1])
-def test_closed_form_map_needs_a_release_beyond_an_impact_position(x0):
-    with pytest.raises(ParameterError, match=rf"^x0 = {x0!r} is invalid: x0 must be a release left of a1 = -0\.1 < 0 "
-                                             r"or right of a3 = 0\.1 > 0 \(m\)"):
-        closed_form_map(P, x0, 5)
-
-
 # Tolerances, from the error each method can make over the N = 5 cycles (about 20 events, 40 segments):
 # * exact, the per-cycle closed form and map16: rounding, some ulps per event: 1e-14;
 # * an integrator at rtol: each segment's local error is up to a few rtol and an event location moves the
@@ -116,12 +106,6 @@ def test_a_run_that_leaves_the_regime_is_an_error(method):
     # released inside |a1|: the escapement stops, no cycle is completed
     with pytest.raises(RuntimeError, match="ended early"):
         run_method(method, 0.01 if method == "naive-RK4" else 1e-8, P, 0.05, N)
-
-
-@pytest.mark.parametrize("method", ["magic", "rk45", "", "exact "])
-def test_invalid_methods_raise(method):
-    with pytest.raises(ValueError, match=f"method = {method!r} is invalid"):
-        run_method(method, None, P, 1.0, N)
 
 
 def test_rows_hold_the_errors_of_each_run_against_50_digits(reference, monkeypatch):
@@ -173,8 +157,6 @@ def test_headline_ratios_pick_the_fastest_setting_that_reaches_the_target(refere
                            max_repeats=2)
     assert none["ode"] is None and math.isnan(none["ode_over_closed_form"]) and math.isnan(none["ode_over_exact"])
     assert none["exact_over_closed_form"] == 1.0  # both 1 s on the clock's default
-    with pytest.raises(ValueError, match="errors"):
-        headline_ratios(P, 1.0, N, {}, errors=("error_amplitude",))
 
 
 def test_per_cycle_times_compare_the_closed_form_with_the_exact_solver(monkeypatch):
@@ -188,14 +170,36 @@ def test_per_cycle_times_compare_the_closed_form_with_the_exact_solver(monkeypat
     ]
 
 
-@pytest.mark.parametrize(
-    "settings, min_seconds, max_repeats, message",
-    [({"exact": []}, 0.0, 5, "min_seconds"), ({"exact": []}, 0.1, 0, "max_repeats"),
-     ({"exact": []}, 0.1, True, "max_repeats"), ({"magic": []}, 0.1, 5, "method")],
-)
-def test_invalid_benchmark_settings(settings, min_seconds, max_repeats, message):
-    with pytest.raises(ValueError, match=message):
-        work_precision(P, 1.0, 5, settings, min_seconds, max_repeats)
+def _never(*args, **kwargs):
+    pytest.fail("a refused call ran")
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: closed_form_map(P, -1.0, 0), "n_cycles = 0 is invalid: n_cycles must be a positive"),
+    (lambda: closed_form_map(P, -1.0, 1.5), "n_cycles = 1.5 is invalid: n_cycles must be a positive"),
+    (lambda: closed_form_map(P, -1.0, True), "n_cycles = True is invalid: n_cycles must be a positive"),
+    *[(lambda x0=x0: closed_form_map(P, x0, 5), f"x0 = {x0!r} is invalid: x0 must be a release left of a1 = -0.1 < 0 "
+       "or right of a3 = 0.1 > 0 (m)") for x0 in (0.05, -0.05, 0.1, -0.1)],
+    *[(lambda m=m: run_method(m, None, P, 1.0, N), f"method = {m!r} is invalid: method must be one of exact, ")
+      for m in ("magic", "rk45", "", "exact ")],
+    (lambda: work_precision(P, 1.0, 5, {"magic": []}, 0.1, 5), "method = 'magic' is invalid"),
+    (lambda: work_precision(P, 1.0, 5, {"exact": []}, 0.0, 5), "min_seconds = 0.0 is invalid: min_seconds must be in"),
+    (lambda: work_precision(P, 1.0, 5, {"exact": []}, 0.1, True), "max_repeats = True is invalid"),
+    (lambda: headline_ratios(P, 1.0, N, {}, errors=("error_amplitude",)), "errors = ('error_amplitude',) is invalid"),
+    (lambda: headline_ratios(P, 1.0, N, {}, target=0), "target = 0 is invalid: target must be > 0"),
+    (lambda: median_wall(None, 0.01, 3), "fn = None is invalid: fn must be callable"),
+    (lambda: median_wall(_never, 0, 3), "min_seconds = 0 is invalid: min_seconds must be in (0, 60]"),
+    (lambda: median_wall(_never, 61.0, 3), "min_seconds = 61.0 is invalid"),
+    (lambda: median_wall(_never, "0.1", 3), "min_seconds = '0.1' is invalid"),
+    (lambda: median_wall(_never, 0.01, 0), "max_repeats = 0 is invalid: max_repeats must be an integer in [1, 10000]"),
+    (lambda: median_wall(_never, 0.01, 2.0), "max_repeats = 2.0 is invalid"),
+])
+def test_a_bad_argument_is_refused_in_one_line_before_any_run(call, words, monkeypatch):
+    for name in ("solve_exact", "solve_cycles", "solve_high_precision", "solve_reference", "solve_naive"):
+        monkeypatch.setattr(benchmark, name, _never)
+    with pytest.raises((TypeError, ValueError)) as refused:  # ParameterError is a ValueError
+        call()
+    assert str(refused.value).startswith(words) and "\n" not in str(refused.value)
 
 
 def test_timing_repeats_a_call_until_the_time_is_measured_and_stops_at_the_cap(monkeypatch):

@@ -1,10 +1,8 @@
-"""Writing and reading the files: netCDF (compressed, checksummed, stamped with their provenance), CSV and
-text, each written to a temporary file beside its target and renamed into place, so that a reader never
-sees a partial file (Snakemake removes the outputs of a job that fails).
-
-A target that is a symbolic link is written through it: the link stays and the file it names gets the data. A
-Ctrl-C (SIGINT) during a netCDF write or read is raised as soon as it returns, and an interrupted write leaves no
-file; the temporary files that a killed process leaves behind are removed by the next write of the same target.
+"""Writing and reading the files: netCDF (compressed, checksummed, stamped with their provenance), CSV and text,
+each written to a temporary file beside its target and renamed into place, so that a reader never sees a partial
+file. A symbolic link is written through (the link stays, the file it names gets the data). A Ctrl-C during a
+netCDF write or read is raised as soon as it returns, and an interrupted write leaves no file; the temporary files
+of a killed process are removed by the next write of the same target.
 """
 
 from __future__ import annotations
@@ -38,19 +36,17 @@ class DatasetError(RuntimeError):
 
 
 def stale_partials(path: str | os.PathLike) -> list[Path]:
-    """The temporary files of earlier writes of ``path`` still in its folder (a write killed before it could
-    remove its own): ``.<name>.<random>.partial`` beside it, the random part without a dot, so that no other
-    target's temporary files match."""
+    """The temporary files of earlier (killed) writes of ``path``: ``.<name>.<random>.partial`` beside it, the
+    random part without a dot, so that no other target's temporary files match."""
     path = Path(path)
     pattern = re.compile(rf"\.{re.escape(path.name)}\.[^./]+{re.escape(PARTIAL)}")
     return sorted(p for p in path.parent.glob(f".*{PARTIAL}") if pattern.fullmatch(p.name))
 
 
 def target_of(path: str | os.PathLike) -> Path:
-    """The file a write of ``path`` replaces: ``path`` with its symbolic links resolved, so that the data go
-    through a link to the file it names. :class:`OSError` for a loop of links, :class:`IsADirectoryError` for a
-    directory and :class:`FileExistsError` for anything else that exists and is not a regular file (a device, a
-    pipe), which the rename would replace."""
+    """The file a write of ``path`` replaces: ``path`` with its symbolic links resolved. :class:`OSError` for a
+    loop of links, :class:`IsADirectoryError` for a directory, :class:`FileExistsError` for anything else that
+    exists and is not a regular file (a device, a pipe), which the rename would replace."""
     target = Path(os.path.realpath(path))
     if target.is_symlink():  # realpath stops where the links loop
         raise OSError(errno.ELOOP, os.strerror(errno.ELOOP), str(path))
@@ -63,9 +59,8 @@ def target_of(path: str | os.PathLike) -> Path:
 
 def writable_target(path: str | os.PathLike) -> Path:
     """:func:`target_of` ``path``, once a temporary file named as a write's has been made beside it and removed;
-    the :class:`OSError` of the file system where a write could not begin: a missing folder, a parent that is a
-    file, a folder that takes no new file (tried rather than foretold from the permission bits, which do not tell
-    access lists, network file systems or read-only mounts), a name too long."""
+    else the file system's :class:`OSError` (a missing folder, a name too long, a folder that takes no new file:
+    tried, as permission bits do not tell access lists, network file systems or read-only mounts)."""
     target = target_of(path)
     with tempfile.NamedTemporaryFile(dir=target.parent, prefix=f".{target.name}.", suffix=PARTIAL):
         pass
@@ -74,13 +69,9 @@ def writable_target(path: str | os.PathLike) -> Path:
 
 @contextmanager
 def replaced(path: str | os.PathLike):
-    """A temporary path beside ``path`` (its folder made if missing), renamed to ``path`` when the block ends
-    without an error (removed if it raises).
-
-    The target is :func:`target_of` ``path``: through a symbolic link the file it names is replaced, in that
-    file's folder, and the link stays. The temporary files of earlier writes of the same target
-    (:func:`stale_partials`) are removed first; two writes of one target at once are not supported (the later
-    removes the earlier's temporary file, whose rename then fails)."""
+    """A temporary path beside :func:`target_of` ``path`` (its folder made if missing), renamed to it when the
+    block ends without an error (removed if it raises); :func:`stale_partials` are removed first (two writes of
+    one target at once are not supported: the later removes the earlier's temporary file)."""
     path = target_of(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     for stale in stale_partials(path):
@@ -99,12 +90,10 @@ def replaced(path: str | os.PathLike):
 
 @contextmanager
 def interrupt_deferred():
-    """Run the block with a SIGINT recorded instead of raised, and deliver it to the handler it had once the
-    block has ended; outside the main thread, which alone receives signals, the block runs as it is.
-
-    Hand-written because the netCDF libraries handle an interrupt badly: xarray's writer, interrupted inside,
-    can keep a lock that it then waits for when it closes the file (the process hangs until a second Ctrl-C),
-    and netCDF4 loses one that comes while it reads. Deferred, the Ctrl-C lands once the library has returned."""
+    """Run the block with a SIGINT recorded instead of raised, delivered to the handler it had once the block has
+    ended (outside the main thread, which alone receives signals, the block runs as it is). Hand-written because
+    xarray's writer, interrupted inside, can keep a lock it then waits for (a hang until a second Ctrl-C), and
+    netCDF4 loses an interrupt that comes while it reads."""
     if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is None:
         yield  # a handler installed from outside Python cannot be put back: leave it alone
         return
@@ -119,10 +108,9 @@ def interrupt_deferred():
 
 
 def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, history: str | None = None) -> Path:
-    """Write ``ds`` to ``path`` with its provenance (``history``: what wrote it, by default this process's
-    command line): data variables compressed (zlib level 4), every variable with a Fletcher-32 checksum that
-    :func:`read_netcdf` checks, coordinates without ``_FillValue``; the target is replaced as :func:`replaced`
-    does. A Ctrl-C during the write (:func:`interrupt_deferred`) raises :class:`KeyboardInterrupt` when the write
+    """Write ``ds`` to ``path`` (as :func:`replaced`) with its provenance (``history``: what wrote it, by default
+    this process's command line): data variables compressed (zlib level 4), every variable with a Fletcher-32
+    checksum, coordinates without ``_FillValue``. A Ctrl-C (:func:`interrupt_deferred`) is raised when the write
     returns, and no file is left."""
     ds = ds.copy()
     ds.attrs.update(provenance_attributes(history or command_line()))
@@ -138,10 +126,8 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, history: str | None = 
 
 
 def read_netcdf(path: str | os.PathLike, required: Iterable[str] = ()) -> xr.Dataset:
-    """The dataset of ``path``, loaded into memory with its checksums checked; :class:`DatasetError` naming the
-    file if it cannot be read or lacks a ``required`` variable. A Ctrl-C during the read
-    (:func:`interrupt_deferred`) raises :class:`KeyboardInterrupt` when it returns: netCDF4, interrupted while
-    it reads, loses the interrupt."""
+    """The dataset of ``path``, loaded with its checksums checked; :class:`DatasetError` naming the file if it cannot be
+    read or lacks a ``required`` variable. A Ctrl-C (:func:`interrupt_deferred`) is raised when it returns."""
     import xarray as xr
 
     try:

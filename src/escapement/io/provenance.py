@@ -1,10 +1,9 @@
 """Where a file came from: the package's version, the commit of the source it was made from, and what wrote it.
 
-The commit is found where the source is: in a clone, the commit of the repository that holds this package,
-``+dirty`` when a source file differs from it (git is asked, and only about this repository: a copy inside
-another repository's work tree is not that repository's); in an archive of the repository (``git archive``, as
-a DOI archive holds it), the commit git stamped into :data:`ARCHIVE_COMMIT` when it made the archive
-(``export-subst`` in ``.gitattributes``); ``unknown`` where neither is found.
+The commit: in a clone, that of the repository holding this package (git asked about it alone: a copy inside
+another repository's work tree is not that repository's), ``+dirty`` when a source file differs from it; in an
+archive (``git archive``, as a DOI archive holds it), the one git stamped into :data:`ARCHIVE_COMMIT`
+(``export-subst`` in ``.gitattributes``); else ``unknown``.
 """
 
 from __future__ import annotations

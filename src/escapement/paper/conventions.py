@@ -1,17 +1,13 @@
 """The paper's printed formulas under each convention the paper itself uses, against the simulation.
 
-The paper mixes conventions: Sec. 4 gives the positions as magnitudes ("a1 = 0.1 m"), Eqs. (9)-(22a)
-as signed positions (``-a1`` in (22a)); Eq. (2) writes the force as ``sigma f``, ``sigma = -1`` in the
-second half period; the second half period mirrors the first (``x -> -x``, ``a1 <-> a3``,
-``a2 <-> a4``); a formula may take the velocity before or after an impact. Before a printed formula
-is called wrong, it is evaluated here under every combination of these readings
-(:data:`AXES`) and compared with the simulated value: by the rule of REPLICATION.md, Sec. 7, a printed
-formula holds when one of the paper's conventions reproduces it (the note says whether the adopted one,
-:data:`AS_READ`: signed positions, ``f``, the second half as written, the velocity after the impact,
-does, or only another, which mixes two conventions of the paper), and fails when none does.
-
-The checks that use them are in the verdict: Eq. (14) in :mod:`escapement.verdict.sec3_steps`, (22e)-(25) in
-:mod:`escapement.verdict.sec3_period`.
+The paper mixes conventions: Sec. 4 gives the positions as magnitudes ("a1 = 0.1 m"), Eqs. (9)-(22a) as signed
+positions (``-a1`` in (22a)); Eq. (2) writes the force as ``sigma f``, ``sigma = -1`` in the second half period;
+the second half period mirrors the first (``x -> -x``, ``a1 <-> a3``, ``a2 <-> a4``); a formula may take the
+velocity before or after an impact. Before a printed formula is called wrong, it is evaluated under every
+combination of these readings (:data:`AXES`): by the rule of REPLICATION.md, Sec. 7, it holds when one of the
+paper's conventions reproduces the simulated value (the note says whether the adopted one, :data:`AS_READ`, does,
+or only another), and fails when none does. The checks that use them are in :mod:`escapement.verdict.sec3_steps`
+(Eq. (14)) and :mod:`escapement.verdict.sec3_period` ((22e)-(25)).
 """
 
 from __future__ import annotations
@@ -24,8 +20,8 @@ from dataclasses import dataclass
 from ..model.parameters import Parameters
 from . import printed as pe
 
-__all__ = ["AS_READ", "AXES", "Reading", "Trial", "departure",
-    "readings", "symbols", "second_half_trials", "try_readings"]
+__all__ = ["AS_READ", "AXES", "Reading", "Trial", "departure", "readings", "symbols", "second_half_trials",
+           "try_readings"]
 
 #: every convention the paper uses, by axis: the first of each is the reading the register adopts
 AXES: dict[str, tuple[str, ...]] = {
@@ -68,13 +64,10 @@ def readings(axes: tuple[str, ...]) -> list[Reading]:
 
 
 def symbols(p: Parameters, reading: Reading, second_half: bool) -> tuple[pe.Symbols, float]:
-    """The numbers for a printed formula's symbols under ``reading``, and the sign its velocities take.
-
-    On a formula of the second half period (``second_half``), ``sigma f`` puts in ``-f`` and
-    ``mirrored`` the mirror image ``x -> -x`` (every position and velocity changes sign; the force,
-    which pushes the leftward motion, pushes the mirrored one rightward: ``+f``); on one of the
-    first half both are the adopted reading. ``magnitudes`` then puts in ``|a1|`` .. ``|a4|``.
-    """
+    """The numbers for a printed formula's symbols under ``reading``, and the sign its velocities take. On a
+    formula of the second half period (``second_half``), ``sigma f`` puts in ``-f`` and ``mirrored`` the mirror
+    image ``x -> -x`` (every position and velocity changes sign; the force, which pushes the leftward motion, pushes
+    the mirrored one rightward: ``+f``); ``magnitudes`` then puts in ``|a1|`` .. ``|a4|``."""
     if not isinstance(second_half, bool):
         raise ValueError(f"second_half = {second_half!r} must be True or False")
     positions = [p.a1, p.a2, p.a3, p.a4]
@@ -100,11 +93,8 @@ class Trial:
 
 def try_readings(formula: Callable[[Reading], float], simulated: float, tolerance: float,
                  axes: tuple[str, ...]) -> list[Trial]:
-    """``formula(reading)`` under every reading of ``axes`` (:func:`readings`), against ``simulated``.
-
-    A reading reproduces the simulated value when the relative difference is at most ``tolerance``
-    (a formula undefined under a reading, NaN, reproduces nothing).
-    """
+    """``formula(reading)`` under every reading of ``axes`` (:func:`readings`), against ``simulated``: a reading
+    reproduces it when the relative difference is at most ``tolerance`` (NaN, undefined, reproduces nothing)."""
     if not (isinstance(tolerance, (int, float)) and tolerance >= 0):
         raise ValueError(f"tolerance = {tolerance!r} must be a number >= 0")
     if not (isinstance(simulated, float) and math.isfinite(simulated) and simulated != 0.0):

@@ -1,15 +1,8 @@
-"""Closed forms derived for this replication: the corrected counterparts of the
-paper's equations, each from the energy balance and the phase-plane geometry.
-
-Phase-plane facts used throughout: about a centre ``c`` the state ``(x - c, v/w)``
-turns clockwise at rate ``w``; the speed at a position follows from energy.  The
-sine phase ``phi = atan2(x, v/w)`` of the free motion (centre 0) advances at
-exactly ``w`` in free flight, so over one cycle
-
-``T = 2 pi / w + (phase jumps at the two impacts) + (zone time - phase advance)
-over the two zones``,
-
-which is the decomposition the paper's Eqs. (24)-(25) aim at.
+"""Closed forms derived for this replication, the corrected counterparts of the paper's equations, each from the
+energy balance and the phase-plane geometry: about a centre ``c`` the state ``(x - c, v/w)`` turns clockwise at
+rate ``w``, and the speed at a position follows from energy. The sine phase ``phi = atan2(x, v/w)`` of the free
+motion (centre 0) advances at exactly ``w`` in free flight, so over one cycle ``T = 2 pi / w + (phase jumps at the
+two impacts) + (zone time - phase advance) over the two zones``, the decomposition Eqs. (24)-(25) aim at.
 """
 
 from __future__ import annotations
@@ -19,10 +12,9 @@ import math
 from ..model.cycle_map import cycle_map
 from ..model.parameters import Parameters
 
-__all__ = ["cycle_velocities", "map_constant", "fixed_point", "fixed_point_energy_sequence", "period",
-    "impact_phase_jump", "impact_phase_jump_closed", "zone_period_change", "period_from_perturbations",
-    "velocity_recovery", "existence_threshold", "grazing_release", "grazing_limit", "SECONDS_PER_DAY", "daily_rate",
-    "first_order_zone_change", "zone_amplitude"]
+__all__ = ["cycle_velocities", "map_constant", "fixed_point", "period", "impact_phase_jump", "zone_period_change",
+           "period_from_perturbations", "velocity_recovery", "existence_threshold", "grazing_release",
+           "grazing_limit", "SECONDS_PER_DAY", "daily_rate", "first_order_zone_change", "zone_amplitude"]
 
 
 def _sqrt(value: float) -> float:
@@ -30,12 +22,9 @@ def _sqrt(value: float) -> float:
 
 
 def cycle_velocities(v1: float, p: Parameters) -> dict[str, float]:
-    """Velocities of one cycle from ``v1`` (before the impact at a1), by energy.
-
-    Same as the paper's (10)-(15) except (14): the force ``-f`` acting on the
-    leftward motion from a3 to a4 does positive work ``f (a3 - a4)``, so
-    ``v5 = -sqrt(v4p**2 + (a3**2 - a4**2) w**2 + 2 (a3 - a4) f)``.
-    """
+    """Velocities of one cycle from ``v1`` (before the impact at a1), by energy: the paper's (10)-(15) but (14),
+    where the force ``-f`` on the leftward motion from a3 to a4 does positive work ``f (a3 - a4)``, so
+    ``v5 = -sqrt(v4p**2 + (a3**2 - a4**2) w**2 + 2 (a3 - a4) f)``."""
     w2, f, b = p.omega2, p.f, p.b
     v1p = (1 - b) * v1
     v2 = _sqrt(v1p**2 + w2 * (p.a1 - p.a2) * (p.a1 + p.a2) + 2 * (p.a2 - p.a1) * f)
@@ -57,14 +46,6 @@ def fixed_point(p: Parameters) -> float:
     return cycle_map(p).fixed_point
 
 
-def fixed_point_energy_sequence(v1: float, p: Parameters, n: int) -> list[float]:
-    """``v1(k)**2`` for k = 1 .. n: the map is linear in ``v**2``, so
-    ``v1(k)**2 - v*^2 = (1 - b)**(4(k-1)) (v1(1)**2 - v*^2)``."""
-    star = fixed_point(p) ** 2
-    mu = (1 - p.b) ** 4
-    return [star + mu ** (k - 1) * (v1**2 - star) for k in range(1, n + 1)]
-
-
 def _zone_time(centre: float, x_from: float, x_to: float, v_from: float, w: float) -> float:
     """Time to run through an impulse zone, arccos form (centre outside the zone's start)."""
     radius = math.hypot(x_from - centre, v_from / w)
@@ -72,40 +53,23 @@ def _zone_time(centre: float, x_from: float, x_to: float, v_from: float, w: floa
 
 
 def period(v1: float, p: Parameters) -> float:
-    """Corrected Eq. (23): the period of the cycle that starts with ``v1`` at a1.
-
-    The eight arccos terms of the paper, with the last two read as
-    ``acos(-a4/h5) + acos(-a1/h5)``: from a4 the mass swings through the left
-    turning point ``-h5`` and back to a1, a phase of ``2 pi - acos(a4/h5) - acos(a1/h5)``.
-    """
-    w = p.omega
-    c = p.zone_offset
+    """Corrected Eq. (23): the period of the cycle that starts with ``v1`` at a1, the paper's eight arccos terms
+    with the last two read ``acos(-a4/h5) + acos(-a1/h5)``: from a4 the mass swings through the left turning point
+    ``-h5`` and back to a1, a phase of ``2 pi - acos(a4/h5) - acos(a1/h5)``."""
+    w, c = p.omega, p.zone_offset
     vel = cycle_velocities(v1, p)
     h2 = math.hypot(p.a2, vel["v2"] / w)
     h5 = math.hypot(p.a4, vel["v5"] / w)
-    return (
-        _zone_time(c, p.a1, p.a2, vel["v1p"], w)
-        + (math.acos(p.a2 / h2) + math.acos(p.a3 / h2)) / w
-        + _zone_time(-c, p.a3, p.a4, vel["v4p"], w)
-        + (math.acos(-p.a4 / h5) + math.acos(-p.a1 / h5)) / w
-    )
+    return (_zone_time(c, p.a1, p.a2, vel["v1p"], w) + (math.acos(p.a2 / h2) + math.acos(p.a3 / h2)) / w
+            + _zone_time(-c, p.a3, p.a4, vel["v4p"], w) + (math.acos(-p.a4 / h5) + math.acos(-p.a1 / h5)) / w)
 
 
 def impact_phase_jump(position: float, v_before: float, p: Parameters) -> float:
-    """Delay caused by an impact at ``position``: the jump of the sine phase over ``w``.
-
-    Equals the paper's (24) first form at a1.
-    """
+    """Delay caused by an impact at ``position``: the jump of the sine phase over ``w`` (at a1, the paper's (24),
+    first form)."""
     w = p.omega
     v_after = (1 - p.b) * v_before
     return (math.atan2(position, v_before / w) - math.atan2(position, v_after / w)) / w * (1 if v_before > 0 else -1)
-
-
-def impact_phase_jump_closed(position: float, v_before: float, p: Parameters) -> float:
-    """Corrected (24) second form: ``-(1/w) atan(a w b v / (a^2 w^2 + (1 - b) v^2))``
-    with ``v`` the velocity before the impact (the paper prints the one after)."""
-    w, b = p.omega, p.b
-    return -math.atan(position * w * b * v_before / (position**2 * w**2 + (1 - b) * v_before**2)) / w
 
 
 def zone_period_change(v1: float, p: Parameters) -> float:
@@ -118,13 +82,9 @@ def zone_period_change(v1: float, p: Parameters) -> float:
 
 
 def period_from_perturbations(v1: float, p: Parameters) -> float:
-    """``2 pi / w`` plus the four perturbations of one cycle (both impacts, both zones),
-    plus the sine-phase difference between the cycle's end and start states at a1
-    over ``w``, which vanishes on the limit cycle (the case the paper treats).
-
-    The left half is the mirror image of a right half: reflect ``x -> -x``, which
-    maps a3 to -a3, a4 to -a4 and the speed at a3 to a rightward speed.
-    """
+    """``2 pi / w`` plus the four perturbations of one cycle (both impacts, both zones) plus the sine-phase
+    difference of the cycle's end and start at a1 over ``w`` (zero on the limit cycle, the paper's case). The left
+    half is the mirror image of a right half (``x -> -x``: a3 to -a3, a4 to -a4, the speed at a3 rightward)."""
     w = p.omega
     vel = cycle_velocities(v1, p)
     mirror = Parameters(M=p.M, K=p.K, F=p.F, b=p.b, a1=-p.a3, a2=-p.a4, a3=-p.a1, a4=-p.a2)
@@ -135,14 +95,10 @@ def period_from_perturbations(v1: float, p: Parameters) -> float:
 
 
 def velocity_recovery(v1: float, p: Parameters) -> tuple[float, float]:
-    """Where and when the velocity regains its value before the impact at a1.
-
-    In the zone (a1, a2), ``v(x)**2 = v1p**2 + w**2 (a1**2 - x**2) + 2 f (x - a1)``; it equals
-    ``v1**2`` where ``w**2 x**2 - 2 f x + q = 0`` with ``q = (2b - b**2) v1**2 - w**2 a1**2 + 2 f a1``.
-    Returns ``(x, t)``: the first such position in the zone and the time after the impact,
-    or ``(nan, nan)`` if the velocity does not recover inside the zone (after a2 the free
-    motion, moving away from 0, only slows down).
-    """
+    """``(x, t)``: where in the zone (a1, a2) the velocity regains its value before the impact at a1, and the time
+    after the impact; ``(nan, nan)`` if not in the zone (after a2 the free motion, away from 0, only slows down).
+    In the zone ``v(x)**2 = v1p**2 + w**2 (a1**2 - x**2) + 2 f (x - a1)``, which is ``v1**2`` where
+    ``w**2 x**2 - 2 f x + q = 0``, ``q = (2b - b**2) v1**2 - w**2 a1**2 + 2 f a1``."""
     w2, f, b = p.omega2, p.f, p.b
     v1p = (1 - b) * v1
     q = (2 * b - b * b) * v1 * v1 - w2 * p.a1**2 + 2 * f * p.a1
@@ -189,9 +145,10 @@ def daily_rate(period: float, natural_period: float) -> float:
 
 
 def first_order_zone_change(start: float, end: float, amplitude: float, omega: float, f: float) -> float:
-    """The first-order time cost of a zone from ``start`` to ``end`` (force per unit mass ``f`` along
-    the motion) on an arc of amplitude ``amplitude``: ``f (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) /
-    (w**3 A**2)`` (see the module docstring)."""
+    """The first-order time cost of a zone from ``start`` (a) to ``end`` (c), force per unit mass ``f`` along the
+    motion, on an arc of amplitude ``amplitude`` (A): inside it the sine phase advances at ``w - f x / (w A**2)``, so
+    ``dT2 = f (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) / (w**3 A**2) + O(f**2)``: zero for a zone symmetric about 0
+    (Airy), negative for one before the equilibrium, positive for one after."""
     a2 = amplitude * amplitude
     return f * (math.sqrt(a2 - start * start) - math.sqrt(a2 - end * end)) / (omega**3 * a2)
 

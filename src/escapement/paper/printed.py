@@ -1,14 +1,10 @@
 """The paper's closed forms, as printed (Mao, Fu & Li 2013, Sec. 3.3-3.4).
 
-Each function reproduces one equation as it reads in the paper, with the signs of
-``a1 .. a4`` taken as signed positions (``a1 < 0 < a3``).  Where the text is
-garbled, the docstring states the reading.  Whether each equation holds is
-decided by the tests against the exact solver and recorded in REPLICATION.md;
-the corrected forms live in :mod:`escapement.paper.corrected`.
-
-Notation: ``v1`` is the velocity just before the impact at a1 (``xdot_1(k)``),
-``v1p = (1 - b) v1`` just after it; ``v2`` the velocity at a2; ``v4`` before the
-impact at a3, ``v4p`` after it; ``v5`` the velocity at a4.
+Each function reproduces one equation as it reads in the paper, ``a1 .. a4`` taken as signed positions
+(``a1 < 0 < a3``); where the text is garbled, the docstring states the reading. Whether each holds is decided
+against the exact solver and recorded in REPLICATION.md; the corrected forms are :mod:`escapement.paper.corrected`.
+Notation: ``v1`` the velocity just before the impact at a1 (``xdot_1(k)``), ``v1p = (1 - b) v1`` just after it;
+``v2`` the velocity at a2; ``v4`` before the impact at a3, ``v4p`` after it; ``v5`` the velocity at a4.
 """
 
 from __future__ import annotations
@@ -18,24 +14,18 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from ..model.parameters import Parameters
-from .corrected import cycle_velocities
+from .corrected import _sqrt, cycle_velocities
 
 __all__ = ["Symbols", "symbols_of", "v5_14", "zone_left_time_22e", "period_terms_23", "phase_jump_24",
-    "phase_jump_24_closed", "zone_change_25", "step_velocities", "poincare_map_16", "poincare_map_17",
-    "fixed_point_19", "map_derivative_20", "multiplier_21", "multiplier_21_of", "step_times_22", "period_23",
-    "period_perturbation_24", "period_perturbation_24_closed", "period_perturbation_25"]
-
-
-def _sqrt(value: float) -> float:
-    return math.sqrt(value) if value >= 0.0 else math.nan
+           "phase_jump_24_closed", "zone_change_25", "step_velocities", "poincare_map_16", "poincare_map_17",
+           "fixed_point_19", "map_derivative_20", "multiplier_21", "multiplier_21_of", "step_times_22", "period_23"]
 
 
 @dataclass(frozen=True)
 class Symbols:
-    """The numbers put in for the symbols of a printed formula: the positions ``a1`` .. ``a4`` (m), the
-    force per unit mass ``f`` (m s-2) and ``w`` (rad/s). Not checked against the model's rules on
-    purpose: a convention of the paper may put in magnitudes, a mirrored position or ``-f``
-    (:mod:`escapement.paper.conventions`)."""
+    """The numbers put in for a printed formula's symbols: the positions ``a1`` .. ``a4`` (m), the force per unit
+    mass ``f`` (m s-2) and ``w`` (rad/s); unchecked, as a convention of the paper may put in magnitudes, a mirrored
+    position or ``-f`` (:mod:`escapement.paper.conventions`)."""
 
     a1: float
     a2: float
@@ -71,13 +61,11 @@ def zone_left_time_22e(v4p: float, s: Symbols) -> float:
 
 
 def period_terms_23(velocities: dict[str, float], s: Symbols) -> dict[str, float]:
-    """The terms of Eq. (23) as printed, over ``w`` and grouped by the step whose time they give.
-
+    """The terms of Eq. (23) as printed, over ``w`` and grouped by the step whose time they give:
     ``zone_right``: ``acos((c - a2)/R1) - acos((c - a1)/R1)``; ``a2_to_a3``: ``acos(a2/h2) + acos(a3/h2)``;
     ``zone_left``: ``acos((c + a4)/R3) - acos((c + a3)/R3)``; ``a4_to_a1``: ``acos(a4/h5) + acos(a1/h5)``;
     ``R1 = |(a1 - c, v1p/w)|``, ``h2 = |(a2, v2/w)|``, ``R3 = |(a3 + c, v4p/w)|``, ``h5 = |(a4, v5/w)|``.
-    ``velocities`` holds ``v1p``, ``v2``, ``v4p`` and ``v5`` (m/s).
-    """
+    ``velocities`` holds ``v1p``, ``v2``, ``v4p`` and ``v5`` (m/s)."""
     w, c = s.w, s.c
     r1 = math.hypot(s.a1 - c, velocities["v1p"] / w)
     h2 = math.hypot(s.a2, velocities["v2"] / w)
@@ -97,8 +85,8 @@ def phase_jump_24(v_before: float, v_after: float, s: Symbols) -> float:
 
 
 def phase_jump_24_closed(v: float, b: float, s: Symbols) -> float:
-    """Eq. (24), second form: ``-(1/w) atan(a1 w b v / (a1^2 w^2 + (1 - b) v^2))``, where the paper puts in
-    ``v = x1+``, the velocity after the impact."""
+    """Eq. (24), second form: ``-(1/w) atan(a1 w b v / (a1^2 w^2 + (1 - b) v^2))``, ``v = x1+`` as printed (the
+    velocity after the impact)."""
     return -math.atan(s.a1 * s.w * b * v / (s.a1**2 * s.w**2 + (1 - b) * v**2)) / s.w
 
 
@@ -118,10 +106,7 @@ def _acos(value: float) -> float:
 
 
 def step_velocities(v1: float, p: Parameters) -> dict[str, float]:
-    """Eqs. (10)-(15) as printed: the velocities of one cycle from ``v1``.
-
-    Eq. (14) is printed ``v5 = -sqrt(v4p**2 + (a3**2 - a4**2) w**2 - 2 (a3 - a4) f)`` (:func:`v5_14`).
-    """
+    """Eqs. (10)-(15) as printed: the velocities of one cycle from ``v1`` (Eq. (14): :func:`v5_14`)."""
     w2, f, b = p.omega2, p.f, p.b
     v1p = (1 - b) * v1  # (10)
     v2 = _sqrt(v1p**2 + (p.a1**2 - p.a2**2) * w2 - 2 * (p.a1 - p.a2) * f)  # (11)
@@ -145,8 +130,7 @@ def poincare_map_16(v1: float, p: Parameters) -> float:
 
 def poincare_map_17(v1: float, p: Parameters) -> float:
     """Eq. (17): the map for the symmetric geometry a1 = -a3, a2 = -a4."""
-    b = p.b
-    return _sqrt((1 - b) ** 4 * v1**2 + 2 * (b**2 - 2 * b + 2) * (p.a2 - p.a1) * p.f)
+    return _sqrt((1 - p.b) ** 4 * v1**2 + 2 * (p.b**2 - 2 * p.b + 2) * (p.a2 - p.a1) * p.f)
 
 
 def fixed_point_19(p: Parameters) -> float:
@@ -156,8 +140,7 @@ def fixed_point_19(p: Parameters) -> float:
 
 def map_derivative_20(v1: float, p: Parameters) -> float:
     """Eq. (20): the derivative of Eq. (17)."""
-    b = p.b
-    return (1 - b) ** 4 * v1 / poincare_map_17(v1, p)
+    return (1 - p.b) ** 4 * v1 / poincare_map_17(v1, p)
 
 
 def multiplier_21(p: Parameters) -> float:
@@ -166,12 +149,9 @@ def multiplier_21(p: Parameters) -> float:
 
 
 def multiplier_21_of(b: float) -> float:
-    """Eq. (21) at the impact coefficient ``b``: ``(1 - b)**4``, correctly rounded.
-
-    From the exact rational fourth power of the float ``1 - b``, so that it is the same float on
-    every machine: a ``pow`` rounds its last bit as the platform's library (or, on NumPy arrays, the
-    CPU's vector extensions) does, and the stability map shows this value's distance from the
-    measured multiplier down to 1e-16.
+    """Eq. (21) at the impact coefficient ``b``: ``(1 - b)**4``, correctly rounded from the exact rational fourth
+    power of the float ``1 - b``, the same float on every machine (a ``pow`` rounds its last bit as the platform's
+    library or CPU does, and the stability map shows this value's distance from the measured one down to 1e-16).
 
     >>> multiplier_21_of(0.1)
     0.6561
@@ -180,12 +160,9 @@ def multiplier_21_of(b: float) -> float:
 
 
 def step_times_22(v1: float, p: Parameters, left_amplitude: float) -> dict[str, float]:
-    """Eqs. (22a)-(22e) as printed: the durations of steps 1-7 of one cycle.
-
-    ``left_amplitude`` is ``h0``, the left turning point's distance from 0
-    (step 1 starts there).  Velocities come from the energy balance (the correct
-    (10)-(15)), so that only the time expressions are under test.  Reading of the
-    garbled text:
+    """Eqs. (22a)-(22e) as printed: the durations of steps 1-7 of one cycle. ``left_amplitude`` is ``h0``, the
+    left turning point's distance from 0 (step 1 starts there); the velocities come from the energy balance (the
+    correct (10)-(15)), so that only the time expressions are under test. Reading of the garbled text:
 
     * (22a) ``t1 - t0 = acos(-a1 / h0) / w``
     * (22b) ``t2 - t1 = [atan(v1p / (w (a1 - f/w^2))) + acos((f/w^2 - a2) / R1)] / w``
@@ -211,22 +188,6 @@ def step_times_22(v1: float, p: Parameters, left_amplitude: float) -> dict[str, 
 
 def period_23(v1: float, p: Parameters) -> float:
     """Eq. (23) as printed: the period of the cycle that starts with ``v1`` at a1, the sum of
-    :func:`period_terms_23` with signed ``a1`` .. ``a4`` and the velocities from the energy balance.
-    """
+    :func:`period_terms_23` with signed ``a1`` .. ``a4`` and the velocities from the energy balance."""
     return math.fsum(period_terms_23(cycle_velocities(v1, p), symbols_of(p)).values())
 
-
-def period_perturbation_24(v1: float, p: Parameters) -> float:
-    """Eq. (24), first form (:func:`phase_jump_24`) at ``v1`` before the impact and ``(1 - b) v1`` after."""
-    return phase_jump_24(v1, (1 - p.b) * v1, symbols_of(p))
-
-
-def period_perturbation_24_closed(v1: float, p: Parameters) -> float:
-    """Eq. (24), second form as printed (:func:`phase_jump_24_closed` of ``v1p = (1 - b) v1``)."""
-    return phase_jump_24_closed((1 - p.b) * v1, p.b, symbols_of(p))
-
-
-def period_perturbation_25(v1: float, p: Parameters) -> float:
-    """Eq. (25) as printed (:func:`zone_change_25`): the period change caused by the force between a1 and
-    a2, entering the zone at ``(1 - b) v1``."""
-    return zone_change_25((1 - p.b) * v1, symbols_of(p))

@@ -1,33 +1,20 @@
 """The axes of the paper's Figs. 3-5 as printed: their tick labels, limits and tick steps.
 
-The figures of the paper's text survive only as their tick labels, one or a few to a line, in
-the order the text extraction met them (:data:`TICK_LINES`, keyed by the line number of the
-paper's plain text, 1-based). Each axis below lists its tick labels as printed, low to high,
-and the lines that show them. Reading them:
+The figures survive in the paper's text only as their tick labels, one or a few to a line, in the order the text
+extraction met them (:data:`TICK_LINES`, keyed by the line number of the paper's plain text, 1-based); each axis
+lists its tick labels as printed, low to high, and the lines that show them. The limits are the outermost labels:
+automatic limits rounded out to ticks (MATLAB's default, matplotlib's ``round_numbers``) end on a labelled tick.
+Where the text leaves a choice:
 
-* **Fig. 3** (Poincare map, six panels: velocity, period, amplitude for cases (a) and (b)). The
-  velocity axis of (a) is line 269 (0.95 to 1.3 by 0.05), that of (b) the ``3`` ending the page
-  header (line 263) and lines 281-289 (0.5 to 3 by 0.5). The amplitude axis of (a) is line 343
-  (1 to 1.4 by 0.05), that of (b) line 333 (``3``) and lines 391-399 (0.5 to 3 by 0.5). The
-  eighteen period labels (lines 297-319 and 347-367) split into two evenly spaced axes in one
-  way only: the odd ten-thousandths (6.2833, 6.2831, 6.2829, 6.2827) belong to a step of 0.0001,
-  whose axis then holds 6.2828, printed once; so the step-0.0002 axis stops at 6.283 and holds
-  6.2846, 6.2844, 6.2842, printed once each: (a) 6.283 to 6.2846 by 0.0002 (labels met first,
-  left column), (b) 6.2826 to 6.2834 by 0.0001. The six cycle axes: four of 0 to 50 (velocity,
-  period) and two of 0 to 60 (amplitude: lines 379-389 with 401, and 403-415). No axis of (b)
-  prints a ``0`` on its velocity or amplitude axis: the six ``0`` labels are the six cycle axes'.
-* **Fig. 4** (shock details): two value axes of -0.1 to 0.9 by 0.1 (each label twice, lines
-  425-449), time axes of 80 to 87 and 81 to 85 by 1 s (lines 447-477). Which time axis goes with
-  which value axis the text does not show beyond the order of the axis titles; the velocity
-  window is taken as 80-87 s and the acceleration window as 81-85 s. The time axes are the
-  windows themselves, so their limits test no reading (``scored=False``).
-* **Fig. 5** (phase diagrams): (a) K = 0.1: displacement -5, 0, 5 (lines 505-513), velocity -1.5
-  to 1.5 by 0.5; (b) K = 1: displacement -1 to 1 by 0.5 (lines 509-523), velocity -1 to 1 by 0.2
-  (lines 483-513); (c) K = 10: displacement -1 to 1 by 0.5 (lines 525-545), velocity -3 to 4 by 1
-  (lines 481, 485, 511, 525). Line 515 (``1009``) is the page number.
-
-The limits are the outermost tick labels: with automatic limits rounded out to ticks (MATLAB's
-default, and matplotlib's ``round_numbers`` mode) an axis ends on a labelled tick.
+* Fig. 3: the eighteen period labels (lines 297-319 and 347-367) split into two evenly spaced axes in one way only:
+  the odd ten-thousandths (6.2833, 6.2831, 6.2829, 6.2827) need a step of 0.0001, whose axis then holds 6.2828,
+  printed once; so the step-0.0002 axis stops at 6.283 and holds 6.2846, 6.2844, 6.2842: (a) 6.283 to 6.2846 by
+  0.0002 (its labels met first, left column), (b) 6.2826 to 6.2834 by 0.0001. The six ``0`` labels are the cycle
+  axes'; the ``3`` ending the page header (line 263) is the top of (b)'s velocity axis.
+* Fig. 4: which time axis (80-87 s, 81-85 s) goes with which value axis the text shows only by the order of the
+  axis titles: the velocity window is taken as 80-87 s. The time axes are the windows themselves, so their limits
+  test no reading (``scored=False``).
+* Fig. 5: line 515 (``1009``) is the page number.
 """
 
 from __future__ import annotations
@@ -64,18 +51,15 @@ TICK_LINES: dict[int, str] = {
 
 
 def limits_match(low: float, high: float, printed_low: float, printed_high: float, step: float) -> int:
-    """How many of the two limits equal the printed ones (to a billionth of the tick step, the
-    rounding of a multiple of the step in floating point)."""
-    tol = 1e-9 * step
-    return int(math.isclose(low, printed_low, rel_tol=0.0, abs_tol=tol)) + int(
-        math.isclose(high, printed_high, rel_tol=0.0, abs_tol=tol)
-    )
+    """How many of the two limits equal the printed ones (to a billionth of the tick step, the rounding of a
+    multiple of the step in floating point)."""
+    pairs = ((low, printed_low), (high, printed_high))
+    return sum(math.isclose(a, b, rel_tol=0.0, abs_tol=1e-9 * step) for a, b in pairs)
 
 
 @dataclass(frozen=True)
 class Axis:
-    """One printed axis: its title, its tick labels as printed (low to high) and the text lines
-    that show them."""
+    """One printed axis: its title, its tick labels as printed (low to high) and the text lines that show them."""
 
     label: str
     ticks: tuple[str, ...]
@@ -90,31 +74,20 @@ class Axis:
         if len(steps) != 1 or steps.pop() <= 0:
             raise ValueError(f"axis {self.label!r}: tick labels {self.ticks} are not evenly spaced upwards")
 
-    @property
-    def low(self) -> float:
-        """The lowest tick label, the axis' lower limit."""
-        return float(self.ticks[0])
-
-    @property
-    def high(self) -> float:
-        """The highest tick label, the axis' upper limit."""
-        return float(self.ticks[-1])
-
-    @property
-    def step(self) -> float:
-        """The spacing of the tick labels."""
-        return float(Decimal(self.ticks[1]) - Decimal(self.ticks[0]))
+    low = property(lambda self: float(self.ticks[0]), doc="The lowest tick label, the axis' lower limit.")
+    high = property(lambda self: float(self.ticks[-1]), doc="The highest tick label, the axis' upper limit.")
+    step = property(lambda self: float(Decimal(self.ticks[1]) - Decimal(self.ticks[0])),
+                    doc="The spacing of the tick labels.")
 
     def matches(self, low: float, high: float) -> int:
-        """How many of the limits ``low``, ``high`` equal the printed ones (0, 1 or 2), to a billionth
-        of the tick step: the rounding of a multiple of the step in floating point."""
+        """:func:`limits_match` of ``low``, ``high`` against the printed limits."""
         return limits_match(low, high, self.low, self.high, self.step)
 
 
 @dataclass(frozen=True)
 class Panel:
-    """One panel of a figure: ``figure`` ("3", "4", "5"), ``name`` (``a/velocity``, ``velocity``,
-    ``a``), what it shows, and its two axes."""
+    """One panel of a figure: ``figure`` ("3", "4", "5"), ``name`` (``a/velocity``, ``velocity``, ``a``), what it
+    shows, and its two axes."""
 
     figure: str
     name: str
@@ -127,66 +100,58 @@ class Panel:
         return {"x": self.x, "y": self.y}
 
 
-def _ticks(*labels: str) -> tuple[str, ...]:
-    return tuple(labels)
-
-
 #: the title of the cycle axes of Fig. 3: their limits follow from the number of cycles plotted
 CYCLES = "Number of cycles"
-_CYCLES_50 = _ticks("0", "10", "20", "30", "40", "50")
-_CYCLES_60 = _ticks("0", "10", "20", "30", "40", "50", "60")
-_HALVES_3 = _ticks("0.5", "1", "1.5", "2", "2.5", "3")
-_SHOCK = _ticks("-0.1", "0", "0.1", "0.2", "0.3", "0.4", "0.5", "0.6", "0.7", "0.8", "0.9")
+_CYCLES_50 = ("0", "10", "20", "30", "40", "50")
+_CYCLES_60 = ("0", "10", "20", "30", "40", "50", "60")
+_HALVES_3 = ("0.5", "1", "1.5", "2", "2.5", "3")
+_SHOCK = ("-0.1", "0", "0.1", "0.2", "0.3", "0.4", "0.5", "0.6", "0.7", "0.8", "0.9")
 _SHOCK_LINES = (425, 427, 429, 431, 439, 441, 443, 445, 447, 449)
-_UNIT_HALVES = _ticks("-1", "-0.5", "0", "0.5", "1")
+_UNIT_HALVES = ("-1", "-0.5", "0", "0.5", "1")
 
 PANELS: tuple[Panel, ...] = (
     # Fig. 3 (a), captioned "F=1, x(0)=1" in the paper
     Panel("3", "a/velocity", "velocity before the impact at a1 against the cycle, case (a)",
           Axis(CYCLES, _CYCLES_50, (271, 273, 275, 277, 279, 291)),
-          Axis("Velocity before impact (m/s)",
-               _ticks("0.95", "1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3"), (269,))),
+          Axis("Velocity before impact (m/s)", ("0.95", "1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3"), (269,))),
     Panel("3", "a/period", "period against the cycle, case (a)",
           Axis(CYCLES, _CYCLES_50, (323, 325, 327, 329, 331, 339)),
-          Axis("Period (s)",
-               _ticks("6.283", "6.2832", "6.2834", "6.2836", "6.2838", "6.284", "6.2842", "6.2844", "6.2846"),
+          Axis("Period (s)", ("6.283", "6.2832", "6.2834", "6.2836", "6.2838", "6.284", "6.2842", "6.2844", "6.2846"),
                (297, 301, 305, 309, 347, 357, 365, 367))),
     Panel("3", "a/amplitude", "amplitude of oscillation against the cycle, case (a)",
           Axis(CYCLES, _CYCLES_60, (379, 381, 383, 385, 387, 389, 401)),
           Axis("Amplitude of oscillation (m)",
-               _ticks("1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3", "1.35", "1.4"), (343,))),
+               ("1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3", "1.35", "1.4"), (343,))),
     # Fig. 3 (b), captioned "F=0.5, x(0)=3" in the paper
     Panel("3", "b/velocity", "velocity before the impact at a1 against the cycle, case (b)",
           Axis(CYCLES, _CYCLES_50, (293, 295, 311, 313, 315, 317)),
           Axis("Velocity before impact (m/s)", _HALVES_3, (263, 281, 283, 285, 287, 289))),
     Panel("3", "b/period", "period against the cycle, case (b)",
           Axis(CYCLES, _CYCLES_50, (345, 351, 353, 359, 361, 369)),
-          Axis("Period (s)",
-               _ticks("6.2826", "6.2827", "6.2828", "6.2829", "6.283", "6.2831", "6.2832", "6.2833", "6.2834"),
+          Axis("Period (s)", ("6.2826", "6.2827", "6.2828", "6.2829", "6.283", "6.2831", "6.2832", "6.2833", "6.2834"),
                (299, 303, 307, 311, 319, 347, 349, 355, 357, 363, 365, 367))),
     Panel("3", "b/amplitude", "amplitude of oscillation against the cycle, case (b)",
           Axis(CYCLES, _CYCLES_60, (403, 405, 407, 409, 411, 413, 415)),
           Axis("Amplitude of oscillation (m)", _HALVES_3, (333, 391, 393, 395, 397, 399))),
     # Fig. 4: the case is not named
     Panel("4", "velocity", "velocity against time over 80-87 s",
-          Axis("Time (s)", _ticks("80", "81", "82", "83", "84", "85", "86", "87"),
+          Axis("Time (s)", ("80", "81", "82", "83", "84", "85", "86", "87"),
                (447, 449, 451, 453, 455, 457, 459, 461, 463), scored=False),
           Axis("Velocity (m/s)", _SHOCK, _SHOCK_LINES)),
     Panel("4", "acceleration", "acceleration against time over 81-85 s",
-          Axis("Time (s)", _ticks("81", "82", "83", "84", "85"), (447, 463, 465, 467, 475, 477), scored=False),
+          Axis("Time (s)", ("81", "82", "83", "84", "85"), (447, 463, 465, 467, 475, 477), scored=False),
           Axis("Acceleration (m/s2)", _SHOCK, _SHOCK_LINES)),
     # Fig. 5: neither F nor x0 is given
     Panel("5", "a", "phase diagram, K = 0.1 N/m",
-          Axis("Displacement (m)", _ticks("-5", "0", "5"), (505, 507, 513)),
-          Axis("Velocity (m/s)", _ticks("-1.5", "-1", "-0.5", "0", "0.5", "1", "1.5"), (479, 483, 489, 499, 503, 513))),
+          Axis("Displacement (m)", ("-5", "0", "5"), (505, 507, 513)),
+          Axis("Velocity (m/s)", ("-1.5", "-1", "-0.5", "0", "0.5", "1", "1.5"), (479, 483, 489, 499, 503, 513))),
     Panel("5", "b", "phase diagram, K = 1 N/m",
           Axis("Displacement (m)", _UNIT_HALVES, (509, 517, 519, 521, 523)),
-          Axis("Velocity (m/s)",
-               _ticks("-1", "-0.8", "-0.6", "-0.4", "-0.2", "0", "0.2", "0.4", "0.6", "0.8", "1"),
+          Axis("Velocity (m/s)", ("-1", "-0.8", "-0.6", "-0.4", "-0.2", "0", "0.2", "0.4", "0.6", "0.8", "1"),
                (483, 487, 491, 499, 501, 509, 513))),
     Panel("5", "c", "phase diagram, K = 10 N/m",
           Axis("Displacement (m)", _UNIT_HALVES, (525, 527, 529, 543, 545)),
-          Axis("Velocity (m/s)", _ticks("-3", "-2", "-1", "0", "1", "2", "3", "4"), (481, 485, 511, 525))),
+          Axis("Velocity (m/s)", ("-3", "-2", "-1", "0", "1", "2", "3", "4"), (481, 485, 511, 525))),
 )
 
 

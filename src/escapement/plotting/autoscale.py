@@ -1,26 +1,12 @@
-"""Automatic axis limits as a plotting program would choose them, computed by matplotlib itself.
+"""Automatic axis limits as a plotting program would choose them, computed by matplotlib itself: each array alone
+(its extent) on an Agg canvas with ``axes.autolimit_mode: round_numbers``, the limits read back (the data range
+widened by the margin, rounded outward to the ticks: no rounding of our own) with the tick step, imposed (the
+printed step) or matplotlib's own (``step=None``, on a default figure). The margins (:data:`VARIANTS`):
 
-:func:`autoscaled_limits` plots the values on an Agg canvas with ``axes.autolimit_mode:
-round_numbers``, lets matplotlib autoscale, and reads the limits back: the data range widened by
-the margin on each side, then rounded outward to the ticks (no rounding of our own).
-:func:`autoscaled_limits_many` does the same for many arrays on one axes, one array at a time;
-:func:`autoscaled_axes` also returns the tick step the axis ended with.
-
-The tick step is either imposed (a fixed :class:`~matplotlib.ticker.MultipleLocator` at the
-printed step) or the program's own choice (``step=None``: matplotlib's default
-:class:`~matplotlib.ticker.AutoLocator`, on the axis the values are printed on, ``"x"`` or ``"y"``,
-of a default figure of 6.4 x 4.8 in). Only the data's extent matters: a line through its minimum
-and maximum gives the same limits as the whole array.
-
-Two margins (:data:`VARIANTS`):
-
-* ``round, margin 0``: the limits round the data range itself outward to the ticks. This is the
-  assumption for the paper's figures: MATLAB, the likely software of the paper (2012), chose
-  automatic limits that enclose the data and end on ticks, with no padding (its ``'padded'``
-  limit method came in 2021); matplotlib's classic style (before 2.0) did the same, with
-  ``round_numbers`` and zero margins.
-* ``round, margin 0.05``: matplotlib's default margins (``axes.xmargin = axes.ymargin = 0.05``
-  since 2.0, whose default mode is ``data``, unrounded) added before rounding to the ticks.
+* ``round, margin 0``: the data range itself rounded out to the ticks, the assumption for the paper's figures:
+  MATLAB, the likely software of the paper (2012), chose limits that enclose the data and end on ticks, with no
+  padding (its ``'padded'`` method came in 2021), as did matplotlib's classic style (before 2.0);
+* ``round, margin 0.05``: matplotlib's default margins (since 2.0) added before rounding to the ticks.
 """
 
 from __future__ import annotations
@@ -34,7 +20,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.ticker import MultipleLocator
 
-__all__ = ["AXES", "VARIANTS", "autoscaled_axes", "autoscaled_limits", "autoscaled_limits_many"]
+__all__ = ["AXES", "VARIANTS", "autoscaled_axes", "autoscaled_limits"]
 
 #: the autoscaling variants by name: the margin added on each side before rounding, as a fraction of the range
 VARIANTS: dict[str, float] = {"round, margin 0": 0.0, "round, margin 0.05": 0.05}
@@ -52,10 +38,9 @@ def _extent(values) -> np.ndarray:
 
 def autoscaled_axes(series: Iterable, step: float | None, margin: float = 0.0, axis: str = "y"
                     ) -> list[tuple[float, float, float]]:
-    """``(low, high, tick step)`` of each array of ``series`` (NaN ignored) alone on the ``axis``
-    ("x" or "y") of one matplotlib axes, limits rounded to the ticks (``round_numbers``) after a
-    margin of ``margin`` times the data range on each side; ticks every ``step``, or, with
-    ``step=None``, where matplotlib's default locator puts them."""
+    """``(low, high, tick step)`` of each array of ``series`` (NaN ignored) alone on the ``axis`` ("x" or "y") of
+    one matplotlib axes, rounded to the ticks after a margin of ``margin`` times the data range on each side; ticks
+    every ``step``, or (``step=None``) where matplotlib's default locator puts them."""
     extents = [_extent(values) for values in series]
     if step is not None and not (isinstance(step, (int, float)) and math.isfinite(step) and step > 0):
         raise ValueError(f"step = {step!r} must be a positive finite number, or None for the default locator")
@@ -90,14 +75,6 @@ def autoscaled_axes(series: Iterable, step: float | None, margin: float = 0.0, a
     return [found[(lo, hi)] for lo, hi in extents]
 
 
-def autoscaled_limits_many(series: Iterable, step: float | None, margin: float = 0.0, axis: str = "y"
-                           ) -> list[tuple[float, float]]:
-    """The ``(low, high)`` of :func:`autoscaled_axes`, without the tick step."""
-    return [(low, high) for low, high, _ in autoscaled_axes(series, step, margin, axis)]
-
-
 def autoscaled_limits(values, step: float | None, margin: float = 0.0, axis: str = "y") -> tuple[float, float]:
-    """The limits matplotlib gives an axis holding ``values`` (NaN ignored) with major ticks every
-    ``step`` (or matplotlib's own, ``step=None``), limits rounded to the ticks (``round_numbers``)
-    after a margin of ``margin`` times the data range on each side."""
-    return autoscaled_limits_many([values], step, margin, axis)[0]
+    """The ``(low, high)`` of :func:`autoscaled_axes` for the one array ``values``."""
+    return autoscaled_axes([values], step, margin, axis)[0][:2]

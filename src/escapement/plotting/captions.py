@@ -1,10 +1,7 @@
-"""The words on the figures: axis labels, quantities with their values and units, how a run was
-released, which parameters a panel states, how a run that did not complete ended, and what a study of the
-user's own changed from the paper's scenes (the line its figure shows above its legend).
-
-Names, symbols and units come from :mod:`escapement.model.quantities`, values and outcomes from the
-datasets. A figure's title is its caller's; what a figure assumes or how it scores goes in the
-caption its caller writes, not here.
+"""The words on the figures: axis labels, quantities with their values and units, how a run was released, which
+parameters a panel states, how a run that did not complete ended, and what a study of the user's own changed
+(the line above its legend). Names, symbols and units come from :mod:`escapement.model.quantities`, values and
+outcomes from the datasets; titles and captions are the callers'.
 """
 
 from __future__ import annotations
@@ -19,7 +16,7 @@ from ..model.quantities import INITIAL_STATE, PARAMETERS as QUANTITIES, quantity
 from ..model.status import Status
 
 __all__ = ["CHANGES_FONTSIZE", "PARAMETERS", "axis_label", "changes_legend", "outcome", "panel_parameters",
-           "quantity_value", "release", "shared_parameters", "signed", "study_changes", "unit"]
+           "quantity_value", "release", "signed", "study_changes", "unit"]
 
 #: the model's parameters in the order a title or panel states them
 PARAMETERS = ("F", "K", "M", "b", "a1", "a2", "a3", "a4")
@@ -54,25 +51,12 @@ def release(ds: xr.Dataset) -> str:
     return f"released from rest at {x0}" if v0 == 0 else f"released at {x0} with {quantity_value('v0', v0)}"
 
 
-def _differing(datasets: list[xr.Dataset]) -> set[str]:
-    return {k for k in PARAMETERS if len({float(ds[k]) for ds in datasets if k in ds}) > 1}
-
-
 def panel_parameters(ds: xr.Dataset, datasets: Iterable[xr.Dataset], always: tuple[str, ...] = ("F", "K")) -> str:
     """The parameters a panel states: those of ``always`` and those that differ between ``datasets`` (the
     figure's panels), with their values in ``ds``, e.g. ``F = 1 N, K = 0.1 N/m``."""
-    differing = _differing(list(datasets))
-    return ", ".join(quantity_value(k, float(ds[k])) for k in PARAMETERS if k in ds and (k in always or k in differing))
-
-
-def shared_parameters(datasets: Iterable[xr.Dataset], leave_out: tuple[str, ...] = ("F", "K")) -> str:
-    """The parameters the panels share (all of :data:`PARAMETERS` but ``leave_out`` and those that
-    differ), for a caller's title, e.g. ``M = 1 kg, b = 0.1, a₁ = −0.1 m, ...``."""
     datasets = list(datasets)
-    differing = _differing(datasets)
-    first = datasets[0]
-    return ", ".join(quantity_value(k, float(first[k])) for k in PARAMETERS
-                     if k in first and k not in leave_out and k not in differing)
+    differing = {k for k in PARAMETERS if len({float(d[k]) for d in datasets if k in d}) > 1}
+    return ", ".join(quantity_value(k, float(ds[k])) for k in PARAMETERS if k in ds and (k in always or k in differing))
 
 
 def outcome(ds: xr.Dataset, count: str = "cycle") -> str | None:

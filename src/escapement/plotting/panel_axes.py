@@ -1,12 +1,10 @@
 """The axes of the paper's printed panels, as the claims score them and as the figures draw them.
 
-A printed panel's scored axis (:mod:`escapement.paper.printed_axes`) gets the limits matplotlib gives
-the values the figure draws there, autoscaled with the printed tick step imposed and rounded out to the
-ticks after a margin (:mod:`escapement.plotting.autoscale`). :func:`scene_axes` gives the claims those
-limits by printed panel; :func:`poincare_axes`, :func:`shock_axes` and :func:`phase_axes` give the same
-limits, with their tick step, keyed as the figure functions name their panels, so that a figure of the
-paper's scenes shows exactly what its claims score. A user's scenes are drawn without them
-(matplotlib's own autoscaling).
+A printed panel's scored axis (:mod:`escapement.paper.printed_axes`) gets the limits matplotlib gives the values
+the figure draws there, autoscaled with the printed tick step imposed after a margin
+(:mod:`escapement.plotting.autoscale`): :func:`scene_axes` gives the claims those limits by printed panel, and
+:func:`poincare_axes`, :func:`shock_axes` and :func:`phase_axes` the same with their tick step, keyed as the figure
+functions name their panels, so that a figure of the paper's scenes shows exactly what its claims score.
 """
 
 from __future__ import annotations
@@ -64,16 +62,11 @@ def shock_axes(ds: xr.Dataset, margin: float) -> DrawnAxes:
     quantity over its window."""
     if not _completed(ds):
         return {}
-    found: DrawnAxes = {}
-    for p in panels_of("4"):
-        lo, hi = ds[f"{p.name}_window"].values
-        window = ds[p.name].sel(t=slice(lo, hi))
-        found[p.name] = _drawn("4", p.name, window["t"].values, window.values, margin)
-    return found
+    windows = {p.name: ds[p.name].sel(t=slice(*ds[f"{p.name}_window"].values)) for p in panels_of("4")}
+    return {name: _drawn("4", name, w["t"].values, w.values, margin) for name, w in windows.items()}
 
 
 def _fig5_panel(ds: xr.Dataset) -> str | None:
-    """The printed Fig. 5 panel of the dataset's spring constant, or None."""
     return next((name for name, K in FIG5_PANEL_K.items() if math.isclose(float(ds["K"]), K, rel_tol=1e-12)), None)
 
 
@@ -86,10 +79,9 @@ def phase_axes(panels: Mapping[str, xr.Dataset], margin: float) -> DrawnAxes:
 
 def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Mapping[str, xr.Dataset],
                margin: float) -> PanelAxes:
-    """The limits each printed panel's scored axes get when the pipeline's outputs (Fig. 3 by case label,
-    Fig. 4, Fig. 5 by any label) are autoscaled with the printed tick step imposed and the margin
-    ``margin``: ``{(figure, panel): {"x": (low, high), "y": (low, high)}}`` (scored axes only; a panel no
-    output holds, or whose run did not complete, is left out)."""
+    """The limits of each printed panel's scored axes, ``{(figure, panel): {"x": (low, high), ...}}``, from the
+    pipeline's outputs (Fig. 3 by case label, Fig. 4, Fig. 5 by any label), as :func:`poincare_axes`, :func:`shock_axes`
+    and :func:`phase_axes` give them (a panel no output holds, or whose run did not complete, is left out)."""
     drawn = {("3", name): axes for name, axes in poincare_axes(fig3, margin).items()}
     if fig4 is not None:
         drawn |= {("4", name): axes for name, axes in shock_axes(fig4, margin).items()}
@@ -98,9 +90,8 @@ def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Ma
 
 
 def apply_axes(ax, axes: Mapping[str, tuple[float, float, float]]) -> None:
-    """Draw ``axes`` (``{"x": (low, high, step), "y": ...}``) on ``ax``: those limits, ticks every step; an
-    axis far wider than its step keeps minor ticks at the step and labels every few (at most
-    :data:`MAX_LABELS` intervals)."""
+    """Draw ``axes`` (``{"x": (low, high, step), "y": ...}``) on ``ax``: those limits, ticks every step; an axis
+    far wider than its step keeps minor ticks at the step and labels every few (at most :data:`MAX_LABELS`)."""
     for axis_name, (low, high, step) in axes.items():
         axis = {"x": ax.xaxis, "y": ax.yaxis}[axis_name]
         every = next(m for m in _EVERY if (high - low) / (step * m) <= MAX_LABELS + 1e-9)

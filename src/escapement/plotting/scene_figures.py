@@ -1,14 +1,12 @@
-"""The three figures of a scene of the escapement model, for the paper's parameters or a user's: the
-Poincaré map per cycle, the shock detail around the impacts, and phase diagrams.
+"""The three figures of a scene, for the paper's parameters or a user's: the Poincaré map per cycle, the shock
+detail around the impacts, and phase diagrams, drawn from the netCDF datasets (never from the solver).
 
-Each draws from the netCDF datasets (never from the solver), takes its title from the caller (one or
-two lines: which figure of which paper, or which parameter study) and states each panel's own
-parameters in its panel title, lettered by its case (Fig. 3's kind) or its place, a figure of one panel too.
-A study of the user's own names what it changed from the paper's scenes, as its datasets say (their
-``study_changes``), above the legend. Given ``axes`` (:mod:`escapement.plotting.panel_axes`), a panel is drawn
-with exactly those limits and tick step (the paper's printed axes, as its claims score them); without,
-matplotlib autoscales. Guides (a fixed point, the natural period) are drawn only where they fall inside
-the axes, so the legend lists only what a panel shows; text stays outside the axes.
+Each takes its title (one or two lines) from the caller and states each panel's own parameters in its panel
+title, lettered by its case (Fig. 3's kind) or its place; a study of the user's own names what it changed (the
+datasets' ``study_changes``) above the legend. Given ``axes`` (:mod:`escapement.plotting.panel_axes`, keyed as
+the figure names its panels), a panel is drawn with exactly those limits and tick step (the paper's printed axes,
+as its claims score them); a panel not given is autoscaled. Guides (a fixed point, the natural period) are drawn
+only inside the axes, so that the legend lists only what a panel shows; text stays outside the axes.
 """
 
 from __future__ import annotations
@@ -41,10 +39,6 @@ def broken(t: np.ndarray, y: np.ndarray, breaks: np.ndarray) -> tuple[np.ndarray
     return np.insert(t.astype(float), idx, np.nan), np.insert(y.astype(float), idx, np.nan)
 
 
-def _letter(i: int) -> str:
-    return string.ascii_lowercase[i] if i < 26 else str(i + 1)
-
-
 def _panel_title(name: str, ds: xr.Dataset, datasets) -> str:
     """``(a) F = 1 N, K = 1 N/m`` / ``released from rest at x(0) = -1 m`` / how the run ended, if it did not
     complete; ``name`` is the panel's case or letter, given a figure of one panel too."""
@@ -64,32 +58,20 @@ def _axes(ax, axes: DrawnAxes | None, key: str) -> None:
     """The panel's given axes, else matplotlib's autoscaling; either way the limits are fixed from here on."""
     if axes and key in axes:
         apply_axes(ax, axes[key])
-    ax.set_xlim(ax.get_xlim())
-    ax.set_ylim(ax.get_ylim())
+    ax.set(xlim=ax.get_xlim(), ylim=ax.get_ylim())
 
 
 def _guide(ax, y: float, **look) -> None:
-    """A horizontal guide at ``y``, drawn only if it falls inside the panel's y limits."""
     low, high = ax.get_ylim()
     if low <= y <= high:
         ax.axhline(y, zorder=3, **look)
 
 
 def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | None = None) -> Figure:
-    """The velocity before impact, the period and the amplitude against the cycle number, one column per case.
-
-    Parameters
-    ----------
-    cases : mapping of str to xarray.Dataset
-        Each case's Poincaré-map dataset (``velocity_before_impact``, ``period``, the variable its attribute
-        ``amplitude_variable`` names, the parameters, ``x0``; ``fixed_point_19`` drawn if present), by its
-        case, in the order of the columns, each column titled by its case: (a), (b), ...
-    title : str
-        The figure's title, one or two lines.
-    axes : DrawnAxes, optional
-        Limits and tick steps keyed ``"<case label>/velocity"``, ``".../period"``, ``".../amplitude"``
-        (:func:`~escapement.plotting.panel_axes.poincare_axes`); a panel not given is autoscaled.
-    """
+    """The velocity before impact, the period and the amplitude against the cycle number, one column per case,
+    titled (a), (b), ... by its key in ``cases``: each case's dataset (``velocity_before_impact``, ``period``, the
+    variable its attribute ``amplitude_variable`` names, the parameters, ``x0``; ``fixed_point_19`` drawn if
+    present). ``axes`` keys: ``"<case>/velocity"``, ``".../period"``, ``".../amplitude"``."""
     datasets = list(cases.values())
     _check(axes, [f"{label}/{key}" for label in cases for key, _ in _ROWS])
     with style():
@@ -101,8 +83,7 @@ def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | 
                 if values.size:
                     ax.plot(values[values.dims[0]], values, marker="o", markersize=2.5, lw=1.0, color=INK,
                             label="exact solution, per cycle")
-                ax.set_xlabel("Number of cycles")
-                ax.set_ylabel(axis_label(values.name))
+                ax.set(xlabel="Number of cycles", ylabel=axis_label(values.name))
                 _axes(ax, axes, f"{label}/{key}")
                 if key == "velocity" and "fixed_point_19" in ds:
                     _guide(ax, float(ds["fixed_point_19"]), ls=(0, (5, 3)), lw=1.1, color=ACCENT,
@@ -116,28 +97,12 @@ def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | 
     return fig
 
 
-def _impact_entry(t: float, impulse: float, energy: float) -> str:
-    return (f"impact at t\u00a0=\u00a0{signed(t, '.5g')}\u00a0s: impulse {signed(impulse, '.3g')}\u00a0"
-            f"{unit('impulse')}, {signed(energy, '.3g')}\u00a0{unit('energy_dissipated')} dissipated")
-
-
 def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> Figure:
     """The velocity and the acceleration around the impacts, each over its window; jumps drawn as jumps, an
-    impact's impulse as an arrow, and each impact of the velocity window listed in the legend with its
-    impulse and the energy it dissipates.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        A shock-detail dataset: ``t``, ``velocity``, ``acceleration``, ``velocity_window``,
-        ``acceleration_window``, ``impact_time``, ``velocity_before``, ``velocity_after``, ``impulse``,
-        ``energy_dissipated``, ``event_time``.
-    title : str
-        The figure's title, one or two lines.
-    axes : DrawnAxes, optional
-        Limits and tick steps keyed ``"velocity"`` and ``"acceleration"``
-        (:func:`~escapement.plotting.panel_axes.shock_axes`); a panel not given is autoscaled.
-    """
+    impact's impulse as an arrow, and each impact of the velocity window listed in the legend with its impulse and
+    the energy it dissipates. ``ds``: ``t``, ``velocity``, ``acceleration``, ``velocity_window``,
+    ``acceleration_window``, ``impact_time``, ``velocity_before``, ``velocity_after``, ``impulse``,
+    ``energy_dissipated``, ``event_time``; ``axes`` keys: ``"velocity"``, ``"acceleration"``."""
     _check(axes, ("velocity", "acceleration"))
     t, impacts = ds["t"].values, ds["impact_time"].values
     impulse, energy = ds["impulse"].values, ds["energy_dissipated"].values
@@ -148,9 +113,7 @@ def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> F
             lo, hi = ds[f"{name}_window"].values
             inside = (t >= lo) & (t <= hi)
             ax.plot(*broken(t[inside], ds[name].values[inside], jumps), color=INK, label=label)
-            ax.set_xlim(lo, hi)
-            ax.set_xlabel(axis_label("t"))
-            ax.set_ylabel(axis_label(name))
+            ax.set(xlim=(lo, hi), xlabel=axis_label("t"), ylabel=axis_label(name))
         lo, hi = ds["velocity_window"].values
         shown = (impacts >= lo) & (impacts <= hi)
         if shown.any():
@@ -173,7 +136,9 @@ def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> F
         # the legend: a column per panel, the impacts of the velocity window listed under the acceleration panel
         left, right = ([(label, h) for h, label in zip(*ax.get_legend_handles_labels())] for ax in (ax_v, ax_a))
         listed = np.flatnonzero(shown)
-        right += [(_impact_entry(impacts[i], impulse[i], energy[i]), None) for i in listed[:MAX_IMPACTS_LISTED]]
+        right += [(f"impact at t\u00a0=\u00a0{signed(impacts[i], '.5g')}\u00a0s: impulse {signed(impulse[i], '.3g')}"
+                   f"\u00a0{unit('impulse')}, {signed(energy[i], '.3g')}\u00a0{unit('energy_dissipated')} dissipated",
+                   None) for i in listed[:MAX_IMPACTS_LISTED]]
         if len(listed) > MAX_IMPACTS_LISTED:
             right.append((f"and {len(listed) - MAX_IMPACTS_LISTED} more impacts in the velocity window", None))
         rows = max(len(left), len(right))
@@ -185,21 +150,10 @@ def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> F
 
 
 def phase_diagrams(panels: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | None = None) -> Figure:
-    """Phase diagrams, one panel per dataset: the trajectory from release in light colour, the last cycle
-    in dark, the impacts as vertical jumps.
-
-    Parameters
-    ----------
-    panels : mapping of str to xarray.Dataset
-        Each panel's phase-diagram dataset (``t``, ``displacement``, ``velocity``, ``impact_time``,
-        ``impact_position``, ``velocity_before``, ``velocity_after``, ``period``, the parameters, ``x0``),
-        in the order of the panels, lettered (a), (b), ...
-    title : str
-        The figure's title, one or two lines.
-    axes : DrawnAxes, optional
-        Limits and tick steps keyed by the panel's label in ``panels``
-        (:func:`~escapement.plotting.panel_axes.phase_axes`); a panel not given is autoscaled.
-    """
+    """Phase diagrams, one panel per dataset (``t``, ``displacement``, ``velocity``, ``impact_time``,
+    ``impact_position``, ``velocity_before``, ``velocity_after``, ``period``, the parameters, ``x0``), lettered
+    (a), (b), ...: the trajectory from release in light colour, the last cycle in dark, the impacts as vertical
+    jumps. ``axes`` keys: the panels' keys in ``panels``."""
     datasets = list(panels.values())
     _check(axes, panels)
     with style():
@@ -216,10 +170,9 @@ def phase_diagrams(panels: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes
             if impacts.size:
                 ax.vlines(ds["impact_position"], ds["velocity_after"], ds["velocity_before"], color=ACCENT, lw=0.8,
                           label="impacts (velocity jumps)")
-            ax.set_xlabel(axis_label("displacement"))
-            ax.set_ylabel(axis_label("velocity"))
+            ax.set(xlabel=axis_label("displacement"), ylabel=axis_label("velocity"))
             _axes(ax, axes, label)
-            ax.set_title(_panel_title(_letter(col), ds, datasets))
+            ax.set_title(_panel_title(string.ascii_lowercase[col] if col < 26 else str(col + 1), ds, datasets))
         suptitle(fig, title)
         legend_below(fig, grid, ncols=3, **changes_legend(fig, datasets))
     return fig

@@ -1,24 +1,18 @@
-"""The project's own figures, beyond the paper's three kinds: the solvers' work-precision and long-run
-errors, the stability map over (b, F), the existence map over (a3, F), and the escapement error against
-amplitude. Drawn from the studies' tables and netCDF datasets in the style of the scene figures; each
-composes a title of at most two lines from its dataset unless its caller gives one, and a map or the escapement
-error of a study of the user's own names what it changed from the paper's scenes, as its dataset says (its
-``study_changes``), above the legend.
+"""The project's own figures: the solvers' work-precision and long-run errors, the stability map over (b, F), the
+existence map over (a3, F), and the escapement error against amplitude, from the studies' tables and datasets.
+Each composes a title of at most two lines from its dataset unless its caller gives one; a map or the escapement
+error of a study of the user's own names what it changed (its dataset's ``study_changes``) above the legend.
 
-The long-run figure shows rounding for what it is. The float64 spacing of the impact time (1 ulp of t;
-of the velocity, relative) is a shaded band, and the exact solver's and the per-cycle closed forms'
-errors are drawn at every sampled cycle, inside or near that band. Those errors are bit-identical under
-NumPy's baseline SIMD dispatch and OpenBLAS's Sandy Bridge kernels (the two changes CI applies; measured
-on all 208 sampled cycles of the workflow's long run): their arithmetic is correctly rounded and their
-functions are Python's scalar ``math`` ones, not NumPy's dispatched kernels; CI's run with both changes
-would show it if that stopped holding. An adaptive integrator's error is not so: its steps amplify the
-rounding of the BLAS kernels, so that its error at a cycle moves by a few per cent. It is drawn as its
-largest error per decade of cycles rounded up to 1, 2 or 5 times a power of ten, which moves only if a
-decade's largest lies within those few per cent of a level.
+The long run shows rounding for what it is: the float64 spacing is a shaded band, and the exact solver's and the
+closed forms' errors are drawn at every sampled cycle (correctly rounded arithmetic and Python's scalar ``math``:
+bit-identical under the SIMD and BLAS kernels CI varies). An adaptive integrator's steps amplify the rounding of
+the BLAS kernels, moving its error at a cycle by a few per cent; it is drawn as its largest error per decade of
+cycles rounded up to 1, 2 or 5 times a power of ten, which moves only if a decade's largest lies that near a level.
 """
 
 from __future__ import annotations
 
+import itertools
 from decimal import Decimal
 
 import matplotlib.pyplot as plt
@@ -50,9 +44,8 @@ METHOD_LABELS = {"exact": "exact solver", "closed-form cycles": "per-cycle close
 
 
 def work_precision(rows: list[dict], title: str | None = None) -> Figure:
-    """Relative error against wall time, one line per method (its settings from the loosest to the
-    tightest), for the velocity before impact and the impact time; an exact zero is drawn at
-    :data:`ERROR_FLOOR`."""
+    """Relative error against wall time, one line per method (its settings from the loosest to the tightest), for
+    the velocity before impact and the impact time; an exact zero is drawn at :data:`ERROR_FLOOR`."""
     methods = list(dict.fromkeys(r["method"] for r in rows))
     with style():
         fig, axes = plt.subplots(1, 2, figsize=(8.4, 4.1), sharex=True, layout="constrained")
@@ -65,9 +58,7 @@ def work_precision(rows: list[dict], title: str | None = None) -> Figure:
                 ax.loglog(wall, err, marker=MARKERS.get(method, "o"), color=colours(i % 10), lw=1.0, ms=5,
                           label=METHOD_LABELS.get(method, method))
         for ax, name in zip(axes, ("velocity before impact", "impact time")):
-            ax.set_xlabel("Wall time per run (s), median of repeats")
-            ax.set_ylabel("Relative error")
-            ax.set_title(name)
+            ax.set(xlabel="Wall time per run (s), median of repeats", ylabel="Relative error", title=name)
             ax.axhline(ERROR_FLOOR, color=GUIDE, lw=0.6, ls=":")
         suptitle(fig, title or "Work-precision of the solvers: relative error against a 50-digit reference\n"
                  "each line a method from its loosest setting to its tightest; an exact zero drawn at "
@@ -85,9 +76,9 @@ def _round_up(value: float) -> float:
 
 
 def _decade_maxima(cycle: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """A staircase over the decades of cycles [1, 10], (10, 100], ... that hold a finite value: on each,
-    the largest of ``|values|`` (at least :data:`ERROR_FLOOR`) rounded up by :func:`_round_up`; the step of
-    decade k runs from cycle 10**(k - 1) to 10**k, clipped to the cycles given, so that the steps join."""
+    """A staircase over the decades of cycles [1, 10], (10, 100], ... that hold a finite value: on each, the
+    largest of ``|values|`` (at least :data:`ERROR_FLOOR`) rounded up, from cycle 10**(k - 1) to 10**k clipped to
+    the cycles given, so that the steps join."""
     level = np.maximum(np.abs(values), ERROR_FLOOR)
     kept = np.isfinite(level)
     cycle, level = np.asarray(cycle)[kept].astype(np.int64), level[kept]
@@ -102,11 +93,9 @@ def _decade_maxima(cycle: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, n
 
 
 def long_run(ds: xr.Dataset, title: str | None = None) -> Figure:
-    """The phase error (impact time minus the 50-digit reference, in s) and the relative error of the
-    velocity before impact against the number of cycles: the exact solver's and the per-cycle closed
-    forms' at every sampled cycle, the integrator's as its largest per decade, over the band of float64
-    spacing (reads ``drift_*``, ``error_velocity_*``, ``fixed_point_period``, ``fixed_point_velocity``,
-    ``F``, ``x0``, the attribute ``ivp_label``)."""
+    """The phase error (impact time minus the 50-digit reference, s) and the relative error of the velocity before
+    impact against the number of cycles, over the band of float64 spacing (reads ``drift_*``, ``error_velocity_*``,
+    ``fixed_point_period``, ``fixed_point_velocity``, ``F``, ``x0``, the attribute ``ivp_label``)."""
     cycle = ds["cycle"].values
     v_star = float(ds["fixed_point_velocity"])
     # the band on a fine grid of cycles, so that its steps (where the impact time passes a power of two) are steps
@@ -126,12 +115,10 @@ def long_run(ds: xr.Dataset, title: str | None = None) -> Figure:
             xs, ys = _decade_maxima(cycle, ds[f"{key}_ivp"].values)
             if xs.size:
                 ax.loglog(xs, ys, color=ACCENT, lw=1.6, label=f"{ds.attrs['ivp_label']}: {STAIRCASE}")
-            ax.set_ylim(bottom, None)
-            ax.set_xlabel("Number of cycles")
-        ax_t.set_ylabel(f"|impact time \u2212 reference| ({unit('impact_time')})")
-        ax_t.set_title("phase error of the impact at a\u2081")
-        ax_v.set_ylabel("Relative error")
-        ax_v.set_title("velocity before impact")
+            ax.set(ylim=(bottom, None), xlabel="Number of cycles")
+        ax_t.set(ylabel=f"|impact time \u2212 reference| ({unit('impact_time')})",
+                 title="phase error of the impact at a\u2081")
+        ax_v.set(ylabel="Relative error", title="velocity before impact")
         suptitle(fig, title or f"Long run: errors against a 50-digit reference, {quantity_value('F', float(ds['F']))}, "
                  f"{release(ds)}")
         legend_below(fig, (ax_t, ax_v), ncols=1)
@@ -154,17 +141,14 @@ def _cells_path(mask: np.ndarray, x_edges: np.ndarray, y_edges: np.ndarray) -> P
     for row in mask:
         change = np.flatnonzero(np.diff(np.concatenate([[False], row, [False]]).astype(np.int8)))
         runs_of_rows.append(tuple(zip(change[::2], change[1::2])))
-    vertices, codes = [], []
-    j = 0
-    while j < len(runs_of_rows):
-        k = j
-        while k + 1 < len(runs_of_rows) and runs_of_rows[k + 1] == runs_of_rows[j]:
-            k += 1
-        for i0, i1 in runs_of_rows[j]:
-            x0, y0, x1, y1 = x_edges[i0], y_edges[j], x_edges[i1], y_edges[k + 1]
+    vertices, codes, j = [], [], 0
+    for runs, rows in itertools.groupby(runs_of_rows):
+        k = j + len(list(rows))
+        for i0, i1 in runs:
+            x0, y0, x1, y1 = x_edges[i0], y_edges[j], x_edges[i1], y_edges[k]
             vertices += [(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)]
             codes += [Path.MOVETO, Path.LINETO, Path.LINETO, Path.LINETO, Path.CLOSEPOLY]
-        j = k + 1
+        j = k
     return Path(vertices, codes) if vertices else None
 
 
@@ -202,8 +186,7 @@ def stability_map(ds: xr.Dataset, title: str | None = None) -> Figure:
                 ax.add_patch(PathPatch(cells, **look, label=label))
             ax.set_xlabel(axis_label("b"))
             ax.grid(False)  # grid lines over a map read as cell borders
-        axes[0].set_ylabel(axis_label("F"))
-        axes[0].set_title("multiplier measured from the simulated return map")
+        axes[0].set(ylabel=axis_label("F"), title="multiplier measured from the simulated return map")
         axes[1].set_title("distance from Eq. (21)")
         suptitle(fig, title or "Stability of the limit cycle over (b, F): measured multiplier and Eq. (21)\n"
                  + _constants(ds, ("M", "K", "a1", "a2", "a3", "a4")))
@@ -235,9 +218,7 @@ def escapement_error(ds: xr.Dataset, title: str | None = None) -> Figure:
                         label=label)
         for ax, (_, ylabel, name) in zip(axes, panels):
             ax.axhline(0.0, color=GUIDE, lw=0.6, ls=":")
-            ax.set_xlabel(f"Amplitude of the limit cycle ({unit('largest_displacement')})")
-            ax.set_ylabel(ylabel)
-            ax.set_title(name)
+            ax.set(xlabel=f"Amplitude of the limit cycle ({unit('largest_displacement')})", ylabel=ylabel, title=name)
         forces = f"F from {float(ds['F'][0]):g} to {float(ds['F'][-1]):g} {unit('F')}"
         suptitle(fig, title or "Escapement error: the rate of a clock counting 2\u03c0/\u03c9 per swing, against "
                  f"amplitude\n{_constants(ds, ('M', 'K', 'b'))}, {forces}; the second half cycle mirrors the first")
@@ -246,8 +227,7 @@ def escapement_error(ds: xr.Dataset, title: str | None = None) -> Figure:
 
 
 #: fill of the cells where the run reached a limit cycle, and of those that neither converged nor stopped
-LIMIT_CYCLE = "#cfe0f1"
-UNSETTLED = "#f5cba7"
+LIMIT_CYCLE, UNSETTLED = "#cfe0f1", "#f5cba7"
 #: the impact positions' symbols, as the axis labels write them
 A1, A2, A3, A4 = "a\u2081", "a\u2082", "a\u2083", "a\u2084"
 
@@ -287,10 +267,8 @@ def existence_map(ds: xr.Dataset, title: str | None = None) -> Figure:
         if x_edges[0] <= symmetric <= x_edges[-1]:
             handles.append(ax.axvline(symmetric, color=GUIDE, lw=0.8, ls=":",
                                       label=f"{A3} = \u2212{A1}: F* = F*' = 0, a limit cycle for every F > 0"))
-        ax.set_xlim(x_edges[0], x_edges[-1])
-        ax.set_ylim(y_edges[0], y_edges[-1])
-        ax.set_xlabel(axis_label("a3"))
-        ax.set_ylabel(axis_label("F").replace(f"({unit('F')})", f"(m{unit('F')})"))
+        ax.set(xlim=(x_edges[0], x_edges[-1]), ylim=(y_edges[0], y_edges[-1]), xlabel=axis_label("a3"),
+               ylabel=axis_label("F").replace(f"({unit('F')})", f"(m{unit('F')})"))
         ax.grid(False)  # grid lines over a map read as cell borders
         suptitle(fig, title or f"Existence of the limit cycle over ({A3}, F) with {A1} \u2260 \u2212{A3}, each run "
                  f"{release(ds)}\n{_constants(ds, ('M', 'K', 'b', 'a1', 'a2', 'a4'))}")

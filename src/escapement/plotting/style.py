@@ -1,8 +1,6 @@
-"""How every figure looks and is saved: the style sheet, the colours by role, the title (at most two
-lines), one legend below the axes, and files that are byte-identical from run to run.
-
-Nothing is placed by searching for free space: a figure's text sits where matplotlib's constrained
-layout puts titles, axis labels and a legend outside the axes, so that no label can cover data.
+"""How every figure looks and is saved: the style sheet, the colours by role, the title (at most two lines), one
+legend below the axes, and files that are byte-identical from run to run. Nothing is placed by searching for free
+space: text sits where matplotlib's constrained layout puts titles, labels and legends, outside the axes.
 """
 
 from __future__ import annotations
@@ -19,8 +17,7 @@ import numpy as np  # noqa: E402
 
 from ..io.netcdf import replaced  # noqa: E402
 
-__all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "SERIES", "legend_below", "save_figure", "style",
-           "suptitle"]
+__all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "SERIES", "legend_below", "save_figure", "style", "suptitle"]
 
 #: colours of the figures, named by role
 INK = "#1f4e79"

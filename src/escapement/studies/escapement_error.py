@@ -1,24 +1,12 @@
 """The escapement error: the limit cycle's rate against its amplitude, decomposed as Airy did.
 
-Watchmakers judge an escapement by its rate (seconds gained or lost per day) against the
-balance's amplitude. Airy's classical result (1830): an impulse delivered symmetrically about
-the equilibrium leaves the period unchanged to first order in the impulse; one delivered before
-the equilibrium shortens the period (the clock gains), one after lengthens it (it loses). In the
-model of Mao, Fu & Li the period of a cycle is
-
-``T = 2 pi / w + dT1 + dT2``,
-
-``dT1`` the phase jumps of the two impacts (the paper's Eq. (24)) and ``dT2`` the time through
-the two impulse zones less the phase they advance (Eq. (25)), both in their corrected form
-(:mod:`escapement.paper.corrected`); on the limit cycle the sum is the period the exact solver
-measures.
-
-First order in the force, derived on paper: inside a zone the sine phase
-``phi = atan2(x, v / w)`` of the free motion advances at ``w - f x / (w A**2)``, ``A`` the
-amplitude of the arc (``A**2 = x**2 + v**2 / w**2``), so the zone from ``x = a`` to ``x = c``
-costs ``dT2 = f / (w**3 A**2) (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) + O(f**2)``: zero for a
-zone placed symmetrically about 0 (``c = -a``), negative for a zone before the equilibrium,
-positive for one after.
+Watchmakers judge an escapement by its rate (seconds gained or lost per day) against the balance's amplitude.
+Airy (1830): an impulse delivered symmetrically about the equilibrium leaves the period unchanged to first order
+in the impulse; one delivered before the equilibrium shortens it (the clock gains), one after lengthens it. In
+the model the period of a cycle is ``T = 2 pi / w + dT1 + dT2``: ``dT1`` the phase jumps of the two impacts
+(Eq. (24)) and ``dT2`` the time through the two impulse zones less the phase they advance (Eq. (25)), both
+corrected (:mod:`escapement.paper.corrected`, whose :func:`~escapement.paper.corrected.first_order_zone_change`
+is Airy's first order); on the limit cycle the sum is the period the exact solver measures.
 """
 
 from __future__ import annotations
@@ -34,14 +22,8 @@ from ..paper import corrected
 from ..paper.corrected import SECONDS_PER_DAY, daily_rate, first_order_zone_change
 from ..solvers.exact import solve_exact
 
-__all__ = [
-    "SECONDS_PER_DAY",
-    "LimitCycleRate",
-    "daily_rate",
-    "first_order_zone_change",
-    "limit_cycle_rate",
-    "rate_against_amplitude",
-]
+__all__ = ["SECONDS_PER_DAY", "LimitCycleRate", "daily_rate", "first_order_zone_change", "limit_cycle_rate",
+           "rate_against_amplitude"]
 
 
 @dataclass(frozen=True)
@@ -63,12 +45,10 @@ class LimitCycleRate:
 
 
 def limit_cycle_rate(p: Parameters) -> LimitCycleRate:
-    """The limit cycle of ``p`` (the fixed point of the map (16)), measured with the exact solver
-    over one cycle from the fixed point, and decomposed by the corrected Eqs. (24)-(25).
-
-    Without a limit cycle its fields are NaN and ``status`` says how the motion ends: STOPPED when the
-    map (16) has no fixed point (every velocity decays to rest), else the status of the cycle from the
-    fixed point that leaves the regime (turned back in a zone, chattering), with ``message``."""
+    """The limit cycle of ``p`` (the fixed point of the map (16)), measured with the exact solver over one cycle
+    from the fixed point, and decomposed by the corrected Eqs. (24)-(25). Without a limit cycle its fields are NaN
+    and ``status`` says how the motion ends: STOPPED where the map (16) has no fixed point, else the status of the
+    cycle from the fixed point that leaves the regime, with ``message``."""
     v = corrected.fixed_point(p)
     if not math.isfinite(v):
         return _no_limit_cycle(p, Status.STOPPED, f"F = {p.F!r} N with a1..a4 = {p.a1}, {p.a2}, {p.a3}, {p.a4}: "
@@ -78,25 +58,14 @@ def limit_cycle_rate(p: Parameters) -> LimitCycleRate:
     if run.status != Status.COMPLETED:
         return _no_limit_cycle(p, run.status, f"F = {p.F!r} N: the cycle from the fixed point leaves the regime: "
                                               f"{run.message}")
-    w = p.omega
     vel = corrected.cycle_velocities(v, p)
     mirror = Parameters(M=p.M, K=p.K, F=p.F, b=p.b, a1=-p.a3, a2=-p.a4, a3=-p.a1, a4=-p.a2)
     impacts = corrected.impact_phase_jump(p.a1, v, p) + corrected.impact_phase_jump(mirror.a1, -vel["v4"], mirror)
     zones = corrected.zone_period_change(v, p) + corrected.zone_period_change(-vel["v4"], mirror)
-    t0 = 2.0 * math.pi / w
+    t0 = 2.0 * math.pi / p.omega
     period = float(run.cycles.period[0])
-    return LimitCycleRate(
-        F=p.F,
-        largest_displacement=float(run.cycles.largest_displacement[0]),
-        velocity=v,
-        period=period,
-        period_formula=t0 + impacts + zones,
-        impacts=impacts,
-        zones=zones,
-        rate=daily_rate(period, t0),
-        rate_impacts=-SECONDS_PER_DAY * impacts / t0,
-        rate_zones=-SECONDS_PER_DAY * zones / t0,
-    )
+    return LimitCycleRate(p.F, float(run.cycles.largest_displacement[0]), v, period, t0 + impacts + zones, impacts,
+                          zones, daily_rate(period, t0), -SECONDS_PER_DAY * impacts / t0, -SECONDS_PER_DAY * zones / t0)
 
 
 def _no_limit_cycle(p: Parameters, status: Status, message: str) -> LimitCycleRate:
@@ -106,5 +75,4 @@ def _no_limit_cycle(p: Parameters, status: Status, message: str) -> LimitCycleRa
 
 def rate_against_amplitude(base: Parameters, forces: np.ndarray) -> list[LimitCycleRate]:
     """:func:`limit_cycle_rate` for each force in ``forces`` (N), the rest of ``base`` unchanged."""
-    values = base.as_dict()
-    return [limit_cycle_rate(Parameters(**{**values, "F": float(F)})) for F in forces]
+    return [limit_cycle_rate(Parameters(**{**base.as_dict(), "F": float(F)})) for F in forces]

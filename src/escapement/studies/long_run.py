@@ -1,18 +1,8 @@
-"""Long runs: how the error of the impact time grows with the number of cycles.
-
-The reference is the 50-digit solution of :mod:`escapement.integrators.high_precision` until the
-transient has decayed below 1e-45 (in v^2 it decays by (1-b)^4 per cycle), and from there
-on exactly periodic: t_ref(n) = t_ref(n0) + (n - n0) T*, computed in 50 digits.
-
-The subject is the exact event solver: its cycles come in chunks
-(:func:`escapement.solvers.stream.iter_cycles`), of which only the sampled cycles and the largest
-deviations after convergence are kept, so the run takes the same memory for 10**4 cycles as for 10**8;
-it runs over the first ``check_cycles`` cycles (by default the whole run up to :data:`EXACT_CHECK_CYCLES`).
-Beside it, the per-cycle closed forms (:func:`escapement.solvers.cycles.iter_closed_form_cycles`: the
-return map of v^2 and each cycle's arcs, the impact times a compensated sum of the periods) give the
-same series over all ``n_cycles`` cycles, streamed in chunks of the same size, a few vectorised calls
-each; every chunk of the event solver is compared with the closed forms' chunk beside it, quantity by
-quantity, and the largest relative difference is reported. Both take memory for one chunk at a time.
+"""Long runs: how the error of the impact time grows with the number of cycles, against the 50-digit solution
+(:mod:`escapement.integrators.high_precision`) until the transient has decayed below 1e-45 ((1-b)^4 per cycle in v^2),
+exactly periodic from there on (t_ref(n) = t_ref(n0) + (n - n0) T*). The per-cycle closed forms give the series over all
+the cycles and the exact event solver over the first ``check_cycles``, both streamed chunk by chunk side by side and
+compared; only the sampled cycles and running maxima are kept, so that 10**8 cycles take the memory of one chunk.
 """
 
 from __future__ import annotations
@@ -56,21 +46,17 @@ def sample_cycles(n_cycles: int, per_decade: int = 40) -> np.ndarray:
 
 def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_rtol: float, ivp_cycles: int,
              check_cycles: int | None = None) -> dict:
-    """Errors of the exact solver and of the per-cycle closed forms over ``n_cycles``, and of ``solve_ivp``
-    over ``ivp_cycles``, against the 50-digit reference.
+    """Errors against the 50-digit reference of the exact solver, of the per-cycle closed forms over ``n_cycles`` and of
+    ``solve_ivp`` over ``ivp_cycles``.
 
-    ``exact``, ``closed_form`` and ``ivp`` hold each method's relative errors of the impact time and of the
-    velocity, and the drift of the impact time, at the sampled ``cycles`` (NaN past the cycles it ran: the
-    event solver runs ``check_cycles`` cycles, by default ``n_cycles`` up to :data:`EXACT_CHECK_CYCLES`).
-    ``max_velocity_deviation`` and ``max_period_deviation`` are the event solver's largest relative
-    deviations from the limit cycle after :func:`converged_after` cycles. ``check_differences`` holds the
-    largest relative difference between the closed forms and the event solver per quantity
-    (``check_max_relative_difference`` the largest; inf if one ended where the other did not);
-    ``series_method`` says which method made the closed-form series (``"closed-form cycles"``, or
-    ``"exact"`` where the closed form does not apply). ``exact_wall_s``, ``closed_form_wall_s`` and
-    ``ivp_wall_s`` are the wall times.
-
-    ``n_cycles`` and ``check_cycles`` must exceed :func:`converged_after` (the deviations are taken after it)."""
+    ``exact``, ``closed_form`` and ``ivp`` hold each method's relative errors of the impact time and of the velocity and
+    the drift of the impact time at the sampled ``cycles`` (NaN past the cycles it ran: the event solver runs
+    ``check_cycles``, by default ``n_cycles`` up to :data:`EXACT_CHECK_CYCLES`); ``max_velocity_deviation`` and
+    ``max_period_deviation`` the event solver's largest relative deviations from the limit cycle after
+    :func:`converged_after` cycles; ``check_differences`` the largest relative difference of the two series per quantity
+    (inf if one ended where the other did not), ``check_max_relative_difference`` the largest; ``series_method`` the
+    method of the closed-form series (``"exact"`` where the closed form does not apply); the ``*_wall_s`` the wall
+    times. ``n_cycles`` and ``check_cycles`` must exceed :func:`converged_after`."""
     n_cycles = check_count("n_cycles", n_cycles, MAX_CYCLES)
     n_check = min(n_cycles, EXACT_CHECK_CYCLES) if check_cycles is None else check_count(
         "check_cycles", check_cycles, n_cycles)
@@ -84,14 +70,9 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
     with mpmath.workdps(60):
         t_star, v_star = hp.period[-1], hp.velocity_before_impact[-1]
 
-        def t_ref(n):
-            return hp.impact_time[n - 1] if n <= n0 + 1 else hp.impact_time[n0] + (n - n0 - 1) * t_star
-
-        def v_ref(n):
-            return hp.velocity_before_impact[n - 1] if n <= n0 + 1 else v_star
-
-        reference_t = [t_ref(int(n)) for n in cycles]
-        reference_v = [v_ref(int(n)) for n in cycles]
+        reference_t = [hp.impact_time[n - 1] if n <= n0 + 1 else hp.impact_time[n0] + (n - n0 - 1) * t_star
+                       for n in map(int, cycles)]
+        reference_v = [hp.velocity_before_impact[n - 1] if n <= n0 + 1 else v_star for n in map(int, cycles)]
 
         def errors(t, v, available):
             """Errors at the sampled cycles; ``t``, ``v`` hold the run's values at them (NaN past ``available``)."""
@@ -103,33 +84,26 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
                     ev[i] = float(abs(mpmath.mpf(v[i]) - reference_v[i]) / reference_v[i])
             return et, ev, drift
 
-        # the per-cycle series in closed form over n_cycles and the event solver's over the first n_check,
-        # both streamed in chunks of the same size, side by side: the sampled cycles of each, the event
-        # solver's deviations from the limit cycle once converged, and the two series' differences
-        wall = time.perf_counter()
-        closed = iter_closed_form_cycles(params, x0, n_cycles=n_cycles, chunk=CHUNK)
-        closed_wall = time.perf_counter() - wall
-        wall = time.perf_counter()
-        stream = iter_cycles(params, x0, n_cycles=n_check, chunk=CHUNK)
-        exact_wall = time.perf_counter() - wall
+        walls = {"closed": 0.0, "exact": 0.0, "ivp": 0.0}
+
+        def timed(key, make):
+            start = time.perf_counter()
+            made = make()
+            walls[key] += time.perf_counter() - start
+            return made
+
+        # both series streamed in chunks of the same size, side by side
+        closed = timed("closed", lambda: iter_closed_form_cycles(params, x0, n_cycles=n_cycles, chunk=CHUNK))
+        stream = timed("exact", lambda: iter_cycles(params, x0, n_cycles=n_check, chunk=CHUNK))
         closed_t, closed_v, sampled_t, sampled_v = (np.full(len(cycles), np.nan) for _ in range(4))
         differences = dict.fromkeys(("impact_time", "velocity_before_impact", "period", "largest_displacement"), 0.0)
         max_v_dev = max_t_dev = -math.inf
         any_nan = False
         done = checked = 0  # cycles before the chunk, of each series
-        parts = [closed, stream]  # the series still under way
         for _ in range(n_cycles // CHUNK + 3):
-            wall = time.perf_counter()
-            part = next(closed, None) if closed in parts else None
-            closed_wall += time.perf_counter() - wall
-            wall = time.perf_counter()
-            chunk = next(stream, None) if stream in parts else None
-            exact_wall += time.perf_counter() - wall
-            if part is None and closed in parts:
-                parts.remove(closed)
-            if chunk is None and stream in parts:
-                parts.remove(stream)
-            if not parts:
+            part = timed("closed", lambda: next(closed, None))  # None once a series has ended
+            chunk = timed("exact", lambda: next(stream, None))
+            if part is None and chunk is None:
                 break
             if part is not None:
                 _take(part, done, cycles, closed_t, closed_v)
@@ -162,46 +136,22 @@ def long_run(params: Parameters, x0: float, n_cycles: int, ivp_method: str, ivp_
         max_v_dev /= float(v_star)
         max_t_dev /= float(t_star)
         worst = math.nan if any(math.isnan(d) for d in differences.values()) else max(differences.values())
-        start = time.perf_counter()
-        ivp = solve_reference(params, x0, n_cycles=ivp_cycles, method=ivp_method, rtol=ivp_rtol,
-                              record_trajectory=False)
-        ivp_wall = time.perf_counter() - start
-        ivp_errors = errors(*_sampled(ivp.cycles, cycles), len(ivp.cycles))
-    return {
-        "cycles": cycles,
-        "exact": exact,
-        "closed_form": closed_form,
-        "ivp": ivp_errors,
-        "converged_after": n0,
-        "max_velocity_deviation": max_v_dev,
-        "max_period_deviation": max_t_dev,
-        "fixed_point_velocity": float(v_star),
-        "fixed_point_period": float(t_star),
-        "exact_wall_s": exact_wall,
-        "ivp_wall_s": ivp_wall,
-        "any_nan": any_nan,
-        "series_method": closed.method,
-        "fallback": closed.fallback,
-        "distinct_cycles": closed.distinct_cycles,
-        "closed_form_wall_s": closed_wall,
-        "check_cycles": checked,
-        "check_differences": differences,
-        "check_max_relative_difference": worst,
-    }
+        ivp = timed("ivp", lambda: solve_reference(params, x0, n_cycles=ivp_cycles, method=ivp_method, rtol=ivp_rtol,
+                                                   record_trajectory=False))
+        ivp_t, ivp_v = (np.full(len(cycles), np.nan) for _ in range(2))
+        _take(ivp.cycles, 0, cycles, ivp_t, ivp_v)
+        ivp_errors = errors(ivp_t, ivp_v, len(ivp.cycles))
+    return {"cycles": cycles, "exact": exact, "closed_form": closed_form, "ivp": ivp_errors, "converged_after": n0,
+            "max_velocity_deviation": max_v_dev, "max_period_deviation": max_t_dev,
+            "fixed_point_velocity": float(v_star), "fixed_point_period": float(t_star), "exact_wall_s": walls["exact"],
+            "ivp_wall_s": walls["ivp"], "any_nan": any_nan, "series_method": closed.method, "fallback": closed.fallback,
+            "distinct_cycles": closed.distinct_cycles, "closed_form_wall_s": walls["closed"], "check_cycles": checked,
+            "check_differences": differences, "check_max_relative_difference": worst}
 
 
 def _take(chunk: CycleTable, before: int, cycles: np.ndarray, t: np.ndarray, v: np.ndarray) -> None:
-    """Into ``t`` and ``v``, the impact times and velocities of a chunk that follows ``before`` cycles at the
-    sampled cycle numbers ``cycles`` it holds."""
+    """Into ``t``, ``v``: the impact times, velocities at the sampled ``cycles`` of a chunk after ``before`` cycles."""
     here = (cycles > before) & (cycles <= before + len(chunk))
     t[here] = chunk.impact_time[cycles[here] - before - 1]
     v[here] = chunk.velocity_before_impact[cycles[here] - before - 1]
 
-
-def _sampled(table, cycles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Impact times and velocities of a cycle table at the cycle numbers ``cycles`` (NaN past its end)."""
-    here = cycles <= len(table)
-    t, v = (np.full(len(cycles), np.nan) for _ in range(2))
-    t[here] = table.impact_time[cycles[here] - 1]
-    v[here] = table.velocity_before_impact[cycles[here] - 1]
-    return t, v

@@ -1,16 +1,10 @@
 """Measuring the Poincare map of the simulated motion: fixed point, period, multiplier.
 
-The multiplier is measured, not taken from Eq. (21): the exact solver is released
-from rest at the left turning point of the free swing that meets a1 with a given
-velocity v, so that its first impact is at (a1, v); one cycle later it returns
-P(v).  A central difference of P at the measured fixed point gives mu_2.
-
-Both Floquet multipliers of the limit cycle are measured apart from the return map
-(:func:`floquet_multipliers`): the Jacobian of the flow over one period, by central
-differences of the exact solver run for one period from states beside the limit cycle.
-
-:func:`stability_grid` keeps its own vectorised Newton iteration: ``scipy.optimize.newton`` on arrays
-stops on an absolute step only and takes a NaN step (an escapement that stopped) as converged.
+The multiplier is measured, not taken from Eq. (21): released from rest at the left turning point of the free
+swing that meets a1 with velocity v, the exact solver's first impact is at (a1, v), and one cycle later it returns
+P(v); a central difference of P at the measured fixed point gives mu_2. :func:`floquet_multipliers` measures both
+multipliers from the flow instead. :func:`stability_grid` keeps its own vectorised Newton iteration:
+``scipy.optimize.newton`` on arrays stops on an absolute step only and takes a NaN step (a stop) as converged.
 """
 
 from __future__ import annotations
@@ -38,11 +32,8 @@ class NoReturn(ValueError):
 
 
 def return_map(params: Parameters, v: float, strict: bool = True) -> tuple[float, float]:
-    """``(v_in, P(v_in))``: the velocity of the first impact at a1 (v up to rounding) and of the next.
-
-    When the motion leaves the regime first, raise :class:`NoReturn` (``strict``) or return NaN
-    for ``P(v_in)``.
-    """
+    """``(v_in, P(v_in))``: the velocity of the first impact at a1 (v up to rounding) and of the next; where the
+    motion leaves the regime first, :class:`NoReturn` (``strict``) or NaN for ``P(v_in)``."""
     release = -math.hypot(params.a1, v / params.omega)
     run = solve_exact(params, release, 0.0, n_cycles=2, record_trajectory=False)
     if run.status != Status.COMPLETED or len(run.cycles) < 2:
@@ -55,6 +46,8 @@ def return_map(params: Parameters, v: float, strict: bool = True) -> tuple[float
 
 @dataclass(frozen=True)
 class CycleMeasurement:
+    """The limit cycle a run reached, measured at its last cycle (NaN where the run left the regime)."""
+
     outcome: str
     message: str
     velocity: float  #: velocity before impact after n_cycles (the measured fixed point)
@@ -68,12 +61,9 @@ class CycleMeasurement:
 
 
 def largest_speed(arcs, t_from: float, t_to: float) -> float:
-    """The largest ``|v|`` of the motion between ``t_from`` and ``t_to``, exactly, from its harmonic arcs.
-
-    On an arc about ``c`` the state ``(x - c, v/w) = R (sin phi, cos phi)`` turns with ``phi`` growing at
-    ``w``; ``|v|`` is ``w R`` where ``phi`` passes a multiple of pi (at ``x = c``), and is otherwise
-    largest at an end of the arc.
-    """
+    """The largest ``|v|`` of the motion between ``t_from`` and ``t_to``, exactly, from its harmonic arcs: on an
+    arc about ``c`` the state ``(x - c, v/w) = R (sin phi, cos phi)`` turns with ``phi`` growing at ``w``; ``|v|``
+    is ``w R`` where ``phi`` passes a multiple of pi (at ``x = c``), else largest at an end of the arc."""
     if not t_from < t_to:
         raise ValueError(f"t_from = {t_from!r} must be < t_to = {t_to!r}")
     starts = np.append(arcs.t_start, arcs.t_final)
@@ -93,13 +83,10 @@ def largest_speed(arcs, t_from: float, t_to: float) -> float:
 
 def floquet_multipliers(params: Parameters, x: float, v: float, period: float,
                         relative_step: float = 1e-6) -> tuple[float, float]:
-    """Both Floquet multipliers of the limit cycle through ``(x, v)`` of period ``period``, larger first.
-
-    The eigenvalues of the 2x2 Jacobian of the flow over ``period`` at ``(x, v)``, by central differences of
-    the exact solver run for ``period`` from ``(x +/- h, v)`` and ``(x, v +/- h w)`` (``h`` the
-    ``relative_step`` of the amplitude ``|(x, v/w)|``). ``(x, v)`` should be in free flight, away from every
-    event surface. NaN where the eigenvalues are complex or a run leaves the regime.
-    """
+    """Both Floquet multipliers of the limit cycle through ``(x, v)`` (in free flight, away from every event
+    surface) of period ``period``, larger first: the eigenvalues of the Jacobian of the flow over ``period``, by
+    central differences of the exact solver from ``(x +/- h, v)`` and ``(x, v +/- h w)``, ``h`` the
+    ``relative_step`` of ``|(x, v/w)|``. NaN where they are complex or a run leaves the regime."""
     if not (period > 0 and math.isfinite(period)):
         raise ValueError(f"period = {period!r} must be a finite number > 0")
     w = params.omega
@@ -146,41 +133,26 @@ def measure_cycle(params: Parameters, x0: float, n_cycles: int = 300) -> CycleMe
     close = abs(v - star) <= 1e-9 * abs(star)
     first = int(close.argmax()) + 1 if close.any() else -1
     start, period = float(run.cycles.impact_time[-1]), float(run.cycles.period[-1])
-    return CycleMeasurement(
-        outcome=run.status.value,
-        message=run.message,
-        velocity=star,
-        period=float(run.cycles.period[-1]),
-        largest_displacement=float(run.cycles.largest_displacement[-1]),
-        multiplier=(hi_out - lo_out) / (hi_in - lo_in),
-        cycles_to_converge=first,
-        first_period=float(run.cycles.period[0]),
-        largest_speed=largest_speed(run.trajectory, start, start + period),
-        floquet=floquet_multipliers(params, *_free_flight_state(run), period),
-    )
+    return CycleMeasurement(run.status.value, run.message, star, period, float(run.cycles.largest_displacement[-1]),
+                            (hi_out - lo_out) / (hi_in - lo_in), first, float(run.cycles.period[0]),
+                            largest_speed(run.trajectory, start, start + period),
+                            floquet_multipliers(params, *_free_flight_state(run), period))
 
 
 def ensemble_return_map(model: dict, b, F, v):
     """:func:`return_map` for arrays: ``(v_in, P(v_in), period, status codes)`` at every ``(b, F, v)``."""
     omega = math.sqrt(model["K"] / model["M"])
-    out = solve_ensemble(
-        model["M"], model["K"], F, b, model["a1"], model["a2"], model.get("a3"), model.get("a4"),
-        x0=-np.hypot(model["a1"], np.asarray(v) / omega), n_cycles=2, largest_displacement=False,
-    )
+    out = solve_ensemble(model["M"], model["K"], F, b, model["a1"], model["a2"], model.get("a3"), model.get("a4"),
+                         x0=-np.hypot(model["a1"], np.asarray(v) / omega), n_cycles=2, largest_displacement=False)
     c = out.cycles
     return c.velocity_before_impact[:, 0], c.velocity_before_impact[:, 1], c.period[:, 0], out.status
 
 
 def stability_grid(model: dict, b, F, iterations: int = 40):
-    """Fixed point and multiplier of the simulated return map at every ``(b, F)``.
-
-    Newton's method on ``P(v) - v`` with the slope from central differences of the
-    simulated map (``P`` is convex, so the iteration converges from any positive start).
-    Returns a dict of arrays: ``fixed_point``, ``multiplier``, ``period``, ``status``,
-    ``newton_converged``.
-    """
-    b = np.asarray(b, dtype=float)
-    F = np.asarray(F, dtype=float)
+    """Fixed point and multiplier of the simulated return map at every ``(b, F)``, by Newton's method on ``P(v) - v``
+    with the slope from central differences of the simulated map (``P`` is convex: it converges from any positive
+    start). A dict of arrays: ``fixed_point``, ``multiplier``, ``period``, ``status``, ``newton_converged``."""
+    b, F = np.asarray(b, dtype=float), np.asarray(F, dtype=float)
     omega = math.sqrt(model["K"] / model["M"])
 
     def slope_at(i, v):
@@ -204,13 +176,8 @@ def stability_grid(model: dict, b, F, iterations: int = 40):
         active = active[ok & ~done]
     v_in, _, period, status = ensemble_return_map(model, b, F, v)
     good = status == Status.COMPLETED.code
-    return {
-        "fixed_point": np.where(good, v_in, np.nan),
-        "multiplier": np.where(good, slope_at(np.arange(b.size), v), np.nan),
-        "period": np.where(good, period, np.nan),
-        "status": status,
-        "newton_converged": converged,
-    }
+    return {"fixed_point": np.where(good, v_in, np.nan), "multiplier": np.where(good, slope_at(np.arange(b.size), v),
+            np.nan), "period": np.where(good, period, np.nan), "status": status, "newton_converged": converged}
 
 
 def section_crossing_counts(t: np.ndarray, x: np.ndarray, v: np.ndarray, a1: float, starts: np.ndarray) -> np.ndarray:

@@ -1,15 +1,8 @@
-"""The series a candidate reading of the paper's figures would plot, read from one exact run.
-
-:mod:`escapement.studies.readings` builds the grid of readings; this module reads a run:
-
-* :class:`Runs`: one exact run per force, spring constant and release, long enough for every
-  reading that reads it (the most cycles, the latest window), so that no run is made twice;
-* :func:`section_cycles`: per cycle of a Poincare section (the impact at a1, or the mirrored one,
-  the impact at a3), the speed before the impact, the period, the Step-1 amplitude and the two
-  turning points;
-* :func:`window_series` and :func:`phase_series`: a quantity over a time window, or the phase
-  points, as a plot would draw them, with the exact extremes of every arc
-  (:func:`critical_times`) and the one-sided values at every event.
+"""The series a candidate reading of the paper's figures would plot, read from one exact run
+(:mod:`escapement.studies.readings` builds the grid of readings): :class:`Runs` makes one run per force, spring constant
+and release, long enough for every reading of it; :func:`section_cycles` reads the cycles of a Poincare section;
+:func:`window_series` and :func:`phase_series` a quantity over a time window, or the phase points, as a plot would draw
+them, with the exact extremes of every arc (:func:`critical_times`) and the one-sided values at every event.
 """
 
 from __future__ import annotations
@@ -31,16 +24,9 @@ __all__ = ["SECTIONS", "Runs", "SectionCycles", "critical_times", "phase_series"
 SECTIONS: dict[str, EventKind] = {"a1": EventKind.IMPACT_A1, "a3": EventKind.IMPACT_A3}
 
 
-def _positive(name: str, value: float) -> float:
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
-        raise ValueError(f"{name} = {value!r} must be a finite number >= 0")
-    return float(value)
-
-
 class Runs:
-    """One exact run from rest per ``(F, K, x0)`` of the model ``model`` (a mapping of the other
-    parameters): :meth:`need` states what a reading reads (cycles, an end time) before any run is
-    made, :meth:`get` solves once for the most that was stated."""
+    """One exact run from rest per ``(F, K, x0)`` of ``model`` (a mapping of the other parameters): :meth:`need`
+    states what a reading reads before any run is made, :meth:`get` solves once for the most that was stated."""
 
     def __init__(self, model: Mapping) -> None:
         self.model = dict(model)
@@ -52,20 +38,16 @@ class Runs:
         """Record that a reading reads ``n_cycles`` complete cycles and the motion up to ``t_end``."""
         if not (isinstance(n_cycles, int) and n_cycles >= 0):
             raise ValueError(f"n_cycles = {n_cycles!r} must be an integer >= 0")
+        if not (isinstance(t_end, (int, float)) and math.isfinite(t_end) and t_end >= 0):
+            raise ValueError(f"t_end = {t_end!r} must be a finite number >= 0")
         key = (float(F), float(K), float(x0))
         stated = self._needs.get(key, (0, 0.0))
-        n, t = max(stated[0], n_cycles), max(stated[1], _positive("t_end", t_end))
-        # a run is made for the needs stated before it; restating no more is fine, even when the run
-        # could not meet them (it left the regime first)
+        n, t = max(stated[0], n_cycles), max(stated[1], float(t_end))
+        # a run is made for the needs stated before it; restating no more is fine, even for a run that left the regime
         if key in self._runs and (n, t) != stated:
             raise ValueError(f"the run F = {F:g} N, K = {K:g} N/m, x0 = {x0:+g} m is already made; "
                              f"state every need (n_cycles = {n_cycles}, t_end = {t_end:g}) before the first get")
         self._needs[key] = (n, t)
-
-    def covers(self, key: tuple[float, float, float], n_cycles: int, t_end: float) -> bool:
-        """Whether the run of ``key`` holds ``n_cycles`` cycles and lasts to ``t_end``."""
-        run = self._runs[key]
-        return len(run.cycles) >= n_cycles and run.t_final >= t_end
 
     def get(self, F: float, K: float, x0: float) -> Solution:
         """The run of ``(F, K, x0)``, solved on first use for every need stated."""
@@ -78,8 +60,7 @@ class Runs:
             cycles = max(n, math.ceil(t / p.natural_period) + 2 if t > 0 else 0, 1)
             run = solve_exact(p, key[2], n_cycles=cycles)
             self.solved += 1
-            # a cycle is shorter than the natural period by far less than the two cycles of margin;
-            # should the run still end before t_end, it is made once more with the missing cycles
+            # a cycle is shorter than the natural period by far less than two cycles; else it is made once more
             while run.success and run.t_final < t:
                 cycles += math.ceil((t - run.t_final) / p.natural_period) + 2
                 run = solve_exact(p, key[2], n_cycles=cycles)
@@ -90,18 +71,14 @@ class Runs:
     def outcome(self, F: float, K: float, x0: float, n_cycles: int = 0, t_end: float = 0.0) -> str:
         """``completed`` when the run holds what a reading reads (``n_cycles``, ``t_end``), else how it ended."""
         run = self.get(F, K, x0)
-        if self.covers((float(F), float(K), float(x0)), n_cycles, t_end):
+        if len(run.cycles) >= n_cycles and run.t_final >= t_end:
             return "completed"
         return run.status.value if not run.success else f"{run.status.value}: ended at {run.t_final:g} s"
 
 
-# --- exact extremes of the sampled motion ------------------------------------------------------
-
-
 def critical_times(run: Solution, lo: float, hi: float) -> np.ndarray:
-    """The times in ``[lo, hi]`` at which an arc of ``run`` has a phase that is a multiple of pi/2:
-    the turning points (extremes of ``x`` and of the acceleration) and the passages through the
-    arc's centre (extremes of the velocity)."""
+    """The times in ``[lo, hi]`` at which an arc of ``run`` has a phase that is a multiple of pi/2: the turning
+    points (extremes of ``x`` and of the acceleration) and the passages through its centre (extremes of ``v``)."""
     arcs = run.trajectory
     if arcs is None:
         raise ValueError("the run kept no trajectory; solve with record_trajectory=True")
@@ -116,16 +93,11 @@ def critical_times(run: Solution, lo: float, hi: float) -> np.ndarray:
     quarter = 0.5 * math.pi
     k_first = np.ceil(-phi / quarter).astype(int)
     k_last = np.floor((w * (np.minimum(end, hi) - start) - phi) / quarter).astype(int)
-    times = [s + (p + np.arange(a, b + 1) * quarter) / w
-             for s, p, a, b in zip(start, phi, k_first, k_last) if b >= a]
+    times = [s + (p + np.arange(a, b + 1) * quarter) / w for s, p, a, b in zip(start, phi, k_first, k_last) if b >= a]
     if not times:
         return np.empty(0)
     t = np.concatenate(times)
     return np.sort(t[(t >= lo) & (t <= hi)])
-
-
-def _events_in(run: Solution, lo: float, hi: float) -> np.ndarray:
-    return np.flatnonzero((run.events.t >= lo) & (run.events.t <= hi))
 
 
 def _centres_at_events(run: Solution, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -138,18 +110,27 @@ def _centres_at_events(run: Solution, index: np.ndarray) -> tuple[np.ndarray, np
     return arcs.centre[after - 1], arcs.centre[after]
 
 
+def _grid(run: Solution, lo: float, hi: float, samples_per_second: float):
+    """The times a plot samples over ``[lo, hi]``, the events there, and the order of the samples and events."""
+    n = max(2, int(round((hi - lo) * samples_per_second)) + 1)
+    t = np.union1d(np.linspace(lo, hi, n), critical_times(run, lo, hi))
+    index = np.flatnonzero((run.events.t >= lo) & (run.events.t <= hi))
+    return t, index, np.argsort(np.concatenate([t, np.repeat(run.events.t[index], 2)]), kind="stable")
+
+
+def _joined(values: np.ndarray, before: np.ndarray, after: np.ndarray, order: np.ndarray) -> np.ndarray:
+    return np.concatenate([values, np.ravel(np.column_stack([before, after]))])[order]
+
+
 def window_series(run: Solution, lo: float, hi: float, samples_per_second: float, quantity: str
                   ) -> tuple[np.ndarray, np.ndarray]:
-    """``(t, values)`` of ``quantity`` ("displacement", "velocity" or "acceleration") over ``[lo, hi]``
-    as a plot would draw it: a regular grid, the exact extremes of each arc, and at each event in
-    the window its values just before and just after (in that order, at the event's time)."""
+    """``(t, values)`` of ``quantity`` ("displacement", "velocity" or "acceleration") over ``[lo, hi]`` as a plot
+    would draw it, and at each event in the window its values just before and just after (at the event's time)."""
     columns = {"displacement": 0, "velocity": 1, "acceleration": 2}
     if quantity not in columns:
         raise ValueError(f"quantity = {quantity!r} must be one of {', '.join(columns)}")
-    n = max(2, int(round((hi - lo) * samples_per_second)) + 1)
-    t = np.union1d(np.linspace(lo, hi, n), critical_times(run, lo, hi))
+    t, index, order = _grid(run, lo, hi, samples_per_second)
     values = run.sample(t)[columns[quantity]]
-    index = _events_in(run, lo, hi)
     if quantity == "displacement":
         before = after = run.events.x[index]
     elif quantity == "velocity":
@@ -159,35 +140,21 @@ def window_series(run: Solution, lo: float, hi: float, samples_per_second: float
         c_before, c_after = _centres_at_events(run, index)
         before = -w2 * (run.events.x[index] - c_before)
         after = -w2 * (run.events.x[index] - c_after)
-    t_events = np.repeat(run.events.t[index], 2)
-    jumps = np.ravel(np.column_stack([before, after]))
-    order = np.argsort(np.concatenate([t, t_events]), kind="stable")
-    return np.concatenate([t, t_events])[order], np.concatenate([values, jumps])[order]
+    return np.concatenate([t, np.repeat(run.events.t[index], 2)])[order], _joined(values, before, after, order)
 
 
 def phase_series(run: Solution, lo: float, hi: float, samples_per_second: float) -> tuple[np.ndarray, np.ndarray]:
-    """``(x, v)`` over ``[lo, hi]``: the regular grid, the arcs' extremes, and each event as a
-    vertical jump at its position."""
-    n = max(2, int(round((hi - lo) * samples_per_second)) + 1)
-    t = np.union1d(np.linspace(lo, hi, n), critical_times(run, lo, hi))
+    """``(x, v)`` over ``[lo, hi]`` as a plot would draw it, each event a vertical jump at its position."""
+    t, index, order = _grid(run, lo, hi, samples_per_second)
     x, v, _ = run.sample(t)
-    index = _events_in(run, lo, hi)
     ev = run.events
-    t_all = np.concatenate([t, np.repeat(ev.t[index], 2)])
-    x_all = np.concatenate([x, np.repeat(ev.x[index], 2)])
-    v_all = np.concatenate([v, np.ravel(np.column_stack([ev.v_before[index], ev.v_after[index]]))])
-    order = np.argsort(t_all, kind="stable")
-    return x_all[order], v_all[order]
-
-
-# --- the cycles of a Poincare section ----------------------------------------------------------
+    return _joined(x, ev.x[index], ev.x[index], order), _joined(v, ev.v_before[index], ev.v_after[index], order)
 
 
 @dataclass(frozen=True)
 class SectionCycles:
-    """Per cycle ``k = 1, 2, ...`` of a section (from its impact k to impact k + 1), as arrays:
-    ``speed`` and ``h0`` one per impact of the run at the section, the others one per complete
-    cycle."""
+    """Per cycle ``k = 1, 2, ...`` of a section (from its impact k to impact k + 1): ``speed`` and ``h0`` one per
+    impact of the run at the section, the others one per complete cycle."""
 
     speed: np.ndarray  #: |v| just before impact k at the section, m/s
     h0: np.ndarray  #: the amplitude sqrt(a**2 + (v / omega)**2) of the free arc ending in impact k, m
@@ -197,8 +164,8 @@ class SectionCycles:
 
 
 def section_cycles(run: Solution, section: str) -> SectionCycles:
-    """The cycles of ``run`` at the Poincare section ``section`` ("a1" or "a3"); each turning point
-    is the largest value at the cycle's impacts and at the critical times of its arcs."""
+    """The cycles of ``run`` at the Poincare section ``section`` ("a1" or "a3"); each turning point is the largest
+    value at the cycle's impacts and at the critical times of its arcs."""
     if section not in SECTIONS:
         raise ValueError(f"section = {section!r} must be one of {', '.join(SECTIONS)}")
     ev = run.events

@@ -1,33 +1,18 @@
 """Candidate readings of the paper's unstated choices, and the data each figure panel would plot.
 
-The paper leaves open how its Figs. 3-5 were made. Each candidate reading is a :class:`Reading`:
-the points ``(x, y)`` one panel would draw under it, from the exact solver. Their extent is what an
-automatic axis scales to, so the printed axes (:mod:`escapement.paper.printed_axes`) can tell the
-readings apart, or fail to; the scoring is :mod:`escapement.pipeline.readings`. The grid is the full
-product of the choices the paper leaves open:
-
-* **Fig. 3**, per case of Sec. 4 (its F and "initial amplitude" |x0|): the release side, from rest
-  at ``+|x0|`` (the first event is the impact at a3) or at ``-|x0|`` (the paper's Step 1: the first
-  half cycle moves left to right); the Poincare section, the impact at a1 (the paper's) or the
-  mirrored one, the impact at a3, read with ``|v|``; the definition of the plotted quantity: the
-  speed before the impact; the period, impact to impact, or Eq. (23) as printed at that speed;
-  the amplitude as the Step-1 amplitude ``h0(k) = sqrt(a**2 + (v_k / omega)**2)`` of the free arc
-  ending in impact k (Eqs. (9b), (22a)), the Step-8 amplitude ``h4(k) = h0(k+1)``, the right or
-  the left turning point of cycle k (as ``|x|``), or the largest ``|x|`` of cycle k; and the cycles
-  plotted, ``k = 1..N`` or ``k = 1..N+1``. The geometry is symmetric, so the run from ``+|x0|`` read
-  at a3 is the mirror image of the run from ``-|x0|`` read at a1: those readings plot the same
-  values (the scoring groups them as equivalent).
-* **Fig. 4**: F and |x0| each from the cases of Sec. 4 (all four pairs), the release side, K of
-  0.1, 1 or 10 N/m, and which window goes with which quantity (velocity over the first printed
-  window and acceleration over the second, or swapped). A reading has one name in both panels.
-  The velocity jumps at each impact: both the velocity before and after it are drawn. The
-  acceleration is the smooth ``-omega**2 (x - centre)``, which jumps by ``F/M`` where an impulse
-  zone begins or ends: both one-sided values are drawn (the impact itself is a Dirac impulse).
-* **Fig. 5**, per panel (its K): F of 0.5 or 1 N, release at -3, -1, +1 or +3 m; the whole phase
-  trajectory from the release to the end of cycle N, or the last cycle only.
-
-Every run is made once (:class:`~escapement.studies.reading_series.Runs`) and read for every
-quantity that comes from it.
+The paper leaves open how its Figs. 3-5 were made. A :class:`Reading` is the points one panel would draw under one
+candidate reading, from the exact solver; their extent is what an automatic axis scales to, so that the printed
+axes (:mod:`escapement.paper.printed_axes`) can tell the readings apart, or fail to (the scoring is
+:mod:`escapement.pipeline.readings`). The grid is the full product of the open choices: for **Fig. 3**, per case
+of Sec. 4, the release side (:data:`RELEASES`; from ``-|x0|`` is the paper's Step 1), the Poincare section (the
+impact at a1, the paper's, or its mirror at a3, read with ``|v|``), the quantity (:data:`FIG3_QUANTITIES`; the
+Step-1 amplitude ``h0(k) = sqrt(a**2 + (v_k / omega)**2)`` is that of the free arc ending in impact k, Eqs. (9b),
+(22a)) and the cycles plotted (``k = 1..N`` or ``1..N+1``); for **Fig. 4**, F and |x0| from the cases, the
+release side, K (:data:`FIG4_K`) and which window goes with which quantity (:data:`PAIRINGS`), the velocity drawn
+before and after each impact, the acceleration ``-omega**2 (x - centre)`` on either side of each event; for
+**Fig. 5**, per panel (its K), F (:data:`FIG5_FORCES`) and the release (:data:`FIG5_RELEASES`), the whole
+trajectory to the end of cycle N or the last cycle only. By the symmetry the run from ``+|x0|`` read at a3 mirrors
+the run from ``-|x0|`` read at a1 (the scoring groups such readings). Every run is made once (:class:`Runs`).
 """
 
 from __future__ import annotations
@@ -47,7 +32,7 @@ from .reading_series import SECTIONS, Runs, SectionCycles, critical_times, phase
 
 __all__ = ["AMPLITUDES", "Amplitude", "FIG3_QUANTITIES", "FIG4_K", "FIG5_FORCES", "FIG5_RELEASES", "PAIRINGS",
            "RELEASES", "Reading", "Runs", "all_readings", "critical_times", "fig3_readings", "fig4_readings",
-           "fig5_readings", "largest_abs_per_cycle", "release_name", "step1_amplitudes", "window_series"]
+           "fig5_readings", "largest_abs_per_cycle", "step1_amplitudes", "window_series"]
 
 #: the release sides: +1 releases at +|x0|, -1 at -|x0| (both at rest)
 RELEASES: tuple[int, ...] = (+1, -1)
@@ -73,17 +58,8 @@ class Reading:
     outcome: str = "completed"  #: how the run ended (a reading of a run that left the regime says so)
 
 
-def release_name(side: int) -> str:
-    """``"from +x0"`` or ``"from -x0"``."""
-    if side not in RELEASES:
-        raise ValueError(f"side = {side!r} must be one of {RELEASES}")
-    return "from +x0" if side > 0 else "from -x0"
-
-
-# --- Fig. 3: the quantities of a Poincare section ----------------------------------------------
-
-#: The quantities a Fig. 3 panel may plot, per cycle k of a section: panel, name, and the values
-#: for k = 1..n (``n`` given) from the section's cycles and the run's parameters.
+#: The quantities a Fig. 3 panel may plot, per cycle k of a section: panel, name, and the values for k = 1..n
+#: from the section's cycles and the run's parameters.
 FIG3_QUANTITIES: tuple[tuple[str, str, Callable[[SectionCycles, Parameters, int], np.ndarray]], ...] = (
     ("velocity", "speed before the impact", lambda c, p, n: c.speed[:n]),
     ("period", "period, impact to impact", lambda c, p, n: c.period[:n]),
@@ -116,29 +92,23 @@ def fig3_readings(model: Mapping, cases: Mapping[str, Mapping], n_cycles: int, r
         F, K = float(case["F"]), float(model["K"])
         for side in RELEASES:
             x0 = side * abs(float(case["x0"]))
-            run = runs.get(F, K, x0)
+            run, outcome = runs.get(F, K, x0), runs.outcome(F, K, x0, n_cycles=n_cycles + 2)
             for section in SECTIONS:
                 cycles = section_cycles(run, section)
                 for count, n in (("k = 1..N", n_cycles), ("k = 1..N+1", n_cycles + 1)):
-                    outcome = runs.outcome(F, K, x0, n_cycles=n_cycles + 2)
                     for quantity, name, values in FIG3_QUANTITIES:
                         y = np.asarray(values(cycles, run.params, n), dtype=float)
-                        readings.append(Reading(
-                            "3", f"{label}/{quantity}", f"{release_name(side)}, section {section}; {name}; {count}",
-                            np.arange(1, len(y) + 1, dtype=float), y, outcome))
+                        readings.append(Reading("3", f"{label}/{quantity}", f"from {'+' if side > 0 else '-'}x0, "
+                                                f"section {section}; {name}; {count}",
+                                                np.arange(1, len(y) + 1, dtype=float), y, outcome))
     return readings
-
-
-# --- the amplitudes a Fig. 3 scene may plot ----------------------------------------------------
 
 
 @dataclass(frozen=True)
 class Amplitude:
-    """One definition of Fig. 3's "amplitude of oscillation": a short label, and the values per cycle with the
-    cycle numbers they belong to; its name is the variable's (units and long name in
-    :data:`escapement.model.quantities.VARIABLES`)."""
+    """One definition of Fig. 3's "amplitude of oscillation": the values per cycle of a run with the cycle numbers
+    they belong to; its name is the variable's (in :data:`escapement.model.quantities.VARIABLES`)."""
 
-    label: str  #: short name
     values: Callable[[Solution], tuple[np.ndarray, np.ndarray]] = field(repr=False)
 
 
@@ -150,9 +120,8 @@ def _per_cycle(values: Callable[[Solution], np.ndarray]) -> Callable[[Solution],
 
 
 def step1_amplitudes(run: Solution) -> np.ndarray:
-    """``h0(k)``, k = 1, 2, ...: the amplitude ``sqrt(a1**2 + (v / omega)**2)`` of the free arc
-    that ends in the k-th impact at a1 (``v`` the velocity before it), for every such impact of
-    the run (N + 1 of them in a run of N complete cycles)."""
+    """``h0(k)``, k = 1, 2, ...: the amplitude ``sqrt(a1**2 + (v / omega)**2)`` of the free arc that ends in the
+    k-th impact at a1 (``v`` the velocity before it), N + 1 of them in a run of N complete cycles."""
     ev = run.events
     i = ev.of_kind(EventKind.IMPACT_A1)
     return np.hypot(ev.x[i], ev.v_before[i] / run.params.omega)
@@ -165,19 +134,13 @@ def largest_abs_per_cycle(run: Solution) -> np.ndarray:
 
 
 #: The definitions of the amplitude a Fig. 3 scene may plot (the configuration's ``fig3.amplitude``), by the
-#: name of the variable that holds it, all at the section a1; the score of each on the printed axes is in the
-#: readings' score table.
+#: name of the variable that holds it, all at the section a1.
 AMPLITUDES: dict[str, Amplitude] = {
-    "amplitude_h0": Amplitude("Step-1 amplitude h0(k), k = 1..N+1", _per_cycle(step1_amplitudes)),
-    "amplitude_h4": Amplitude("Step-8 amplitude h4(k) = h0(k+1), k = 1..N",
-                              _per_cycle(lambda run: step1_amplitudes(run)[1:len(run.cycles) + 1])),
-    "largest_displacement": Amplitude("largest displacement per cycle",
-                                      _per_cycle(lambda run: run.cycles.largest_displacement)),
-    "largest_abs_displacement": Amplitude("largest |x| per cycle", _per_cycle(largest_abs_per_cycle)),
+    "amplitude_h0": Amplitude(_per_cycle(step1_amplitudes)),  # the Step-1 amplitude h0(k), k = 1..N+1
+    "amplitude_h4": Amplitude(_per_cycle(lambda run: step1_amplitudes(run)[1:len(run.cycles) + 1])),  # h0(k+1)=h4(k)
+    "largest_displacement": Amplitude(_per_cycle(lambda run: run.cycles.largest_displacement)),
+    "largest_abs_displacement": Amplitude(_per_cycle(largest_abs_per_cycle)),
 }
-
-
-# --- Fig. 4 and Fig. 5 -------------------------------------------------------------------------
 
 
 def _pairs(cases: Mapping[str, Mapping]) -> list[tuple[float, float]]:
@@ -226,6 +189,14 @@ def fig4_readings(model: Mapping, cases: Mapping[str, Mapping], windows: Mapping
     return readings
 
 
+def _fig5_need(runs: Runs, panels: Mapping[str, float], n_cycles: int, forces: Iterable[float],
+               releases: Iterable[float]) -> None:
+    for K in panels.values():
+        for F in forces:
+            for x0 in releases:
+                runs.need(F, float(K), x0, n_cycles=n_cycles)
+
+
 def fig5_readings(model: Mapping, panels: Mapping[str, float], n_cycles: int, samples_per_period: int,
                   forces: Iterable[float] = FIG5_FORCES, releases: Iterable[float] = FIG5_RELEASES,
                   runs: Runs | None = None) -> list[Reading]:
@@ -233,10 +204,7 @@ def fig5_readings(model: Mapping, panels: Mapping[str, float], n_cycles: int, sa
     trajectory (release to the end of cycle ``n_cycles``) and of cycle ``n_cycles`` alone."""
     forces, releases = tuple(float(F) for F in forces), tuple(float(x) for x in releases)
     runs = Runs(model) if runs is None else runs
-    for K in panels.values():
-        for F in forces:
-            for x0 in releases:
-                runs.need(F, float(K), x0, n_cycles=n_cycles)
+    _fig5_need(runs, panels, n_cycles, forces, releases)
     readings = []
     for panel, K in panels.items():
         for F in forces:
@@ -253,19 +221,15 @@ def fig5_readings(model: Mapping, panels: Mapping[str, float], n_cycles: int, sa
                     end = run.t_final if math.isfinite(run.t_final) else (n_cycles + 1) * run.params.natural_period
                 x, v = phase_series(run, 0.0, end, rate)
                 readings.append(Reading("5", panel, f"{head}; whole trajectory, {n_cycles} cycles", x, v, outcome))
-                if n:
-                    x, v = phase_series(run, float(c.impact_time[n - 1]), end, rate)
-                else:
-                    x = v = np.full(1, np.nan)
+                x, v = phase_series(run, float(c.impact_time[n - 1]), end, rate) if n else (np.full(1, np.nan),) * 2
                 readings.append(Reading("5", panel, f"{head}; last cycle", x, v, outcome))
     return readings
 
 
 def all_readings(settings: Mapping, runs: Runs | None = None) -> list[Reading]:
-    """Every reading of Figs. 3-5 for ``settings``, a mapping with the configuration's blocks
-    ``model``, ``fig3`` (``n_cycles``, ``cases``), ``fig4`` (``velocity_window``,
-    ``acceleration_window``, ``samples_per_second``) and ``fig5`` (``K``, ``n_cycles``,
-    ``samples_per_period``); the Fig. 5 panels are lettered a, b, c in the order of ``K``. Every
+    """Every reading of Figs. 3-5 for ``settings``, a mapping with the configuration's blocks ``model``, ``fig3``
+    (``n_cycles``, ``cases``), ``fig4`` (``velocity_window``, ``acceleration_window``, ``samples_per_second``) and
+    ``fig5`` (``K``, ``n_cycles``, ``samples_per_period``; its panels lettered a, b, c in the order of ``K``). Every
     run is stated before the first is made, so that each is made once."""
     for block in ("model", "fig3", "fig4", "fig5"):
         if block not in settings:
@@ -277,12 +241,7 @@ def all_readings(settings: Mapping, runs: Runs | None = None) -> list[Reading]:
     runs = Runs(model) if runs is None else runs
     _fig3_need(runs, model, fig3["cases"], int(fig3["n_cycles"]))
     _fig4_need(runs, fig3["cases"], windows, FIG4_K)
-    for K in panels.values():
-        for F in FIG5_FORCES:
-            for x0 in FIG5_RELEASES:
-                runs.need(F, K, x0, n_cycles=int(fig5["n_cycles"]))
-    return [
-        *fig3_readings(model, fig3["cases"], int(fig3["n_cycles"]), runs),
-        *fig4_readings(model, fig3["cases"], windows, float(fig4["samples_per_second"]), runs=runs),
-        *fig5_readings(model, panels, int(fig5["n_cycles"]), int(fig5["samples_per_period"]), runs=runs),
-    ]
+    _fig5_need(runs, panels, int(fig5["n_cycles"]), FIG5_FORCES, FIG5_RELEASES)
+    return [*fig3_readings(model, fig3["cases"], int(fig3["n_cycles"]), runs),
+            *fig4_readings(model, fig3["cases"], windows, float(fig4["samples_per_second"]), runs=runs),
+            *fig5_readings(model, panels, int(fig5["n_cycles"]), int(fig5["samples_per_period"]), runs=runs)]
