@@ -42,7 +42,7 @@ class ClaimError(RuntimeError):
 
 
 def resolved(name: str) -> Check:
-    """The check the register names ``module.function``, a module of this package imported when first named."""
+    """The check the register names ``module.function``, imported only then: importing the engine loads no check."""
     module, _, function = name.partition(".")
     found = (getattr(importlib.import_module(f"{__package__}.{module}"), function, None) if re.fullmatch(
         r"\w+\.\w+", name) and importlib.util.find_spec(f"{__package__}.{module}") else None)
