@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from types import SimpleNamespace
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 import xarray as xr
@@ -140,3 +141,10 @@ def datasets() -> SimpleNamespace:
     """The builders above."""
     return SimpleNamespace(poincare=poincare, shock=shock, phase=phase, long_run=long_run, stability=stability,
                            existence=existence, escapement_error=escapement_error, work_precision=work_precision)
+
+
+@pytest.fixture(autouse=True)
+def close_figures():
+    """Every figure a test makes is closed after it, whatever the test's outcome."""
+    yield
+    plt.close("all")

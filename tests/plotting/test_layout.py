@@ -82,11 +82,8 @@ def collisions(fig) -> list[str]:
 @pytest.mark.parametrize("name", list(FIGURES))
 def test_no_text_covers_another_or_data_and_the_title_has_at_most_two_lines(datasets, name):
     fig = FIGURES[name](datasets)
-    try:
-        found = collisions(fig)
-        assert fig.get_suptitle().count("\n") <= 1
-    finally:
-        plt.close(fig)
+    found = collisions(fig)
+    assert fig.get_suptitle().count("\n") <= 1
     assert not found, "\n".join(found)
 
 

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import math
 
-import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
@@ -24,88 +23,67 @@ def _plain(text: str) -> str:
 def test_a_poincare_map_has_a_column_per_case_each_titled_by_its_own_force(datasets, n):
     forces = [0.2, 0.7, 1.5, 3.0][:n]
     fig = poincare_map({f"case {F}": datasets.poincare(F=F) for F in forces}, "A study of the force\nsecond line")
-    try:
-        assert len(fig.axes) == 3 * n
-        titles = [_plain(ax.get_title()) for ax in fig.axes[:n]]  # the first row
-        assert all(f"F = {F:g} N" in title for F, title in zip(forces, titles))
-        assert fig.get_suptitle() == "A study of the force\nsecond line"
-    finally:
-        plt.close(fig)
+    assert len(fig.axes) == 3 * n
+    titles = [_plain(ax.get_title()) for ax in fig.axes[:n]]  # the first row
+    assert all(f"F = {F:g} N" in title for F, title in zip(forces, titles))
+    assert fig.get_suptitle() == "A study of the force\nsecond line"
 
 
 def test_a_title_of_more_than_two_lines_is_refused(datasets):
     with pytest.raises(ValueError, match="two lines"):
         poincare_map({"a": datasets.poincare()}, "one\ntwo\nthree")
-    plt.close("all")
 
 
 def test_the_natural_period_is_drawn_and_listed_only_where_it_falls_inside_the_axes(datasets):
     inside = poincare_map({"a": datasets.poincare(period_offset=-0.004)}, "t")
     outside = poincare_map({"a": datasets.poincare(period_offset=0.0125)}, "t")
-    try:
-        natural = 2 * math.pi  # M = K = 1
-        assert any(line.get_ydata()[0] == natural for line in inside.axes[1].lines)
-        assert any("2\u03c0/\u03c9" in entry for entry in _legend(inside))
-        assert all(line.get_ydata()[0] != natural for line in outside.axes[1].lines)
-        assert not any("2\u03c0/\u03c9" in entry for entry in _legend(outside))
-    finally:
-        plt.close(inside)
-        plt.close(outside)
+    natural = 2 * math.pi  # M = K = 1
+    assert any(line.get_ydata()[0] == natural for line in inside.axes[1].lines)
+    assert any("2\u03c0/\u03c9" in entry for entry in _legend(inside))
+    assert all(line.get_ydata()[0] != natural for line in outside.axes[1].lines)
+    assert not any("2\u03c0/\u03c9" in entry for entry in _legend(outside))
 
 
 def test_given_axes_are_drawn_exactly_and_the_others_autoscaled(datasets):
     fig = poincare_map({"a": datasets.poincare()}, "t", {"a/velocity": {"y": (0.5, 3.0, 0.5), "x": (0.0, 50.0, 10.0)}})
-    try:
-        velocity, period = fig.axes[0], fig.axes[1]
-        assert velocity.get_ylim() == (0.5, 3.0) and velocity.get_xlim() == (0.0, 50.0)
-        assert np.diff(velocity.get_yticks()) == pytest.approx(0.5)
-        low, high = period.get_ylim()
-        assert low < 2 * math.pi + 0.0125 < high < 2 * math.pi + 0.03  # around the data, not the given axes
-    finally:
-        plt.close(fig)
+    velocity, period = fig.axes[0], fig.axes[1]
+    assert velocity.get_ylim() == (0.5, 3.0) and velocity.get_xlim() == (0.0, 50.0)
+    assert np.diff(velocity.get_yticks()) == pytest.approx(0.5)
+    low, high = period.get_ylim()
+    assert low < 2 * math.pi + 0.0125 < high < 2 * math.pi + 0.03  # around the data, not the given axes
 
 
 def test_axes_for_a_panel_the_figure_does_not_have_are_refused(datasets):
     with pytest.raises(ValueError, match="no panel"):
         phase_diagrams({"0.1": datasets.phase(K=0.1)}, "t", {("5", "a"): {"x": (-5.0, 5.0, 5.0)}})
-    plt.close("all")
 
 
 def test_a_run_that_did_not_complete_says_so_in_its_panel_title(datasets):
     fig = phase_diagrams({"ran": datasets.phase(), "stopped": datasets.phase(outcome="stopped", x0=0.05)}, "t")
-    try:
-        assert "stopped after 0 of 6 cycles" in fig.axes[1].get_title()
-        assert "stopped" not in fig.axes[0].get_title()
-        assert _legend(fig) == ["trajectory from release", "last cycle", "impacts (velocity jumps)"]
-    finally:
-        plt.close(fig)
+    assert "stopped after 0 of 6 cycles" in fig.axes[1].get_title()
+    assert "stopped" not in fig.axes[0].get_title()
+    assert _legend(fig) == ["trajectory from release", "last cycle", "impacts (velocity jumps)"]
 
 
 def test_phase_diagrams_state_each_panels_parameters_and_only_what_differs_besides_f_and_k(datasets):
     panels = {f"{K:g}": datasets.phase(K=K, M=M) for K, M in ((0.1, 1.0), (1.0, 2.0), (10.0, 1.0))}
     fig = phase_diagrams(panels, "Phase diagrams")
-    try:
-        titles = [_plain(ax.get_title()) for ax in fig.axes]
-        assert titles[1].startswith("(b) F = 1 N, K = 1 N/m, M = 2 kg\nreleased from rest at x(0) = -1 m")
-        assert all("b = " not in title for title in titles)  # b is the same in every panel
-    finally:
-        plt.close(fig)
+    titles = [_plain(ax.get_title()) for ax in fig.axes]
+    assert titles[1].startswith("(b) F = 1 N, K = 1 N/m, M = 2 kg\nreleased from rest at x(0) = -1 m")
+    assert all("b = " not in title for title in titles)  # b is the same in every panel
 
 
 def test_the_shock_detail_breaks_the_velocity_at_each_impact_and_lists_each_impact(datasets):
     ds = datasets.shock(impacts=(82.0, 84.4, 86.0))
     fig = shock_detail(ds, "Shock detail")
-    try:
-        velocity, acceleration = fig.axes
-        assert np.isnan(velocity.lines[0].get_ydata()).sum() == 3
-        arrows = [a for a in acceleration.texts if a.arrow_patch is not None]
-        assert len(arrows) == 2  # the impacts inside the acceleration window, 81-85 s
-        listed = [_plain(entry) for entry in _legend(fig) if entry.startswith("impact at")]
-        assert len(listed) == 3
-        for t, j in zip(ds["impact_time"].values, ds["impulse"].values):
-            assert any(f"t = {t:g} s" in entry and f"impulse {j:.3g} N s" in entry for entry in listed)
-    finally:
-        plt.close(fig)
+    velocity, acceleration = fig.axes
+    assert np.isnan(velocity.lines[0].get_ydata()).sum() == 3
+    arrows = [a for a in acceleration.texts if a.arrow_patch is not None]
+    assert len(arrows) == 2  # the impacts inside the acceleration window, 81-85 s
+    listed = [_plain(entry) for entry in _legend(fig) if entry.startswith("impact at")]
+    assert len(listed) == 3
+    for t, j in zip(ds["impact_time"].values, ds["impulse"].values):
+        assert any(f"t = {t:g} s" in entry and f"impulse {j:.3g} N s" in entry for entry in listed)
 
 
 def _changes(fig) -> list[str]:
@@ -116,12 +94,8 @@ def test_a_single_case_is_titled_by_its_case_and_a_single_panel_by_its_letter_an
     """A study of one case c, or of one spring constant, still says which it is."""
     one_case = poincare_map({"c": datasets.poincare(F=0.75, x0=-2.0)}, "t")
     one_panel = phase_diagrams({"5": datasets.phase(K=5.0)}, "t")
-    try:
-        assert _plain(one_case.axes[0].get_title()).startswith("(c) F = 0.75 N, K = 1 N/m")
-        assert _plain(one_panel.axes[0].get_title()).startswith("(a) F = 1 N, K = 5 N/m")
-    finally:
-        plt.close(one_case)
-        plt.close(one_panel)
+    assert _plain(one_case.axes[0].get_title()).startswith("(c) F = 0.75 N, K = 1 N/m")
+    assert _plain(one_panel.axes[0].get_title()).startswith("(a) F = 1 N, K = 5 N/m")
 
 
 def test_a_study_s_figure_names_what_its_datasets_say_it_changed_and_the_replication_s_nothing(datasets):
@@ -135,14 +109,10 @@ def test_a_study_s_figure_names_what_its_datasets_say_it_changed_and_the_replica
     shock.attrs["study_changes"] = "b = 0.3 (paper: 0.1)"
     figures = [poincare_map(cases, "Poincare map, study 'asym'"), shock_detail(shock, "Shock detail, study 'b'"),
                phase_diagrams({"0.1": datasets.phase(K=0.1)}, "Phase diagrams")]
-    try:
-        first, second, replication = (" ".join(_plain(t) for t in _changes(fig)).replace("\n", " ")
-                                      for fig in figures)
-        assert first == ("Changed from the paper's scenes: a\u2083 = 0.12 m (paper: 0.1 m), a\u2084 = -0.03 m (paper: "
-                         "-0.05 m); case c added (F = 0.75 N, x(0) = -2 m)")
-        assert second == "Changed from the paper's scenes: b = 0.3 (paper: 0.1)"
-        assert replication == ""
-        assert all(fig.get_suptitle().count("\n") <= 1 for fig in figures)
-    finally:
-        for fig in figures:
-            plt.close(fig)
+    first, second, replication = (" ".join(_plain(t) for t in _changes(fig)).replace("\n", " ")
+                                  for fig in figures)
+    assert first == ("Changed from the paper's scenes: a\u2083 = 0.12 m (paper: 0.1 m), a\u2084 = -0.03 m (paper: "
+                     "-0.05 m); case c added (F = 0.75 N, x(0) = -2 m)")
+    assert second == "Changed from the paper's scenes: b = 0.3 (paper: 0.1)"
+    assert replication == ""
+    assert all(fig.get_suptitle().count("\n") <= 1 for fig in figures)

@@ -3,7 +3,6 @@ CPU rounding does not move; the stability map marks where no cycle exists apart 
 
 from __future__ import annotations
 
-import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 from matplotlib.collections import QuadMesh
@@ -32,53 +31,43 @@ def test_the_long_run_draws_each_solver_s_errors_over_a_band_of_one_ulp_and_the_
     drift_by = [1.0, 0.5, 1.5, 1.02, 0.75, 1.25, 0.98, 1.2, 1.02]
     velocity_by = [1.5, 0.5, 1.2, 0.98, 1.02, 1.2, 0.8, 0.75, 1.02]
     moved = long_run(datasets.long_run(np.multiply(DRIFT, drift_by), np.multiply(VELOCITY, velocity_by)))
-    try:
-        for x in _lines(fig, IVP, "x"):  # each step spans its decade, clipped to the cycles run
-            np.testing.assert_array_equal(x, [1, 10, 10, 100, 100, 300])
-        drift, velocity = _lines(fig, IVP)
-        np.testing.assert_array_equal(drift, DRIFT_STEPS)
-        np.testing.assert_array_equal(velocity, VELOCITY_STEPS)
-        for axis in "xy":  # the levels CPU rounding does not move
-            for x, y in zip(_lines(fig, IVP, axis), _lines(moved, IVP, axis), strict=True):
-                np.testing.assert_array_equal(x, y)
-        drift, velocity = _lines(fig, "exact solver, each sampled cycle")
-        np.testing.assert_array_equal(drift, np.abs(ds["drift_exact"].values))  # not clamped to the band
-        assert velocity[2] == 1e-17  # an exact zero, drawn at the floor of the log axis
-        band = fig.axes[0].collections[0].get_paths()[0].vertices
-        band = band[band[:, 1] > 1e-16]  # its top edge
-        top = band[np.argmin(np.abs(band[:, 0] - 2.0)), 1]  # near cycle 2: t = 12.59 s, in [8, 16)
-        assert top == pytest.approx(2.0**-49, rel=1e-12)
-    finally:
-        plt.close(fig)
-        plt.close(moved)
+    for x in _lines(fig, IVP, "x"):  # each step spans its decade, clipped to the cycles run
+        np.testing.assert_array_equal(x, [1, 10, 10, 100, 100, 300])
+    drift, velocity = _lines(fig, IVP)
+    np.testing.assert_array_equal(drift, DRIFT_STEPS)
+    np.testing.assert_array_equal(velocity, VELOCITY_STEPS)
+    for axis in "xy":  # the levels CPU rounding does not move
+        for x, y in zip(_lines(fig, IVP, axis), _lines(moved, IVP, axis), strict=True):
+            np.testing.assert_array_equal(x, y)
+    drift, velocity = _lines(fig, "exact solver, each sampled cycle")
+    np.testing.assert_array_equal(drift, np.abs(ds["drift_exact"].values))  # not clamped to the band
+    assert velocity[2] == 1e-17  # an exact zero, drawn at the floor of the log axis
+    band = fig.axes[0].collections[0].get_paths()[0].vertices
+    band = band[band[:, 1] > 1e-16]  # its top edge
+    top = band[np.argmin(np.abs(band[:, 0] - 2.0)), 1]  # near cycle 2: t = 12.59 s, in [8, 16)
+    assert top == pytest.approx(2.0**-49, rel=1e-12)
 
 
 def test_a_decade_the_integrator_did_not_run_has_no_step(datasets):
     fig = long_run(datasets.long_run([*DRIFT[:-2], np.nan, np.nan], [*VELOCITY[:-2], np.nan, np.nan]))
-    try:
-        for x, y, steps in zip(_lines(fig, IVP, "x"), _lines(fig, IVP), (DRIFT_STEPS, VELOCITY_STEPS)):
-            np.testing.assert_array_equal(x, [1, 10, 10, 100])
-            np.testing.assert_array_equal(y, steps[:4])
-    finally:
-        plt.close(fig)
+    for x, y, steps in zip(_lines(fig, IVP, "x"), _lines(fig, IVP), (DRIFT_STEPS, VELOCITY_STEPS)):
+        np.testing.assert_array_equal(x, [1, 10, 10, 100])
+        np.testing.assert_array_equal(y, steps[:4])
 
 
 def test_the_stability_map_marks_no_cycle_apart_from_the_colour_scale(datasets):
     ds = datasets.stability()
     fig = stability_map(ds)
-    try:
-        no_cycle = ~np.isfinite(ds["multiplier"].values.T)
-        for ax in fig.axes[:2]:  # the two maps (their colour bars come after)
-            (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
-            assert mesh.get_rasterized()  # the cells as an image in the PDF
-            drawn = np.ma.getmaskarray(mesh.get_array()).reshape(no_cycle.shape) | ~np.isfinite(
-                np.ma.getdata(mesh.get_array()).reshape(no_cycle.shape))
-            np.testing.assert_array_equal(drawn, no_cycle)  # no colour where there is no cycle
-            (patch,) = ax.patches
-            x0, x1 = patch.get_path().get_extents().intervalx
-            assert x0 == (0.9 + 1.1) / 2 and x1 == 1.5 + (1.5 - 1.1) / 2  # the cells' edges, midway between centres
-    finally:
-        plt.close(fig)
+    no_cycle = ~np.isfinite(ds["multiplier"].values.T)
+    for ax in fig.axes[:2]:  # the two maps (their colour bars come after)
+        (mesh,) = [c for c in ax.collections if isinstance(c, QuadMesh)]
+        assert mesh.get_rasterized()  # the cells as an image in the PDF
+        drawn = np.ma.getmaskarray(mesh.get_array()).reshape(no_cycle.shape) | ~np.isfinite(
+            np.ma.getdata(mesh.get_array()).reshape(no_cycle.shape))
+        np.testing.assert_array_equal(drawn, no_cycle)  # no colour where there is no cycle
+        (patch,) = ax.patches
+        x0, x1 = patch.get_path().get_extents().intervalx
+        assert x0 == (0.9 + 1.1) / 2 and x1 == 1.5 + (1.5 - 1.1) / 2  # the cells' edges, midway between centres
 
 
 @pytest.mark.parametrize("name", ["stability", "existence", "escapement_error"])
@@ -90,10 +79,6 @@ def test_a_map_of_a_study_names_what_its_dataset_says_it_changed(datasets, name)
     plain = draw(ds)
     ds.attrs["study_changes"] = "K = 2 N/m (paper: 1 N/m)"
     study = draw(ds, "A map of the escapement model, study 'k'")
-    try:
-        titles = [legend.get_title().get_text().replace("\u00a0", " ") for legend in study.legends]
-        assert "Changed from the paper's scenes: K = 2 N/m (paper: 1 N/m)" in titles
-        assert not any(legend.get_title().get_text() for legend in plain.legends)
-    finally:
-        plt.close(plain)
-        plt.close(study)
+    titles = [legend.get_title().get_text().replace("\u00a0", " ") for legend in study.legends]
+    assert "Changed from the paper's scenes: K = 2 N/m (paper: 1 N/m)" in titles
+    assert not any(legend.get_title().get_text() for legend in plain.legends)
