@@ -13,7 +13,8 @@ from escapement.model.parameters import ParameterError, Parameters
 from escapement.model.quantities import (INITIAL_STATE, MODEL_KEYS, PARAMETERS, REQUIRED_KEYS, SYMMETRIC_DEFAULTS,
                                          VARIABLES, Quantity, quantity)
 
-SCHEMA = yaml.safe_load((Path(__file__).parents[2] / "workflow/schemas/config.schema.yaml").read_text())
+SCHEMA = yaml.load((Path(__file__).parents[2] / "workflow/schemas/config.schema.yaml").read_text(),
+                   Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
 ALL = {**PARAMETERS, **INITIAL_STATE, **VARIABLES}
 VALID = dict(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 
