@@ -139,17 +139,3 @@ def refusal(error, source: str) -> str:
     name = next((p for p in reversed(path) if isinstance(p, str)), "the value")
     subject = f"each item of {name}" if path and isinstance(path[-1], int) else name
     return f"{source}: {where} = {value} is invalid: {subject} must be {rule}"
-
-
-def read_yaml(path: str | Path) -> dict:
-    """The mapping of the YAML file ``path`` (transitional, for the tests that read the paper's configuration)."""
-    with open(path, encoding="utf-8") as handle:
-        return yaml.safe_load(handle)
-
-
-def __getattr__(name: str):
-    if name == "check_probes":  # transitional: moved to escapement.pipeline.plan
-        from .plan import check_probes
-
-        return check_probes
-    raise AttributeError(name)
