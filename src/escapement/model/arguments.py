@@ -39,10 +39,8 @@ class ParameterError(ValueError):
     >>> try:
     ...     Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=-0.2)
     ... except ParameterError as err:
-    ...     print(err.name, err.value)
-    ...     print(err)
-    a2 -0.2
-    a2 = -0.2 is invalid: a2 must be > a1 = -0.1 (m)
+    ...     print(err.name, err.value, err)
+    a2 -0.2 a2 = -0.2 is invalid: a2 must be > a1 = -0.1 (m)
     """
 
     def __init__(self, name: str, value: object, requirement: str, row: int | None = None) -> None:

@@ -34,12 +34,8 @@ class EventKind(IntEnum):
     Examples
     --------
     >>> from escapement import EventKind
-    >>> EventKind(3)
-    <EventKind.IMPACT_A3: 3>
-    >>> EventKind.IMPACT_A3.is_impact, EventKind.ZONE_END_A4.is_impact
-    (True, False)
-    >>> EventKind.IMPACT_A1 == 1  # an int: compares equal to the stored code
-    True
+    >>> EventKind(3), EventKind.IMPACT_A3.is_impact, EventKind.ZONE_END_A4.is_impact, EventKind.IMPACT_A1 == 1
+    (<EventKind.IMPACT_A3: 3>, True, False, True)
     """
 
     IMPACT_A1 = 1
@@ -55,9 +51,7 @@ class EventKind(IntEnum):
 
 @dataclass(frozen=True)
 class EventLog:
-    """Every event in time order: time [s], kind, position [m], velocity before and after [m/s].
-
-    The solvers make it (:attr:`escapement.Solution.events`); the high-precision solver's holds mpmath numbers.
+    """Every event of a run (:attr:`escapement.Solution.events`) in time order; the 50-digit solver's in mpmath.
 
     Parameters
     ----------
@@ -79,7 +73,7 @@ class EventLog:
     >>> log = solve_exact(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), x0=1.0, n_cycles=2).events
     >>> len(log), [EventKind(k).name for k in log.kind[:3]]
     (11, ['IMPACT_A3', 'ZONE_END_A4', 'IMPACT_A1'])
-    >>> i = log.of_kind(EventKind.IMPACT_A1)[0]
+    >>> i = log.of_kind(EventKind.IMPACT_A1)[0]  # v+ = (1 - b) v-
     >>> float(log.x[i]), bool(abs(log.v_after[i] - 0.9 * log.v_before[i]) < 1e-15)
     (-0.1, True)
     """

@@ -1,8 +1,6 @@
 """Closed-form kinematics of one harmonic arc ``x'' = -omega**2 (x - c)`` (centre 0 free, ``+-F/K`` in an impulse
-zone), written once for floats, NumPy arrays and (where said) mpmath: in the phase plane ``(x - c, v / omega)`` the
-state turns clockwise at the rate ``omega``, so an event's speed follows from energy and its time from an angle.
-The rebounds of a chattering impact sum to a closed form (:func:`rebound_accumulation_time`), hand-written because
-no library sums ``atan(x r**n)`` in bounded time.
+zone) for floats, NumPy arrays and (where said) mpmath, and the sum of a chattering impact's rebounds
+(:func:`rebound_accumulation_time`, hand-written: no library sums ``atan(x r**n)`` in bounded time).
 """
 
 from __future__ import annotations
@@ -31,8 +29,9 @@ def arc_terms(centre: Numeric, x0: Numeric, omega: Numeric, target: Numeric) -> 
 def crossing(u0: Numeric, q: Numeric, k: Numeric, v0: Numeric, omega: Numeric, direction: Numeric,
              xp: ModuleType = math) -> tuple[Numeric, Numeric, Numeric, Numeric]:
     """First arrival at the target moving in ``direction`` (+1 right, -1 left), for an arc about a centre ``c`` from
-    ``x0 = c + u0`` at velocity ``v0`` to ``target = c + q``, with ``k`` from :func:`arc_terms`: the clockwise angle
-    between start and end by ``atan2`` of their cross and dot products (``arccos`` loses accuracy near a turn).
+    ``x0 = c + u0`` at velocity ``v0`` to ``target = c + q``, with ``k`` from :func:`arc_terms`: in the phase plane
+    ``(x - c, v / omega)`` the state turns clockwise at the rate ``omega``; the speed follows from energy, the angle
+    swept from ``atan2`` of the cross and dot products of start and end (``arccos`` loses accuracy near a turn).
 
     Returns ``(reached, tau, v, angle)``: whether the arc passes the target strictly (not where its turning
     point lies short of it or on it: grazing; the other values are then meaningless), the time after the
@@ -111,24 +110,18 @@ def _sech_even_derivatives(max_order: int) -> list[list[int]]:
     return even
 
 
-#: Euler-Maclaurin correction terms kept, and the largest lambda = -log(ratio) they serve
-_EM_TERMS = 8
-_EM_LAMBDA_MAX = 0.1
-#: arguments at or below this are summed by the power series in the argument
-_SERIES_ARGUMENT_MAX = 0.25
+_EM_TERMS, _EM_LAMBDA_MAX = 8, 0.1  #: Euler-Maclaurin terms kept, and the largest lambda = -log(ratio) they serve
+_SERIES_ARGUMENT_MAX = 0.25  #: arguments at or below this are summed by the power series in the argument
 _SERIES_TERMS = 16  # x**(2k) <= 16**-k < 1e-18 for k = 15
 _TI2_DENOMINATORS = tuple((2 * k + 1) * (2 * k + 1) for k in range(25))  # 4**-k / (2k+1)**2 < 2e-18 for k = 24
 _CLAUSEN_TERMS = 20
 _BERNOULLI = _bernoulli_numbers(2 * _CLAUSEN_TERMS)
 #: ``|B_2n| / (2n (2n+1)!)``, n = 1 .. _CLAUSEN_TERMS: the series of the Clausen function
-_CLAUSEN_COEFFICIENTS = tuple(
-    float(abs(_BERNOULLI[2 * n]) / (2 * n * math.factorial(2 * n + 1))) for n in range(1, _CLAUSEN_TERMS + 1)
-)
+_CLAUSEN_COEFFICIENTS = tuple(float(abs(_BERNOULLI[2 * n]) / (2 * n * math.factorial(2 * n + 1)))
+                              for n in range(1, _CLAUSEN_TERMS + 1))
 #: ``(B_2k / (2k)!, coefficients of sech^(2k-2))``, k = 1 .. _EM_TERMS
-_EM_CORRECTIONS = tuple(
-    (float(_BERNOULLI[2 * k] / math.factorial(2 * k)), tuple(float(a) for a in coefficients))
-    for k, coefficients in enumerate(_sech_even_derivatives(2 * _EM_TERMS - 2), start=1)
-)
+_EM_CORRECTIONS = tuple((float(_BERNOULLI[2 * k] / math.factorial(2 * k)), tuple(float(a) for a in coefficients))
+                        for k, coefficients in enumerate(_sech_even_derivatives(2 * _EM_TERMS - 2), start=1))
 _DIRECT_TERMS_MAX = 16  #: direct terms of a sum of arguments <= 1/ratio at lambda > 0.1: 1 + ln(4) / 0.1 < 15
 
 

@@ -147,10 +147,8 @@ class Parameters:
 
     Examples
     --------
-    The paper's Fig. 3 (a) (Sec. 4):
-
     >>> from escapement import Parameters
-    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
+    >>> p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)  # the paper's Fig. 3 (a) (Sec. 4)
     >>> p
     Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05, a3=0.1, a4=-0.05)
     >>> p.symmetric, p.omega, round(p.natural_period, 6)

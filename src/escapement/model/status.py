@@ -26,8 +26,7 @@ class Status(str, Enum):
     COMPLETED : str
         Code 0: the requested number of cycles, or the requested end time (s), was reached.
     STOPPED : str
-        Code 1: the free swing never passes the next impact position (its turning point lies short of it, or
-        exactly on it): no further impact, the mass oscillates freely from then on.
+        Code 1: the free swing's turning point lies short of the next impact position, or on it: no more impacts.
     TURNED_BACK_IN_ZONE : str
         Code 2: the velocity vanished inside an impulse zone before its end, outside the model.
     CHATTERING : str
@@ -39,10 +38,8 @@ class Status(str, Enum):
     Examples
     --------
     >>> from escapement import Status
-    >>> Status("stopped").code, Status.STOPPED.success, Status.COMPLETED.success
-    (1, False, True)
-    >>> Status.from_code(2)
-    <Status.TURNED_BACK_IN_ZONE: 'turned_back_in_zone'>
+    >>> Status("stopped").code, Status.STOPPED.success, Status.COMPLETED.success, Status.from_code(2)
+    (1, False, True, <Status.TURNED_BACK_IN_ZONE: 'turned_back_in_zone'>)
     """
 
     COMPLETED = "completed"
