@@ -109,19 +109,24 @@ def test_every_bad_input_is_one_line_before_any_work(args, option, status, requi
     assert sorted(tmp_path.rglob("*")) == before
 
 
-def test_a_folder_that_takes_no_new_file_is_one_line_before_any_work(tmp_path, capsys, monkeypatch):
-    """As a read-only folder is for any user but root (who writes there all the same), and a read-only file
-    system for root too: the temporary file the check makes there is refused."""
-    def refused(*args, **kwargs):
-        raise PermissionError(errno.EACCES, os.strerror(errno.EACCES))
+@pytest.mark.parametrize("patched, error", [
+    ("NamedTemporaryFile", errno.EACCES),  # the check's own file: a read-only file system, or folder for all but root
+    ("mkstemp", errno.ENOSPC),  # the write's own temporary file, after the check's: a full disk, once solved
+])
+def test_an_output_that_cannot_be_written_is_one_line_and_leaves_no_file(patched, error, tmp_path, capsys,
+                                                                        monkeypatch):
+    def fail(*args, **kwargs):
+        raise OSError(error, os.strerror(error))
 
-    monkeypatch.setattr(cli, "solve_exact", lambda *a, **k: pytest.fail("the solver ran before the refusal"))
-    monkeypatch.setattr(tempfile, "NamedTemporaryFile", refused)
+    if patched == "NamedTemporaryFile":
+        monkeypatch.setattr(cli, "solve_exact", lambda *a, **k: pytest.fail("the solver ran before the refusal"))
+    monkeypatch.setattr(tempfile, patched, fail)
     for option in ("--netcdf", "--csv"):
-        assert main(["solve", option, str(tmp_path / "out")]) == CANNOT_WRITE
-        err = capsys.readouterr().err
-        assert err == f"{PROG} solve: {option} '{tmp_path}/out' is invalid: {option} must be writable " \
-                      "(Permission denied)\n"
+        assert main(["solve", "--cycles", "2", option, str(tmp_path / "out")]) == CANNOT_WRITE
+        out, err = capsys.readouterr()
+        assert out == "" and err.count("\n") == 1 and err.endswith(f"{os.strerror(error)})\n")
+        assert err.startswith(f"{PROG} solve: {option} '{tmp_path}/out' is invalid: {option} must be writable (")
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_a_read_only_folder_is_one_line_before_any_work(tmp_path, capsys, monkeypatch):
@@ -136,19 +141,6 @@ def test_a_read_only_folder_is_one_line_before_any_work(tmp_path, capsys, monkey
     monkeypatch.setattr(cli, "solve_exact", lambda *a, **k: pytest.fail("the solver ran before the refusal"))
     assert main(["solve", "--netcdf", str(folder / "out.nc")]) == CANNOT_WRITE
     assert capsys.readouterr().err.endswith("--netcdf must be writable (Permission denied)\n")
-
-
-def test_a_write_that_fails_once_the_run_is_solved_is_one_line_and_leaves_no_file(tmp_path, capsys, monkeypatch):
-    def full(*args, **kwargs):
-        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-
-    monkeypatch.setattr(tempfile, "mkstemp", full)  # the write's own temporary file, after the check's
-    for option in ("--netcdf", "--csv"):
-        assert main(["solve", "--cycles", "2", option, str(tmp_path / "out")]) == CANNOT_WRITE
-        out, err = capsys.readouterr()
-        assert out == "" and err.count("\n") == 1 and "No space left on device" in err
-        assert err.startswith(f"{PROG} solve: {option} '{tmp_path}/out' is invalid: {option} must be writable (")
-    assert list(tmp_path.iterdir()) == []
 
 
 def test_an_output_that_is_a_symbolic_link_is_written_through_it(tmp_path, capsys):

@@ -25,13 +25,10 @@ def git(where: Path, *args: str) -> str:
     return subprocess.run(["git", "-C", str(where), *args], check=True, capture_output=True, text=True).stdout.strip()
 
 
-def test_an_archive_gives_the_commit_git_stamped_into_it_whatever_git_says():
-    assert git_commit(HASH) == f"{HASH} (archive)"
-
-
-def test_the_stamp_is_the_placeholder_git_archive_substitutes():
+def test_an_archive_gives_the_commit_git_stamped_into_the_placeholder_git_archive_substitutes():
     """``.gitattributes`` names the module for export-subst, whose placeholder is ``$Format:%H$``: in a clone the
-    placeholder, in an archive the commit git wrote there."""
+    placeholder, in an archive the commit git wrote there, given whatever git says."""
+    assert git_commit(HASH) == f"{HASH} (archive)"
     text = Path(provenance.__file__).read_text()
     assert re.search(r'^ARCHIVE_COMMIT = "(\$Format:%H\$|[0-9a-f]{40})"$', text, re.M)
     attributes = (provenance.ROOT / ".gitattributes").read_text().splitlines()

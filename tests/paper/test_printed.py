@@ -1,11 +1,9 @@
-"""Each of the paper's closed forms (Sec. 3.3-3.4), as printed, against the exact solution.
-
-An equation that does not hold is asserted at its replicated value, and the
-paper's form is kept as a strict xfail that says why.
-"""
+"""Each of the paper's closed forms (Sec. 3.3-3.4), as printed, against the exact solution: an equation that does
+not hold is asserted at its replicated value, and the paper's form kept as a strict xfail that says why."""
 
 import math
 
+import mpmath
 import numpy as np
 import pytest
 from expectations import paper_fails
@@ -15,7 +13,6 @@ from escapement.model.parameters import Parameters
 from escapement.paper import corrected as d
 from escapement.paper import printed as pe
 from escapement.solvers.exact import solve_exact
-
 
 CASES = {
     "fig3a": (Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05), 1.0),
@@ -40,46 +37,27 @@ def step_durations(solution, cycle):
 
 
 @pytest.mark.parametrize("name", list(CASES))
-def test_eq16_is_the_composition_of_the_energy_steps(name):
-    p, _ = CASES[name]
+def test_eq16_is_the_composition_of_the_energy_steps_and_eq14_corrected_gives_the_velocity_at_a4(name):
+    p, s = converged(name, 20)
     for v in (0.7, 1.0, 2.5):
         assert pe.poincare_map_16(v, p) == pytest.approx(d.cycle_velocities(v, p)["v1_next"], rel=1e-14)
-
-
-@pytest.mark.parametrize("name", SYMMETRIC)
-def test_eq17_is_eq16_in_the_symmetric_case(name):
-    p, _ = CASES[name]
-    for v in (0.5, 1.2, 3.0):
-        assert pe.poincare_map_17(v, p) == pytest.approx(pe.poincare_map_16(v, p), rel=1e-15)
-
-
-@pytest.mark.parametrize("name", SYMMETRIC)
-def test_eq19_is_the_converged_velocity(name):
-    p, s = converged(name)
-    assert s.cycles.velocity_before_impact[-1] == pytest.approx(pe.fixed_point_19(p), rel=1e-13)
-
-
-@pytest.mark.parametrize("name", SYMMETRIC)
-def test_eq20_is_the_derivative_of_eq17(name):
-    p, _ = CASES[name]
-    v, h = 1.1, 1e-6
-    numeric = (pe.poincare_map_17(v + h, p) - pe.poincare_map_17(v - h, p)) / (2 * h)
-    assert pe.map_derivative_20(v, p) == pytest.approx(numeric, rel=1e-8)
-
-
-@pytest.mark.parametrize("name", SYMMETRIC)
-def test_eq21_is_eq20_at_the_fixed_point(name):
-    p, _ = CASES[name]
-    assert pe.map_derivative_20(pe.fixed_point_19(p), p) == pytest.approx(pe.multiplier_21(p), rel=1e-14)
-    assert pe.multiplier_21(p) == pytest.approx(0.6561, rel=1e-15)
-
-
-@pytest.mark.parametrize("name", list(CASES))
-def test_eq14_corrected_sign_gives_the_simulated_velocity_at_a4(name):
-    p, s = converged(name, 20)
     ev = s.events
     for i in ev.of_kind(EventKind.IMPACT_A1)[:-1]:
         assert d.cycle_velocities(ev.v_before[i], p)["v5"] == pytest.approx(ev.v_before[i + 3], rel=1e-13)
+
+
+@pytest.mark.parametrize("name", SYMMETRIC)
+def test_eqs_17_to_21_in_the_symmetric_case(name):
+    """(17) is (16) there, (19) the converged velocity, (20) the derivative of (17), (21) (20) at the fixed point."""
+    p, s = converged(name)
+    for v in (0.5, 1.2, 3.0):
+        assert pe.poincare_map_17(v, p) == pytest.approx(pe.poincare_map_16(v, p), rel=1e-15)
+    assert s.cycles.velocity_before_impact[-1] == pytest.approx(pe.fixed_point_19(p), rel=1e-13)
+    v, h = 1.1, 1e-6
+    numeric = (pe.poincare_map_17(v + h, p) - pe.poincare_map_17(v - h, p)) / (2 * h)
+    assert pe.map_derivative_20(v, p) == pytest.approx(numeric, rel=1e-8)
+    assert pe.map_derivative_20(pe.fixed_point_19(p), p) == pytest.approx(pe.multiplier_21(p), rel=1e-14)
+    assert pe.multiplier_21(p) == pytest.approx(0.6561, rel=1e-15)
 
 
 @paper_fails("Eq. (14) as printed subtracts the work 2(a3 - a4) f that the force adds")
@@ -92,36 +70,23 @@ def test_eq14_as_printed(name):
 
 
 @pytest.mark.parametrize("name", list(CASES))
-def test_eq22b_to_22d_give_the_simulated_step_times(name):
-    p, s = converged(name, 10)
-    for k in range(9):
-        v = s.cycles.velocity_before_impact[k]
-        times = pe.step_times_22(v, p, left_amplitude=1.0)
-        sim = step_durations(s, k)
-        assert times["22b"] == pytest.approx(sim["zone_right"], rel=1e-12)
-        assert times["22c"] + times["22d"] == pytest.approx(sim["a2_to_a3"], rel=1e-12)
-
-
-@pytest.mark.parametrize("name", list(CASES))
-def test_eq22a_from_the_left_turning_point_to_a1(name):
-    p, s = converged(name, 10)
-    for k in range(1, 9):
-        v1 = s.cycles.velocity_before_impact[k]
-        h0 = math.hypot(p.a1, v1 / p.omega)  # the left swing's amplitude, by energy
-        sim = step_durations(s, k - 1)["a4_to_a1"]
-        a4_to_turning = math.acos(-p.a4 / h0) / p.omega
-        assert pe.step_times_22(v1, p, h0)["22a"] == pytest.approx(sim - a4_to_turning, rel=1e-12)
-
-
-@pytest.mark.parametrize("name", list(CASES))
-def test_eq22e_corrected_gives_the_simulated_left_zone_time(name):
+def test_eqs_22a_to_22d_and_22e_corrected_give_the_simulated_step_times(name):
     p, s = converged(name, 10)
     w, c = p.omega, p.zone_offset
     for k in range(9):
-        vel = d.cycle_velocities(s.cycles.velocity_before_impact[k], p)
+        v = s.cycles.velocity_before_impact[k]
+        times, sim = pe.step_times_22(v, p, left_amplitude=1.0), step_durations(s, k)
+        assert times["22b"] == pytest.approx(sim["zone_right"], rel=1e-12)
+        assert times["22c"] + times["22d"] == pytest.approx(sim["a2_to_a3"], rel=1e-12)
+        vel = d.cycle_velocities(v, p)
         h3 = math.hypot(p.a3 + c, vel["v4p"] / w)
         corrected = (math.atan(vel["v4p"] / (w * (p.a3 + c))) + math.acos((p.a4 + c) / h3)) / w
-        assert corrected == pytest.approx(step_durations(s, k)["zone_left"], rel=1e-12)
+        assert corrected == pytest.approx(sim["zone_left"], rel=1e-12)
+        if k:  # (22a): from the left turning point, the swing's amplitude by energy, to a1
+            h0 = math.hypot(p.a1, v / p.omega)
+            a4_to_turning = math.acos(-p.a4 / h0) / p.omega
+            previous = step_durations(s, k - 1)["a4_to_a1"]
+            assert pe.step_times_22(v, p, h0)["22a"] == pytest.approx(previous - a4_to_turning, rel=1e-12)
 
 
 @paper_fails("Eq. (22e) as printed subtracts the arccos term and gives a negative time")
@@ -175,12 +140,9 @@ def test_eq24_plus_25_as_printed_give_the_limit_cycle_period(name):
     assert predicted == pytest.approx(s.cycles.period[-1], rel=1e-6)
 
 
-@pytest.mark.parametrize("b", [*np.linspace(0.0, 2.0, 200), 1e-12, 0.1, 0.3, 1.999999, 2.0 - 2**-40])
-def test_eq21_multiplier_is_correctly_rounded(b):
-    """(1 - b)**4 is the float nearest the exact fourth power of the float 1 - b: in 300-bit
-    arithmetic the power is exact (4 x 53 bits), and mpmath rounds it to the nearest float."""
-    import mpmath
-
+def test_eq21_multiplier_is_correctly_rounded():
+    """(1 - b)**4 is the float nearest the exact fourth power of the float 1 - b: in 300-bit arithmetic the power
+    is exact (4 x 53 bits), and mpmath rounds it to the nearest float."""
     with mpmath.workprec(300):
-        exact = mpmath.mpf(1.0 - float(b)) ** 4
-        assert float(exact) == pe.multiplier_21_of(float(b))
+        for b in [*np.linspace(0.0, 2.0, 200), 1e-12, 0.1, 0.3, 1.999999, 2.0 - 2**-40]:
+            assert float(mpmath.mpf(1.0 - float(b)) ** 4) == pe.multiplier_21_of(float(b)), b

@@ -19,19 +19,27 @@ def _plain(text: str) -> str:
     return text.replace("\u00a0", " ").replace("\u2212", "-")
 
 
-@pytest.mark.parametrize("n", [1, 4])
-def test_a_poincare_map_has_a_column_per_case_each_titled_by_its_own_force(datasets, n):
-    forces = [0.2, 0.7, 1.5, 3.0][:n]
-    fig = poincare_map({f"case {F}": datasets.poincare(F=F) for F in forces}, "A study of the force\nsecond line")
-    assert len(fig.axes) == 3 * n
-    titles = [_plain(ax.get_title()) for ax in fig.axes[:n]]  # the first row
-    assert all(f"F = {F:g} N" in title for F, title in zip(forces, titles))
-    assert fig.get_suptitle() == "A study of the force\nsecond line"
+def test_a_poincare_map_has_a_column_per_case_each_titled_by_its_case_and_its_own_force(datasets):
+    forces = [0.2, 0.7, 1.5, 3.0]
+    fig = poincare_map({f"{F}": datasets.poincare(F=F) for F in forces}, "A study of the force\nsecond line")
+    assert len(fig.axes) == 3 * 4 and fig.get_suptitle() == "A study of the force\nsecond line"
+    titles = [_plain(ax.get_title()) for ax in fig.axes[:4]]  # the first row
+    assert all(title.startswith(f"({F}) F = {F:g} N") for F, title in zip(forces, titles))
+    # a study of one case c, or of one spring constant, still says which it is: by its case, or its letter and K
+    assert _plain(poincare_map({"c": datasets.poincare(F=0.75, x0=-2.0)}, "t").axes[0].get_title()).startswith(
+        "(c) F = 0.75 N, K = 1 N/m")
+    assert _plain(phase_diagrams({"5": datasets.phase(K=5.0)}, "t").axes[0].get_title()).startswith(
+        "(a) F = 1 N, K = 5 N/m")
 
 
-def test_a_title_of_more_than_two_lines_is_refused(datasets):
-    with pytest.raises(ValueError, match="two lines"):
-        poincare_map({"a": datasets.poincare()}, "one\ntwo\nthree")
+@pytest.mark.parametrize("figure, axes, words", [
+    (lambda d, axes: poincare_map({"a": d.poincare()}, "one\ntwo\nthree"), None, "title = .* two lines"),
+    (lambda d, axes: phase_diagrams({"0.1": d.phase(K=0.1)}, "t", axes), {("5", "a"): {"x": (-5, 5, 5)}}, "no panel"),
+])
+def test_a_title_of_more_than_two_lines_and_axes_of_a_panel_the_figure_lacks_are_refused(datasets, figure, axes,
+                                                                                           words):
+    with pytest.raises(ValueError, match=words):
+        figure(datasets, axes)
 
 
 def test_the_natural_period_is_drawn_and_listed_only_where_it_falls_inside_the_axes(datasets):
@@ -51,11 +59,6 @@ def test_given_axes_are_drawn_exactly_and_the_others_autoscaled(datasets):
     assert np.diff(velocity.get_yticks()) == pytest.approx(0.5)
     low, high = period.get_ylim()
     assert low < 2 * math.pi + 0.0125 < high < 2 * math.pi + 0.03  # around the data, not the given axes
-
-
-def test_axes_for_a_panel_the_figure_does_not_have_are_refused(datasets):
-    with pytest.raises(ValueError, match="no panel"):
-        phase_diagrams({"0.1": datasets.phase(K=0.1)}, "t", {("5", "a"): {"x": (-5.0, 5.0, 5.0)}})
 
 
 def test_a_run_that_did_not_complete_says_so_in_its_panel_title(datasets):
@@ -88,14 +91,6 @@ def test_the_shock_detail_breaks_the_velocity_at_each_impact_and_lists_each_impa
 
 def _changes(fig) -> list[str]:
     return [legend.get_title().get_text() for legend in fig.legends if legend.get_title().get_text()]
-
-
-def test_a_single_case_is_titled_by_its_case_and_a_single_panel_by_its_letter_and_k(datasets):
-    """A study of one case c, or of one spring constant, still says which it is."""
-    one_case = poincare_map({"c": datasets.poincare(F=0.75, x0=-2.0)}, "t")
-    one_panel = phase_diagrams({"5": datasets.phase(K=5.0)}, "t")
-    assert _plain(one_case.axes[0].get_title()).startswith("(c) F = 0.75 N, K = 1 N/m")
-    assert _plain(one_panel.axes[0].get_title()).startswith("(a) F = 1 N, K = 5 N/m")
 
 
 def test_a_study_s_figure_names_what_its_datasets_say_it_changed_and_the_replication_s_nothing(datasets):

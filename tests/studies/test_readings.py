@@ -147,8 +147,8 @@ def test_the_mirror_image_read_at_the_mirrored_section_plots_the_same_values(fig
 
 
 def test_the_right_turning_point_of_cycle_n_plus_1_is_h0_of_the_mirror_run(fig3):
-    """Free flight from a2 to the right turning point is centred at 0: its amplitude is the
-    turning point, and h0 of the mirror run (from +x0, read at a1) is the same free arc's mirror."""
+    """Free flight from a2 to the right turning point is centred at 0: its amplitude is the turning point, and h0
+    of the mirror run (from +x0, read at a1) is the same free arc's mirror."""
     right = by_name(fig3, "b/amplitude", "from -x0, section a1", "right turning point", count="k = 1..N+1")
     v = velocities(math.sqrt(9.0 - A1**2), N + 1, f=0.5)
     expected = [math.hypot(A2, cycle_by_energy(vk, 1.0, 0.5)["v2"]) for vk in v[:-1]]
@@ -158,13 +158,11 @@ def test_the_right_turning_point_of_cycle_n_plus_1_is_h0_of_the_mirror_run(fig3)
     np.testing.assert_allclose(mirror.y, right.y, rtol=1e-12)
 
 
-def test_every_run_is_made_once_for_all_figures():
-    settings = {
-        "model": MODEL,
-        "fig3": {"n_cycles": 3, "cases": {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0}}},
-        "fig4": {"velocity_window": [0.0, 4.0], "acceleration_window": [1.0, 3.0], "samples_per_second": 20},
-        "fig5": {"K": [0.1, 1.0, 10.0], "n_cycles": 2, "samples_per_period": 20},
-    }
+def test_every_run_is_made_once_for_all_figures_and_one_that_left_the_regime_takes_its_needs_stated_again():
+    cases = {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0}}
+    settings = {"model": MODEL, "fig3": {"n_cycles": 3, "cases": cases},
+                "fig4": {"velocity_window": [0.0, 4.0], "acceleration_window": [1.0, 3.0], "samples_per_second": 20},
+                "fig5": {"K": [0.1, 1.0, 10.0], "n_cycles": 2, "samples_per_period": 20}}
     runs = Runs(MODEL)
     readings = all_readings(settings, runs)
     # (F, K, x0): Fig. 5's 3 K x 2 F x 4 x0 hold Fig. 4's (the same F, |x0| and K) and Fig. 3's (K = 1)
@@ -172,19 +170,15 @@ def test_every_run_is_made_once_for_all_figures():
     assert all(r.outcome == "completed" for r in readings)
     with pytest.raises(ValueError, match="already made"):
         runs.need(1.0, 1.0, -1.0, n_cycles=500)
-
-
-def test_a_run_that_left_the_regime_takes_its_needs_stated_again():
-    """Released inside the impact positions (|x0| < 0.1 m) the escapement never starts: the run stops at
-    once, holds no cycle, and stating the same need again is no new need."""
-    runs = Runs(MODEL)
+    # released inside the impact positions (|x0| < 0.1 m) the escapement never starts: the run stops at once,
+    # holds no cycle, and stating the same need again is no new need
     runs.need(1.0, 1.0, 0.05, n_cycles=3)
     assert runs.outcome(1.0, 1.0, 0.05, n_cycles=3).startswith("stopped")
     runs.need(1.0, 1.0, 0.05, n_cycles=3)
     runs.need(1.0, 1.0, 0.05, n_cycles=2)
     with pytest.raises(ValueError, match="already made"):
         runs.need(1.0, 1.0, 0.05, n_cycles=4)
-    assert runs.solved == 1
+    assert runs.solved == 3 * 2 * 4 + 1
 
 
 @pytest.fixture(scope="module")
@@ -192,10 +186,11 @@ def fig5():
     return fig5_readings(MODEL, {"b": 1.0, "c": 10.0}, 60, 50, forces=(0.5,), releases=(-1.0, 1.0))
 
 
-def test_phase_trajectory_k10_from_the_left_spans_the_first_cycle(fig5):
-    """K = 10, F = 0.5, from -1 m: speeds only fall after the first cycle (the map contracts to
-    v* < sqrt(9.9)); the fastest point is a1 before the first impact, the most negative a3 before
-    the second; x runs from -1 to the first right turning point."""
+def test_the_whole_phase_trajectory_k10_spans_the_first_cycle_and_the_last_cycle_is_the_limit_cycle(fig5):
+    """K = 10, F = 0.5, from -1 m: speeds only fall after the first cycle (the map contracts to v* < sqrt(9.9));
+    the fastest point is a1 before the first impact, the most negative a3 before the second; x runs from -1 to the
+    first right turning point. K = 1: the fixed point of v**2 -> (1-b)**4 v**2 + 2 f (a2 - a1)(b**2 - 2b + 2); the
+    fastest point of the limit cycle is a2 (the zone's force ends there)."""
     r = by_name(fig5, "c", "x0 = -1 m", "whole trajectory")
     w2, f = 10.0, 0.5
     first = cycle_by_energy(math.sqrt(w2 * (1.0 - A1**2)), w2, f)
@@ -206,14 +201,7 @@ def test_phase_trajectory_k10_from_the_left_spans_the_first_cycle(fig5):
     mirror = by_name(fig5, "c", "x0 = +1 m", "whole trajectory")
     assert (mirror.y.min(), mirror.y.max()) == (pytest.approx(-r.y.max(), rel=1e-12),
                                                 pytest.approx(-r.y.min(), rel=1e-12))
-
-
-def test_last_cycle_is_the_limit_cycle(fig5):
-    """Fixed point of v**2 -> (1-b)**4 v**2 + 2 f (a2 - a1)(b**2 - 2b + 2) (K = 1, F = 0.5); the
-    fastest point of the limit cycle is a2 (the zone's force ends there)."""
-    f = 0.5
-    c = 2 * f * (A2 - A1) * (B**2 - 2 * B + 2)
-    v_star = math.sqrt(c / (1 - (1 - B) ** 4))
+    v_star = math.sqrt(2 * f * (A2 - A1) * (B**2 - 2 * B + 2) / (1 - (1 - B) ** 4))
     v2 = cycle_by_energy(v_star, 1.0, f)["v2"]
     r = by_name(fig5, "b", "x0 = -1 m", "last cycle")
     assert r.y.max() == pytest.approx(v2, rel=1e-9)
