@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from benchmarks import floor
+from escapement.model import Parameters
 
 
 class DurationClock:
@@ -107,20 +108,15 @@ def test_the_stream_floor_times_the_smaller_size_and_compares_the_larger_s_memor
                       "time_s": 16, "reference_s": 1, "repeats": 1, "bytes": 150, "reference_bytes": 100}
 
 
-def test_the_floor_rows_are_those_of_the_three_floors_on_the_configured_sizes():
-    settings = {"exact_cycles": [4], "ensemble_trajectories": 6, "ensemble_cycles": 2, "stream_cycles": [50, 200]}
-    rows = floor.floor_rows(settings)
-    assert [(row["name"], row["n"]) for row in rows] == [
-        ("solve_exact storing / minimal event loop", 4),
-        ("solve_exact storing without arcs / minimal event loop", 4),
-        ("solve_exact storing / minimal cycle loop", 4),
-        ("solve_exact storing without arcs / minimal cycle loop", 4),
-        ("solve_exact streaming / minimal cycle loop", 4),
-        ("solve_ensemble / numpy loop, 2 cycles", 6),
-        ("solve_ensemble / numpy loop, peak memory per trajectory, 2 cycles", 6),
-        ("solve_exact streamed / closed-form cycles streamed", 50),
-        ("closed-form cycles streamed, peak memory against 50 cycles", 200),
-    ]
+def test_the_floor_rows_are_those_of_the_three_floors_on_the_configured_sizes(monkeypatch):
+    """Each floor (its rows checked above) takes its sizes from the configuration, the scalar ones the scene."""
+    monkeypatch.setattr(floor, "exact_floor", lambda sizes, params, x0: [("exact", sizes, params, x0)])
+    monkeypatch.setattr(floor, "ensemble_floor", lambda n, cycles: [("ensemble", n, cycles)])
+    monkeypatch.setattr(floor, "stream_floor", lambda sizes, params, x0: [("stream", sizes, params, x0)])
+    settings = {"exact_cycles": [4, 9], "ensemble_trajectories": 6, "ensemble_cycles": 2, "stream_cycles": [50, 200]}
+    p = Parameters(M=1.0, K=1.0, F=0.5, b=0.1, a1=-0.1, a2=0.05)
+    assert floor.floor_rows(settings, params=p, x0=-3.0) == [("exact", (4, 9), p, -3.0), ("ensemble", 6, 2),
+                                                              ("stream", (50, 200), p, -3.0)]
 
 
 def test_peak_bytes_counts_what_a_function_allocates():

@@ -1,26 +1,26 @@
-"""The exact solver against closed forms derived by hand: the first impact, the energy balance of the impacts and
-the zones, the arcs between them, the amplitude, and every way a run ends, with its message."""
+"""The exact solver against closed forms derived by hand: the first impact, the map of Eq. (16), the energy
+balance of the impacts and the zones, the arcs between them, the amplitude, where the speed is regained, what a run
+holds (every way a run ends, with its message: test_kernel.py); and the geometry's conventions: the paper's signs
+a1 < 0 < a3, and the jump set read by the direction of motion for any other placement (an impact met at or after
+the equilibrium, as in the escapement-error study's zone after it)."""
 
 import math
-import re
 
 import mpmath
 import numpy as np
 import pytest
 
+from escapement import solve_ensemble, solve_reference
 from escapement.model.events import EventKind
 from escapement.model.parameters import Parameters
 from escapement.model.status import Status
+from escapement.paper.corrected import velocity_recovery
 from escapement.paper.printed import poincare_map_16
 from escapement.solvers.describe import ArcTable
 from escapement.solvers.exact import solve_exact
 
 PAPER = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
 ASYMMETRIC = Parameters(M=0.7, K=3.0, F=0.4, b=0.3, a1=-0.12, a2=0.02, a3=0.09, a4=-0.04)
-
-
-def relative(a, b):
-    return np.abs(np.asarray(a) - np.asarray(b)) / np.abs(np.asarray(b))
 
 
 def test_the_first_impact_from_rest_is_the_closed_form():
@@ -38,18 +38,13 @@ def test_cycles_follow_the_map_of_eq16_to_1e13_over_10_000_cycles(params, x0):
     v = s.cycles.velocity_before_impact
     assert s.status == Status.COMPLETED and len(v) == 10_000
     predicted = np.array([poincare_map_16(vk, params) for vk in v[:-1]])
-    assert np.max(relative(v[1:], predicted)) < 1e-13
+    assert np.max(np.abs(v[1:] - predicted) / predicted) < 1e-13
 
 
 def _speeds_before_impacts_by_energy(p, x0, n):
-    """|v-| at the first ``n`` impacts from rest at x0 > a3, by energy alone, written out here.
-
-    Released at rest at x0, the mass swings left freely to a3: (1/2) M v^2 + (1/2) K a3^2 = (1/2) K x0^2, so
-    v-(1)^2 = (K/M)(x0^2 - a3^2). An impact v+ = (1 - b) v- takes (1 - (1-b)^2) M v-^2 / 2 of the energy. On the
-    way from a3 to a1 the force F pushes the mass through the zone [a4, a3] (it gives F (a3 - a4)), and from
-    a1 back to a3 through [a1, a2] (F (a2 - a1)); the spring's energy is (1/2) K x^2 at the impact position.
-    So E-(k+1) = E-(k) - (1 - (1-b)^2) M v-(k)^2 / 2 + F zone(k), and v-(k+1)^2 = 2 (E-(k+1) - K x(k+1)^2 / 2) / M.
-    """
+    """|v-| at the first ``n`` impacts from rest at x0 > a3, by energy alone: the free swing to a3 gives
+    v-(1)^2 = (K/M)(x0^2 - a3^2); an impact takes (1 - (1-b)^2) M v-^2 / 2 of E = M v^2 / 2 + K x^2 / 2, the zone
+    it opens gives F (a3 - a4) after a3 and F (a2 - a1) after a1, and v-(k+1)^2 = 2 (E-(k+1) - K x(k+1)^2 / 2) / M."""
     positions, zones = (p.a3, p.a1), (p.a3 - p.a4, p.a2 - p.a1)
     speeds = [math.sqrt(p.K / p.M * math.fsum([x0 * x0, -p.a3 * p.a3]))]
     for k in range(n - 1):
@@ -106,62 +101,6 @@ def test_the_amplitude_is_the_top_of_the_free_swing_from_a2(params, x0):
             assert amplitude == pytest.approx(float(mpmath.sqrt(a2**2 + v2_sq / w2)), rel=2e-15)
 
 
-def _zeno(t_hit: float, speed: float, distance: float, ratio: float) -> float:
-    """The rebounds' flights 2 atan(r**n speed / distance) (w = 1) summed in 30 digits after the impact at t_hit."""
-    with mpmath.workdps(30):
-        return t_hit + float(2 * mpmath.nsum(lambda n: mpmath.atan(speed / distance * mpmath.mpf(ratio) ** n),
-                                             [0, mpmath.inf]))
-
-
-# closed forms of the exits below (w = 1 unless said): from rest at 0.05 m the swing turns at +-0.05 m, short of
-# |a1| = a3 = 0.1 m; with w = 10, F/K = 1e-4, the impact at a3 = 0.02 m from rest at 0.021 m comes at
-# acos(0.02/0.021)/w with v = -w sqrt(0.021**2 - 0.02**2), and the zone arc about c = -1e-4 turns at c - R after
-# the phase from its start to the bottom of the circle, atan2(w0, u0) + pi; for b = 1.5 the first impact, at a3
-# at t = acos(0.1) with |v| = sqrt(0.99), rebounds with half the speed and the spring drives the mass back to a3
-_W0, _U0 = 0.9 * -math.sqrt(0.021**2 - 0.02**2), 0.02 + 1e-4
-_TURN = (math.acos(0.02 / 0.021) / 10 + (math.atan2(_W0, _U0) + math.pi) / 10, -1e-4 - math.hypot(_U0, _W0))
-#: every way a run ends: the parameters, release and limits; the status, the message with {} for each number and
-#: the numbers (12 significant digits in the message), the exit's numbers and t_final
-ENDINGS = [
-    (PAPER, 0.05, dict(n_cycles=10), Status.STOPPED,
-     "the escapement stopped at t = {} s: the free swing turns at x = {} m and x = {} m and never passes the next "
-     "impact position, a1 = -0.1 m (moving right) or a3 = 0.1 m (moving left); from then on the mass oscillates "
-     "freely", [0.0, -0.05, 0.05], (0.05, 0.05, math.nan), math.inf),
-    (Parameters(M=1, K=100, F=0.01, b=0.1, a1=-0.02, a2=0.1), 0.021, dict(n_cycles=3), Status.TURNED_BACK_IN_ZONE,
-     "the mass turned back inside the impulse zone (a4, a3) at t = {} s: about the zone's centre x = {} m (F/K) the "
-     "motion turns at x = {} m, short of the zone's end at -0.1 m; the escapement model does not cover this",
-     [_TURN[0], -1e-4, _TURN[1]], (_TURN[1], _TURN[1] + 0.1, math.nan), _TURN[0]),
-    (Parameters(M=1, K=1, F=1, b=1.5, a1=-0.1, a2=0.05), 1.0, dict(n_cycles=5), Status.CHATTERING,
-     "the impact at a3 at t = {} s reversed the velocity (b = 1.5 > 1, v+ = {} v-): the mass rebounds instead of "
-     "entering the impulse zone; the spring drives it back to a3 and the impacts accumulate at t = {} s (a Zeno "
-     "point), past which the impulsive model has no solution",
-     [math.acos(0.1), -0.5, _zeno(math.acos(0.1), 0.5 * math.sqrt(0.99), 0.1, 0.5)],
-     (math.nan, math.nan, _zeno(math.acos(0.1), 0.5 * math.sqrt(0.99), 0.1, 0.5)), math.acos(0.1)),
-    (PAPER, 1.0, dict(t_end=20.0), Status.COMPLETED, "reached t_end = {} s after {} impacts at a1", [20, 3],
-     (math.nan,) * 3, 20.0),
-    (PAPER, 1.0, dict(n_cycles=100, max_events=1), Status.EVENT_LIMIT,
-     "ended after max_events = {} event at t = {} s; raise max_events to go on", [1, math.acos(0.1)],
-     (math.nan,) * 3, math.acos(0.1)),
-    (PAPER, 1.0, dict(n_cycles=3), Status.COMPLETED, "completed {} cycles", [3], (math.nan,) * 3, None),
-]
-
-
-@pytest.mark.parametrize("params, x0, limits, status, message, numbers, exit_, t_final", ENDINGS,
-                         ids=[e[3].value for e in ENDINGS])
-def test_every_way_a_run_ends_is_an_outcome_with_its_message_and_numbers(params, x0, limits, status, message,
-                                                                         numbers, exit_, t_final):
-    s = solve_exact(params, x0, **limits)
-    assert s.status is status and s.success == (status is Status.COMPLETED)
-    pattern = "^" + r"(\S+?)".join(re.escape(part) for part in message.split("{}")) + "$"
-    found = re.match(pattern, s.message)
-    assert found, s.message
-    assert [float(text) for text in found.groups()] == pytest.approx(numbers, rel=1e-11, abs=1e-300)
-    got = (s.exit.turning_point, s.exit.margin, s.exit.t_accumulation)
-    assert got == pytest.approx(exit_, rel=1e-12, nan_ok=True)
-    if t_final is not None:
-        assert s.t_final == pytest.approx(t_final, rel=1e-13)
-
-
 def test_a_run_stops_later_when_no_force_keeps_up_an_asymmetric_swing():
     # F = 0: the radius R of the free swing only shrinks, R^2 -> a^2 + r^2 (R^2 - a^2) at an impact at a;
     # impacts alternate a3 = 0.3 m and a1 = -0.1 m, each followed by its zone end, until R <= a3 when a3 is awaited
@@ -171,8 +110,7 @@ def test_a_run_stops_later_when_no_force_keeps_up_an_asymmetric_swing():
         radius_sq = awaited**2 + 0.81 * (radius_sq - awaited**2)
         events, awaited = events + 2, 0.1 if awaited == 0.3 else 0.3
     assert s.status == Status.STOPPED and len(s.events) == events and s.events.kind[-1] == EventKind.ZONE_END_A2
-    assert "a3 = 0.3 m (moving left)" in s.message and "a1 =" not in s.message  # only a3 is awaited
-    assert s.exit.turning_point == pytest.approx(math.sqrt(radius_sq), rel=1e-13)
+    assert s.exit.turning_point == pytest.approx(math.sqrt(radius_sq), rel=1e-13)  # its message: test_kernel.py
 
 
 def test_b_equal_one_brings_the_mass_to_rest_at_the_impact_and_the_map_converges_in_one_cycle():
@@ -181,12 +119,6 @@ def test_b_equal_one_brings_the_mass_to_rest_at_the_impact_and_the_map_converges
     assert np.all(s.events.v_after[(s.events.kind == 1) | (s.events.kind == 3)] == 0.0)
     # From rest at a1 the zone and the spring give v^2 = 2 f (a2 - a1) at the next impact (symmetric case).
     assert s.cycles.velocity_before_impact[1:] == pytest.approx(math.sqrt(2 * 1.0 * 0.15), rel=1e-14)
-
-
-def test_chattering_accumulates_in_finite_time_for_b_close_to_two():
-    s = solve_exact(Parameters(M=1, K=1, F=0.1, b=1.999999, a1=-0.1, a2=-0.05), 1.0, n_cycles=5)
-    assert s.status == Status.CHATTERING and math.isfinite(s.exit.t_accumulation)
-    assert s.exit.t_accumulation > s.events.t[-1]
 
 
 def test_a_run_to_an_end_time_ends_inside_an_arc():
@@ -204,12 +136,114 @@ def test_a_release_on_an_impact_surface_is_the_state_after_any_jump():
 def test_a_completed_run_holds_its_events_cycles_and_arcs():
     s = solve_exact(PAPER, 1.0, n_cycles=100)
     assert isinstance(s.trajectory, ArcTable) and s.method == "exact" and (s.x0, s.v0) == (1.0, 0.0)
-    # n_cycles complete cycles: n_cycles + 1 impacts at a1; the kinds go round a3, a4, a1, a2 from the release
-    assert len(s.cycles) == 100 and len(s.events.of_kind(EventKind.IMPACT_A1)) == 101
-    assert s.cycles.cycle.tolist() == list(range(1, 101))
-    assert s.events.kind.tolist() == [[3, 4, 1, 2][i % 4] for i in range(len(s.events))]
+    # n_cycles complete cycles: n_cycles + 1 impacts at a1, numbered from 1
+    assert len(s.events.of_kind(EventKind.IMPACT_A1)) == 101 and s.cycles.cycle.tolist() == list(range(1, 101))
     # the arcs start at the release and at each event, over the loop's own buffers (no copy)
     assert s.trajectory.t_start[0] == 0.0 and s.trajectory.t_start[1:].tolist() == s.events.t[:-1].tolist()
     for column in (s.events.t, s.events.v_before):
         assert not column.flags.owndata and column.base is not None
     assert solve_exact(PAPER, 1.0, n_cycles=2, record_trajectory=np.bool_(False)).trajectory is None
+
+
+@pytest.mark.parametrize("K, F", [(0.1, 0.5), (1.0, 0.5), (10.0, 0.5), (1.0, 1.0)])
+def test_the_solver_regains_the_speed_before_the_impact_where_the_closed_form_says(K, F):
+    p = Parameters(M=1.0, K=K, F=F, b=0.1, a1=-0.1, a2=0.05)
+    s = solve_exact(p, -1.0, n_cycles=300)  # converged to the limit cycle well within 300 cycles
+    t_impact, v1 = s.cycles.impact_time[-2], s.cycles.velocity_before_impact[-2]
+    x, dt = velocity_recovery(v1, p)
+    assert p.a1 < x <= p.a2 and dt > 0  # inside the zone, after the impact
+    (x_at, x_before), (v_at, v_before), _ = s.sample(np.array([t_impact + dt, t_impact + 0.999 * dt]))
+    assert x_at == pytest.approx(x, abs=1e-10)
+    assert v_at == pytest.approx(v1, abs=1e-10)
+    assert v_before < v1  # not regained earlier: after the impact, (1 - b) v1 rises to v1 only there
+
+
+# --- the geometry's conventions ----------------------------------------------------------------------------------
+
+BASE = dict(M=1.0, K=1.0, F=1.0, b=0.1)
+
+#: placements outside the paper's signs, each (a1, a2, a3, a4), m: impacts after the equilibrium (the audit's
+#: a1 = 0.1, a2 = 0.2 with the symmetric default; the escapement-error study's zone after it), a3 < a1 < 0,
+#: both impacts left of the centre, an impact at the centre
+OUTSIDE = [(0.1, 0.2, -0.1, -0.2), (0.05, 0.2, -0.05, -0.2), (-0.1, 0.05, -0.3, -0.4), (-0.2, -0.1, -0.05, -0.3),
+           (0.0, 0.1, 0.1, -0.1)]
+#: the paper's geometry (its Fig. 2) and the placements the workflow runs (config/paper.yaml: the checks' symmetric
+#: and asymmetric positions), each (a1, a2, a3, a4), m
+PAPER_SIGNS = [(-0.1, 0.05, 0.1, -0.05), (-0.1, 0.05, 0.2, -0.02), (-0.15, 0.0, 0.08, -0.1), (-0.1, 0.05, 0.3, 0.0),
+               (-0.3, 0.2, 0.3, -0.2), (-0.05, 0.01, 0.05, -0.01)]
+#: the escapement-error study's zones (a1, a2) by name, the second half cycle mirroring the first
+ZONES = {"paper": (-0.1, 0.05), "symmetric": (-0.1, 0.1), "before": (-0.2, -0.05), "after": (0.05, 0.2)}
+
+
+def test_the_papers_signs_are_said_for_each_placement_run():
+    assert all(Parameters(**BASE, **dict(zip(("a1", "a2", "a3", "a4"), p))).paper_signs for p in PAPER_SIGNS)
+    signs = {name: Parameters(**BASE, a1=a1, a2=a2).paper_signs for name, (a1, a2) in ZONES.items()}
+    assert signs == {"paper": True, "symmetric": True, "before": True, "after": False}
+
+
+def test_an_impact_after_the_equilibrium_is_met_moving_right_at_a1():
+    """a1 = 0.1 m, a2 = 0.2 m (a3 = -0.1, a4 = -0.2 by symmetry), F = 0, K = M = 1, released at rest at -1 m:
+    x = -cos t reaches a1 moving right at t = acos(-0.1) with v = sqrt(1 - 0.01): x v > 0, outside the paper's
+    S. With F = 0 the radius after the impact is sqrt(0.01 + 0.81 * 0.99), so a3 = -0.1 is met moving left at
+    v = -0.9 sqrt(0.99)."""
+    p = Parameters(M=1.0, K=1.0, F=0.0, b=0.1, a1=0.1, a2=0.2)
+    assert not p.paper_signs
+    run = solve_exact(p, -1.0, t_end=6.0)
+    kinds = [EventKind(int(k)) for k in run.events.kind[:3]]
+    assert kinds == [EventKind.IMPACT_A1, EventKind.ZONE_END_A2, EventKind.IMPACT_A3]
+    assert run.events.t[0] == pytest.approx(math.acos(-0.1), rel=1e-14)
+    assert run.events.v_before[0] == pytest.approx(math.sqrt(0.99), rel=1e-14)
+    assert run.events.x[0] * run.events.v_before[0] > 0
+    assert run.events.v_before[2] == pytest.approx(-0.9 * math.sqrt(0.99), rel=1e-13)
+
+
+def test_an_impact_at_a3_left_of_a1_is_met_moving_left():
+    """a3 = -0.3 m < a1 = -0.1 m, F = 0, released at rest at 1 m: x = cos t passes a1 moving left (an impact
+    there is met moving right only) and strikes a3 at t = acos(-0.3) with v = -sqrt(1 - 0.09)."""
+    p = Parameters(M=1.0, K=1.0, F=0.0, b=0.1, a1=-0.1, a2=0.05, a3=-0.3, a4=-0.4)
+    assert not p.paper_signs
+    run = solve_exact(p, 1.0, n_cycles=2)
+    assert EventKind(int(run.events.kind[0])) == EventKind.IMPACT_A3
+    assert run.events.t[0] == pytest.approx(math.acos(-0.3), rel=1e-14)
+    assert run.events.v_before[0] == pytest.approx(-math.sqrt(0.91), rel=1e-14)
+
+
+@pytest.mark.parametrize("positions", OUTSIDE + PAPER_SIGNS)
+def test_impacts_and_zone_ends_are_met_in_their_direction_and_on_the_papers_set_only_with_its_signs(positions):
+    p = Parameters(**BASE, **dict(zip(("a1", "a2", "a3", "a4"), positions)))
+    run = solve_exact(p, -1.0, n_cycles=5)
+    assert run.status == Status.COMPLETED
+    direction = {EventKind.IMPACT_A1: 1, EventKind.ZONE_END_A2: 1, EventKind.IMPACT_A3: -1, EventKind.ZONE_END_A4: -1}
+    expected = np.array([direction[EventKind(int(k))] for k in run.events.kind])
+    np.testing.assert_array_equal(np.sign(run.events.v_before), expected)
+    impacts = np.isin(run.events.kind, [EventKind.IMPACT_A1, EventKind.IMPACT_A3])
+    on_papers_set = run.events.x[impacts] * run.events.v_before[impacts] < 0
+    assert on_papers_set.all() == p.paper_signs
+
+
+@pytest.mark.parametrize("positions", OUTSIDE)
+def test_the_mirror_image_of_a_placement_runs_as_its_mirror(positions):
+    """Under x -> -x the impact at a1 (moving right) becomes the one at a3 (moving left): (a1, a2, a3, a4)
+    from x0 and (-a3, -a4, -a1, -a2) from -x0 give the same times, opposite positions and velocities."""
+    a1, a2, a3, a4 = positions
+    p = Parameters(**BASE, a1=a1, a2=a2, a3=a3, a4=a4)
+    q = Parameters(**BASE, a1=-a3, a2=-a4, a3=-a1, a4=-a2)
+    one, two = solve_exact(p, 1.0, t_end=40.0), solve_exact(q, -1.0, t_end=40.0)
+    swap = {1: 3, 2: 4, 3: 1, 4: 2}
+    assert len(one.events) == len(two.events) > 8
+    np.testing.assert_array_equal([swap[int(k)] for k in one.events.kind], two.events.kind)
+    np.testing.assert_allclose(one.events.t, two.events.t, rtol=1e-12)
+    np.testing.assert_allclose(one.events.x, -two.events.x, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(one.events.v_before, -two.events.v_before, rtol=1e-10)
+
+
+@pytest.mark.parametrize("positions", OUTSIDE[:3])
+def test_outside_the_papers_signs_the_solvers_agree(positions):
+    """The exact closed forms, a numerical integration of the same automaton and the ensemble's lock-step."""
+    values = dict(zip(("a1", "a2", "a3", "a4"), positions))
+    p = Parameters(**BASE, **values)
+    exact = solve_exact(p, -1.0, n_cycles=4)
+    ivp = solve_reference(p, -1.0, n_cycles=4, rtol=1e-12, record_trajectory=False)
+    ensemble = solve_ensemble(**BASE, **values, x0=-1.0, n_cycles=4)
+    np.testing.assert_allclose(ivp.cycles.period, exact.cycles.period, rtol=1e-9)
+    np.testing.assert_allclose(ensemble.cycles.period[0], exact.cycles.period, rtol=1e-12)

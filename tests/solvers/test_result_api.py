@@ -1,5 +1,5 @@
-"""What a notebook sees of a run: a short repr and its cycles and events as tables
-(``to_dataframe``); the run as a CF dataset is :func:`escapement.io.run_dataset` (tests/io)."""
+"""What a notebook sees of a run: a short repr, its cycles and events as tables (``to_dataframe``), its samples
+(the run as a CF dataset: tests/io)."""
 
 from __future__ import annotations
 
@@ -14,30 +14,19 @@ import pytest
 from escapement import EventKind, Parameters, Status, solve_ensemble, solve_exact, solve_high_precision
 
 
-# --- repr ---------------------------------------------------------------------------------------
-
-
 def test_the_repr_of_a_50_cycle_run_is_a_short_summary(run50):
     text = repr(run50)
-    assert len(text) < 1000
-    assert len(text.splitlines()) <= 12
-    assert text.splitlines()[0] == "<escapement.Solution> completed (exact)"
-    assert "completed 50 cycles" in text
-    assert "array(" not in text  # no array is printed, whatever the length of the run
-    assert f"events:     {len(run50.events)} " in text
-    assert "cycles:     50;" in text
+    assert len(text) < 1000 and len(text.splitlines()) <= 12 and "array(" not in text
+    assert text.splitlines()[0] == "<escapement.Solution> completed (exact)" and "completed 50 cycles" in text
+    assert f"events:     {len(run50.events)} " in text and "cycles:     50;" in text
     params = next(line for line in text.splitlines() if line.startswith("parameters:"))
     assert params == ("parameters: M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m, a3 = 0.1 m, "
                       "a4 = -0.05 m")
     assert "initial:    x0 = 1 m, v0 = 0 m/s" in text
     assert str(run50) == text
-
-
-def test_the_repr_does_not_grow_with_the_run():
-    p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-    short, long = (repr(solve_exact(p, 1.0, n_cycles=n, record_trajectory=False)) for n in (5, 5000))
+    short, long = (repr(solve_exact(run50.params, 1.0, n_cycles=n, record_trajectory=False)) for n in (5, 5000))
     assert len(long.splitlines()) == len(short.splitlines())
-    assert abs(len(long) - len(short)) < 20  # only the digits of the counts and times differ
+    assert abs(len(long) - len(short)) < 20  # the repr does not grow with the run: only the counts' digits differ
 
 
 def test_the_repr_of_a_regime_exit_names_it_and_its_numbers(stopped):
@@ -49,13 +38,15 @@ def test_the_repr_of_a_regime_exit_names_it_and_its_numbers(stopped):
     assert max(len(line) for line in text.splitlines()) <= 120
 
 
-def test_the_repr_of_a_high_precision_run_prints_its_numbers_as_doubles():
-    p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-    hp = solve_high_precision(p, 1.0, n_cycles=2, dps=20)
+def test_a_high_precision_run_prints_its_numbers_and_gives_its_tables_as_doubles():
+    hp = solve_high_precision(Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05), 1.0, n_cycles=2, dps=20)
     text = repr(hp)
     assert text.splitlines()[0] == "<escapement.Solution> completed (mpmath 20 digits)"
-    assert f"period {float(hp.cycles.period[-1]):.6g} s" in text
-    assert "trajectory: not kept" in text
+    assert f"period {float(hp.cycles.period[-1]):.6g} s" in text and "trajectory: not kept" in text
+    df = hp.to_dataframe("cycles")
+    assert df["largest_displacement"].dtype == np.float64
+    assert df["largest_displacement"].tolist() == [float(x) for x in hp.cycles.largest_displacement]
+    assert hp.to_dataframe("events")["event_time"].tolist() == [float(x) for x in hp.events.t]
 
 
 def test_the_repr_of_an_ensemble_counts_the_outcomes_in_a_few_lines():
@@ -88,9 +79,6 @@ def test_importing_the_solvers_imports_neither_io_nor_xarray_nor_pandas():
     assert result.stdout.strip() == "[]"
 
 
-# --- to_dataframe -------------------------------------------------------------------------------
-
-
 def test_the_cycles_dataframe_copies_the_cycle_table_its_columns_the_tables_fields(run50):
     df = run50.to_dataframe("cycles")
     assert isinstance(df, pd.DataFrame) and run50.to_dataframe().equals(df)  # cycles by default
@@ -119,21 +107,9 @@ def test_the_events_dataframe_copies_the_event_log(run50):
     assert df.attrs["long_names"]["event_velocity_after"] == "velocity just after the event"
 
 
-def test_the_dataframes_of_a_high_precision_run_hold_doubles():
-    p = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
-    hp = solve_high_precision(p, 1.0, n_cycles=2, dps=20)
-    df = hp.to_dataframe("cycles")
-    assert df["largest_displacement"].dtype == np.float64
-    assert df["largest_displacement"].tolist() == [float(x) for x in hp.cycles.largest_displacement]
-    assert hp.to_dataframe("events")["event_time"].tolist() == [float(x) for x in hp.events.t]
-
-
 def test_a_stopped_run_gives_empty_tables(stopped):
     assert stopped.status is Status.STOPPED
     assert stopped.to_dataframe("cycles").empty and stopped.to_dataframe("events").empty
-
-
-# --- sampling -----------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize(("t", "shape"), [(1.0, ()), (1, ()), (np.float32(1.0), ()), ([1.0], (1,)), ([0, 1], (2,)),

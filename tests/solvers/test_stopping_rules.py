@@ -1,13 +1,10 @@
-"""The solvers' stopping rules, each at its exact boundary and one ulp or one event either side: the end time
-``t_end`` (an event on it, a turn back inside an impulse zone on it), the number of cycles ``n_cycles`` and the
-bound on the events ``max_events``, in :func:`solve_exact`, in the stream of its cycles (:func:`iter_cycles`,
-whose passes resume the loop) and in the ensemble; and the largest counts a run may ask for.
+"""The solvers' stopping rules, each at its exact boundary and one ulp or one event either side: an event, or a turn
+back inside a zone, on the end time ``t_end``; ``n_cycles``; ``max_events``; in :func:`solve_exact`, in the stream
+of its cycles (whose blocks resume the loop) and in the ensemble; and the largest counts a run may ask for.
 
-The times come from closed forms written here, not from the solver: from rest at ``x0`` the free arc
-``x(t) = x0 cos(w t)`` (centre 0) reaches ``a1`` at ``arccos(a1 / x0) / w``, and inside the zone after the impact
-at a1 the arc about ``F / K`` turns where its velocity vanishes. The counts come from the automaton's cycle (the
-impact at a1, the end of the zone at a2, the impact at a3, the end of the zone at a4): ``n`` cycles from the
-left are ``4 n + 1`` events.
+The times are closed forms written here: from rest at ``x0`` the free arc ``x(t) = x0 cos(w t)`` reaches ``a1``
+at ``arccos(a1 / x0) / w``, and in the zone after the impact at a1 the arc about ``F / K`` turns where its velocity
+vanishes. The counts are the automaton's cycle (a1, a2, a3, a4): ``n`` cycles from the left are ``4 n + 1`` events.
 """
 
 from __future__ import annotations
@@ -147,16 +144,12 @@ def test_the_event_bound_across_the_stream_s_passes(max_events):
 # -- the largest counts ------------------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("limits", [dict(n_cycles=MAX_CYCLES), dict(t_end=1.0, max_events=MAX_EVENTS)])
-def test_the_largest_counts_are_allowed_and_then_refused_by_the_memory_budget_alone(limits):
+@pytest.mark.parametrize("name, largest, limits", [("n_cycles", MAX_CYCLES, {}),
+                                                   ("max_events", MAX_EVENTS, dict(t_end=1.0))])
+def test_the_largest_count_is_refused_by_the_memory_budget_alone_and_one_more_by_its_name(name, largest, limits):
     with pytest.raises(MemoryBudgetError):
-        solve_exact(FIG3A, X0, **limits)
-
-
-@pytest.mark.parametrize("limits, name", [(dict(n_cycles=MAX_CYCLES + 1), "n_cycles"),
-                                          (dict(t_end=1.0, max_events=MAX_EVENTS + 1), "max_events")])
-def test_one_more_than_the_largest_count_is_refused_by_name(limits, name):
+        solve_exact(FIG3A, X0, **limits, **{name: largest})
     with pytest.raises(ParameterError) as refused:
-        solve_exact(FIG3A, X0, **limits)
-    assert not isinstance(refused.value, MemoryBudgetError) and refused.value.name == name
-    assert refused.value.value == limits[name]
+        solve_exact(FIG3A, X0, **limits, **{name: largest + 1})
+    assert not isinstance(refused.value, MemoryBudgetError)
+    assert (refused.value.name, refused.value.value) == (name, largest + 1)

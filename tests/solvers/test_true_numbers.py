@@ -55,8 +55,10 @@ def test_a_value_prints_on_its_side_of_every_bound(value, bounds, digits):
     assert all(order(read, b) == order(value, b) for b in bounds), (value, bounds)
 
 
-def test_a_value_equal_to_its_bound_prints_as_the_bound():
+def test_a_value_equal_to_its_bound_prints_as_the_bound_and_sizes_that_differ_print_unlike():
     assert compared(0.1, [0.1]) == "0.1" and compared(2 / 3, [2 / 3], digits=6) == exact(2 / 3)
+    estimate, budget = texts([2_000_000_002 / 1e9, 2_000_000_001 / 1e9], 3)  # both "2" GB to three digits
+    assert float(estimate) > float(budget)
 
 
 def params(**changes) -> Parameters:
@@ -132,12 +134,6 @@ def test_the_turned_back_message_prints_the_turning_point_on_its_side_of_the_zon
 def test_the_end_time_prints_as_typed(t_end, text):
     run = solve_exact(params(), 1.0, t_end=t_end)
     assert run.message.startswith(f"reached t_end = {text} s after ")
-
-
-def test_sizes_that_differ_print_unlike_in_gigabytes():
-    estimate, budget = 2_000_000_002, 2_000_000_001  # both "2 GB" to three digits
-    printed = texts([estimate / 1e9, budget / 1e9], 3)
-    assert float(printed[0]) > float(printed[1])
 
 
 def test_a_summary_of_times_that_differ_prints_them_apart():
