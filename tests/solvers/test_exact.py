@@ -23,14 +23,6 @@ PAPER = Parameters(M=1, K=1, F=1, b=0.1, a1=-0.1, a2=0.05)
 ASYMMETRIC = Parameters(M=0.7, K=3.0, F=0.4, b=0.3, a1=-0.12, a2=0.02, a3=0.09, a4=-0.04)
 
 
-def test_the_first_impact_from_rest_is_the_closed_form():
-    # From x0 = 1 at rest, x = cos t reaches a3 = 0.1 moving left at t = acos(0.1).
-    s = solve_exact(PAPER, 1.0, n_cycles=1)
-    assert s.events.kind[0] == EventKind.IMPACT_A3
-    assert s.events.t[0] == pytest.approx(math.acos(0.1), rel=1e-15)
-    assert s.events.v_before[0] == pytest.approx(-math.sqrt(1 - 0.01), rel=1e-15)
-
-
 @pytest.mark.parametrize("params, x0", [(PAPER, 1.0), (Parameters(M=1, K=1, F=0.5, b=0.1, a1=-0.1, a2=0.05), 3.0),
                                         (ASYMMETRIC, 0.8)])
 def test_cycles_follow_the_map_of_eq16_to_1e13_over_10_000_cycles(params, x0):

@@ -1,16 +1,10 @@
-"""Grazing: a turning point a margin beyond or short of a surface, built in closed form.
-
-Each case starts at rest at ``x0`` and its first decisive arc turns ``margin`` beyond a surface (short of it where
-negative): the zone (a1, a2) entered at a1 beyond or short of a2, the zone (a4, a3) entered at a3 and its end a4,
-and the free swing beyond or short of a3, or of a1. An impact position is reached moving towards the free centre,
-so only just after a turning point; a zone's end lies beyond the zone's centre and is reached just before one (the
-zones here are narrower than their ends' distance from the centre: the arc from a1 about F/K turns at or beyond
-2 F/K - a1 = 0.04 m, short of a2 = 0.05 m).
-
-The release comes from the closed form in 50 digits: from rest at ``x0`` the free arc reaches the impact position
-``p`` with ``v**2 = w**2 (x0**2 - p**2)``, the impact keeps ``(1 - b)`` of it, and the zone arc about ``c`` through
-``(p, v+)`` turns at ``c +- R``, ``R**2 = (p - c)**2 + (v+ / w)**2``. The margin the rounded ``x0`` gives is
-computed again from it, so the expected outcome is the closed form's, not a solver's.
+"""Grazing: from rest at ``x0``, a first decisive arc that turns ``margin`` beyond a surface (short of it where
+negative): a zone's end (a2 after a1, a4 after a3; reached just before a turning point, the zones being narrower
+than their ends' distance from their centres) or an impact position (a3 or a1, reached just after one). The release
+is the closed form's, in 50 digits: the free arc reaches the impact position ``p`` with ``v**2 = w**2 (x0**2 -
+p**2)``, the impact keeps ``(1 - b)`` of it, and the zone arc about ``c`` through ``(p, v+)`` turns at ``c +- R``,
+``R**2 = (p - c)**2 + (v+ / w)**2``; the margin the rounded ``x0`` gives is computed again, so the expected outcome
+is the closed form's, not a solver's.
 """
 
 from __future__ import annotations
@@ -51,8 +45,7 @@ A1_GEOMETRY = Parameters(M=1.0, K=1.0, F=0.0, b=0.1, a1=-0.1, a2=0.0, a3=0.2, a4
 DIGITS = 50
 
 
-def _mp(value: float) -> mpmath.mpf:
-    return mpmath.mpf(value)  # the float's exact binary value
+_mp = mpmath.mpf  # a float's exact binary value
 
 
 @dataclass(frozen=True)
@@ -75,8 +68,7 @@ class Case:
 
     @property
     def expected_start(self) -> list[int]:
-        """The first events: the zone's entry and, if it crosses, its end; for a free swing, if it crosses, the
-        impact and the end of the zone it opens (which the zone arc, leaving towards the centre, always reaches)."""
+        """The zone's entry and, if it crosses, its end; for a swing that crosses, the impact and its zone's end."""
         if self.zone:
             entry = EventKind.IMPACT_A1 if self.surface == EventKind.ZONE_END_A2 else EventKind.IMPACT_A3
             return [int(entry), int(self.surface)] if self.crosses else [int(entry)]
@@ -84,8 +76,7 @@ class Case:
         return [int(self.surface), int(end)] if self.crosses else []
 
     @property
-    def expected_exit(self) -> Status | None:
-        """The outcome (None: the run goes on)."""
+    def expected_exit(self) -> Status | None:  # None: the run goes on
         if self.crosses:
             return None if self.zone else Status.STOPPED
         return Status.TURNED_BACK_IN_ZONE if self.zone else Status.STOPPED

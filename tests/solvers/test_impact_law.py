@@ -111,21 +111,18 @@ TOLERANCE = {"solve_reference": 1e-9, "solve_high_precision": 1e-15,
              # RK4 with events applied up to a step late, at a state up to |v| h past the surface: each event
              # moves v by up to w**2 |x| h <= 1e-3 (|x| <= 1 m, w = 1, h = 1e-3); a few events' worth at most
              "solve_naive": 5e-3}
+
+
 def _velocities_and_events(name: str):
-    """The velocities before the impacts at a1, the amplitudes, the event log (None where the path keeps none)
-    and the path's result."""
+    """The velocities before the impacts at a1 and the amplitudes (the ensemble's first row, its two rows alike),
+    the event log (None where the path keeps none) and the path's result."""
     result = PATHS[name]()
-    if name.startswith("iter"):
-        tables = list(result)
-        return _concatenated(tables), _concatenated(tables, "largest_displacement"), None, result
+    tables = list(result) if name.startswith("iter") else [result.cycles]
     if name == "solve_ensemble":
-        rows, amplitude = result.cycles.velocity_before_impact, result.cycles.largest_displacement
-        assert np.array_equal(rows[0], rows[1])
-        return rows[0], amplitude[0], None, result
-    if name == "solve_cycles":
-        return result.cycles.velocity_before_impact, result.cycles.largest_displacement, None, result
-    return (_floats(result.cycles.velocity_before_impact), _floats(result.cycles.largest_displacement), result.events,
-            result)
+        assert np.array_equal(*result.cycles.velocity_before_impact)
+    v, amplitude = (_floats(np.concatenate([np.atleast_2d(getattr(t, column))[0] for t in tables]))
+                    for column in ("velocity_before_impact", "largest_displacement"))
+    return v, amplitude, getattr(result, "events", None), result
 
 
 @pytest.mark.parametrize("name", list(PATHS))

@@ -26,7 +26,7 @@ from escapement.model.status import Status
 from escapement.integrators.driver import NO_EVENT, Step, drive
 from escapement.solvers.exact import solve_exact
 from escapement.model.kinematics import arc_maximum
-from escapement.solvers.kernel import A1, PLAN, EventRun, event_block, kinds_from, rows
+from escapement.solvers.kernel import A1, PLAN, EventRun, event_block, kinds_from
 from escapement.solvers.stream import iter_cycles
 
 A2, A3, A4 = (int(k) for k in (EventKind.ZONE_END_A2, EventKind.IMPACT_A3, EventKind.ZONE_END_A4))
@@ -262,23 +262,6 @@ def test_the_plan_of_a_cycle_and_the_kinds_after_the_first_event():
     assert kinds_from(A3, 6, 3).tolist() == [A1, A2, A3]  # events 6, 7, 8 of a run that began at a3
     assert kinds_from(A1, 10**9 + 2, 2).tolist() == [A3, A4]
     assert len(kinds_from(A1, 0, 0)) == 0
-
-
-def test_the_rows_are_the_arcs_from_each_surface_to_the_one_it_watches():
-    """Row ``s``: the arc from the surface of ``s`` about the centre of its mode to the surface it watches,
-    with the energy term k = w**2 (x0 - p)(x0 + p - 2 c); the release has none (it watches two)."""
-    table = rows(ASYMMETRIC)
-    assert table[RELEASE] is None and len(table) == 5
-    positions = {A1: ASYMMETRIC.a1, A2: ASYMMETRIC.a2, A3: ASYMMETRIC.a3, A4: ASYMMETRIC.a4}
-    centres = {A1: ASYMMETRIC.zone_offset, A2: 0.0, A3: -ASYMMETRIC.zone_offset, A4: 0.0}
-    following = {A1: A2, A2: A3, A3: A4, A4: A1}
-    for state in (A1, A2, A3, A4):
-        row = table[state]
-        start, target, c = positions[state], positions[following[state]], centres[state]
-        assert (row.u0, row.q) == (start - c, target - c)
-        assert row.k == pytest.approx(ASYMMETRIC.omega2 * ((start - c) ** 2 - (target - c) ** 2), rel=1e-14)
-        assert row.direction == (1.0 if following[state] in (A1, A2) else -1.0)
-        assert row.impact == (following[state] in (A1, A3)) and row.following == following[state]
 
 
 def test_the_release_row_is_the_impact_reached_first():

@@ -1,17 +1,25 @@
 """What a notebook sees of a run: a short repr, its cycles and events as tables (``to_dataframe``), its samples
-(the run as a CF dataset: tests/io)."""
+(the run as a CF dataset: tests/io); and every number a message or a summary prints true as printed: an input
+reads back as itself, a computed value compares with its bounds and its neighbours as it does, no zero has a sign."""
 
 from __future__ import annotations
 
 import dataclasses
+import math
+import re
 import subprocess
 import sys
 
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
-from escapement import EventKind, Parameters, Status, solve_ensemble, solve_exact, solve_high_precision
+from escapement import EventKind, Parameters, Status, solve_ensemble, solve_exact, solve_high_precision, solve_reference
+from escapement.model.printing import compared, exact, texts
+from escapement.solvers.describe import ArcTable
+from escapement.solvers.outcomes import stopped_message, turned_back_message
 
 
 def test_the_repr_of_a_50_cycle_run_is_a_short_summary(run50):
@@ -121,3 +129,132 @@ def test_sample_takes_real_times_of_every_plain_kind(run50, t, shape):
     times = np.asarray(t, dtype=float)
     np.testing.assert_allclose(x, np.cos(times), rtol=1e-14)
     np.testing.assert_allclose(v, -np.sin(times), rtol=1e-14, atol=1e-15)
+
+
+#: a number printed with a minus sign and nothing but zeros: -0, -0.0, -0.000
+NEGATIVE_ZERO = re.compile(r"(?<![\w.])-0(?:\.0*)?(?![\w.])")
+finite = st.floats(allow_nan=False, allow_infinity=False)
+
+
+def order(x: float, y: float) -> int:
+    return (x > y) - (x < y)
+
+
+@given(finite)
+def test_an_input_prints_as_text_that_reads_back_as_itself(x):
+    text = exact(x)
+    assert float(text) == x and not NEGATIVE_ZERO.search(text)
+
+
+@pytest.mark.parametrize("value, text", [
+    (1.999999, "1.999999"), (2 - 4.4e-16, "1.9999999999999996"), (1 + 2**-52, "1.0000000000000002"),
+    (-0.0, "0"), (1.0, "1"), (-0.1, "-0.1"), (1 / 3, "0.3333333333333333"), (1e22, "1e+22"),
+])
+def test_an_input_prints_as_it_is_typed(value, text):
+    assert exact(value) == text
+
+
+@given(st.lists(finite, min_size=1, max_size=5), st.integers(1, 12))
+def test_computed_values_print_in_their_order(values, digits):
+    printed = texts(values, digits)
+    read = [float(t) for t in printed]
+    for i in range(len(values)):
+        assert not NEGATIVE_ZERO.search(printed[i])
+        for j in range(len(values)):
+            assert order(read[i], read[j]) == order(values[i], values[j]), (values, printed)
+
+
+@given(finite, st.lists(finite, min_size=1, max_size=3), st.integers(1, 12))
+def test_a_value_prints_on_its_side_of_every_bound(value, bounds, digits):
+    read = float(compared(value, bounds, digits))
+    assert all(order(read, b) == order(value, b) for b in bounds), (value, bounds)
+
+
+def test_a_value_equal_to_its_bound_prints_as_the_bound_and_sizes_that_differ_print_unlike():
+    assert compared(0.1, [0.1]) == "0.1" and compared(2 / 3, [2 / 3], digits=6) == exact(2 / 3)
+    estimate, budget = texts([2_000_000_002 / 1e9, 2_000_000_001 / 1e9], 3)  # both "2" GB to three digits
+    assert float(estimate) > float(budget)
+
+
+def params(**changes) -> Parameters:
+    return Parameters(**{"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, **changes})
+
+
+@pytest.mark.parametrize("b", [1 + 2**-52, 1.0000001, 1.5 + 2**-52, 2 - 4.4e-16])
+def test_the_chattering_message_tells_b_the_ratio_and_the_zeno_time_apart_from_their_bounds(b):
+    run = solve_exact(params(b=b), 1.0, n_cycles=3)
+    assert run.status.value == "chattering"
+    assert f"(b = {b!r} > 1," in run.message  # as typed, so never "b = 1 > 1" nor "b = 2"
+    ratio = float(re.search(r"v\+ = (\S+) v-", run.message).group(1))
+    assert -1 < ratio < 0 and ratio == pytest.approx(1 - b, rel=1e-9)  # the impact law: v+ = (1 - b) v-
+    t_hit = float(re.search(r"at t = (\S+) s reversed", run.message).group(1))
+    t_acc = float(re.search(r"accumulate at t = (\S+) s", run.message).group(1))
+    assert t_acc > t_hit  # the rebounds take time: never printed as the impact's own time
+    assert NEGATIVE_ZERO.search(run.message) is None
+
+
+@pytest.mark.parametrize("changes, x0", [
+    ({"b": 1.999999}, 1.0), ({"b": 0.1 + 2**-50, "F": 1 / 3}, 1 + 2**-52), ({"a1": -0.1000000000000001}, 0.7),
+    ({"a2": 0.05, "a3": 0.12345678901234, "a4": -0.0123456789}, 1.0),
+])
+def test_a_summary_prints_every_input_so_that_it_reads_back(changes, x0):
+    p = params(**changes)
+    run = solve_exact(p, x0, n_cycles=2)
+    lines = {line.split(":", 1)[0]: line.split(":", 1)[1] for line in repr(run).splitlines()[2:] if ":" in line}
+    printed = dict(re.findall(r"(\w+) = (\S+?)(?:,| |$)", lines["parameters"] + "," + lines["initial"]))
+    expected = {**p.as_dict(), "x0": x0, "v0": 0.0}
+    assert set(printed) == set(expected)
+    assert all(float(printed[name]) == value for name, value in expected.items()), printed
+
+
+def negative_zeros(run) -> list[str]:
+    texts_ = [run.message, repr(run)] + ([repr(run.trajectory)] if isinstance(run.trajectory, ArcTable) else [])
+    return [text for text in texts_ if NEGATIVE_ZERO.search(text)]
+
+
+@pytest.mark.parametrize("x0, v0", [(-0.01, 0.0), (-0.04, 1e-3), (-0.02, -1e-3)])
+def test_a_run_that_stops_at_once_from_the_left_prints_no_negative_zero(x0, v0):
+    run = solve_reference(params(), x0, v0, n_cycles=2)
+    assert run.status.value == "stopped"
+    assert negative_zeros(run) == []
+    assert "stopped at t = 0 s" in run.message
+
+
+@pytest.mark.parametrize("x0, v0", [(-0.0, -0.0), (-0.0, 0.0), (0.0, -0.0), (-0.03, -0.0)])
+def test_a_signed_zero_input_prints_without_its_sign(x0, v0):
+    run = solve_exact(params(), x0, v0, n_cycles=2)
+    assert negative_zeros(run) == []
+    runs = solve_ensemble(M=1.0, K=1.0, F=[1.0, 0.5], b=0.1, a1=-0.1, a2=0.05, x0=x0, v0=v0, n_cycles=2)
+    assert not NEGATIVE_ZERO.search(repr(runs))
+
+
+def test_the_stopped_message_prints_a_turning_point_short_of_its_bound_as_short():
+    text = stopped_message(-0.0, 0.09999999999999999, {"a1": -0.1, "a3": 0.1})
+    assert "stopped at t = 0 s" in text
+    turns = [float(x) for x in re.findall(r"turns at x = (\S+) m and x = (\S+) m", text)[0]]
+    assert turns[0] > -0.1 and turns[1] < 0.1 and turns[0] == -turns[1]
+    assert "x = 0 m and x = 0 m" in stopped_message(1.0, -0.0, {"a1": -0.1})
+
+
+@pytest.mark.parametrize("turning, end", [(0.05 - 2**-57, 0.05), (-0.1 + 1e-15, -0.1), (0.3, 0.3)])
+def test_the_turned_back_message_prints_the_turning_point_on_its_side_of_the_zone_end(turning, end):
+    text = turned_back_message(2.5, "(a1, a2)", turning, 0.01, end)
+    read = float(re.search(r"the motion turns at x = (\S+) m", text).group(1))
+    assert order(read, end) == order(turning, end)
+    assert f"end at {exact(end)} m" in text
+
+
+@pytest.mark.parametrize("t_end, text", [(1 / 3, "0.3333333333333333"), (0.1 + 0.2, "0.30000000000000004"),
+                                         (7.0, "7")])
+def test_the_end_time_prints_as_typed(t_end, text):
+    run = solve_exact(params(), 1.0, t_end=t_end)
+    assert run.message.startswith(f"reached t_end = {text} s after ")
+
+
+def test_a_summary_of_times_that_differ_prints_them_apart():
+    run = solve_exact(params(b=1 + 2**-52), 1.0, n_cycles=3)  # the rebounds accumulate just after the impact
+    text = repr(run)
+    t_final = float(re.search(r"t = 0 \.\. (\S+) s \(t_final\)", text).group(1))
+    t_acc = float(re.search(r"t_accumulation = (\S+) s", text).group(1))
+    assert math.isfinite(t_acc) and t_acc > t_final
+    assert not np.isnan(run.exit.t_accumulation)
