@@ -1,7 +1,6 @@
-"""The command line, ``escapement solve`` and ``python -m escapement solve``: its table (the names the netCDF file
-and ``to_dataframe`` use), its files (any run it can solve, the command in the netCDF file's history), its refusals
-(one table of cases, each one line before any work), its exit statuses and its defaults (the replication's
-Fig. 3 (a), read from config/paper.yaml)."""
+"""The command line, ``escapement solve`` and ``python -m escapement solve``: its table (the names of the netCDF file
+and ``to_dataframe``), its files (the command in the netCDF history), its refusals (one line before any work), its
+exit statuses and its defaults (the replication's Fig. 3 (a), from config/paper.yaml)."""
 
 from __future__ import annotations
 
@@ -59,8 +58,7 @@ def test_any_run_it_solves_it_saves_as_netcdf_and_csv_with_the_same_names(tmp_pa
     assert f"wrote {nc}, {table}" in capsys.readouterr().out
 
 
-def _hostile_paths(tmp_path: Path) -> dict[str, str]:
-    """Paths that name no file to write, made in ``tmp_path``."""
+def _hostile_paths(tmp_path: Path) -> dict[str, str]:  # paths that name no file to write, made in tmp_path
     (tmp_path / "a_file").write_text("")
     (tmp_path / "a_folder").mkdir()
     (tmp_path / "loop").symlink_to("loop")
@@ -70,13 +68,9 @@ def _hostile_paths(tmp_path: Path) -> dict[str, str]:
 
 
 @pytest.mark.parametrize("args, option, status, requirement", [
-    (["--M", "0"], "--M", INVALID_INPUT, ""),
-    (["--b", "2.5"], "--b", INVALID_INPUT, ""),
-    (["--a2", "-0.2"], "--a2", INVALID_INPUT, ""),
-    (["--x0", "nan"], "--x0", INVALID_INPUT, ""),
-    (["--cycles", "0"], "--cycles", INVALID_INPUT, ""),
-    (["--cycles", "1e12"], "--cycles", INVALID_INPUT, ""),
-    (["--F", "one"], "--F", INVALID_INPUT, ""),
+    *[([option, value], option, INVALID_INPUT, "") for option, value in (
+        ("--M", "0"), ("--b", "2.5"), ("--a2", "-0.2"), ("--x0", "nan"), ("--cycles", "0"), ("--cycles", "1e12"),
+        ("--F", "one"))],
     (["--netcdf", "{tmp}/missing/out.nc"], "--netcdf", CANNOT_WRITE, "a file in an existing directory"),
     (["--netcdf", "{tmp}/a/b/c/out.nc"], "--netcdf", CANNOT_WRITE, "a file in an existing directory"),
     (["--csv", "{parent_is_a_file}"], "--csv", CANNOT_WRITE, "a file in an existing directory"),

@@ -22,7 +22,8 @@ needs_git = pytest.mark.skipif(shutil.which("git") is None, reason="the git prog
 
 
 def git(where: Path, *args: str) -> str:
-    return subprocess.run(["git", "-C", str(where), *args], check=True, capture_output=True, text=True).stdout.strip()
+    command = ["git", "-C", str(where), "-c", "user.name=t", "-c", "user.email=t@t", *args]
+    return subprocess.run(command, check=True, capture_output=True, text=True).stdout.strip()
 
 
 def test_an_archive_gives_the_commit_git_stamped_into_the_placeholder_git_archive_substitutes():
@@ -47,8 +48,8 @@ def test_a_clone_gives_its_commit_and_dirty_when_a_source_differs(monkeypatch, t
     (root / "src" / "a.py").write_text("x = 1\n")
     (root / "README.md").write_text("generated\n")
     git(root, "init", "-q")
-    git(root, "-c", "user.name=t", "-c", "user.email=t@t", "add", ".")
-    git(root, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "one")
+    git(root, "add", ".")
+    git(root, "commit", "-qm", "one")
     head = git(root, "rev-parse", "HEAD")
     monkeypatch.setattr(provenance, "ROOT", root.resolve())
     assert git_commit(CLONE) == head
@@ -64,7 +65,7 @@ def test_a_copy_inside_another_repository_is_not_that_repository(monkeypatch, tm
     inner = outer / "archive"
     inner.mkdir(parents=True)
     git(outer, "init", "-q")
-    git(outer, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-q", "--allow-empty", "-m", "outer")
+    git(outer, "commit", "-q", "--allow-empty", "-m", "outer")
     monkeypatch.setattr(provenance, "ROOT", inner.resolve())
     assert git_commit(CLONE) == "unknown"
 

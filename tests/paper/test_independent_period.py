@@ -1,12 +1,9 @@
-"""The replicated periods, the number that contradicts the paper, against a closed form derived here,
-evaluated in 40-digit arithmetic with no code of the package.
-
-The symmetric escapement of Sec. 4 (a3 = -a1, a4 = -a2, omega = sqrt(K/M), f = F/M) on its limit
-cycle. Energy over one cycle gives the fixed point of the velocity before the impact at a1:
-v*^2 = 2 (a2 - a1) f / (2b - b^2) (Eq. (19)). A harmonic arc about a centre c is u = x - c =
-R cos(theta), v = -omega R sin(theta), with theta growing at the rate omega, so the time between two
-states of one arc is the difference of theta = atan2(-v / omega, u) over omega (theta taken on the
-branch where it grows). One half cycle:
+"""The replicated periods, the number that contradicts the paper, against a closed form derived here, evaluated in
+40-digit arithmetic with no code of the package. The symmetric escapement of Sec. 4 (a3 = -a1, a4 = -a2, omega =
+sqrt(K/M), f = F/M) on its limit cycle: energy over one cycle gives the fixed point of the velocity before the impact at
+a1, v*^2 = 2 (a2 - a1) f / (2b - b^2) (Eq. (19)). A harmonic arc about a centre c is u = x - c = R cos(theta),
+v = -omega R sin(theta), theta growing at the rate omega, so the time between two states of one arc is the difference
+of theta = atan2(-v / omega, u) over omega (on the branch where it grows). One half cycle:
 
 * the impulse zone, centred at c = f / omega^2, from a1 with v0 = (1 - b) v* to a2 with
   v1^2 = v0^2 + omega^2 ((a1 - c)^2 - (a2 - c)^2), both moving right (theta in (-pi, 0));

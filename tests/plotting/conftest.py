@@ -27,7 +27,7 @@ def poincare(n: int = 20, outcome: str = "completed", period_offset: float = 0.0
     k = np.arange(1, n + 1)
     decay = 0.6561 ** k
     natural = 2 * math.pi * math.sqrt(p["M"][1] / p["K"][1])
-    ds = xr.Dataset(
+    return xr.Dataset(
         {"velocity_before_impact": ("cycle", 1.25 - 0.25 * decay),
          "period": ("cycle", natural + period_offset + 0.01 * decay),
          "amplitude_h0": ("amplitude_cycle", 1.26 - 0.26 * 0.6561 ** np.arange(n + 1 if n else 0)),
@@ -35,14 +35,13 @@ def poincare(n: int = 20, outcome: str = "completed", period_offset: float = 0.0
         coords={"cycle": k, "amplitude_cycle": np.arange(1, n + 2 if n else 1)},
         attrs={"amplitude_variable": "amplitude_h0", "outcome": outcome, "n_cycles": 20,
                "outcome_message": "the escapement stopped at t = 0 s"})
-    return ds
 
 
-def shock(impacts=(84.4,), events=None, window=(80.0, 87.0), acceleration_window=(81.0, 85.0)) -> xr.Dataset:
+def shock(impacts=(84.4,)) -> xr.Dataset:
     """A velocity with a jump at each impact and an acceleration with a jump at each event."""
     impacts = np.asarray(impacts, dtype=float)
-    events = np.sort(np.concatenate([impacts, impacts + 0.2])) if events is None else np.asarray(events)
-    t = np.linspace(*window, 1401)
+    events = np.sort(np.concatenate([impacts, impacts + 0.2]))
+    t = np.linspace(80.0, 87.0, 1401)
     jumps = (t[:, None] >= impacts[None, :]).sum(axis=1)
     velocity = 0.9 * np.cos(0.3 * (t - 84.5)) - 0.09 * jumps
     before = np.interp(impacts, t, 0.9 * np.cos(0.3 * (t - 84.5))) - 0.09 * np.arange(impacts.size)
@@ -52,8 +51,8 @@ def shock(impacts=(84.4,), events=None, window=(80.0, 87.0), acceleration_window
          "impact_time": ("impact", impacts), "velocity_before": ("impact", before),
          "velocity_after": ("impact", after), "impulse": ("impact", after - before),
          "energy_dissipated": ("impact", 0.5 * (before**2 - after**2)), "event_time": ("event", events),
-         "velocity_window": ("window_edge", list(window)),
-         "acceleration_window": ("window_edge", list(acceleration_window)), **_parameters(F=0.5, K=0.1, x0=-3.0)},
+         "velocity_window": ("window_edge", [80.0, 87.0]), "acceleration_window": ("window_edge", [81.0, 85.0]),
+         **_parameters(F=0.5, K=0.1, x0=-3.0)},
         coords={"t": t})
 
 

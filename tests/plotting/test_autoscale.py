@@ -11,16 +11,10 @@ import pytest
 from escapement.plotting.autoscale import VARIANTS, autoscaled_axes, autoscaled_limits
 
 
-@pytest.mark.parametrize("values, step, expected", [
-    ([0.995, 1.257], 0.05, (0.95, 1.3)),  # the data range rounded outward to the ticks
-    ([1.0497, 1.2566], 0.05, (1.0, 1.3)),
-    ([1, 50], 10, (0, 50)),  # limits on ticks stay
-    ([1, 51], 10, (0, 60)),
-    ([0.8885, 2.9983], 0.5, (0.5, 3.0)),
-    ([-2.858, 3.146], 1, (-3, 4)),
-    ([-3.146, 2.858], 1, (-4, 3)),
-    ([0.1285, 0.8999], 0.1, (0.1, 0.9)),
-    ([6.2957, 6.3043], 0.0002, (6.2956, 6.3044)),
+@pytest.mark.parametrize("values, step, expected", [  # the data range rounded outward to the ticks, where not on one
+    ([0.995, 1.257], 0.05, (0.95, 1.3)), ([1.0497, 1.2566], 0.05, (1.0, 1.3)), ([1, 50], 10, (0, 50)),
+    ([1, 51], 10, (0, 60)), ([0.8885, 2.9983], 0.5, (0.5, 3.0)), ([-2.858, 3.146], 1, (-3, 4)),
+    ([-3.146, 2.858], 1, (-4, 3)), ([0.1285, 0.8999], 0.1, (0.1, 0.9)), ([6.2957, 6.3043], 0.0002, (6.2956, 6.3044)),
 ])
 def test_round_numbers_without_margin(values, step, expected):
     assert autoscaled_limits(np.array(values), step) == pytest.approx(expected, abs=1e-12)

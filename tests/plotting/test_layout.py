@@ -1,5 +1,5 @@
-"""Every figure: no text over another or outside the figure, none inside an axes (where it could cover
-data), a title of at most two lines; and the same figure saves to the same bytes."""
+"""Every figure: no text over another or outside the figure, none inside an axes (where it could cover data), a title
+of at most two lines; and the same figure saves to the same bytes."""
 
 from __future__ import annotations
 
@@ -12,17 +12,8 @@ import pytest
 from matplotlib.patches import PathPatch
 from matplotlib.path import Path
 
-from escapement.plotting import (
-    escapement_error,
-    existence_map,
-    long_run,
-    phase_diagrams,
-    poincare_map,
-    save_figure,
-    shock_detail,
-    stability_map,
-    work_precision,
-)
+from escapement.plotting import (escapement_error, existence_map, long_run, phase_diagrams, poincare_map, save_figure,
+                                 shock_detail, stability_map, work_precision)
 from escapement.plotting.style import style
 
 #: two boxes must share more than this (pixels, each way) to count as overlapping
@@ -55,10 +46,6 @@ FIGURES = {
 }
 
 
-def _overlap(a, b) -> bool:
-    return min(a.x1, b.x1) - max(a.x0, b.x0) > TOLERANCE and min(a.y1, b.y1) - max(a.y0, b.y0) > TOLERANCE
-
-
 def collisions(fig) -> list[str]:
     """Texts and legends over each other or outside the figure, and texts inside an axes."""
     fig.canvas.draw()
@@ -69,8 +56,8 @@ def collisions(fig) -> list[str]:
     boxes = [(f"{name} {text.get_text()[:30]!r}", text.get_window_extent(renderer)) for name, text in texts
              if text.get_visible() and text.get_text().strip()]
     boxes += [(f"legend {k}", legend.get_window_extent(renderer)) for k, legend in enumerate(fig.legends)]
-    found = [f"{a} overlaps {b}" for (a, box_a), (b, box_b) in itertools.combinations(boxes, 2)
-             if _overlap(box_a, box_b)]
+    found = [f"{a} overlaps {b}" for (a, p), (b, q) in itertools.combinations(boxes, 2)
+             if min(p.x1, q.x1) - max(p.x0, q.x0) > TOLERANCE and min(p.y1, q.y1) - max(p.y0, q.y0) > TOLERANCE]
     found += [f"{name} reaches outside the figure" for name, box in boxes
               if not (fig.bbox.padded(TOLERANCE).contains(box.x0, box.y0)
                       and fig.bbox.padded(TOLERANCE).contains(box.x1, box.y1))]

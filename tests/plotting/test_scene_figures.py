@@ -1,5 +1,6 @@
-"""The scene figures draw any number of panels, the caller's title, each panel's own parameters, the
-given axes exactly, and a legend of only what is drawn."""
+"""The scene figures draw any number of panels, the caller's title, each panel's own parameters, the given axes
+exactly, and a legend of only what is drawn; the words on them (values with the quantities table's symbols and units,
+releases, outcomes)."""
 
 from __future__ import annotations
 
@@ -7,8 +8,11 @@ import math
 
 import numpy as np
 import pytest
+import xarray as xr
 
+from escapement.model.quantities import quantity
 from escapement.plotting import phase_diagrams, poincare_map, shock_detail
+from escapement.plotting.captions import outcome, quantity_value, release
 
 
 def _legend(fig) -> list[str]:
@@ -42,18 +46,14 @@ def test_a_title_of_more_than_two_lines_and_axes_of_a_panel_the_figure_lacks_are
         figure(datasets, axes)
 
 
-def test_the_natural_period_is_drawn_and_listed_only_where_it_falls_inside_the_axes(datasets):
+def test_given_axes_are_drawn_exactly_the_others_autoscaled_and_the_natural_period_only_inside_them(datasets):
     inside = poincare_map({"a": datasets.poincare(period_offset=-0.004)}, "t")
-    outside = poincare_map({"a": datasets.poincare(period_offset=0.0125)}, "t")
     natural = 2 * math.pi  # M = K = 1
     assert any(line.get_ydata()[0] == natural for line in inside.axes[1].lines)
     assert any("2\u03c0/\u03c9" in entry for entry in _legend(inside))
-    assert all(line.get_ydata()[0] != natural for line in outside.axes[1].lines)
-    assert not any("2\u03c0/\u03c9" in entry for entry in _legend(outside))
-
-
-def test_given_axes_are_drawn_exactly_and_the_others_autoscaled(datasets):
     fig = poincare_map({"a": datasets.poincare()}, "t", {"a/velocity": {"y": (0.5, 3.0, 0.5), "x": (0.0, 50.0, 10.0)}})
+    assert all(line.get_ydata()[0] != natural for line in fig.axes[1].lines)  # offset 0.0125 s: outside the axes
+    assert not any("2\u03c0/\u03c9" in entry for entry in _legend(fig))
     velocity, period = fig.axes[0], fig.axes[1]
     assert velocity.get_ylim() == (0.5, 3.0) and velocity.get_xlim() == (0.0, 50.0)
     assert np.diff(velocity.get_yticks()) == pytest.approx(0.5)
@@ -89,10 +89,6 @@ def test_the_shock_detail_breaks_the_velocity_at_each_impact_and_lists_each_impa
         assert any(f"t = {t:g} s" in entry and f"impulse {j:.3g} N s" in entry for entry in listed)
 
 
-def _changes(fig) -> list[str]:
-    return [legend.get_title().get_text() for legend in fig.legends if legend.get_title().get_text()]
-
-
 def test_a_study_s_figure_names_what_its_datasets_say_it_changed_and_the_replication_s_nothing(datasets):
     """The changes come from the datasets (their study_changes), each parameter by its symbol, above the legend;
     the title keeps its two lines."""
@@ -104,10 +100,23 @@ def test_a_study_s_figure_names_what_its_datasets_say_it_changed_and_the_replica
     shock.attrs["study_changes"] = "b = 0.3 (paper: 0.1)"
     figures = [poincare_map(cases, "Poincare map, study 'asym'"), shock_detail(shock, "Shock detail, study 'b'"),
                phase_diagrams({"0.1": datasets.phase(K=0.1)}, "Phase diagrams")]
-    first, second, replication = (" ".join(_plain(t) for t in _changes(fig)).replace("\n", " ")
-                                  for fig in figures)
+    first, second, replication = (" ".join(_plain(legend.get_title().get_text()) for legend in fig.legends).strip()
+                                  .replace("\n", " ") for fig in figures)
     assert first == ("Changed from the paper's scenes: a\u2083 = 0.12 m (paper: 0.1 m), a\u2084 = -0.03 m (paper: "
                      "-0.05 m); case c added (F = 0.75 N, x(0) = -2 m)")
     assert second == "Changed from the paper's scenes: b = 0.3 (paper: 0.1)"
     assert replication == ""
     assert all(fig.get_suptitle().count("\n") <= 1 for fig in figures)
+
+
+def test_values_releases_and_outcomes_in_words(datasets):
+    # the symbol and units unbroken, with the minus of the ticks; a pure number has no units
+    a1 = quantity("a1")
+    assert quantity_value("a1", -0.1) == f"{a1.symbol}\u00a0=\u00a0\u22120.1\u00a0{a1.unit_label}"
+    assert quantity_value("b", 0.1).endswith("0.1")
+    # the initial velocity only when it is not zero
+    assert release(xr.Dataset({"x0": 3.0})) == "released from rest at x(0)\u00a0=\u00a03\u00a0m"
+    assert release(xr.Dataset({"x0": 3.0, "v0": -0.5})).endswith("with v(0)\u00a0=\u00a0\u22120.5\u00a0m/s")
+    # only a run that did not complete has an outcome
+    assert outcome(datasets.poincare()) is None and outcome(xr.Dataset()) is None
+    assert outcome(datasets.poincare(outcome="turned_back_in_zone")) == "turned back in zone after 0 of 20 cycles"

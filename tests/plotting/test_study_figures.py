@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from matplotlib.collections import QuadMesh
 
-from escapement.plotting import long_run, stability_map
+from escapement.plotting import escapement_error, existence_map, long_run, stability_map
 
 DRIFT = [3e-13, 1.7e-14, 1e-12, 1.1e-11, 1.2e-11, 6e-11, 2e-10, 1.3e-10, 3e-10]
 VELOCITY = [1e-13, 2e-12, 3e-12, 4.02e-12, 3.6e-12, 3.1e-12, 3.3e-12, 1.7e-12, 3.88e-12]
@@ -72,8 +72,6 @@ def test_the_stability_map_marks_no_cycle_apart_from_the_colour_scale(datasets):
 
 @pytest.mark.parametrize("name", ["stability", "existence", "escapement_error"])
 def test_a_map_of_a_study_names_what_its_dataset_says_it_changed(datasets, name):
-    from escapement.plotting import escapement_error, existence_map
-
     draw = {"stability": stability_map, "existence": existence_map, "escapement_error": escapement_error}[name]
     ds = getattr(datasets, name)()
     plain = draw(ds)

@@ -1,5 +1,5 @@
-"""The long run against the 50-digit reference: the exact solver and the closed forms at rounding level, streamed
-in chunks (a few hundred cycles here, so that the runs cross chunk boundaries), and the numbers of the whole table."""
+"""The long run against 50 digits: the exact solver and the closed forms at rounding level, streamed in chunks (of
+700 cycles here, so that the runs cross chunk boundaries), and the numbers of the whole table."""
 
 import math
 

@@ -1,6 +1,5 @@
-"""The Poincare map measured on the simulated motion (studies.poincare): the return map against Eq. (16), the
-ensemble's against the scalar one, the multipliers over a grid, the largest speed from the arcs and both Floquet
-multipliers of the flow, against hand-derived values and the paper's printed 0.6561."""
+"""The Poincare map measured on the simulated motion (return map, ensemble, grid, largest speed, both Floquet
+multipliers) against Eq. (16), hand-derived values and the paper's printed 0.6561."""
 
 import math
 
@@ -64,6 +63,8 @@ def test_the_paper_case_against_eqs_19_and_21_and_both_floquet_multipliers(paper
     assert m.floquet[0] == pytest.approx(1.0, abs=1e-8) and m.floquet[1] == pytest.approx(0.6561, abs=1e-8)
     with pytest.raises(ValueError, match="period = -1.0 must be a finite number > 0"):
         floquet_multipliers(PAPER, 1.0, 0.0, -1.0)
+    short = measure_cycle(PAPER, -1.0, 3)  # the first period is the first cycle's
+    assert short.first_period == m.first_period and short.first_period != m.period
 
 
 def test_largest_speed_of_one_arc_and_on_the_paper_limit_cycle(paper_cycle):
@@ -78,7 +79,3 @@ def test_largest_speed_of_one_arc_and_on_the_paper_limit_cycle(paper_cycle):
     # c = 1 m, so the speed grows to a2: v2^2 = 0.81 v1^2 + (a1^2 - a2^2) + 2 f (a2 - a1) = 0.81 * 0.3/0.19 + 0.3075
     assert paper_cycle.largest_speed == pytest.approx(math.sqrt(0.81 * 0.3 / 0.19 + 0.3075), rel=1e-12)
 
-
-def test_the_first_period_is_the_first_cycles(paper_cycle):
-    short = measure_cycle(PAPER, -1.0, 3)
-    assert short.first_period == paper_cycle.first_period and short.first_period != paper_cycle.period

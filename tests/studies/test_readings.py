@@ -1,10 +1,7 @@
-"""The candidate readings' series against closed forms derived on paper.
-
-Notation: omega = sqrt(K/M), f = F/M, symmetric geometry a3 = -a1, a4 = -a2. In free flight
-``v**2 + omega**2 x**2`` is constant; across an impulse zone passed in the direction of the force
-``v**2`` gains ``2 f`` times the zone's length on top of the spring's ``omega**2 (x_in**2 - x_out**2)``;
-an impact multiplies ``v`` by ``1 - b``.
-"""
+"""The candidate readings' series against closed forms derived on paper. Notation: omega = sqrt(K/M), f = F/M,
+symmetric geometry a3 = -a1, a4 = -a2. In free flight ``v**2 + omega**2 x**2`` is constant; across an impulse zone
+passed in the direction of the force ``v**2`` gains ``2 f`` times the zone's length on top of the spring's
+``omega**2 (x_in**2 - x_out**2)``; an impact multiplies ``v`` by ``1 - b``."""
 
 from __future__ import annotations
 
@@ -18,6 +15,7 @@ from escapement.studies.readings import (Runs, all_readings, critical_times, fig
                                          fig5_readings, largest_abs_per_cycle, step1_amplitudes)
 
 MODEL = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05}
+CASES = {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0}}  # Fig. 3's, as the configuration gives them
 B, A1, A2, A3, A4 = 0.1, -0.1, 0.05, 0.1, -0.05
 N = 50
 
@@ -50,7 +48,7 @@ def by_name(readings, panel: str, *words: str, count: str | None = None):
 
 @pytest.fixture(scope="module")
 def fig3():
-    return fig3_readings(MODEL, {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0}}, N)
+    return fig3_readings(MODEL, CASES, N)
 
 
 def test_first_velocity_from_the_right_passes_the_impact_at_a3(fig3):
@@ -125,12 +123,9 @@ def test_shock_window_draws_the_velocity_before_and_after_the_impact():
 
 
 def test_fig4_crosses_every_force_with_every_release_magnitude():
-    cases = {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0}}
-    windows = {"velocity": (0.0, 2.0), "acceleration": (0.5, 1.5)}
-    readings = fig4_readings(MODEL, cases, windows, 20, K_values=(1.0, 10.0))
-    heads = {r.name.split(";")[0] for r in readings}
-    assert heads == {f"F = {F} N, x0 = {x0} m, K = {K} N/m" for F in ("1", "0.5") for x0 in ("+1", "-1", "+3", "-3")
-                     for K in ("1", "10")}
+    readings = fig4_readings(MODEL, CASES, {"velocity": (0.0, 2.0), "acceleration": (0.5, 1.5)}, 20, K_values=(1, 10))
+    assert {r.name.split(";")[0] for r in readings} == {f"F = {F} N, x0 = {x0} m, K = {K} N/m" for F in ("1", "0.5")
+                                                       for x0 in ("+1", "-1", "+3", "-3") for K in ("1", "10")}
     assert len(readings) == 2 * 2 * 2 * 2 * 2 * 2  # F x |x0| x side x K x pairing x panel
 
 
@@ -159,8 +154,7 @@ def test_the_right_turning_point_of_cycle_n_plus_1_is_h0_of_the_mirror_run(fig3)
 
 
 def test_every_run_is_made_once_for_all_figures_and_one_that_left_the_regime_takes_its_needs_stated_again():
-    cases = {"a": {"F": 1.0, "x0": 1.0}, "b": {"F": 0.5, "x0": 3.0}}
-    settings = {"model": MODEL, "fig3": {"n_cycles": 3, "cases": cases},
+    settings = {"model": MODEL, "fig3": {"n_cycles": 3, "cases": CASES},
                 "fig4": {"velocity_window": [0.0, 4.0], "acceleration_window": [1.0, 3.0], "samples_per_second": 20},
                 "fig5": {"K": [0.1, 1.0, 10.0], "n_cycles": 2, "samples_per_period": 20}}
     runs = Runs(MODEL)

@@ -1,6 +1,5 @@
-"""The stress cases, each run once and checked against an answer derived here independently of the solver (its
-outcome, and its numbers against closed forms from the energy balance and phase-plane geometry, or sums), and its
-row of the summary table."""
+"""The stress cases, each run once and checked against an answer derived here independently of the solver (its outcome,
+and its numbers against closed forms or sums), and its row of the summary table."""
 
 from __future__ import annotations
 
@@ -49,18 +48,13 @@ def zeno_time(omega: float, distance: float, speed: float, ratio: float) -> floa
     return 2 * math.fsum(terms) / omega
 
 
-# --- the independent check of each case, check_<name>; returns the outcome the closed form predicts ---
-
-
-def check_stop_below_a1():
+def check_stop_below_a1():  # each case's independent check, check_<name>: the outcome the closed form predicts
     # x = 0.05 cos t never reaches |a1| = a3 = 0.1 m
     s = solve_exact(paper(), 0.05, n_cycles=10)
     t = np.array([1.0, 37.0, 100.0])
     x, v, _ = s.sample(t)
-    assert len(s.events) == 0
-    assert x == pytest.approx(0.05 * np.cos(t), abs=1e-15)
-    assert v == pytest.approx(-0.05 * np.sin(t), abs=1e-15)
-    assert s.exit.margin == pytest.approx(0.05, rel=1e-14)
+    assert len(s.events) == 0 and s.exit.margin == pytest.approx(0.05, rel=1e-14)
+    assert (x, v) == (pytest.approx(0.05 * np.cos(t), abs=1e-15), pytest.approx(-0.05 * np.sin(t), abs=1e-15))
     return "stopped"
 
 
@@ -74,8 +68,7 @@ def check_stop_energy_runs_out():
         radius_sq = awaited**2 + r2 * (radius_sq - awaited**2)
         events += 2
         awaited = 0.1 if awaited == 0.3 else 0.3
-    assert awaited == 0.3  # it stops waiting for a3, after the impulse at a1
-    assert len(s.events) == events
+    assert awaited == 0.3 and len(s.events) == events  # it stops waiting for a3, after the impulse at a1
     assert s.exit.turning_point == pytest.approx(math.sqrt(radius_sq), rel=1e-13)
     assert s.exit.margin == pytest.approx(0.3 - math.sqrt(radius_sq), rel=1e-12)
     return "stopped"
@@ -107,16 +100,15 @@ def check_b_small():
     # Eqs. (19), (21) hold (derived from the energy map): v* = sqrt(2 f (a2 - a1) / (2b - b^2)), mu = (1 - b)^4
     b = 1e-4
     g = stability_grid(dict(M=1.0, K=1.0, a1=-0.1, a2=0.05), np.array([b]), np.array([1.0]))
-    assert g["multiplier"][0] == pytest.approx((1 - b) ** 4, abs=1e-8)
-    assert g["fixed_point"][0] == pytest.approx(math.sqrt(0.3 / (2 * b - b * b)), rel=1e-9)
+    assert (g["multiplier"][0], g["fixed_point"][0]) == (pytest.approx((1 - b) ** 4, abs=1e-8),
+                                                         pytest.approx(math.sqrt(0.3 / (2 * b - b * b)), rel=1e-9))
     return "completed"
 
 
 def check_b_one():
     # r = 0: every impact stops the mass, and every cycle starts with v^2 = 2 f (a2 - a1) = 0.3
     s = solve_exact(paper(b=1.0), 1.0, n_cycles=5)
-    impacts = np.isin(s.events.kind, [1, 3])
-    assert np.all(s.events.v_after[impacts] == 0.0)
+    assert np.all(s.events.v_after[np.isin(s.events.kind, [1, 3])] == 0.0)
     assert s.cycles.velocity_before_impact == pytest.approx(np.full(5, math.sqrt(0.3)), rel=1e-14)
     return "completed"
 
@@ -148,10 +140,7 @@ CHATTERING = {"b_between_one_and_two": (1.5, zeno_time, 1e-12), "b_near_two": (1
               "b_two_minus_1e12": (2.0 - 1e-12, zeno_time_near_one, 1e-13)}
 
 
-# --- inputs refused before any work: the check is the error itself, with its name ---
-
-
-def _refused(run, name, row=None):
+def _refused(run, name, row=None):  # an input refused before any work: the check is the error itself, by its name
     with pytest.raises(ParameterError) as caught:
         run()
     assert (caught.value.name, caught.value.row) == (name, row)
@@ -177,16 +166,13 @@ def check_ensemble_bad_row():
 def check_memory_budget():
     from escapement.model.limits import MemoryBudgetError
 
-    # What the result must hold at the least, counted here: each cycle has 4 events, each logged as a time, a
-    # position and the velocities before and after (8 bytes each) and a kind (1 byte at least), 4 * 33 bytes;
-    # and a row of the cycle table, impact time, velocity, period and amplitude, 4 * 8 bytes: 164 bytes a
+    # What the result must hold at the least, counted here: 4 events a cycle, each a time, a position, the velocities
+    # before and after (8 bytes each) and a kind (1 byte at least); a row of the cycle table, 4 * 8 bytes: 164 bytes a
     # cycle, 1.64e11 bytes for 1e9 cycles, 82 times the 2 GB budget (2e9 bytes, a quarter of a laptop's 8 GB).
-    least = 10**9 * (4 * (4 * 8 + 1) + 4 * 8)
     with pytest.raises(MemoryBudgetError) as caught:
         solve_exact(paper(), 1.0, n_cycles=10**9, record_trajectory=False)
-    assert caught.value.name == "n_cycles" and caught.value.value == 10**9
-    assert caught.value.budget == 2_000_000_000
-    assert caught.value.estimate >= least
+    assert (caught.value.name, caught.value.value, caught.value.budget) == ("n_cycles", 10**9, 2_000_000_000)
+    assert caught.value.estimate >= 10**9 * (4 * (4 * 8 + 1) + 4 * 8)
     return "refused"
 
 
