@@ -92,25 +92,19 @@ def test_a_run_that_stops_after_some_cycles_falls_back_from_the_closed_form(x0):
     assert "the free swing a4 -> a1" in run.fallback and "cannot reach its end" in run.fallback
 
 
-def test_the_fixed_point_is_the_corrected_papers():
+def test_the_velocities_are_the_map_at_every_cycle_and_its_fixed_point_the_corrected_papers():
     for p in (params(), params(F=0.5), params(b=0.05), params(F=3.0, a1=-0.1, a2=0.05, a3=0.3, a4=0.0)):
         m = cycle_map(p)
         assert m.mu == pytest.approx((1 - p.b) ** 4, rel=1e-15)
         assert m.c == pytest.approx(corrected.map_constant(p), rel=1e-14)
         assert m.fixed_point == pytest.approx(corrected.fixed_point(p), rel=1e-14)
         assert m.fixed_point_sq == pytest.approx(m.c / (1 - m.mu), rel=1e-14)
-        run = solve_cycles(p, 1.0, n_cycles=400)
-        assert run.cycles.velocity_before_impact[-1] == math.sqrt(m.fixed_point_sq)  # converged: the float v*
+        v = solve_cycles(p, -3.0, n_cycles=400).cycles.velocity_before_impact
+        assert np.array_equal(v[1:], np.sqrt(m.velocity_sq(v[0], np.arange(1, 401)))[1:])
+        assert v[1:] ** 2 == pytest.approx(m.mu * v[:-1] ** 2 + m.c, rel=1e-14)  # v_{k+1}**2 = mu v_k**2 + c
+        assert v[-1] == math.sqrt(m.fixed_point_sq)  # converged: the float v*
     # the symmetric case in its own closed form: v***2 = 2 f (a2 - a1) / (b (2 - b))
     assert cycle_map(params()).fixed_point_sq == pytest.approx(2 * 0.15 / 0.19, rel=1e-15)
-
-
-def test_the_velocities_are_the_map_at_every_cycle():
-    p = params(F=0.5)
-    v = solve_cycles(p, -3.0, n_cycles=200).cycles.velocity_before_impact
-    m = cycle_map(p)
-    assert np.array_equal(v[1:], np.sqrt(m.velocity_sq(v[0], np.arange(1, 201)))[1:])
-    assert v[1:] ** 2 == pytest.approx(m.mu * v[:-1] ** 2 + m.c, rel=1e-14)  # v_{k+1}**2 = mu v_k**2 + c
 
 
 def test_long_runs_compute_the_distinct_cycles_only_and_repeat_the_fixed_point():
@@ -153,26 +147,17 @@ def test_cross_check_raises_on_a_disagreement_and_names_it(monkeypatch):
 # --- the engine -----------------------------------------------------------------------------------------------
 
 
-def test_the_first_impact_and_the_first_cycle_are_the_event_solvers():
-    """Time and velocity before the first impact at a1, and the events up to it, from the event loop; the first
-    row of the table those numbers."""
-    p = params()
-    exact = solve_exact(p, 1.0, n_cycles=5, record_trajectory=False)
-    t1, v1, events = cf.first_impact(p, 1.0, 0.0)
+def test_the_first_impact_is_the_event_solvers_and_the_rows_of_a_window_those_of_the_whole_run():
+    """Time, velocity and events up to the first impact at a1 are the event loop's, and the table's first row; each
+    row from its own cycle number: any window is the whole table's numbers, its end the next one's start."""
+    p = params(F=0.5)
+    exact = solve_exact(p, 3.0, n_cycles=5, record_trajectory=False)
+    t1, v1, events = cf.first_impact(p, 3.0, 0.0)
     i = int(np.flatnonzero(exact.events.kind == 1)[0])
     assert (t1, v1, events) == (exact.events.t[i], exact.events.v_before[i], i + 1)
-    assert events == 3  # from rest at x0 = 1: a3, a4, then a1
-    run = solve_cycles(p, 1.0, n_cycles=5)
-    assert (run.cycles.impact_time[0], run.cycles.velocity_before_impact[0]) == (t1, v1)
+    assert events == 3  # from rest at x0 = 3: a3, a4, then a1
     assert "reverses the velocity" in cf.first_impact(params(b=1.5), 1.0, 0.0)
     assert "did not complete" in cf.first_impact(p, 0.05, 0.0)
-
-
-def test_the_rows_of_a_window_are_those_of_the_whole_run():
-    """Each row from its own cycle number: any window of cycles is the whole table's numbers, and the end time of
-    a window the next window's first impact time."""
-    p = params(F=0.5)
-    t1, v1, _ = cf.first_impact(p, 3.0, 0.0)
     c = cf.distinct_cycles(p, cf.prepared(p), t1, v1, 1000)
     whole, end = cf.table_rows(c, 0, 1000)
     for start, stop in ((0, 1), (5, 17), (c.distinct - 3, c.distinct + 40), (999, 1000)):
@@ -180,13 +165,13 @@ def test_the_rows_of_a_window_are_those_of_the_whole_run():
         for name in COLUMNS:
             assert np.array_equal(getattr(part, name), getattr(whole, name)[start:stop]), (name, start)
         assert t_end == (whole.impact_time[stop] if stop < 1000 else end)
-    assert end == solve_cycles(p, 3.0, n_cycles=1000).t_final
+    run = solve_cycles(p, 3.0, n_cycles=1000)
+    assert end == run.t_final and (run.cycles.impact_time[0], run.cycles.velocity_before_impact[0]) == (t1, v1)
 
 
 def _fractions_of_the_largest_speed(b: float, x0: float) -> list[float]:
-    """Per cycle, the least ``v**2`` an arc arrives with as a fraction of its largest (``E = v**2 + w**2 x**2``,
-    w = 1): without force every centre is 0 and each arc keeps ``E``, arriving at ``p`` with ``E - p**2``; each
-    impact multiplies ``v**2`` by ``(1 - b)**2``."""
+    """Per cycle, the least ``v**2`` an arc arrives with over its largest (``E = v**2 + w**2 x**2``, w = 1): without
+    force each arc keeps ``E``, arriving at ``p`` with ``E - p**2``; an impact multiplies ``v**2`` by ``(1 - b)**2``."""
     r2, a, a2, fractions = (1 - b) ** 2, 0.1, 0.05, []
     v_sq = r2 * (x0 * x0 - a * a)  # from rest at x0, after the first impact, at a3; the zone and swing keep E
     while not fractions or fractions[-1] > 1e-4:
@@ -199,9 +184,8 @@ def _fractions_of_the_largest_speed(b: float, x0: float) -> list[float]:
 
 
 def test_the_closed_form_gives_way_where_an_arc_grazes_its_end_at_a_thousandth_of_its_speed_squared():
-    """Without force the swing decays until the free swing arrives at a1 grazing it: the last cycle whose arcs all
-    arrive with more than 1e-3 of their largest v**2 is the closed form's, the next the event solver's. With
-    b = 0.01 the fraction falls by 4 % a cycle: a threshold 1.05 times larger or smaller moves that cycle."""
+    """The swing decays without force until the swing to a1 grazes it: the last cycle whose arcs all arrive above 1e-3
+    of their largest v**2 is the closed form's (with b = 0.01 the fraction falls by 4 % a cycle), the next is not."""
     p = params(F=0.0, b=0.01)
     fractions = _fractions_of_the_largest_speed(0.01, 1.0)
     n = next(k for k, f in enumerate(fractions) if f <= 1e-3)  # cycles 1 .. n arrive above the threshold

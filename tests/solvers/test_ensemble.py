@@ -41,9 +41,8 @@ def assert_rows_are_the_scalar_runs(ens, params_list, x0s, v0s, n_cycles, max_ev
 @given(st.lists(st.tuples(parameters(), initial_displacement, initial_velocity), min_size=1, max_size=30),
        st.sampled_from([None, 1, 6, 57, 97, 130]), st.booleans())
 def test_the_cycles_in_lock_step_give_the_scalar_solvers_numbers(cases, max_events, amplitude):
-    """Over 40 cycles, with event bounds that end runs inside a cycle and between cycles, with and without the
-    amplitude: the trajectories that leave the lock-step cycles (an ending, an arc off the common path) and come
-    back at a later cycle than the others are followed as the scalar solver follows them."""
+    """Over 40 cycles, with event bounds inside a cycle and between cycles, with and without the amplitude: the
+    trajectories that leave the common path and come back a cycle later are followed as the scalar solver does."""
     ps, x0s, v0s = zip(*cases)
     ens = solve_ensemble(**{k: [getattr(p, k) for p in ps] for k in KEYS}, x0=np.array(x0s), v0=np.array(v0s),
                          n_cycles=40, max_events=max_events, largest_displacement=amplitude)
@@ -57,8 +56,7 @@ def test_paper_cases_over_many_cycles():
 
 
 def test_every_outcome_is_reported_with_the_scalar_runs_exit_numbers():
-    """Rows: the paper's case (a); b = 1.5 (chattering); a weak force and a long zone (turned back); released
-    inside |a1| (stopped); the exits' numbers of these runs are worked out by hand in test_kernel.py."""
+    """Completed, chattering (b = 1.5), turned back, stopped: the runs whose exits test_kernel.py works out by hand."""
     ps = [Parameters(M=1.0, K=K, F=F, b=b, a1=a1, a2=a2) for K, F, b, a1, a2 in (
         (1.0, 1.0, 0.1, -0.1, 0.05), (1.0, 1.0, 1.5, -0.1, 0.05), (100.0, 0.01, 0.1, -0.02, 0.1),
         (1.0, 1.0, 0.1, -0.1, 0.05))]
@@ -72,8 +70,7 @@ def test_every_outcome_is_reported_with_the_scalar_runs_exit_numbers():
 
 @pytest.mark.parametrize("path", ["arc_maximum", "hypot", None])
 def test_a_completed_row_with_a_non_finite_number_is_a_bug_raised(monkeypatch, path):
-    """Completed rows hold only finite numbers: an amplitude made NaN (the ensemble's arc_maximum replaced, or
-    NumPy's hypot, the top of an arc's circle c + hypot(u0, w0)) raises; without the amplitude it is NaN."""
+    """An amplitude made NaN (by arc_maximum or NumPy's hypot, the top c + hypot(u0, w0)) raises; unasked, it is NaN."""
     if path == "arc_maximum":
         monkeypatch.setattr(ensemble, "arc_maximum", lambda *args: np.full(np.shape(args[1]), np.nan))
     elif path == "hypot":
@@ -93,9 +90,8 @@ def test_a_completed_row_with_a_non_finite_number_is_a_bug_raised(monkeypatch, p
 @pytest.mark.parametrize("amplitude", [True, False])
 def test_the_ensemble_follows_the_releases_around_a_turning_point_as_the_scalar_solver(params, impact, end,
                                                                                         amplitude):
-    """Releases ulp by ulp around the one whose first zone arc turns exactly at the zone's end, mixed with
-    releases whose first zone arc turns well inside or well past it, as one ensemble: some turn back, some pass;
-    each gives the scalar solver's outcome and numbers (to rounding: NumPy's arctan2 and hypot)."""
+    """Releases ulp by ulp around the one whose first zone arc turns exactly at the zone's end, and some well inside
+    or past it, as one ensemble: each the scalar run (to rounding: NumPy's arctan2 and hypot)."""
     x0 = release_for_zone_turning_at(params, impact, mpmath.mpf(getattr(params, end)))
     releases = np.array([x0 + k * math.ulp(x0) for k in range(-60, 61)] + [0.9 * x0, 1.1 * x0, 2 * x0, x0 / 3])
     ens = solve_ensemble(*(getattr(params, k) for k in KEYS), x0=releases, n_cycles=6, largest_displacement=amplitude)

@@ -48,26 +48,18 @@ def _magnitudes(wide: bool):
 
 @st.composite
 def _cases(draw):
-    """Parameters and a state, each value of a magnitude drawn wide or near the range; the geometry of independent
-    magnitudes or of one length scale (so that more cases run)."""
+    """Parameters and a state drawn wide or near the range, the geometry of independent magnitudes or of one scale."""
     wide = draw(st.booleans())
     magnitude = _magnitudes(wide)
     sign = st.sampled_from([1.0, -1.0])
-    values = {
-        "M": draw(magnitude),
-        "K": draw(magnitude),
-        "F": draw(st.one_of(st.just(0.0), magnitude)),
-        "b": draw(st.one_of(st.floats(0.01, 1.99), magnitude) if wide else st.floats(0.01, 1.99)),
-    }
+    values = {"M": draw(magnitude), "K": draw(magnitude), "F": draw(st.one_of(st.just(0.0), magnitude)),
+              "b": draw(st.one_of(st.floats(0.01, 1.99), magnitude) if wide else st.floats(0.01, 1.99))}
     if draw(st.booleans()):
         lengths = [draw(magnitude) for _ in range(4)]
     else:
         scale = draw(magnitude)
         lengths = [scale * draw(st.floats(0.1, 10.0)) for _ in range(4)]
-    values["a1"] = -lengths[0]
-    values["a2"] = values["a1"] + lengths[1]
-    values["a3"] = lengths[2]
-    values["a4"] = values["a3"] - lengths[3]
+    values.update(a1=-lengths[0], a2=-lengths[0] + lengths[1], a3=lengths[2], a4=lengths[2] - lengths[3])
     state = st.one_of(magnitude, _magnitudes(True))  # now and then out of range when the parameters are not
     x0 = draw(sign) * draw(state)
     v0 = draw(sign) * draw(st.one_of(st.just(0.0), state))
@@ -119,8 +111,8 @@ def test_every_input_is_refused_before_any_work_or_run_to_finite_numbers(case):
 
 
 def test_at_the_corners_of_the_range_the_runs_complete_with_finite_numbers_and_the_ensemble_agrees():
-    """M, K in {1e-50, 1e50}, F in {0, 1e-50, 1e50}, positions near 1e-50 or 1e50, released beyond the impact
-    positions or inside them at the largest speed: omega, F/K and v0/omega span 1e-100 .. 1e100."""
+    """M, K in {1e-50, 1e50}, F in {0, 1e-50, 1e50}, positions near 1e-50 or 1e50, released beyond the impacts or
+    inside them at the largest speed: omega, F/K and v0/omega span 1e-100 .. 1e100."""
     rows = []
     for M, K, F, s in itertools.product((1e-50, 1e50), (1e-50, 1e50), (0.0, 1e-50, 1e50), (1e-50, 2.5e49)):
         rows.append(dict(M=M, K=K, F=F, b=0.1, a1=-2 * s, a2=s, x0=4 * s, v0=0.0))

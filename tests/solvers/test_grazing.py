@@ -148,8 +148,7 @@ def zone_end_crossing(case: Case) -> tuple[float, float]:
 
 
 def assert_consistent(run, case: Case) -> None:
-    """A valid outcome whatever the margin: every surface crossed in its direction, and an exit's turning point
-    short of (or on) the surface it did not pass."""
+    """Every surface crossed in its direction, an exit's turning point short of (or on) the surface not passed."""
     p = case.params
     assert run.status in (Status.COMPLETED, Status.STOPPED, Status.TURNED_BACK_IN_ZONE), run.message
     for kind, v in zip(run.events.kind, run.events.v_before):
@@ -193,9 +192,8 @@ def test_the_exact_solver_follows_the_closed_form_and_the_reference_agrees_down_
 
 @pytest.mark.parametrize("method", ["DOP853", "RK45", "LSODA", "CVODE-Adams", "CVODE-BDF"])
 def test_other_integrators_agree_down_to_their_tolerance_and_stay_consistent_below(method):
-    """At rtol 1e-10 (without dense output: a segment is integrated again where a crossing was missed), agreement
-    down to LOOSE_AGREEMENT_MARGIN and a consistent outcome below it, here at the margins above, at and below it.
-    (Radau, implicit, takes some 30 s for these runs: it is left out.)"""
+    """At rtol 1e-10 without dense output, agreement down to LOOSE_AGREEMENT_MARGIN, consistency above, at and below
+    it. (Radau, implicit, takes some 30 s for these runs: it is left out.)"""
     for case in (c for c in CASES if abs(c.margin) > 1e-9 or abs(c.margin) < 1e-11):
         ref = solve_reference(case.params, case.x0, n_cycles=3, method=method, rtol=LOOSE_RTOL,
                               record_trajectory=False)
@@ -210,8 +208,7 @@ def test_other_integrators_agree_down_to_their_tolerance_and_stay_consistent_bel
 
 
 def _a2_segment(delta: float):
-    """The zone arc of the case turning ``delta`` beyond a2 from the impact at a1, its turning point as its end
-    (closed form), and the crossing of a2."""
+    """The zone arc from a1 turning ``delta`` beyond a2, its turning point (the end) and its crossing of a2."""
     case = zone_case(EventKind.ZONE_END_A2, delta)
     p = case.params
     with mpmath.workdps(DIGITS):
@@ -270,8 +267,7 @@ class ScriptedIntegrator:
 
 @pytest.mark.parametrize("third, kind", [(0.1 - 1e-9, NO_EVENT), (0.1 + 1e-15, EventKind.IMPACT_A3)])
 def test_a_free_swing_stops_after_three_turning_points_short_of_the_awaited_impact_only(third, kind):
-    """Short of a3 = 0.1 m at three turning points the swing stops there; where the third lies beyond a3 (within
-    the integration error of the first), the swing after it crosses a3 and the run goes on."""
+    """Short of a3 at three turning points the swing stops; a third beyond a3 (the first's error) goes on."""
     a3 = A3_GEOMETRY.a3
     first = min(third, a3 - 1e-15)
     integrator = ScriptedIntegrator([Hit(1.0, 0, (first, 0.0)), Hit(2.0, 1, (-first, 0.0)), Hit(3.0, 0, (third, 0.0)),

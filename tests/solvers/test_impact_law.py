@@ -1,21 +1,13 @@
-"""The impact law is written once (:func:`escapement.model.automaton.impact_factor`, ``v+ = r v-``): patch it,
-and every solver path must follow the patched law, each checked against numbers derived here from the law
-alone.
+"""The impact law is written once (:func:`escapement.model.automaton.impact_factor`, ``v+ = r v-``): patch it, and
+every solver path must follow the patched law, checked against numbers derived here from the law alone.
 
-The patched law is ``v+ = r v-`` with ``r = 1 - 1.2 b`` (0.88 for ``b = 0.1``; the paper's is 0.9). In the
-symmetric geometry (``a3 = -a1``, ``a4 = -a2``), with ``f = F/M`` and ``beta = r**2``, energy along the arcs of
-a half cycle gives, for the velocity ``V`` before an impact and ``V'`` before the next:
-
-* the impact multiplies ``V**2`` by ``beta``;
-* the zone it opens (length ``a2 - a1`` by symmetry) adds ``2 f (a2 - a1)`` beyond the spring's work, and the
-  spring's work from the impact position to the other impact position is ``w**2 (a1**2 - a3**2) = 0``;
-
-so ``V'**2 = beta V**2 + 2 f (a2 - a1)`` per half cycle, and per cycle (two impacts)
-``v_{k+1}**2 = beta**2 v_k**2 + 2 f (a2 - a1) (1 + beta)``, whose fixed point is
-``v***2 = 2 f (a2 - a1) (1 + beta) / (1 - beta**2) = 2 f (a2 - a1) / (1 - beta)``. For the paper's law,
-``beta = (1 - b)**2`` and ``1 - beta = b (2 - b)``: the known ``v***2 = 2 f (a2 - a1) / (b (2 - b))``.
-Released from rest at ``x0 > a3``, the first impact is at ``a3`` with ``V**2 = w**2 (x0**2 - a3**2)``, so the
-first impact at a1 comes with ``v_1**2 = beta w**2 (x0**2 - a1**2) + 2 f (a2 - a1)``.
+The patched law is ``r = 1 - 1.2 b`` (0.88 for ``b = 0.1``; the paper's is 0.9). In the symmetric geometry, with
+``f = F/M`` and ``beta = r**2``, energy along a half cycle gives for the velocity ``V`` before an impact and ``V'``
+before the next: the impact multiplies ``V**2`` by ``beta``, the zone it opens adds ``2 f (a2 - a1)``, and the
+spring's work from one impact position to the other is ``w**2 (a1**2 - a3**2) = 0``. So per cycle
+``v_{k+1}**2 = beta**2 v_k**2 + 2 f (a2 - a1) (1 + beta)``, of fixed point ``v***2 = 2 f (a2 - a1) / (1 - beta)``
+(the paper's ``2 f (a2 - a1) / (b (2 - b))``). From rest at ``x0 > a3`` the first impact is at a3 with
+``V**2 = w**2 (x0**2 - a3**2)``, so the first at a1 comes with ``v_1**2 = beta w**2 (x0**2 - a1**2) + 2 f (a2 - a1)``.
 """
 
 from __future__ import annotations
@@ -114,8 +106,7 @@ TOLERANCE = {"solve_reference": 1e-9, "solve_high_precision": 1e-15,
 
 
 def _velocities_and_events(name: str):
-    """The velocities before the impacts at a1 and the amplitudes (the ensemble's first row, its two rows alike),
-    the event log (None where the path keeps none) and the path's result."""
+    """The velocities before the impacts at a1 and the amplitudes (an ensemble's first row), the events, the result."""
     result = PATHS[name]()
     tables = list(result) if name.startswith("iter") else [result.cycles]
     if name == "solve_ensemble":
@@ -152,8 +143,7 @@ def test_every_path_follows_a_patched_impact_law(monkeypatch, name):
 
 @pytest.mark.parametrize("streamed", [False, True])
 def test_the_closed_forms_fallback_follows_a_patched_impact_law(monkeypatch, streamed):
-    """Where the closed form gives way (a grazing margin that takes every arc), the event solver makes the run,
-    under the patched law."""
+    """Where the closed form gives way (a grazing margin that takes every arc) the event solver's run follows it."""
     monkeypatch.setattr(automaton, "impact_factor", patched_factor)
     monkeypatch.setattr(closed_form, "GRAZING_SPEED_SQ", 1.0)
     if streamed:

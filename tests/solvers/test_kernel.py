@@ -124,11 +124,10 @@ def _zeno(t_hit: float, speed: float, distance: float, ratio: float) -> float:
                                              [0, mpmath.inf]))
 
 
-# closed forms of the exits below (w = 1 unless said): from rest at 0.05 m the swing turns at +-0.05 m, short of
-# |a1| = a3 = 0.1 m; with w = 10, F/K = 1e-4, the impact at a3 = 0.02 m from rest at 0.021 m comes at
-# acos(0.02/0.021)/w with v = -w sqrt(0.021**2 - 0.02**2), and the zone arc about c = -1e-4 turns at c - R after
-# the phase from its start to the bottom of the circle, atan2(w0, u0) + pi; for b = 1.5 the first impact, at a3
-# at t = acos(0.1) with |v| = sqrt(0.99), rebounds with half the speed and the spring drives the mass back to a3
+# the exits' closed forms (w = 1 unless said): from rest at 0.05 m the swing turns at +-0.05 m, short of |a1| = a3;
+# with w = 10, F/K = 1e-4, the impact at a3 = 0.02 m from rest at 0.021 m comes at acos(0.02/0.021)/w with
+# v = -w sqrt(0.021**2 - 0.02**2), and the zone arc about c = -1e-4 turns at c - R after atan2(w0, u0) + pi; for
+# b = 1.5 the impact at a3 at t = acos(0.1), |v| = sqrt(0.99), rebounds at half the speed and the spring drives it back
 _W0, _U0 = 0.9 * -math.sqrt(0.021**2 - 0.02**2), 0.02 + 1e-4
 _TURN = (math.acos(0.02 / 0.021) / 10 + (math.atan2(_W0, _U0) + math.pi) / 10, -1e-4 - math.hypot(_U0, _W0))
 _ZENO = _zeno(math.acos(0.1), 0.5 * math.sqrt(0.99), 0.1, 0.5)
@@ -255,7 +254,13 @@ def test_arcs_that_reach_their_end_at_a_turning_point_decide_as_the_phase_steppe
     assert compared >= 100, compared
 
 
-def test_the_plan_of_a_cycle_and_the_kinds_after_the_first_event():
+def test_the_plan_of_a_cycle_the_kinds_after_the_first_event_and_the_first_one():
+    """From rest at x0 = 1 the swing goes left: a3 = 0.1 first; from x0 = -1 right: a1 = -0.1 first; moving right
+    fast from x0 = 0.5, past the top and back: a3 again, after the top; from 0.05 neither is reached."""
+    assert EventRun(RunSpec(PAPER, 1.0, 0.0, RunLimits(n_cycles=1))).first == A3
+    assert EventRun(RunSpec(PAPER, -1.0, 0.0, RunLimits(n_cycles=1))).first == A1
+    assert EventRun(RunSpec(PAPER, 0.5, 3.0, RunLimits(n_cycles=1))).first == A3
+    assert EventRun(RunSpec(PAPER, 0.05, 0.0, RunLimits(n_cycles=1))).rows[RELEASE] is None
     assert PLAN == (A2, A3, A4, A1)
     assert kinds_from(A3, 0, 9).tolist() == [A3, A4, A1, A2, A3, A4, A1, A2, A3]
     assert kinds_from(A1, 0, 5).tolist() == [A1, A2, A3, A4, A1]
@@ -264,20 +269,10 @@ def test_the_plan_of_a_cycle_and_the_kinds_after_the_first_event():
     assert len(kinds_from(A1, 0, 0)) == 0
 
 
-def test_the_release_row_is_the_impact_reached_first():
-    # from rest at x0 = 1 the swing goes left: a3 = 0.1 first; from x0 = -1 right: a1 = -0.1 first;
-    # moving right fast from x0 = 0.5, past the top and back: a3 again, after the top
-    assert EventRun(RunSpec(PAPER, 1.0, 0.0, RunLimits(n_cycles=1))).first == A3
-    assert EventRun(RunSpec(PAPER, -1.0, 0.0, RunLimits(n_cycles=1))).first == A1
-    assert EventRun(RunSpec(PAPER, 0.5, 3.0, RunLimits(n_cycles=1))).first == A3
-    assert EventRun(RunSpec(PAPER, 0.05, 0.0, RunLimits(n_cycles=1))).rows[RELEASE] is None  # neither is reached
-
-
 @pytest.mark.parametrize("limits", [dict(n_cycles=150), dict(t_end=250.0), dict(n_cycles=150, max_events=501)])
 @pytest.mark.parametrize("size", [1, 3, 4, 997])
 def test_a_run_in_passes_is_the_run_in_one(limits, size):
-    """advance(n) keeps the loop's state: the columns taken after each pass, put together, are those of one
-    pass, bit for bit, and the run ends alike."""
+    """The columns taken after each pass put together are those of one pass, bit for bit, and the run ends alike."""
     one = EventRun(RunSpec(ASYMMETRIC, -0.8, 0.3, RunLimits(**limits)))
     one.advance(10**9)
     whole = one.take()
@@ -296,8 +291,7 @@ def test_a_run_in_passes_is_the_run_in_one(limits, size):
 
 
 def test_the_times_are_the_compensated_sums_of_the_arcs():
-    """Each stored time is the exactly rounded sum of the arcs' durations (angle / omega) before it, to an ulp:
-    the compensated sum does not drift over 40_000 events."""
+    """Each time is the exactly rounded sum of the durations before it, to an ulp, over 40_000 events."""
     run = EventRun(RunSpec(PAPER, 1.0, 0.0, RunLimits(n_cycles=10_000)))
     run.advance(10**9)
     t, _, angle = run.take()
@@ -307,8 +301,7 @@ def test_the_times_are_the_compensated_sums_of_the_arcs():
 
 
 def test_the_block_derives_the_events_and_the_cycles_after_the_loop():
-    """event_block: positions, the impact law and the arcs from the automaton; each period the four arcs'
-    durations summed in the order of the events, each amplitude their largest x."""
+    """Positions, jumps, arcs from the automaton; periods the durations summed in order, amplitudes the largest x."""
     run = EventRun(RunSpec(ASYMMETRIC, -0.8, 0.3, RunLimits(n_cycles=50)))
     run.advance(10**9)
     t, v_before, angle = run.take()

@@ -22,15 +22,11 @@ from escapement.solvers.stream import CHUNK_BYTES_PER_CYCLE, MAX_CHUNK, iter_cyc
 P = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 
 #: every scalar entry point, as it is called for a short run (the arguments of the run spec given by name)
-SOLVERS = {
-    "solve_exact": solve_exact,
-    "iter_cycles": iter_cycles,
-    "solve_cycles": solve_cycles,
-    "iter_closed_form_cycles": iter_closed_form_cycles,
-    "solve_reference": lambda *a, **k: solve_reference(*a, **k, record_trajectory=False),
-    "solve_high_precision": lambda *a, **k: solve_high_precision(*a, **k, dps=20),
-    "solve_naive": lambda *a, **k: solve_naive(*a, **k, step=1e-3),
-}
+SOLVERS = {"solve_exact": solve_exact, "iter_cycles": iter_cycles, "solve_cycles": solve_cycles,
+           "iter_closed_form_cycles": iter_closed_form_cycles,
+           "solve_reference": lambda *a, **k: solve_reference(*a, **k, record_trajectory=False),
+           "solve_high_precision": lambda *a, **k: solve_high_precision(*a, **k, dps=20),
+           "solve_naive": lambda *a, **k: solve_naive(*a, **k, step=1e-3)}
 #: bad arguments of the run spec, one of each kind: the checked parameters, the release, the counts
 BAD_RUNS = {"params": dict(params={"M": 1.0}), "x0": dict(x0=math.nan), "v0": dict(v0=1e51),
             "n_cycles": dict(n_cycles=2.5)}
@@ -48,40 +44,66 @@ def test_every_scalar_solver_refuses_a_bad_run_as_the_run_spec_does(entry, argum
     assert isinstance(err.value, ParameterTypeError) == (argument == "params")
 
 
-#: each solver's own options: the call, the name refused and the start of its requirement
-OPTIONS = [
-    (lambda: solve_exact(P, 1.0, n_cycles=2, record_trajectory="no"), "record_trajectory", "True or False"),
-    (lambda: solve_exact(P, 1.0, n_cycles=2, record_trajectory=1), "record_trajectory", "True or False"),
-    (lambda: iter_cycles(P, 1.0, n_cycles=2, chunk=0), "chunk", "a positive integer, at most 10_000_000"),
-    (lambda: iter_cycles(P, 1.0, n_cycles=2, chunk=True), "chunk", "a positive integer, at most 10_000_000"),
-    (lambda: iter_cycles(P, 1.0, n_cycles=2, chunk=MAX_CHUNK + 1), "chunk", "a positive integer, at most"),
-    (lambda: iter_closed_form_cycles(P, 1.0, n_cycles=2, chunk="100"), "chunk", "a positive integer"),
-    (lambda: iter_cycles(P, 1.0, n_cycles=10, chunk=1000, memory_budget=1000 * CHUNK_BYTES_PER_CYCLE - 1), "chunk",
-     "at most 999 for the run to fit its memory budget: it would store chunks of 128 bytes a cycle, an estimated "
-     "128_000 bytes, over the memory budget of 127_999 bytes"),
-    (lambda: solve_reference(P, 1.0, n_cycles=2, method="rk4"), "method",
+@pytest.fixture(scope="module")
+def run():
+    return solve_exact(P, 1.0, n_cycles=2)
+
+
+#: each solver's own options, and the methods of a run of 2 cycles: the call, the name refused, the flat index and
+#: the start of the requirement
+REFUSALS = [
+    (lambda r: solve_exact(P, 1.0, n_cycles=2, record_trajectory="no"), "record_trajectory", None, "True or False"),
+    (lambda r: solve_exact(P, 1.0, n_cycles=2, record_trajectory=1), "record_trajectory", None, "True or False"),
+    (lambda r: iter_cycles(P, 1.0, n_cycles=2, chunk=0), "chunk", None, "a positive integer, at most 10_000_000"),
+    (lambda r: iter_cycles(P, 1.0, n_cycles=2, chunk=True), "chunk", None, "a positive integer, at most 10_000_000"),
+    (lambda r: iter_cycles(P, 1.0, n_cycles=2, chunk=MAX_CHUNK + 1), "chunk", None, "a positive integer, at most"),
+    (lambda r: iter_closed_form_cycles(P, 1.0, n_cycles=2, chunk="100"), "chunk", None, "a positive integer"),
+    (lambda r: iter_cycles(P, 1.0, n_cycles=10, chunk=1000, memory_budget=1000 * CHUNK_BYTES_PER_CYCLE - 1), "chunk",
+     None, "at most 999 for the run to fit its memory budget: it would store chunks of 128 bytes a cycle, an "
+     "estimated 128_000 bytes, over the memory budget of 127_999 bytes"),
+    (lambda r: solve_reference(P, 1.0, n_cycles=2, method="rk4"), "method", None,
      "one of 'RK23', 'RK45', 'DOP853', 'Radau', 'BDF', 'LSODA', 'CVODE-Adams', 'CVODE-BDF'"),
-    (lambda: solve_reference(P, 1.0, n_cycles=2, rtol=1.0), "rtol", "in the open interval (0, 1), dimensionless"),
-    (lambda: solve_reference(P, 1.0, n_cycles=2, atol=0.0), "atol",
+    (lambda r: solve_reference(P, 1.0, n_cycles=2, rtol=1.0), "rtol", None,
+     "in the open interval (0, 1), dimensionless"),
+    (lambda r: solve_reference(P, 1.0, n_cycles=2, atol=0.0), "atol", None,
      "> 0 (m), or None for rtol times the run's length scale"),
-    (lambda: solve_reference(P, 1.0, n_cycles=2, method="CVODE-BDF"), "record_trajectory",
+    (lambda r: solve_reference(P, 1.0, n_cycles=2, method="CVODE-BDF"), "record_trajectory", None,
      "False with method = 'CVODE-BDF', which keeps no dense output"),
-    (lambda: solve_high_precision(P, 1.0, n_cycles=2, dps=16), "dps", "an integer >= 17, at most 1_000"),
-    (lambda: solve_high_precision(P, 1.0, n_cycles=2, dps=1.5), "dps", "an integer >= 17, at most 1_000"),
+    (lambda r: solve_high_precision(P, 1.0, n_cycles=2, dps=16), "dps", None, "an integer >= 17, at most 1_000"),
+    (lambda r: solve_high_precision(P, 1.0, n_cycles=2, dps=1.5), "dps", None, "an integer >= 17, at most 1_000"),
     # RK4 on x'' = -w**2 x is unstable from w h = 2.8 and passes events unseen well before: at most 1/20 of the
     # natural period 2 pi / w, printed as typed back (a step just above it cannot print below it)
-    (lambda: solve_naive(P, 1.0, n_cycles=1, step=2 * math.pi / 20 * (1 + 1e-12)), "step",
+    (lambda r: solve_naive(P, 1.0, n_cycles=1, step=2 * math.pi / 20 * (1 + 1e-12)), "step", None,
      "> 0 and at most 0.3141592653589793 s, 1/20 of the natural period 2 pi / omega"),
-    (lambda: solve_naive(P, 1.0, n_cycles=1, step=0.0), "step", "> 0 and at most 0.3141592653589793 s"),
-    (lambda: solve_naive(P, 1.0, n_cycles=1, step=np.array(0.01)), "step", "a single real number, not an array"),
+    (lambda r: solve_naive(P, 1.0, n_cycles=1, step=0.0), "step", None, "> 0 and at most 0.3141592653589793 s"),
+    (lambda r: solve_naive(P, 1.0, n_cycles=1, step=np.array(0.01)), "step", None,
+     "a single real number, not an array"),
+    (lambda r: r.sample(None), "t", None, "a real number or a 1-d array of them (s)"),
+    (lambda r: r.sample("1.0"), "t", None, "a real number"),
+    (lambda r: r.sample([0.0, np.bool_(True)]), "t", 1, "a real number"),
+    (lambda r: r.sample(np.ma.array([1.0, 2.0], mask=[False, True])), "t", 1, "a real number, not a masked element"),
+    (lambda r: r.sample([0.0, math.inf]), "t", 1, "finite"),
+    (lambda r: r.sample([[0.5]]), "t", None, "a real number or a 1-d array of them (s), not of shape (1, 1)"),
+    (lambda r: r.trajectory.sample("1.0"), "t", None, "a real number"),
+    (lambda r: r.to_dataframe("impacts"), "table", None, "one of 'cycles', 'events'"),
+    (lambda r: r.to_dataframe(["cycles"]), "table", None, "one of 'cycles', 'events'"),
+    (lambda r: solve_exact(P, 1.0, n_cycles=2, record_trajectory=False).sample([0.5]), "record_trajectory", None,
+     "True in the solve that made this run, to sample its trajectory (this run kept none: solve again with "
+     "record_trajectory=True)"),
+    (lambda r: solve_ensemble(1.0, 1.0, [0.5, 1.0], 0.1, -0.1, 0.05, n_cycles=2).outcome(2), "i", None,
+     "an integer in [0, 1], a row of the 2 trajectories"),
+    (lambda r: solve_ensemble(1.0, 1.0, [0.5, 1.0], 0.1, -0.1, 0.05, n_cycles=2).outcome(True), "i", None,
+     "an integer in [0, 1], a row of the 2 trajectories"),
 ]
 
 
-@pytest.mark.parametrize("call, name, requirement", OPTIONS, ids=[f"{n}-{i}" for i, (_, n, _) in enumerate(OPTIONS)])
-def test_each_solver_refuses_a_bad_option_naming_it(call, name, requirement):
+@pytest.mark.parametrize("call, name, row, requirement", REFUSALS, ids=[f"{r[1]}-{i}" for i, r in enumerate(REFUSALS)])
+def test_each_solver_option_and_each_results_method_refuses_a_bad_argument_naming_it(run, call, name, row,
+                                                                                     requirement):
     with pytest.raises(ParameterError) as err:
-        call()
-    assert err.value.name == name and err.value.requirement.startswith(requirement), err.value.requirement
+        call(run)
+    assert (err.value.name, err.value.row) == (name, row) and err.value.requirement.startswith(requirement), \
+        err.value.requirement
 
 
 #: the ensemble's own refusals: the inputs changed (each a column of three rows), the name, row and requirement
@@ -128,36 +150,3 @@ def test_inputs_too_large_are_refused_from_their_shapes_before_any_array_is_made
                                                      r"most 1_020_408 for the run to fit its memory budget"):
             solve_ensemble(M=1.0, K=1.0, F=np.broadcast_to(1.0, (10**8,)), b=0.1, a1=-0.1, a2=0.05, n_cycles=20)
     assert not validate.called
-
-
-@pytest.fixture(scope="module")
-def run():
-    return solve_exact(P, 1.0, n_cycles=2)
-
-
-#: the results' methods: the call on a run of 2 cycles, the name refused, the flat index and the requirement
-METHODS = [
-    (lambda r: r.sample(None), "t", None, "a real number or a 1-d array of them (s)"),
-    (lambda r: r.sample("1.0"), "t", None, "a real number"),
-    (lambda r: r.sample([0.0, np.bool_(True)]), "t", 1, "a real number"),
-    (lambda r: r.sample(np.ma.array([1.0, 2.0], mask=[False, True])), "t", 1, "a real number, not a masked element"),
-    (lambda r: r.sample([0.0, math.inf]), "t", 1, "finite"),
-    (lambda r: r.sample([[0.5]]), "t", None, "a real number or a 1-d array of them (s), not of shape (1, 1)"),
-    (lambda r: r.trajectory.sample("1.0"), "t", None, "a real number"),
-    (lambda r: r.to_dataframe("impacts"), "table", None, "one of 'cycles', 'events'"),
-    (lambda r: r.to_dataframe(["cycles"]), "table", None, "one of 'cycles', 'events'"),
-    (lambda r: solve_exact(P, 1.0, n_cycles=2, record_trajectory=False).sample([0.5]), "record_trajectory", None,
-     "True in the solve that made this run, to sample its trajectory (this run kept none: solve again with "
-     "record_trajectory=True)"),
-    (lambda r: solve_ensemble(1.0, 1.0, [0.5, 1.0], 0.1, -0.1, 0.05, n_cycles=2).outcome(2), "i", None,
-     "an integer in [0, 1], a row of the 2 trajectories"),
-    (lambda r: solve_ensemble(1.0, 1.0, [0.5, 1.0], 0.1, -0.1, 0.05, n_cycles=2).outcome(True), "i", None,
-     "an integer in [0, 1], a row of the 2 trajectories"),
-]
-
-
-@pytest.mark.parametrize("call, name, row, requirement", METHODS, ids=[str(i) for i in range(len(METHODS))])
-def test_the_results_methods_refuse_a_bad_argument_naming_it(run, call, name, row, requirement):
-    with pytest.raises(ParameterError) as err:
-        call(run)
-    assert (err.value.name, err.value.row) == (name, row) and err.value.requirement.startswith(requirement)
