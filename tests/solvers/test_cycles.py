@@ -1,7 +1,6 @@
-"""The per-cycle closed forms (escapement.solvers.cycles, and closed_form, its engine) against the event solver,
-number by number: the first impact from the event loop, the distinct cycles, where the closed form gives way to
-the event solver, the compensated impact times, the transient's memory; and both solvers' cycles in chunks (their
-endings: test_kernel.py, their memory: test_memory.py)."""
+"""The per-cycle closed forms (cycles, and closed_form, its engine) against the event solver, number by number: the
+first impact, the distinct cycles, where the closed form gives way, the compensated impact times, the transient's
+memory; and both solvers' cycles in chunks (their endings: test_kernel.py, their memory: test_memory.py)."""
 
 import dataclasses
 import math
@@ -243,8 +242,8 @@ def test_a_run_of_a_billion_cycles_is_streamed_without_refusal():
 
 def _streamed(chunks):
     tables = list(chunks)
-    return ({name: np.concatenate([np.empty(0)] + [getattr(t, name) for t in tables]) for name in COLUMNS},
-            [len(t) for t in tables])
+    columns = {name: np.concatenate([np.empty(0), *(getattr(t, name) for t in tables)]) for name in COLUMNS}
+    return columns, [len(t) for t in tables]
 
 
 @pytest.mark.parametrize("chunk", [1, 7, 100, 10_000])

@@ -28,13 +28,12 @@ def assert_rows_are_the_scalar_runs(ens, params_list, x0s, v0s, n_cycles, max_ev
         assert ens.outcome(i) == run.status and ens.success[i] == run.success
         n = len(run.cycles)
         for name in NAMES if amplitude else NAMES[:-1]:
-            got = getattr(ens.cycles, name)[i]
-            assert got[:n] == pytest.approx(getattr(run.cycles, name), rel=1e-13, abs=1e-300), name
-            assert np.isnan(got[n:]).all()
-        assert ens.t_final[i] == (pytest.approx(run.t_final, rel=1e-13) if np.isfinite(run.t_final) else np.inf)
-        for name in ("turning_point", "margin", "t_accumulation"):
-            got, want = getattr(ens, f"exit_{name}")[i], getattr(run.exit, name)
-            assert got == pytest.approx(want, rel=1e-12, abs=1e-15, nan_ok=True), name
+            got, want = getattr(ens.cycles, name)[i], getattr(run.cycles, name)
+            assert got[:n] == pytest.approx(want, rel=1e-13, abs=1e-300) and np.isnan(got[n:]).all(), name
+        assert ens.t_final[i] == pytest.approx(run.t_final, rel=1e-13)  # inf equals inf
+        exits = (ens.exit_turning_point[i], ens.exit_margin[i], ens.exit_t_accumulation[i])
+        assert exits == pytest.approx((run.exit.turning_point, run.exit.margin, run.exit.t_accumulation), rel=1e-12,
+                                      abs=1e-15, nan_ok=True)
 
 
 @settings(max_examples=40, deadline=None)

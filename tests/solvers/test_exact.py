@@ -1,16 +1,10 @@
-"""The exact solver against closed forms derived by hand: the first impact, the map of Eq. (16), the energy
-balance of the impacts and the zones, the arcs between them, the amplitude, where the speed is regained, what a run
-holds (every way a run ends, with its message: test_kernel.py); and the geometry's conventions: the paper's signs
-a1 < 0 < a3, and the jump set read by the direction of motion for any other placement (an impact met at or after
-the equilibrium, as in the escapement-error study's zone after it).
-
-The solvers' stopping rules, each at its exact boundary and one ulp or one event either side: an event, or a turn
-back inside a zone, on the end time ``t_end``; ``n_cycles``; ``max_events``; in :func:`solve_exact`, in the stream
-of its cycles (whose blocks resume the loop) and in the ensemble; and the largest counts a run may ask for.
-
-The times are closed forms written here: from rest at ``x0`` the free arc ``x(t) = x0 cos(w t)`` reaches ``a1``
-at ``arccos(a1 / x0) / w``, and in the zone after the impact at a1 the arc about ``F / K`` turns where its velocity
-vanishes. The counts are the automaton's cycle (a1, a2, a3, a4): ``n`` cycles from the left are ``4 n + 1`` events.
+"""The exact solver against closed forms derived by hand: the map of Eq. (16), the energy balance of the impacts
+and the zones, the arcs, the amplitude, where the speed is regained, what a run holds (how it ends: test_kernel.py);
+the geometry's conventions, the paper's signs a1 < 0 < a3 and the jump set read by the direction of motion for any
+other placement; and the stopping rules at their exact boundaries and one ulp or one event either side (an event or
+a turn back on ``t_end``, ``n_cycles``, ``max_events``; in the run, its stream and the ensemble), the times closed
+forms (from rest at ``x0`` the free arc ``x0 cos(w t)`` reaches ``a1`` at ``arccos(a1 / x0) / w``, the zone arc about
+``F / K`` turns where its velocity vanishes), the counts the automaton's (``n`` cycles from the left: ``4 n + 1``).
 """
 
 import math
@@ -91,9 +85,8 @@ def test_energy_is_conserved_along_each_arc_and_x_is_continuous_at_the_events():
 
 @pytest.mark.parametrize("params, x0", [(PAPER, 1.0), (ASYMMETRIC, 0.8)])
 def test_the_amplitude_is_the_top_of_the_free_swing_from_a2(params, x0):
-    """In a regular cycle only the free arc from a2 to a3 passes the top of its circle, so the amplitude is its
-    radius sqrt(a2**2 + (v2 / w)**2), with v2 at a2 from energy through the zone (a1, a2) about c = F/K:
-    v2**2 = ((1 - b) v1)**2 + w**2 ((a1 - c)**2 - (a2 - c)**2), v1 the velocity before the impact at a1."""
+    """Only the free arc from a2 to a3 passes the top of its circle, sqrt(a2**2 + (v2 / w)**2), energy through the
+    zone (a1, a2) about c = F/K giving v2**2 = ((1 - b) v1)**2 + w**2 ((a1 - c)**2 - (a2 - c)**2) from v1 at a1."""
     s = solve_exact(params, x0, n_cycles=200, record_trajectory=False)
     w2, c, a1, a2 = params.omega2, params.F / params.K, params.a1, params.a2
     v2_sq = ((1 - params.b) * s.cycles.velocity_before_impact) ** 2 + w2 * ((a1 - c) ** 2 - (a2 - c) ** 2)
@@ -133,8 +126,7 @@ def test_a_completed_run_holds_its_events_cycles_and_arcs():
     assert len(s.events.of_kind(EventKind.IMPACT_A1)) == 101 and s.cycles.cycle.tolist() == list(range(1, 101))
     # the arcs start at the release and at each event, over the loop's own buffers (no copy)
     assert s.trajectory.t_start[0] == 0.0 and s.trajectory.t_start[1:].tolist() == s.events.t[:-1].tolist()
-    for column in (s.events.t, s.events.v_before):
-        assert not column.flags.owndata and column.base is not None
+    assert all(not column.flags.owndata and column.base is not None for column in (s.events.t, s.events.v_before))
     assert solve_exact(PAPER, 1.0, n_cycles=2, record_trajectory=np.bool_(False)).trajectory is None
 
 
@@ -154,14 +146,11 @@ def test_the_solver_regains_the_speed_before_the_impact_where_the_closed_form_sa
 # --- the geometry's conventions ----------------------------------------------------------------------------------
 
 BASE = dict(M=1.0, K=1.0, F=1.0, b=0.1)
-
-#: placements outside the paper's signs, each (a1, a2, a3, a4), m: impacts after the equilibrium (the audit's
-#: a1 = 0.1, a2 = 0.2 with the symmetric default; the escapement-error study's zone after it), a3 < a1 < 0,
-#: both impacts left of the centre, an impact at the centre
+#: placements outside the paper's signs, (a1, a2, a3, a4), m: impacts after the equilibrium (the audit's a1 = 0.1,
+#: a2 = 0.2; the escapement-error study's zone after it), a3 < a1 < 0, both left of the centre, one at it
 OUTSIDE = [(0.1, 0.2, -0.1, -0.2), (0.05, 0.2, -0.05, -0.2), (-0.1, 0.05, -0.3, -0.4), (-0.2, -0.1, -0.05, -0.3),
            (0.0, 0.1, 0.1, -0.1)]
-#: the paper's geometry (its Fig. 2) and the placements the workflow runs (config/paper.yaml: the checks' symmetric
-#: and asymmetric positions), each (a1, a2, a3, a4), m
+#: the paper's geometry (its Fig. 2) and the placements the workflow runs (the checks' positions in config/paper.yaml)
 PAPER_SIGNS = [(-0.1, 0.05, 0.1, -0.05), (-0.1, 0.05, 0.2, -0.02), (-0.15, 0.0, 0.08, -0.1), (-0.1, 0.05, 0.3, 0.0),
                (-0.3, 0.2, 0.3, -0.2), (-0.05, 0.01, 0.05, -0.01)]
 #: the escapement-error study's zones (a1, a2) by name, the second half cycle mirroring the first

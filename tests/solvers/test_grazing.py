@@ -58,13 +58,8 @@ class Case:
     surface: EventKind
     margin: float  #: the margin the rounded x0 gives (50 digits, rounded to a float)
 
-    @property
-    def crosses(self) -> bool:
-        return self.margin > 0.0
-
-    @property
-    def zone(self) -> bool:
-        return not self.surface.is_impact
+    crosses = property(lambda self: self.margin > 0.0)
+    zone = property(lambda self: not self.surface.is_impact)
 
     @property
     def expected_start(self) -> list[int]:
@@ -77,9 +72,7 @@ class Case:
 
     @property
     def expected_exit(self) -> Status | None:  # None: the run goes on
-        if self.crosses:
-            return None if self.zone else Status.STOPPED
-        return Status.TURNED_BACK_IN_ZONE if self.zone else Status.STOPPED
+        return (None if self.crosses else Status.TURNED_BACK_IN_ZONE) if self.zone else Status.STOPPED
 
     @property
     def turning_point(self) -> float:
@@ -165,10 +158,9 @@ def assert_consistent(run, case: Case) -> None:
 
 @pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
 def test_the_exact_solver_follows_the_closed_form_and_the_reference_agrees_down_to_its_margin(case):
-    """The exact solver: the closed form's first events, exit and turning point at every margin. The reference:
-    its outcome and events the exact solver's, a zone's turning point and a crossing of its end on the closed-form
-    arc (on the dense output kept in every other case, or on the segment integrated again), down to
-    AGREEMENT_MARGIN; a consistent outcome below."""
+    """The exact solver: the closed form's first events, exit and turning point. The reference, down to the agreement
+    margin: the same outcome and events, a zone's turning point and the crossing of its end on the closed-form arc (on
+    the dense output kept in every other case, or on the segment integrated again); a consistent outcome below."""
     exact = solve_exact(case.params, case.x0, n_cycles=3)
     assert list(exact.events.kind[: len(case.expected_start)]) == case.expected_start
     assert case.expected_exit is None or exact.status == case.expected_exit

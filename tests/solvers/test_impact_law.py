@@ -30,8 +30,7 @@ from escapement.integrators.naive import solve_naive
 from escapement.integrators.reference import solve_reference
 from escapement.solvers.stream import iter_cycles
 
-#: the model of the paper's case (a), symmetric, released at rest at x0 = +1 m (the mirror of the configuration's
-#: -1 m; w = 1 rad/s)
+#: the paper's case (a), symmetric, released at rest at x0 = +1 m (the configuration's mirror; w = 1 rad/s)
 PAPER = Parameters(M=1.0, K=1.0, F=1.0, b=0.1, a1=-0.1, a2=0.05)
 X0 = 1.0
 FACTOR = 1.2  # the patched law's r = 1 - 1.2 b
@@ -52,9 +51,8 @@ def expected_velocities(p: Parameters, r: float, x0: float, n: int) -> np.ndarra
 
 
 def expected_amplitudes(p: Parameters, r: float, v: np.ndarray) -> np.ndarray:
-    """The amplitude of each cycle, the top of the free swing from a2: through the zone (a1, a2) about
-    ``c = F/K`` energy gives ``v2**2 = (r v)**2 + w**2 ((a1 - c)**2 - (a2 - c)**2)``, and the swing from
-    ``(a2, v2)`` about 0 turns at ``sqrt(a2**2 + v2**2 / w**2)``."""
+    """The top of each cycle's free swing from a2, ``sqrt(a2**2 + v2**2 / w**2)``, energy through the zone (a1, a2)
+    about ``c = F/K`` giving ``v2**2 = (r v)**2 + w**2 ((a1 - c)**2 - (a2 - c)**2)``."""
     c = p.zone_offset
     v2_sq = (r * v) ** 2 + p.omega2 * ((p.a1 - c) ** 2 - (p.a2 - c) ** 2)
     return np.sqrt(p.a2**2 + v2_sq / p.omega2)
@@ -74,10 +72,6 @@ def test_the_derivation_holds_for_the_papers_law():
     assert fixed_point(PAPER, r) ** 2 == pytest.approx(2 * PAPER.f * 0.15 / (PAPER.b * (2 - PAPER.b)), rel=1e-15)
     patched = expected_velocities(PAPER, 1.0 - FACTOR * PAPER.b, X0, 400)
     assert np.min(np.abs(patched - v) / v) > 0.01  # above every path's tolerance (5e-3 at most)
-
-
-def _concatenated(chunks, name: str = "velocity_before_impact") -> np.ndarray:
-    return np.concatenate([np.zeros(0)] + [getattr(c, name) for c in chunks])
 
 
 def _floats(values) -> np.ndarray:
@@ -118,10 +112,9 @@ def _velocities_and_events(name: str):
 
 @pytest.mark.parametrize("name", list(PATHS))
 def test_every_path_follows_a_patched_impact_law(monkeypatch, name):
-    """The velocities before the impacts at a1 are the patched law's map, from the first cycle to its fixed
-    point; where the path keeps an event log, the jump at every impact is the patched law's ratio exactly
-    (none at the ends of the zones). The closed forms take the map's multiplier from the law too (their
-    cycles, not the event solver's fallback)."""
+    """The velocities before the impacts at a1 follow the patched law's map to its fixed point; in an event log each
+    impact's jump is the patched ratio (none at the zones' ends); the closed forms take the multiplier from the law too
+    (their cycles, not the event solver's fallback)."""
     rel = TOLERANCE.get(name, 1e-14)
     r = 1.0 - FACTOR * PAPER.b
     monkeypatch.setattr(automaton, "impact_factor", patched_factor)
@@ -148,7 +141,7 @@ def test_the_closed_forms_fallback_follows_a_patched_impact_law(monkeypatch, str
     monkeypatch.setattr(closed_form, "GRAZING_SPEED_SQ", 1.0)
     if streamed:
         chunks = iter_closed_form_cycles(PAPER, X0, n_cycles=N, chunk=7)
-        v, fallback = _concatenated(chunks), chunks.fallback
+        v, fallback = np.concatenate([c.velocity_before_impact for c in chunks]), chunks.fallback
     else:
         run = solve_cycles(PAPER, X0, n_cycles=N)
         v, fallback = run.cycles.velocity_before_impact, run.fallback

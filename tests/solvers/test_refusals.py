@@ -1,6 +1,5 @@
-"""What every entry point refuses before any work, each refusal a ParameterError that names the argument, keeps
-its value and says what it must be: the run spec every scalar solver starts with (tested whole in
-tests/model/test_limits.py), each solver's own options, the ensemble's rows, the results' methods."""
+"""What every entry point refuses before any work, a ParameterError naming the argument, its value and what it must
+be: the run spec (tested whole in tests/model), each solver's options, the ensemble's rows, the results' methods."""
 
 from __future__ import annotations
 

@@ -30,11 +30,10 @@ def test_the_repr_of_a_50_cycle_run_is_a_short_summary(run50):
     params = next(line for line in text.splitlines() if line.startswith("parameters:"))
     assert params == ("parameters: M = 1 kg, K = 1 N/m, F = 1 N, b = 0.1, a1 = -0.1 m, a2 = 0.05 m, a3 = 0.1 m, "
                       "a4 = -0.05 m")
-    assert "initial:    x0 = 1 m, v0 = 0 m/s" in text
-    assert str(run50) == text
+    assert "initial:    x0 = 1 m, v0 = 0 m/s" in text and str(run50) == text
     short, long = (repr(solve_exact(run50.params, 1.0, n_cycles=n, record_trajectory=False)) for n in (5, 5000))
-    assert len(long.splitlines()) == len(short.splitlines())
-    assert abs(len(long) - len(short)) < 20  # the repr does not grow with the run: only the counts' digits differ
+    # the repr does not grow with the run: only the counts' digits differ
+    assert len(long.splitlines()) == len(short.splitlines()) and abs(len(long) - len(short)) < 20
     cycles, (lo, hi) = repr(run50.cycles), (run50.cycles.period.min(), run50.cycles.period.max())
     assert cycles.splitlines()[0] == "<CycleTable> 50 cycles" and len(cycles) < 400
     assert f"period                  {lo:.6g} .. {hi:.6g} s" in cycles
@@ -44,8 +43,7 @@ def test_the_repr_of_a_50_cycle_run_is_a_short_summary(run50):
 
 def test_the_repr_of_a_regime_exit_names_it_and_its_numbers(stopped):
     text = repr(stopped)
-    assert text.splitlines()[0] == "<escapement.Solution> stopped (exact)"
-    assert "t = 0 .. inf s" in text
+    assert text.splitlines()[0] == "<escapement.Solution> stopped (exact)" and "t = 0 .. inf s" in text
     assert "exit:       turning_point = 0.01 m, margin = 0.09 m" in text
     assert "a1 = -0.1 m (moving right)" in text  # the message, wrapped but whole
     assert max(len(line) for line in text.splitlines()) <= 120
@@ -100,9 +98,8 @@ def test_the_events_dataframe_copies_the_event_log(run50):
     df = run50.to_dataframe("events")
     ev = run50.events
     assert len(df) == len(ev) and df.index.name == "event" and df.index[0] == 0
-    np.testing.assert_array_equal(df["event_time"].to_numpy(), ev.t)
-    np.testing.assert_array_equal(df["event_velocity_after"].to_numpy(), ev.v_after)
-    np.testing.assert_array_equal(df["event_position"].to_numpy(), ev.x)
+    for column, field in (("event_time", "t"), ("event_velocity_after", "v_after"), ("event_position", "x")):
+        np.testing.assert_array_equal(df[column].to_numpy(), getattr(ev, field))
     impacts = df[df["event_kind"] == EventKind.IMPACT_A1]
     assert impacts.index.tolist() == ev.of_kind(EventKind.IMPACT_A1).tolist()
     assert (impacts["event_position"] == -0.1).all()  # every impact at a1 is at a1
