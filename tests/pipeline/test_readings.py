@@ -132,7 +132,6 @@ def test_ties_reach_the_summary_as_ties_and_equivalents_group():
                            default_scores={"one": 3, "mirror of one": 3, "two": 2, "three": 4},
                            equivalent=(("one", "mirror of one"),))
     assert c.tied() == (4, [("one", "mirror of one"), ("two",)])
-    assert c.tied(default=True) == (4, [("three",)])
     (row,) = best_readings_table(rows)
     assert row["limits reproduced"] == "4 of 4 (4 with the default locator)"
     readings = row["best-supported readings"]
