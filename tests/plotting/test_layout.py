@@ -14,7 +14,7 @@ from matplotlib.path import Path
 
 from escapement.plotting import (escapement_error, existence_map, long_run, phase_diagrams, poincare_map, save_figure,
                                  shock_detail, stability_map, work_precision)
-from escapement.plotting.style import style
+from escapement.plotting.stylesheet import style
 
 #: two boxes must share more than this (pixels, each way) to count as overlapping
 TOLERANCE = 0.5

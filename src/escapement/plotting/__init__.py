@@ -10,6 +10,6 @@ from .._lazy import lazy_exports
 _EXPORTS = {**dict.fromkeys(("escapement_error", "existence_map", "long_run", "stability_map", "work_precision"),
                             "study_figures"),
             **dict.fromkeys(("phase_diagrams", "poincare_map", "shock_detail"), "scene_figures"),
-            "save_figure": "style", "style": "style"}
+            "save_figure": "stylesheet", "style": "stylesheet"}
 __all__ = sorted(_EXPORTS)
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())

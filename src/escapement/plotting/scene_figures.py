@@ -23,7 +23,7 @@ from matplotlib.lines import Line2D
 
 from .captions import axis_label, changes_legend, outcome, panel_parameters, release, signed, unit
 from .panel_axes import DrawnAxes, apply_axes
-from .style import ACCENT, GUIDE, INK, MUTED, legend_below, style, suptitle
+from .stylesheet import ACCENT, GUIDE, INK, MUTED, legend_below, style, suptitle
 
 __all__ = ["MAX_IMPACTS_LISTED", "broken", "phase_diagrams", "poincare_map", "shock_detail"]
 

@@ -25,7 +25,7 @@ from matplotlib.path import Path
 
 from ..model.status import Status
 from .captions import axis_label, changes_legend, quantity_value, release, unit
-from .style import ACCENT, GUIDE, INK, NO_CYCLE, SERIES, legend_below, style, suptitle
+from .stylesheet import ACCENT, GUIDE, INK, NO_CYCLE, SERIES, legend_below, style, suptitle
 
 __all__ = ["ERROR_FLOOR", "escapement_error", "existence_map", "long_run", "stability_map", "work_precision"]
 
