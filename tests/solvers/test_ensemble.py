@@ -36,7 +36,7 @@ def assert_rows_are_the_scalar_runs(ens, params_list, x0s, v0s, n_cycles, max_ev
                                       abs=1e-15, nan_ok=True)
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=30, deadline=None)
 @given(st.lists(st.tuples(parameters(), initial_displacement, initial_velocity), min_size=1, max_size=30),
        st.sampled_from([None, 1, 6, 57, 97, 130]), st.booleans())
 def test_the_cycles_in_lock_step_give_the_scalar_solvers_numbers(cases, max_events, amplitude):

@@ -143,7 +143,7 @@ def test_a_run_to_an_end_time_stays_within_the_estimate_of_its_event_bound():
 def test_a_streamed_run_takes_the_memory_of_a_chunk_whatever_its_length():
     """A chunk's budget bounds the stream's peak (the chunk built, the one held, a block of the loop, the chunk large
     enough for its cycles to outweigh the block); five times the cycles take no more memory."""
-    _, _, peak = _peak(lambda: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=12_000, chunk=10_000)])
+    _, _, peak = _peak(lambda: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=10_500, chunk=10_000)])
     _bounds(10_000 * stream.CHUNK_BYTES_PER_CYCLE, peak)
     short, long = (_peak(lambda n=n: [None for _ in stream.iter_cycles(P, 1.0, n_cycles=n, chunk=500)])[2]
                    for n in (1_500, 7_500))
