@@ -284,8 +284,3 @@ def numpy_cycles(M, K, F, b, a1, a2, a3=None, a4=None, x0=1.0, v0=0.0, *, n_cycl
         periods[:, cycle] = elapsed
         amplitudes[:, cycle] = np.where(top > floor, top, floor)
     return Cycles(impact_time=times, velocity_before_impact=speeds, period=periods, largest_displacement=amplitudes)
-
-
-# --- measuring -------------------------------------------------------------------------------------------------
-
-
