@@ -78,7 +78,6 @@ def test_the_largest_run_the_error_names_fits_and_one_more_does_not(run, budget,
     run(most, budget)
     with pytest.raises(MemoryBudgetError):
         run(most + 1, budget)
-    assert run(most, 10 * budget) is not None  # a larger budget lets the larger run through
 
 
 @pytest.mark.parametrize("run", [
