@@ -67,7 +67,8 @@ def files(tmp_path) -> dict:
          "paper_value": None, "tolerance": 1e-8, "tolerance_reason": "r", "check": "sec3_map.fixed_point",
          "args": {"case": "first"}},
         {"id": "multiplier", "source": "Eq. (21)", **weight, "part": "the multiplier", "statement": "s",
-         "paper_value": 0.6561, "tolerance": 1e-8, "tolerance_reason": "r", "check": "sec3_map.multiplier_paper_cases"},
+         "paper_value": 0.6561, "tolerance": 1e-8, "tolerance_reason": "r", "check": "sec3_map.multiplier_paper_cases",
+         "args": {"runs": "paper"}},
         {"id": "fig5b_axes", "source": "Fig. 5 (b)", "origin": "paper", "quote": "Fig. 5.", "statement": "s",
          "paper_value": None, "tolerance": None, "check": "figure_axes.printed_axes",
          "args": {"figure": "5", "panel": "b"}},
@@ -85,7 +86,8 @@ def files(tmp_path) -> dict:
 
 def test_the_job_writes_one_row_per_claim_with_the_configured_label_and_the_limits_its_axis_claim_judged(tmp_path):
     output, inputs = tmp_path / "claims.csv", files(tmp_path)
-    check_claims(**inputs, output=str(output), log=str(tmp_path / "log"))
+    check_claims(**inputs, output=str(output), log=str(tmp_path / "log"),
+                 settings={"checks": {"n_cycles": 2, "paper": {"from": "fig3"}}})
     rows = read_claims(output)
     assert [r["claim_id"] for r in rows] == ["fixed_point_first", "multiplier", "fig5b_axes"]
     # the axes were fitted: a match is consistent, not reproduced; the first two rows are parts of one sentence

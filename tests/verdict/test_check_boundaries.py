@@ -23,9 +23,9 @@ from escapement.verdict.evidence import Evidence
 from escapement.verdict.rule import status_of
 
 REGISTER = cl.REGISTER
-#: the runs the register names by ``runs``: the configuration's model and checks blocks
-SETTINGS = {key: yaml.safe_load((cl.REGISTER.parents[3] / "config" / "paper.yaml").read_text())[key]
-            for key in ("model", "checks")}
+#: the configuration, whose checks block names the runs the register reads
+PAPER = yaml.safe_load((cl.REGISTER.parents[3] / "config" / "paper.yaml").read_text())
+RUNS = [name for name, entry in PAPER["checks"].items() if isinstance(entry, dict)]
 GEOMETRY = {"M": 1.0, "K": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
 DONE = {"outcome": "completed", "outcome_message": "completed: a message"}
 #: the relative offsets from a tolerance at which a check is judged: inside, outside
@@ -34,7 +34,7 @@ SIDES = ((1 - 1e-6, "inside"), (1 + 1e-6, "outside"))
 
 @functools.cache
 def _register() -> list[dict]:
-    return cl.load_claims(REGISTER, settings=SETTINGS)
+    return cl.load_claims(REGISTER, runs=RUNS)
 
 
 def register_row(claim_id: str, tolerance: float | None, reading: int = 0) -> dict:
@@ -99,66 +99,67 @@ def runs(*rows: dict) -> xr.Dataset:
                       coords={"case": np.arange(len(rows))})
 
 
-def probes(star: float = 1.25, shift: float = 0.0, gap: float = 0.0, slopes=None, n_cycles: int = 100) -> dict:
-    """The checks dataset's runs behind single claims, by hand at the paper's geometry (w = 1): the first swings of
-    Fig. 3 (a) (F = 1) and (b) (F = 0.5) from rest at -A, sqrt(A^2 - a1^2), and at +A, where the impact at a3 and
-    the impulse over [a4, a3] come first, sqrt((1 - b)^2 (A^2 - a3^2) + 2 f (a3 - a4)); the slope of the return map
-    of case (a), Eq. (20) times ``slopes[v]`` at each velocity v; and the runs of case (a) from the section at
-    ``star`` and 1 % above it, impacts at a1 every 6.3 s, the perturbed ones ``shift`` later, its last speed
-    ``gap`` (relatively) above ``star``."""
+def named(name: str, **columns) -> xr.Dataset:
+    """Runs of another measure than the table's under ``name``, shaped as the checks scene writes them: each column
+    one value (or one row of values) per run, the model's keys at the paper's geometry (F = 1) unless given."""
+    n = len(next(iter(columns.values())))
+    columns = {**{k: [v] * n for k, v in {**GEOMETRY, "F": 1.0}.items()}, **columns}
+    return xr.Dataset({f"{name}_{k}": ((f"{name}_run", f"{name}_item")[:np.ndim(v)], np.asarray(v))
+                       for k, v in columns.items()})
+
+
+def first_swings() -> xr.Dataset:
+    """The first swings of Fig. 3 (a) (F = 1) and (b) (F = 0.5) by hand at the paper's geometry (w = 1): from rest at
+    -A, sqrt(A^2 - a1^2); at +A, where the impact at a3 and the impulse over [a4, a3] come first,
+    sqrt((1 - b)^2 (A^2 - a3^2) + 2 f (a3 - a4))."""
     swings = [("a", -1.0, 0.99), ("a", 1.0, 0.81 * 0.99 + 0.3), ("b", -3.0, 8.99), ("b", 3.0, 0.81 * 8.99 + 0.15)]
+    return named("first_swings", case=[c for c, _, _ in swings], x0=[x for _, x, _ in swings],
+                 side=[np.sign(x) for _, x, _ in swings], F=[1.0, 1.0, 0.5, 0.5],
+                 velocity=[math.sqrt(v2) for _, _, v2 in swings])
+
+
+def return_map(slopes=None) -> xr.Dataset:
+    """The slope of the return map of Fig. 3 (a) at 0.5, 1 and 2 m/s: Eq. (20) by hand, 0.6561 v / g(v), times
+    ``slopes[v]``."""
     speeds = [0.5, 1.0, 2.0]
+    ds = named("return_map", velocity=speeds, slope=[0.6561 * v / g17(v) * (slopes or {}).get(v, 1.0) for v in speeds])
+    ds["return_map_slope"].attrs["relative_step"] = 1e-5
+    return ds
+
+
+def phase_shift(star: float = 1.25, shift: float = 0.0, gap: float = 0.0, n_cycles: int = 100) -> xr.Dataset:
+    """The runs of Fig. 3 (a) from the section at ``star`` and 1 % above it: impacts at a1 every 6.3 s, the perturbed
+    run's ``shift`` later, its last speed ``gap`` (relatively) above ``star``."""
     times = 6.3 * np.arange(1, n_cycles + 2)
-    perturbation = {"perturbation": [0.0, 0.01]}
-    return {
-        "first_swing_case": ("first_swing", np.array([c for c, _, _ in swings], dtype=object)),
-        "first_swing_x0": ("first_swing", [x for _, x, _ in swings]),
-        "first_swing_velocity": ("first_swing", [math.sqrt(v2) for _, _, v2 in swings]),
-        "map_slope": xr.DataArray([0.6561 * v / g17(v) * (slopes or {}).get(v, 1.0) for v in speeds],
-                                  coords={"map_velocity": speeds}, dims="map_velocity",
-                                  attrs={"case": "a", "relative_step": 1e-5}),
-        "perturbed_impact_time": xr.DataArray(np.stack([times, times + shift]), dims=("perturbation", "impact"),
-                                              coords=perturbation, attrs={"case": "a", "n_cycles": n_cycles}),
-        "perturbed_speed": xr.DataArray([star, star * (1 + gap)], dims="perturbation", coords=perturbation,
-                                        attrs={"converged_speed": star}),
-    }
+    return named("phase_shift", perturbation=[0.0, 0.01], converged_speed=[star, star],
+                 impact_time=np.stack([times, times + shift]), speed=[star, star * (1 + gap)])
 
 
-def release_runs(args: dict) -> xr.Dataset:
-    """The runs from rest a check on where a limit cycle exists reads, as the checks scene makes them from the
-    claim's ``args`` (its positions, n_cycles, M, K, b, and its forces, releases or grazing offsets)."""
-    from escapement.scenes.probes import probe_variables
-    base = {**dict(zip(("a1", "a2", "a3", "a4"), args["positions"])), "n_cycles": args["n_cycles"],
-            **{k: args.get(k, d) for k, d in (("M", 1.0), ("K", 1.0), ("b", 0.1))}}
-    if "deltas" in args:
-        return xr.Dataset(probe_variables({"grazing": {**base, "F": args["F"], "deltas": args["deltas"]}}))
-    runs = ([{**base, "F": F, "x0": args["x0"]} for F in args["forces"]] if "forces" in args else
-            [{**base, "F": args["F"], "x0": x0} for x0 in args["releases"]])
-    return xr.Dataset(probe_variables({"releases": runs}))
-
-
-def short_runs(times: dict, kinds=(1, 3, 1, 3)) -> xr.Dataset:
-    """The checks dataset's short runs of Fig. 3 (a), ``times`` the event times of each (K, x0) run."""
-    width = max(len(t) for t in times.values())
+def events(name: str, times, kinds=(1, 3, 1, 3), **columns) -> xr.Dataset:
+    """Runs of measure events under ``name``: each run's event ``times`` (its kinds ``kinds`` over and over), NaN after
+    its last, with the ``columns`` given (one value per run)."""
+    width = max(len(t) for t in times)
     table = np.full((len(times), width), np.nan)
-    for row, t in zip(table, times.values()):
+    for row, t in zip(table, times):
         row[:len(t)] = t
     kind = np.where(np.isfinite(table), np.resize(np.asarray(kinds, dtype=float), width), np.nan)
-    keys = list(times)
-    return xr.Dataset({"short_K": ("short_run", [K for K, _ in keys], {"case": "a", "n_cycles": 3}),
-                       "short_x0": ("short_run", [x0 for _, x0 in keys]),
-                       **{f"short_event_{name}": (("short_run", "short_event"), values) for name, values in (
-                           ("time", table), ("kind", kind), ("position", table), ("velocity_before", table),
-                           ("velocity_after", table))}})
+    return named(name, **columns, **{f"event_{k}": kind if k == "kind" else table
+                                     for k in ("time", "kind", "position", "velocity_before", "velocity_after")})
 
 
-def made_short_runs(springs, releases, x0: float = -1.0) -> dict:
-    """The checks dataset's short runs of Fig. 3 (a) (F = 1 N) from rest at ``x0`` at each of ``springs`` and, at
-    K = 1 N/m, from each of ``releases``, three cycles each, as the checks scene makes them."""
-    from escapement.scenes.probes import probe_variables
-    case = {**GEOMETRY, "F": 1.0, "label": "a", "n_cycles": 3}
-    pairs = dict.fromkeys([(K, x0) for K in springs] + [(1.0, r) for r in releases])
-    return probe_variables({"short_runs": [{**case, "K": K, "x0": r} for K, r in pairs]})
+@functools.cache
+def _made(name: str, over: str) -> xr.Dataset:
+    from escapement.pipeline.plan import check_runs
+    from escapement.scenes.probes import named_runs
+    paper = copy.deepcopy(PAPER)
+    paper["checks"][name].update(yaml.safe_load(over))
+    return xr.Dataset(named_runs({name: check_runs(paper)["probes"][name]}))
+
+
+def made(name: str, **over) -> xr.Dataset:
+    """The runs ``name`` of the configuration's checks block (``over`` laid over its entry), as the checks scene
+    makes them."""
+    return _made(name, yaml.safe_dump(over))
 
 
 def evidence(fig3s=None, fig5s=None, checks=None) -> Evidence:
@@ -217,7 +218,8 @@ def test_the_state_matrix_holds_while_the_arcs_keep_their_invariant_to_the_toler
     tested in test_register), just inside and just outside the tolerance, under either entry of A."""
     from escapement.verdict import sec3_equations as model_claims
     row = register_row("eq3a_state_matrix", 1e-10, reading)
-    ev = evidence({"a": fig3([1.0])}, checks=short_runs({(float(K), -1.0): [1.0] for K in row["args"]["K"]}))
+    springs = PAPER["checks"][row["args"]["runs"]]["K"]
+    ev = evidence(checks=events(row["args"]["runs"], [[1.0]] * len(springs), K=springs))
 
     def at(change):
         monkeypatch.setattr(model_claims, "arc_invariant_error", lambda *a, **k: change)
@@ -295,7 +297,7 @@ def test_stability_over_b_at_the_tolerance_and_at_b_equal_to_1():
 def test_the_trivial_multiplier_and_the_other_within_the_tolerance_on_both_sides():
     """Both Floquet multipliers of the flow, near 1 and 0.6561; a complex pair (nan) fails the claim."""
     row = register_row("eq8_trivial_multiplier", 1e-8)  # the conclusion, mu1 = 1, a part checked as stated
-    group = {"group": row["args"]["group"]}
+    group = {"group": row["args"]["runs"]}
     for key, centre in (("floquet_major", 1.0), ("floquet_minor", 0.6561)):
         bounded(row, lambda off, key=key, centre=centre: evidence(checks=runs(group, {**group, key: centre + off})))
     nan = {**group, "floquet_major": math.nan, "floquet_minor": math.nan}
@@ -373,15 +375,13 @@ def test_eq14_as_read_holds_to_its_relative_tolerance_of_the_simulated_velocity_
 
 def test_the_derivative_of_the_map_holds_to_its_relative_tolerance_of_eq20():
     """The slope of the return map in the checks dataset is Eq. (20) by hand, 0.6561 x / g(x), times (1 +/- e)
-    at one velocity of the claim; the slope from central differences of 1e-5 carries a rounding of about 1e-11,
-    so the margin is 10 %. A velocity the checks dataset holds no slope at is refused."""
+    at one of its velocities; the slope from central differences of 1e-5 carries a rounding of about 1e-11, so the
+    margin is 10 %. Runs the checks dataset does not hold are refused, naming the claim."""
     row = register_row("eq20_map_derivative", 1e-8)
-    for off in row["args"]["velocities"]:
-        bounded(row, lambda e, off=off: evidence({row["args"]["case"]: fig3([1.0])}, checks=runs({}).assign(
-            probes(slopes={float(off): 1 + e}))), margin=0.1)
-    with pytest.raises(cl.ClaimError, match="0 runs of map_slope"):
-        judged({**row, "args": {**row["args"], "velocities": [0.7]}}, evidence({"a": fig3([1.0])},
-                                                                               checks=runs({}).assign(probes())))
+    for v in (0.5, 1.0, 2.0):
+        bounded(row, lambda e, v=v: evidence(checks=return_map(slopes={v: 1 + e})), margin=0.1)
+    with pytest.raises(cl.ClaimError, match="claim 'eq20_map_derivative'.*holds no run 'return_maps'"):
+        judged({**row, "args": {"runs": "return_maps"}}, evidence(checks=return_map().assign(runs({}))))
 
 
 # --- the period formulas (22e), (23), (25) as read, by hand (test_conventions) ---------------------
@@ -473,10 +473,8 @@ def test_eq24_holds_to_its_relative_tolerance_of_the_measured_phase_delay(monkey
 def test_the_force_is_a_function_of_time_while_two_releases_switch_it_on_within_the_tolerance():
     """The impulses of two releases start at 1, 4, 7, 10 s and at the same times plus s (10 s: resolution 2e-15)."""
     row = register_row("sec33_functions_of_time", 1e-9)
-    first, second = (float(x0) for x0 in row["args"]["releases"])
     times = np.array([1.0, 4.0, 7.0, 10.0])
-    bounded(row, lambda s: evidence({"a": fig3([1.0])}, checks=short_runs({(1.0, first): times,
-                                                                           (1.0, second): times + s})))
+    bounded(row, lambda s: evidence(checks=events(row["args"]["runs"], [times, times + s], x0=[-1.0, -1.5])))
 
 
 def test_one_eigenvalue_of_the_map_8_is_1_while_within_the_tolerance(monkeypatch):
@@ -519,9 +517,10 @@ def test_mu2_follows_b_alone_to_the_tolerance_and_only_runs_beyond_b_1_fail_to_c
     row = register_row("stability_only_b", 1e-8)
 
     def stable(off: float) -> list[dict]:
-        return [{"group": "force", "F": 0.2, "x0": -1.0, "multiplier": 0.6561 + off},
-                {"group": "common_force", "K": 10.0}, {"group": "release", "x0": -3.0},
-                {"group": "b", "b": 0.5, "multiplier": 0.0625, "multiplier_eq21": 0.0625}]
+        return [{"group": "forces", "F": 0.2, "x0": -1.0, "multiplier": 0.6561 + off},
+                {"group": "common_force", "K": 10.0}, {"group": "releases", "x0": -3.0},
+                {"group": "b", "b": 0.5, "multiplier": 0.0625, "multiplier_eq21": 0.0625},
+                *({"group": name} for name in ("paper", "initial_conditions", "symmetric", "asymmetric"))]
 
     chatter = {"group": "b", "b": 1.5, "outcome": "chattering", "multiplier": math.nan, "multiplier_eq21": 0.0625}
     bounded(row, lambda off: evidence(checks=runs(*stable(off), chatter)))
@@ -539,5 +538,5 @@ def test_the_perturbed_run_returns_to_the_cycle_or_to_the_solution_within_the_to
     its impact times (in s) apart by the tolerance (1 -/+ 1e-3): the times near 630 s resolve 1e-13 s."""
     row = register_row(claim_id, 1e-8, reading)
     assert row["args"]["sense"] == sense
-    bounded(row, lambda off: evidence({"a": fig3([1.0, 1.25])}, checks=runs({}).assign(
-        probes(star=1.25, **({"shift": off} if sense == "lyapunov" else {"gap": off})))), margin=1e-3, signs=(1.0,))
+    bounded(row, lambda off: evidence(checks=phase_shift(star=1.25, **({"shift": off} if sense == "lyapunov" else
+                                                                       {"gap": off}))), margin=1e-3, signs=(1.0,))

@@ -22,9 +22,10 @@ import yaml
 import escapement.verdict
 from escapement.model.parameters import Parameters
 from escapement.verdict import engine as cl
-from escapement.verdict.evidence import Check, Evidence, Verdict, runs_only
+from escapement.verdict.evidence import Check, Evidence, Verdict, names, no_scene, run
 from escapement.solvers.exact import solve_exact
-from verdict.test_check_boundaries import GEOMETRY, SETTINGS, bounded, made_short_runs, probes, register_row, runs
+from verdict.test_check_boundaries import (GEOMETRY, RUNS, bounded, first_swings, made, phase_shift, register_row,
+                                         return_map, runs)
 
 REGISTER = cl.REGISTER
 REPO = Path(__file__).resolve().parents[2]
@@ -32,12 +33,12 @@ REPO = Path(__file__).resolve().parents[2]
 
 @functools.cache
 def register() -> list[dict]:
-    return cl.load_claims(REGISTER, settings=SETTINGS)
+    return cl.load_claims(REGISTER, runs=RUNS)
 
 
 @functools.cache
 def written() -> dict:
-    """The register as written (before the loader adds its readings and resolves its runs)."""
+    """The register as written (before the loader adds its readings)."""
     return yaml.load(REGISTER.read_text(), Loader=yaml.CSafeLoader)
 
 
@@ -138,8 +139,8 @@ REFUSALS = [
     (lambda by: by["eq19_fixed_point_case_a"].pop("args"),
      "claim 'eq19_fixed_point_case_a': the check 'sec3_map.fixed_point' needs the args case$"),
     (lambda by: by["eq20_map_derivative"]["args"].update(runs="existance"),
-     "claim 'eq20_map_derivative': runs 'existance' must name an entry of the configuration's checks block, one of "
-     "airy, asymmetric, existence, "),
+     "claim 'eq20_map_derivative': runs 'existance' must name a run of the configuration's checks block, one of "
+     "airy, asymmetric, b, common_force, existence, "),
     (lambda by: by[RECOVERY]["readings"][0].update(words="the speed of recovery"),
      f"claim '{RECOVERY}': the words 'the speed of recovery' of the reading 'in seconds' are in no quote and no "
      "sentence the register cites$"),
@@ -152,33 +153,31 @@ def test_a_malformed_register_is_refused_naming_the_claim(tmp_path):
     """Each refusal of :data:`REFUSALS` on a small register of the register's own claims, which loads as it is."""
     path = tmp_path / "claims.yaml"
 
-    def loaded(mutate=lambda by: None, settings=SETTINGS):
+    def loaded(mutate=lambda by: None, runs=RUNS):
         data = copy.deepcopy({**written(), "claims": [c for c in written()["claims"] if c["id"] in SMALL]})
         mutate({c["id"]: c for c in data["claims"]})
         path.write_text(yaml.dump(data, Dumper=yaml.CSafeDumper, allow_unicode=True))
-        return cl.load_claims(path, settings=settings)
+        return cl.load_claims(path, runs=runs)
 
     assert [c["id"] for c in loaded()] == list(SMALL)
     for mutate, message in REFUSALS:
         with pytest.raises(ValueError, match=f"^{path}: {message}"):
             loaded(mutate)
-    with pytest.raises(ValueError, match="claim 'eq20_map_derivative': runs 'return_map' must name an entry of the "
-                                         "configuration's checks block$"):
-        loaded(settings=None)
+    assert [c["id"] for c in loaded(lambda by: by["eq20_map_derivative"]["args"].update(runs="existance"),
+                                    runs=None)] == list(SMALL)  # no configuration given, no run refused
 
 
-def test_the_runs_a_reading_names_are_the_configurations_stated_once():
-    """A reading's ``runs: <name>`` takes the numbers of its runs from the configuration's checks block (on the
-    model's M, K and b), so the register repeats none of them."""
-    named = [(c["id"], r.get("args", {})) for c in written()["claims"]
-             for r in c.get("readings", [{"args": c.get("args", {})}])]
-    runs = {args["runs"] for _, args in named if "runs" in args}
-    assert runs >= {"existence", "release_boundary", "grazing", "airy", "short_runs", "return_map", "phase_shift"}
-    for claim_id, args in named:
-        if "runs" in args:
-            assert not set(args) & set(SETTINGS["checks"][args["runs"]]), claim_id  # not repeated in the register
-    grazing = claim_of("solution_exists_unique")["readings"][0]["args"]
-    assert grazing["positions"] == SETTINGS["checks"]["grazing"]["positions"] and grazing["M"] == SETTINGS["model"]["M"]
+def test_a_reading_names_its_runs_and_gives_only_the_args_its_check_declares():
+    """The runs a reading reads are named by the args its check declares among its runs, each a run of the
+    configuration's checks block, which alone states their settings: a reading of runs gives no arg its check does
+    not declare (no position, force, release or count of a run's)."""
+    named = set()
+    for claim in register():
+        for reading in claim["readings"]:
+            check = cl.resolved(reading["check"])
+            assert not check.runs or set(reading["args"]) <= {*check.runs, *check.args}, claim["id"]
+            named.update(n for arg in check.runs for n in names(reading, arg))
+    assert named == set(RUNS)  # every run of the configuration is read, and only those
 
 
 # --- the one rule, on the register's own claims -------------------------------------------------------
@@ -192,7 +191,7 @@ def stubbed(monkeypatch, outcome) -> None:
     for name in checks_named():
         module, function = name.split(".")
         monkeypatch.setattr(importlib.import_module(f"escapement.verdict.{module}"), function,
-                            dataclasses.replace(cl.resolved(name), function=answer, scenes=runs_only))
+                            dataclasses.replace(cl.resolved(name), function=answer, scenes=no_scene, runs=()))
 
 
 def test_changing_one_readings_outcome_changes_the_status(monkeypatch):
@@ -276,35 +275,26 @@ def solved_fig3(F: float, x0: float, n: int = 50) -> xr.Dataset:
 
 
 def checks_dataset(star: float = 1.25) -> xr.Dataset:
-    """Every group of runs the register's checks read, shaped as the checks dataset, with the runs behind single
-    claims (the runs from the section at ``star``, the converged speed of Fig. 3 (a))."""
+    """Every run the register's checks read, shaped as the checks dataset: the table's groups, given here, the first
+    swings, the return map and the runs from the section at ``star`` (the converged speed of Fig. 3 (a)) by hand, and
+    the other runs of the configuration as the checks scene makes them."""
     rows = [{"group": "paper", "label": "fig3a"}, {"group": "paper", "label": "fig3b", "F": 0.5},
-            {"group": "initial_condition", "x0": 3.0}, {"group": "asymmetric", "a3": 0.2, "a4": -0.02}]
+            {"group": "initial_conditions", "x0": 3.0}, {"group": "asymmetric", "a3": 0.2, "a4": -0.02}]
     rows += [{"group": "b", "b": b, "multiplier_eq21": (1 - b) ** 4, "multiplier": (1 - b) ** 4} for b in (0.1, 0.5)]
-    rows += [{"group": g, "F": F} for g in ("symmetric", "force") for F in (0.5, 1.0)]
-    rows += [{"group": "release", "x0": x0, "first_period": 6.3 + x0} for x0 in (-1.0, 1.0)]
+    rows += [{"group": g, "F": F} for g in ("symmetric", "forces") for F in (0.5, 1.0)]
+    rows += [{"group": "releases", "x0": x0, "first_period": 6.3 + x0} for x0 in (-1.0, 1.0)]
     rows += [{"group": "common_force", "K": K, "F": F, "x0": -1.0, "velocity": 1.2}
              for F in (0.5, 1.0) for K in (0.1, 1.0, 10.0)]
-    return runs(*rows).assign(probes(star)).assign(releases_of_the_register())
-
-
-@functools.cache
-def releases_of_the_register() -> dict:
-    """The runs from rest of the checks on where a limit cycle exists, the passages of Airy's check, the runs of
-    Fig. 4's grid and the crossings of the section of Fig. 3's runs, as the checks scene makes them from the paper's
-    configuration (the register's args select them)."""
-    from escapement.pipeline.plan import check_probes
-    from escapement.scenes.probes import probe_variables
-    made = check_probes(yaml.safe_load((REPO / "config" / "paper.yaml").read_text()))
-    return probe_variables({key: made[key] for key in ("releases", "grazing", "airy", "windows", "crossings")})
+    made_here = ("existence", "release_boundary", "grazing", "airy", "windows", "section_crossings", "springs",
+                 "short_releases")
+    return xr.merge([runs(*rows), first_swings(), return_map(), phase_shift(star), *(made(n) for n in made_here)])
 
 
 @functools.cache
 def scenes(side: float) -> Evidence:
     fig3 = {"a": solved_fig3(1.0, side * 1.0), "b": solved_fig3(0.5, side * 3.0)}
-    checks = checks_dataset(float(fig3["a"]["velocity_before_impact"].values[-1]))
-    short = made_short_runs((0.1, 1.0, 10.0), (-1.0, -1.5), x0=float(fig3["a"]["x0"]))  # the register's runs
-    return Evidence(fig3=fig3, fig4=None, fig5={}, checks=checks.assign(short))
+    return Evidence(fig3=fig3, fig4=None, fig5={},
+                    checks=checks_dataset(float(fig3["a"]["velocity_before_impact"].values[-1])))
 
 
 def test_a_check_that_declares_no_fitted_input_reads_none_and_answers_alike_from_either_release_side():
@@ -348,14 +338,15 @@ def test_every_check_fails_when_a_scene_or_a_run_it_reads_left_the_regime_unless
     judged = set()
     for claim in register():
         for reading in claim["readings"]:
-            check = cl.resolved(reading["check"])
-            read = check.scenes({**claim, **reading}, ev).values()
-            result = cl.verdict(claim, reading, ev) if read else None
-            if any("case" not in ds.dims for ds in read):
+            check, spec = cl.resolved(reading["check"]), {**claim, **reading}
+            read = check.scenes(spec, ev).values()
+            table = [n for arg in check.runs for n in names(spec, arg) if "group" in run(ev, n)]
+            result = cl.verdict(claim, reading, ev) if read or table else None
+            if read:
                 assert result.holds is False, claim["id"]
                 assert result.replicated_value.endswith(f"left the escapement regime ({outcome})"), claim["id"]
                 assert f"{outcome}: a message" in result.note, claim["id"]
-            elif read:
+            elif table:
                 answered = outcome in check.answers
                 assert result.replicated_value.startswith("not evaluated: ") is not answered, claim["id"]
                 assert answered or (result.holds is False and f"{outcome}: m" in result.note), claim["id"]

@@ -1,7 +1,7 @@
 """The checks of the register beyond their tolerances (test_check_boundaries*.py), each on synthetic evidence built
 here that gives each of its outcomes (the scene of :func:`fig3` follows the steps and the map (17) of the paper's
-geometry exactly); the checks on runs of their own are given configurations (their ``args``) on either side of what
-they decide, the checks scene making the runs.
+geometry exactly); the checks on runs of their own read the configuration's runs, changed on either side of what
+they decide, as the checks scene makes them.
 """
 
 from __future__ import annotations
@@ -12,13 +12,13 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from escapement.scenes.probes import probe_variables
+from escapement.pipeline.config import ConfigError
 from escapement.studies.poincare import section_crossing_counts
 from escapement.verdict import engine as cl
 from escapement.verdict.evidence import Evidence
 from escapement.verdict import sec3_equations, sec4_fig3, sec5_conclusions
-from verdict.test_check_boundaries import (DONE, GEOMETRY, judged, made_short_runs, probes, register_row,
-                                         release_runs, runs, scalars)
+from verdict.test_check_boundaries import (DONE, GEOMETRY, first_swings, judged, made, phase_shift, register_row,
+                                         runs, scalars)
 from verdict.test_check_boundaries import fig5 as scene5
 
 
@@ -62,8 +62,7 @@ def evidence(**over) -> Evidence:
 def claim(check: str, tolerance=1e-8, **args) -> dict:
     """A claim under one reading: the claim and the reading in one mapping."""
     return {"id": f"the_{check}_claim", "source": "S", "origin": "paper", "quote": "q", "statement": "s",
-            "paper_value": None, "reading": "as stated", "tolerance": tolerance, "check": check,
-            "args": {"M": 1.0, "K": 1.0, "b": 0.1, **args}}  # the model's M, K and b, as the register's runs have them
+            "paper_value": None, "reading": "as stated", "tolerance": tolerance, "check": check, "args": args}
 
 
 def outcome(c: dict, ev: Evidence | None = None):
@@ -78,8 +77,8 @@ def test_initial_order(side):
     """Released from rest at side |x0|: from -1 m the first swing meets a1 at sqrt(1 - 0.01) m/s (w = 1), from
     -3 m at sqrt(9 - 0.01); from +|x0| the first impact is at a3 and a1 comes after an impulse (the checks
     dataset's first swings, by hand)."""
-    c = claim("sec4_fig3.initial_order", tolerance=None, cases=["a", "b"], side=side)
-    ev = evidence(checks=runs({}).assign(probes()))
+    c = claim("sec4_fig3.initial_order", tolerance=None, runs="first_swings", cases=["a", "b"], side=side)
+    ev = evidence(checks=first_swings())
     result = outcome(c, ev)
     assert result.holds is True
     if side == -1:
@@ -89,52 +88,37 @@ def test_initial_order(side):
 
 # --- Sec. 5 and Sec. 4: existence of the limit cycle, release boundary -----------------------------
 
-ASYMMETRIC = dict(positions=[-0.3, -0.25, 0.1, 0.05], x0=-0.4, n_cycles=200, M=1.0, K=1.0, b=0.1)
-
-
-def released(c: dict) -> Evidence:
-    """The evidence with the runs from rest of the claim ``c``, made by the checks scene."""
-    return evidence(checks=release_runs(c["args"]))
-
-
 def test_existence_sign_change_with_the_solver():
-    # F* = 0.19 * 0.08 / (2 (0.81 * 0.05 + 0.05)) = 0.0839779 N
-    c = claim("sec5_conclusions.existence_sign_change", forces=[0.05, 0.1], **ASYMMETRIC)
-    result = outcome(c, released(c))
+    """The configuration's runs (a1..a4 = -0.3, -0.25, 0.1, 0.05 m from -0.4 m) at forces either side of
+    F* = 0.19 * 0.08 / (2 (0.81 * 0.05 + 0.05)) = 0.0839779 N, and at two forces above it."""
+    c = claim("sec5_conclusions.existence_sign_change", runs="existence")
+    result = outcome(c, evidence(checks=made("existence")))
     assert result.holds is True and "= 0.0839779 N" in result.note
     assert "F = 0.05 N (C = -0.00615 m^2/s^2): stopped" in result.replicated_value
-    c = claim("sec5_conclusions.existence_sign_change", forces=[0.1, 0.2], **ASYMMETRIC)
-    assert judged(c, released(c)) == "not_reproduced"
-    with pytest.raises(cl.ClaimError, match="0 runs of release_outcome"):
-        outcome(c, evidence(checks=release_runs({**c["args"], "n_cycles": 20})))
-
-
-PAPER_CASE = dict(positions=[-0.1, 0.05, 0.1, -0.05], F=1.0, M=1.0, K=1.0, b=0.1)
+    assert judged(c, evidence(checks=made("existence", F=[0.1, 0.2]))) == "not_reproduced"
 
 
 def test_release_boundary_with_the_solver():
-    c = claim("sec4_fig3.release_boundary", releases=[-1.0, 0.1001], n_cycles=200, **PAPER_CASE)
-    assert judged(c, released(c)) == "reproduced"
-    for other in ({"releases": [-1.0, 0.1001, -0.0999]}, {"n_cycles": 5}):  # inside the boundary; not yet converged
-        c_other = {**c, "args": {**c["args"], **other}}
-        assert judged(c_other, released(c_other)) == "not_reproduced"
+    c = claim("sec4_fig3.release_boundary", runs="release_boundary")
+    assert judged(c, evidence(checks=made("release_boundary", x0=[-1.0, 0.1001]))) == "reproduced"
+    # inside the boundary; not yet converged
+    for other in ({"x0": [-1.0, 0.1001, -0.0999]}, {"x0": [-1.0, 0.1001], "n_cycles": 5}):
+        assert judged(c, evidence(checks=made("release_boundary", **other))) == "not_reproduced"
 
 
 # --- Secs. 3.3 and 5: uniqueness fails at grazing --------------------------------------------------
 
 
 def test_grazing_uniqueness_with_the_solver():
-    args = dict(positions=[-0.1, 0.05, 0.3, -0.05], F=0.1, deltas=[1e-4, 1e-12], n_cycles=3)
-    c = claim("sec3_equations.grazing_uniqueness", **args)
-    result = outcome(c, released(c))
+    c = claim("sec3_equations.grazing_uniqueness", runs="grazing")
+    result = outcome(c, evidence(checks=made("grazing", offset=[1e-4, -1e-4, 1e-12, -1e-12])))
     # A^2 = 0.01 + (0.09 - 0.01 - 0.03) / 0.81; the continuation after a touch counted as an impact:
     # v1^2 = 0.09 - 0.01 + 2 * 0.1 * 0.35 = 0.15
     assert result.holds is True
     assert f"A = {math.sqrt(0.01 + 0.05 / 0.81):.10g} m" in result.replicated_value
     assert f"next v1 = {math.sqrt(0.15):.10g} m/s" in result.replicated_value
-    with pytest.raises(cl.ClaimError, match="no release grazes a3"):
-        outcome(claim("sec3_equations.grazing_uniqueness", **{**args, "positions": [-0.1, 0.05, 0.1, -0.05]}),
-                released(c))
+    with pytest.raises(ConfigError, match="checks.grazing: .*no release grazes a3"):
+        made("grazing", positions=[-0.1, 0.05, 0.1, -0.05])
 
 
 # --- Figs. 4 and 5, the Poincare section ---------------------------------------------------------
@@ -144,11 +128,8 @@ def test_window_impact_holds_under_every_reading_of_the_grid(monkeypatch):
     """The paper's geometry, F of 1 and 0.5 N from 1 and 3 m, either side, K of 0.1, 1, 10 N/m: 24 exact runs, every
     one meeting a1 or a3 within 80-87 s and within 81-85 s (found so by a separate event simulation; for K = 0.1 N/m,
     whose impacts come about 31 s apart, a property of these releases, not of the geometry)."""
-    c = claim("sec4_fig4.window_impact", tolerance=None)
-    grid = [{**GEOMETRY, "F": F, "K": K, "x0": x0} for F in (0.5, 1.0) for K in (0.1, 1.0, 10.0)
-            for x0 in (-3.0, -1.0, 1.0, 3.0)]
-    ev = evidence(fig3={"a": fig3(), "b": fig3(F=0.5, v0=3.0, x0=-3.0)},
-                  checks=xr.Dataset(probe_variables({"windows": grid})))
+    c = claim("sec4_fig4.window_impact", tolerance=None, runs="windows")
+    ev = evidence(checks=made("windows"))
     result = outcome(c, ev)
     assert len(result.holds) == 24 and all(result.holds.values())
     assert judged(c, ev) == "reproduced"
@@ -160,11 +141,8 @@ def test_window_impact_holds_under_every_reading_of_the_grid(monkeypatch):
 
 
 def test_section_crossings():
-    c = claim("sec3_map.section_crossings", tolerance=None, samples_per_period=400)
-    cases = [{**GEOMETRY, "F": F, "x0": x0, "label": label, "n_cycles": 4}
-             for label, F, x0 in (("a", 1.0, -1.0), ("b", 0.5, -3.0))]
-    crossings = xr.Dataset(probe_variables({"crossings": {"cases": cases, "samples_per_period": 400}}))
-    result = outcome(c, evidence(checks=crossings))
+    c = claim("sec3_map.section_crossings", tolerance=None, runs="section_crossings")
+    result = outcome(c, evidence(checks=made("section_crossings", n_cycles=4, samples_per_period=400)))
     assert result.holds is True and "case a: 4 cycles, crossings per cycle 1-1" in result.replicated_value
     # a trajectory x = -cos t with every other impact at a1 left out: two crossings in each "cycle"
     t = np.linspace(0.0, 8 * math.pi, 4000)
@@ -180,7 +158,7 @@ def common(*sizes) -> xr.Dataset:
 
 
 def test_fig5_dimensions_compares_the_spring_constants_at_one_force():
-    c = claim("sec4_fig5.fig5_dimensions", tolerance=0.05)
+    c = claim("sec4_fig5.fig5_dimensions", tolerance=0.05, runs="common_force")
     apart = common((0.5, 0.1, 2.8, 0.89), (0.5, 1.0, 0.89, 0.89), (1.0, 0.1, 4.0, 1.26), (1.0, 1.0, 1.26, 1.26))
     result = outcome(c, evidence(checks=apart))
     assert result.holds is True and "not compared with each other" in result.note
@@ -210,21 +188,13 @@ def test_fig5_impact_visible():
 
 
 def test_airy_order_with_the_solver():
+    c = claim("beyond.airy_order", tolerance=0.01, runs="airy")
     zones = {"symmetric": [-0.1, 0.1], "before": [-0.2, -0.05], "after": [0.05, 0.2]}
-    c = claim("beyond.airy_order", tolerance=0.01, zones=zones, forces=[0.1, 0.01, 0.001], release=1.0)
-    result = outcome(c, passages(c))
+    result = outcome(c, evidence(checks=made("airy", zones=zones, F=[0.1, 0.01, 0.001])))
     assert result.holds is True
     assert "(shortens)" in result.replicated_value and "(lengthens)" in result.replicated_value
     # at forces up to 1 N the measured order of the off-centre zones is no longer 1 within 1 %
-    c = {**c, "args": {**c["args"], "zones": {"before": [-0.2, -0.05]}, "forces": [1.0, 0.5]}}
-    assert judged(c, passages(c)) == "not_reproduced"
-
-
-def passages(c: dict) -> Evidence:
-    """The evidence with the passages through the zones of the claim ``c``, made by the checks scene."""
-    spec = {"zones": c["args"]["zones"], "forces": c["args"]["forces"], "release": 1.0,
-            "M": 1.0, "K": 1.0, "b": 0.1}
-    return evidence(checks=xr.Dataset(probe_variables({"airy": spec})))
+    assert judged(c, evidence(checks=made("airy", zones={"before": [-0.2, -0.05]}, F=[1.0, 0.5]))) == "not_reproduced"
 
 
 # --- Eqs. (3a)-(5), the model's definitions, and the untestable claim of accuracy ----------------------
@@ -237,11 +207,12 @@ def model_verdict(check: str, ev=None, tolerance=1e-12, **args):
 def test_the_state_matrix_as_printed_holds_only_where_omega_is_1():
     """The exact solver's free arcs at each K conserve v^2 + w^2 x^2; -omega_n in A conserves v^2 + w x^2 instead,
     which the arcs do only at K = 1 N/m."""
-    ev = evidence(checks=xr.Dataset(made_short_runs([1.0, 4.0], [])))
+    ev = evidence(checks=made("springs", K=[1.0, 4.0]))
     for entry, holds in (("omega", False), ("omega2", True)):
-        result = model_verdict("sec3_equations.state_matrix", ev, tolerance=1e-10, case="a", entry=entry, K=[1.0, 4.0])
+        result = model_verdict("sec3_equations.state_matrix", ev, tolerance=1e-10, runs="springs", entry=entry)
         assert result.holds is holds and "K = 4 N/m (omega_n = 2 rad/s)" in result.replicated_value
-    one = model_verdict("sec3_equations.state_matrix", ev, tolerance=1e-10, case="a", entry="omega", K=[1.0])
+    one = model_verdict("sec3_equations.state_matrix", evidence(checks=made("springs", K=[1.0])), tolerance=1e-10,
+                        runs="springs", entry="omega")
     assert one.holds is True
 
 
@@ -283,9 +254,9 @@ def test_the_supplementary_sets_miss_the_ends_of_the_zones_and_the_turning_point
 
 
 def test_the_force_is_switched_on_where_the_state_is_not_at_given_times():
-    ev = evidence(checks=xr.Dataset(made_short_runs([], [-1.0, -1.5])))
     for releases, holds in (([-1.0, -1.5], False), ([-1.0, -1.0], True)):
-        result = model_verdict("sec3_equations.autonomous", ev, tolerance=1e-9, case="a", releases=releases)
+        result = model_verdict("sec3_equations.autonomous", evidence(checks=made("short_releases", x0=releases)),
+                               tolerance=1e-9, runs="short_releases")
         assert result.holds is holds
 
 
@@ -300,16 +271,11 @@ def test_the_map_8_has_the_eigenvalues_0_and_g_prime_not_1():
 def test_a_speed_perturbed_by_1_percent_returns_to_the_cycle_with_a_phase_shift():
     """The runs from (a1, v*) and (a1, 1.01 v*) of the checks dataset: the speeds agree after 100 cycles, the
     impact times stay -0.000848 s apart (the value of the scene, tests/scenes/test_runs.py)."""
-    ds = scene_of_case_a()
-    star = float(ds["velocity_before_impact"].values[-1])
-    ev = evidence(fig3={"a": ds}, checks=runs({}).assign(probes(star=star, shift=-0.000848)))
-    args = dict(case="a", perturbation=0.01, n_cycles=100)
-    orbital = model_verdict("sec3_map.phase_shift", ev, tolerance=1e-8, sense="orbital", **args)
-    lyapunov = model_verdict("sec3_map.phase_shift", ev, tolerance=1e-8, sense="lyapunov", **args)
+    ev = evidence(checks=phase_shift(star=math.sqrt(0.3 / 0.19), shift=-0.000848))
+    orbital = model_verdict("sec3_map.phase_shift", ev, tolerance=1e-8, runs="phase_shift", sense="orbital")
+    lyapunov = model_verdict("sec3_map.phase_shift", ev, tolerance=1e-8, runs="phase_shift", sense="lyapunov")
     assert (orbital.holds, lyapunov.holds) == (True, False)
     assert "impact times -0.000848 s apart" in lyapunov.replicated_value
-    with pytest.raises(cl.ClaimError, match="not those of the claim"):
-        model_verdict("sec3_map.phase_shift", ev, tolerance=1e-8, sense="orbital", **{**args, "n_cycles": 50})
 
 
 def scene_of_case_a() -> xr.Dataset:
@@ -405,6 +371,6 @@ def test_the_wrapper_hands_its_verdict_the_registers_tolerance_and_the_closed_fo
         return real(rows, closed_form, tolerance, *rest)
 
     monkeypatch.setattr(module, verdict_function, watched)
-    cl.verdict(row, row, Evidence(fig3={}, fig4=None, fig5={}, checks=release_runs(row["args"])))
+    cl.verdict(row, row, Evidence(fig3={}, fig4=None, fig5={}, checks=made(row["args"]["runs"])))
     (closed_form, tolerance), = calls
     assert tolerance == row["tolerance"] and closed_form == pytest.approx(reference, rel=1e-14)

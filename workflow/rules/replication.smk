@@ -95,7 +95,7 @@ rule check_claims:
     params:
         fig3=outputs.data_files("replication", "fig3", STUDIES["replication"]["fig3"]),
         fig5=outputs.data_files("replication", "fig5", STUDIES["replication"]["fig5"]),
-        settings={"model": PAPER["model"], "checks": PAPER["checks"]},
+        settings={"checks": PAPER["checks"]},
         code=CODE,
     script:
         "../scripts/check_claims.py"

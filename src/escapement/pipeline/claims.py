@@ -23,15 +23,17 @@ def check_claims(
     output: str, limits: str, log: str, schema: str = SCHEMA, settings: Mapping | None = None,
 ) -> None:
     """Evaluate the register on the outputs (``fig3`` and ``fig5`` by their labels) and the readings' scores, the runs
-    it names from ``settings`` (the configuration's ``model`` and ``checks`` blocks); write the table to ``output``,
-    and to ``limits`` the limits of the printed panel each claim's args name (``figure``, ``panel``), as judged."""
+    it names among those of ``settings`` (the configuration's ``checks`` block: each run by its name); write the
+    table to ``output``, and to ``limits`` the limits of the printed panel each claim's args name (``figure``,
+    ``panel``), as judged."""
     with logged(log, "check_claims") as logger:
         fig3_data, fig5_data = ({label: read_netcdf(path) for label, path in paths.items()} for paths in (fig3, fig5))
         fig4_data = read_netcdf(fig4)
         evidence = Evidence(fig3=fig3_data, fig4=fig4_data, fig5=fig5_data, checks=read_netcdf(checks),
                             axes=scene_axes(fig3_data, fig4_data, fig5_data, VARIANTS[CLAIM_AUTOSCALE]),
                             readings=panel_candidates(read_scores(readings)))
-        claims = load_claims(register, schema, settings)
+        claims = load_claims(register, schema, None if settings is None else [
+            name for name, entry in settings["checks"].items() if isinstance(entry, Mapping)])
         panels = dict.fromkeys((claim["id"], str(r["args"]["figure"]), str(r["args"]["panel"])) for claim in claims
                                for r in claim["readings"] if {"figure", "panel"} <= set(r["args"]))
         rows = evaluate(claims, evidence)

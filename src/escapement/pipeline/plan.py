@@ -11,12 +11,13 @@ the paper's (:func:`changes`); each kind's scenes carry those that reach it, whi
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ..model.parameters import ParameterError, Parameters
 from ..model.quantities import INITIAL_STATE, PARAMETERS, SYMMETRIC_DEFAULTS
-from ..paper.printed_axes import FIG5_PANEL_K
+from ..paper.corrected import grazing_release
 from ..scenes.settings import (
     KINDS,
     REPLICATION,
@@ -31,8 +32,8 @@ from ..scenes.settings import (
 )
 from .config import ConfigError
 
-__all__ = ["BLOCKS", "REPLICATION_ONLY", "Planned", "changes", "check_cases", "check_probes", "leaves", "plan",
-           "replication_scenes", "study_scenes"]
+__all__ = ["BLOCKS", "REPLICATION_ONLY", "Planned", "changes", "check_runs", "leaves", "plan", "replication_scenes",
+           "study_scenes"]
 
 #: the blocks a study may change, and the replication's own, which only config/paper.yaml sets
 BLOCKS = ("model", *KINDS)
@@ -200,11 +201,12 @@ def plan(config: Mapping, paper: Mapping) -> tuple[dict[str, dict], list[str]]:
                          "reaches a scene"] + notes[1:]
     studies[name] = study_scenes(name, {"model": config["model"], **runs}, paper)
     return studies, notes
+
+
 def replication_scenes(paper: Mapping) -> dict[str, dict]:
-    """The replication's own runs, checked: ``checks`` (the claims register's runs and their cycles),
-    ``benchmark`` and ``long_run`` (each on the Fig. 3 case it names, as Fig. 3 runs it)."""
-    found = {"checks": {"cases": check_cases(paper), "n_cycles": paper["checks"]["n_cycles"],
-                        "probes": check_probes(paper)}}
+    """The replication's own runs, checked: ``checks`` (:func:`check_runs`), ``benchmark`` and ``long_run`` (each
+    on the Fig. 3 case it names, as Fig. 3 runs it)."""
+    found = {"checks": check_runs(paper)}
     for block in ("benchmark", "long_run"):
         case = paper[block]["case"]
         if case not in paper["fig3"]["cases"]:
@@ -215,90 +217,78 @@ def replication_scenes(paper: Mapping) -> dict[str, dict]:
     try:
         LongRunScene.from_mapping(found["long_run"])
         Release.from_mapping(found["benchmark"])
-        for case in found["checks"]["cases"]:
-            PoincareScene.from_mapping({**case, "n_cycles": 1, "amplitude": "largest_displacement"})
     except ParameterError as err:
         raise ConfigError(f"config/paper.yaml: {err}") from None
     return found
 
 
-def check_probes(paper: Mapping) -> dict:
-    """The runs behind single claims (the ``checks`` block's ``first_swings``, ``return_map`` and ``phase_shift``,
-    each on a Fig. 3 case as the fig3 block runs it; ``existence``, ``release_boundary`` and ``grazing``, on the
-    model with their own positions; ``airy``, its zones on the model; ``short_runs``; ``section_crossings``; and
-    always ``windows``, the runs of Fig. 4's grid of readings)
-    (:func:`escapement.scenes.probes.probe_variables`)."""
-    checks, fig3 = paper["checks"], paper["fig3"]
-
-    def case(label: str, *parts: Mapping) -> dict:
-        if label not in fig3["cases"]:
-            raise ConfigError(f"checks: case {label!r} is invalid: a case must be one of fig3.cases, one of "
-                              f"{', '.join(sorted(fig3['cases']))}")
-        return _flat(paper["model"], fig3["cases"][label], {"label": label}, *parts)
-
-    probes: dict = {}
-    if "first_swings" in checks:
-        probes["first_swings"] = [case(c, {"x0": side * abs(fig3["cases"][c]["x0"])})
-                                  for c in checks["first_swings"]["cases"] for side in checks["first_swings"]["sides"]]
-    if "return_map" in checks:
-        probes["return_map"] = case(checks["return_map"]["case"], checks["return_map"])
-    if "phase_shift" in checks:
-        probes["phase_shift"] = case(checks["phase_shift"]["case"], checks["phase_shift"],
-                                     {"n_release": fig3["n_cycles"]})
-    own = {key: {**dict(zip(("a1", "a2", "a3", "a4"), block["positions"])), **block}
-           for key, block in checks.items() if key in ("existence", "release_boundary", "grazing")}
-    probes["releases"] = [_flat(paper["model"], own["existence"], {"F": F}) for F in own["existence"]["forces"]
-                          ] if "existence" in own else []
-    if "release_boundary" in own:
-        probes["releases"] += [_flat(paper["model"], own["release_boundary"], {"x0": x0})
-                               for x0 in own["release_boundary"]["releases"]]
-    if "grazing" in own:
-        probes["grazing"] = _flat(paper["model"], own["grazing"])
-    if "airy" in checks:
-        zones = dict(sorted(checks["airy"]["zones"].items()))  # _flat leaves nested mappings out
-        probes["airy"] = {**_flat(paper["model"], checks["airy"]), "zones": zones}
-    if "short_runs" in checks:
-        short, given = checks["short_runs"], fig3["cases"][checks["short_runs"]["case"]]
-        pairs = [(K, given["x0"]) for K in short["K"]] + [(paper["model"]["K"], x0) for x0 in short["releases"]]
-        probes["short_runs"] = [case(short["case"], {"K": K, "x0": x0, "n_cycles": short["n_cycles"]})
-                                for K, x0 in dict.fromkeys(pairs)]
-    if "section_crossings" in checks:
-        probes["crossings"] = {"cases": [case(c, {"n_cycles": fig3["n_cycles"]}) for c in fig3["cases"]],
-                               **checks["section_crossings"]}
-    magnitudes = sorted({abs(c["x0"]) for c in fig3["cases"].values()})
-    probes["windows"] = [_flat(paper["model"], {"F": F, "K": K, "x0": side * m})
-                         for F in sorted({c["F"] for c in fig3["cases"].values()}) for K in FIG5_PANEL_K.values()
-                         for m in magnitudes for side in (-1.0, 1.0)]
-    return probes
+def check_runs(paper: Mapping) -> dict:
+    """The runs of the ``checks`` block, each checked by the model's rules (a bad one a :class:`ConfigError` naming
+    it): those of the table (``cases``, each with its ``group``, the run's name, on the block's F and x0, run over
+    its ``n_cycles``) and those of another ``measure`` by name (``probes``: ``{name: {measure, runs}}``)
+    (:func:`escapement.scenes.runs.checks`)."""
+    checks, table, probes = paper["checks"], [], {}
+    for name, entry in checks.items():
+        if name in ("n_cycles", "x0", "F"):  # the table's defaults
+            continue
+        base = dict(paper["model"]) if "measure" in entry else {**paper["model"], "F": checks["F"], "x0": checks["x0"]}
+        try:
+            runs = _runs(paper, entry, base)
+            for run in runs:  # the model's bounds and a release, before any job
+                Parameters.from_mapping(run)
+                Release.from_mapping(run)
+        except (ParameterError, ValueError) as err:
+            raise ConfigError(f"config/paper.yaml: checks.{name}: {err}") from None
+        if "measure" in entry:
+            probes[name] = {"measure": entry["measure"], "runs": runs}
+        else:
+            table += [{**run, "group": name} for run in runs]
+    return {"cases": table, "n_cycles": checks["n_cycles"], "probes": probes}
 
 
-def check_cases(paper: Mapping) -> list[dict]:
-    """The runs of the claims register (the ``checks`` block), each labelled with its group: the Fig. 3 cases,
-    the initial conditions, the impact coefficients, the symmetric and asymmetric geometries, every K of Fig. 5
-    at every force of the figure, the releases and the forces."""
-    checks = paper["checks"]
-    base = _flat(paper["model"], {"F": checks["F"], "x0": checks["x0"]})
-    cases = [_flat(base, keys, {"group": "paper", "label": f"fig3{c}"}) for c, keys in paper["fig3"]["cases"].items()]
-    cases += [_flat(base, ic, {"group": "initial_condition", "label": f"F={ic['F']:g},x0={ic['x0']:g}"})
-              for ic in checks["initial_conditions"]]
-    cases += [_flat(base, {"b": b, "group": "b", "label": f"b={b:g}"}) for b in checks["b"]]
-    for group in ("symmetric", "asymmetric"):
-        for force in checks[group]["F"]:
-            for positions in checks[group]["positions"]:
-                keys = dict(zip(("a1", "a2", "a3", "a4"), positions))
-                label = f"F={force:g}," + ",".join(f"{k}={v:g}" for k, v in keys.items())
-                cases.append(_flat(base, keys, {"F": force, "group": group, "label": label}))
-    fig5 = paper["fig5"]
-    panels = [(k, _per_panel(fig5, "F", i, fig5), _per_panel(fig5, "x0", i, fig5)) for i, k in enumerate(fig5["K"])]
-    for force in sorted({F for _, F, _ in panels}):
-        cases += [_flat(base, {"K": k, "x0": x0, "F": force, "group": "common_force", "label": f"K={k:g},F={force:g}"})
-                  for k, _, x0 in panels]
-    if "releases" in checks:
-        force = checks["releases"]["F"]
-        cases += [_flat(base, {"F": force, "x0": x0, "group": "release", "label": f"F={force:g},x0={x0:g}"})
-                  for x0 in checks["releases"]["x0"]]
-    if "forces" in checks:
-        x0 = checks["forces"]["x0"]
-        cases += [_flat(base, {"F": force, "x0": x0, "group": "force", "label": f"F={force:g},x0={x0:g}"})
-                  for force in checks["forces"]["F"]]
-    return cases
+def _derived(paper: Mapping, block: str) -> list[dict]:
+    """The runs a checks entry takes ``from`` a block: fig3, its cases; fig5, every K of it at every F of it from the
+    panel's x0; fig4, the grid of Fig. 4's readings (every force and release magnitude of the Fig. 3 cases, either
+    side, at every K of fig5, to the end of the fig4 block's later window)."""
+    cases, fig5 = paper["fig3"]["cases"].values(), paper["fig5"]
+    if block == "fig3":
+        return [{"case": case} for case in paper["fig3"]["cases"]]
+    if block == "fig5":
+        panels = [(k, _per_panel(fig5, "F", i, fig5), _per_panel(fig5, "x0", i, fig5)) for i, k in enumerate(fig5["K"])]
+        return [{"K": k, "F": F, "x0": x0} for F in sorted({F for _, F, _ in panels}) for k, _, x0 in panels]
+    t_end = max(paper["fig4"][window][1] for window in ("velocity_window", "acceleration_window"))
+    return [{"F": F, "K": K, "x0": side * m, "t_end": t_end} for F in sorted({c["F"] for c in cases})
+            for K in fig5["K"] for m in sorted({abs(c["x0"]) for c in cases}) for side in (-1.0, 1.0)]
+
+
+def _runs(paper: Mapping, entry: Mapping, base: Mapping) -> list[dict]:
+    """The runs of one entry of the checks block (config/paper.yaml says how its keys read), in order, each a flat
+    mapping labelled by the keys that tell it apart from the entry's other runs."""
+    swept = {key: list(value.items()) if key == "zones" else value for key, value in entry.items() if key != "runs"
+             and (isinstance(value, dict) or isinstance(value, list) and not (key == "positions" and not isinstance(
+                 value[0], list)))}
+    items = _derived(paper, entry["from"]) if "from" in entry else entry.get("runs", [{}])
+    cases, runs = paper["fig3"]["cases"], []
+    for item in ({**dict(item), **dict(zip(swept, combination))} for item in items
+                 for combination in itertools.product(*swept.values())):
+        keys, run = {**{k: v for k, v in entry.items() if k not in swept}, **item}, dict(base)
+        if "case" in keys and keys["case"] not in cases:
+            raise ValueError(f"case {keys['case']!r} is invalid: a case must be one of fig3.cases, one of "
+                             f"{', '.join(sorted(cases))}")
+        run.update(cases.get(keys.get("case"), {}))
+        for key, value in keys.items():
+            if key in ("positions", "zones"):
+                name, value = value if key == "zones" else (None, value)
+                run.update(zip(("a1", "a2", "a3", "a4"), value if len(value) == 4 else [*value, -value[0], -value[1]]))
+                run.update({"zone": name} if name else {})
+            elif key not in ("measure", "from", "runs"):
+                run[key] = paper[value][key] if isinstance(value, str) and key != "case" else value
+        if "side" in run:
+            run["x0"] = run["side"] * abs(run["x0"])
+        if "offset" in run:
+            run["x0"] = -grazing_release(Parameters.from_mapping(run)) * (1 + run["offset"])
+        label = [f"fig3{v}" if k == "case" else v[0] if k == "zones" else ",".join(
+            f"{a}={p:g}" for a, p in zip(("a1", "a2", "a3", "a4"), v)) if k == "positions" else f"{k}={v:g}"
+            for k, v in item.items()]
+        runs.append(dict(sorted({**run, "label": ",".join(label)}.items())))
+    return runs

@@ -15,7 +15,7 @@ from ..model.quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS
 from ..paper.corrected import fixed_point
 from ..studies.poincare import measure_cycle
 from ..paper.printed import multiplier_21
-from .probes import probe_variables
+from .probes import named_runs
 from .cf import CLASSIFICATION, MODEL_INPUT, QUALITY, assemble, global_attributes, parameter_variables, \
     scalar_variable, table_dataset
 from .settings import LongRunScene, Release, positive_int
@@ -24,8 +24,8 @@ __all__ = ["CHECKS_COLUMNS", "checks", "long_run"]
 
 #: the columns of the checks dataset: name: (units, or None for text; long name[, content type])
 CHECKS_COLUMNS = {
-    "label": (None, "name of the case", MODEL_INPUT),
-    "group": (None, "claim the case serves", MODEL_INPUT),
+    "label": (None, "the settings that tell the run apart from the others of its group", MODEL_INPUT),
+    "group": (None, "name of the run in the checks block of the configuration", MODEL_INPUT),
     "outcome": (None, "how the run ended", CLASSIFICATION),
     "outcome_message": (None, "how the run ended, in words", CLASSIFICATION),
     "x0": (INITIAL_STATE["x0"].units, f"{INITIAL_STATE['x0'].long_name} (released from rest)", MODEL_INPUT),
@@ -45,13 +45,14 @@ CHECKS_COLUMNS = {
 
 
 def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = None) -> xr.Dataset:
-    """The runs of the claims register, one row per case (each a mapping with ``group``, ``label``, the model's
-    keys and ``x0``): released from rest, run ``n_cycles`` cycles, the Poincare map measured at the last cycle
-    (:func:`escapement.studies.poincare.measure_cycle`) beside the fixed point of Eq. (16) and the multiplier of
-    Eq. (21); beside the table, the runs behind single claims that ``probes`` names
-    (:func:`escapement.scenes.probes.probe_variables`)."""
+    """The runs of the claims register: the table, one row per case (each a mapping with ``group``, ``label``, the
+    model's keys and ``x0``), released from rest, run ``n_cycles`` cycles, the Poincare map measured at the last
+    cycle (:func:`escapement.studies.poincare.measure_cycle`) beside the fixed point of Eq. (16) and the multiplier
+    of Eq. (21); beside it, the runs of another measure that ``probes`` names, each under its name
+    (:func:`escapement.scenes.probes.named_runs`). Every case and run is checked before any is made."""
     n_cycles = positive_int("n_cycles", n_cycles, 100_000)
     runs = [(case, p, Release.from_mapping(case).x0) for case in cases for p in [Parameters.from_mapping(case)]]
+    named = named_runs(probes or {})
     measured = [measure_cycle(p, x0, n_cycles) for _, p, x0 in runs]
     columns = {
         "label": [c["label"] for c, _, _ in runs],
@@ -70,18 +71,19 @@ def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = Non
     }
     table = {name: (columns[name], *description) for name, description in CHECKS_COLUMNS.items()}
     summary = (
-        "This file holds one row per run of the claims register: each run, with the parameters of its row, "
+        "This file holds the runs of the claims register, each under its name in the checks block of the "
+        "configuration. The table, one row per run (group, its name): each run, with the parameters of its row, "
         "starts from rest at x0 and lasts n_cycles cycles; its fixed point, period, largest displacement and "
         "multiplier are measured at the last cycle, beside the fixed point of Eq. (16) and the multiplier of "
         "Eq. (21); with the first cycle's period, the largest speed on the last cycle and both Floquet multipliers "
-        "of the flow over the last period (central differences of the exact flow). Beside the table, each on its "
-        "own dimension, the runs behind single claims: Fig. 3's cases' first swings from either side "
-        "(first_swing), the slope of a Fig. 3 case's return map at given speeds (map_velocity), and the runs of a "
-        "Fig. 3 case from the section at its converged speed and beside it (perturbation)."
+        "of the flow over the last period (central differences of the exact flow). Beside the table, the runs of "
+        "another measure (runs from rest and how they end, event tables, the slope of a return map, runs from the "
+        "section, passages through impulse zones, crossings of the section per cycle), each with its settings and "
+        "what it measures as variables <name>_<variable> on the dimension <name>_run."
     )
     ds = table_dataset(table, "Measured Poincare maps for the claims register", "checks", summary,
                        solver="exact", n_cycles=n_cycles)
-    return ds.assign(probe_variables(probes or {}))
+    return ds.assign(named)
 
 
 def long_run(settings: Mapping | LongRunScene) -> tuple[xr.Dataset, dict[str, float]]:

@@ -6,7 +6,7 @@ equilibrium shortens it, one after lengthens it. Here the impulse is the force `
 on the period, ``dT2``, is the zone's time less the sine phase ``atan2(x, v/w)`` it advances over ``w`` (the
 corrected Eq. (25)), and to first order (derived on paper) ``f (sqrt(A^2 - a^2) - sqrt(A^2 - c^2)) / (w^3 A^2)`` on
 an arc of amplitude ``A`` (:func:`escapement.paper.corrected.first_order_zone_change`). The checks scene measures
-``dT2`` on one passage at a fixed amplitude (``airy_zone_shift`` of the checks dataset).
+``dT2`` on one passage at a fixed amplitude (the runs of measure ``zone_shift`` of the checks dataset).
 """
 
 from __future__ import annotations
@@ -14,10 +14,9 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
-from ..model.parameters import Parameters
 from ..paper import corrected
 from ..paper.corrected import first_order_zone_change, zone_amplitude
-from .evidence import Evidence, Verdict, check, fig3_scenes, fmt, params_of, probe, runs_only, within
+from .evidence import Evidence, Verdict, check, each, fig3_scenes, fmt, params_of, run, within
 
 
 def _order(f: Sequence[float], shift: Sequence[float]) -> float:
@@ -53,23 +52,18 @@ def airy_verdict(zones: Mapping[str, Mapping], tolerance: float) -> Verdict:
         paper_value="Airy: symmetric impulse O(f^2); before the equilibrium shortens, after lengthens")
 
 
-@check(scenes=runs_only, args=("zones", "forces", "release", "M", "K", "b"))
+@check(runs=("runs",))
 def airy_order(claim, ev: Evidence) -> Verdict:
-    args = claim["args"]
-    release, made = float(args["release"]), ev.checks["airy_zone_shift"].attrs
-    if (made["release"], made["M"], made["K"], made["b"]) != (
-            release, *(float(args[k]) for k in ("M", "K", "b"))):
-        raise ValueError(f"the checks dataset's passages are released at -{made['release']} m, M, K, b = "
-                         f"{made['M']}, {made['K']}, {made['b']}, not as the claim's")
-    zones, forces = {}, [float(F) for F in args["forces"]]
-    for name, (a, c) in args["zones"].items():
-        base = dict(M=float(args["M"]), K=float(args["K"]), b=float(args["b"]), a1=float(a), a2=float(c))
-        p0 = Parameters(F=forces[0], **base)
-        kappa = 0.0 if math.isclose(a, -c, rel_tol=0, abs_tol=1e-15) else (
-            first_order_zone_change(a, c, zone_amplitude(p0, release), p0.omega, 1.0))
-        row = probe(ev, "airy_zone_shift", "airy_zone", airy_zone_start=float(a), airy_zone_end=float(c))
-        zones[name] = {"zone": (a, c), "kappa": kappa, "f": [F / base["M"] for F in forces],
-                       "shift": [float(row.sel(airy_force=F)) for F in forces]}
+    """The runs' passages through each zone (in the order met), at each force, against Airy's first order."""
+    zones: dict[str, dict] = {}
+    for r in each(run(ev, claim["args"]["runs"])):
+        p, z = params_of(r), zones.setdefault(str(r["zone"].values), {"f": [], "shift": []})
+        if "kappa" not in z:  # the zone's first order, at its first force
+            a, c = p.a1, p.a2
+            z.update(zone=(a, c), kappa=0.0 if math.isclose(a, -c, rel_tol=0, abs_tol=1e-15) else (
+                first_order_zone_change(a, c, zone_amplitude(p, -float(r["x0"])), p.omega, 1.0)))
+        z["f"].append(p.F / p.M)
+        z["shift"].append(float(r["zone_shift"]))
     return airy_verdict(zones, claim["tolerance"])
 
 

@@ -13,7 +13,7 @@ import importlib.util
 import os
 import re
 from collections import Counter
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import replace
 from pathlib import Path
 
@@ -22,7 +22,7 @@ import numpy as np
 import yaml
 
 from ..paper.printed_axes import PANELS
-from .evidence import COMPLETED, Check, Evidence, Verdict, fmt
+from .evidence import COMPLETED, Check, Evidence, Verdict, fmt, names, run
 from .rule import UNDETERMINED, row_status
 
 __all__ = ["COLUMNS", "SCHEMA", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims", "resolved"]
@@ -51,12 +51,12 @@ def resolved(name: str) -> Check:
     return found
 
 
-def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, settings: Mapping | None = None
+def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, runs: Collection[str] | None = None
                 ) -> list[dict]:
     """The claims of the register at ``path``, each with its ``readings`` (one, ``as stated``, for a claim checked
-    under one reading), the ``runs`` of their args taken from ``settings`` (the configuration's ``model`` and
-    ``checks`` blocks); ValueError naming the claim against ``schema`` and what it cannot say (ids, parts, words,
-    figures tried, checks and their args)."""
+    under one reading); ValueError naming the claim against ``schema`` and what it cannot say (ids, parts, words,
+    figures tried, checks and their args, the runs they name where ``runs`` gives the names of the configuration's
+    checks block)."""
     data, schema = (yaml.load(Path(p).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
                     for p in (path, schema))
     error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(schema).iter_errors(data))
@@ -92,41 +92,32 @@ def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, set
             spec = {k: claim.pop(k) for k in ("check", "args", "tolerance", "tolerance_reason") if k in claim}
             claim["readings"] = [{"reading": AS_STATED, **spec}]
         for reading in claim["readings"]:
-            reading["args"] = _resolved(reading.get("args", {}), settings, where)
+            reading["args"] = reading.get("args", {})
             try:
-                missing = [a for a in resolved(reading["check"]).args if a not in reading["args"]]
+                declared = resolved(reading["check"])
+                missing = [a for a in (*declared.runs, *declared.args) if a not in reading["args"]]
             except ValueError as err:
                 raise ValueError(f"{where}: {err}") from None
             if missing:
                 raise ValueError(f"{where}: the check '{reading['check']}' needs the args {', '.join(missing)}")
+            if runs is not None and (unknown := [n for a in declared.runs for n in names(reading, a) if n not in runs]):
+                raise ValueError(f"{where}: runs {unknown[0]!r} must name a run of the configuration's checks block, "
+                                 f"one of {', '.join(sorted(runs))}")
     return data["claims"]
 
 
-def _resolved(args: Mapping, settings: Mapping | None, where: str) -> dict:
-    """A reading's args with ``runs: <name>`` replaced by the settings of those runs, the ``checks`` block's entry
-    ``name`` of the configuration, on the model's M, K and b: the runs' numbers are stated once, in config/."""
-    if "runs" not in args:
-        return dict(args)
-    name, blocks = args["runs"], {k for k, v in (settings or {}).get("checks", {}).items() if isinstance(v, Mapping)}
-    if name not in blocks:
-        raise ValueError(f"{where}: runs {name!r} must name an entry of the configuration's checks block"
-                         + (f", one of {', '.join(sorted(blocks))}" if blocks else ""))
-    model = {key: settings["model"][key] for key in ("M", "K", "b")}
-    return {**model, **settings["checks"][name], **{k: v for k, v in args.items() if k != "runs"}}
-
-
 def left_regime(name: str, ds, answers: tuple[str, ...]) -> Verdict | None:
-    """The verdict when the scene ``name``, or a run of a table of runs, left the escapement regime (an outcome
-    neither completed nor one of the check's ``answers``), else None."""
-    if "case" not in ds.dims:
+    """The verdict when the scene ``name``, or a run of the runs ``name`` that measure how they ended, left the
+    escapement regime (an outcome neither completed nor one of the check's ``answers``), else None."""
+    if "run" not in ds.dims:
         outcome = ds.attrs["outcome"]
         return None if outcome == COMPLETED else Verdict(
             f"not evaluated: {name} left the escapement regime ({outcome})", False,
             note=f"{name} ended with outcome '{outcome}': {ds.attrs['outcome_message']}; the claim concerns the "
                  "escapement regime")
-    left = np.flatnonzero(~np.isin(ds["outcome"].values, [COMPLETED, *answers]))
+    left = np.flatnonzero(~np.isin(ds["outcome"].values, [COMPLETED, *answers])) if "outcome" in ds else []
     return None if not len(left) else Verdict(
-        f"not evaluated: {len(left)} of {ds.sizes['case']} runs left the escapement regime", False,
+        f"not evaluated: {len(left)} of {ds.sizes['run']} runs left the escapement regime", False,
         note="; ".join(f"{lab} ended with outcome '{o}': {m}" for lab, o, m in zip(
             *(ds[k].values[left] for k in ("label", "outcome", "outcome_message")))))
 
@@ -135,7 +126,8 @@ def verdict(claim: Mapping, reading: Mapping, evidence: Evidence) -> Verdict:
     """The verdict of one ``reading`` of the claim; :class:`ClaimError` if its check fails or answers no outcome."""
     check, spec = resolved(reading["check"]), {**claim, **reading}
     try:
-        for name, ds in check.scenes(spec, evidence).items():
+        runs = {f"the runs {name}": run(evidence, name) for arg in check.runs for name in names(spec, arg)}
+        for name, ds in {**check.scenes(spec, evidence), **runs}.items():
             if (left := left_regime(name, ds, check.answers)) is not None:
                 return left
         result = check(spec, evidence)

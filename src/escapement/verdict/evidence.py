@@ -1,6 +1,6 @@
 """What every check reads and answers: the datasets (:class:`Evidence`), the verdict under one reading
-(:class:`Verdict`), a check's declaration (:func:`check`) with the scenes it may declare, and the helpers that find
-a run of the checks dataset (:func:`probe`, :func:`group_runs`, :func:`release_run`).
+(:class:`Verdict`), a check's declaration (:func:`check`) with the scenes and runs it may declare, and the one way a
+check reads a run of the checks dataset, by its name in the configuration's checks block (:func:`run`).
 """
 
 from __future__ import annotations
@@ -89,13 +89,15 @@ Scenes = Callable[[Mapping, Evidence], dict[str, xr.Dataset]]
 
 @dataclass(frozen=True)
 class Check:
-    """A check of the register (named ``module.function``) and what it declares: the ``scenes`` it reads, the
-    ``args`` it needs, the model's ``law`` it restates, what it reads that was ``fitted`` to the printed axes, the
-    ``threshold`` on the claim's words (these give its kind of evidence, :func:`.rule.evidence_of`), and the
-    outcomes of its runs besides ``completed`` that are its ``answers``, not exits from the regime."""
+    """A check of the register (named ``module.function``) and what it declares: the ``scenes`` it reads, the args
+    that name the ``runs`` of the checks dataset it reads (each a run's name in the checks block, or a list of them),
+    the other ``args`` it needs, the model's ``law`` it restates, what it reads that was ``fitted`` to the printed
+    axes, the ``threshold`` on the claim's words (these give its kind of evidence, :func:`.rule.evidence_of`), and
+    the outcomes of its runs besides ``completed`` that are its ``answers``, not exits from the regime."""
 
     function: Callable[[Mapping, Evidence], Verdict]
     scenes: Scenes
+    runs: tuple[str, ...] = ()
     args: tuple[str, ...] = ()
     law: str | None = None
     fitted: str | None = None
@@ -106,10 +108,16 @@ class Check:
         return self.function(claim, ev)
 
 
-def check(*, scenes: Scenes, args: tuple[str, ...] = (), law: str | None = None, fitted: str | None = None,
-          threshold: str | None = None, answers: tuple[str, ...] = ()) -> Callable[[Callable], Check]:
+def check(*, scenes: Scenes | None = None, runs: tuple[str, ...] = (), args: tuple[str, ...] = (),
+          law: str | None = None, fitted: str | None = None, threshold: str | None = None,
+          answers: tuple[str, ...] = ()) -> Callable[[Callable], Check]:
     """The decorated function as a :class:`Check` declaring what it reads and consumes, beside its code."""
-    return lambda function: Check(function, scenes, tuple(args), law, fitted, threshold, tuple(answers))
+    return lambda function: Check(function, scenes or no_scene, tuple(runs), tuple(args), law, fitted, threshold,
+                                  tuple(answers))
+
+
+def no_scene(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
+    return {}
 
 
 def fig3_scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
@@ -122,24 +130,6 @@ def fig3_scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     if missing := [c for c in labels if c not in ev.fig3]:
         raise ValueError(f"the register names Fig. 3 case '{missing[0]}'; the evidence holds {', '.join(ev.fig3)}")
     return {f"Fig. 3 case {c}": ev.fig3[c] for c in labels}
-
-
-def runs_only(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
-    """No scene: the check reads runs of its own from the checks dataset (:func:`release_run`, :func:`probe`)."""
-    return {}
-
-
-def runs_of(*groups: str) -> Scenes:
-    """The runs of the checks dataset a check reads: the groups named here, else those of its ``args`` (``group``,
-    ``groups``, ``by_force``, ``by_release``); none, every run."""
-
-    def scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
-        args = claim["args"]
-        named = groups or ([args["group"]] if "group" in args else
-                           [g for key in ("groups", "by_force", "by_release") for g in args.get(key, [])])
-        return {f"the runs of group {g}": group_runs(ev, g) for g in named} or {"every run": group_runs(ev, None)}
-
-    return scenes
 
 
 def fig4_scene(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
@@ -181,44 +171,34 @@ def within(value: float, tolerance: float) -> bool:
     return bool(value <= tolerance)
 
 
-def group_runs(ev: Evidence, group: str | None) -> xr.Dataset:
-    """The table of the runs of ``group`` of the checks dataset (None: every run)."""
-    rows = np.flatnonzero((ev.checks["group"].values == group) | (group is None))
+def names(claim: Mapping, arg: str) -> list[str]:
+    """The runs the claim's ``arg`` names: one name, or a list of them."""
+    value = claim["args"][arg]
+    return [value] if isinstance(value, str) else list(value)
+
+
+def run(ev: Evidence, name: str) -> xr.Dataset:
+    """The runs the configuration's checks block names ``name``, on the dimension ``run``: a group of the table (its
+    rows), or runs of another measure (their variables without the prefix ``name_``, each run's model and settings
+    among them, as :func:`escapement.scenes.probes.named_runs` writes them)."""
+    checks, dim = ev.checks, f"{name}_run"
+    if dim in checks.dims:
+        found = checks[[key for key, variable in checks.data_vars.variables.items() if dim in variable.dims]]
+        return found.rename({key: key.removeprefix(f"{name}_") for key in (*found.data_vars, *found.dims)})
+    rows = np.flatnonzero(checks["group"].values == name) if "group" in checks else []
     if not len(rows):
-        raise ValueError(f"the checks dataset holds no run of group '{group}'")
-    table = [name for name, variable in ev.checks.data_vars.items() if "case" in variable.dims]
-    return ev.checks[table].isel(case=rows)  # the table alone: the runs behind single claims have their own dims
+        raise ValueError(f"the checks dataset holds no run {name!r}: a run is named by the checks block of the "
+                         "configuration")
+    return checks[[key for key, variable in checks.data_vars.variables.items() if "case" in variable.dims]].isel(
+        case=rows).rename(case="run")
 
 
-def probe(ev: Evidence, name: str, dim: str, **where) -> xr.DataArray:
-    """The variable ``name`` of the checks dataset at the one index of ``dim`` where every variable of ``where``
-    has its value: the run a claim's ``args`` name, which the checks scene made (config ``checks`` block)."""
-    if name not in ev.checks:
-        raise ValueError(f"the checks dataset has no variable {name} (the checks block of the configuration)")
-    match = np.ones(ev.checks.sizes[dim], dtype=bool)
-    for key, value in where.items():
-        match &= ev.checks[key].values == value
-    if match.sum() != 1:
-        raise ValueError(f"the checks dataset holds {int(match.sum())} runs of {name} at "
-                         + ", ".join(f"{k} = {v!r}" for k, v in where.items()) + ", not one")
-    return ev.checks[name].isel({dim: int(np.flatnonzero(match)[0])})
+def each(runs: xr.Dataset) -> list[xr.Dataset]:
+    """The runs one by one."""
+    return [runs.isel(run=i) for i in range(runs.sizes["run"])]
 
 
-def model_of(args: Mapping, F: float) -> Parameters:
-    """The model of a claim's own runs: M, K, b and the ``positions`` of its ``args``, at the force ``F``."""
-    return Parameters(F=float(F), **{k: float(args[k]) for k in ("M", "K", "b")},
-                      **dict(zip(("a1", "a2", "a3", "a4"), map(float, args["positions"]))))
-
-
-def release_run(ev: Evidence, p: Parameters, x0: float, n_cycles) -> dict:
-    """The run from rest at ``x0`` with ``p`` over ``n_cycles`` of the checks dataset: its ``outcome``, complete
-    ``cycles``, last ``velocity`` and ``next_velocity`` (before the second impact at a1)."""
-    where = {**{f"release_{k}": getattr(p, k) for k in MODEL_KEYS}, "release_x0": x0, "release_n_cycles": int(n_cycles)}
-    return {name: probe(ev, f"release_{name}", "release", **where).item()
-            for name in ("outcome", "cycles", "velocity", "next_velocity")}
-
-
-@check(scenes=runs_only, args=("reason",))
+@check(args=("reason",))
 def untestable(claim, ev: Evidence) -> Verdict:
     """A claim the paper gives no evidence for: the reason is the register's."""
     return Verdict("nothing to compute", None, note=str(claim["args"]["reason"]), paper_value="no measurement given")

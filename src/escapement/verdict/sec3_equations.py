@@ -14,8 +14,8 @@ from ..model.automaton import CENTRE_SIGN, Mode
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..paper.corrected import grazing_limit, grazing_release
-from .evidence import (COMPLETED, Evidence, OUTCOMES, Verdict, check, fig3_scenes, fmt, group_runs, model_of,
-                       params_of, probe, release_run, runs_of, runs_only, successive_ratios, within)
+from .evidence import (COMPLETED, OUTCOMES, Evidence, Verdict, check, each, fig3_scenes, fmt, params_of, run,
+                       successive_ratios, within)
 
 A1, A2, A3, A4 = (int(k) for k in (EventKind.IMPACT_A1, EventKind.ZONE_END_A2, EventKind.IMPACT_A3,
                                   EventKind.ZONE_END_A4))
@@ -68,30 +68,24 @@ def _events(ds) -> tuple:
     return kind, x, ds["event_velocity_after"].values, ds["event_velocity_before"].values
 
 
-def _short_run(ev: Evidence, case: str, K: float, x0: float) -> dict[str, np.ndarray]:
-    """The events of the checks dataset's short run (three cycles) of the Fig. 3 case at ``K`` from rest at ``x0``."""
-    made = ev.checks["short_K"].attrs
-    if (made["case"], int(made["n_cycles"])) != (case, 3):
-        raise ValueError(f"the checks dataset's short runs are of case {made['case']} over {made['n_cycles']} cycles")
-    events = {name: probe(ev, f"short_event_{name}", "short_run", short_K=K, short_x0=x0).values
-              for name in ("time", "kind", "position", "velocity_before", "velocity_after")}
-    last = np.isfinite(events["time"])
-    return {name: values[last] for name, values in events.items()}
+def _run_events(runs) -> list[dict[str, np.ndarray]]:
+    """The events of each of ``runs`` (an event table, :func:`.evidence.run`), up to its last."""
+    return [{k: r[f"event_{k}"].values[np.isfinite(r["event_time"].values)] for k in ("time", "kind", "position",
+                                                                                   "velocity_before", "velocity_after")}
+            for r in each(runs)]
 
 
-@check(scenes=fig3_scenes, args=("case", "entry", "K"))
+@check(runs=("runs",), args=("entry",))
 def state_matrix(claim, ev: Evidence) -> Verdict:
     """The free motion conserves ``v**2 + k x**2`` with ``k`` the entry of A read as printed (``omega``) or with
-    its square (``omega2``), at every spring constant of the paper (args ``K``), from the case's release."""
-    ds = ev.fig3[claim["args"]["case"]]
-    entry, parts, worst = claim["args"]["entry"], [], 0.0
-    for K in claim["args"]["K"]:
-        p = Parameters(**{**params_of(ds).as_dict(), "K": float(K)})
-        e = _short_run(ev, str(claim["args"]["case"]), p.K, float(ds["x0"]))
+    its square (``omega2``), in each of the runs (an event table each, at the paper's spring constants)."""
+    runs, entry, parts, worst = run(ev, claim["args"]["runs"]), claim["args"]["entry"], [], 0.0
+    for r, e in zip(each(runs), _run_events(runs)):
+        p = params_of(r)
         error = arc_invariant_error(p, e["kind"].astype(int), e["position"], e["velocity_after"],
                                     e["velocity_before"], p.omega if entry == "omega" else p.omega2, free_only=True)
         worst = max(worst, error)
-        parts.append(f"K = {fmt(K, 3)} N/m (omega_n = {fmt(p.omega, 4)} rad/s): {fmt(error, 2)}")
+        parts.append(f"K = {fmt(p.K, 3)} N/m (omega_n = {fmt(p.omega, 4)} rad/s): {fmt(error, 2)}")
     return Verdict(
         f"largest relative change of v^2 + k x^2 along the free arcs, k = omega_n{'' if entry == 'omega' else '^2'}: "
         + "; ".join(parts), within(worst, claim["tolerance"]),
@@ -175,18 +169,17 @@ def complement_sets(claim, ev: Evidence) -> Verdict:
                         "state space", paper_value="S-bar = S1 u S2")
 
 
-@check(scenes=fig3_scenes, args=("case", "releases"))
+@check(runs=("runs",))
 def autonomous(claim, ev: Evidence) -> Verdict:
-    """g is a function of time alone when two ``releases`` of one system switch the force on at the same times."""
-    K, starts = float(ev.fig3[claim["args"]["case"]]["K"]), []
-    for x0 in claim["args"]["releases"]:
-        e = _short_run(ev, str(claim["args"]["case"]), K, float(x0))
-        starts.append(e["time"][(e["kind"] == A1) | (e["kind"] == A3)][:4])
+    """g is a function of time alone when the runs (one system, two releases) switch the force on at the same
+    times."""
+    runs = run(ev, claim["args"]["runs"])
+    starts = [e["time"][(e["kind"] == A1) | (e["kind"] == A3)][:4] for e in _run_events(runs)]
     worst = float(np.max(np.abs(starts[0] - starts[1])))
     return Verdict(
         "the force switches on at t = " + "; ".join(
             f"{', '.join(fmt(t, 5) for t in s)} s (released at {fmt(x0, 3)} m)"
-            for s, x0 in zip(starts, claim["args"]["releases"])),
+            for s, x0 in zip(starts, runs["x0"].values)),
         within(worst, claim["tolerance"]),
         note="the force acts where the state is (after the impact, in the zones), not at given times: g depends on the "
              "state and the system is autonomous, as the theorem of Eq. (6) and mu1 = 1 need",
@@ -270,25 +263,24 @@ def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> 
         paper_value="exactly one solution")
 
 
-@check(scenes=runs_only, args=("positions", "F", "deltas", "n_cycles", "M", "K", "b"))
+@check(runs=("runs",), answers=OUTCOMES)
 def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
-    args = claim["args"]
-    p = model_of(args, args["F"])
-    release = grazing_release(p)
-    runs = {x0: release_run(ev, p, x0, args["n_cycles"]) for d in args["deltas"]
-            for x0 in (-release * (1 + float(d)), -release * (1 - float(d)))}
-    rows = [{"delta": float(d), **{side: {"outcome": runs[x0]["outcome"], "v_next": runs[x0]["next_velocity"]}
-                                   for side, x0 in (("above", -release * (1 + float(d))),
-                                                    ("below", -release * (1 - float(d))))}} for d in args["deltas"]]
+    """The runs released either side of the grazing release A, at -A (1 + offset): each positive offset with the
+    negative one in the same place among the negative ones."""
+    runs = run(ev, claim["args"]["runs"])
+    p, offset = params_of(each(runs)[0]), runs["offset"].values
+    found = [{"outcome": o, "v_next": float(v)} for o, v in zip(runs["outcome"].values, runs["next_velocity"].values)]
+    rows = [{"delta": float(offset[i]), "above": found[i], "below": found[j]}
+            for i, j in zip(np.flatnonzero(offset > 0), np.flatnonzero(offset < 0))]
     verdict = grazing_verdict(rows, grazing_limit(p), claim["tolerance"])
-    return Verdict(f"grazing release A = {fmt(release)} m (closed form); " + verdict.replicated_value, verdict.holds,
-                   note=verdict.note, paper_value=verdict.paper_value)
+    return Verdict(f"grazing release A = {fmt(grazing_release(p))} m (closed form); " + verdict.replicated_value,
+                   verdict.holds, note=verdict.note, paper_value=verdict.paper_value)
 
 
-@check(scenes=runs_of(), args=("group",), answers=OUTCOMES)
+@check(runs=("runs",), answers=OUTCOMES)
 def runs_converge(claim, ev: Evidence) -> Verdict:
-    """Every run of the group reaches a limit cycle: it completes its cycles with |mu2| < 1."""
-    group = group_runs(ev, claim["args"]["group"])
+    """Every one of the runs reaches a limit cycle: it completes its cycles with |mu2| < 1."""
+    group = run(ev, claim["args"]["runs"])
     mu, outcome = group["multiplier"].values, group["outcome"].values
     fine = (outcome == COMPLETED) & (np.abs(mu) < 1)
     return Verdict(

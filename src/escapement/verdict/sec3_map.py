@@ -8,10 +8,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import xarray as xr
 
 from ..paper import printed as pe
-from .evidence import (COMPLETED, Evidence, Verdict, check, fig3_scenes, fmt, group_runs, mu2_off, params_of, probe,
-                       rel, runs_of, within)
+from .evidence import (COMPLETED, Evidence, Verdict, check, each, fig3_scenes, fmt, mu2_off, names, params_of, rel,
+                       run, within)
 
 
 def _printed_map(claim, ev: Evidence, equation: str, formula, note: str = "") -> Verdict:
@@ -51,21 +52,21 @@ def fixed_point(claim, ev: Evidence) -> Verdict:
                    paper_value=f"{fmt(formula)} m/s")
 
 
-@check(scenes=runs_of("paper"))
+@check(runs=("runs",))
 def multiplier_paper_cases(claim, ev: Evidence) -> Verdict:
-    paper = group_runs(ev, "paper")
+    paper = run(ev, claim["args"]["runs"])
     mu = paper["multiplier"].values
     return Verdict(", ".join(f"{label}: {fmt(m)}" for label, m in zip(paper["label"].values, mu)),
                    within(float(np.max(np.abs(mu - float(claim["paper_value"])))), claim["tolerance"]),
                    note="central difference of the simulated return map at the measured fixed point")
 
 
-@check(scenes=runs_of("b"), answers=("chattering",))
+@check(runs=("runs",), answers=("chattering",))
 def stability_over_b(claim, ev: Evidence) -> Verdict:
-    """Every b of the group converges with mu2 = (1 - b)^4: the motion's own return map, for 0 < b < 2."""
-    group = group_runs(ev, "b")
+    """Every b of the runs converges with mu2 = (1 - b)^4: the motion's own return map, for 0 < b < 2."""
+    group = run(ev, claim["args"]["runs"])
     b, stable = group["b"].values, group["outcome"].values == COMPLETED
-    deviation = mu2_off(group.isel(case=stable)) if stable.any() else math.inf
+    deviation = mu2_off(group.isel(run=stable)) if stable.any() else math.inf
     replicated = (f"converges with mu2 = (1-b)^4 (within {fmt(deviation, 2)}) for b = "
                   + ", ".join(fmt(x, 3) for x in b[stable]))
     if (~stable).any():
@@ -76,25 +77,25 @@ def stability_over_b(claim, ev: Evidence) -> Verdict:
         "|mu2| < 1 there says nothing about the motion, whose impacts accumulate in finite time"))
 
 
-@check(scenes=runs_of(), args=("group",))
+@check(runs=("runs",))
 def multiplier_group(claim, ev: Evidence) -> Verdict:
-    """mu2 = (1 - b)^4 in every run of the group: the rate of convergence depends on nothing else."""
-    group = group_runs(ev, claim["args"]["group"])
+    """mu2 = (1 - b)^4 in every one of the runs: the rate of convergence depends on nothing else."""
+    group = run(ev, claim["args"]["runs"])
     worst = mu2_off(group)
     forces = sorted(set(group["F"].values.tolist()))
-    return Verdict(f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over {group.sizes['case']} runs (F = "
+    return Verdict(f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over {group.sizes['run']} runs (F = "
                    f"{', '.join(fmt(f, 3) for f in forces)} N)", within(worst, claim["tolerance"]))
 
 
-@check(scenes=runs_of(), answers=("chattering",))
+@check(runs=("runs",), answers=("chattering",))
 def multiplier_only_b(claim, ev: Evidence) -> Verdict:
-    """Sec. 3.4, the stability determined only by b: mu2 = (1 - b)^4 in every run of the checks dataset that
+    """Sec. 3.4, the stability determined only by b: mu2 = (1 - b)^4 in every one of the runs (the table's) that
     converges, whatever its force, spring, positions or release, and the runs that do not converge chatter, every
     one at b > 1, where the impact reverses the velocity; any other exit leaves the check without an answer."""
-    runs = ev.checks
+    runs = xr.concat([run(ev, name) for name in names(claim, "runs")], dim="run")
     outcome, b = runs["outcome"].values, runs["b"].values
     done = outcome == COMPLETED
-    worst = mu2_off(runs.isel(case=done)) if done.any() else math.inf  # no run converges: nothing follows b
+    worst = mu2_off(runs.isel(run=done)) if done.any() else math.inf  # no run converges: nothing follows b
     spans = "; ".join(f"{k} = {fmt(np.min(runs[k].values[done]), 3)} to {fmt(np.max(runs[k].values[done]), 3)}"
                       for k in ("F", "K", "a1", "a3", "x0", "b")) if done.any() else "none converges"
     chatter = sorted(set(b[~done].tolist()))
@@ -106,25 +107,24 @@ def multiplier_only_b(claim, ev: Evidence) -> Verdict:
              "parameter and in the release; whether the limit cycle exists is another question (Sec. 5)")
 
 
-@check(scenes=fig3_scenes, args=("case", "velocities"))
+@check(runs=("runs",))
 def derivative_eq20(claim, ev: Evidence) -> Verdict:
-    p = params_of(ev.fig3[claim["args"]["case"]])
-    if ev.checks["map_slope"].attrs["case"] != str(claim["args"]["case"]):
-        raise ValueError(f"the checks dataset's return map is of case {ev.checks['map_slope'].attrs['case']}")
-    rows = [(float(v), float(probe(ev, "map_slope", "map_velocity", map_velocity=float(v))),
-             pe.map_derivative_20(float(v), p)) for v in claim["args"]["velocities"]]
+    """The slope of the simulated return map at each run's velocity against Eq. (20) on the run's model."""
+    runs = run(ev, claim["args"]["runs"])
+    rows = [(float(r["velocity"]), float(r["slope"]), pe.map_derivative_20(float(r["velocity"]), params_of(r)))
+            for r in each(runs)]
     worst = max(rel(measured, printed) for _, measured, printed in rows)
     return Verdict("slope of the simulated return map: " + "; ".join(
         f"at {fmt(v, 3)} m/s {fmt(m)} (Eq. (20): {fmt(q)})" for v, m, q in rows), within(worst, claim["tolerance"]),
-        note=(f"central differences (relative step {ev.checks['map_slope'].attrs['relative_step']:g}) of one "
-              "simulated cycle from the section, away from the fixed point as well as near it; max relative "
-              f"difference {fmt(worst, 2)}"), paper_value="g'(x1) = (1-b)^4 x1 / g(x1)")
+        note=(f"central differences (relative step {runs['slope'].attrs['relative_step']:g}) of one simulated cycle "
+              "from the section, away from the fixed point as well as near it; max relative difference "
+              f"{fmt(worst, 2)}"), paper_value="g'(x1) = (1-b)^4 x1 / g(x1)")
 
 
-@check(scenes=runs_of(), args=("group",))
+@check(runs=("runs",))
 def trivial_multiplier(claim, ev: Evidence) -> Verdict:
     """Eq. (8): mu1 = 1. Both Floquet multipliers of the flow over one period against 1 and (1 - b)^4."""
-    runs = group_runs(ev, claim["args"]["group"])
+    runs = run(ev, claim["args"]["runs"])
     major, minor, mu21 = (runs[k].values for k in ("floquet_major", "floquet_minor", "multiplier_eq21"))
     worst = float(np.max(np.maximum(np.abs(major - 1.0), np.abs(minor - mu21))))
     worst = worst if math.isfinite(worst) else math.inf
@@ -157,43 +157,38 @@ def map8_eigenvalues(claim, ev: Evidence) -> Verdict:
         paper_value="Therefore mu1 = 1")
 
 
-@check(scenes=fig3_scenes, args=("case", "sense", "perturbation", "n_cycles"))
+@check(runs=("runs",), args=("sense",))
 def phase_shift(claim, ev: Evidence) -> Verdict:
-    """The runs from the section at the case's converged speed v* and at (1 + perturbation) v*: ``sense: orbital``
-    holds when their speeds at a1 agree after ``n_cycles``, ``sense: lyapunov`` when their impact times do too."""
-    args = claim["args"]
-    star = float(ev.fig3[args["case"]]["velocity_before_impact"].values[-1])
-    impacts = ev.checks["perturbed_impact_time"]
-    made = (impacts.attrs["case"], int(impacts.attrs["n_cycles"]),
-            float(ev.checks["perturbed_speed"].attrs["converged_speed"]))
-    if made != (str(args["case"]), int(args["n_cycles"]), star):
-        raise ValueError(f"the checks dataset's runs from the section (case, cycles, converged speed) {made} are not "
-                         f"those of the claim")
-    found = [(probe(ev, "perturbed_impact_time", "perturbation", perturbation=d).values,
-              float(probe(ev, "perturbed_speed", "perturbation", perturbation=d))) for d in (0.0, args["perturbation"])]
-    times, speeds = [t[np.isfinite(t)] for t, _ in found], [speed for _, speed in found]
+    """The runs from the section at the converged speed v* (the first, unperturbed) and at (1 + perturbation) v*:
+    ``sense: orbital`` holds when their speeds at a1 agree at the end, ``sense: lyapunov`` when their impact times do
+    too."""
+    runs = run(ev, claim["args"]["runs"])
+    times = [t[np.isfinite(t)] for t in runs["impact_time"].values[:2]]
+    speeds, perturbation = runs["speed"].values[:2], float(runs["perturbation"].values[1])
     n = min(len(t) for t in times)
     shift, gap = float(times[1][n - 1] - times[0][n - 1]), abs(speeds[1] - speeds[0]) / speeds[0]
     return Verdict(
         f"after {n} impacts at a1: speeds {fmt(speeds[0])} and {fmt(speeds[1])} m/s (relative difference "
         f"{fmt(gap, 2)}), impact times {fmt(shift, 4)} s apart (first impact {fmt(times[1][0] - times[0][0], 4)} s)",
-        within(gap, claim["tolerance"]) if args["sense"] == "orbital" else within(abs(shift), claim["tolerance"]),
-        note=f"the speed at the section perturbed by {fmt(100 * float(args['perturbation']), 3)} %: the motion returns "
-             "to the limit cycle (orbital stability) but keeps a phase shift, as any autonomous oscillator does, so it "
-             "does not return to the solution it started beside (no asymptotic stability in the sense of Lyapunov)",
+        within(gap, claim["tolerance"]) if claim["args"]["sense"] == "orbital" else within(abs(shift),
+                                                                                            claim["tolerance"]),
+        note=f"the speed at the section perturbed by {fmt(100 * perturbation, 3)} %: the motion returns to the limit "
+             "cycle (orbital stability) but keeps a phase shift, as any autonomous oscillator does, so it does not "
+             "return to the solution it started beside (no asymptotic stability in the sense of Lyapunov)",
         paper_value="the solution is asymptotically stable")
 
 
-@check(scenes=fig3_scenes)
+@check(runs=("runs",))
 def section_crossings(claim, ev: Evidence) -> Verdict:
-    rows = [(label, probe(ev, "crossings", "crossing_case", crossing_case_label=label).values) for label in ev.fig3]
+    runs = run(ev, claim["args"]["runs"])
+    rows = [(str(r["case"].values), r["crossings"].values) for r in each(runs)]
     rows = [(label, counts[np.isfinite(counts)].astype(int)) for label, counts in rows]
     if any(not len(counts) for _, counts in rows):
         raise ValueError("a Fig. 3 run holds no complete cycle between two impacts at a1")
     return Verdict("; ".join(f"case {label}: {len(c)} cycles, crossings per cycle {int(c.min())}-{int(c.max())}"
                              for label, c in rows), all((counts == 1).all() for _, counts in rows),
                    note=("counted on the exact solver's trajectory of each Fig. 3 case, sampled "
-                         f"{ev.checks['crossings'].attrs['samples_per_period']} times per natural period (x rising "
-                         "through a1 with xdot > 0), between successive impacts at a1; the one crossing is the impact "
-                         "itself, which maps (a1, x1) to (a1, (1-b) x1): both states lie on Sigma, at one instant, and "
-                         "the map (8) takes the state before it"), paper_value="one state on Sigma per cycle")
+                         f"{runs['samples_per_period'].values[0]} times per natural period (x rising through a1 with "
+                         "xdot > 0), between successive impacts at a1; the one crossing is the impact itself, which "
+                         "maps (a1, x1) to (a1, (1-b) x1): both states lie on Sigma, at one instant, and the map (8) "
+                         "takes the state before it"), paper_value="one state on Sigma per cycle")

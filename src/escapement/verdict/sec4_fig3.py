@@ -15,8 +15,8 @@ import xarray as xr
 from ..model.events import EventKind
 from ..model.status import Status
 from ..paper.corrected import map_constant
-from .evidence import (Evidence, Verdict, check, fig3_scenes, fmt, group_runs, model_of, params_of, probe, rel,
-                       release_run, runs_of, runs_only, successive_ratios, within)
+from .evidence import (OUTCOMES, Evidence, Verdict, check, each, fig3_scenes, fmt, names, params_of, rel, run,
+                       successive_ratios, within)
 
 
 @check(scenes=fig3_scenes)
@@ -64,11 +64,10 @@ def convergence_rates(claim, ev: Evidence) -> Verdict:
         "x1 itself does not (its ratio of successive differences tends to (1-b)^4 only near the limit)"))
 
 
-@check(scenes=runs_of(), args=("group",),
-       threshold="the convergence criterion by which the checks dataset counts the cycles to converge")
+@check(runs=("runs",), threshold="the convergence criterion by which the checks dataset counts the cycles to converge")
 def cycles_to_converge(claim, ev: Evidence) -> Verdict:
     """Runs released alike that differ only in F take different numbers of cycles to converge."""
-    runs = group_runs(ev, claim["args"]["group"])
+    runs = run(ev, claim["args"]["runs"])
     cycles = runs["cycles_to_converge"].values
     return Verdict(", ".join(f"F = {fmt(f, 3)} N: {int(c)} cycles" for f, c in zip(runs["F"].values, cycles))
                    + f" (released at x0 = {', '.join(sorted({fmt(x, 3) for x in runs['x0'].values}))} m)",
@@ -93,19 +92,18 @@ def period_difference(claim, ev: Evidence) -> Verdict:
                    note="the period depends on the force through the perturbations of Eqs. (24)-(25)")
 
 
-@check(scenes=runs_of("paper", "initial_condition"))
+@check(runs=("runs", "reference"))
 def period_initial_condition(claim, ev: Evidence) -> Verdict:
-    paper, other = group_runs(ev, "paper"), group_runs(ev, "initial_condition")
-    worst, parts = 0.0, []
-    for i in range(other.sizes["case"]):
-        run = other.isel(case=i)
-        same_force = np.flatnonzero(paper["F"].values == run["F"].values)
+    """Each of the runs at a force of the ``reference`` runs has the period of that one, from another release."""
+    paper, worst, parts = run(ev, claim["args"]["reference"]), 0.0, []
+    for other in each(run(ev, claim["args"]["runs"])):
+        same_force = np.flatnonzero(paper["F"].values == other["F"].values)
         if not len(same_force):
             continue
-        ref = paper.isel(case=same_force[0])
-        worst = max(worst, abs(float(run["period"]) - float(ref["period"])))
-        parts.append(f"F = {fmt(run['F'], 3)} N from x0 = {fmt(run['x0'], 3)} m: {fmt(run['period'])} s (from x0 = "
-                     f"{fmt(ref['x0'], 3)} m: {fmt(ref['period'])} s)")
+        ref = paper.isel(run=same_force[0])
+        worst = max(worst, abs(float(other["period"]) - float(ref["period"])))
+        parts.append(f"F = {fmt(other['F'], 3)} N from x0 = {fmt(other['x0'], 3)} m: {fmt(other['period'])} s (from "
+                     f"x0 = {fmt(ref['x0'], 3)} m: {fmt(ref['period'])} s)")
     return Verdict("; ".join(parts), within(worst, claim["tolerance"]), note=f"largest difference {fmt(worst, 2)} s")
 
 
@@ -121,28 +119,28 @@ def natural_period(claim, ev: Evidence) -> Verdict:
                          "(Eq. (25))"), paper_value=f"2 pi sqrt(M/K) = {fmt(t0)} s")
 
 
-@check(scenes=fig3_scenes, args=("cases", "side"))
+@check(runs=("runs",), args=("cases", "side"))
 def initial_order(claim, ev: Evidence) -> Verdict:
     """The first case of ``cases`` has the smaller first velocity before the impact at a1, both released from rest
-    at ``side`` (-1 or +1) times their initial amplitude |x0| (the paper gives the amplitude, not the side)."""
-    side = float(claim["args"]["side"])
-    releases = {str(c): side * abs(float(ev.fig3[str(c)]["x0"])) for c in claim["args"]["cases"]}
-    (a, xa, va), (b, xb, vb) = ((case, x0, float(probe(ev, "first_swing_velocity", "first_swing", first_swing_case=case,
-                                                       first_swing_x0=x0))) for case, x0 in releases.items())
+    at ``side`` (-1 or +1) times their initial amplitude |x0| (the paper gives the amplitude, not the side): the
+    runs of one cycle of each case from each side."""
+    (a, xa, va), (b, xb, vb) = ((c, float(r["x0"]), float(r["velocity"])) for c in claim["args"]["cases"]
+                                for r in each(run(ev, claim["args"]["runs"]))
+                                if r["case"] == c and r["side"] == claim["args"]["side"])
     return Verdict(f"first velocity before impact released at {fmt(xa, 3)} m ({a}): {fmt(va, 6)} m/s, at "
                    f"{fmt(xb, 3)} m ({b}): {fmt(vb, 6)} m/s", bool(va < vb),
                    note="the smaller initial amplitude gives the smaller first swing",
                    paper_value=f"({a}) smaller at the beginning")
 
 
-@check(scenes=runs_of(), args=("groups",))
+@check(runs=("runs",))
 def stable_velocity_scaling(claim, ev: Evidence) -> Verdict:
     """v* of Eq. (19), sqrt(2 (a2 - a1) F / (M (2b - b^2))), in every run: v*/sqrt(F) depends on the geometry, b and M
     only, not on x0."""
-    runs = [group_runs(ev, g) for g in claim["args"]["groups"]]
+    runs = [run(ev, name) for name in names(claim, "runs")]
     worst, per_geometry, per_release = 0.0, {}, {}
     for group in runs:
-        for i in range(group.sizes["case"]):
+        for i in range(group.sizes["run"]):
             r = {k: float(group[k].values[i]) for k in ("M", "F", "b", "a1", "a2", "a3", "a4", "x0", "velocity")}
             if r["a3"] != -r["a1"] or r["a4"] != -r["a2"]:
                 raise ValueError(f"run {group['label'].values[i]} is not symmetric: Eq. (19) does not apply")
@@ -171,7 +169,7 @@ def _families(runs: xr.Dataset, varying: str) -> dict[tuple, list[int]]:
     """The runs' indices grouped by every parameter and the release except ``varying``."""
     keys = [k for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4", "x0") if k != varying]
     families: dict[tuple, list[int]] = {}
-    for i in range(runs.sizes["case"]):
+    for i in range(runs.sizes["run"]):
         families.setdefault(tuple(float(runs[k].values[i]) for k in keys), []).append(i)
     return {key: rows for key, rows in families.items() if len(rows) > 1}
 
@@ -186,42 +184,42 @@ def amplitude_of(run, definition: str) -> float:
     raise ValueError(f"no amplitude is defined as {definition!r}; known: largest x, h0")
 
 
-@check(scenes=runs_of(), args=("groups", "definition"))
+@check(runs=("runs",), args=("definition",))
 def force_amplitude(claim, ev: Evidence) -> Verdict:
     """Within each family of runs that differ only in F, the converged amplitude grows with F."""
     holds, parts, definition = [], [], claim["args"]["definition"]
-    for group in claim["args"]["groups"]:
-        runs = group_runs(ev, group)
+    for group in names(claim, "runs"):
+        runs = run(ev, group)
         for rows in _families(runs, "F").values():
             order = sorted(rows, key=lambda i: float(runs["F"].values[i]))
-            amplitude = [amplitude_of(runs.isel(case=i), definition) for i in order]
+            amplitude = [amplitude_of(runs.isel(run=i), definition) for i in order]
             holds.append(all(a < b for a, b in zip(amplitude, amplitude[1:])))
             parts.append(f"{group} (a1 = {fmt(runs['a1'].values[order[0]], 3)} m): " + ", ".join(
                 f"F = {fmt(runs['F'].values[i], 3)} N: {fmt(a, 5)} m" for i, a in zip(order, amplitude)))
     if not holds:
-        raise ValueError(f"the groups {claim['args']['groups']} hold no runs that differ only in F")
+        raise ValueError(f"the runs {claim['args']['runs']} hold none that differ only in F")
     return Verdict("; ".join(parts), all(holds),
                    note=f"converged amplitude ({definition}) of runs that differ only in the force")
 
 
-@check(scenes=runs_of(), args=("by_force", "by_release", "definition"))
+@check(runs=("by_force", "by_release"), args=("definition",))
 def amplitude_by_force(claim, ev: Evidence) -> Verdict:
     """Runs that differ only in F (groups ``by_force``) converge to amplitudes apart by more than the tolerance
     (relative), runs that differ only in the release (groups ``by_release``, together) to amplitudes within it."""
     definition, parts, holds, tolerance = claim["args"]["definition"], [], [], claim["tolerance"]
     for key, groups in (("F", claim["args"]["by_force"]), ("x0", claim["args"]["by_release"])):
-        runs = xr.concat([group_runs(ev, g) for g in groups], dim="case")
+        runs = xr.concat([run(ev, g) for g in groups], dim="run")
         families = _families(runs, key)
         if not families:
             raise ValueError(f"the groups {groups} hold no runs that differ only in {key}")
         for rows in families.values():
-            by = {float(runs[key].values[i]): amplitude_of(runs.isel(case=i), definition) for i in rows}
+            by = {float(runs[key].values[i]): amplitude_of(runs.isel(run=i), definition) for i in rows}
             values = np.array(list(by.values()))
             spread = float(np.ptp(values) / np.max(np.abs(values)))
             closest = min((abs(a - b) / max(abs(a), abs(b)) for a, b in itertools.combinations(values, 2)),
                           default=math.inf)
             holds.append(closest > tolerance if key == "F" else spread <= tolerance)
-            first = runs.isel(case=rows[0])
+            first = runs.isel(run=rows[0])
             fixed = "x0" if key == "F" else "F"
             parts.append(f"{first['group'].values} (a1 = {fmt(first['a1'].values, 3)} m, {fixed} = "
                          f"{fmt(first[fixed].values, 3)}): {key} = "
@@ -233,13 +231,13 @@ def amplitude_by_force(claim, ev: Evidence) -> Verdict:
         "changes with F and not with x0, at one escapement (it depends on the positions and on K too)"))
 
 
-@check(scenes=runs_of(), args=("group",))
+@check(runs=("runs",))
 def release_transient(claim, ev: Evidence) -> Verdict:
     """Among runs that differ only in x0, the first cycles' periods within the tolerance (s) of each other."""
-    runs = group_runs(ev, claim["args"]["group"])
+    runs = run(ev, claim["args"]["runs"])
     families = _families(runs, "x0")
     if not families:
-        raise ValueError(f"group '{claim['args']['group']}' holds no runs that differ only in x0")
+        raise ValueError(f"the runs {claim['args']['runs']!r} hold none that differ only in x0")
     first_spread, parts = 0.0, []
     for rows in families.values():
         first, last = runs["first_period"].values[rows], runs["period"].values[rows]
@@ -270,11 +268,12 @@ def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) 
         paper_value="convergence independent of the initial amplitude")
 
 
-@check(scenes=runs_only, args=("positions", "F", "releases", "n_cycles", "M", "K", "b"))
+@check(runs=("runs",), answers=OUTCOMES)
 def release_boundary(claim, ev: Evidence) -> Verdict:
-    args = claim["args"]
-    p = model_of(args, args["F"])
+    """The runs from rest at each release of one model against the closed-form fixed point."""
+    runs = run(ev, claim["args"]["runs"])
+    p = params_of(each(runs)[0])
     star = math.sqrt(map_constant(p) / (1 - (1 - p.b) ** 4))
-    rows = [{"x0": float(x0), "fixed_point": star, **{k: run[k] for k in ("outcome", "velocity")}}
-            for x0, run in ((x0, release_run(ev, p, float(x0), args["n_cycles"])) for x0 in args["releases"])]
+    rows = [{"x0": float(r["x0"]), "fixed_point": star, "outcome": str(r["outcome"].values),
+             "velocity": float(r["velocity"])} for r in each(runs)]
     return release_verdict(rows, min(-p.a1, p.a3), claim["tolerance"])

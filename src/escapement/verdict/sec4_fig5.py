@@ -13,16 +13,16 @@ import xarray as xr
 from ..paper import corrected as derived
 from ..paper.printed_axes import FIG5_PANEL_K, panel
 from .sec4_fig3 import amplitude_of
-from .evidence import Evidence, Verdict, check, fmt, group_runs, params_of, runs_of
+from .evidence import Evidence, Verdict, check, each, fmt, params_of, run
 
 
-def common_force_runs(ev: Evidence) -> dict[float, list[tuple[float, xr.Dataset]]]:
-    """The runs of group ``common_force`` by force, each list ordered by K: only runs at one force are compared."""
-    runs, by_force = group_runs(ev, "common_force"), {}
-    for run in (runs.isel(case=i) for i in range(runs.sizes["case"])):
-        by_force.setdefault(float(run["F"]), []).append((float(run["K"]), run))
+def common_force_runs(claim, ev: Evidence) -> dict[float, list[tuple[float, xr.Dataset]]]:
+    """The claim's runs by force, each list ordered by K: only runs at one force are compared."""
+    by_force: dict[float, list] = {}
+    for r in each(run(ev, claim["args"]["runs"])):
+        by_force.setdefault(float(r["F"]), []).append((float(r["K"]), r))
     if any(len(rows) < 2 for rows in by_force.values()):
-        raise ValueError("the runs of group 'common_force' must give at least two spring constants at each force")
+        raise ValueError(f"the runs {claim['args']['runs']!r} must give at least two spring constants at each force")
     return {f: sorted(rows, key=lambda kv: kv[0]) for f, rows in sorted(by_force.items())}
 
 
@@ -31,10 +31,10 @@ NOT_COMPARED = ("the panels of Fig. 5 run at different forces (the configuration
                 "figure's release and compared at one force")
 
 
-def _decreasing_in_K(ev: Evidence, value, digits: int, unit: str) -> tuple[bool, str]:
+def _decreasing_in_K(claim, ev: Evidence, value, digits: int, unit: str) -> tuple[bool, str]:
     """Whether ``value(run)`` decreases with K at every common force, and the values in words."""
     holds, parts = [], []
-    for force, rows in common_force_runs(ev).items():
+    for force, rows in common_force_runs(claim, ev).items():
         values = [value(run) for _, run in rows]
         holds.append(all(a > b for a, b in zip(values, values[1:])))
         parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(x, digits)} {unit}"
@@ -42,10 +42,10 @@ def _decreasing_in_K(ev: Evidence, value, digits: int, unit: str) -> tuple[bool,
     return all(holds), "; ".join(parts)
 
 
-@check(scenes=runs_of("common_force"), args=("definition",))
+@check(runs=("runs",), args=("definition",))
 def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
     """The converged amplitude (:func:`.sec4_fig3.amplitude_of`) decreases with K at each common force."""
-    holds, values = _decreasing_in_K(ev, lambda run: amplitude_of(run, claim["args"]["definition"]), 5, "m")
+    holds, values = _decreasing_in_K(claim, ev, lambda r: amplitude_of(r, claim["args"]["definition"]), 5, "m")
     return Verdict("converged amplitude: " + values, holds, note=NOT_COMPARED)
 
 
@@ -54,28 +54,28 @@ SPEEDS = {"largest_speed": "largest |v| on the limit cycle (exact, from the clos
           "velocity": "velocity before the impact at a1 on the limit cycle"}
 
 
-@check(scenes=runs_of("common_force"), args=("speed",))
+@check(runs=("runs",), args=("speed",))
 def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
     """The speed ``args: {speed}`` (a key of :data:`SPEEDS`) decreases with K at each common force."""
     speed = claim["args"]["speed"]
-    holds, values = _decreasing_in_K(ev, lambda run: float(run[speed]), 6, "m/s")
+    holds, values = _decreasing_in_K(claim, ev, lambda r: float(r[speed]), 6, "m/s")
     return Verdict(f"{SPEEDS[speed]}: " + values, holds, note=NOT_COMPARED)
 
 
-@check(scenes=runs_of("common_force"), args=("measure",))
+@check(runs=("runs",), args=("measure",))
 def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
     """The recovery of the velocity before the impact at a1 (:func:`escapement.paper.corrected.velocity_recovery`)
     is faster for smaller K at each common force, in ``seconds``, as a fraction of the ``period`` 2 pi/w, or of the
     limit cycle's ``width`` (``args: {measure}``)."""
     measure, holds, parts = claim["args"]["measure"], [], []
     unit = {"seconds": "s", "period": "of 2 pi/w", "width": "of the width"}[measure]
-    for force, rows in common_force_runs(ev).items():
+    for force, rows in common_force_runs(claim, ev).items():
         values = []
-        for k, run in rows:
-            p = params_of(run)
-            x, time = derived.velocity_recovery(float(run["velocity"]), p)
+        for k, r in rows:
+            p = params_of(r)
+            x, time = derived.velocity_recovery(float(r["velocity"]), p)
             values.append((k, {"seconds": time, "period": time / p.natural_period,
-                               "width": (x - p.a1) / (2 * float(run["largest_displacement"]))}[measure]))
+                               "width": (x - p.a1) / (2 * float(r["largest_displacement"]))}[measure]))
         holds.append(all(a < b for (_, a), (_, b) in zip(values, values[1:])))
         parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(v, 4)} {unit}" for k, v in values))
     return Verdict("to regain the velocity before the impact at a1: " + "; ".join(parts), all(holds),
@@ -86,14 +86,13 @@ def _fig5(claim, ev: Evidence) -> dict[str, xr.Dataset]:
     return {f"Fig. 5 K = {label}": ds for label, ds in ev.fig5.items()}
 
 
-@check(scenes=runs_of("common_force"),
-       threshold="'different' taken as apart by the tolerance of the larger")
+@check(runs=("runs",), threshold="'different' taken as apart by the tolerance of the larger")
 def fig5_dimensions(claim, ev: Evidence) -> Verdict:
     """At every common force, every pair of limit cycles differs in half-width (the converged amplitude) or
     half-height (the largest speed) by more than ``tolerance`` of the larger."""
     differ, parts = [], []
-    for force, runs in common_force_runs(ev).items():
-        rows = [(k, float(run["largest_displacement"]), float(run["largest_speed"])) for k, run in runs]
+    for force, runs in common_force_runs(claim, ev).items():
+        rows = [(k, float(r["largest_displacement"]), float(r["largest_speed"])) for k, r in runs]
         for i, (_, x1, v1) in enumerate(rows):
             for _, x2, v2 in rows[i + 1:]:
                 differ.append(max(abs(x1 - x2) / max(x1, x2), abs(v1 - v2) / max(v1, v2)) > claim["tolerance"])

@@ -11,16 +11,16 @@ import numpy as np
 
 from ..model.status import Status
 from ..paper.corrected import existence_threshold, map_constant
-from .evidence import (Evidence, Verdict, check, fmt, group_runs, model_of, mu2_off, release_run, runs_of, runs_only,
-                       within)
+from ..model.parameters import Parameters
+from .evidence import OUTCOMES, Evidence, Verdict, check, each, fmt, mu2_off, params_of, run, within
 
 
-@check(scenes=runs_of("asymmetric"))
+@check(runs=("runs",))
 def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
     """The rate of convergence (mu2) of the asymmetric runs depends on F or the positions: beyond the tolerance."""
-    group = group_runs(ev, "asymmetric")
+    group = run(ev, claim["args"]["runs"])
     worst, v = mu2_off(group), group["velocity"].values
-    return Verdict(f"mu2 = (1-b)^4 within {fmt(worst, 2)} in all {group.sizes['case']} asymmetric runs; fixed points "
+    return Verdict(f"mu2 = (1-b)^4 within {fmt(worst, 2)} in all {group.sizes['run']} asymmetric runs; fixed points "
                    f"{fmt(np.min(v), 4)}-{fmt(np.max(v), 4)} m/s", not within(worst, claim["tolerance"]), note=(
         "Eq. (16) is linear in x1^2: g' = (1-b)^4 x1/g(x1) = (1-b)^4 at any fixed point, with or without symmetry; "
         "what depends on F and the positions is the fixed point and whether it exists"))
@@ -47,14 +47,13 @@ def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: floa
         paper_value="the limit cycle's existence depends on F and a1..a4")
 
 
-@check(scenes=runs_only, args=("positions", "forces", "x0", "n_cycles", "M", "K", "b"))
+@check(runs=("runs",), answers=OUTCOMES)
 def existence_sign_change(claim, ev: Evidence) -> Verdict:
-    args = claim["args"]
+    """The runs from rest of one geometry at each force against the sign of the map's constant C."""
     rows = []
-    for F in args["forces"]:
-        p = model_of(args, F)
+    for r in each(run(ev, claim["args"]["runs"])):
+        p = params_of(r)
         c = map_constant(p)
-        run = release_run(ev, p, float(args["x0"]), args["n_cycles"])
         rows.append({"F": p.F, "C": c, "fixed_point": math.sqrt(c / (1 - (1 - p.b) ** 4)) if c > 0 else math.nan,
-                     "outcome": run["outcome"], "cycles": run["cycles"], "velocity": run["velocity"]})
-    return existence_verdict(rows, existence_threshold(model_of(args, 0.0)), claim["tolerance"])
+                     "outcome": str(r["outcome"].values), "cycles": int(r["cycles"]), "velocity": float(r["velocity"])})
+    return existence_verdict(rows, existence_threshold(Parameters(**{**p.as_dict(), "F": 0.0})), claim["tolerance"])
