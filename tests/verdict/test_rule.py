@@ -165,3 +165,13 @@ def test_the_vocabulary_table_defines_every_word():
     words = [r["word"] for r in vocabulary_table()]
     assert "status: partially reproduced" in words and "evidence: by construction" in words
     assert "origin: beyond" in words and all(r["meaning"] for r in vocabulary_table())
+
+
+def test_the_rule_the_tally_and_the_scores_load_without_numpy_or_xarray():
+    """The documents' jobs read the claims table, its columns and its numbers (fmt), the tally and the scores of the
+    readings: a process that imports those three modules loads neither NumPy nor xarray."""
+    import subprocess
+    import sys
+    code = ("import sys, escapement.verdict.rule, escapement.verdict.tally, escapement.verdict.scores; "
+            "print(sorted({'numpy', 'xarray', 'pandas'} & set(sys.modules)))")
+    assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout == "[]\n"

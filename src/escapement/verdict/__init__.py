@@ -8,7 +8,8 @@ From a claim's id to its status:
    each, its check, named ``module.function`` of this package, with its args and tolerance;
 2. that function is the check, declared beside its code by :func:`~.evidence.check` (the scenes it reads, the args
    that name its runs, the other args it needs, what it consumes); :func:`.engine.resolved` imports it when the
-   register is evaluated, so a module that needs only :mod:`.rule`, :mod:`.tally` or :mod:`.scores` loads no check;
+   register is evaluated, so a module that needs only :mod:`.rule`, :mod:`.tally` or :mod:`.scores` loads no check
+   (nor NumPy or xarray: those three read and write text and tables);
 3. its runs are the scenes it declares (a Fig. 3, 4 or 5 dataset) and the runs its args name (``runs: <name>``),
    each a key of the ``checks`` block of ``config/paper.yaml``, which alone states their settings; the checks
    scene (:func:`escapement.scenes.runs.checks`) writes each under that name, and the check reads it by that name

@@ -22,13 +22,11 @@ import numpy as np
 import yaml
 
 from ..paper.printed_axes import PANELS
-from .evidence import COMPLETED, Check, Evidence, Verdict, fmt, names, run
-from .rule import UNDETERMINED, row_status
+from .evidence import COMPLETED, Check, Evidence, Verdict, names, run
+from .rule import COLUMNS, UNDETERMINED, fmt, row_status
 
 __all__ = ["COLUMNS", "SCHEMA", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims", "resolved"]
 
-COLUMNS = ["claim_id", "source", "origin", "quote", "part", "finding", "evidence", "statement", "readings",
-           "paper_value", "replicated_value", "tolerance", "status", "note"]
 #: the register and its JSON Schema, package data beside this module
 REGISTER, SCHEMA = (Path(__file__).with_name(name) for name in ("claims.yaml", "claims.schema.yaml"))
 #: the reading of a claim checked under one reading only

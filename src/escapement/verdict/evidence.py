@@ -5,7 +5,6 @@ check reads a run of the checks dataset, by its name in the configuration's chec
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
@@ -16,46 +15,12 @@ from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
+from .rule import fmt as fmt  # the checks write their numbers by it (a document needs only .rule for it)
+from .scores import Candidates
 
 COMPLETED = Status.COMPLETED.value
 #: every outcome of a run
 OUTCOMES = tuple(s.value for s in Status)
-
-
-def fmt(x: float, digits: int = 10) -> str:
-    """A number as text, to ``digits`` significant digits (enough to compare, stable across runs)."""
-    if isinstance(x, str):
-        return x
-    if x is None or (isinstance(x, float) and math.isnan(x)):
-        return "nan"
-    return f"{float(x):.{digits}g}"
-
-
-@dataclass(frozen=True)
-class Candidates:
-    """Every candidate reading of one printed panel: per reading, the printed limits its values reproduce when
-    autoscaled with the printed tick step imposed (``scores``) or the plotting program's own (``default_scores``);
-    ``equivalent`` groups readings that plot the same values, which no axis can tell apart."""
-
-    out_of: int
-    scores: Mapping[str, int]
-    default_scores: Mapping[str, int] = field(default_factory=dict)
-    equivalent: tuple[tuple[str, ...], ...] = ()
-
-    def tied(self) -> tuple[int, list[tuple[str, ...]]]:
-        """The best score (the printed tick step imposed) and the readings tied at it, in groups of equivalent
-        readings, in the order of the scores: more than one group, and the axes cannot tell the readings apart."""
-        if not self.scores:
-            raise ValueError("the grid of candidate readings holds no score")
-        best = max(self.scores.values())
-        tied = [name for name, score in self.scores.items() if score == best]
-        group_of = {name: group for group in self.equivalent for name in group}
-        groups: list[tuple[str, ...]] = []
-        for name in tied:
-            group = tuple(n for n in group_of.get(name, (name,)) if n in tied)
-            if group not in groups:
-                groups.append(group)
-        return best, groups
 
 
 @dataclass(frozen=True)

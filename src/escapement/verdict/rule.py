@@ -1,4 +1,5 @@
-"""The words of the verdict and the one rule that gives them: statuses, kinds of evidence, origins.
+"""The words of the verdict and the one rule that gives them: statuses, kinds of evidence, origins, the columns of
+the claims table and how a number is written in it (:func:`fmt`).
 
 A row checks one part of one of the paper's sentences under each reading its words admit; its status and kind of
 evidence follow from its readings' outcomes and what its checks consume (:func:`row_status`), and a sentence, one
@@ -7,10 +8,15 @@ finding, takes its status from its parts' (:func:`finding_status`, the only plac
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping
 
-__all__ = ["CONSISTENT", "EVIDENCE", "NOT", "ORIGINS", "PARTIAL", "REPRODUCED", "STATUSES", "UNDETERMINED",
-    "UNTESTABLE", "evidence_of", "finding_status", "row_status", "status_of", "weighed"]
+__all__ = ["COLUMNS", "CONSISTENT", "EVIDENCE", "NOT", "ORIGINS", "PARTIAL", "REPRODUCED", "STATUSES", "UNDETERMINED",
+    "UNTESTABLE", "evidence_of", "finding_status", "fmt", "row_status", "status_of", "weighed"]
+
+#: the columns of the claims table, one row per claim
+COLUMNS = ["claim_id", "source", "origin", "quote", "part", "finding", "evidence", "statement", "readings",
+           "paper_value", "replicated_value", "tolerance", "status", "note"]
 
 #: every status a row or a finding may have, with what it means
 STATUSES: dict[str, str] = {
@@ -92,3 +98,12 @@ def finding_status(statuses: Iterable[str]) -> str:
     if NOT not in statuses:
         return UNDETERMINED
     return PARTIAL if REPRODUCED in statuses else NOT
+
+
+def fmt(x: float, digits: int = 10) -> str:
+    """A number as text, to ``digits`` significant digits (enough to compare, stable across runs)."""
+    if isinstance(x, str):
+        return x
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "nan"
+    return f"{float(x):.{digits}g}"

@@ -8,12 +8,12 @@ from __future__ import annotations
 import csv
 from collections import defaultdict
 from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
 
 from ..paper.printed_axes import PANELS
-from .evidence import Candidates
 
-__all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "DEFAULT_LOCATOR", "PRINTED_STEP", "TICKS", "best_readings_table",
-           "joint_candidates", "panel_candidates", "read_scores", "summary"]
+__all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "DEFAULT_LOCATOR", "PRINTED_STEP", "TICKS", "Candidates",
+           "best_readings_table", "joint_candidates", "panel_candidates", "read_scores", "summary"]
 
 #: the score table's columns: ``ticks`` says whether the printed tick step was imposed or the plotting
 #: program chose its own (``tick_step`` is the step the axis ended with); ``same_values_as`` names the
@@ -31,6 +31,33 @@ TICKS = (PRINTED_STEP, DEFAULT_LOCATOR)
 #: the autoscaling the axis claims use: limits rounded out to the printed ticks, no margin (the
 #: behaviour of MATLAB's automatic limits, in which the paper's figures appear to be drawn)
 CLAIM_AUTOSCALE = "round, margin 0"
+
+
+@dataclass(frozen=True)
+class Candidates:
+    """Every candidate reading of one printed panel: per reading, the printed limits its values reproduce when
+    autoscaled with the printed tick step imposed (``scores``) or the plotting program's own (``default_scores``);
+    ``equivalent`` groups readings that plot the same values, which no axis can tell apart."""
+
+    out_of: int
+    scores: Mapping[str, int]
+    default_scores: Mapping[str, int] = field(default_factory=dict)
+    equivalent: tuple[tuple[str, ...], ...] = ()
+
+    def tied(self) -> tuple[int, list[tuple[str, ...]]]:
+        """The best score (the printed tick step imposed) and the readings tied at it, in groups of equivalent
+        readings, in the order of the scores: more than one group, and the axes cannot tell the readings apart."""
+        if not self.scores:
+            raise ValueError("the grid of candidate readings holds no score")
+        best = max(self.scores.values())
+        tied = [name for name, score in self.scores.items() if score == best]
+        group_of = {name: group for group in self.equivalent for name in group}
+        groups: list[tuple[str, ...]] = []
+        for name in tied:
+            group = tuple(n for n in group_of.get(name, (name,)) if n in tied)
+            if group not in groups:
+                groups.append(group)
+        return best, groups
 
 
 def read_scores(path: str) -> list[dict]:
@@ -75,7 +102,7 @@ def _equivalent(groups: Mapping[str, str]) -> tuple[tuple[str, ...], ...]:
 
 
 def panel_candidates(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> dict[tuple[str, str], Candidates]:
-    """The :class:`~.evidence.Candidates` of each printed panel, keyed ``(figure, panel)``, under the margin
+    """The :class:`Candidates` of each printed panel, keyed ``(figure, panel)``, under the margin
     ``autoscale``."""
     found = _panel_scores(rows, autoscale)
     return {key: Candidates(out_of=2 * len(p["axes"]), scores=dict(p[PRINTED_STEP]),
