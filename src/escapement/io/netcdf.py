@@ -24,7 +24,7 @@ from .provenance import command_line, provenance_attributes
 if TYPE_CHECKING:  # xarray is imported where a netCDF file is read or written: a CSV job does without it
     import xarray as xr
 
-__all__ = ["DatasetError", "interrupt_deferred", "read_csv", "read_netcdf", "replaced", "stale_partials", "target_of",
+__all__ = ["DatasetError", "interrupt_deferred", "read_csv", "read_netcdf", "read_variables", "replaced", "stale_partials", "target_of",
            "writable_target", "write_csv", "write_netcdf", "write_text"]
 
 #: the suffix of the temporary file a write fills before renaming it to its target
@@ -141,6 +141,26 @@ def read_netcdf(path: str | os.PathLike, required: Iterable[str] = ()) -> xr.Dat
     if missing:
         raise DatasetError(f"{path}: lacks the variable(s) {', '.join(missing)}")
     return loaded
+
+
+def read_variables(path: str | os.PathLike, names: Iterable[str]) -> dict:
+    """The variables ``names`` of the netCDF file ``path`` as arrays, read without xarray (a job that needs a few
+    numbers starts in a fraction of xarray's import); :class:`DatasetError` naming the file as :func:`read_netcdf`."""
+    import netCDF4
+
+    names = list(names)
+    try:
+        with interrupt_deferred(), netCDF4.Dataset(path) as nc:
+            nc.set_auto_mask(False)  # a missing value is NaN, as xarray reads it
+            missing = [name for name in names if name not in nc.variables]
+            found = {name: nc[name][...] for name in names if name not in missing}
+    except FileNotFoundError as err:
+        raise DatasetError(f"{path}: no such netCDF file") from err
+    except (OSError, RuntimeError) as err:  # what netCDF4 raises on a damaged file
+        raise DatasetError(f"{path}: not a readable netCDF file ({type(err).__name__}: {err})") from err
+    if missing:
+        raise DatasetError(f"{path}: lacks the variable(s) {', '.join(missing)}")
+    return found
 
 
 def write_text(text: str, path: str | os.PathLike) -> None:

@@ -13,9 +13,9 @@ from pathlib import Path
 import jinja2
 import yaml
 
-from ..io.netcdf import read_csv, read_netcdf, replaced, write_text
+from ..io.netcdf import read_csv, read_variables, replaced, write_text
 from ..paper.printed_axes import panel
-from ..verdict.evidence import fmt
+from ..verdict.rule import fmt
 from ..verdict.scores import joint_candidates, panel_candidates, read_scores, summary
 from ..verdict.tally import ORDER, findings
 from .logs import logged
@@ -126,10 +126,10 @@ def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[st
             f"the register quotes, {counts['reproduced']} are reproduced, {counts['consistent']} consistent, "
             f"{counts['partially_reproduced']} partially reproduced, {counts['not_reproduced']} not reproduced, "
             f"{counts['undetermined']} undetermined and {counts['untestable']} untestable."))
-        checks = read_netcdf(inputs["checks"])
-        cases = checks.isel(case=checks["group"].values == "paper")  # the paper's two cases, by their label
+        checks = read_variables(inputs["checks"], ("group", "label", "period", "velocity", "multiplier"))
+        paper = [i for i, group in enumerate(checks["group"]) if group == "paper"]  # the paper's two cases, by label
         exact = next(row for row in read_work_precision(inputs["benchmark"]) if row["method"] == "exact")
-        number = {name: {label: typ(fmt(v, digits)) for label, v in zip(cases["label"].values, cases[name].values)}
+        number = {name: {checks["label"][i]: typ(fmt(float(checks[name][i]), digits)) for i in paper}
                   for name, digits in (("period", 12), ("velocity", 12), ("multiplier", 10))}
         names = {"meta": {k: typ(v) if isinstance(v, str) else v for k, v in meta.items()},
                  "literal": {k: string(v) for k, v in meta.items() if isinstance(v, str)},

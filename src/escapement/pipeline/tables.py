@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..io.netcdf import read_csv
-from ..verdict.engine import COLUMNS
+from ..verdict.rule import COLUMNS
 from .simulate import TIMING_COLUMNS
 
 __all__ = ["LIMIT_COLUMNS", "SPEED_COLUMNS", "STRESS_COLUMNS", "WORK_PRECISION_COLUMNS", "read_claims", "read_stress",
