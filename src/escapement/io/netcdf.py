@@ -24,8 +24,8 @@ from .provenance import command_line, provenance_attributes
 if TYPE_CHECKING:  # xarray is imported where a netCDF file is read or written: a CSV job does without it
     import xarray as xr
 
-__all__ = ["DatasetError", "interrupt_deferred", "read_csv", "read_netcdf", "read_variables", "replaced", "stale_partials", "target_of",
-           "writable_target", "write_csv", "write_netcdf", "write_text"]
+__all__ = ["DatasetError", "interrupt_deferred", "read_csv", "read_netcdf", "read_variables", "replaced",
+           "stale_partials", "target_of", "writable_target", "write_csv", "write_netcdf", "write_text"]
 
 #: the suffix of the temporary file a write fills before renaming it to its target
 PARTIAL = ".partial"
