@@ -20,10 +20,10 @@ import numpy as np
 from escapement.model import Parameters
 from escapement.solvers import iter_closed_form_cycles, iter_cycles, solve_ensemble, solve_exact
 
-from .minimal import PAPER_A, minimal_cycles, minimal_events, numpy_cycles
+from .minimal import PAPER_A, minimal_blocked, minimal_cycles, minimal_events, numpy_cycles
 
-__all__ = ["ensemble_floor", "ensemble_workload", "exact_floor", "floor_rows", "peak_bytes", "side_by_side",
-           "stream_floor"]
+__all__ = ["EXACT_FLOORS", "ensemble_floor", "ensemble_workload", "exact_floor", "floor_rows", "peak_bytes",
+           "side_by_side", "stream_floor"]
 
 
 def side_by_side(functions: dict[str, Callable[[], object]], repeats: int) -> dict[str, list[float]]:
@@ -58,16 +58,25 @@ def _drained(stream) -> None:
         pass
 
 
+#: the minimal loops of the exact solver, by the name its rows give them, and what each is in a row's note
+EXACT_FLOORS = {
+    "minimal blocked loop": (minimal_blocked, "the velocity by a loop, then the arcs and times on arrays"),
+    "minimal event loop": (minimal_events, "event by event, the event log"),
+    "minimal cycle loop": (minimal_cycles, "event by event, each cycle unrolled, the cycle table"),
+}
+
+
 def exact_floor(sizes=(1_000, 100_000), repeats: dict | int | None = None, params: Parameters = PAPER_A,
                 x0: float = 1.0) -> list[dict]:
-    """:func:`escapement.solvers.solve_exact` against the minimal loops on the periodic regime, ``n`` cycles
-    for each of ``sizes``: storing the full result (the default, with the arcs) and storing without the arcs
-    (``record_trajectory=False``) against :func:`minimal_events` (the event log by the least code) and against
-    :func:`minimal_cycles` (the cycle table alone, each cycle unrolled), and streaming the cycles
-    (:func:`escapement.solvers.iter_cycles`) against :func:`minimal_cycles`. One row per way and size:
-    ``name``, ``n``, ``ratio`` (median time over the minimal loop's), ``time_s``, ``reference_s``, ``repeats``.
-    ``repeats`` (a dict by size, or one number for all) defaults to about a second of the minimal loop per
-    size: at least 7 runs, at most 300."""
+    """:func:`escapement.solvers.solve_exact` against the minimal loops (:data:`EXACT_FLOORS`) on the periodic
+    regime, ``n`` cycles for each of ``sizes``, three ways: storing the full result (the default, with the arcs),
+    storing without the arcs (``record_trajectory=False``) and streaming the cycles
+    (:func:`escapement.solvers.iter_cycles`). Per size, each way against the fastest minimal loop (the floor: its
+    note names it), then against the event-by-event loops as before the kernel worked in blocks (storing against
+    :func:`minimal_events`, every way against :func:`minimal_cycles`). A row has ``name``, ``n``, ``ratio``
+    (median time over the loop's), ``time_s``, ``reference_s``, ``repeats`` and ``note``. ``repeats`` (a dict by
+    size, or one number for all) defaults to about a second of the cycle loop per size: at least 7 runs, at most
+    300."""
     rows = []
     for n in sizes:
         count = repeats.get(n) if isinstance(repeats, dict) else repeats
@@ -76,16 +85,17 @@ def exact_floor(sizes=(1_000, 100_000), repeats: dict | int | None = None, param
             minimal_cycles(params, x0, 0.0, n)
             count = max(7, min(300, int(1.0 / max(time.perf_counter() - start, 1e-6))))
         times = side_by_side({
-            "minimal cycle loop": lambda n=n: minimal_cycles(params, x0, 0.0, n),
-            "minimal event loop": lambda n=n: minimal_events(params, x0, 0.0, n),
+            **{name: lambda n=n, loop=loop: loop(params, x0, 0.0, n) for name, (loop, _) in EXACT_FLOORS.items()},
             "storing": lambda n=n: solve_exact(params, x0, n_cycles=n),
             "storing without arcs": lambda n=n: solve_exact(params, x0, n_cycles=n, record_trajectory=False),
             "streaming": lambda n=n: _drained(iter_cycles(params, x0, n_cycles=n)),
         }, count)
-        for way in ("storing", "storing without arcs"):
-            rows.append(_row(f"solve_exact {way} / minimal event loop", n, times[way], times["minimal event loop"]))
-        for way in ("storing", "storing without arcs", "streaming"):
-            rows.append(_row(f"solve_exact {way} / minimal cycle loop", n, times[way], times["minimal cycle loop"]))
+        fastest = min(EXACT_FLOORS, key=lambda name: statistics.median(times[name]))
+        ways = ("storing", "storing without arcs", "streaming")
+        rows += [_row(f"solve_exact {way} / fastest minimal loop", n, times[way], times[fastest],
+                      note=f"the {fastest}: {EXACT_FLOORS[fastest][1]}") for way in ways]
+        rows += [_row(f"solve_exact {way} / {loop}", n, times[way], times[loop], note=EXACT_FLOORS[loop][1])
+                 for loop, kept in (("minimal event loop", ways[:2]), ("minimal cycle loop", ways)) for way in kept]
     return rows
 
 

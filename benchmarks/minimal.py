@@ -6,6 +6,9 @@
   checks. It gives the cycle table of :func:`escapement.solvers.solve_exact` bit for bit.
 * :func:`minimal_events`, the same closed forms as a plain loop over the cycle's four arcs, storing each
   event's time and velocity: the event log, bit for bit.
+* :func:`minimal_blocked`, the same numbers the way the solver's kernel computes them: a loop follows the
+  velocity alone, then every arc's angle and duration and every event's time are computed on arrays; the
+  event log (times, positions, velocities before and after) and the cycle table, bit for bit.
 * :func:`numpy_cycles`, the unrolled loop vectorised with NumPy over many trajectories at once, the floor of
   :func:`escapement.solvers.solve_ensemble` (the same numbers in practice: the tests ask for 1e-14).
 
@@ -23,7 +26,7 @@ import numpy as np
 
 from escapement.model import Parameters
 
-__all__ = ["PAPER_A", "TWO_PI", "Cycles", "minimal_cycles", "minimal_events", "numpy_cycles"]
+__all__ = ["PAPER_A", "TWO_PI", "Cycles", "minimal_blocked", "minimal_cycles", "minimal_events", "numpy_cycles"]
 
 TWO_PI = 2.0 * math.pi
 #: the model of the paper's Sec. 4 with F = 1 N: the default workload of the scalar floors (the workflow passes
@@ -192,6 +195,45 @@ def minimal_events(p: Parameters, x0: float, v0: float, n_cycles: int) -> tuple[
             put_v(v1)
             v = v1
     return times, speeds
+
+
+def _speeds(r: float, v: float, k1: float, k2: float, k3: float, k4: float, n_cycles: int):
+    """Each event's velocity before it from the first impact at a1, a cycle unrolled: yielded, no call per event."""
+    sqrt = math.sqrt
+    yield v
+    for _ in range(n_cycles):
+        v = r * v
+        v1 = sqrt(v * v + k1)
+        yield v1
+        v1 = -sqrt(v1 * v1 + k2)
+        yield v1
+        v = r * v1
+        v1 = -sqrt(v * v + k3)
+        yield v1
+        v = sqrt(v1 * v1 + k4)
+        yield v
+
+
+def minimal_blocked(p: Parameters, x0: float, v0: float, n_cycles: int) -> tuple[tuple, tuple]:
+    """The floor of the kernel since it works in blocks: the loop follows the velocity, the arcs are on arrays."""
+    w, r = p.omega, 1.0 - p.b
+    t_sum, t_err, v, ((k1, u1, q1), (k2, u2, q2), (k3, u3, q3), (k4, u4, q4)) = _first_impact(p, x0, v0)
+    n = 4 * n_cycles + 1
+    v_before = np.fromiter(_speeds(r, v, k1, k2, k3, k4, n_cycles), float, n)
+    v_after = np.tile([r, 1.0, r, 1.0], n_cycles + 1)[:n] * v_before
+    u, q = np.tile([u1, u2, u3, u4], n_cycles), np.tile([q1, q2, q3, q4], n_cycles)
+    w0, w1 = v_after[:-1] / w, v_before[1:] / w  # crossing() on arrays, libm's atan2 (NumPy's may differ by an ulp)
+    angle = np.fromiter(map(math.atan2, memoryview(w0 * q - u * w1), memoryview(u * q + w0 * w1)), float, n - 1)
+    dt = (angle + TWO_PI * (angle <= 0.0)) / w
+    t_sum = np.cumsum(np.concatenate(([t_sum], dt)))  # the compensated sum: the running sum, and that of the
+    part = t_sum[1:] - t_sum[:-1]  # roundings of its additions (TwoSum)
+    t_err = np.cumsum(np.concatenate(([t_err], (t_sum[:-1] - (t_sum[1:] - part)) + (dt - part))))
+    t = t_sum + t_err
+    arcs = dt.reshape(n_cycles, 4)
+    top = 0.0 + np.hypot(u2, v_before[1::4] / w)
+    cycles = (t[:-1:4], v_before[:-1:4], arcs[:, 0] + arcs[:, 1] + arcs[:, 2] + arcs[:, 3],
+              np.maximum(top, max(p.a2, p.a3)))
+    return (t, np.tile([p.a1, p.a2, p.a3, p.a4], n_cycles + 1)[:n], v_before, v_after), cycles
 
 
 def _numpy_arc(v, k, u, q, omega, direction: float):

@@ -51,26 +51,38 @@ def test_side_by_side_interleaves_the_runs_and_times_each_with_the_collector_off
     assert clock.durations == [] and clock.readings == 12
 
 
-def test_the_exact_floor_pairs_each_way_with_its_minimal_loop_on_medians(monkeypatch):
-    # per function (in side_by_side's order), three rounds: the medians are 1, 2, 6, 3 and 1.5
-    cycle, event, storing, no_arcs, streaming = [1, 1, 1], [2, 4, 2], [8, 4, 6], [3, 5, 3], [1.5, 0.5, 2]
-    _use(monkeypatch, DurationClock(_interleaved(cycle, event, storing, no_arcs, streaming)))
+WAYS = (("storing", 6), ("storing without arcs", 3), ("streaming", 1.5))  # the solver's ways and their medians
+
+
+@pytest.mark.parametrize("fastest", list(floor.EXACT_FLOORS))
+def test_the_exact_floor_sets_each_way_against_the_fastest_loop_by_median_then_the_event_by_event_loops(
+        monkeypatch, fastest):
+    # the loops' medians are 1 (the fastest's), 2 and 4; the smallest run (0.25) and the smallest mean (1.42) are
+    # another loop's than the smallest median
+    others = iter(([0.25, 2, 2], [4, 4, 4]))
+    per_loop = {loop: [1, 8, 0.5] if loop == fastest else next(others) for loop in floor.EXACT_FLOORS}
+    medians = dict(zip((fastest, *(loop for loop in per_loop if loop != fastest)), (1, 2, 4)))
+    storing, no_arcs, streaming = [8, 4, 6], [3, 5, 3], [1.5, 0.5, 2]  # medians 6, 3 and 1.5
+    _use(monkeypatch, DurationClock(_interleaved(*per_loop.values(), storing, no_arcs, streaming)))
     rows = floor.exact_floor(sizes=(3,), repeats=3)
-    expected = [("solve_exact storing / minimal event loop", 6, 2), ("solve_exact storing without arcs / "
-                "minimal event loop", 3, 2), ("solve_exact storing / minimal cycle loop", 6, 1),
-                ("solve_exact storing without arcs / minimal cycle loop", 3, 1),
-                ("solve_exact streaming / minimal cycle loop", 1.5, 1)]
+    notes = {loop: note for loop, (_, note) in floor.EXACT_FLOORS.items()}
+    expected = [(f"solve_exact {way} / fastest minimal loop", time, 1, f"the {fastest}: {notes[fastest]}")
+                for way, time in WAYS]
+    expected += [(f"solve_exact {way} / {loop}", time, medians[loop], notes[loop])
+                 for loop, ways in (("minimal event loop", WAYS[:2]), ("minimal cycle loop", WAYS))
+                 for way, time in ways]
     assert rows == [{"name": name, "n": 3, "ratio": time / reference, "time_s": time, "reference_s": reference,
-                     "repeats": 3} for name, time, reference in expected]
-    assert [row["ratio"] for row in rows] == [3, 1.5, 6, 3, 1.5]  # the quotients, worked out
+                     "repeats": 3, "note": note} for name, time, reference, note in expected]
+    assert [row["ratio"] for row in rows[:3]] == [6, 3, 1.5]  # the quotients over the floor, worked out
 
 
 def test_the_exact_floor_gives_a_row_per_way_and_size():
     rows = floor.exact_floor(sizes=(3, 5), repeats=2)
+    ways = ("storing", "storing without arcs", "streaming")
     assert [(row["name"], row["n"]) for row in rows] == [
-        (f"solve_exact {way} / minimal {loop} loop", n) for n in (3, 5)
-        for loop, ways in (("event", ("storing", "storing without arcs")),
-                           ("cycle", ("storing", "storing without arcs", "streaming"))) for way in ways]
+        (f"solve_exact {way} / {loop}", n) for n in (3, 5)
+        for loop, kept in (("fastest minimal loop", ways), ("minimal event loop", ways[:2]),
+                           ("minimal cycle loop", ways)) for way in kept]
     assert all(row["repeats"] == 2 and row["time_s"] > 0 and row["reference_s"] > 0 for row in rows)
 
 

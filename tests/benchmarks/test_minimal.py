@@ -40,12 +40,15 @@ def test_the_minimal_loop_follows_the_return_map_of_the_symmetric_escapement(par
     assert np.diff(times) == pytest.approx(periods[:-1], rel=1e-12)
 
 
-@pytest.mark.parametrize("params, x0, v0, n", [
+CASES = [
     (minimal.PAPER_A, 1.0, 0.0, 10_000),  # first impact at a3
     (minimal.PAPER_A, -1.0, 0.0, 200),  # first impact at a1
     (Parameters(M=1.0, K=1.0, F=0.5, b=0.1, a1=-0.1, a2=0.05), 3.0, 0.0, 10_000),
     (Parameters(M=0.7, K=3.0, F=0.4, b=0.3, a1=-0.12, a2=0.02, a3=0.09, a4=-0.04), -0.8, 0.3, 200),
-])
+]
+
+
+@pytest.mark.parametrize("params, x0, v0, n", CASES)
 def test_the_minimal_loop_gives_the_cycle_table_of_solve_exact_bit_for_bit(params, x0, v0, n):
     run = solve_exact(params, x0, v0, n_cycles=n, record_trajectory=False)
     assert run.success
@@ -86,3 +89,17 @@ def test_the_minimal_event_loop_gives_the_event_log_of_solve_exact_bit_for_bit()
         assert np.array_equal(speeds, run.events.v_before[first:])
         assert len(times) == 4 * 300 + 1
         assert np.all(np.abs(np.diff(times[::4]) - run.cycles.period) <= 4 * np.spacing(times[4::4]))
+
+
+@pytest.mark.parametrize("params, x0, v0, n", CASES)
+def test_the_blocked_loop_gives_the_numbers_of_the_event_and_cycle_loops_bit_for_bit(params, x0, v0, n):
+    """Its times and velocities are the event loop's, its cycle table the cycle loop's; the positions and the
+    velocities after each event, which neither loop stores, are those of solve_exact's event log."""
+    (t, x, v_before, v_after), cycles = minimal.minimal_blocked(params, x0, v0, n)
+    times, speeds = (np.frombuffer(column) for column in minimal.minimal_events(params, x0, v0, n))
+    assert t.tobytes() == times.tobytes() and v_before.tobytes() == speeds.tobytes()
+    for name, got, want in zip(CYCLE_COLUMNS, cycles, minimal.minimal_cycles(params, x0, v0, n)):
+        assert got.tobytes() == np.frombuffer(want).tobytes(), name
+    events = solve_exact(params, x0, v0, n_cycles=n, record_trajectory=False).events
+    first = int(np.flatnonzero(events.kind == 1)[0])
+    assert x.tobytes() == events.x[first:].tobytes() and v_after.tobytes() == events.v_after[first:].tobytes()
