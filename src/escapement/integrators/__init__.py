@@ -6,14 +6,7 @@
 
 from .._lazy import lazy_exports
 
-#: each public name and the module that defines it
-_EXPORTS = {
-    "solve_high_precision": "high_precision",
-    "solve_naive": "naive",
-    "solve_reference": "reference",
-}
-
+#: each public name, solve_<module>, and the module that defines it
+_EXPORTS = {f"solve_{module}": module for module in ("high_precision", "naive", "reference")}
 __all__ = sorted(_EXPORTS)
-
-
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())

@@ -14,7 +14,7 @@ from ..model.arguments import Numeric
 from ..model.automaton import Mode
 from ..model.events import EventKind
 from ..model.kinematics import time_to_rest
-from ..model.limits import MAX_DIGITS, MIN_DIGITS, check_count, run_arguments, run_spec
+from ..model.limits import MAX_DIGITS, MIN_DIGITS, check_count, run_spec
 from ..model.parameters import Parameters
 from ..solvers.result import Solution
 from .driver import NO_EVENT, Step, drive
@@ -65,7 +65,6 @@ class MpmathStepper:
         return Step(kind, dt, v_end, x_max)
 
 
-@run_arguments
 def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = 50,
                          t_end: float | None = None, max_events: int | None = None, dps: int = 50) -> Solution:
     """Run the model in ``dps``-digit arithmetic from ``(x0, v0)`` at ``t = 0+``; the limits and outcomes are
@@ -73,7 +72,12 @@ def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cy
 
     Parameters
     ----------
-    {run_arguments}
+    params : Parameters
+        The model's parameters (SI units: kg, N/m, N, 1, m).
+    x0 : float
+        Initial displacement at ``t = 0+``, m.
+    v0 : float, default 0
+        Initial velocity at ``t = 0+``, m/s.
     n_cycles : int or None, default 50
         Complete cycles to run (None: run to ``t_end``).
     t_end : float, optional

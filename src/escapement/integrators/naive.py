@@ -10,7 +10,7 @@ from ..model import automaton
 from ..model.automaton import Mode
 from ..model.arguments import Numeric, real_number
 from ..model.events import EventKind
-from ..model.limits import run_arguments, run_spec
+from ..model.limits import run_spec
 from ..model.parameters import Parameters
 from ..model.printing import exact
 from ..solvers.result import Solution
@@ -63,14 +63,18 @@ class NaiveStepper:
         return Step(NO_EVENT, math.inf, 0.0, math.hypot(x, v / math.sqrt(w2)))
 
 
-@run_arguments
 def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int, step: float) -> Solution:
     """Run ``n_cycles`` cycles with fixed RK4 steps of ``step`` seconds, for comparison with the exact solver only:
     an event is applied at the end of the step that passes it, not located, an error of the order of ``step``.
 
     Parameters
     ----------
-    {run_arguments}
+    params : Parameters
+        The model's parameters (SI units: kg, N/m, N, 1, m).
+    x0 : float
+        Initial displacement at ``t = 0+``, m.
+    v0 : float, default 0
+        Initial velocity at ``t = 0+``, m/s.
     n_cycles : int
         Complete cycles to run.
     step : float

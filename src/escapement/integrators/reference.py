@@ -19,7 +19,7 @@ from ..model import automaton
 from ..model.automaton import Mode
 from ..model.arguments import Numeric, ParameterError, check_choice, real_number
 from ..model.events import EventKind
-from ..model.limits import check_flag, run_arguments, run_spec
+from ..model.limits import check_flag, run_spec
 from ..model.parameters import Parameters
 from ..solvers.result import Solution
 from .driver import HORIZON, NO_EVENT, Step, drive
@@ -120,7 +120,6 @@ class IvpStepper:
                              t_final) if self.record else None
 
 
-@run_arguments
 def solve_reference(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = None,
                     t_end: float | None = None, max_events: int | None = None, method: str = "DOP853",
                     rtol: float = 1e-12, atol: float | None = None, record_trajectory: bool = True) -> Solution:
@@ -129,7 +128,12 @@ def solve_reference(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles:
 
     Parameters
     ----------
-    {run_arguments}
+    params : Parameters
+        The model's parameters (SI units: kg, N/m, N, 1, m).
+    x0 : float
+        Initial displacement at ``t = 0+``, m.
+    v0 : float, default 0
+        Initial velocity at ``t = 0+``, m/s.
     n_cycles : int, optional
         Complete cycles to run; at least one of ``n_cycles`` and ``t_end`` is given.
     t_end : float, optional

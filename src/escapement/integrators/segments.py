@@ -114,11 +114,8 @@ class SciPyIntegrator:
             if again != end:
                 raise RuntimeError(f"solve_ivp is not repeatable at t = {seg.t0:.12g} s: {again} != {end}")
         position = seg.watches[index].position
-
-        def gap(t: float) -> float:
-            return float(dense(t)[0]) - position
-
-        t = self._brentq(gap, seg.t0, end.t, xtol=ROOT_TOLERANCE, rtol=ROOT_TOLERANCE)
+        t = self._brentq(lambda t: float(dense(t)[0]) - position, seg.t0, end.t, xtol=ROOT_TOLERANCE,
+                         rtol=ROOT_TOLERANCE)
         y = dense(t)
         return Hit(float(t), index, (float(y[0]), float(y[1])))
 

@@ -43,12 +43,9 @@ class Surface:
     impact: bool  #: an impact (the impact law applies), or the end of an impulse zone
 
 
-SURFACES: dict[EventKind, Surface] = {
-    EventKind.IMPACT_A1: Surface(EventKind.IMPACT_A1, "a1", +1, True),
-    EventKind.ZONE_END_A2: Surface(EventKind.ZONE_END_A2, "a2", +1, False),
-    EventKind.IMPACT_A3: Surface(EventKind.IMPACT_A3, "a3", -1, True),
-    EventKind.ZONE_END_A4: Surface(EventKind.ZONE_END_A4, "a4", -1, False),
-}
+SURFACES: dict[EventKind, Surface] = {s.kind: s for s in (
+    Surface(EventKind.IMPACT_A1, "a1", +1, True), Surface(EventKind.ZONE_END_A2, "a2", +1, False),
+    Surface(EventKind.IMPACT_A3, "a3", -1, True), Surface(EventKind.ZONE_END_A4, "a4", -1, False))}
 
 
 @dataclass(frozen=True)

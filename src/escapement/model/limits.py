@@ -6,7 +6,6 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TypeVar
 
 import numpy as np
 
@@ -16,10 +15,8 @@ from .printing import texts
 from .quantities import MODEL_KEYS
 
 __all__ = ["EVENTS_PER_CYCLE", "MAX_CYCLES", "MAX_DIGITS", "MAX_EVENTS", "MAX_MEMORY_BUDGET", "MEMORY_BUDGET",
-           "MIN_DIGITS", "RUN_ARGUMENTS", "MemoryBudgetError", "RunLimits", "RunSpec", "check_budget", "check_count",
-           "check_flag", "events_for", "run_arguments", "run_spec"]
-
-_F = TypeVar("_F", bound=Callable)
+           "MIN_DIGITS", "MemoryBudgetError", "RunLimits", "RunSpec", "check_budget", "check_count", "check_flag",
+           "events_for", "run_spec"]
 
 EVENTS_PER_CYCLE, DEFAULT_MAX_EVENTS_FOR_TIME = 4, 10_000_000
 #: the most cycles a run may ask for (the workflow's longest run is 10**6 cycles, its schema allows 10**8)
@@ -28,22 +25,6 @@ MAX_EVENTS = 5_000_000_000  #: the most events a run may take: room for the defa
 MIN_DIGITS, MAX_DIGITS = 17, 1000  #: the high-precision solver's digits: more than float64's 16, at most 1000
 MEMORY_BUDGET = 2_000_000_000  #: the bytes a result may hold by default: 2 GB, a quarter of a laptop's 8 GB
 MAX_MEMORY_BUDGET = 1_000_000_000_000  #: the largest memory budget a caller may give: 1 TB
-
-#: the docstring entries of the arguments every solver entry point passes to :func:`run_spec` first
-RUN_ARGUMENTS = """params : Parameters
-        The model's parameters (SI units: kg, N/m, N, 1, m).
-    x0 : float
-        Initial displacement at ``t = 0+``, m.
-    v0 : float, default 0
-        Initial velocity at ``t = 0+``, m/s."""
-
-
-def run_arguments(function: _F) -> _F:
-    """``function`` with ``{run_arguments}`` in its docstring replaced by :data:`RUN_ARGUMENTS`, written once for
-    every solver entry point (a docstring cannot name a constant, and the entries must be in it)."""
-    if function.__doc__:  # None when docstrings are stripped (python -OO)
-        function.__doc__ = function.__doc__.replace("{run_arguments}", RUN_ARGUMENTS)
-    return function
 
 
 class MemoryBudgetError(ParameterError):
