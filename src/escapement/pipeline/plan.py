@@ -18,18 +18,8 @@ from dataclasses import dataclass
 from ..model.parameters import ParameterError, Parameters
 from ..model.quantities import INITIAL_STATE, PARAMETERS, SYMMETRIC_DEFAULTS
 from ..paper.corrected import grazing_release
-from ..scenes.settings import (
-    KINDS,
-    REPLICATION,
-    EscapementErrorScene,
-    ExistenceMapScene,
-    LongRunScene,
-    PhaseScene,
-    PoincareScene,
-    Release,
-    ShockScene,
-    StabilityMapScene,
-)
+from ..scenes.settings import (KINDS, REPLICATION, EscapementErrorScene, ExistenceMapScene, LongRunScene, PhaseScene,
+                               PoincareScene, Release, ShockScene, StabilityMapScene)
 from .config import ConfigError
 
 __all__ = ["BLOCKS", "REPLICATION_ONLY", "Planned", "changes", "check_runs", "leaves", "plan", "replication_scenes",
@@ -137,9 +127,7 @@ def study_scenes(study: str, blocks: Mapping, paper: Mapping | None = None) -> d
     """Every scene of ``blocks`` (the model and the kinds' blocks), by kind and label, built and checked by its
     settings class; :class:`ConfigError` naming the block for the first that fails."""
     scenes, tag = {}, "" if study == REPLICATION else f"your study '{study}': "
-    for block in KINDS:
-        if block not in blocks:
-            continue
+    for block in [block for block in KINDS if block in blocks]:
         try:
             found = _scene_mappings(block, blocks["model"], blocks[block], {"study": study},
                                     (paper or {}).get(block, {}))

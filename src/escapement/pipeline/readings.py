@@ -31,13 +31,6 @@ __all__ = ["COLUMNS", "equivalence", "limits_match", "score_readings", "score_ta
 SAME_VALUES_RTOL = 1e-9
 
 
-def _panel_of(reading: Reading, panels: Iterable[Panel]) -> Panel:
-    for p in panels:
-        if p.figure == reading.figure and p.name == reading.panel:
-            return p
-    raise KeyError(f"no printed panel for Fig. {reading.figure} {reading.panel!r} (reading {reading.name!r})")
-
-
 def _same(a: Reading, b: Reading) -> bool:
     return all(u.shape == v.shape and np.allclose(u, v, rtol=SAME_VALUES_RTOL, atol=0.0, equal_nan=True)
                for u, v in ((np.asarray(a.x, float), np.asarray(b.x, float)),
@@ -54,10 +47,9 @@ def equivalence(readings: Iterable[Reading]) -> dict[tuple[str, str, str], str]:
         if key in found:
             raise ValueError(f"the reading {r.name!r} of Fig. {r.figure} {r.panel!r} appears twice")
         heads = first.setdefault((r.figure, r.panel), [])
-        head = next((h for h in heads if _same(h, r)), None)
-        if head is None:
+        found[key] = next((h.name for h in heads if _same(h, r)), r.name)
+        if found[key] == r.name:
             heads.append(r)
-        found[key] = r.name if head is None else head.name
     return found
 
 
@@ -65,11 +57,11 @@ def score_table(readings: Iterable[Reading], panels: Iterable[Panel] = PANELS,
                 variants: Mapping[str, float] = VARIANTS) -> list[dict]:
     """One row per reading, scored axis of its panel, margin and tick mode (numbers as floats), in
     the order of the readings, then the axes (x, y), the margins, the tick modes."""
-    panels, readings = tuple(panels), list(readings)
+    printed, readings = {(p.figure, p.name): p for p in panels}, list(readings)
     same = equivalence(readings)
     jobs = []  # (reading, axis name, axis, finite values)
     for reading in readings:
-        for axis_name, axis in _panel_of(reading, panels).axes.items():
+        for axis_name, axis in printed[(reading.figure, reading.panel)].axes.items():
             if axis.scored:
                 values = np.asarray(reading.x if axis_name == "x" else reading.y, dtype=float).ravel()
                 jobs.append((reading, axis_name, axis, values[np.isfinite(values)]))
@@ -102,12 +94,9 @@ def score_table(readings: Iterable[Reading], panels: Iterable[Panel] = PANELS,
 
 
 def _formatted(row: Mapping) -> dict:
-    out = dict(row)
-    for name in ("data_min", "data_max"):
-        out[name] = f"{row[name]:.8g}"
-    for name in ("low", "high", "tick_step", "printed_low", "printed_high", "step"):
-        out[name] = f"{row[name]:.10g}"
-    return out
+    """A row as the table writes it: the data's extremes to 8 digits, the limits and steps to 10."""
+    return {**row, **{k: f"{row[k]:.8g}" for k in ("data_min", "data_max")},
+            **{k: f"{row[k]:.10g}" for k in ("low", "high", "tick_step", "printed_low", "printed_high", "step")}}
 
 
 def score_readings(output_csv: str, log: str, settings: Mapping) -> None:

@@ -10,36 +10,23 @@ from importlib import import_module
 from ..io.netcdf import write_csv, write_netcdf
 from .logs import logged
 
-__all__ = ["SCENES", "TIMING_COLUMNS", "simulate", "write_timings"]
+__all__ = ["SCENES", "TIMING_COLUMNS", "simulate"]
 
-#: each kind of scene: the module and function that make its dataset (imported by its job alone: the long run
+#: the module of each kind's scene function, which has the kind's name (imported by its job alone: the long run
 #: and the checks bring mpmath, the maps the ensemble)
-SCENES = {
-    "poincare_map": ("figures", "poincare_map"),
-    "shock_detail": ("figures", "shock_detail"),
-    "phase_diagram": ("figures", "phase_diagram"),
-    "escapement_error": ("maps", "escapement_error"),
-    "existence_map": ("maps", "existence_map"),
-    "stability_map": ("maps", "stability_map"),
-    "long_run": ("runs", "long_run"),
-    "checks": ("runs", "checks"),
-}
+SCENES = {**dict.fromkeys(("poincare_map", "shock_detail", "phase_diagram"), "figures"),
+          **dict.fromkeys(("escapement_error", "existence_map", "stability_map"), "maps"),
+          **dict.fromkeys(("long_run", "checks"), "runs")}
 
 #: wall times, kept apart from the datasets (which are deterministic): one row per measurement
 TIMING_COLUMNS = ["measurement", "seconds"]
 
 
-def write_timings(timings: Mapping[str, float], path: str) -> None:
-    write_csv([{"measurement": k, "seconds": repr(float(v))} for k, v in timings.items()], TIMING_COLUMNS, path)
-
-
 def simulate(kind: str, scene, outputs: Mapping[str, str], log: str, rule: str = "") -> None:
     """Make the dataset of the scene ``scene`` (its settings, checked at planning, or their mapping) of the kind
-    ``kind`` and write it to
-    ``outputs["nc"]`` (its wall times, if it measures any, to ``outputs["timing"]``); the file's history names the
-    rule and the file."""
-    module, name = SCENES[kind]
-    make = getattr(import_module(f"..scenes.{module}", __package__), name)
+    ``kind`` and write it to ``outputs["nc"]`` (its wall times, if it measures any, to ``outputs["timing"]``); the
+    file's history names the rule and the file."""
+    make = getattr(import_module(f"..scenes.{SCENES[kind]}", __package__), kind)
     with logged(log, kind) as logger:
         logger.info("%s: settings %s", outputs["nc"], scene)
         made = make(scene["cases"], scene["n_cycles"], scene.get("probes")) if kind == "checks" else make(scene)
@@ -50,4 +37,5 @@ def simulate(kind: str, scene, outputs: Mapping[str, str], log: str, rule: str =
             logger.info("%s: %.3e", key, seconds)
         write_netcdf(ds, outputs["nc"], history=f"escapement workflow, rule {rule or kind}: {outputs['nc']}")
         if "timing" in outputs:
-            write_timings(timings, outputs["timing"])
+            write_csv([{"measurement": k, "seconds": repr(float(v))} for k, v in timings.items()], TIMING_COLUMNS,
+                      outputs["timing"])

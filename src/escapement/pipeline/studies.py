@@ -14,21 +14,19 @@ from .tables import SPEED_COLUMNS, STRESS_COLUMNS, WORK_PRECISION_COLUMNS
 __all__ = ["run_speed", "run_stress", "run_work_precision"]
 
 
-def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str, log: str) -> None:
-    with logged(log, "run_work_precision") as logger:
-        x0 = check_initial_state(scene["x0"], scene.get("v0", 0.0))[0]
-        rows = work_precision(
-            Parameters.from_mapping(scene), x0, scene["n_cycles"],
-            {k: list(v) for k, v in settings.items()}, scene["min_seconds"], scene["max_repeats"], log=logger.info,
-        )
-        formatted = [{k: (f"{v:.6e}" if isinstance(v, float) else v) for k, v in row.items()} for row in rows]
-        assert list(rows[0]) == WORK_PRECISION_COLUMNS, list(rows[0])
-        write_csv(formatted, list(rows[0]), output)
-
-
 def _formatted(rows: list[dict], columns: list[str]) -> list[dict]:
     return [{c: (f"{row[c]:.6e}" if isinstance(row.get(c), float) else row.get(c, "")) for c in columns}
             for row in rows]
+
+
+def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str, log: str) -> None:
+    with logged(log, "run_work_precision") as logger:
+        x0 = check_initial_state(scene["x0"], scene.get("v0", 0.0))[0]
+        rows = work_precision(Parameters.from_mapping(scene), x0, scene["n_cycles"],
+                              {k: list(v) for k, v in settings.items()}, scene["min_seconds"], scene["max_repeats"],
+                              log=logger.info)
+        assert list(rows[0]) == WORK_PRECISION_COLUMNS, list(rows[0])
+        write_csv(_formatted(rows, WORK_PRECISION_COLUMNS), WORK_PRECISION_COLUMNS, output)
 
 
 def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str, log: str,
@@ -54,13 +52,9 @@ def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str,
             label = f"{ode['method']} rtol {ode['setting']}"
             note = (f"the fastest candidate whose impact time at cycle {n} is within {head['target']:g} of 50 digits "
                     f"(its error {ode['error_time']:.2e}; velocity {ode['error_velocity']:.2e})")
-        rows = [
-            {"name": f"{label} / solve_exact", "n": n, "ratio": h["ode_over_exact"], "time_s": ode["wall_s"],
-             "reference_s": h["exact"]["wall_s"], "repeats": ode["repeats"], "note": note},
-            {"name": f"{label} / closed-form cycles", "n": n, "ratio": h["ode_over_closed_form"],
-             "time_s": ode["wall_s"], "reference_s": h["closed_form"]["wall_s"], "repeats": ode["repeats"],
-             "note": note},
-        ]
+        rows = [{"name": f"{label} / {against}", "n": n, "ratio": h[f"ode_over_{key}"], "time_s": ode["wall_s"],
+                 "reference_s": h[key]["wall_s"], "repeats": ode["repeats"], "note": note}
+                for against, key in (("solve_exact", "exact"), ("closed-form cycles", "closed_form"))]
         sizes = tuple(dict.fromkeys((50, n, *speed["floor"]["exact_cycles"])))  # the floors' sizes too
         for r in per_cycle_times(params, x0, sizes, scene["min_seconds"], scene["max_repeats"]):
             rows.append({"name": "solve_exact / closed-form cycles", "n": r["n_cycles"], "ratio": r["ratio"],
