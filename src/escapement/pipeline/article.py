@@ -19,7 +19,7 @@ from ..verdict.rule import fmt
 from ..verdict.scores import joint_candidates, panel_candidates, read_scores, summary
 from ..verdict.tally import ORDER, findings
 from .logs import logged
-from .tables import LIMIT_COLUMNS, read_claims, read_work_precision
+from .tables import LIMIT_COLUMNS, WORK_PRECISION_COLUMNS, read_claims
 
 __all__ = ["RULE", "keywords", "metadata", "prefix", "string", "typ", "write_article"]
 
@@ -108,8 +108,7 @@ def _readings(scores: Sequence[Mapping]) -> str:
 
 def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[str, str], log: str) -> str:
     """The job of rule ``render_article``: the ``metadata``, ``source``, ``bibliography`` and ``pdf`` of ``outputs``
-    from the files of ``inputs`` (the claims table and the axis limits beside it, the checks dataset, the readings'
-    scores, the benchmark, ``CITATION.cff``, the template, the bibliography and the figures' SVG). Returns the title."""
+    from the rule's ``inputs``. Returns the title."""
     import typst
 
     with logged(log, "render_article") as logger:
@@ -128,7 +127,7 @@ def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[st
             f"{counts['undetermined']} undetermined and {counts['untestable']} untestable."))
         checks = read_variables(inputs["checks"], ("group", "label", "period", "velocity", "multiplier"))
         paper = [i for i, group in enumerate(checks["group"]) if group == "paper"]  # the paper's two cases, by label
-        exact = next(row for row in read_work_precision(inputs["benchmark"]) if row["method"] == "exact")
+        exact = next(row for row in read_csv(inputs["benchmark"], WORK_PRECISION_COLUMNS) if row["method"] == "exact")
         number = {name: {checks["label"][i]: typ(fmt(float(checks[name][i]), digits)) for i in paper}
                   for name, digits in (("period", 12), ("velocity", 12), ("multiplier", 10))}
         names = {"meta": {k: typ(v) if isinstance(v, str) else v for k, v in meta.items()},

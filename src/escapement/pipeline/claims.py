@@ -22,10 +22,8 @@ def check_claims(
     register: str, fig3: Mapping[str, str], fig4: str, fig5: Mapping[str, str], checks: str, readings: str,
     output: str, limits: str, log: str, schema: str = SCHEMA, settings: Mapping | None = None,
 ) -> None:
-    """Evaluate the register on the outputs (``fig3`` and ``fig5`` by their labels) and the readings' scores, the runs
-    it names among those of ``settings`` (the configuration's ``checks`` block: each run by its name); write the
-    table to ``output``, and to ``limits`` the limits of the printed panel each claim's args name (``figure``,
-    ``panel``), as judged."""
+    """The register evaluated on the outputs (``fig3`` and ``fig5`` by label), the readings' scores and the runs of
+    ``settings``' checks block, to ``output``; to ``limits``, the limits of each printed panel a claim names."""
     with logged(log, "check_claims") as logger:
         fig3_data, fig5_data = ({label: read_netcdf(path) for label, path in paths.items()} for paths in (fig3, fig5))
         fig4_data = read_netcdf(fig4)

@@ -1,12 +1,9 @@
 """The workflow's configuration as Snakemake reads it, checked once before any job, every refusal one line.
 
 The Snakefile's ``configfile:`` reads ``config/paper.yaml`` (the replication) and ``config/config.yaml`` (the
-user's), and Snakemake lays ``--configfile`` and ``--config`` over them, key by key at every level. Here: the file
-the workflow loads itself is first read without aliases (:func:`refuse_aliases`), the ``--config`` entries get the
-types a file gives them (:func:`typed_config`), and the merged configuration is checked against the one schema,
-``workflow/schemas/config.schema.yaml`` (:func:`validated`), each violation put in one line naming the key as the
-user typed it, its value and the form it must have (:func:`refusal`). The scenes are then built and checked by
-the model's own rules (:mod:`escapement.pipeline.plan`).
+user's), and Snakemake lays ``--configfile`` and ``--config`` over them, key by key at every level; the merged
+configuration is checked against the one schema, ``workflow/schemas/config.schema.yaml``, then its scenes by the
+model's own rules (:mod:`escapement.pipeline.plan`).
 """
 
 from __future__ import annotations

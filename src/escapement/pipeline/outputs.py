@@ -50,11 +50,9 @@ def figure_files(study: str, blocks: Iterable[str]) -> list[str]:
 
 
 def study_targets(study: str, scenes: Mapping[str, Mapping[str, object]]) -> list[str]:
-    """Every file a study promises: each kind's data files and figure, PNG, PDF and SVG (and the replication's own data,
-    figures and documents)."""
+    """Every file a study promises: each kind's data and figure, and the replication's own data and documents."""
     found = [path for block, labelled in scenes.items() for path in data_files(study, block, labelled).values()]
-    found += [png.removesuffix(".png") + suffix for png in figure_files(study, scenes) for suffix in (".png", ".pdf",
-                                                                                                     ".svg")]
+    found += [png.removesuffix(".png") + ext for png in figure_files(study, scenes) for ext in (".png", ".pdf", ".svg")]
     if "stability_map" in scenes:
         found.append(f"results/{study}/stability_map_timing.csv")
     if study == REPLICATION:
@@ -93,10 +91,8 @@ def not_a_target(path: str, studies: Mapping[str, Mapping[str, Mapping[str, obje
 
 
 def code_digest(root: str | Path, package: str | Path | None = None) -> str:
-    """A digest of the package's source files (``package``: by default the one loaded), the workflow's scripts and
-    the benchmarks' floors under ``root`` (the speed job loads them), and the installed versions of the package's
-    dependencies: every rule's params hold it, so that any of them changing reruns every job (Snakemake itself
-    follows only a rule's own script)."""
+    """The digest of the module's docstring: the package (``package``, by default the one loaded), and the scripts
+    and benchmarks under ``root`` (Snakemake itself follows only a rule's own script)."""
     digest = hashlib.sha256()
     package = Path(package) if package is not None else Path(__file__).resolve().parents[1]
     for folder, base in ((package, package.parent), (Path(root, "workflow/scripts"), Path(root)),

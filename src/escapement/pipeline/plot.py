@@ -1,18 +1,15 @@
-"""The plotting jobs: netCDF files or tables in, a figure out (PNG, PDF and SVG), titled by the study.
-
-The replication's paper figures are drawn with each printed panel's axes as the claims score them (the limits
-the data's rounded out to the printed ticks, :mod:`escapement.plotting.panel_axes`); a study of
-the user's own gets matplotlib's own axes and a title that names the study, never the paper's figure. Imports
-no solver and no scene."""
+"""The plotting jobs: netCDF files or tables in, a figure out (PNG, PDF and SVG), titled by the study; the
+replication's paper figures with each printed panel's axes as the claims score them
+(:mod:`escapement.plotting.panel_axes`), a study of the user's own with matplotlib's. Imports no solver or scene."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 
-from ..io.netcdf import read_netcdf
+from ..io.netcdf import read_csv, read_netcdf
 from ..scenes.settings import KINDS, REPLICATION
 from .logs import logged
-from .tables import read_work_precision
+from .tables import WORK_PRECISION_COLUMNS
 
 __all__ = ["plot", "title"]
 
@@ -30,28 +27,25 @@ def title(figure: str, study: str) -> str:
 
 
 def plot(figure: str, study: str, inputs: Mapping[str, str], png: str, pdf: str, svg: str, log: str) -> None:
-    """Draw ``figure`` (a file name: poincare_map, long_run, ...) of ``study`` from ``inputs`` (its files by their
-    labels: the netCDF file of each scene, by its label for the figures of several scenes; ``""`` for the one
-    file of the others) to ``png``, ``pdf`` and ``svg``."""
+    """Draw ``figure`` (a file name: poincare_map, long_run, ...) of ``study`` from ``inputs`` (its files by scene
+    label, ``""`` for a kind of one file) to ``png``, ``pdf`` and ``svg``."""
     from .. import plotting
 
     with logged(log, f"plot {figure}"):
         if figure == "work_precision":
-            fig = plotting.work_precision(read_work_precision(inputs[""]))
+            fig = plotting.work_precision(read_csv(inputs[""], WORK_PRECISION_COLUMNS))
         elif figure == "long_run":
             fig = plotting.long_run(read_netcdf(inputs[""]))
         elif figure in ("poincare_map", "shock_detail", "phase_diagrams"):
             data = {label: read_netcdf(path) for label, path in inputs.items()}
             data = data[""] if figure == "shock_detail" else data
             axes = None
-            if study == REPLICATION:  # each printed panel's axes as its claims score them
+            if study == REPLICATION:  # each printed panel's axes as its claims score them (poincare_axes, ...)
                 from ..plotting import panel_axes
                 from ..plotting.autoscale import VARIANTS
                 from ..verdict.scores import CLAIM_AUTOSCALE
 
-                measure = {"poincare_map": panel_axes.poincare_axes, "shock_detail": panel_axes.shock_axes,
-                           "phase_diagrams": panel_axes.phase_axes}[figure]
-                axes = measure(data, VARIANTS[CLAIM_AUTOSCALE])
+                axes = getattr(panel_axes, f"{figure.split('_')[0]}_axes")(data, VARIANTS[CLAIM_AUTOSCALE])
             fig = getattr(plotting, figure)(data, title(figure, study), axes)
         else:
             fig = getattr(plotting, figure)(read_netcdf(inputs[""]), title(figure, study))

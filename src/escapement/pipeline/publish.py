@@ -3,14 +3,11 @@ where what they show changed, compared by a stated tolerance.
 
 The workflow's default run writes only under ``results/``; ``snakemake --cores 2 publish`` runs :func:`publish`,
 and ``python -m escapement.pipeline.publish --check`` (CI, after a run on another CPU's kernels) says whether
-every tracked file shows what the run shows (:func:`check`). Both compare by one rule:
-
-- a PNG figure as an image, with matplotlib's own comparison (``compare_images``, the one pytest-mpl uses),
-  the same where the RMS difference of its pixels is at most :data:`FIGURE_RMS_TOLERANCE`;
-- a PDF figure goes with the PNG drawn from the same figure in the same job (rasterising a PDF needs
-  Ghostscript, which not every machine has);
-- a document (Markdown) the same where its text is equal outside its numbers and each number equal at its printed
-  digits (``1.30e-14`` and ``1.3e-14`` print the same number).
+every tracked file shows what the run shows (:func:`check`). Both compare by one rule (:func:`compare`): a PNG
+figure as an image, with matplotlib's own comparison (``compare_images``, the one pytest-mpl uses), within an RMS
+difference of its pixels of :data:`FIGURE_RMS_TOLERANCE`; a PDF by its source (rasterising a PDF needs Ghostscript,
+which not every machine has); a document where its text is equal outside its numbers and each number equal at its
+printed digits (``1.30e-14`` and ``1.3e-14`` print the same number).
 
 Measured on the long-run figure when it drew every cycle's error: curves moved by 1e-6 (relative) give an RMS of
 0.002, by 1e-4 0.9, by 1 per cent 4.1; one character of the legend changed gives 1.6. Rounding that differs from
@@ -100,14 +97,14 @@ def publish(published: Mapping[str, str], log: str) -> None:
     from .logs import logged
 
     with logged(log, "publish") as logger:
-        decided = [(tracked, drawn, *compare(tracked, drawn)) for tracked, drawn in published.items()]
+        decided = check(published)  # all compared first: a PDF goes by its PNG as tracked
         lines = []
-        for tracked, drawn, same, detail in decided:  # all compared first: a PDF goes by its PNG as tracked
+        for (tracked, same, detail), drawn in zip(decided, published.values()):
             if not same:
                 shutil.copyfile(drawn, tracked)
             lines.append(f"{tracked}: kept ({detail})" if same else f"{tracked}: updated from {drawn} ({detail})")
             logger.info("%s", lines[-1])
-        updated = sum(not same for *_, same, _ in decided)
+        updated = sum(not same for _, same, _ in decided)
         print("\n".join([*lines, f"publish: {updated} of {len(decided)} tracked files updated"]), file=sys.stderr)
 
 

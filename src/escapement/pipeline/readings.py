@@ -1,13 +1,9 @@
-"""The printed axes as data: each candidate reading of the paper's unstated choices scored by the
-axis limits it would give.
-
-For every reading (:mod:`escapement.studies.readings`), every scored axis of its panel
-(:mod:`escapement.paper.printed_axes`), every margin (:data:`escapement.plotting.autoscale.VARIANTS`)
-and both tick modes (the printed step imposed, or matplotlib's default locator choosing its own), the
-limits matplotlib gives the reading's values are compared with the printed limits: ``matches``
-counts the limits reproduced exactly (0, 1 or 2). Readings of one panel whose plotted values are
-identical to rounding share ``same_values_as``. :mod:`escapement.verdict.scores` reads the table
-back and names, per panel, every reading tied at the best score.
+"""The printed axes as data: each candidate reading of the paper's unstated choices scored by the axis limits it
+would give. For every reading (:mod:`escapement.studies.readings`), every scored axis of its panel
+(:mod:`escapement.paper.printed_axes`), every margin (:data:`escapement.plotting.autoscale.VARIANTS`) and both tick
+modes (the printed step imposed, or matplotlib's default locator choosing its own), ``matches`` counts the printed
+limits that matplotlib's limits of the reading's values reproduce exactly (0, 1 or 2); readings of one panel whose
+plotted values are identical to rounding share ``same_values_as`` (:mod:`escapement.verdict.scores` reads it back).
 """
 
 from __future__ import annotations
@@ -100,9 +96,8 @@ def _formatted(row: Mapping) -> dict:
 
 
 def score_readings(output_csv: str, log: str, settings: Mapping) -> None:
-    """Job: score every reading against the printed axes and write the table as CSV; the log names, per panel and
-    margin, every reading tied at the best score. ``settings`` holds the replication's blocks ``model``,
-    ``fig3``, ``fig4``, ``fig5`` (config/paper.yaml)."""
+    """The job: every reading scored, written as CSV, the readings tied at the best score logged per panel and
+    margin; ``settings`` holds the blocks ``model``, ``fig3``, ``fig4`` and ``fig5`` of config/paper.yaml."""
     with logged(log, "score_readings") as logger:
         start = time.perf_counter()
         runs = Runs(settings["model"])

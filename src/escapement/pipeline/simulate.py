@@ -23,9 +23,8 @@ TIMING_COLUMNS = ["measurement", "seconds"]
 
 
 def simulate(kind: str, scene, outputs: Mapping[str, str], log: str, rule: str = "") -> None:
-    """Make the dataset of the scene ``scene`` (its settings, checked at planning, or their mapping) of the kind
-    ``kind`` and write it to ``outputs["nc"]`` (its wall times, if it measures any, to ``outputs["timing"]``); the
-    file's history names the rule and the file."""
+    """The dataset of ``scene`` (its settings, checked at planning, or their mapping) of the kind ``kind`` to
+    ``outputs["nc"]``, its history naming the rule; its wall times, if it measures any, to ``outputs["timing"]``."""
     make = getattr(import_module(f"..scenes.{SCENES[kind]}", __package__), kind)
     with logged(log, kind) as logger:
         logger.info("%s: settings %s", outputs["nc"], scene)

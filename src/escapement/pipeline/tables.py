@@ -6,8 +6,7 @@ from ..io.netcdf import read_csv
 from ..verdict.rule import COLUMNS
 from .simulate import TIMING_COLUMNS
 
-__all__ = ["LIMIT_COLUMNS", "SPEED_COLUMNS", "STRESS_COLUMNS", "WORK_PRECISION_COLUMNS", "read_claims", "read_stress",
-           "read_timings", "read_work_precision"]
+__all__ = ["LIMIT_COLUMNS", "SPEED_COLUMNS", "STRESS_COLUMNS", "WORK_PRECISION_COLUMNS", "read_claims", "read_timings"]
 
 WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "repeats", "error_velocity", "error_time"]
 #: the speed table: a ratio of two wall times (or of two peak memories) measured side by side
@@ -20,14 +19,6 @@ LIMIT_COLUMNS = ["claim_id", "figure", "panel", "axis", "low", "high"]
 def read_claims(path: str) -> list[dict]:
     """The verdict's table, written by the claims job (:mod:`escapement.pipeline.claims`)."""
     return read_csv(path, COLUMNS)
-
-
-def read_work_precision(path: str) -> list[dict]:
-    return read_csv(path, WORK_PRECISION_COLUMNS)
-
-
-def read_stress(path: str) -> list[dict]:
-    return read_csv(path, STRESS_COLUMNS)
 
 
 def read_timings(path: str) -> dict[str, float]:
