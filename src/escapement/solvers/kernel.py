@@ -39,7 +39,7 @@ NO_EVENT, HORIZON, REBOUND = "no event", "end time", "rebound"
 
 def _atan2(y: np.ndarray, x: np.ndarray) -> np.ndarray:
     """libm's ``atan2`` element by element: NumPy's ``arctan2`` may differ from it by an ulp where it uses SIMD."""
-    return np.fromiter(map(math.atan2, y.tolist(), x.tolist()), float, len(y))
+    return np.fromiter(map(math.atan2, memoryview(y), memoryview(x)), float, len(y))
 
 
 #: ``crossing`` on arrays with the scalar closed form's numbers, bit for bit (NumPy's sqrt is correctly rounded)
@@ -137,27 +137,30 @@ class EventRun:
         while n > 0 and self.outcome is None:
             n -= self._block(min(n, BLOCK_EVENTS, self.last - self.events))
 
-    def _block(self, limit: int) -> int:
-        """At most ``limit`` events: the velocities by the loop, then angles and times on arrays; the events kept."""
-        loop, state, v, sqrt, arrivals = self.loop, self.state, self.v, math.sqrt, array("d")
-        put, ending = arrivals.append, None
-        if loop[state] is None:  # from the release, neither impact is reached
-            ending, limit = NO_EVENT, 0
-        for _ in range(limit):
+    def _arrivals(self, limit: int):
+        """The loop: the velocity before each of at most ``limit`` events, by energy and the impact law; it leaves
+        the state after the last in :attr:`walked` and how it stopped short in :attr:`ending`."""
+        loop, state, v, sqrt = self.loop, self.state, self.v, math.sqrt
+        self.ending = NO_EVENT if loop[state] is None else None  # from the release, neither impact is reached
+        for _ in range(limit if self.ending is None else 0):
             k, direction, jump, following = loop[state]
             v_sq = v * v + k
             if not v_sq > 0.0:  # the arc turns short of its surface (crossing's ``reached``)
-                ending = NO_EVENT
+                self.ending = NO_EVENT
                 break
             v1 = direction * sqrt(v_sq)
-            put(v1)
+            yield v1
             state, v = following, jump * v1
             if jump < 0.0:  # the impact reversed the velocity (b > 1)
-                ending = REBOUND
+                self.ending = REBOUND
                 break
-        kept = len(arrivals)
+        self.walked = (state, v)
+
+    def _block(self, limit: int) -> int:
+        """At most ``limit`` events: the velocities by the loop, then angles and times on arrays; the events kept."""
+        v_before = np.fromiter(self._arrivals(limit), float)
+        (state, v), ending, kept = self.walked, self.ending, len(v_before)
         if kept:
-            v_before = np.frombuffer(arrivals)
             kind = kinds_from(self.first, self.events, kept)
             start = np.concatenate(([self.state], kind[:-1]))  # the state each arc starts from
             v_start = np.concatenate(([self.v], self.jump[kind[:-1]] * v_before[:-1]))
@@ -176,7 +179,7 @@ class EventRun:
             self.t_sum, self.t_err = float(t_sum[kept]), float(t_err[kept])
             self.time = float(t[kept - 1]) if kept else self.time
             self.state, self.v, self.events = state, v, self.events + kept
-        self._end(ending, arrivals[-1] if ending == REBOUND else math.nan)
+        self._end(ending, float(v_before[-1]) if ending == REBOUND else math.nan)
         return kept
 
     def _end(self, ending: str | None, v1: float) -> None:
