@@ -28,36 +28,23 @@ __all__ = ["MODEL_SUMMARY", "assemble", "cycle_variables", "dataset", "event_var
 
 #: The model and its impact law, in the ``summary`` of every file (each file adds what it holds).
 MODEL_SUMMARY = (
-    "The escapement model of Mao, Fu & Li (2013): a mass M on a linear spring of constant K moves "
-    "freely, M x'' + K x = 0, between two impact positions a1 < 0 < a3. Moving right it strikes the "
-    "escapement at x = a1, moving left at x = a3; the impact law v+ = (1 - b) v- gives the velocity "
-    "just after each impact from the velocity just before it (impact coefficient b). After the impact "
-    "at a1 a constant force F pushes the mass in +x over the impulse zone [a1, a2]; after the impact at "
-    "a3 it pushes in -x over [a4, a3]. The motion is computed exactly from event to event (closed-form "
-    "harmonic arcs between the impacts and the ends of the impulse zones), in SI units; cycle k starts "
-    "at the k-th impact at a1."
+    "The escapement model of Mao, Fu & Li (2013): a mass M on a linear spring of constant K moves freely, M x'' + K x "
+    "= 0, between two impact positions a1 < 0 < a3. Moving right it strikes the escapement at x = a1, moving left at x "
+    "= a3; the impact law v+ = (1 - b) v- gives the velocity just after each impact from the velocity just before it "
+    "(impact coefficient b). After the impact at a1 a constant force F pushes the mass in +x over the impulse zone "
+    "[a1, a2]; after the impact at a3 it pushes in -x over [a4, a3]. The motion is computed exactly from event to "
+    "event (closed-form harmonic arcs between the impacts and the ends of the impulse zones), in SI units; cycle k "
+    "starts at the k-th impact at a1."
 )
 
 DOI = "10.3233/SAV-130800"
-REFERENCE = (
-    'J. Mao, Y. Fu, P. Li, "Dynamics of periodic impulsive collision in escapement mechanism", '
-    f"Shock and Vibration 20 (2013) 1001-1010, doi:{DOI}"
-)
-
-#: ACDD-1.3 discovery attributes common to every file
-KEYWORDS = (
-    "vibro-impact, escapement mechanism, impact oscillator, impulsive differential equations, "
-    "Poincare map, non-smooth dynamics, replication"
-)
-LICENSE = "CC-BY-4.0"
-CREATOR = "escapement replication contributors"
-INSTITUTION = "escapement replication project"
 
 #: ISO 19115-1 coverage content types (ACDD-1.3) used here
 MODEL_RESULT = "modelResult"
 MODEL_INPUT = "auxiliaryInformation"
 CLASSIFICATION = "thematicClassification"
 QUALITY = "qualityInformation"
+
 
 def cycle_variables(solution: Solution) -> dict[str, xr.DataArray]:
     """The Poincare map per cycle, on the coordinate ``cycle`` = 1 .. N, each column with the units
@@ -95,8 +82,7 @@ def impact_variables(solution: Solution, window: tuple[float, float] | None = No
     keep = (ev.kind == int(EventKind.IMPACT_A1)) | (ev.kind == int(EventKind.IMPACT_A3))
     if window is not None:
         keep &= (ev.t >= window[0]) & (ev.t <= window[1])
-    m = solution.params.M
-    vb, va = ev.v_before[keep], ev.v_after[keep]
+    m, vb, va = solution.params.M, ev.v_before[keep], ev.v_after[keep]
     table = {
         "impact_time": (ev.t[keep], "s", "time of the impact"),
         "impact_position": (ev.x[keep], "m", "position of the impact (a1 or a3)"),
@@ -110,13 +96,10 @@ def impact_variables(solution: Solution, window: tuple[float, float] | None = No
 
 
 def event_variables(solution: Solution, window: tuple[float, float] | None = None) -> dict[str, xr.DataArray]:
-    """Every event (impacts and ends of the impulse), optionally inside ``window``, each column with
-    the units and long name of :data:`escapement.solvers.describe.EVENT_COLUMNS`; the kind as CF
-    flags."""
+    """Every event (impacts and ends of the impulse), optionally inside ``window``, each column with the units and long
+    name of :data:`escapement.solvers.describe.EVENT_COLUMNS`; the kind as CF flags."""
     ev = solution.events
-    keep = np.ones(len(ev), dtype=bool)
-    if window is not None:
-        keep = (ev.t >= window[0]) & (ev.t <= window[1])
+    keep = np.ones(len(ev), dtype=bool) if window is None else (ev.t >= window[0]) & (ev.t <= window[1])
     flags = {"flag_values": np.array([int(k) for k in EventKind], dtype=np.int8),
              "flag_meanings": " ".join(k.name.lower() for k in EventKind)}
     out = {}
@@ -131,68 +114,53 @@ def event_variables(solution: Solution, window: tuple[float, float] | None = Non
 
 def scalar_variable(value, units: str, long_name: str, content: str = MODEL_RESULT, **attrs) -> xr.DataArray:
     """A 0-d variable with its units, long name and ACDD coverage content type."""
-    return xr.DataArray(
-        value, attrs={"units": units, "long_name": long_name, "coverage_content_type": content, **attrs}
-    )
+    return xr.DataArray(value, attrs={"units": units, "long_name": long_name, "coverage_content_type": content,
+                                      **attrs})
 
 
 def parameter_variables(values: Mapping[str, float]) -> dict[str, xr.DataArray]:
     """One 0-d variable per model parameter or initial-state component in ``values`` (by the
     paper's symbol), with the units and long name of :mod:`escapement.model.quantities`."""
-    out = {}
-    for name, value in values.items():
-        q = quantity(name)
-        out[name] = scalar_variable(float(value), q.units, q.long_name, MODEL_INPUT)
-    return out
+    return {name: scalar_variable(float(value), *_attrs(name).values(), MODEL_INPUT) for name, value in values.items()}
 
 
 def global_attributes(title: str, scene: str, summary: str, **extra) -> dict:
     """CF-1.11 and ACDD-1.3 global attributes. ``summary`` says what the file holds (after
     :data:`MODEL_SUMMARY`); ``extra`` adds counts or text (never a quantity with units: those are variables)."""
-    attrs = {
+    return {
         "Conventions": "CF-1.11, ACDD-1.3",
         "title": title,
         "summary": f"{MODEL_SUMMARY} {summary}",
-        "keywords": KEYWORDS,
-        "license": LICENSE,
-        "creator_name": CREATOR,
+        "keywords": "vibro-impact, escapement mechanism, impact oscillator, impulsive differential equations, "
+                    "Poincare map, non-smooth dynamics, replication",
+        "license": "CC-BY-4.0",
+        "creator_name": "escapement replication contributors",
         "creator_type": "group",
-        "institution": INSTITUTION,
-        "references": f"{REFERENCE} (https://doi.org/{DOI})",
+        "institution": "escapement replication project",
+        "references": 'J. Mao, Y. Fu, P. Li, "Dynamics of periodic impulsive collision in escapement mechanism", '
+                      f"Shock and Vibration 20 (2013) 1001-1010, doi:{DOI} (https://doi.org/{DOI})",
         "comment": "replication with new code: exact event-driven solution of the piecewise-linear model",
         "scene": scene,
+        **extra,
     }
-    attrs.update(extra)
-    return attrs
 
 
 def assemble(variables: Mapping[str, xr.DataArray], attrs: dict, coords: Mapping | None = None) -> xr.Dataset:
-    """The dataset of ``variables``, each with an ACDD ``coverage_content_type``: ``coordinate`` for
-    the coordinates, ``thematicClassification`` for flags, and ``modelResult`` where a variable
-    does not give its own."""
+    """The dataset of ``variables``, each with an ACDD ``coverage_content_type``: ``coordinate`` for the coordinates,
+    ``thematicClassification`` for flags, and ``modelResult`` where a variable does not give its own."""
     ds = xr.Dataset(dict(variables), coords=coords, attrs=attrs)
     for name, variable in ds.variables.items():
-        if "coverage_content_type" not in variable.attrs:
-            if name in ds.coords:
-                content = "coordinate"
-            elif "flag_values" in variable.attrs:
-                content = CLASSIFICATION
-            else:
-                content = MODEL_RESULT
-            variable.attrs["coverage_content_type"] = content
+        variable.attrs.setdefault("coverage_content_type", "coordinate" if name in ds.coords else
+                                  CLASSIFICATION if "flag_values" in variable.attrs else MODEL_RESULT)
     return ds
 
 
-def dataset(
-    solution: Solution, variables: dict[str, xr.DataArray], title: str, scene: str, summary: str, **extra
-) -> xr.Dataset:
+def dataset(solution: Solution, variables: dict[str, xr.DataArray], title: str, scene: str, summary: str,
+            **extra) -> xr.Dataset:
     """Assemble a dataset with the run's parameters and initial state as 0-d variables, its outcome
     as global attributes (its provenance is added when it is written)."""
-    attrs = global_attributes(
-        title, scene, summary, solver=solution.method, outcome=solution.status.value,
-        outcome_message=solution.message,
-    )
-    attrs.update(extra)
+    attrs = global_attributes(title, scene, summary, solver=solution.method, outcome=solution.status.value,
+                              outcome_message=solution.message, **extra)
     state = {"x0": solution.x0, "v0": solution.v0}
     return assemble({**variables, **parameter_variables({**solution.params.as_dict(), **state})}, attrs)
 
@@ -238,12 +206,10 @@ def run_dataset(solution: Solution) -> xr.Dataset:
         variables[name] = scalar_variable(value, units, f"{long_name}; NaN where it does not apply")
     return dataset(
         solution, variables, title=f"One run of the escapement model, solver {solution.method}", scene="run",
-        summary=(
-            "This file holds one run released at x0 with velocity v0: per cycle (the Poincare map on the section "
-            "x = a1, v > 0), the time of the impact at a1, the velocity just before it, the period and the "
-            "largest displacement; every event of the run (impacts and ends of the impulse zones); the end of the "
-            "computed trajectory; and the numbers behind a regime exit, if the run left the escapement regime."
-        ),
+        summary="This file holds one run released at x0 with velocity v0: per cycle (the Poincare map on the section "
+                "x = a1, v > 0), the time of the impact at a1, the velocity just before it, the period and the largest "
+                "displacement; every event of the run (impacts and ends of the impulse zones); the end of the computed "
+                "trajectory; and the numbers behind a regime exit, if the run left the escapement regime.",
         n_cycles=len(solution.cycles), n_events=len(solution.events))
 
 

@@ -20,15 +20,8 @@ from ..model.events import EventKind
 from ..model.quantities import quantity
 from ..paper.printed import fixed_point_19
 from ..solvers.exact import solve_exact
-from .cf import (
-    MODEL_INPUT,
-    cycle_variables,
-    dataset,
-    event_variables,
-    impact_variables,
-    sample_variables,
-    scalar_variable,
-)
+from .cf import MODEL_INPUT, cycle_variables, dataset, event_variables, impact_variables, sample_variables, \
+    scalar_variable
 from .settings import PhaseScene, PoincareScene, ShockScene
 
 __all__ = ["phase_diagram", "poincare_map", "sample_times", "shock_detail"]
@@ -37,8 +30,7 @@ __all__ = ["phase_diagram", "poincare_map", "sample_times", "shock_detail"]
 def sample_times(grid: np.ndarray, jumps: np.ndarray) -> np.ndarray:
     """The times ``grid`` and, for each jump time inside ``(grid[0], grid[-1]]``, the jump and the largest
     float below it: one sample on each side. The result increases strictly, as CF requires of a coordinate."""
-    grid = np.asarray(grid, dtype=float)
-    jumps = np.asarray(jumps, dtype=float)
+    grid, jumps = (np.asarray(a, dtype=float) for a in (grid, jumps))
     jumps = jumps[(jumps > grid[0]) & (jumps <= grid[-1])]
     return np.union1d(grid, np.concatenate([np.nextafter(jumps, -np.inf), jumps]))
 
@@ -55,22 +47,19 @@ def poincare_map(settings: Mapping | PoincareScene) -> xr.Dataset:
     variables = {**cycle_variables(run), **event_variables(run)}
     cycle, values = AMPLITUDES[scene.amplitude].values(run)
     if scene.amplitude not in variables:
-        coordinate = ("amplitude_cycle", cycle, {"long_name": "cycle number of the amplitude", "units": "1"})
+        axis = ("amplitude_cycle", cycle, {"long_name": "cycle number of the amplitude", "units": "1"})
         q = quantity(scene.amplitude)
-        variables[scene.amplitude] = xr.DataArray(values, dims="amplitude_cycle",
-                                                  coords={"amplitude_cycle": coordinate},
+        variables[scene.amplitude] = xr.DataArray(values, dims="amplitude_cycle", coords={"amplitude_cycle": axis},
                                                   attrs={"units": q.units, "long_name": q.long_name})
-    variables["fixed_point_19"] = scalar_variable(
-        fixed_point_19(scene.params), "m s-1", "fixed point of the map (17) by Eq. (19) as printed (velocity before "
-        "impact)")
+    variables["fixed_point_19"] = scalar_variable(fixed_point_19(scene.params), "m s-1", "fixed point of the map (17) "
+                                                  "by Eq. (19) as printed (velocity before impact)")
     return dataset(
         run, variables, title=scene.study.title("fig3"), scene="poincare_map",
         summary=("This file holds the Poincare map of one run released at x0 with velocity v0: per cycle, the "
                  "velocity just before the impact at a1, the period and the largest displacement, for n_cycles "
                  "cycles, and the amplitude named by amplitude_variable; every event of the run (impacts and ends "
                  "of the impulse zones); and the fixed point of Eq. (19) as printed."),
-        **scene.study.attributes(), n_cycles=scene.n_cycles, amplitude_variable=scene.amplitude,
-    )
+        **scene.study.attributes(), n_cycles=scene.n_cycles, amplitude_variable=scene.amplitude)
 
 
 def shock_detail(settings: Mapping | ShockScene) -> xr.Dataset:
@@ -83,13 +72,11 @@ def shock_detail(settings: Mapping | ShockScene) -> xr.Dataset:
     run = solve_exact(scene.params, scene.release.x0, scene.release.v0, t_end=hi)
     grid = np.linspace(lo, hi, int(round((hi - lo) * scene.samples_per_second)) + 1)
     variables = sample_variables(run, sample_times(grid, run.events.t), acceleration=True)
-    variables.update(impact_variables(run, window=(lo, hi)))
-    variables.update(event_variables(run, window=(lo, hi)))
+    variables.update({**impact_variables(run, window=(lo, hi)), **event_variables(run, window=(lo, hi))})
     for name, window in (("velocity", scene.velocity_window), ("acceleration", scene.acceleration_window)):
-        variables[f"{name}_window"] = xr.DataArray(
-            np.array(window), dims="window_edge",
-            attrs={"units": "s", "long_name": f"time window [start, end] of the {name} panel",
-                   "coverage_content_type": MODEL_INPUT})
+        variables[f"{name}_window"] = xr.DataArray(np.array(window), dims="window_edge", attrs={
+            "units": "s", "long_name": f"time window [start, end] of the {name} panel",
+            "coverage_content_type": MODEL_INPUT})
     variables["samples_per_second"] = scalar_variable(
         float(scene.samples_per_second), "s-1", "sampling rate of the uniform time grid", MODEL_INPUT)
     return dataset(
@@ -99,8 +86,7 @@ def shock_detail(settings: Mapping | ShockScene) -> xr.Dataset:
                  "acceleration windows, on a uniform grid of samples_per_second with, at each event, a sample at "
                  "the largest float below its time and one at its time; the impacts in the window with their "
                  "impulse and dissipated energy; and every event in the window."),
-        **scene.study.attributes(),
-    )
+        **scene.study.attributes())
 
 
 def phase_diagram(settings: Mapping | PhaseScene) -> xr.Dataset:
@@ -110,18 +96,14 @@ def phase_diagram(settings: Mapping | PhaseScene) -> xr.Dataset:
     run = solve_exact(scene.params, scene.release.x0, scene.release.v0, n_cycles=scene.n_cycles)
     period = scene.params.natural_period
     end = run.t_final if np.isfinite(run.t_final) else (scene.n_cycles + 1) * period
-    ev = run.events
-    impacts = ev.t[(ev.kind == int(EventKind.IMPACT_A1)) | (ev.kind == int(EventKind.IMPACT_A3))]
+    impacts = run.events.t[np.isin(run.events.kind, [int(EventKind.IMPACT_A1), int(EventKind.IMPACT_A3)])]
     grid = np.linspace(0.0, end, int(np.ceil(end / period * scene.samples_per_period)) + 1)
     variables = sample_variables(run, sample_times(grid, impacts))
-    variables.update(cycle_variables(run))
-    variables.update(impact_variables(run))
+    variables.update({**cycle_variables(run), **impact_variables(run)})
     return dataset(
         run, variables, title=scene.study.title("fig5"), scene="phase_diagram",
-        summary=("This file holds one phase diagram: one run released at x0 with velocity v0, from t = 0 to the "
-                 "end of cycle n_cycles, its displacement and velocity sampled samples_per_period times per "
-                 "natural period 2 pi sqrt(M/K) with, at each impact, a sample at the largest float below its time "
-                 "and one at its time; the per-cycle Poincare map; and every impact with its impulse and "
-                 "dissipated energy."),
-        **scene.study.attributes(), n_cycles=scene.n_cycles, samples_per_period=scene.samples_per_period,
-    )
+        summary=("This file holds one phase diagram: one run released at x0 with velocity v0, from t = 0 to the end of "
+                 "cycle n_cycles, its displacement and velocity sampled samples_per_period times per natural period 2 "
+                 "pi sqrt(M/K) with, at each impact, a sample at the largest float below its time and one at its time; "
+                 "the per-cycle Poincare map; and every impact with its impulse and dissipated energy."),
+        **scene.study.attributes(), n_cycles=scene.n_cycles, samples_per_period=scene.samples_per_period)

@@ -39,9 +39,9 @@ def _coords(**axes: np.ndarray) -> dict:
             for name, values in axes.items()}
 
 
-def _grid(values, coords: dict, units: str, long_name: str, **attrs) -> xr.DataArray:
-    return xr.DataArray(np.asarray(values), dims=tuple(coords), coords=coords,
-                        attrs={"units": units, "long_name": long_name, **attrs})
+def _grid(values, coords: dict, units: str | None, long_name: str, **attrs) -> xr.DataArray:
+    described = ({} if units is None else {"units": units}) | {"long_name": long_name, **attrs}
+    return xr.DataArray(np.asarray(values), dims=tuple(coords), coords=coords, attrs=described)
 
 
 def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = 100) -> tuple[xr.Dataset, dict]:
@@ -70,9 +70,8 @@ def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = 100
         "fixed_point": _grid(grid["fixed_point"].reshape(bb.shape), coords, "m s-1",
                              "fixed point of the simulated return map"),
         "period": _grid(grid["period"].reshape(bb.shape), coords, "s", "period of the cycle at the fixed point"),
-        "outcome": xr.DataArray(np.asarray(grid["status"], dtype=np.int8).reshape(bb.shape), dims=("b", "F"),
-                                coords=coords, attrs={"long_name": "how the cycle from the fixed point ended",
-                                                      **flag_attributes()}),
+        "outcome": _grid(np.asarray(grid["status"], dtype=np.int8).reshape(bb.shape), coords, None,
+                         "how the cycle from the fixed point ended", **flag_attributes()),
     }
     resolved = validate_arrays({**model, "b": bb.ravel(), "F": ff.ravel()})
     variables.update(parameter_variables({k: np.ravel(resolved[k])[0] for k in MODEL_KEYS if k not in ("b", "F")}))
@@ -83,9 +82,9 @@ def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = 100
         "at a1, found by Newton's method, the period of the cycle there, the multiplier mu_2 measured by central "
         "differences of the map beside (1 - b)**4 of Eq. (21), and how the cycle from the fixed point ended.",
         solver="exact, vectorised ensemble", **scene.study.attributes())
-    timings = {"ensemble_seconds_per_trajectory": ensemble, "scalar_seconds_per_trajectory": scalar,
-               "ensemble_speedup_per_trajectory": scalar / ensemble}
-    return assemble(variables, attrs), timings
+    return assemble(variables, attrs), {"ensemble_seconds_per_trajectory": ensemble,
+                                        "scalar_seconds_per_trajectory": scalar,
+                                        "ensemble_speedup_per_trajectory": scalar / ensemble}
 
 
 def mirror_image(p: Parameters) -> Parameters:
@@ -110,18 +109,15 @@ def existence_map(settings: Mapping | ExistenceMapScene) -> xr.Dataset:
     coords = _coords(a3=scene.a3_values, F=scene.F_values)
     along = {"a3": coords["a3"]}
     variables = {
-        "outcome": xr.DataArray(status.astype(np.int8), dims=("a3", "F"), coords=coords,
-                                attrs={"long_name": "how the run from the release ended", **flag_attributes()}),
-        "converged": xr.DataArray(
-            converged.astype(np.int8), dims=("a3", "F"), coords=coords,
-            attrs={"long_name": "whether the run reached a limit cycle (completed, last two velocities before "
-                                "the impact at a1 within the relative tolerance)",
-                   "flag_values": np.array([0, 1], dtype=np.int8), "flag_meanings": "no_limit_cycle limit_cycle"}),
-        "threshold": xr.DataArray(thresholds[:, 0], dims="a3", coords=along, attrs={
-            "units": "N", "long_name": "force F* at which the constant C of the map (16) read at a1 is zero"}),
-        "threshold_mirror": xr.DataArray(thresholds[:, 1], dims="a3", coords=along, attrs={
-            "units": "N", "long_name": "force F*' at which the constant of the map (16) read at a3 is zero (F* of "
-                                       "the mirror-image escapement)"}),
+        "outcome": _grid(status.astype(np.int8), coords, None, "how the run from the release ended",
+                         **flag_attributes()),
+        "converged": _grid(converged.astype(np.int8), coords, None, "whether the run reached a limit cycle (completed, "
+                           "last two velocities before the impact at a1 within the relative tolerance)",
+                           flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="no_limit_cycle limit_cycle"),
+        "threshold": _grid(thresholds[:, 0], along, "N",
+                           "force F* at which the constant C of the map (16) read at a1 is zero"),
+        "threshold_mirror": _grid(thresholds[:, 1], along, "N", "force F*' at which the constant of the map (16) read "
+                                  "at a3 is zero (F* of the mirror-image escapement)"),
         "n_cycles": scalar_variable(np.int32(scene.n_cycles), "1", "complete cycles each run was given",
                                     MODEL_INPUT),
         "tolerance": scalar_variable(scene.tolerance, "1", "relative tolerance on the last two velocities before "
@@ -168,11 +164,10 @@ def escapement_error(settings: Mapping | EscapementErrorScene) -> xr.Dataset:
     worst = float(np.nanmax(differences)) if np.isfinite(differences).any() else float("nan")
     zone = ("zone", np.arange(len(scene.zones), dtype=np.int32), {"long_name": "impulse zone number", "units": "1"})
     coords = {"zone": zone, **_coords(F=forces)}
-    variables = {name: xr.DataArray(values[name], dims=("zone", "F"), coords=coords,
-                                    attrs={"units": u, "long_name": ln}) for name, (u, ln) in RATE_VARIABLES.items()}
-    variables["outcome"] = xr.DataArray(outcome, dims=("zone", "F"), coords=coords, attrs={
-        "long_name": "how the cycle from the fixed point of the map (16) ended: completed is a limit cycle, stopped "
-                     "is no fixed point (the variables above are NaN where it is not completed)", **flag_attributes()})
+    variables = {name: _grid(values[name], coords, u, ln) for name, (u, ln) in RATE_VARIABLES.items()}
+    variables["outcome"] = _grid(outcome, coords, None, "how the cycle from the fixed point of the map (16) ended: "
+                                 "completed is a limit cycle, stopped is no fixed point (the variables above are NaN "
+                                 "where it is not completed)", **flag_attributes())
     variables["zone_name"] = xr.DataArray(np.array([z[0] for z in scene.zones], dtype=object), dims="zone",
                                           coords={"zone": zone}, attrs={"long_name": "name of the impulse zone",
                                                                         "coverage_content_type": MODEL_INPUT})

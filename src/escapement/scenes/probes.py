@@ -1,10 +1,9 @@
-"""The runs of the checks block measured otherwise than the table of :func:`escapement.scenes.runs.checks`, each
-written under its name in the block (:func:`named_runs`): its settings beside what its ``measure`` gives
-(:data:`MEASURES`): runs from rest, how they ended and their velocities before the impacts at a1; the event tables
-of runs from rest; the slope of the simulated return map; runs from the section at the converged speed and beside
-it; the time one passage through an impulse zone adds to the free swing (Airy's theorem, Sec. 5); the crossings of
-the Poincare section per cycle. A check reads a run by its name (:func:`escapement.verdict.evidence.run`) and never
-runs one.
+"""The runs of the checks block measured otherwise than the table of :func:`escapement.scenes.runs.checks`, each written
+under its name in the block (:func:`named_runs`): its settings beside what its ``measure`` gives (:data:`MEASURES`):
+runs from rest, how they ended and their velocities before the impacts at a1; the event tables of runs from rest; the
+slope of the simulated return map; runs from the section at the converged speed and beside it; the time one passage
+through an impulse zone adds to the free swing (Airy's theorem, Sec. 5); the crossings of the Poincare section per
+cycle. A check reads a run by its name (:func:`escapement.verdict.evidence.run`) and never runs one.
 """
 
 from __future__ import annotations
@@ -154,8 +153,7 @@ def _crossings(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[st
         run = solve_exact(p, float(r["x0"]), n_cycles=positive_int("n_cycles", r["n_cycles"], 100_000))
         t = np.linspace(0.0, run.t_final, int(r["samples_per_period"] * run.t_final / p.natural_period))
         x, v, _ = run.sample(t)
-        counts.append(section_crossing_counts(t, x, v, p.a1, run.events.t[run.events.kind == int(
-            EventKind.IMPACT_A1)]))
+        counts.append(section_crossing_counts(t, x, v, p.a1, run.events.t[run.events.of_kind(EventKind.IMPACT_A1)]))
     return {"crossings": _padded(counts, ("run", "cycle"), "1", "crossings of x = a1 with xdot > 0 from one impact at "
                                  "a1 to the next, on the sampled trajectory (NaN after the last)")}
 

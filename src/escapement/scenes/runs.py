@@ -55,8 +55,7 @@ def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = Non
     named = named_runs(probes or {})
     measured = [measure_cycle(p, x0, n_cycles) for _, p, x0 in runs]
     columns = {
-        "label": [c["label"] for c, _, _ in runs],
-        "group": [c["group"] for c, _, _ in runs],
+        **{key: [c[key] for c, _, _ in runs] for key in ("label", "group")},
         "outcome": [m.outcome for m in measured],
         "outcome_message": [m.message for m in measured],
         "x0": [x0 for _, _, x0 in runs],
@@ -65,8 +64,7 @@ def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = Non
         "multiplier_eq21": [multiplier_21(p) for _, p, _ in runs],
         "fixed_point_eq16": [fixed_point(p) for _, p, _ in runs],
         "cycles_to_converge": np.array([m.cycles_to_converge for m in measured], dtype=np.int32),
-        "floquet_major": [m.floquet[0] for m in measured],
-        "floquet_minor": [m.floquet[1] for m in measured],
+        **{name: [m.floquet[i] for m in measured] for i, name in enumerate(("floquet_major", "floquet_minor"))},
         **{key: [getattr(p, key) for _, p, _ in runs] for key in MODEL_KEYS},
     }
     table = {name: (columns[name], *description) for name, description in CHECKS_COLUMNS.items()}
@@ -79,11 +77,9 @@ def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = Non
         "of the flow over the last period (central differences of the exact flow). Beside the table, the runs of "
         "another measure (runs from rest and how they end, event tables, the slope of a return map, runs from the "
         "section, passages through impulse zones, crossings of the section per cycle), each with its settings and "
-        "what it measures as variables <name>_<variable> on the dimension <name>_run."
-    )
-    ds = table_dataset(table, "Measured Poincare maps for the claims register", "checks", summary,
-                       solver="exact", n_cycles=n_cycles)
-    return ds.assign(named)
+        "what it measures as variables <name>_<variable> on the dimension <name>_run.")
+    return table_dataset(table, "Measured Poincare maps for the claims register", "checks", summary, solver="exact",
+                         n_cycles=n_cycles).assign(named)
 
 
 def long_run(settings: Mapping | LongRunScene) -> tuple[xr.Dataset, dict[str, float]]:
@@ -131,6 +127,5 @@ def long_run(settings: Mapping | LongRunScene) -> tuple[xr.Dataset, dict[str, fl
         solver="exact; closed-form cycles; " + ivp_label, ivp_label=ivp_label, n_cycles=scene.n_cycles,
         check_cycles=int(r["check_cycles"]), closed_form_method=r["series_method"], ivp_cycles=scene.ivp_cycles,
         converged_after=int(r["converged_after"]), any_nan=int(r["any_nan"]))
-    timings = {"exact_seconds": r["exact_wall_s"], "closed_form_seconds": r["closed_form_wall_s"],
-               "ivp_seconds": r["ivp_wall_s"]}
-    return assemble(variables, attrs), timings
+    return assemble(variables, attrs), {"exact_seconds": r["exact_wall_s"],
+                                        "closed_form_seconds": r["closed_form_wall_s"], "ivp_seconds": r["ivp_wall_s"]}

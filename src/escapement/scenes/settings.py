@@ -43,7 +43,6 @@ class Kind:
 
     @property
     def ignored(self) -> tuple[str, ...]:
-        """The model's keys this kind's data do not depend on."""
         return tuple(key for key, _ in self.ignores)
 
     def why(self, keys) -> str:
@@ -71,10 +70,9 @@ KINDS = {k.block: k for k in (
 
 @dataclass(frozen=True)
 class Study:
-    """Where a scene belongs: the study (``replication``, or the user's own by its name), the scene's label
-    within its kind (a Fig. 3 case, a spring constant), which name its files and title its dataset, and, for a
-    study of the user's own, what in its kind differs from the paper's scenes (one line, written by the
-    workflow's configuration)."""
+    """Where a scene belongs: the study (``replication``, or the user's own by its name), the scene's label within its
+    kind (a Fig. 3 case, a spring constant), which name its files and title its dataset, and, for a study of the user's
+    own, what in its kind differs from the paper's scenes (one line, written by the workflow's configuration)."""
 
     name: str
     label: str = ""
@@ -83,15 +81,14 @@ class Study:
     def title(self, block: str) -> str:
         """The dataset's title: what it shows, and the paper's figure for the replication's scenes."""
         kind = KINDS[block]
+        shows = f"{kind.shows[:1].upper()}{kind.shows[1:]} of the escapement model"
         label = f", {kind.label.format(self.label)}" if self.label else ""
         if self.name == REPLICATION and kind.figure:
-            return f"{kind.shows[:1].upper()}{kind.shows[1:]} of the escapement model{label} " \
-                   f"({kind.figure} of Mao, Fu & Li 2013)"
-        return f"{kind.shows[:1].upper()}{kind.shows[1:]} of the escapement model{label}, study {self.name}"
+            return f"{shows}{label} ({kind.figure} of Mao, Fu & Li 2013)"
+        return f"{shows}{label}, study {self.name}"
 
     def attributes(self) -> dict[str, str]:
-        """The dataset's global attributes that place it: ``study`` and, for a study of the user's own,
-        ``study_changes`` (what differs from the paper's scenes of its kind)."""
+        """The global attributes that place the dataset: ``study``, and ``study_changes`` for a user's own study."""
         return {"study": self.name, **({"study_changes": self.changes} if self.changes else {})}
 
     @classmethod
@@ -124,9 +121,8 @@ def time_window(name: str, window: object) -> tuple[float, float]:
 
 
 #: The bounds [least, most] of each count a scene takes, by its configuration block and key (an axis's number of
-#: points as ``<axis>.n``): what fits a laptop's memory and runs in minutes. The configuration's schema states
-#: them too, for the refusals before any scene is built; tests/pipeline/test_config_hostile.py checks that each
-#: count the schema bounds in these blocks is here with the same bounds.
+#: points as ``<axis>.n``): what fits a laptop's memory and runs in minutes. The configuration's schema states them
+#: too, for the refusals before any scene is built (tests/pipeline/test_config.py holds the two to the same bounds).
 COUNTS = {
     "fig3.n_cycles": (1, 1_000_000),
     "fig4.samples_per_second": (1, 100_000),

@@ -52,6 +52,10 @@ class Verdict:
 Scenes = Callable[[Mapping, Evidence], dict[str, xr.Dataset]]
 
 
+def no_scene(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
+    return {}
+
+
 @dataclass(frozen=True)
 class Check:
     """A check of the register (named ``module.function``) and what it declares: the ``scenes`` it reads, the args
@@ -61,7 +65,7 @@ class Check:
     the outcomes of its runs besides ``completed`` that are its ``answers``, not exits from the regime."""
 
     function: Callable[[Mapping, Evidence], Verdict]
-    scenes: Scenes
+    scenes: Scenes = no_scene
     runs: tuple[str, ...] = ()
     args: tuple[str, ...] = ()
     law: str | None = None
@@ -73,16 +77,9 @@ class Check:
         return self.function(claim, ev)
 
 
-def check(*, scenes: Scenes | None = None, runs: tuple[str, ...] = (), args: tuple[str, ...] = (),
-          law: str | None = None, fitted: str | None = None, threshold: str | None = None,
-          answers: tuple[str, ...] = ()) -> Callable[[Callable], Check]:
-    """The decorated function as a :class:`Check` declaring what it reads and consumes, beside its code."""
-    return lambda function: Check(function, scenes or no_scene, tuple(runs), tuple(args), law, fitted, threshold,
-                                  tuple(answers))
-
-
-def no_scene(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
-    return {}
+def check(**declared) -> Callable[[Callable], Check]:
+    """The decorated function as a :class:`Check` declaring what it reads and consumes (its fields) beside its code."""
+    return lambda function: Check(function, **declared)
 
 
 def fig3_scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
@@ -159,7 +156,6 @@ def run(ev: Evidence, name: str) -> xr.Dataset:
 
 
 def each(runs: xr.Dataset) -> list[xr.Dataset]:
-    """The runs one by one."""
     return [runs.isel(run=i) for i in range(runs.sizes["run"])]
 
 

@@ -86,10 +86,9 @@ def row_status(readings: Iterable[tuple]) -> tuple[str, str]:
 
 
 def finding_status(statuses: Iterable[str]) -> str:
-    """A sentence's status from its parts': every part holds, reproduced (consistent if one holds only so); none
-    fails under every reading, undetermined; one does, partially reproduced if another is reproduced, else not
-    reproduced (a consistent part confirms nothing, an untestable one never counts as holding); untestable when
-    every part is."""
+    """A sentence's status from its parts': every part holds, reproduced (consistent if one holds only so); none fails
+    under every reading, undetermined; one does, partially reproduced if another is reproduced, else not reproduced (a
+    consistent part confirms nothing, an untestable one never counts as holding); untestable when every part is."""
     statuses = list(statuses)
     if all(s == UNTESTABLE for s in statuses):
         return UNTESTABLE

@@ -102,8 +102,7 @@ def _equivalent(groups: Mapping[str, str]) -> tuple[tuple[str, ...], ...]:
 
 
 def panel_candidates(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> dict[tuple[str, str], Candidates]:
-    """The :class:`Candidates` of each printed panel, keyed ``(figure, panel)``, under the margin
-    ``autoscale``."""
+    """The :class:`Candidates` of each printed panel, keyed ``(figure, panel)``, under the margin ``autoscale``."""
     found = _panel_scores(rows, autoscale)
     return {key: Candidates(out_of=2 * len(p["axes"]), scores=dict(p[PRINTED_STEP]),
                             default_scores=dict(p[DEFAULT_LOCATOR]), equivalent=_equivalent(p["groups"]))

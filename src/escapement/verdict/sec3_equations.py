@@ -14,11 +14,10 @@ from ..model.automaton import CENTRE_SIGN, Mode
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..paper.corrected import grazing_limit, grazing_release
-from .evidence import (COMPLETED, OUTCOMES, Evidence, Verdict, check, each, fig3_scenes, fmt, params_of, run,
-                       successive_ratios, within)
+from .evidence import (COMPLETED, OUTCOMES, Evidence, Verdict, check, each, events_of, fig3_scenes, fmt, params_of,
+                       run, successive_ratios, within)
 
-A1, A2, A3, A4 = (int(k) for k in (EventKind.IMPACT_A1, EventKind.ZONE_END_A2, EventKind.IMPACT_A3,
-                                  EventKind.ZONE_END_A4))
+A1, A2, A3, A4 = map(int, EventKind)  # the kinds of event, in the order of a cycle
 
 
 def arc_invariant_error(p: Parameters, kind, x, v_after, v_before, stiffness: float, free_only: bool) -> float:
@@ -62,14 +61,13 @@ def lipschitz_quotients(p: Parameters, x0: float, v0: float, radius: float, n: i
 
 def _events(ds) -> tuple:
     """The Fig. 3 dataset's events: kinds, positions, velocities after and before."""
-    kind = ds["event_kind"].values.astype(int)
-    p = params_of(ds)
+    kind, p = ds["event_kind"].values.astype(int), params_of(ds)
     x = np.select([kind == A1, kind == A2, kind == A3], [p.a1, p.a2, p.a3], p.a4)
     return kind, x, ds["event_velocity_after"].values, ds["event_velocity_before"].values
 
 
 def _run_events(runs) -> list[dict[str, np.ndarray]]:
-    """The events of each of ``runs`` (an event table, :func:`.evidence.run`), up to its last."""
+    """The events of each of ``runs`` (an event table), up to its last."""
     return [{k: r[f"event_{k}"].values[np.isfinite(r["event_time"].values)] for k in ("time", "kind", "position",
                                                                                    "velocity_before", "velocity_after")}
             for r in each(runs)]
@@ -135,13 +133,10 @@ def jump_set(claim, ev: Evidence) -> Verdict:
 def impulse_sets(claim, ev: Evidence) -> Verdict:
     """The force acts in S2 read literally (x in (a1, a2) moving right, or in (a4, a3) moving left) or after the
     impact only: the two coincide when every entry into a zone is its impact, the events running a1, a2, a3, a4."""
-    order = [A1, A2, A3, A4]
-    broken = n = 0
-    for ds in ev.fig3.values():
-        kind = ds["event_kind"].values.astype(int)
-        start = order.index(int(kind[0]))
-        broken += int(np.count_nonzero(kind != np.array([order[(start + i) % 4] for i in range(len(kind))])))
-        n += len(kind)
+    kinds = [ds["event_kind"].values.astype(int) for ds in ev.fig3.values()]
+    # each case's events from its first on, the kinds 1 (a1) .. 4 (a4) in turn
+    broken = sum(int(np.count_nonzero(k != (k[0] - 1 + np.arange(len(k))) % 4 + 1)) for k in kinds)
+    n = sum(len(k) for k in kinds)
     return Verdict(f"{n - broken} of {n} events in the order a1, a2, a3, a4 (Fig. 3 {', '.join(ev.fig3)})",
                    broken == 0, note="each zone is entered only through its impact, so S2 read as a region of the "
                    "state space and read as 'after the impact' give the same motion in these runs",
@@ -171,8 +166,7 @@ def complement_sets(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",))
 def autonomous(claim, ev: Evidence) -> Verdict:
-    """g is a function of time alone when the runs (one system, two releases) switch the force on at the same
-    times."""
+    """g is a function of time alone when the runs (one system, two releases) switch the force on at the same times."""
     runs = run(ev, claim["args"]["runs"])
     starts = [e["time"][(e["kind"] == A1) | (e["kind"] == A3)][:4] for e in _run_events(runs)]
     worst = float(np.max(np.abs(starts[0] - starts[1])))
@@ -203,8 +197,7 @@ def lipschitz_near(claim, ev: Evidence) -> Verdict:
             reach = min(max(lo - y0[0], y0[0] - hi, 0.0) for lo, hi in [(p.a1, p.a2), (p.a4, p.a3)])
             radii = [reach * (1 - 1e-9)] if reach > 0 else [1e-2, 1e-4, 1e-6]
         else:
-            ends = np.flatnonzero(ds["event_kind"].values == A2)
-            y0 = (p.a2, float(ds["event_velocity_before"].values[ends[-1]]))
+            y0 = (p.a2, float(ds["event_velocity_before"].values[events_of(ds, EventKind.ZONE_END_A2)[-1]]))
             radii = [float(r) for r in claim["args"].get("radii", (1e-2, 1e-4, 1e-6))]
         found = [(r, *lipschitz_quotients(p, *y0, r)) for r in radii]
         holds &= all(jump == 0.0 and q <= norm * (1 + claim["tolerance"]) for _, jump, q in found)

@@ -131,9 +131,8 @@ def trivial_multiplier(claim, ev: Evidence) -> Verdict:
     return Verdict(
         "; ".join(f"{lab}: {fmt(a, 12)} and {fmt(b, 12)}" for lab, a, b in zip(runs["label"].values, major, minor)),
         within(worst, claim["tolerance"]), note=(
-            f"eigenvalues of the Jacobian of the flow over the last period, by central differences of the exact "
-            f"solver from a state in free flight between a2 and a3; largest distance from 1 and (1-b)^4: "
-            f"{fmt(worst, 2)}"))
+            "eigenvalues of the Jacobian of the flow over the last period, by central differences of the exact solver "
+            f"from a state in free flight between a2 and a3; largest distance from 1 and (1-b)^4: {fmt(worst, 2)}"))
 
 
 @check(scenes=fig3_scenes, args=("case",))

@@ -13,10 +13,9 @@ import numpy as np
 import xarray as xr
 
 from ..model.events import EventKind
-from ..model.status import Status
 from ..paper.corrected import map_constant
-from .evidence import (OUTCOMES, Evidence, Verdict, check, each, fig3_scenes, fmt, names, params_of, rel, run,
-                       successive_ratios, within)
+from .evidence import (COMPLETED, OUTCOMES, Evidence, Verdict, check, each, events_of, fig3_scenes, fmt, names,
+                       params_of, rel, run, successive_ratios, within)
 
 
 @check(scenes=fig3_scenes)
@@ -31,10 +30,8 @@ def both_converge(claim, ev: Evidence) -> Verdict:
 def converged_amplitudes(ds: xr.Dataset) -> dict[str, float]:
     """The last cycle's amplitude under each definition, from its events: the Step-1 amplitude ``h0`` (the free arc
     into the impact at a1) and the right and left turning points (the free arcs after a2 and a4)."""
-    p = params_of(ds)
-    kind, before = ds["event_kind"].values.astype(int), ds["event_velocity_before"].values
-    v2 = before[np.flatnonzero(kind == int(EventKind.ZONE_END_A2))[-1]]
-    v5 = before[np.flatnonzero(kind == int(EventKind.ZONE_END_A4))[-1]]
+    p, before = params_of(ds), ds["event_velocity_before"].values
+    v2, v5 = (before[events_of(ds, kind)[-1]] for kind in (EventKind.ZONE_END_A2, EventKind.ZONE_END_A4))
     return {"h0": float(np.hypot(p.a1, ds["velocity_before_impact"].values[-1] / p.omega)),
             "right turning point": float(np.hypot(p.a2, v2 / p.omega)),
             "left turning point": float(np.hypot(p.a4, v5 / p.omega))}
@@ -137,9 +134,8 @@ def initial_order(claim, ev: Evidence) -> Verdict:
 def stable_velocity_scaling(claim, ev: Evidence) -> Verdict:
     """v* of Eq. (19), sqrt(2 (a2 - a1) F / (M (2b - b^2))), in every run: v*/sqrt(F) depends on the geometry, b and M
     only, not on x0."""
-    runs = [run(ev, name) for name in names(claim, "runs")]
     worst, per_geometry, per_release = 0.0, {}, {}
-    for group in runs:
+    for group in (run(ev, name) for name in names(claim, "runs")):
         for i in range(group.sizes["run"]):
             r = {k: float(group[k].values[i]) for k in ("M", "F", "b", "a1", "a2", "a3", "a4", "x0", "velocity")}
             if r["a3"] != -r["a1"] or r["a4"] != -r["a2"]:
@@ -161,8 +157,7 @@ def stable_velocity_scaling(claim, ev: Evidence) -> Verdict:
               f"and independent of x0; max relative difference from it {fmt(worst, 2)}, spread of v*/sqrt(F) per "
               f"geometry {fmt(spread, 2)}; it grows as sqrt(a2 - a1) too: 'mainly the force' holds for a given "
               "escapement"),
-        paper_value="v* proportional to sqrt(F), independent of x0",
-    )
+        paper_value="v* proportional to sqrt(F), independent of x0")
 
 
 def _families(runs: xr.Dataset, varying: str) -> dict[tuple, list[int]]:
@@ -254,7 +249,7 @@ def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) 
     ``fixed_point``."""
 
     def converged(r) -> bool:
-        return r["outcome"] == Status.COMPLETED.value and abs(r["velocity"] - r["fixed_point"]) <= (
+        return r["outcome"] == COMPLETED and abs(r["velocity"] - r["fixed_point"]) <= (
             tolerance * r["fixed_point"])
 
     text = "; ".join(

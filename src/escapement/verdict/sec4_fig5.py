@@ -5,6 +5,7 @@ compared with each other), and the impact shown in each panel.
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -31,12 +32,12 @@ NOT_COMPARED = ("the panels of Fig. 5 run at different forces (the configuration
                 "figure's release and compared at one force")
 
 
-def _decreasing_in_K(claim, ev: Evidence, value, digits: int, unit: str) -> tuple[bool, str]:
-    """Whether ``value(run)`` decreases with K at every common force, and the values in words."""
+def _along_K(claim, ev: Evidence, value, digits: int, unit: str, increasing: bool = False) -> tuple[bool, str]:
+    """Whether ``value(run)`` decreases (or increases) with K at every common force, and the values in words."""
     holds, parts = [], []
     for force, rows in common_force_runs(claim, ev).items():
         values = [value(run) for _, run in rows]
-        holds.append(all(a > b for a, b in zip(values, values[1:])))
+        holds.append(all(b > a if increasing else a > b for a, b in zip(values, values[1:])))
         parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(x, digits)} {unit}"
                                                           for (k, _), x in zip(rows, values)))
     return all(holds), "; ".join(parts)
@@ -45,7 +46,7 @@ def _decreasing_in_K(claim, ev: Evidence, value, digits: int, unit: str) -> tupl
 @check(runs=("runs",), args=("definition",))
 def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
     """The converged amplitude (:func:`.sec4_fig3.amplitude_of`) decreases with K at each common force."""
-    holds, values = _decreasing_in_K(claim, ev, lambda r: amplitude_of(r, claim["args"]["definition"]), 5, "m")
+    holds, values = _along_K(claim, ev, lambda r: amplitude_of(r, claim["args"]["definition"]), 5, "m")
     return Verdict("converged amplitude: " + values, holds, note=NOT_COMPARED)
 
 
@@ -58,7 +59,7 @@ SPEEDS = {"largest_speed": "largest |v| on the limit cycle (exact, from the clos
 def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
     """The speed ``args: {speed}`` (a key of :data:`SPEEDS`) decreases with K at each common force."""
     speed = claim["args"]["speed"]
-    holds, values = _decreasing_in_K(claim, ev, lambda r: float(r[speed]), 6, "m/s")
+    holds, values = _along_K(claim, ev, lambda r: float(r[speed]), 6, "m/s")
     return Verdict(f"{SPEEDS[speed]}: " + values, holds, note=NOT_COMPARED)
 
 
@@ -67,19 +68,17 @@ def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
     """The recovery of the velocity before the impact at a1 (:func:`escapement.paper.corrected.velocity_recovery`)
     is faster for smaller K at each common force, in ``seconds``, as a fraction of the ``period`` 2 pi/w, or of the
     limit cycle's ``width`` (``args: {measure}``)."""
-    measure, holds, parts = claim["args"]["measure"], [], []
+    measure = claim["args"]["measure"]
+
+    def recovery(r) -> float:
+        p = params_of(r)
+        x, time = derived.velocity_recovery(float(r["velocity"]), p)
+        return {"seconds": time, "period": time / p.natural_period,
+                "width": (x - p.a1) / (2 * float(r["largest_displacement"]))}[measure]
+
     unit = {"seconds": "s", "period": "of 2 pi/w", "width": "of the width"}[measure]
-    for force, rows in common_force_runs(claim, ev).items():
-        values = []
-        for k, r in rows:
-            p = params_of(r)
-            x, time = derived.velocity_recovery(float(r["velocity"]), p)
-            values.append((k, {"seconds": time, "period": time / p.natural_period,
-                               "width": (x - p.a1) / (2 * float(r["largest_displacement"]))}[measure]))
-        holds.append(all(a < b for (_, a), (_, b) in zip(values, values[1:])))
-        parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(v, 4)} {unit}" for k, v in values))
-    return Verdict("to regain the velocity before the impact at a1: " + "; ".join(parts), all(holds),
-                   note=NOT_COMPARED)
+    holds, values = _along_K(claim, ev, recovery, 4, unit, increasing=True)
+    return Verdict("to regain the velocity before the impact at a1: " + values, holds, note=NOT_COMPARED)
 
 
 def _fig5(claim, ev: Evidence) -> dict[str, xr.Dataset]:
@@ -93,9 +92,8 @@ def fig5_dimensions(claim, ev: Evidence) -> Verdict:
     differ, parts = [], []
     for force, runs in common_force_runs(claim, ev).items():
         rows = [(k, float(r["largest_displacement"]), float(r["largest_speed"])) for k, r in runs]
-        for i, (_, x1, v1) in enumerate(rows):
-            for _, x2, v2 in rows[i + 1:]:
-                differ.append(max(abs(x1 - x2) / max(x1, x2), abs(v1 - v2) / max(v1, v2)) > claim["tolerance"])
+        differ += [max(abs(x1 - x2) / max(x1, x2), abs(v1 - v2) / max(v1, v2)) > claim["tolerance"]
+                   for (_, x1, v1), (_, x2, v2) in itertools.combinations(rows, 2)]
         parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(
             f"K = {fmt(k, 3)}: {fmt(x, 4)} m x {fmt(v, 4)} m/s" for k, x, v in rows))
     return Verdict("limit cycle half-width (amplitude) x half-height (largest speed): " + "; ".join(parts),

@@ -52,8 +52,7 @@ def headline(rows: Iterable[Mapping[str, str]]) -> str:
 
 
 def findings_table(rows: Iterable[Mapping[str, str]]) -> list[dict[str, str]]:
-    """One row per finding: its name, the sentence it quotes, its status, and its rows each with its part and
-    status."""
+    """One row per finding: its name, the sentence it quotes, its status, and its rows each with its part and status."""
     return [{"finding": name, "sentence": parts[0]["quote"], "verdict": status.replace("_", " "),
              "rows": ", ".join(f"`{r['claim_id']}`" + (f" ({r['part']}: {r['status'].replace('_', ' ')})"
                                                        if len(parts) > 1 else "") for r in parts)}
