@@ -129,10 +129,9 @@ def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: x
     facts.update(stab_shape=f"{stability.sizes['b']} x {stability.sizes['F']}",
                  stab_max_deviation=fmt(float(np.nanmax(np.abs(mu - mu21))), 2),
                  stab_left_b_min=fmt(float(left_b.min()), 4) if left_b.size else "none")
-    t = stability_timings
-    measured.update(stab_speedup=fmt(t["ensemble_speedup_per_trajectory"], 3),
-                    stab_ensemble_per_trajectory=fmt(t["ensemble_seconds_per_trajectory"], 2),
-                    stab_scalar_per_trajectory=fmt(t["scalar_seconds_per_trajectory"], 2))
+    measured.update(stab_speedup=fmt(stability_timings["ensemble_speedup_per_trajectory"], 3),
+                    stab_ensemble_per_trajectory=fmt(stability_timings["ensemble_seconds_per_trajectory"], 2),
+                    stab_scalar_per_trajectory=fmt(stability_timings["scalar_seconds_per_trajectory"], 2))
     return facts, measured
 
 
@@ -142,12 +141,9 @@ def render(template: str, template_name: str, rows: Sequence[Mapping], facts: Ma
     names: ``claims_table`` and ``headline`` (of the rows), ``claim.<claim_id>.<column>`` (a cell of the claims
     table), ``verdict.<claim_id>`` (a status in words), ``fact.<name>`` (:func:`collect_facts`) and ``table.<name>``;
     an unknown name or a malformed placeholder is an error naming the template."""
-    names = {
-        "claims_table": claims_table(rows), "headline": headline(rows),
-        "verdict": {r["claim_id"]: r["status"].replace("_", " ") for r in rows},
-        "claim": {r["claim_id"]: {column: _cell(value) for column, value in r.items()} for r in rows},
-        "fact": dict(facts), "table": dict(tables),
-    }
+    names = {"claims_table": claims_table(rows), "headline": headline(rows), "fact": dict(facts), "table": dict(tables),
+             "verdict": {r["claim_id"]: r["status"].replace("_", " ") for r in rows},
+             "claim": {r["claim_id"]: {column: _cell(value) for column, value in r.items()} for r in rows}}
     environment = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True, autoescape=False)
     try:
         text = environment.from_string(template).render(names)

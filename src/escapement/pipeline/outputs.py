@@ -1,10 +1,9 @@
 """What a run promises and what makes it: every file the workflow's default target holds, the one line that
-answers a target no configuration makes, and the digest of the code every job runs.
-
-The digest covers the whole package, the workflow's scripts, the benchmarks' floors and the versions of the
-package's declared dependencies: every rule holds it in its params, so any edit of a source file (whichever job
-loads it, directly, lazily or through a package's ``__init__``) reruns every job, and no hand-kept list of which job
-loads what can miss one (tests/test_workflow.py traces the files each job's process loads against it).
+answers a target no configuration makes, and the digest of the code every job runs: the whole package, the
+workflow's scripts, the benchmarks' floors and the versions of the package's declared dependencies. Every rule holds
+it in its params, so any edit of a source file (whichever job loads it, directly, lazily or through a package's
+``__init__``) reruns every job, and no hand-kept list of which job loads what can miss one (tests/test_workflow.py
+traces the files each job's process loads against it).
 """
 
 from __future__ import annotations

@@ -1,12 +1,8 @@
 """The scenes each study runs, built and checked before any job: the replication's from ``config/paper.yaml``, and
 the user's own from the merged configuration, where a kind of figure's scenes then run something the paper's do
-not (:func:`plan`).
-
-A scene's settings are a flat mapping: the model's keys, its block's and its own (a Fig. 3 case, a Fig. 5 panel),
-later ones winning; the rules pass it as a param, which Snakemake compares by its text to rerun a job. Each is
-checked here by its settings class (:mod:`escapement.scenes.settings`: the model's bounds are
-:class:`~escapement.model.parameters.Parameters`'). A study's changes are the dotted keys whose value differs from
-the paper's (:func:`changes`); each kind's scenes carry those that reach it, which its dataset and figure show.
+not (:func:`plan`). A scene's settings are a flat mapping (the model's keys, its block's and its own, later ones
+winning), checked by its settings class (:mod:`escapement.scenes.settings`); a study's changes are the dotted keys
+whose value differs from the paper's (:func:`changes`), and each kind's scenes carry those that reach it.
 """
 
 from __future__ import annotations
@@ -74,23 +70,21 @@ def _worded(key: str, value: object) -> str:
 def changes(config: Mapping, paper: Mapping) -> dict[str, str]:
     """Each dotted key of the study blocks whose value differs from the paper's (the model with the symmetric
     defaults ``a3 = -a1``, ``a4 = -a2`` filled in), as ``key = value (paper: value)``."""
-    def flat(source: Mapping) -> dict:
-        model = dict(source["model"])
-        model.update({k: -model[m] for k, m in SYMMETRIC_DEFAULTS.items() if k not in model})
-        return leaves({**{b: source[b] for b in BLOCKS}, "model": model})
-
-    mine, theirs = flat(config), flat(paper)
+    mine, theirs = (leaves({**{b: source[b] for b in BLOCKS}, "model": _symmetric(source["model"])})
+                    for source in (config, paper))
     return {key: f"{key} = {_worded(key, value)} (paper: {_worded(key, theirs[key]) if key in theirs else 'absent'})"
             for key, value in mine.items() if theirs.get(key, ...) != value}
+
+
+def _symmetric(model: Mapping) -> dict:
+    """``model`` with the symmetric defaults ``a3 = -a1``, ``a4 = -a2`` filled in where the mirror is given."""
+    return {**model, **{k: -model[m] for k, m in SYMMETRIC_DEFAULTS.items() if k not in model and m in model}}
 
 
 def _flat(*parts: Mapping) -> dict:
     """The parts merged (later ones win), nested mappings left out, sorted by key: a scene's flat mapping, which
     reordering a file does not change."""
-    flat: dict = {}
-    for part in parts:
-        flat.update({k: v for k, v in part.items() if not isinstance(v, dict)})
-    return dict(sorted(flat.items()))
+    return dict(sorted({k: v for part in parts for k, v in part.items() if not isinstance(v, dict)}.items()))
 
 
 def _per_panel(fig5: Mapping, key: str, index: int, paper: Mapping):
@@ -142,9 +136,7 @@ def study_scenes(study: str, blocks: Mapping, paper: Mapping | None = None) -> d
 def _compared(block: str, model: Mapping, b: Mapping, paper: Mapping) -> list[dict]:
     """What the scenes of ``block`` run, as compared between a study and the paper: their settings without the
     model's keys the kind's data do not depend on, the symmetric defaults filled in."""
-    ignored = KINDS[block].ignored
-    model = {k: v for k, v in model.items() if k not in ignored}
-    model.update({k: -model[m] for k, m in SYMMETRIC_DEFAULTS.items() if k not in model and m in model})
+    model = _symmetric({k: v for k, v in model.items() if k not in KINDS[block].ignored})
     return [leaves(s) for s in _scene_mappings(block, model, b, {}, paper).values()]
 
 
@@ -211,10 +203,9 @@ def replication_scenes(paper: Mapping) -> dict[str, dict]:
 
 
 def check_runs(paper: Mapping) -> dict:
-    """The runs of the ``checks`` block, each checked by the model's rules (a bad one a :class:`ConfigError` naming
-    it): those of the table (``cases``, each with its ``group``, the run's name, on the block's F and x0, run over
-    its ``n_cycles``) and those of another ``measure`` by name (``probes``: ``{name: {measure, runs}}``)
-    (:func:`escapement.scenes.runs.checks`)."""
+    """The runs of the ``checks`` block, each checked by the model's rules (:class:`ConfigError` naming a bad one):
+    the table's (``cases``, each of its ``group``, on the block's F and x0 over its ``n_cycles``) and, by name, those
+    of another ``measure`` (``probes``: ``{name: {measure, runs}}``), for :func:`escapement.scenes.runs.checks`."""
     checks, table, probes = paper["checks"], [], {}
     for name, entry in checks.items():
         if name in ("n_cycles", "x0", "F"):  # the table's defaults

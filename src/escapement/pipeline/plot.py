@@ -13,13 +13,10 @@ from .tables import WORK_PRECISION_COLUMNS
 
 __all__ = ["plot", "title"]
 
-#: the figure of each kind, by its file name: the block of the configuration it draws
-BLOCKS = {kind.name: block for block, kind in KINDS.items()}
-
 
 def title(figure: str, study: str) -> str:
     """What a figure shows, in one line: the paper's figure it reproduces for the replication's, else its study."""
-    kind = KINDS[BLOCKS[figure]]
+    kind = next(kind for kind in KINDS.values() if kind.name == figure)
     shows = f"{kind.shows[:1].upper()}{kind.shows[1:]}" + ("s" if figure == "phase_diagrams" else "")
     if study == REPLICATION:
         return f"{shows} of the escapement model" + (f", {kind.figure} of Mao, Fu & Li (2013)" if kind.figure else "")

@@ -15,7 +15,7 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 
 from ..io.netcdf import write_csv
-from ..paper.printed_axes import PANELS, Panel, limits_match
+from ..paper.printed_axes import PANELS, limits_match
 from ..plotting.autoscale import VARIANTS, autoscaled_axes
 from ..studies.readings import Reading, Runs, all_readings
 from .logs import logged
@@ -29,15 +29,14 @@ SAME_VALUES_RTOL = 1e-9
 
 def _same(a: Reading, b: Reading) -> bool:
     return all(u.shape == v.shape and np.allclose(u, v, rtol=SAME_VALUES_RTOL, atol=0.0, equal_nan=True)
-               for u, v in ((np.asarray(a.x, float), np.asarray(b.x, float)),
-                            (np.asarray(a.y, float), np.asarray(b.y, float))))
+               for u, v in ((np.asarray(p, float), np.asarray(q, float)) for p, q in ((a.x, b.x), (a.y, b.y))))
 
 
 def equivalence(readings: Iterable[Reading]) -> dict[tuple[str, str, str], str]:
     """For each reading, keyed ``(figure, panel, name)``, the name of the first reading of its panel
     that plots the same values (its own name if none before it does)."""
-    first: dict[tuple[str, str], list[Reading]] = {}
-    found = {}
+    first: dict[tuple[str, str], list[Reading]] = {}  # the readings that head a group of the same values, by panel
+    found: dict[tuple[str, str, str], str] = {}
     for r in readings:
         key = (r.figure, r.panel, r.name)
         if key in found:
@@ -49,11 +48,10 @@ def equivalence(readings: Iterable[Reading]) -> dict[tuple[str, str, str], str]:
     return found
 
 
-def score_table(readings: Iterable[Reading], panels: Iterable[Panel] = PANELS,
-                variants: Mapping[str, float] = VARIANTS) -> list[dict]:
+def score_table(readings: Iterable[Reading]) -> list[dict]:
     """One row per reading, scored axis of its panel, margin and tick mode (numbers as floats), in
     the order of the readings, then the axes (x, y), the margins, the tick modes."""
-    printed, readings = {(p.figure, p.name): p for p in panels}, list(readings)
+    printed, readings = {(p.figure, p.name): p for p in PANELS}, list(readings)
     same = equivalence(readings)
     jobs = []  # (reading, axis name, axis, finite values)
     for reading in readings:
@@ -67,23 +65,21 @@ def score_table(readings: Iterable[Reading], panels: Iterable[Panel] = PANELS,
         for kind in {(axis.step if ticks == PRINTED_STEP else None, name) for _, name, axis, _ in jobs}:
             batch = [i for i, (_, name, axis, values) in enumerate(jobs) if values.size
                      and (axis.step if ticks == PRINTED_STEP else None, name) == kind]
-            for variant, margin in variants.items():
+            for variant, margin in VARIANTS.items():
                 limits = autoscaled_axes([jobs[i][3] for i in batch], kind[0], margin, axis=kind[1])
                 found.update({(i, variant, ticks): lim for i, lim in zip(batch, limits)})
     rows = []
     for i, (reading, axis_name, axis, values) in enumerate(jobs):
-        empty = not values.size
-        for variant in variants:
+        low_data, high_data = (float(values.min()), float(values.max())) if values.size else (math.nan, math.nan)
+        for variant in VARIANTS:
             for ticks in TICKS:
                 low, high, tick_step = found.get((i, variant, ticks), (math.nan, math.nan, math.nan))
                 rows.append({
                     "figure": reading.figure, "panel": reading.panel, "axis": axis_name, "reading": reading.name,
                     "outcome": reading.outcome, "autoscale": variant, "ticks": ticks,
-                    "data_min": math.nan if empty else float(values.min()),
-                    "data_max": math.nan if empty else float(values.max()),
-                    "low": low, "high": high, "tick_step": tick_step,
+                    "data_min": low_data, "data_max": high_data, "low": low, "high": high, "tick_step": tick_step,
                     "printed_low": axis.low, "printed_high": axis.high, "step": axis.step,
-                    "matches": 0 if empty else limits_match(low, high, axis.low, axis.high, axis.step),
+                    "matches": limits_match(low, high, axis.low, axis.high, axis.step) if values.size else 0,
                     "same_values_as": same[(reading.figure, reading.panel, reading.name)],
                 })
     return rows
@@ -99,8 +95,7 @@ def score_readings(output_csv: str, log: str, settings: Mapping) -> None:
     """The job: every reading scored, written as CSV, the readings tied at the best score logged per panel and
     margin; ``settings`` holds the blocks ``model``, ``fig3``, ``fig4`` and ``fig5`` of config/paper.yaml."""
     with logged(log, "score_readings") as logger:
-        start = time.perf_counter()
-        runs = Runs(settings["model"])
+        start, runs = time.perf_counter(), Runs(settings["model"])
         readings = all_readings(settings, runs)
         logger.info("%d readings from %d runs in %.2f s", len(readings), runs.solved, time.perf_counter() - start)
         rows = score_table(readings)
