@@ -76,8 +76,7 @@ def drive(spec: RunSpec, stepper: Stepper, number: Callable = float) -> Solution
                         fixed_bytes=getattr(stepper, "fixed_bytes", 0))
     target_impacts = None if limits.n_cycles is None else limits.n_cycles + 1
     t_stop = math.inf if limits.t_end is None else limits.t_end
-    x, v = number(spec.x0), number(spec.v0)
-    b = number(params.b)
+    x, v, b = number(spec.x0), number(spec.v0), number(params.b)
     positions = {kind: automaton.position(kind, params) for kind in EventKind}
     # the automaton's rows, by state: the mode, its centre and the surfaces watched
     arcs = {state: (arc.mode, automaton.centre(arc.mode, params.zone_offset), arc.watched)

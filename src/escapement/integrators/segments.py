@@ -86,20 +86,13 @@ class SciPyIntegrator:
         """The first event of the segment (None: none before ``t1``) and, if kept (``dense``, by default as the
         integrator was made), the dense output."""
         omega2, centre, dense = seg.omega2, seg.centre, self.dense if dense is None else dense
-
-        def rhs(_t, y):
-            return [y[1], -omega2 * (y[0] - centre)]
-
-        functions = []
-        for w in seg.watches:
-            def event(t, y, w=w):
-                return w.value(y)
-
+        functions = [lambda _t, y, w=w: w.value(y) for w in seg.watches]
+        for event, w in zip(functions, seg.watches):
             event.terminal, event.direction = True, w.crossing
-            functions.append(event)
         implicit = {"jac": [[0.0, 1.0], [-omega2, 0.0]]} if self.method in ("Radau", "BDF", "LSODA") else {}
-        sol = self._solve_ivp(rhs, (seg.t0, seg.t1), list(seg.y0), method=self.method, rtol=self.rtol, atol=self.atol,
-                        events=functions or None, dense_output=dense, max_step=seg.max_step, **implicit)
+        sol = self._solve_ivp(lambda _t, y: [y[1], -omega2 * (y[0] - centre)], (seg.t0, seg.t1), list(seg.y0),
+                              method=self.method, rtol=self.rtol, atol=self.atol, events=functions or None,
+                              dense_output=dense, max_step=seg.max_step, **implicit)
         if sol.status == -1:
             raise RuntimeError(f"solve_ivp failed at t = {seg.t0:.12g} s: {sol.message}")
         hits = [Hit(float(te[0]), i, (float(ye[0][0]), float(ye[0][1])))

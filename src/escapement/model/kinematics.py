@@ -245,13 +245,12 @@ def rebound_accumulation_time(omega: float, distance: float, speed: float, ratio
     its speed: the ``n``-th flight lasts ``(2/omega) atan(ratio**n x)``, ``x = speed / (omega * distance)``, and
     the flights sum to ``(2/omega) S(x, ratio)`` (:func:`_atan_geometric_sum`), finite for every ``ratio < 1``.
     """
-    checks = (
+    for name, value, holds, requirement in (
         ("omega", omega, math.isfinite(omega) and omega > 0.0, "finite and > 0 (rad/s)"),
         ("distance", distance, math.isfinite(distance) and distance > 0.0, "finite and > 0 (m)"),
         ("speed", speed, math.isfinite(speed) and speed >= 0.0, "finite and >= 0 (m/s)"),
         ("ratio", ratio, 0.0 <= ratio < 1.0, "in [0, 1) (|1 - b| of an impact that reverses the velocity)"),
-    )
-    for name, value, holds, requirement in checks:
+    ):
         if not holds:
             raise ValueError(f"rebound_accumulation_time: {name} = {value!r} is invalid: {name} must be {requirement}")
     x = speed / omega / distance  # in two steps: omega * distance may underflow
@@ -271,8 +270,7 @@ def sample_arcs(t: np.ndarray, t_start: np.ndarray, centre: np.ndarray, x_start:
     idx = np.clip(idx, 0, len(t_start) - 1)
     tau = t - t_start[idx]
     s, c = np.sin(omega * tau), np.cos(omega * tau)
-    u0 = x_start[idx] - centre[idx]
-    v0 = v_start[idx]
+    u0, v0 = x_start[idx] - centre[idx], v_start[idx]
     x = centre[idx] + u0 * c + (v0 / omega) * s
     v = v0 * c - omega * u0 * s
     a = -(omega * omega) * (x - centre[idx])

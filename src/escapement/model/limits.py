@@ -127,7 +127,12 @@ def check_budget(budget: int, stores: str, counts: Sequence[tuple[str, int, Call
     estimate = int(math.ceil(counts[0][2](counts[0][1])))
     if estimate <= budget:
         return estimate
-    over = f"it would store {stores}, an estimated {_sizes(estimate, budget)}"
+    if budget < 10**7:  # in bytes and, from 10 MB, in GB with the digits that tell them apart
+        sizes = f"{estimate:_} bytes, over the memory budget of {budget:_} byte{'' if budget == 1 else 's'}"
+    else:
+        estimate_gb, budget_gb = texts([estimate / 1e9, budget / 1e9], 3)
+        sizes = f"{estimate:_} bytes ({estimate_gb} GB), over the memory budget of {budget:_} bytes ({budget_gb} GB)"
+    over = f"it would store {stores}, an estimated {sizes}"
     for name, value, size in counts:
         if size(1) <= budget:
             fits, too_many = 1, value
@@ -140,11 +145,3 @@ def check_budget(budget: int, stores: str, counts: Sequence[tuple[str, int, Call
     least = int(math.ceil(size(1)))
     raise MemoryBudgetError("memory_budget", budget, f"at least {least:_} bytes, those of a run of {name} = 1 "
                             f"({over})", estimate, budget)
-
-
-def _sizes(estimate: int, budget: int) -> str:
-    """``estimate`` bytes over the ``budget``, in bytes and, from 10 MB, in GB with the digits that tell them apart."""
-    if budget < 10**7:
-        return f"{estimate:_} bytes, over the memory budget of {budget:_} byte{'' if budget == 1 else 's'}"
-    estimate_gb, budget_gb = texts([estimate / 1e9, budget / 1e9], 3)
-    return f"{estimate:_} bytes ({estimate_gb} GB), over the memory budget of {budget:_} bytes ({budget_gb} GB)"

@@ -31,10 +31,8 @@ _WHY = ("so that the squares and products the solvers form (omega**2 = K/M, F/K,
         "energies) stay normal float64 numbers")
 
 
-def _unit(name: str) -> str:
-    return quantity(name).unit_label
-
-
+#: each parameter's and initial-state component's unit, as printed
+_UNIT = {name: q.unit_label for name, q in {**PARAMETERS, **INITIAL_STATE}.items()}
 #: the positions along the line of motion: the parameters measured as the displacement is
 _POSITIONS = tuple(name for name, q in PARAMETERS.items() if q.units == quantity("displacement").units)
 
@@ -44,7 +42,7 @@ def _magnitude(name: str, values: np.ndarray, zero: bool) -> tuple[str, np.ndarr
     size = np.abs(values)
     holds = ((size >= SMALLEST) & (size <= LARGEST)) | (zero & (size == 0.0))
     allowed = f"0 or of magnitude in [{SMALLEST:.0e}, {LARGEST:.0e}]" if zero else f"in [{SMALLEST:.0e}, {LARGEST:.0e}]"
-    return name, holds, f"{allowed} ({_unit(name)}), {_WHY}"
+    return name, holds, f"{allowed} ({_UNIT[name]}), {_WHY}"
 
 
 def rules(v: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
@@ -63,19 +61,19 @@ def rules(v: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
     so that ``1 - b`` keeps it to 4 digits.
     """
     with np.errstate(all="ignore"):
-        yield "M", v["M"] > 0, f"{SIGNS['M']} ({_unit('M')})"
+        yield "M", v["M"] > 0, f"{SIGNS['M']} ({_UNIT['M']})"
         yield _magnitude("M", v["M"], zero=False)
-        yield "K", v["K"] > 0, f"{SIGNS['K']} ({_unit('K')})"
+        yield "K", v["K"] > 0, f"{SIGNS['K']} ({_UNIT['K']})"
         yield _magnitude("K", v["K"], zero=False)
-        yield "F", v["F"] >= 0, f"{SIGNS['F']} ({_unit('F')})"
+        yield "F", v["F"] >= 0, f"{SIGNS['F']} ({_UNIT['F']})"
         yield _magnitude("F", v["F"], zero=True)
         yield "b", (v["b"] > 0) & (v["b"] < 2), SIGNS["b"]
         yield "b", v["b"] >= B_SMALLEST, (f">= {B_SMALLEST:.0e} (and < 2), so that the impact law's factor 1 - b "
                                           "keeps b to 4 significant digits")
         for name in _POSITIONS:
             yield _magnitude(name, v[name], zero=True)
-        yield "a2", v["a1"] < v["a2"], SIGNS["a2"] + " = {a1!r} " + f"({_unit('a2')})"
-        yield "a4", v["a4"] < v["a3"], SIGNS["a4"] + " = {a3!r} " + f"({_unit('a4')})"
+        yield "a2", v["a1"] < v["a2"], SIGNS["a2"] + " = {a1!r} " + f"({_UNIT['a2']})"
+        yield "a4", v["a4"] < v["a3"], SIGNS["a4"] + " = {a3!r} " + f"({_UNIT['a4']})"
 
 
 def state_rules(s: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
@@ -111,8 +109,7 @@ def validate_arrays(values: Mapping[str, object], single: bool = False, state: b
     """Every model key (``a3``, ``a4`` None: the symmetric default) and, with ``state``, ``x0`` and ``v0``, checked
     and broadcast to one shape of float64 arrays, for a single model (``single``: every value a number) or an
     ensemble (a row per element); the first violation is refused, naming the row for arrays."""
-    names = REQUIRED_KEYS + (tuple(INITIAL_STATE) if state else ())
-    for key in names:
+    for key in REQUIRED_KEYS + (tuple(INITIAL_STATE) if state else ()):
         if values.get(key) is None:
             raise ParameterError(key, None, "given")
     take = (lambda name, value: np.asarray(real_number(name, value))) if single else real_array

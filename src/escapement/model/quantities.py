@@ -33,12 +33,8 @@ class Quantity:
         return text if self.dimensionless else f"{text} ({self.unit_label})"
 
 
-def _table(*rows: Quantity) -> dict[str, Quantity]:
-    return {q.name: q for q in rows}
-
-
 #: the model's parameters (Sec. 2-3 of the paper)
-PARAMETERS = _table(
+PARAMETERS = {q.name: q for q in (
     Quantity("M", "M", "kg", "kg", "mass"),
     Quantity("K", "K", "N m-1", "N/m", "spring constant"),
     Quantity("F", "F", "N", "N", "force of the escapement over an impulse zone", "force"),
@@ -47,17 +43,17 @@ PARAMETERS = _table(
     Quantity("a2", "a\u2082", "m", "m", "end of the first impulse zone"),
     Quantity("a3", "a\u2083", "m", "m", "impact position of the second half cycle (moving left)"),
     Quantity("a4", "a\u2084", "m", "m", "end of the second impulse zone"),
-)
+)}
 
 #: the state at t = 0+ (Eq. (2): after any jump)
-INITIAL_STATE = _table(
+INITIAL_STATE = {q.name: q for q in (
     Quantity("x0", "x(0)", "m", "m", "initial displacement"),
     Quantity("v0", "v(0)", "m s-1", "m/s", "initial velocity"),
-)
+)}
 
 #: the computed variables of a run, by their names in the datasets: the trajectory, the impacts and
 #: the Poincare map per cycle (cycle k starts at the k-th impact at a1)
-VARIABLES = _table(
+VARIABLES = {q.name: q for q in (
     Quantity("t", "t", "s", "s", "time since release", "time"),
     Quantity("displacement", "x", "m", "m", "displacement x", "displacement"),
     Quantity("velocity", "v", "m s-1", "m/s", "velocity dx/dt", "velocity"),
@@ -81,7 +77,7 @@ VARIABLES = _table(
     Quantity("event_position", "", "m", "m", "position of the event"),
     Quantity("event_velocity_before", "", "m s-1", "m/s", "velocity just before the event"),
     Quantity("event_velocity_after", "", "m s-1", "m/s", "velocity just after the event"),
-)
+)}
 
 MODEL_KEYS = tuple(PARAMETERS)
 #: the parameters that may be left out, each defaulting to minus its mirror: a3 = -a1, a4 = -a2
@@ -91,7 +87,4 @@ REQUIRED_KEYS = tuple(name for name in MODEL_KEYS if name not in SYMMETRIC_DEFAU
 
 def quantity(name: str) -> Quantity:
     """The parameter, initial-state component or computed variable called ``name`` (:class:`KeyError`: none)."""
-    for table in (PARAMETERS, INITIAL_STATE, VARIABLES):
-        if name in table:
-            return table[name]
-    raise KeyError(name)
+    return {**PARAMETERS, **INITIAL_STATE, **VARIABLES}[name]
