@@ -51,14 +51,11 @@ def cycle_variables(solution: Solution) -> dict[str, xr.DataArray]:
     and long name of :data:`escapement.solvers.describe.CYCLE_COLUMNS`."""
     cycles = solution.cycles
     coords = {"cycle": ("cycle", cycles.cycle.astype(np.int32), {"long_name": "cycle number", "units": "1"})}
-    return {
-        name: xr.DataArray(getattr(cycles, name), dims="cycle", coords=coords, attrs={"units": u, "long_name": ln})
-        for name, (u, ln) in CYCLE_COLUMNS.items()
-    }
+    return {name: xr.DataArray(getattr(cycles, name), dims="cycle", coords=coords, attrs={"units": u, "long_name": ln})
+            for name, (u, ln) in CYCLE_COLUMNS.items()}
 
 
 def _attrs(name: str) -> dict:
-    """The units and long name of the quantity ``name``."""
     q = quantity(name)
     return {"units": q.units, "long_name": q.long_name}
 
@@ -66,11 +63,10 @@ def _attrs(name: str) -> dict:
 def sample_variables(solution: Solution, t: np.ndarray, acceleration: bool = False) -> dict[str, xr.DataArray]:
     """Displacement, velocity (and the smooth part of the acceleration) at times ``t`` (the experiment
     chooses them: :func:`escapement.scenes.figures.sample_times`)."""
-    x, v, a = solution.sample(t)
     coords = {"t": ("t", np.asarray(t, dtype=float), _attrs("t"))}
     names = ("displacement", "velocity", "acceleration")[:2 + acceleration]
     out = {name: xr.DataArray(values, dims="t", coords=coords, attrs=_attrs(name))
-           for name, values in zip(names, (x, v, a))}
+           for name, values in zip(names, solution.sample(t))}
     if acceleration:
         out["acceleration"].attrs["comment"] = "the impulsive part at each impact is the variable impulse divided by M"
     return out
@@ -105,10 +101,8 @@ def event_variables(solution: Solution, window: tuple[float, float] | None = Non
     out = {}
     for name, (field, units, long_name) in EVENT_COLUMNS.items():
         values = getattr(ev, field)[keep]
-        if units is None:
-            out[name] = xr.DataArray(values.astype(np.int8), dims="event", attrs={"long_name": long_name, **flags})
-        else:
-            out[name] = xr.DataArray(values, dims="event", attrs={"units": units, "long_name": long_name})
+        attrs = {"long_name": long_name, **flags} if units is None else {"units": units, "long_name": long_name}
+        out[name] = xr.DataArray(values.astype(np.int8) if units is None else values, dims="event", attrs=attrs)
     return out
 
 

@@ -51,6 +51,7 @@ def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = 100
     model = {k: v for k, v in scene.params.as_dict().items() if k not in ("b", "F")}
     bb, ff = np.meshgrid(np.array(scene.b_values), np.array(scene.F_values), indexing="ij")
     grid = stability_grid(model, bb.ravel(), ff.ravel())
+    cells = {key: np.asarray(found).reshape(bb.shape) for key, found in grid.items()}
     v = np.where(np.isfinite(grid["fixed_point"]), grid["fixed_point"], 1.0)
     start = time.perf_counter()
     ensemble_return_map(model, bb.ravel(), ff.ravel(), v)
@@ -63,15 +64,13 @@ def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = 100
     coords = _coords(b=scene.b_values, F=scene.F_values)
     values, index = np.unique(bb, return_inverse=True)  # Eq. (21) once per b: the same float on every machine
     variables = {
-        "multiplier": _grid(grid["multiplier"].reshape(bb.shape), coords, "1",
-                            "multiplier mu_2 measured from the simulated return map"),
+        "multiplier": _grid(cells["multiplier"], coords, "1", "multiplier mu_2 measured from the simulated return map"),
         "multiplier_eq21": _grid(np.array([multiplier_21_of(float(b)) for b in values])[index].reshape(bb.shape),
                                  coords, "1", "multiplier (1 - b)**4 of Eq. (21)"),
-        "fixed_point": _grid(grid["fixed_point"].reshape(bb.shape), coords, "m s-1",
-                             "fixed point of the simulated return map"),
-        "period": _grid(grid["period"].reshape(bb.shape), coords, "s", "period of the cycle at the fixed point"),
-        "outcome": _grid(np.asarray(grid["status"], dtype=np.int8).reshape(bb.shape), coords, None,
-                         "how the cycle from the fixed point ended", **flag_attributes()),
+        "fixed_point": _grid(cells["fixed_point"], coords, "m s-1", "fixed point of the simulated return map"),
+        "period": _grid(cells["period"], coords, "s", "period of the cycle at the fixed point"),
+        "outcome": _grid(cells["status"].astype(np.int8), coords, None, "how the cycle from the fixed point ended",
+                         **flag_attributes()),
     }
     resolved = validate_arrays({**model, "b": bb.ravel(), "F": ff.ravel()})
     variables.update(parameter_variables({k: np.ravel(resolved[k])[0] for k in MODEL_KEYS if k not in ("b", "F")}))
@@ -118,8 +117,7 @@ def existence_map(settings: Mapping | ExistenceMapScene) -> xr.Dataset:
                            "force F* at which the constant C of the map (16) read at a1 is zero"),
         "threshold_mirror": _grid(thresholds[:, 1], along, "N", "force F*' at which the constant of the map (16) read "
                                   "at a3 is zero (F* of the mirror-image escapement)"),
-        "n_cycles": scalar_variable(np.int32(scene.n_cycles), "1", "complete cycles each run was given",
-                                    MODEL_INPUT),
+        "n_cycles": scalar_variable(np.int32(scene.n_cycles), "1", "complete cycles each run was given", MODEL_INPUT),
         "tolerance": scalar_variable(scene.tolerance, "1", "relative tolerance on the last two velocities before "
                                      "the impact at a1 for a converged run", MODEL_INPUT),
     }
@@ -151,15 +149,11 @@ def escapement_error(settings: Mapping | EscapementErrorScene) -> xr.Dataset:
     """The limit cycle's rate for every impulse zone and force, with the largest relative difference between
     the corrected Eqs. (24)-(25) and the exact solver's period."""
     scene = settings if isinstance(settings, EscapementErrorScene) else EscapementErrorScene.from_mapping(settings)
-    forces = np.array(scene.forces)
-    values = {name: np.empty((len(scene.zones), len(forces))) for name in RATE_VARIABLES}
-    outcome = np.empty((len(scene.zones), len(forces)), dtype=np.int8)
-    for i, (_, a1, a2) in enumerate(scene.zones):
-        p = Parameters(**{**scene.params.as_dict(), "a1": a1, "a2": a2, "a3": -a1, "a4": -a2})
-        for j, cycle in enumerate(rate_against_amplitude(p, forces)):
-            outcome[i, j] = cycle.status.code
-            for name in RATE_VARIABLES:
-                values[name][i, j] = getattr(cycle, name)
+    forces, shape = np.array(scene.forces), (len(scene.zones), len(scene.forces))
+    cycles = [cycle for _, a1, a2 in scene.zones for cycle in rate_against_amplitude(
+        Parameters(**{**scene.params.as_dict(), "a1": a1, "a2": a2, "a3": -a1, "a4": -a2}), forces)]
+    values = {name: np.array([getattr(c, name) for c in cycles], dtype=float).reshape(shape) for name in RATE_VARIABLES}
+    outcome = np.array([c.status.code for c in cycles], dtype=np.int8).reshape(shape)
     differences = np.abs(values["period_formula"] - values["period"]) / values["period"]
     worst = float(np.nanmax(differences)) if np.isfinite(differences).any() else float("nan")
     zone = ("zone", np.arange(len(scene.zones), dtype=np.int32), {"long_name": "impulse zone number", "units": "1"})
@@ -168,14 +162,12 @@ def escapement_error(settings: Mapping | EscapementErrorScene) -> xr.Dataset:
     variables["outcome"] = _grid(outcome, coords, None, "how the cycle from the fixed point of the map (16) ended: "
                                  "completed is a limit cycle, stopped is no fixed point (the variables above are NaN "
                                  "where it is not completed)", **flag_attributes())
-    variables["zone_name"] = xr.DataArray(np.array([z[0] for z in scene.zones], dtype=object), dims="zone",
-                                          coords={"zone": zone}, attrs={"long_name": "name of the impulse zone",
-                                                                        "coverage_content_type": MODEL_INPUT})
+    variables["zone_name"] = _grid(np.array([z[0] for z in scene.zones], dtype=object), {"zone": zone}, None,
+                                   "name of the impulse zone", coverage_content_type=MODEL_INPUT)
     for index, (end, long_name) in enumerate((("a1", "impact position a1 of the first half cycle"),
                                               ("a2", "end a2 of the first impulse zone")), start=1):
-        variables[f"zone_{end}"] = xr.DataArray(np.array([z[index] for z in scene.zones]), dims="zone",
-                                                coords={"zone": zone}, attrs={"units": "m", "long_name": long_name,
-                                                                              "coverage_content_type": MODEL_INPUT})
+        variables[f"zone_{end}"] = _grid([z[index] for z in scene.zones], {"zone": zone}, "m", long_name,
+                                         coverage_content_type=MODEL_INPUT)
     variables["max_period_difference"] = scalar_variable(
         worst, "1", "largest relative difference between the corrected Eqs. (24)-(25) and the exact solver's period "
         "over the limit cycles", QUALITY)

@@ -71,13 +71,12 @@ def _release(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str,
         v, impacts = sol.cycles.velocity_before_impact, sol.events.of_kind(EventKind.IMPACT_A1)
         found.append((sol.status.value, sol.message, len(sol.cycles), float(v[-1]) if len(v) else np.nan,
                       float(sol.events.v_before[impacts[1]]) if len(impacts) > 1 else np.nan))
-    outcome, message, cycles, velocity, following = zip(*found)
+    outcome, message, cycles, velocity, second = zip(*found)
     return {"outcome": _variable(outcome, "run", None, "how the run ended", CLASSIFICATION),
             "outcome_message": _variable(message, "run", None, "how the run ended, in words", CLASSIFICATION),
             "cycles": _variable(cycles, "run", "1", "complete cycles"),
             "velocity": _variable(velocity, "run", "m s-1", "velocity before the last impact at a1"),
-            "next_velocity": _variable(following, "run", "m s-1", "velocity before the second impact at a1 (NaN if "
-                                       "none)")}
+            "next_velocity": _variable(second, "run", "m s-1", "velocity before the second impact at a1 (NaN if none)")}
 
 
 def _events(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str, xr.DataArray]:

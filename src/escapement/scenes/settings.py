@@ -81,11 +81,10 @@ class Study:
     def title(self, block: str) -> str:
         """The dataset's title: what it shows, and the paper's figure for the replication's scenes."""
         kind = KINDS[block]
-        shows = f"{kind.shows[:1].upper()}{kind.shows[1:]} of the escapement model"
         label = f", {kind.label.format(self.label)}" if self.label else ""
-        if self.name == REPLICATION and kind.figure:
-            return f"{shows}{label} ({kind.figure} of Mao, Fu & Li 2013)"
-        return f"{shows}{label}, study {self.name}"
+        where = (f" ({kind.figure} of Mao, Fu & Li 2013)" if self.name == REPLICATION and kind.figure
+                 else f", study {self.name}")
+        return f"{kind.shows[:1].upper()}{kind.shows[1:]} of the escapement model{label}{where}"
 
     def attributes(self) -> dict[str, str]:
         """The global attributes that place the dataset: ``study``, and ``study_changes`` for a user's own study."""
