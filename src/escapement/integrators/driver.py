@@ -78,7 +78,6 @@ def drive(spec: RunSpec, stepper: Stepper, number: Callable = float) -> Solution
     t_stop = math.inf if limits.t_end is None else limits.t_end
     x, v, b = number(spec.x0), number(spec.v0), number(params.b)
     positions = {kind: automaton.position(kind, params) for kind in EventKind}
-    # the automaton's rows, by state: the mode, its centre and the surfaces watched
     arcs = {state: (arc.mode, automaton.centre(arc.mode, params.zone_offset), arc.watched)
             for state, arc in automaton.ARCS.items()}
     # growing columns: array('d') for floats (8 bytes a value), lists for mpmath numbers

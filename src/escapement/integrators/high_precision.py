@@ -26,13 +26,11 @@ class MpmathStepper:
     """Each arc in ``dps``-digit arithmetic, from the phase angles of its ends."""
 
     def __init__(self, params: Parameters, dps: int) -> None:
-        mpf = mpmath.mpf
-        self.name = f"mpmath {dps} digits"
-        self.w = mpmath.sqrt(mpf(params.K) / mpf(params.M))
-        self.offset = mpf(params.F) / mpf(params.K)
-        self.targets = {kind: (mpf(automaton.position(kind, params)), s.direction)
+        self.name, self.two_pi = f"mpmath {dps} digits", 2 * mpmath.pi
+        self.w = mpmath.sqrt(mpmath.mpf(params.K) / mpmath.mpf(params.M))
+        self.offset = mpmath.mpf(params.F) / mpmath.mpf(params.K)
+        self.targets = {kind: (mpmath.mpf(automaton.position(kind, params)), s.direction)
                         for kind, s in automaton.SURFACES.items()}
-        self.two_pi = 2 * mpmath.pi
 
     def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
                    watched: tuple[EventKind, ...], t_stop: float) -> Step:
@@ -49,9 +47,7 @@ class MpmathStepper:
                 continue
             v_end = direction * mpmath.sqrt(v_sq)
             end = mpmath.atan2(v_end / w, target - c)
-            angle = (start - end) % self.two_pi  # the phase point turns clockwise
-            if angle == 0:
-                angle = self.two_pi
+            angle = (start - end) % self.two_pi or self.two_pi  # the phase point turns clockwise: in (0, 2 pi]
             if best is None or angle < best[3]:
                 best = (kind, angle / w, v_end, angle, target)
         if best is None:
@@ -60,8 +56,7 @@ class MpmathStepper:
             dt, turning = time_to_rest(c, x, v, w, mpmath)  # the next rest, in the zone
             return Step(NO_EVENT, dt, 0, turning)
         kind, dt, v_end, angle, target = best
-        to_top = start % self.two_pi
-        x_max = c + radius if to_top <= angle else max(x, target)
+        x_max = c + radius if start % self.two_pi <= angle else max(x, target)  # the top of the circle, if passed
         return Step(kind, dt, v_end, x_max)
 
 

@@ -26,19 +26,15 @@ class NaiveStepper:
     """RK4 steps of ``h`` until a watched surface lies behind the state."""
 
     def __init__(self, params: Parameters, step: float) -> None:
-        self.name = f"naive RK4 h={step:g}"
-        self.w2 = params.omega2
-        self.h = step
+        self.name, self.w2, self.h, self.t = f"naive RK4 h={step:g}", params.omega2, step, 0.0
         self.surfaces = {kind: (automaton.position(kind, params), s.direction)
                          for kind, s in automaton.SURFACES.items()}
         self.max_steps = int(math.ceil(PERIODS_TO_STOP * params.natural_period / step)) + 1
-        self.t = 0.0
 
     def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
                    watched: tuple[EventKind, ...], t_stop: float) -> Step:
         """As :meth:`Stepper.next_event <escapement.integrators.driver.Stepper.next_event>`."""
-        w2, h = self.w2, self.h
-        h2, h6 = h / 2.0, h / 6.0
+        w2, h, h2, h6 = self.w2, self.h, self.h / 2.0, self.h / 6.0
         t_start, largest = self.t, x
         for _ in range(self.max_steps):
             k1x, k1v = v, -w2 * (x - centre)

@@ -51,8 +51,7 @@ class IvpStepper:
                          for kind, s in automaton.SURFACES.items()}
         #: bytes besides the loop's: each segment's dense output per event where kept (measured about 6_400),
         #: and SciPy's work arrays whatever the run's length (about 190 kB)
-        self.trajectory_bytes_per_event = 7_000 if record_trajectory else 0
-        self.fixed_bytes = 256_000
+        self.trajectory_bytes_per_event, self.fixed_bytes = (7_000 if record_trajectory else 0), 256_000
         self.seg_t, self.seg_sol, self.seg_c = [], [], []  # each segment's start, dense output and centre
 
     def next_event(self, mode: Mode, centre: Numeric, t: Numeric, x: Numeric, v: Numeric,
@@ -94,8 +93,7 @@ class IvpStepper:
             # near grazing the integrated velocity is within the tolerance of zero and may have the wrong sign
             v_hit = surface.direction * max(surface.direction * hit.y[1], 0.0)
             return Step(kind, t - t_start, v_hit, max(largest, surface.position), t_abs=t)
-        # free half-swings in a row without an event: the escapement has stopped
-        return Step(NO_EVENT, math.inf, 0.0, abs(x))
+        return Step(NO_EVENT, math.inf, 0.0, abs(x))  # HALF_SWINGS_TO_STOP without an event: it has stopped
 
     def _first_crossing(self, seg: Segment, hit: Hit, dense, heading: int) -> Hit:
         """The segment's first event: ``hit``, or the crossing the integrator missed of a watched surface that

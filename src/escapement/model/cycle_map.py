@@ -63,8 +63,7 @@ def cycle_map(params: Parameters) -> CycleMap:
     * the fixed point ``v***2 = c / (1 - mu)``; in the symmetric case (``a3 = -a1``, ``a4 = -a2``)
       ``v***2 = 2 f (a2 - a1) / (1 - beta) = 2 f (a2 - a1) / (b (2 - b))``.
     """
-    w2, f = params.omega2, params.f
-    r = automaton.impact_factor(params.b)
+    w2, f, r = params.omega2, params.f, automaton.impact_factor(params.b)
     beta = r * r
     one_minus_beta = (1.0 - r) * (1.0 + r)
     c = (one_minus_beta * w2 * ((params.a3 - params.a1) * (params.a3 + params.a1))

@@ -61,12 +61,9 @@ def rules(v: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
     so that ``1 - b`` keeps it to 4 digits.
     """
     with np.errstate(all="ignore"):
-        yield "M", v["M"] > 0, f"{SIGNS['M']} ({_UNIT['M']})"
-        yield _magnitude("M", v["M"], zero=False)
-        yield "K", v["K"] > 0, f"{SIGNS['K']} ({_UNIT['K']})"
-        yield _magnitude("K", v["K"], zero=False)
-        yield "F", v["F"] >= 0, f"{SIGNS['F']} ({_UNIT['F']})"
-        yield _magnitude("F", v["F"], zero=True)
+        for name, holds in (("M", v["M"] > 0), ("K", v["K"] > 0), ("F", v["F"] >= 0)):
+            yield name, holds, f"{SIGNS[name]} ({_UNIT[name]})"
+            yield _magnitude(name, v[name], zero=name == "F")  # a force may be 0, a mass or a stiffness not
         yield "b", (v["b"] > 0) & (v["b"] < 2), SIGNS["b"]
         yield "b", v["b"] >= B_SMALLEST, (f">= {B_SMALLEST:.0e} (and < 2), so that the impact law's factor 1 - b "
                                           "keeps b to 4 significant digits")

@@ -57,8 +57,7 @@ def compared(value: Numeric, bounds: ArrayLike, digits: int = 12) -> str:
     """A computed ``value`` beside the inputs ``bounds`` it is compared with (printed by :func:`exact`):
     to ``digits`` significant digits, or to more where fewer would misstate how it compares with one
     of them (printed as equal to a bound it is not, or on the wrong side of it)."""
-    value = _unsigned_zero(value)
-    bounds = [_unsigned_zero(b) for b in bounds]
+    value, bounds = _unsigned_zero(value), [_unsigned_zero(b) for b in bounds]
     for width in range(digits, _ALL_DIGITS):
         text = f"{value:.{width}g}"
         if all(_order(float(text), b) == _order(value, b) for b in bounds):
