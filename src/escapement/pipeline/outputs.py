@@ -90,8 +90,8 @@ def not_a_target(path: str, studies: Mapping[str, Mapping[str, Mapping[str, obje
 
 
 def code_digest(root: str | Path, package: str | Path | None = None) -> str:
-    """The digest of the module's docstring: the package (``package``, by default the one loaded), and the scripts
-    and benchmarks under ``root`` (Snakemake itself follows only a rule's own script)."""
+    """The digest the module's docstring describes, of the package (``package``, by default the one loaded) and the
+    scripts and benchmarks under ``root`` (Snakemake itself follows only a rule's own script)."""
     digest = hashlib.sha256()
     package = Path(package) if package is not None else Path(__file__).resolve().parents[1]
     for folder, base in ((package, package.parent), (Path(root, "workflow/scripts"), Path(root)),
