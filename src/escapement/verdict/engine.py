@@ -8,7 +8,6 @@ reading with its outcome's message (:func:`left_regime`); a check that raises is
 
 from __future__ import annotations
 
-import importlib
 import importlib.util
 import os
 import re
@@ -93,10 +92,9 @@ def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, run
             reading["args"] = reading.get("args", {})
             try:
                 declared = resolved(reading["check"])
-                missing = [a for a in (*declared.runs, *declared.args) if a not in reading["args"]]
             except ValueError as err:
                 raise ValueError(f"{where}: {err}") from None
-            if missing:
+            if missing := [a for a in (*declared.runs, *declared.args) if a not in reading["args"]]:
                 raise ValueError(f"{where}: the check '{reading['check']}' needs the args {', '.join(missing)}")
             if runs is not None and (unknown := [n for a in declared.runs for n in names(reading, a) if n not in runs]):
                 raise ValueError(f"{where}: runs {unknown[0]!r} must name a run of the configuration's checks block, "
@@ -147,7 +145,6 @@ def figures_named(text: str) -> set[str]:
 
 
 def _said(holds) -> str:
-    """One reading's outcome in words (a grid's, if the check walked one)."""
     return (f"holds under {sum(holds.values())} of the {len(holds)} readings of a grid" if isinstance(holds, Mapping)
             else "nothing to compute" if holds is None else "holds" if holds else "fails")
 
@@ -166,10 +163,8 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
         declared = [resolved(reading["check"]) for reading, _ in results]
         kind, status = row_status((c.law, c.fitted, c.threshold, r.holds) for c, (_, r) in zip(declared, results))
         paper = claim["paper_value"]
-        if paper is None:
-            paper = next((r.paper_value for _, r in results if r.paper_value), "")
-        elif isinstance(paper, list):
-            paper = "[" + ", ".join(fmt(x) for x in paper) + "]"
+        paper = (next((r.paper_value for _, r in results if r.paper_value), "") if paper is None
+                 else "[" + ", ".join(fmt(x) for x in paper) + "]" if isinstance(paper, list) else fmt(paper))
         named = [reading["reading"] for reading, _ in results]
         figures = ("" if len(named) == 1 else f"; no figure decides between the readings: {claim['figures_tried']}"
                    if status == UNDETERMINED else f"; the figures: {claim['figures_tried']}")
@@ -184,7 +179,7 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
             "statement": claim["statement"],
             "readings": "; ".join(reading["reading"] + (f' (the paper: "{reading["words"]}")' if "words" in reading
                                                         else "") + ": " + _said(r.holds) for reading, r in results),
-            "paper_value": fmt(paper) if not isinstance(paper, str) else paper,
+            "paper_value": paper,
             "replicated_value": _joined([(n, r.replicated_value) for n, (_, r) in zip(named, results)]),
             "tolerance": _joined([(n, "" if r["tolerance"] is None else fmt(r["tolerance"]))
                                   for n, (r, _) in zip(named, results)]),

@@ -134,7 +134,7 @@ def within(value: float, tolerance: float) -> bool:
 
 
 def names(claim: Mapping, arg: str) -> list[str]:
-    """The runs the claim's ``arg`` names: one name, or a list of them."""
+    """The runs the claim's ``arg`` names."""
     value = claim["args"][arg]
     return [value] if isinstance(value, str) else list(value)
 

@@ -15,8 +15,8 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from ..paper.printed_axes import FIG5_PANEL_K, Panel, panel
-from .evidence import Evidence, Verdict, check, fig3_scenes, fmt
+from ..paper.printed_axes import FIG5_PANEL_K, panel
+from .evidence import Evidence, Verdict, check, fig3_scenes, fig4_scene, fmt
 
 
 def _limits(lo: float, hi: float) -> str:
@@ -29,7 +29,7 @@ def panel_scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     if figure == "3":
         return fig3_scenes({"args": {"case": name.split("/")[0]}}, ev)
     if figure == "4":
-        return {"Fig. 4": ev.fig4}
+        return fig4_scene(claim, ev)
     return {f"Fig. 5 (K = {label})": ds for label, ds in ev.fig5.items()
             if math.isclose(float(ds["K"]), FIG5_PANEL_K[name], rel_tol=1e-12)}
 
@@ -52,12 +52,10 @@ def _ties(best: int, out_of: int, groups: list[tuple[str, ...]], n: int) -> str:
 @check(scenes=panel_scenes, args=("figure", "panel"),
        fitted="the readings of the paper's open choices, fitted to the printed axes")
 def printed_axes(claim, ev: Evidence) -> Verdict:
-    """Some candidate reading of the grid gives every printed limit of the panel (the best one is
-    named, with its ties); otherwise no reading of the grid reaches the printed axes."""
+    """Some candidate reading of the grid gives every printed limit of the panel; the best is named, with its ties."""
     figure, name = str(claim["args"]["figure"]), str(claim["args"]["panel"])
-    printed: Panel = panel(figure, name)
-    scenes = panel_scenes(claim, ev)
-    if not scenes:
+    printed = panel(figure, name)
+    if not (scenes := panel_scenes(claim, ev)):
         raise ValueError(f"no Fig. 5 output has the spring constant of panel ({name}), K = {FIG5_PANEL_K[name]:g} N/m")
     (ds,) = scenes.values()
     if (figure, name) not in ev.axes:
@@ -78,10 +76,7 @@ def printed_axes(claim, ev: Evidence) -> Verdict:
         "; ".join(f"{axis.label}: {_limits(*limits[axis_name])}" for axis_name, axis in scored.items())
         + f" ({matched} of {out_of} printed limits); {_ties(best, out_of, groups, len(candidates.scores))}",
         best == out_of,
-        note=(
-            f"the output ({_reading(figure, ds)}) autoscaled with the printed tick steps imposed "
-            f"({', '.join(fmt(axis.step, 4) for axis in scored.values())}), limits rounded out to the ticks, no "
-            f"margin{default}; the readings were chosen by fitting these axes, so a match shows consistency only"
-        ),
-        paper_value="; ".join(f"{axis.label}: {_limits(axis.low, axis.high)}" for axis in scored.values()),
-    )
+        note=(f"the output ({_reading(figure, ds)}) autoscaled with the printed tick steps imposed "
+              f"({', '.join(fmt(axis.step, 4) for axis in scored.values())}), limits rounded out to the ticks, no "
+              f"margin{default}; the readings were chosen by fitting these axes, so a match shows consistency only"),
+        paper_value="; ".join(f"{axis.label}: {_limits(axis.low, axis.high)}" for axis in scored.values()))

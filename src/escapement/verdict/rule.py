@@ -69,8 +69,7 @@ def status_of(outcomes: Iterable[bool | None]) -> str:
 
 
 def weighed(status: str, evidence: str) -> str:
-    """The row's status: an agreement by construction or on fitted evidence is ``consistent``; a
-    disagreement or an undetermined status stays what it is."""
+    """The row's status: an agreement by construction or on fitted evidence is only ``consistent``."""
     if status not in STATUSES or evidence not in EVIDENCE:
         raise ValueError(f"status = {status!r}, evidence = {evidence!r}: not words of the vocabulary")
     return CONSISTENT if status == REPRODUCED and evidence in ("fitted", "by_construction") else status

@@ -52,25 +52,18 @@ class Candidates:
         best = max(self.scores.values())
         tied = [name for name, score in self.scores.items() if score == best]
         group_of = {name: group for group in self.equivalent for name in group}
-        groups: list[tuple[str, ...]] = []
-        for name in tied:
-            group = tuple(n for n in group_of.get(name, (name,)) if n in tied)
-            if group not in groups:
-                groups.append(group)
-        return best, groups
+        groups = dict.fromkeys(tuple(n for n in group_of.get(name, (name,)) if n in tied) for name in tied)
+        return best, list(groups)
 
 
 def read_scores(path: str) -> list[dict]:
-    """The score table written by :func:`escapement.pipeline.readings.score_readings`, numbers as
-    floats and ``matches`` as int."""
+    """The score table written by :func:`escapement.pipeline.readings.score_readings`, its numbers parsed."""
     with open(path, newline="") as handle:
         rows = list(csv.DictReader(handle))
     if not rows or list(rows[0]) != COLUMNS:
         raise ValueError(f"{path}: not a score table of the readings (columns {', '.join(COLUMNS)})")
     for row in rows:
-        for name in _NUMBERS:
-            row[name] = float(row[name])
-        row["matches"] = int(row["matches"])
+        row.update({name: float(row[name]) for name in _NUMBERS}, matches=int(row["matches"]))
     return rows
 
 

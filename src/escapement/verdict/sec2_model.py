@@ -62,12 +62,8 @@ def period_shares(claim, ev: Evidence) -> Verdict:
     """Sec. 2: the impacts and the impulses each change the period by a share far above the residual."""
     s = phase_shares(ev.fig3[claim["args"]["case"]])
     both = bool(abs(s["impacts"]) > 1e3 * abs(s["residual"]) and abs(s["impulses"]) > 1e3 * abs(s["residual"]))
-    return Verdict(
-        _shares_text(s, claim["args"]["case"]), both,
-        note=(
-            "measured from the simulated events: the jump of the sine phase atan2(x, v/w) at each impact (a delay) "
-            "and each zone's time less its phase advance (an advance); the free flight advances the phase at w, "
-            f"so the shares and the cycle's phase drift {fmt(s['drift'], 2)} s sum to the simulated period within "
-            f"{fmt(s['residual'], 2)} s"
-        ),
-    )
+    return Verdict(_shares_text(s, claim["args"]["case"]), both, note=(
+        "measured from the simulated events: the jump of the sine phase atan2(x, v/w) at each impact (a delay) and "
+        "each zone's time less its phase advance (an advance); the free flight advances the phase at w, so the shares "
+        f"and the cycle's phase drift {fmt(s['drift'], 2)} s sum to the simulated period within "
+        f"{fmt(s['residual'], 2)} s"))

@@ -23,8 +23,7 @@ A1, A2, A3, A4 = map(int, EventKind)  # the kinds of event, in the order of a cy
 def arc_invariant_error(p: Parameters, kind, x, v_after, v_before, stiffness: float, free_only: bool) -> float:
     """The largest relative change over the arcs between events (``free_only``: the free ones) of ``v**2 + k (x -
     c)**2``, the invariant of ``x'' = -k (x - c)``, ``k`` the ``stiffness`` and ``c`` the arc's centre."""
-    sigma = {A1: 1.0, A3: -1.0, A2: 0.0, A4: 0.0}
-    worst = 0.0
+    sigma, worst = {A1: 1.0, A3: -1.0, A2: 0.0, A4: 0.0}, 0.0
     for i in range(len(kind) - 1):
         s = sigma[int(kind[i])]
         if free_only and s:
@@ -217,13 +216,11 @@ def lipschitz_near(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes, args=("claim",))
 def piecewise_linear(claim, ev: Evidence) -> Verdict:
-    """The whole system is linear only if its return map is affine in v, its successive differences shrinking by one
-    ratio: ``claim: linear`` holds when the ratios' spread on the Fig. 3 transients is within the tolerance,
-    ``nonlinear`` when beyond."""
+    """The system is linear only if its return map is affine in v (one ratio of successive differences): ``claim:
+    linear`` holds when the ratios' spread on the Fig. 3 transients is within the tolerance, ``nonlinear`` if not."""
     parts, spread = [], 0.0
     for label, ds in ev.fig3.items():
-        v = ds["velocity_before_impact"].values
-        in_v, in_v2 = successive_ratios(v), successive_ratios(v**2)
+        in_v, in_v2 = (successive_ratios(ds["velocity_before_impact"].values ** k) for k in (1, 2))
         if len(in_v) < 2:
             raise ValueError(f"Fig. 3 case {label} has fewer than three cycles of transient to measure the map's slope")
         spread = max(spread, float(np.ptp(in_v)))
@@ -237,11 +234,9 @@ def piecewise_linear(claim, ev: Evidence) -> Verdict:
 
 
 def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> Verdict:
-    """Holds when, of the runs released ``delta`` above and below the grazing release (``rows``: each ``outcome``,
-    and ``v_next`` before the second impact at a1), the one above at the smallest ``delta`` continues to the
-    closed-form continuation ``limit``."""
-    smallest = min(rows, key=lambda r: r["delta"])
-    error = abs(smallest["above"]["v_next"] - limit) / limit
+    """Holds when, of the runs released ``delta`` above and below the grazing release (``rows``: each ``outcome`` and
+    ``v_next`` before the second impact at a1), the one above at the smallest ``delta`` continues to ``limit``."""
+    error = abs(min(rows, key=lambda r: r["delta"])["above"]["v_next"] - limit) / limit  # at the smallest delta
     text = "; ".join(
         f"delta = {fmt(r['delta'], 2)}: from -A(1 + delta) {r['above']['outcome']}"
         + (f", next impact at a1 with {fmt(r['above']['v_next'])} m/s" if math.isfinite(r["above"]["v_next"]) else "")
@@ -258,8 +253,7 @@ def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> 
 
 @check(runs=("runs",), answers=OUTCOMES)
 def grazing_uniqueness(claim, ev: Evidence) -> Verdict:
-    """The runs released either side of the grazing release A, at -A (1 + offset): each positive offset with the
-    negative one in the same place among the negative ones."""
+    """The runs released either side of the grazing release A, at -A (1 + offset), paired in the order of the runs."""
     runs = run(ev, claim["args"]["runs"])
     p, offset = params_of(each(runs)[0]), runs["offset"].values
     found = [{"outcome": o, "v_next": float(v)} for o, v in zip(runs["outcome"].values, runs["next_velocity"].values)]

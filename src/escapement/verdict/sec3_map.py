@@ -46,8 +46,7 @@ def fixed_point(claim, ev: Evidence) -> Verdict:
     ds = ev.fig3[claim["args"]["case"]]
     formula, simulated = pe.fixed_point_19(params_of(ds)), float(ds["velocity_before_impact"].values[-1])
     n = ds.sizes["cycle"]
-    return Verdict(f"{fmt(simulated)} m/s at cycle {n}",
-                   within(rel(simulated, formula), claim["tolerance"]),
+    return Verdict(f"{fmt(simulated)} m/s at cycle {n}", within(rel(simulated, formula), claim["tolerance"]),
                    note=f"relative difference {fmt(rel(simulated, formula), 2)}, the transient left after {n} cycles",
                    paper_value=f"{fmt(formula)} m/s")
 
@@ -89,9 +88,8 @@ def multiplier_group(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",), answers=("chattering",))
 def multiplier_only_b(claim, ev: Evidence) -> Verdict:
-    """Sec. 3.4, the stability determined only by b: mu2 = (1 - b)^4 in every one of the runs (the table's) that
-    converges, whatever its force, spring, positions or release, and the runs that do not converge chatter, every
-    one at b > 1, where the impact reverses the velocity; any other exit leaves the check without an answer."""
+    """Sec. 3.4, the stability determined only by b: mu2 = (1 - b)^4 in every run that converges, whatever its force,
+    spring, positions or release, and every other run chatters at b > 1, where the impact reverses the velocity."""
     runs = xr.concat([run(ev, name) for name in names(claim, "runs")], dim="run")
     outcome, b = runs["outcome"].values, runs["b"].values
     done = outcome == COMPLETED
@@ -158,9 +156,8 @@ def map8_eigenvalues(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",), args=("sense",))
 def phase_shift(claim, ev: Evidence) -> Verdict:
-    """The runs from the section at the converged speed v* (the first, unperturbed) and at (1 + perturbation) v*:
-    ``sense: orbital`` holds when their speeds at a1 agree at the end, ``sense: lyapunov`` when their impact times do
-    too."""
+    """The runs from the section at the converged speed v* (the first) and at (1 + perturbation) v*: ``sense: orbital``
+    holds when their speeds at a1 agree at the end, ``sense: lyapunov`` when their impact times do too."""
     runs = run(ev, claim["args"]["runs"])
     times = [t[np.isfinite(t)] for t in runs["impact_time"].values[:2]]
     speeds, perturbation = runs["speed"].values[:2], float(runs["perturbation"].values[1])
@@ -169,8 +166,7 @@ def phase_shift(claim, ev: Evidence) -> Verdict:
     return Verdict(
         f"after {n} impacts at a1: speeds {fmt(speeds[0])} and {fmt(speeds[1])} m/s (relative difference "
         f"{fmt(gap, 2)}), impact times {fmt(shift, 4)} s apart (first impact {fmt(times[1][0] - times[0][0], 4)} s)",
-        within(gap, claim["tolerance"]) if claim["args"]["sense"] == "orbital" else within(abs(shift),
-                                                                                            claim["tolerance"]),
+        within(gap if claim["args"]["sense"] == "orbital" else abs(shift), claim["tolerance"]),
         note=f"the speed at the section perturbed by {fmt(100 * perturbation, 3)} %: the motion returns to the limit "
              "cycle (orbital stability) but keeps a phase shift, as any autonomous oscillator does, so it does not "
              "return to the solution it started beside (no asymptotic stability in the sense of Lyapunov)",

@@ -65,7 +65,6 @@ impact_step = check(scenes=fig3_scenes, args=("equation",), law="the impact law 
 
 
 def describe(trials: list[Trial]) -> str:
-    """Every trial as ``reading: value (relative difference)``."""
     return "; ".join(f"{departure(t.reading)}: {fmt(t.value)} ({fmt(t.relative_difference, 2)})" for t in trials)
 
 

@@ -118,9 +118,8 @@ def natural_period(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",), args=("cases", "side"))
 def initial_order(claim, ev: Evidence) -> Verdict:
-    """The first case of ``cases`` has the smaller first velocity before the impact at a1, both released from rest
-    at ``side`` (-1 or +1) times their initial amplitude |x0| (the paper gives the amplitude, not the side): the
-    runs of one cycle of each case from each side."""
+    """The first case of ``cases`` has the smaller first velocity before the impact at a1, both released from rest at
+    ``side`` (-1 or +1) times their amplitude |x0| (the paper gives no side), in the runs of one cycle."""
     (a, xa, va), (b, xb, vb) = ((c, float(r["x0"]), float(r["velocity"])) for c in claim["args"]["cases"]
                                 for r in each(run(ev, claim["args"]["runs"]))
                                 if r["case"] == c and r["side"] == claim["args"]["side"])
@@ -132,8 +131,7 @@ def initial_order(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",))
 def stable_velocity_scaling(claim, ev: Evidence) -> Verdict:
-    """v* of Eq. (19), sqrt(2 (a2 - a1) F / (M (2b - b^2))), in every run: v*/sqrt(F) depends on the geometry, b and M
-    only, not on x0."""
+    """v* of Eq. (19) in every run: v*/sqrt(F) depends on the geometry, b and M only, not on x0."""
     worst, per_geometry, per_release = 0.0, {}, {}
     for group in (run(ev, name) for name in names(claim, "runs")):
         for i in range(group.sizes["run"]):
@@ -245,8 +243,7 @@ def release_transient(claim, ev: Evidence) -> Verdict:
 
 
 def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) -> Verdict:
-    """Holds when every release (``rows``: its ``x0``, ``outcome``, last ``velocity``) converges to the closed-form
-    ``fixed_point``."""
+    """Holds when every release (``rows``: ``x0``, ``outcome``, last ``velocity``) converges to its ``fixed_point``."""
 
     def converged(r) -> bool:
         return r["outcome"] == COMPLETED and abs(r["velocity"] - r["fixed_point"]) <= (

@@ -48,8 +48,7 @@ def impact_force_step(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",))
 def window_impact(claim, ev: Evidence) -> Verdict:
-    """Under every reading of Fig. 4's grid (the runs, each from rest to the end of the later window) an impact lies
-    in each printed time window."""
+    """Under every reading of Fig. 4's grid (a run each, from rest past the later window) an impact in each window."""
     windows = [(a.low, a.high) for a in (panel("4", "velocity").x, panel("4", "acceleration").x)]
     runs, held = run(ev, claim["args"]["runs"]), {}
     if (t_end := float(runs["t_end"].min())) < max(w[1] for w in windows):

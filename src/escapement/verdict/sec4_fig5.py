@@ -65,9 +65,8 @@ def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",), args=("measure",))
 def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
-    """The recovery of the velocity before the impact at a1 (:func:`escapement.paper.corrected.velocity_recovery`)
-    is faster for smaller K at each common force, in ``seconds``, as a fraction of the ``period`` 2 pi/w, or of the
-    limit cycle's ``width`` (``args: {measure}``)."""
+    """The velocity before the impact at a1 recovers (:func:`escapement.paper.corrected.velocity_recovery`) faster
+    for smaller K at each common force, in ``seconds``, or of the ``period`` 2 pi/w or the limit cycle's ``width``."""
     measure = claim["args"]["measure"]
 
     def recovery(r) -> float:
