@@ -12,17 +12,10 @@ an arc of amplitude ``A`` (:func:`escapement.paper.corrected.first_order_zone_ch
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 
-from ..paper import corrected
-from ..paper.corrected import first_order_zone_change, zone_amplitude
+from ..paper.corrected import daily_rate as rate_of, first_order_zone_change, zone_amplitude
 from .evidence import Evidence, Verdict, check, each, fig3_scenes, fmt, params_of, run, within
-
-
-def _order(f: Sequence[float], shift: Sequence[float]) -> float:
-    """The order of ``shift`` in ``f`` between the two smallest forces."""
-    (f1, s1), (f2, s2) = sorted(zip(f, shift))[:2]
-    return math.log(abs(s2 / s1)) / math.log(f2 / f1) if s1 and s2 else math.nan
 
 
 def airy_verdict(zones: Mapping[str, Mapping], tolerance: float) -> Verdict:
@@ -30,8 +23,8 @@ def airy_verdict(zones: Mapping[str, Mapping], tolerance: float) -> Verdict:
     the order 2 in ``f`` if symmetric, else 1 with ``dT2 / f`` within ``tolerance`` of ``kappa`` (at the least f)."""
     agree, parts = [], []
     for name, z in zones.items():
-        order = _order(z["f"], z["shift"])
-        f_min, s_min = sorted(zip(z["f"], z["shift"]))[0]
+        (f_min, s_min), (f2, s2) = sorted(zip(z["f"], z["shift"]))[:2]
+        order = math.log(abs(s2 / s_min)) / math.log(f2 / f_min) if s_min and s2 else math.nan  # over the least two f
         if z["kappa"] == 0.0:  # symmetric
             agree.append(abs(order - 2.0) <= tolerance)
             parts.append(f"{name} {tuple(z['zone'])}: dT2/f = {fmt(s_min / f_min, 3)} s^3/m at f = {fmt(f_min, 2)}, "
@@ -71,7 +64,7 @@ def daily_rate(claim, ev: Evidence) -> Verdict:
     for label, ds in ev.fig3.items():
         t0 = 2 * math.pi * math.sqrt(float(ds["M"]) / float(ds["K"]))
         period = float(ds["period"].values[-1])
-        rates.append((corrected.daily_rate(period, t0), corrected.daily_rate(paper, t0)))
+        rates.append((rate_of(period, t0), rate_of(paper, t0)))
         parts.append(f"{label}: {fmt(rates[-1][0], 4)} s/day (T = {fmt(period)} s)")
     return Verdict("; ".join(parts), within(max(abs(r - q) for r, q in rates), claim["tolerance"]),
         note=(f"86400 (T0/T - 1) with T0 = 2 pi sqrt(M/K) = {fmt(t0)} s; the printed 6.2832 s, to its half unit "

@@ -34,21 +34,6 @@ def panel_scenes(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
             if math.isclose(float(ds["K"]), FIG5_PANEL_K[name], rel_tol=1e-12)}
 
 
-def _reading(figure: str, ds: xr.Dataset) -> str:
-    """The reading of the paper's unstated choices that the output was made with."""
-    return ", ".join([f"F = {fmt(float(ds['F']), 4)} N", f"K = {fmt(float(ds['K']), 4)} N/m",
-                      f"released from rest at x0 = {fmt(float(ds['x0']), 4)} m"]
-                     + ([f"amplitude: {ds.attrs['amplitude_variable']}"] if figure == "3" else []))
-
-
-def _ties(best: int, out_of: int, groups: list[tuple[str, ...]], n: int) -> str:
-    named = ", ".join("[" + " = ".join(group) + "]" for group in groups)  # names may hold "; "
-    if len(groups) == 1:
-        return f"best of the {n} candidate readings: {best} of {out_of}, by one reading {named}"
-    return (f"best of the {n} candidate readings: {best} of {out_of}, a tie of {len(groups)} readings that "
-            f"plot different values, so the reading is undetermined: {named}")
-
-
 @check(scenes=panel_scenes, args=("figure", "panel"),
        fitted="the readings of the paper's open choices, fitted to the printed axes")
 def printed_axes(claim, ev: Evidence) -> Verdict:
@@ -70,13 +55,20 @@ def printed_axes(claim, ev: Evidence) -> Verdict:
                          f"{candidates.out_of} limits; the panel has {out_of}")
     matched = sum(axis.matches(*limits[axis_name]) for axis_name, axis in scored.items())
     best, groups = candidates.tied()
+    named = ", ".join("[" + " = ".join(group) + "]" for group in groups)  # names may hold "; "
+    ties = (f"by one reading {named}" if len(groups) == 1 else f"a tie of {len(groups)} readings that plot different "
+            f"values, so the reading is undetermined: {named}")
+    # the reading of the paper's unstated choices that the output was made with
+    reading = ", ".join([f"F = {fmt(float(ds['F']), 4)} N", f"K = {fmt(float(ds['K']), 4)} N/m",
+                         f"released from rest at x0 = {fmt(float(ds['x0']), 4)} m"]
+                        + ([f"amplitude: {ds.attrs['amplitude_variable']}"] if figure == "3" else []))
     default = (f"; with the plotting program's own tick step the best is {max(candidates.default_scores.values())} "
                f"of {out_of}" if candidates.default_scores else "")
     return Verdict(
         "; ".join(f"{axis.label}: {_limits(*limits[axis_name])}" for axis_name, axis in scored.items())
-        + f" ({matched} of {out_of} printed limits); {_ties(best, out_of, groups, len(candidates.scores))}",
-        best == out_of,
-        note=(f"the output ({_reading(figure, ds)}) autoscaled with the printed tick steps imposed "
+        + f" ({matched} of {out_of} printed limits); best of the {len(candidates.scores)} candidate readings: {best} "
+        f"of {out_of}, {ties}", best == out_of,
+        note=(f"the output ({reading}) autoscaled with the printed tick steps imposed "
               f"({', '.join(fmt(axis.step, 4) for axis in scored.values())}), limits rounded out to the ticks, no "
               f"margin{default}; the readings were chosen by fitting these axes, so a match shows consistency only"),
         paper_value="; ".join(f"{axis.label}: {_limits(axis.low, axis.high)}" for axis in scored.values()))

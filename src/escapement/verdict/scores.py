@@ -96,27 +96,24 @@ def _equivalent(groups: Mapping[str, str]) -> tuple[tuple[str, ...], ...]:
 
 def panel_candidates(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> dict[tuple[str, str], Candidates]:
     """The :class:`Candidates` of each printed panel, keyed ``(figure, panel)``, under the margin ``autoscale``."""
-    found = _panel_scores(rows, autoscale)
     return {key: Candidates(out_of=2 * len(p["axes"]), scores=dict(p[PRINTED_STEP]),
                             default_scores=dict(p[DEFAULT_LOCATOR]), equivalent=_equivalent(p["groups"]))
-            for key, p in found.items()}
+            for key, p in _panel_scores(rows, autoscale).items()}
 
 
 def joint_candidates(rows: Iterable[Mapping], figure: str, autoscale: str = CLAIM_AUTOSCALE) -> Candidates:
     """The readings every panel of Fig. ``figure`` scores under one name (a Fig. 4 reading names both panels'
     scene), scored over all its panels; equivalent when they are in every panel."""
-    found = _panel_scores(rows, autoscale)
-    panels = [p for (fig, _), p in found.items() if fig == str(figure)]
+    panels = [p for (fig, _), p in _panel_scores(rows, autoscale).items() if fig == str(figure)]
     if not panels:
         raise ValueError(f"figure = {figure!r}: the score rows hold no panel of that figure")
     names = [n for n in panels[0][PRINTED_STEP] if all(n in p[PRINTED_STEP] for p in panels)]
     if not names:
         raise ValueError(f"figure = {figure!r}: no reading is scored under one name in all its panels")
-    groups = {n: " | ".join(p["groups"][n] for p in panels) for n in names}
     return Candidates(out_of=sum(2 * len(p["axes"]) for p in panels),
                       scores={n: sum(p[PRINTED_STEP][n] for p in panels) for n in names},
                       default_scores={n: sum(p[DEFAULT_LOCATOR][n] for p in panels) for n in names},
-                      equivalent=_equivalent(groups))
+                      equivalent=_equivalent({n: " | ".join(p["groups"][n] for p in panels) for n in names}))
 
 
 def summary(candidates: Candidates) -> tuple[str, str]:

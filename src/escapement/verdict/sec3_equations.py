@@ -169,11 +169,10 @@ def autonomous(claim, ev: Evidence) -> Verdict:
     runs = run(ev, claim["args"]["runs"])
     starts = [e["time"][(e["kind"] == A1) | (e["kind"] == A3)][:4] for e in _run_events(runs)]
     worst = float(np.max(np.abs(starts[0] - starts[1])))
+    switched = [f"{', '.join(fmt(t, 5) for t in s)} s (released at {fmt(x0, 3)} m)"
+                for s, x0 in zip(starts, runs["x0"].values)]
     return Verdict(
-        "the force switches on at t = " + "; ".join(
-            f"{', '.join(fmt(t, 5) for t in s)} s (released at {fmt(x0, 3)} m)"
-            for s, x0 in zip(starts, runs["x0"].values)),
-        within(worst, claim["tolerance"]),
+        "the force switches on at t = " + "; ".join(switched), within(worst, claim["tolerance"]),
         note="the force acts where the state is (after the impact, in the zones), not at given times: g depends on the "
              "state and the system is autonomous, as the theorem of Eq. (6) and mu1 = 1 need",
         paper_value="A(t), g(t) functions of time")
@@ -203,15 +202,12 @@ def lipschitz_near(claim, ev: Evidence) -> Verdict:
         parts.append(f"case {label}, y0 = ({fmt(y0[0], 6)} m, {fmt(y0[1], 6)} m/s): " + "; ".join(
             f"half-width {fmt(r, 3)}: largest |g(y1) - g(y2)| {fmt(jump, 3)} m/s^2, largest quotient {fmt(q, 6)}"
             for r, jump, q in found) + f" (||A|| = {fmt(norm, 6)})")
-    return Verdict(
-        "; ".join(parts), bool(holds),
-        note=("at the end of a zone g jumps by f between states however close, so the quotient grows as "
-              "1/half-width: g of Eq. (3b), switched where x crosses a1 .. a4, is Lipschitz only off those edges"
-              if at == "zone_end" else
-              "at the release the state lies outside the impulse zones, so g = 0 on a neighbourhood reaching to them "
-              "(closed form, checked on a grid) and A y + g is Lipschitz there with the constant ||A||: the cited "
-              "theorem applies up to the first switching of g, which the solution meets only later"),
-        paper_value="A and g Lipschitz near (t0, y0)")
+    return Verdict("; ".join(parts), bool(holds), paper_value="A and g Lipschitz near (t0, y0)", note=(
+        "at the end of a zone g jumps by f between states however close, so the quotient grows as 1/half-width: g of "
+        "Eq. (3b), switched where x crosses a1 .. a4, is Lipschitz only off those edges" if at == "zone_end" else
+        "at the release the state lies outside the impulse zones, so g = 0 on a neighbourhood reaching to them "
+        "(closed form, checked on a grid) and A y + g is Lipschitz there with the constant ||A||: the cited theorem "
+        "applies up to the first switching of g, which the solution meets only later"))
 
 
 @check(scenes=fig3_scenes, args=("claim",))

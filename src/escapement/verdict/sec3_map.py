@@ -147,11 +147,10 @@ def map8_eigenvalues(claim, ev: Evidence) -> Verdict:
     eigenvalues = np.sort(np.linalg.eigvals(jacobian).real)
     return Verdict(
         f"eigenvalues of the map (8) at the fixed point {fmt(star)} m/s: {', '.join(fmt(e, 8) for e in eigenvalues)}",
-        bool(np.any(np.abs(eigenvalues - 1.0) <= claim["tolerance"])),
-        note="P(y) = (a1, g(y2)) does not depend on y1, so its Jacobian is [[0, 0], [0, g']]: the eigenvalues are 0 "
-             "and g' = (1 - b)^4; mu1 = 1 is the flow's multiplier along the orbit, which the map on the section "
-             "does not have",
-        paper_value="Therefore mu1 = 1")
+        bool(np.any(np.abs(eigenvalues - 1.0) <= claim["tolerance"])), paper_value="Therefore mu1 = 1", note=(
+            "P(y) = (a1, g(y2)) does not depend on y1, so its Jacobian is [[0, 0], [0, g']]: the eigenvalues are 0 and "
+            "g' = (1 - b)^4; mu1 = 1 is the flow's multiplier along the orbit, which the map on the section does not "
+            "have"))
 
 
 @check(runs=("runs",), args=("sense",))

@@ -91,10 +91,6 @@ def eq23(claim, ev: Evidence) -> Verdict:
                    paper_value=f"{fmt(whole[0].value)} s as read (signed a1 .. a4)")
 
 
-#: the paper's own definition of x1+, by which Eq. (24) is read: one convention for both its forms
-X1_PLUS = "'the velocity after impact is x1+(k) = (1 - b) x1(k)' (Eq. (10))"
-
-
 @check(scenes=fig3_scenes, args=("case", "form"))
 def eq24(claim, ev: Evidence) -> Verdict:
     """Eq. (24) at the last cycle, in one convention for the whole equation (x1+ the velocity after the impact, as
@@ -113,13 +109,13 @@ def eq24(claim, ev: Evidence) -> Verdict:
         return pe.phase_jump_24(plain, plus, s), pe.phase_jump_24_closed(plus, p.b, s)
 
     axes = ("positions",)  # the velocity is not a convention here: Eq. (10) defines x1+
-    first = try_readings(lambda r: forms(r, v1p, v1)[0], measured, tolerance, axes)
-    second = try_readings(lambda r: forms(r, v1p, v1)[1], measured, tolerance, axes)
+    first, second = (try_readings(lambda r, i=i: forms(r, v1p, v1)[i], measured, tolerance, axes) for i in (0, 1))
     both = [a.reading for a, b in zip(first, second) if a.reproduces and b.reproduces]
     swapped = forms(first[0].reading, v1, v1p)
     holds = any(t.reproduces for t in first) if form == "first" else bool(both)
-    lead = (f"both forms read with x1+ the velocity after the impact, as the paper defines it, {X1_PLUS}, x1 the one "
-            "before, and one convention of the positions for both")
+    lead = ("both forms read with x1+ the velocity after the impact, as the paper defines it, 'the velocity after "
+            "impact is x1+(k) = (1 - b) x1(k)' (Eq. (10)), x1 the one before, and one convention of the positions for "
+            "both")
     if form == "second":
         lead += ("; " + (f"both forms reproduce the phase delay with {' or '.join(map(departure, both))}" if both else
                          "the second form differs from the first in every convention: it is named a misprint, x1+ "

@@ -35,7 +35,6 @@ PRINTED_STEPS: dict[str, tuple[Callable[[float, Parameters], float], tuple[int, 
     "15": (lambda v, p: _sqrt(v * v + (p.a4**2 - p.a1**2) * p.omega2),
            (3, "before"), (4, "before"), "x1(k+1) = sqrt(x5^2 + (a4^2 - a1^2) w^2)"),
 }
-_FIELD = {"before": "event_velocity_before", "after": "event_velocity_after"}
 
 
 @check(scenes=fig3_scenes, args=("equation",))
@@ -49,13 +48,12 @@ def printed_step(claim, ev: Evidence) -> Verdict:
     for ds in ev.fig3.values():
         p, starts = params_of(ds), events_of(ds, EventKind.IMPACT_A1)
         starts = starts[starts + 4 < ds.sizes["event"]]
-        v_in, v_out = ds[_FIELD[f_in]].values[starts + i_in], ds[_FIELD[f_out]].values[starts + i_out]
+        v_in, v_out = (ds[f"event_velocity_{f}"].values[starts + i] for i, f in ((i_in, f_in), (i_out, f_out)))
         predicted = np.array([formula(float(v), p) for v in v_in])
         worst = max(worst, float(np.max(np.abs(predicted - v_out) / np.abs(v_out))))
         n += len(starts)
     return Verdict(f"max relative difference {fmt(worst, 3)} over {n} simulated steps (Fig. 3 {', '.join(ev.fig3)})",
-                   within(worst, claim["tolerance"]),
-                   note=f"read as {text}, fed the simulated state before the step",
+                   within(worst, claim["tolerance"]), note=f"read as {text}, fed the simulated state before the step",
                    paper_value=f"Eq. ({equation})")
 
 

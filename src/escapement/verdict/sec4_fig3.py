@@ -246,8 +246,7 @@ def release_verdict(rows: Sequence[Mapping], boundary: float, tolerance: float) 
     """Holds when every release (``rows``: ``x0``, ``outcome``, last ``velocity``) converges to its ``fixed_point``."""
 
     def converged(r) -> bool:
-        return r["outcome"] == COMPLETED and abs(r["velocity"] - r["fixed_point"]) <= (
-            tolerance * r["fixed_point"])
+        return r["outcome"] == COMPLETED and abs(r["velocity"] - r["fixed_point"]) <= tolerance * r["fixed_point"]
 
     text = "; ".join(
         f"x0 = {fmt(r['x0'], 6)} m: " + (f"converges to {fmt(r['velocity'])} m/s" if converged(r) else r["outcome"])

@@ -35,8 +35,7 @@ def impact_force_step(claim, ev: Evidence) -> Verdict:
     is compared with F/M, the escape wheel's force switching on; the claim holds if some step is not F/M."""
     ds = ev.fig4
     t, a, f = ds["t"].values, ds["acceleration"].values, float(ds["F"]) / float(ds["M"])
-    at = [int(np.searchsorted(t, time)) for time in ds["impact_time"].values]  # the sample at each impact
-    steps = [(float(a[i - 1]), float(a[i])) for i in at]
+    steps = [(float(a[i - 1]), float(a[i])) for i in np.searchsorted(t, ds["impact_time"].values)]  # at each impact
     worst = max((abs((after - before) - f) / f for before, after in steps), default=0.0)
     return Verdict(
         "; ".join(f"acceleration {fmt(b, 4)} -> {fmt(a_, 4)} m/s^2 at the impact" for b, a_ in steps)

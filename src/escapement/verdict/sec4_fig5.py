@@ -96,17 +96,9 @@ def fig5_dimensions(claim, ev: Evidence) -> Verdict:
         parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(
             f"K = {fmt(k, 3)}: {fmt(x, 4)} m x {fmt(v, 4)} m/s" for k, x, v in rows))
     return Verdict("limit cycle half-width (amplitude) x half-height (largest speed): " + "; ".join(parts),
-                   bool(differ) and all(differ),
+                   bool(differ) and all(differ), paper_value="the limit cycles have different dimensions",
                    note=(f"two limit cycles differ when their amplitudes or largest speeds differ by more than "
-                         f"{fmt(100 * claim['tolerance'], 3)} % of the larger; {NOT_COMPARED}"),
-                   paper_value="the limit cycles have different dimensions")
-
-
-def _panel_of(k: float) -> str:
-    for name, panel_k in FIG5_PANEL_K.items():
-        if math.isclose(k, panel_k, rel_tol=1e-12):
-            return name
-    raise ValueError(f"no printed panel of Fig. 5 has K = {k:g} N/m")
+                         f"{fmt(100 * claim['tolerance'], 3)} % of the larger; {NOT_COMPARED}"))
 
 
 @check(scenes=_fig5, fitted="Fig. 5's force and release, and the whole trajectory drawn",
@@ -116,7 +108,10 @@ def fig5_impact_visible(claim, ev: Evidence) -> Verdict:
     trajectory) is at least ``tolerance`` of its printed velocity range."""
     rows = []
     for k, ds in sorted(((float(ds["K"]), ds) for ds in ev.fig5.values()), key=lambda kv: kv[0]):
-        name, jumps = _panel_of(k), float(ds["b"]) * np.abs(ds["velocity_before_impact"].values)
+        name = next((n for n, panel_k in FIG5_PANEL_K.items() if math.isclose(k, panel_k, rel_tol=1e-12)), None)
+        if name is None:
+            raise ValueError(f"no printed panel of Fig. 5 has K = {k:g} N/m")
+        jumps = float(ds["b"]) * np.abs(ds["velocity_before_impact"].values)
         rows.append((k, name, float(jumps.max()), float(jumps[-1]), panel("5", name).y.high - panel("5", name).y.low))
     return Verdict(
         "largest velocity jump drawn (impacts at a1 of the whole trajectory), and on the limit cycle: " + "; ".join(

@@ -47,8 +47,7 @@ def headline(rows: Iterable[Mapping[str, str]]) -> str:
         f"Of the {len(found)} findings, {counts['reproduced']} are reproduced, {counts['consistent']} consistent, "
         f"{counts['partially_reproduced']} partially reproduced, {counts['not_reproduced']} not reproduced, "
         f"{counts['undetermined']} undetermined and {counts['untestable']} untestable. Beyond the paper, and not "
-        f"counted: {beyond} row{'' if beyond == 1 else 's'}."
-    )
+        f"counted: {beyond} row{'' if beyond == 1 else 's'}.")
 
 
 def findings_table(rows: Iterable[Mapping[str, str]]) -> list[dict[str, str]]:
