@@ -52,9 +52,7 @@ ORIGINS: dict[str, str] = {
 def evidence_of(law: str | None, fitted: str | None, threshold: str | None, holds) -> str:
     """The kind of evidence of one reading, from the model's ``law`` its check restates, what it reads that was
     ``fitted``, the ``threshold`` the project chose; none when it computed nothing (``holds`` None)."""
-    if holds is None:
-        return "none"
-    return "by_construction" if law else "fitted" if (fitted or threshold) else "independent"
+    return "none" if holds is None else "by_construction" if law else "fitted" if fitted or threshold else "independent"
 
 
 def status_of(outcomes: Iterable[bool | None]) -> str:

@@ -85,10 +85,9 @@ def state_matrix(claim, ev: Evidence) -> Verdict:
         parts.append(f"K = {fmt(p.K, 3)} N/m (omega_n = {fmt(p.omega, 4)} rad/s): {fmt(error, 2)}")
     return Verdict(
         f"largest relative change of v^2 + k x^2 along the free arcs, k = omega_n{'' if entry == 'omega' else '^2'}: "
-        + "; ".join(parts), within(worst, claim["tolerance"]),
+        + "; ".join(parts), within(worst, claim["tolerance"]), paper_value="A = [[0, 1], [-omega_n, 0]]",
         note="x'' = -omega_n^2 x (Eq. (A-1)) conserves v^2 + omega_n^2 x^2; -omega_n in A would give x'' = -omega_n x, "
-             "the same motion only where omega_n = 1 rad/s (Fig. 3, K = 1 N/m)",
-        paper_value="A = [[0, 1], [-omega_n, 0]]")
+             "the same motion only where omega_n = 1 rad/s (Fig. 3, K = 1 N/m)")
 
 
 @check(scenes=fig3_scenes, law="the mode equations x'' + omega_n^2 x = sigma f, Eqs. (A-1), (A-3), (A-5)")
@@ -171,11 +170,10 @@ def autonomous(claim, ev: Evidence) -> Verdict:
     worst = float(np.max(np.abs(starts[0] - starts[1])))
     switched = [f"{', '.join(fmt(t, 5) for t in s)} s (released at {fmt(x0, 3)} m)"
                 for s, x0 in zip(starts, runs["x0"].values)]
-    return Verdict(
-        "the force switches on at t = " + "; ".join(switched), within(worst, claim["tolerance"]),
-        note="the force acts where the state is (after the impact, in the zones), not at given times: g depends on the "
-             "state and the system is autonomous, as the theorem of Eq. (6) and mu1 = 1 need",
-        paper_value="A(t), g(t) functions of time")
+    return Verdict("the force switches on at t = " + "; ".join(switched), within(worst, claim["tolerance"]),
+                   note="the force acts where the state is (after the impact, in the zones), not at given times: g "
+                        "depends on the state and the system is autonomous, as the theorem of Eq. (6) and mu1 = 1 need",
+                   paper_value="A(t), g(t) functions of time")
 
 
 @check(scenes=fig3_scenes, args=("at",),
@@ -239,12 +237,11 @@ def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> 
         + f"; from -A(1 - delta) {r['below']['outcome']}" for r in rows)
     return Verdict(text + f"; the grazing release separates an impact and impulse (next v1 = {fmt(limit)} m/s, "
                    "closed form) from no impact (a free swing of amplitude a3 for ever)", bool(error <= tolerance),
-                   note=(
+                   paper_value="exactly one solution", note=(
         "with the strict jump set x xdot < 0 a touch of a3 at rest is no impact, in the solver as in the jump set, "
         "and the state has one continuation; the touch comes two swings after the release, on the edge of an "
         "impulse zone, where g of Eq. (3b) switches with the state: releases delta either side of the grazing one "
-        "end an O(1) apart however small delta, so the solution does not depend continuously on the release there"),
-        paper_value="exactly one solution")
+        "end an O(1) apart however small delta, so the solution does not depend continuously on the release there"))
 
 
 @check(runs=("runs",), answers=OUTCOMES)

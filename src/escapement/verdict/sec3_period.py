@@ -148,8 +148,7 @@ def eq25(claim, ev: Evidence) -> Verdict:
     trials = try_readings(period, simulated, claim["tolerance"], ("positions", "velocity"))
     holds, note = conventions_verdict(trials, f"the simulated period {fmt(simulated)} s", "2 pi/w + 2 (dT1 + dT2)")
     corrected = derived.period_from_perturbations(v1, p)
-    return Verdict(f"{fmt(simulated)} s (simulated)", holds, note=(
+    return Verdict(f"{fmt(simulated)} s (simulated)", holds, paper_value=f"{fmt(trials[0].value)} s as read", note=(
         f"{note}; with the phase taken as atan(position/velocity) in (25) (the sine phase, which advances at w in "
         f"free flight), 2 pi/w + 2 (dT1 + dT2) = {fmt(corrected)} s, relative difference "
-        f"{fmt(rel(corrected, simulated), 2)}"),
-        paper_value=f"{fmt(trials[0].value)} s as read")
+        f"{fmt(rel(corrected, simulated), 2)}"))

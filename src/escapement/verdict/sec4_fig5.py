@@ -32,22 +32,21 @@ NOT_COMPARED = ("the panels of Fig. 5 run at different forces (the configuration
                 "figure's release and compared at one force")
 
 
-def _along_K(claim, ev: Evidence, value, digits: int, unit: str, increasing: bool = False) -> tuple[bool, str]:
-    """Whether ``value(run)`` decreases (or increases) with K at every common force, and the values in words."""
+def _along_K(claim, ev: Evidence, what: str, value, digits: int, unit: str, increasing: bool = False) -> Verdict:
+    """Holds when ``value(run)``, ``what`` it is, decreases (or increases) with K at every common force."""
     holds, parts = [], []
     for force, rows in common_force_runs(claim, ev).items():
         values = [value(run) for _, run in rows]
         holds.append(all(b > a if increasing else a > b for a, b in zip(values, values[1:])))
         parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(f"K = {fmt(k, 3)}: {fmt(x, digits)} {unit}"
                                                           for (k, _), x in zip(rows, values)))
-    return all(holds), "; ".join(parts)
+    return Verdict(f"{what}: " + "; ".join(parts), all(holds), note=NOT_COMPARED)
 
 
 @check(runs=("runs",), args=("definition",))
 def fig5_amplitude_common_force(claim, ev: Evidence) -> Verdict:
     """The converged amplitude (:func:`.sec4_fig3.amplitude_of`) decreases with K at each common force."""
-    holds, values = _along_K(claim, ev, lambda r: amplitude_of(r, claim["args"]["definition"]), 5, "m")
-    return Verdict("converged amplitude: " + values, holds, note=NOT_COMPARED)
+    return _along_K(claim, ev, "converged amplitude", lambda r: amplitude_of(r, claim["args"]["definition"]), 5, "m")
 
 
 #: the speeds a "maximum velocity" may be: the columns of the checks dataset
@@ -59,8 +58,7 @@ SPEEDS = {"largest_speed": "largest |v| on the limit cycle (exact, from the clos
 def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
     """The speed ``args: {speed}`` (a key of :data:`SPEEDS`) decreases with K at each common force."""
     speed = claim["args"]["speed"]
-    holds, values = _along_K(claim, ev, lambda r: float(r[speed]), 6, "m/s")
-    return Verdict(f"{SPEEDS[speed]}: " + values, holds, note=NOT_COMPARED)
+    return _along_K(claim, ev, SPEEDS[speed], lambda r: float(r[speed]), 6, "m/s")
 
 
 @check(runs=("runs",), args=("measure",))
@@ -76,8 +74,7 @@ def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
                 "width": (x - p.a1) / (2 * float(r["largest_displacement"]))}[measure]
 
     unit = {"seconds": "s", "period": "of 2 pi/w", "width": "of the width"}[measure]
-    holds, values = _along_K(claim, ev, recovery, 4, unit, increasing=True)
-    return Verdict("to regain the velocity before the impact at a1: " + values, holds, note=NOT_COMPARED)
+    return _along_K(claim, ev, "to regain the velocity before the impact at a1", recovery, 4, unit, increasing=True)
 
 
 def _fig5(claim, ev: Evidence) -> dict[str, xr.Dataset]:

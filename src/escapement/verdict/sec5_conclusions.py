@@ -39,11 +39,10 @@ def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: floa
     holds = all(agree) and both_sides
     why = ("the runs agree with the sign of C on both sides of F*" if holds else
            "a run disagrees with the sign of C" if not all(agree) else "the forces do not straddle F*")
-    return Verdict("; ".join(parts), holds, note=(
+    return Verdict("; ".join(parts), holds, paper_value="the limit cycle's existence depends on F and a1..a4", note=(
         f"F* = (2b - b^2) K (a1^2 - a3^2) / (2 [(1-b)^2 (a2 - a1) + (a3 - a4)]) = {fmt(threshold, 6)} N (closed "
         f"form): C < 0 below it, no fixed point, v1^2 falls by |C| or more per cycle until the escapement stops; "
-        f"in the symmetric case F* = 0; {why}"),
-        paper_value="the limit cycle's existence depends on F and a1..a4")
+        f"in the symmetric case F* = 0; {why}"))
 
 
 @check(runs=("runs",), answers=OUTCOMES)
