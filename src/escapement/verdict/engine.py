@@ -52,8 +52,7 @@ def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, run
                 ) -> list[dict]:
     """The claims of the register at ``path``, each with its ``readings`` (one, ``as stated``, for a claim checked
     under one reading); ValueError naming the claim against ``schema`` and what it cannot say (ids, parts, words,
-    figures tried, checks and their args, the runs they name where ``runs`` gives the names of the configuration's
-    checks block)."""
+    figures tried, checks and their args, runs not among ``runs``, the names of the configuration's checks block)."""
     data, schema = (yaml.load(Path(p).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
                     for p in (path, schema))
     error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(schema).iter_errors(data))

@@ -50,8 +50,7 @@ ORIGINS: dict[str, str] = {
 
 
 def evidence_of(law: str | None, fitted: str | None, threshold: str | None, holds) -> str:
-    """The kind of evidence of one reading, from the model's ``law`` its check restates, what it reads that was
-    ``fitted``, the ``threshold`` the project chose; none when it computed nothing (``holds`` None)."""
+    """The kind of evidence of one reading, from what its check consumes; none when it computed nothing."""
     return "none" if holds is None else "by_construction" if law else "fitted" if fitted or threshold else "independent"
 
 

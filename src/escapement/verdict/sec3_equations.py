@@ -50,8 +50,7 @@ def lipschitz_quotients(p: Parameters, x0: float, v0: float, radius: float, n: i
     g of :func:`g_eq3b`, the differences taken from the offsets, free of cancellation."""
     offset = np.linspace(-radius, radius, n)
     dx, dv = (a.ravel() for a in np.meshgrid(offset, offset))
-    g = g_eq3b(p, x0 + dx, v0 + dv)
-    ddx, ddv, ddg = (a[:, None] - a[None, :] for a in (dx, dv, g))
+    ddx, ddv, ddg = (a[:, None] - a[None, :] for a in (dx, dv, g_eq3b(p, x0 + dx, v0 + dv)))
     distance = np.hypot(ddx, ddv)
     apart = distance > 0
     quotient = np.hypot(ddv, -p.omega2 * ddx + ddg)[apart] / distance[apart]
@@ -74,8 +73,7 @@ def _run_events(runs) -> list[dict[str, np.ndarray]]:
 
 @check(runs=("runs",), args=("entry",))
 def state_matrix(claim, ev: Evidence) -> Verdict:
-    """The free motion conserves ``v**2 + k x**2`` with ``k`` the entry of A read as printed (``omega``) or with
-    its square (``omega2``), in each of the runs (an event table each, at the paper's spring constants)."""
+    """The free arcs of each run conserve ``v**2 + k x**2``, ``k`` the entry of A as printed (``omega``) or squared."""
     runs, entry, parts, worst = run(ev, claim["args"]["runs"]), claim["args"]["entry"], [], 0.0
     for r, e in zip(each(runs), _run_events(runs)):
         p = params_of(r)
@@ -129,8 +127,7 @@ def jump_set(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes, law="the impulse after the impact, the solver's reading of S2")
 def impulse_sets(claim, ev: Evidence) -> Verdict:
-    """The force acts in S2 read literally (x in (a1, a2) moving right, or in (a4, a3) moving left) or after the
-    impact only: the two coincide when every entry into a zone is its impact, the events running a1, a2, a3, a4."""
+    """The force acts in S2 read literally or after the impact only: the two coincide when events run a1, a2, a3, a4."""
     kinds = [ds["event_kind"].values.astype(int) for ds in ev.fig3.values()]
     # each case's events from its first on, the kinds 1 (a1) .. 4 (a4) in turn
     broken = sum(int(np.count_nonzero(k != (k[0] - 1 + np.arange(len(k))) % 4 + 1)) for k in kinds)

@@ -50,8 +50,7 @@ def compare_cases(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes, args=("cases",))
 def convergence_rates(claim, ev: Evidence) -> Verdict:
-    """The asymptotic rates of convergence of x1^2 of the two cases (the median ratio of its successive differences,
-    the rate of a map linear in x1^2) differ beyond the tolerance."""
+    """The asymptotic rates of convergence of x1^2 (median ratios of successive differences) of the two cases differ."""
     rates = {str(k): float(np.median(successive_ratios(ev.fig3[str(k)]["velocity_before_impact"].values ** 2)))
              for k in claim["args"]["cases"]}
     first, second = rates.values()

@@ -83,8 +83,7 @@ def _fig5(claim, ev: Evidence) -> dict[str, xr.Dataset]:
 
 @check(runs=("runs",), threshold="'different' taken as apart by the tolerance of the larger")
 def fig5_dimensions(claim, ev: Evidence) -> Verdict:
-    """At every common force, every pair of limit cycles differs in half-width (the converged amplitude) or
-    half-height (the largest speed) by more than ``tolerance`` of the larger."""
+    """At every common force, every pair of limit cycles differs in half-width or half-height by over ``tolerance``."""
     differ, parts = [], []
     for force, runs in common_force_runs(claim, ev).items():
         rows = [(k, float(r["largest_displacement"]), float(r["largest_speed"])) for k, r in runs]
@@ -101,8 +100,7 @@ def fig5_dimensions(claim, ev: Evidence) -> Verdict:
 @check(scenes=_fig5, fitted="Fig. 5's force and release, and the whole trajectory drawn",
        threshold="'clearly shown' taken as a jump of the tolerance of the printed velocity range")
 def fig5_impact_visible(claim, ev: Evidence) -> Verdict:
-    """The impact shows in a panel when a velocity jump it draws (b x1 at each impact at a1 of the whole
-    trajectory) is at least ``tolerance`` of its printed velocity range."""
+    """The impact shows in a panel when a velocity jump it draws is at least ``tolerance`` of its printed range."""
     rows = []
     for k, ds in sorted(((float(ds["K"]), ds) for ds in ev.fig5.values()), key=lambda kv: kv[0]):
         name = next((n for n, panel_k in FIG5_PANEL_K.items() if math.isclose(k, panel_k, rel_tol=1e-12)), None)

@@ -35,8 +35,7 @@ def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: floa
         f"converges, v1 = {fmt(r['velocity'])} m/s after {r['cycles']} cycles (closed form {fmt(r['fixed_point'])})"
         if r["outcome"] == Status.COMPLETED.value else f"{r['outcome']} after {r['cycles']} complete cycles")
         for r in rows]
-    both_sides = any(r["C"] > 0 for r in rows) and any(r["C"] < 0 for r in rows)
-    holds = all(agree) and both_sides
+    holds = all(agree) and any(r["C"] > 0 for r in rows) and any(r["C"] < 0 for r in rows)  # F* straddled
     why = ("the runs agree with the sign of C on both sides of F*" if holds else
            "a run disagrees with the sign of C" if not all(agree) else "the forces do not straddle F*")
     return Verdict("; ".join(parts), holds, paper_value="the limit cycle's existence depends on F and a1..a4", note=(
