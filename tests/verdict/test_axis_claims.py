@@ -10,7 +10,8 @@ import pytest
 import xarray as xr
 
 from escapement.verdict import engine as cl
-from escapement.verdict.evidence import Candidates, Evidence
+from escapement.verdict.evidence import Evidence
+from escapement.verdict.scores import Candidates
 from verdict.test_check_boundaries import DONE, scalars
 
 

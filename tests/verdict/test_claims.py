@@ -23,6 +23,7 @@ import escapement.verdict
 from escapement.model.parameters import Parameters
 from escapement.verdict import engine as cl
 from escapement.verdict.evidence import Check, Evidence, Verdict, names, no_scene, run
+from escapement.verdict.rule import COLUMNS
 from escapement.solvers.exact import solve_exact
 from verdict.test_check_boundaries import (GEOMETRY, RUNS, bounded, first_swings, made, phase_shift, register_row,
                                          return_map, runs)
@@ -229,7 +230,7 @@ def test_an_agreement_on_fitted_or_constructed_evidence_is_consistent_and_a_disa
 def test_rows_of_one_sentence_share_its_finding_and_rows_beyond_the_paper_have_none(monkeypatch):
     stubbed(monkeypatch, lambda claim_id, reading: True)
     rows = cl.evaluate(register(), Evidence({}, None, {}, None))
-    assert list(rows[0]) == cl.COLUMNS
+    assert list(rows[0]) == COLUMNS
     first: dict[str, str] = {}
     for row in rows:
         if row["origin"] == "paper":

@@ -59,11 +59,9 @@ def airy_order(claim, ev: Evidence) -> Verdict:
 @check(scenes=fig3_scenes, args=("paper_period",))
 def daily_rate(claim, ev: Evidence) -> Verdict:
     """The paper's period and the replicated ones as seconds per day against 2 pi sqrt(M/K)."""
-    paper = float(claim["args"]["paper_period"])
-    rates, parts = [], []
+    paper, rates, parts = float(claim["args"]["paper_period"]), [], []
     for label, ds in ev.fig3.items():
-        t0 = 2 * math.pi * math.sqrt(float(ds["M"]) / float(ds["K"]))
-        period = float(ds["period"].values[-1])
+        t0, period = 2 * math.pi * math.sqrt(float(ds["M"]) / float(ds["K"])), float(ds["period"].values[-1])
         rates.append((rate_of(period, t0), rate_of(paper, t0)))
         parts.append(f"{label}: {fmt(rates[-1][0], 4)} s/day (T = {fmt(period)} s)")
     return Verdict("; ".join(parts), within(max(abs(r - q) for r, q in rates), claim["tolerance"]),

@@ -63,8 +63,7 @@ def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, run
         message = f"{error.instance!r} is a value this claim may not have" if error.validator is None else error.message
         raise ValueError(f"{path}: {name}: {message} (at {'/'.join(map(str, where[2:])) or 'the claim'})")
     quoted = Counter(claim.get("quote") for claim in data["claims"])
-    paper = [*quoted, *data.get("cited", {}).values()]
-    seen: dict[str, set] = {"id": set(), "part": set()}
+    paper, seen = [*quoted, *data.get("cited", {}).values()], {"id": set(), "part": set()}
     for claim in data["claims"]:
         where = f"{path}: claim '{claim['id']}'"
         if "quote" in claim and ("part" in claim) != (quoted[claim["quote"]] > 1):

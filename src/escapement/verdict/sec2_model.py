@@ -18,8 +18,7 @@ def phase_shares(ds: xr.Dataset) -> dict[str, float]:
     time less its phase advance, and the phase the cycle's end lacks from its start (each over ``w``); ``residual``
     is the simulated period less that sum."""
     p, w = params_of(ds), params_of(ds).omega
-    t, x = ds["event_time"].values, ds["event_position"].values
-    before, after = ds["event_velocity_before"].values, ds["event_velocity_after"].values
+    t, x, before, after = (ds[f"event_{k}"].values for k in ("time", "position", "velocity_before", "velocity_after"))
     start = events_of(ds, EventKind.IMPACT_A1)[-2]
     if list(ds["event_kind"].values[start:start + 5]) != [1, 2, 3, 4, 1]:
         raise ValueError("the last cycle's events must be a1, a2, a3, a4, a1")

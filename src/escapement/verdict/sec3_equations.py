@@ -144,8 +144,7 @@ def complement_sets(claim, ev: Evidence) -> Verdict:
     classified (the turning points, xdot = 0, lie in neither, since every set asks xdot > 0 or xdot < 0)."""
     missed = n = 0
     for ds in ev.fig3.values():
-        p = params_of(ds)
-        kind, x, _, v = _events(ds)
+        p, (kind, x, _, v) = params_of(ds), _events(ds)
         in_s = ((x == p.a1) | (x == p.a3)) & (x * v < 0)
         in_s1 = ((v > 0) & ((x < p.a1) | (x > p.a2))) | ((v < 0) & ((x > p.a3) | (x < p.a4)))
         in_s2 = g_eq3b(p, x, v) != 0
@@ -260,8 +259,6 @@ def runs_converge(claim, ev: Evidence) -> Verdict:
     group = run(ev, claim["args"]["runs"])
     mu, outcome = group["multiplier"].values, group["outcome"].values
     fine = (outcome == COMPLETED) & (np.abs(mu) < 1)
-    return Verdict(
-        f"{int(fine.sum())} of {len(fine)} runs converge to a limit cycle (mu2 = {fmt(np.nanmin(mu), 6)} to "
-        f"{fmt(np.nanmax(mu), 6)})" + "".join(f"; {lab}: {o}" for lab, o in zip(group["label"].values[~fine],
-                                                                               outcome[~fine])),
-        bool(fine.all()))
+    failed = "".join(f"; {lab}: {o}" for lab, o in zip(group["label"].values[~fine], outcome[~fine]))
+    return Verdict(f"{int(fine.sum())} of {len(fine)} runs converge to a limit cycle (mu2 = {fmt(np.nanmin(mu), 6)} "
+                   f"to {fmt(np.nanmax(mu), 6)})" + failed, bool(fine.all()))

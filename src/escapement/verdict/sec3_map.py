@@ -80,8 +80,7 @@ def stability_over_b(claim, ev: Evidence) -> Verdict:
 def multiplier_group(claim, ev: Evidence) -> Verdict:
     """mu2 = (1 - b)^4 in every one of the runs: the rate of convergence depends on nothing else."""
     group = run(ev, claim["args"]["runs"])
-    worst = mu2_off(group)
-    forces = sorted(set(group["F"].values.tolist()))
+    worst, forces = mu2_off(group), sorted(set(group["F"].values.tolist()))
     return Verdict(f"max |mu2 - (1-b)^4| = {fmt(worst, 2)} over {group.sizes['run']} runs (F = "
                    f"{', '.join(fmt(f, 3) for f in forces)} N)", within(worst, claim["tolerance"]))
 
@@ -91,8 +90,7 @@ def multiplier_only_b(claim, ev: Evidence) -> Verdict:
     """Sec. 3.4, the stability determined only by b: mu2 = (1 - b)^4 in every run that converges, whatever its force,
     spring, positions or release, and every other run chatters at b > 1, where the impact reverses the velocity."""
     runs = xr.concat([run(ev, name) for name in names(claim, "runs")], dim="run")
-    outcome, b = runs["outcome"].values, runs["b"].values
-    done = outcome == COMPLETED
+    b, done = runs["b"].values, runs["outcome"].values == COMPLETED
     worst = mu2_off(runs.isel(run=done)) if done.any() else math.inf  # no run converges: nothing follows b
     spans = "; ".join(f"{k} = {fmt(np.min(runs[k].values[done]), 3)} to {fmt(np.max(runs[k].values[done]), 3)}"
                       for k in ("F", "K", "a1", "a3", "x0", "b")) if done.any() else "none converges"

@@ -73,8 +73,7 @@ def _terms_23(p, velocity, reading: Reading) -> dict[str, float]:
 
 @check(scenes=fig3_scenes, args=("case",))
 def eq23(claim, ev: Evidence) -> Verdict:
-    """Eq. (23) on the last cycle: the whole period under each reading; each step's terms are also tried
-    against the simulated step time, to say where the conventions part."""
+    """Eq. (23) on the last cycle under each reading, and each step's terms against its time: where conventions part."""
     ds, p, v1 = _last_cycle(claim, ev)
     velocity, simulated, tolerance = derived.cycle_velocities(v1, p), float(ds["period"].values[-1]), claim["tolerance"]
     whole = try_readings(lambda r: math.fsum(_terms_23(p, velocity, r).values()), simulated, tolerance,

@@ -86,8 +86,7 @@ def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple
 def eq14_conventions(claim, ev: Evidence) -> Verdict:
     """Eq. (14) at the last cycle under each convention: the velocity at a4 from the one after the impact at a3 (the
     energy balance from the simulated velocity at a1, Eqs. (10)-(13))."""
-    case = claim["args"]["case"]
-    ds = ev.fig3[case]
+    case, ds = claim["args"]["case"], ev.fig3[claim["args"]["case"]]
     p, i = params_of(ds), events_of(ds, EventKind.IMPACT_A1)[-2]
     v1, v5 = float(ds["event_velocity_before"].values[i]), float(ds["event_velocity_before"].values[i + 3])
     trials = second_half_trials(p, derived.cycle_velocities(v1, p), v5, claim["tolerance"], pe.v5_14)

@@ -20,8 +20,7 @@ from .evidence import (COMPLETED, OUTCOMES, Evidence, Verdict, check, each, even
 
 @check(scenes=fig3_scenes)
 def both_converge(claim, ev: Evidence) -> Verdict:
-    changes = {k: rel(ds["velocity_before_impact"].values[-1], ds["velocity_before_impact"].values[-2])
-               for k, ds in ev.fig3.items()}
+    changes = {k: rel(*ds["velocity_before_impact"].values[[-1, -2]]) for k, ds in ev.fig3.items()}  # the last two
     return Verdict("; ".join(f"case {k}: last change {fmt(c, 2)}" for k, c in changes.items()),
                    within(max(changes.values()), claim["tolerance"]),
                    note="relative change of the velocity before impact between the last two cycles")
@@ -157,8 +156,7 @@ def stable_velocity_scaling(claim, ev: Evidence) -> Verdict:
 
 def _families(runs: xr.Dataset, varying: str) -> dict[tuple, list[int]]:
     """The runs' indices grouped by every parameter and the release except ``varying``."""
-    keys = [k for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4", "x0") if k != varying]
-    families: dict[tuple, list[int]] = {}
+    keys, families = [k for k in ("M", "K", "F", "b", "a1", "a2", "a3", "a4", "x0") if k != varying], {}
     for i in range(runs.sizes["run"]):
         families.setdefault(tuple(float(runs[k].values[i]) for k in keys), []).append(i)
     return {key: rows for key, rows in families.items() if len(rows) > 1}
@@ -208,8 +206,7 @@ def amplitude_by_force(claim, ev: Evidence) -> Verdict:
             closest = min((abs(a - b) / max(abs(a), abs(b)) for a, b in itertools.combinations(values, 2)),
                           default=math.inf)
             holds.append(closest > tolerance if key == "F" else spread <= tolerance)
-            first = runs.isel(run=rows[0])
-            fixed = "x0" if key == "F" else "F"
+            first, fixed = runs.isel(run=rows[0]), "x0" if key == "F" else "F"
             parts.append(f"{first['group'].values} (a1 = {fmt(first['a1'].values, 3)} m, {fixed} = "
                          f"{fmt(first[fixed].values, 3)}): {key} = "
                          + ", ".join(f"{fmt(k, 3)}: {fmt(a, 8)} m" for k, a in sorted(by.items()))

@@ -5,7 +5,6 @@ compared with each other), and the impact shown in each panel.
 
 from __future__ import annotations
 
-import itertools
 import math
 
 import numpy as np
@@ -77,10 +76,6 @@ def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
     return _along_K(claim, ev, "to regain the velocity before the impact at a1", recovery, 4, unit, increasing=True)
 
 
-def _fig5(claim, ev: Evidence) -> dict[str, xr.Dataset]:
-    return {f"Fig. 5 K = {label}": ds for label, ds in ev.fig5.items()}
-
-
 @check(runs=("runs",), threshold="'different' taken as apart by the tolerance of the larger")
 def fig5_dimensions(claim, ev: Evidence) -> Verdict:
     """At every common force, every pair of limit cycles differs in half-width or half-height by over ``tolerance``."""
@@ -88,7 +83,7 @@ def fig5_dimensions(claim, ev: Evidence) -> Verdict:
     for force, runs in common_force_runs(claim, ev).items():
         rows = [(k, float(r["largest_displacement"]), float(r["largest_speed"])) for k, r in runs]
         differ += [max(abs(x1 - x2) / max(x1, x2), abs(v1 - v2) / max(v1, v2)) > claim["tolerance"]
-                   for (_, x1, v1), (_, x2, v2) in itertools.combinations(rows, 2)]
+                   for i, (_, x1, v1) in enumerate(rows) for _, x2, v2 in rows[i + 1:]]
         parts.append(f"F = {fmt(force, 3)} N: " + ", ".join(
             f"K = {fmt(k, 3)}: {fmt(x, 4)} m x {fmt(v, 4)} m/s" for k, x, v in rows))
     return Verdict("limit cycle half-width (amplitude) x half-height (largest speed): " + "; ".join(parts),
@@ -97,7 +92,8 @@ def fig5_dimensions(claim, ev: Evidence) -> Verdict:
                          f"{fmt(100 * claim['tolerance'], 3)} % of the larger; {NOT_COMPARED}"))
 
 
-@check(scenes=_fig5, fitted="Fig. 5's force and release, and the whole trajectory drawn",
+@check(scenes=lambda claim, ev: {f"Fig. 5 K = {label}": ds for label, ds in ev.fig5.items()},
+       fitted="Fig. 5's force and release, and the whole trajectory drawn",
        threshold="'clearly shown' taken as a jump of the tolerance of the printed velocity range")
 def fig5_impact_visible(claim, ev: Evidence) -> Verdict:
     """The impact shows in a panel when a velocity jump it draws is at least ``tolerance`` of its printed range."""
