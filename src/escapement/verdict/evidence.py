@@ -147,7 +147,8 @@ def run(ev: Evidence, name: str) -> xr.Dataset:
     if dim in checks.dims:
         found = checks[[key for key, variable in checks.data_vars.variables.items() if dim in variable.dims]]
         return found.rename({key: key.removeprefix(f"{name}_") for key in (*found.data_vars, *found.dims)})
-    if not len(rows := (np.flatnonzero(checks["group"].values == name) if "group" in checks else [])):
+    rows = np.flatnonzero(checks["group"].values == name) if "group" in checks else []
+    if not len(rows):
         raise ValueError(f"the checks dataset holds no run {name!r}: a run is named by the checks block of the "
                          "configuration")
     return checks[[key for key, variable in checks.data_vars.variables.items() if "case" in variable.dims]].isel(

@@ -104,9 +104,11 @@ def panel_candidates(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) 
 def joint_candidates(rows: Iterable[Mapping], figure: str, autoscale: str = CLAIM_AUTOSCALE) -> Candidates:
     """The readings every panel of Fig. ``figure`` scores under one name (a Fig. 4 reading names both panels'
     scene), scored over all its panels; equivalent when they are in every panel."""
-    if not (panels := [p for (fig, _), p in _panel_scores(rows, autoscale).items() if fig == str(figure)]):
+    panels = [p for (fig, _), p in _panel_scores(rows, autoscale).items() if fig == str(figure)]
+    if not panels:
         raise ValueError(f"figure = {figure!r}: the score rows hold no panel of that figure")
-    if not (names := [n for n in panels[0][PRINTED_STEP] if all(n in p[PRINTED_STEP] for p in panels)]):
+    names = [n for n in panels[0][PRINTED_STEP] if all(n in p[PRINTED_STEP] for p in panels)]
+    if not names:
         raise ValueError(f"figure = {figure!r}: no reading is scored under one name in all its panels")
     return Candidates(out_of=sum(2 * len(p["axes"]) for p in panels),
                       scores={n: sum(p[PRINTED_STEP][n] for p in panels) for n in names},

@@ -92,7 +92,8 @@ def period_initial_condition(claim, ev: Evidence) -> Verdict:
     """Each of the runs at a force of the ``reference`` runs has the period of that one, from another release."""
     paper, worst, parts = run(ev, claim["args"]["reference"]), 0.0, []
     for other in each(run(ev, claim["args"]["runs"])):
-        if not len(same_force := np.flatnonzero(paper["F"].values == other["F"].values)):
+        same_force = np.flatnonzero(paper["F"].values == other["F"].values)
+        if not len(same_force):
             continue
         ref = paper.isel(run=same_force[0])
         worst = max(worst, abs(float(other["period"]) - float(ref["period"])))
@@ -197,7 +198,8 @@ def amplitude_by_force(claim, ev: Evidence) -> Verdict:
     definition, parts, holds, tolerance = claim["args"]["definition"], [], [], claim["tolerance"]
     for key, groups in (("F", claim["args"]["by_force"]), ("x0", claim["args"]["by_release"])):
         runs = xr.concat([run(ev, g) for g in groups], dim="run")
-        if not (families := _families(runs, key)):
+        families = _families(runs, key)
+        if not families:
             raise ValueError(f"the groups {groups} hold no runs that differ only in {key}")
         for rows in families.values():
             by = {float(runs[key].values[i]): amplitude_of(runs.isel(run=i), definition) for i in rows}
@@ -221,7 +223,8 @@ def amplitude_by_force(claim, ev: Evidence) -> Verdict:
 def release_transient(claim, ev: Evidence) -> Verdict:
     """Among runs that differ only in x0, the first cycles' periods within the tolerance (s) of each other."""
     runs = run(ev, claim["args"]["runs"])
-    if not (families := _families(runs, "x0")):
+    families = _families(runs, "x0")
+    if not families:
         raise ValueError(f"the runs {claim['args']['runs']!r} hold none that differ only in x0")
     first_spread, parts = 0.0, []
     for rows in families.values():
