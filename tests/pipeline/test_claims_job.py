@@ -16,7 +16,8 @@ from escapement.pipeline.readings import _formatted, score_table
 from escapement.pipeline.tables import LIMIT_COLUMNS, read_claims
 from escapement.studies.readings import Reading
 from escapement.verdict import sec3_map
-from escapement.verdict.engine import COLUMNS, ClaimError
+from escapement.verdict.engine import ClaimError
+from escapement.verdict.rule import COLUMNS
 from escapement.verdict.scores import COLUMNS as SCORE_COLUMNS
 
 #: the model's parameters and x0 as 0-d variables, as the scenes write them; the outcome as attributes

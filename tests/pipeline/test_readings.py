@@ -11,7 +11,7 @@ import pytest
 import yaml
 
 from escapement.paper.printed_axes import PANELS
-from escapement.verdict.evidence import Candidates
+from escapement.verdict.scores import Candidates
 from escapement.pipeline.readings import COLUMNS, limits_match, score_readings, score_table
 from escapement.verdict.scores import (DEFAULT_LOCATOR, PRINTED_STEP, best_readings_table, joint_candidates,
                                       panel_candidates, read_scores)

@@ -9,8 +9,9 @@ from collections.abc import Mapping
 from ..io.netcdf import read_netcdf, write_csv
 from ..plotting.autoscale import VARIANTS
 from ..plotting.panel_axes import scene_axes
-from ..verdict.engine import COLUMNS, SCHEMA, evaluate, load_claims
+from ..verdict.engine import SCHEMA, evaluate, load_claims
 from ..verdict.evidence import Evidence
+from ..verdict.rule import COLUMNS
 from ..verdict.scores import CLAIM_AUTOSCALE, panel_candidates, read_scores
 from .logs import logged
 from .tables import LIMIT_COLUMNS

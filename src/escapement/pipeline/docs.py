@@ -16,7 +16,7 @@ import xarray as xr
 
 from ..io.netcdf import read_csv, read_netcdf, write_text
 from ..model.status import succeeded
-from ..verdict.evidence import fmt
+from ..verdict.rule import fmt
 from ..verdict.scores import best_readings_table, read_scores
 from ..verdict.tally import findings_table, headline, vocabulary_table
 from .logs import logged

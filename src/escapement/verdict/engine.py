@@ -22,9 +22,9 @@ import yaml
 
 from ..paper.printed_axes import PANELS
 from .evidence import COMPLETED, Check, Evidence, Verdict, names, run
-from .rule import COLUMNS, UNDETERMINED, fmt, row_status
+from .rule import UNDETERMINED, fmt, row_status
 
-__all__ = ["COLUMNS", "SCHEMA", "ClaimError", "Evidence", "Verdict", "evaluate", "fmt", "load_claims", "resolved"]
+__all__ = ["SCHEMA", "ClaimError", "evaluate", "load_claims", "resolved"]
 
 #: the register and its JSON Schema, package data beside this module
 REGISTER, SCHEMA = (Path(__file__).with_name(name) for name in ("claims.yaml", "claims.schema.yaml"))
@@ -154,7 +154,7 @@ def _joined(pairs: list[tuple[str, str]]) -> str:
 
 
 def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
-    """One row per claim, with exactly the columns of :data:`COLUMNS`; :class:`ClaimError` on a failing check."""
+    """One row per claim, with exactly the columns of :data:`~.rule.COLUMNS`; :class:`ClaimError` on a failing check."""
     rows, findings = [], {}
     for claim in claims:
         results = [(reading, verdict(claim, reading, evidence)) for reading in claim["readings"]]
