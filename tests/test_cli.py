@@ -191,3 +191,10 @@ def test_a_closed_standard_output_is_exit_status_3():
     result = subprocess.run(f"{sys.executable} -m escapement solve --cycles 3000 | head -c 10 > /dev/null; "
                             "echo ${PIPESTATUS[0]}", shell=True, capture_output=True, text=True, executable="/bin/bash")
     assert result.stdout.strip() == "3" and "Traceback" not in result.stderr
+
+
+def test_a_standard_output_closed_from_the_start_is_one_line_and_exit_status_3():
+    result = subprocess.run(f"{sys.executable} -m escapement solve >&-", shell=True, capture_output=True, text=True,
+                            executable="/bin/bash")
+    assert result.returncode == 3 and result.stderr.strip().splitlines() == [
+        "python -m escapement: cannot write standard output: it is closed (redirect it to a file or /dev/null)"]

@@ -188,6 +188,10 @@ def main(argv: Sequence[str] | None = None, prog: str | None = None) -> int:
     started by by default); return the exit status."""
     prog = _invoked_as() if prog is None else prog
     argv = sys.argv[1:] if argv is None else list(argv)
+    if sys.stdout is None:  # started with standard output closed (``>&-``): refused before any work
+        print(f"{prog}: cannot write standard output: it is closed (redirect it to a file or /dev/null)",
+              file=sys.stderr)
+        return EXIT_CANNOT_WRITE
     try:
         args = _parser(prog).parse_args(argv)
     except SystemExit as stop:  # --help, or a refusal of the parser, already printed

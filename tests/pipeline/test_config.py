@@ -78,6 +78,8 @@ def test_the_paper_s_file_is_valid_and_plans_the_replication_alone():
     ({"checks": {"b": {"Measure": "release"}}}, "checks.b: unknown key 'Measure' (did you mean 'measure'?)"),
     # what JSON Schema's number admits and YAML gives: not finite, a key that is not a text
     ({"model": {"M": float("inf")}}, "the configuration: model.M = inf is invalid: it must be a finite number"),
+    ({"fig5": {"K": [10**400, 0.5]}}, "the configuration: fig5.K[0] = 100000000000000000...0000000000000000000 is "
+                                      "invalid: it must be a finite number (at most 1.798e+308 in magnitude)"),
     ({"fig3": {"cases": {1: {"F": 1.0, "x0": -1.0}}}}, "fig3.cases: the key 1 is invalid: a key must be a text"),
 ])
 def test_each_violation_of_the_schema_is_one_line_naming_the_key_its_value_and_the_form(user, message):

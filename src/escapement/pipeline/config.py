@@ -11,6 +11,7 @@ from __future__ import annotations
 import difflib
 import math
 import reprlib
+import sys
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 
@@ -24,6 +25,7 @@ MAX_DEPTH = 16
 #: how a refusal shows a value: whole if short, else its start and end (a refusal is one line)
 SHORT = reprlib.Repr()
 SHORT.maxstring, SHORT.maxother, SHORT.maxlist, SHORT.maxdict = 80, 80, 8, 6
+MAX_FLOAT = sys.float_info.max
 
 
 class ConfigError(ValueError):
@@ -72,7 +74,7 @@ def typed_config(config: dict, entries: Iterable[str] | None) -> None:
 
 def _plain(value: object, path: list) -> None:
     """Refuse a key that is not a text and a number that is not finite, naming the key (YAML reads ``.inf`` and
-    ``1e400`` as floats, which a schema's ``number`` admits)."""
+    ``1e400`` as floats, which a schema's ``number`` admits, and a 401-digit integer as one no float holds)."""
     if isinstance(value, dict):
         for key, item in value.items():
             if not isinstance(key, str):
@@ -82,8 +84,9 @@ def _plain(value: object, path: list) -> None:
     elif isinstance(value, list):
         for index, item in enumerate(value):
             _plain(item, [*path, index])
-    elif isinstance(value, float) and not math.isfinite(value):
-        raise ConfigError(f"the configuration: {dotted(path)} = {value!r} is invalid: it must be a finite number")
+    elif isinstance(value, float) and not math.isfinite(value) or isinstance(value, int) and abs(value) > MAX_FLOAT:
+        raise ConfigError(f"the configuration: {dotted(path)} = {SHORT.repr(value)} is invalid: it must be a finite "
+                          f"number (at most {MAX_FLOAT:.4g} in magnitude)")
 
 
 def validated(config: Mapping, schema: str | Path, source: str = "the configuration") -> None:
