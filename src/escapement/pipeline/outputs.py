@@ -17,8 +17,8 @@ from pathlib import Path
 
 from ..scenes.settings import KINDS, REPLICATION
 
-__all__ = ["EXTRA_FIGURES", "FIGURE_NAMES", "FILES", "code_digest", "data_files", "figure_files", "not_a_target",
-           "study_targets", "targets"]
+__all__ = ["EXTRA_FIGURES", "FIGURE_NAMES", "FILES", "code_digest", "data_files", "file_digest", "figure_files",
+           "not_a_target", "study_targets", "targets"]
 
 #: the data files of each kind in its study's folder: a pattern per scene (its label) or the kind's one file
 FILES = {"fig3": "poincare_map/case_{}.nc", "fig5": "phase_diagrams/K_{}.nc"}
@@ -103,4 +103,13 @@ def code_digest(root: str | Path, package: str | Path | None = None) -> str:
         if "extra ==" not in requirement:
             name = re.match(r"[A-Za-z0-9._-]+", requirement)[0]
             digest.update(f"{name}=={metadata.version(name)}".encode())
+    return digest.hexdigest()[:16]
+
+
+def file_digest(paths: Iterable[str | Path]) -> str:
+    """The digest of the files ``paths`` (their names and contents): a param of the rules that read them as text, so
+    that an edit reruns the job whatever the file's modification time (Snakemake follows only that of an input)."""
+    digest = hashlib.sha256()
+    for path in paths:
+        digest.update(Path(path).as_posix().encode() + b"\0" + Path(path).read_bytes() + b"\0")
     return digest.hexdigest()[:16]
