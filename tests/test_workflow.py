@@ -7,7 +7,6 @@ current, every netCDF output against CF-1.11 and ACDD-1.3, and the report in a b
 
 from __future__ import annotations
 
-import csv
 import html
 import re
 import shutil
@@ -20,10 +19,11 @@ from snakemake.api import SnakemakeApi
 from snakemake.settings.types import OutputSettings, ResourceSettings
 from workflow_copies import copy_repository, planned_jobs, reduced_copy, snakemake, tracked_state
 
-from escapement.io.netcdf import read_netcdf
+from escapement.io.netcdf import read_netcdf, write_csv
 from escapement.pipeline.article import write_article
 from escapement.pipeline.outputs import ARTICLE_FIGURES
 from escapement.pipeline.publish import check
+from escapement.pipeline.tables import read_claims
 
 
 @pytest.fixture(scope="module")
@@ -68,6 +68,17 @@ def test_a_parameter_study_runs_to_the_end_under_its_own_name_and_leaves_the_rep
     assert (where / "results/replication/claims.csv").read_bytes() == claims  # the claims: neither rerun nor changed
     assert tracked_state(where) == run[1]
     assert "check_claims" not in study.stdout + study.stderr and "publish" not in study.stdout + study.stderr
+
+
+def test_a_study_rerun_with_another_configuration_keeps_only_what_that_configuration_makes(own_studies):
+    where = own_studies[0]
+    (where / "results/forces/stability_map.nc").write_bytes(b"")  # a kind an earlier configuration ran
+    rerun = snakemake(where, "--cores", "2", "--config", "fig5={K: [0.1, 1.0, 7.0], F: [1.0, 0.5, 1.0]}",
+                      "name=forces")
+    assert sorted(p.name for p in (where / "results/forces/phase_diagrams").iterdir()) == \
+        ["K_0.1.nc", "K_1.nc", "K_7.nc"]
+    assert not (where / "results/forces/stability_map.nc").exists()
+    assert "removed results/forces/phase_diagrams/K_5.nc: the study 'forces' no longer makes it" in rerun.stderr
 
 
 def test_publish_is_refused_before_any_job_with_a_configuration_of_your_own(run):
@@ -204,14 +215,11 @@ def test_the_article_is_a_pdf_a_of_its_metadata_with_the_runs_numbers(run):
 
 def test_a_value_changed_in_the_claims_table_changes_the_article(run, tmp_path):
     """One status flipped in the claims table: the article says the new one where it cites that row."""
-    rows = list(csv.DictReader((run[0] / "results/replication/claims.csv").open(encoding="utf-8")))
+    rows = read_claims(run[0] / "results/replication/claims.csv")
     row = next(r for r in rows if r["claim_id"] == "fig4_impulse_and_energy")
     was = row["status"]
     row["status"] = "not_reproduced" if was != "not_reproduced" else "reproduced"
-    with (tmp_path / "claims.csv").open("w", encoding="utf-8", newline="") as handle:
-        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_csv(rows, list(rows[0]), tmp_path / "claims.csv")
     written = {}
     for name, claims in (("before", run[0] / "results/replication/claims.csv"), ("after", tmp_path / "claims.csv")):
         outputs = {key: str(tmp_path / name / file) for key, file in (("pdf", "article.pdf"), ("metadata", "m.yaml"),

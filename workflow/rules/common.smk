@@ -96,3 +96,15 @@ def publish_inputs(wildcards):
             f"configuration of your own (this one makes the study '{NAME}' of {', '.join(OWN)})"
         )
     return list(PUBLISHED.values())
+
+
+onsuccess:
+    # a study folder holds only what its configuration makes: after a run that ended well, the datasets and figures
+    # an earlier configuration of the same study made and this one does not (escapement.pipeline.outputs)
+    for study, scenes in STUDIES.items():
+        for path in outputs.stale_files(study, scenes):
+            path.unlink()
+            print(
+                f"removed {path}: the study '{study}' no longer makes it",
+                file=sys.stderr,
+            )

@@ -18,7 +18,7 @@ from pathlib import Path
 from ..scenes.settings import KINDS, REPLICATION
 
 __all__ = ["EXTRA_FIGURES", "FIGURE_NAMES", "FILES", "code_digest", "data_files", "file_digest", "figure_files",
-           "not_a_target", "study_targets", "targets"]
+           "not_a_target", "stale_files", "study_targets", "targets"]
 
 #: the data files of each kind in its study's folder: a pattern per scene (its label) or the kind's one file
 FILES = {"fig3": "poincare_map/case_{}.nc", "fig5": "phase_diagrams/K_{}.nc"}
@@ -59,6 +59,17 @@ def study_targets(study: str, scenes: Mapping[str, Mapping[str, object]]) -> lis
         found += [f"results/replication/docs/{name}" for name in DOCUMENTS]
         found += [f"results/replication/article/{name}" for name in ARTICLE]
     return found
+
+
+def stale_files(study: str, scenes: Mapping[str, Mapping[str, object]]) -> list[Path]:
+    """The files in ``results/<study>/`` of a kind's name (a scene's dataset, a figure, the map's timing) that this
+    configuration no longer makes: a scene whose label changed, a kind the study no longer runs. Other files (the
+    benchmark's tables, the documents) are left alone."""
+    keep, root = set(study_targets(study, scenes)), Path("results", study)
+    patterns = [*(FILES.get(block, f"{kind.name}.nc").format("*") for block, kind in KINDS.items()),
+                *(f"figures/{kind.name}.{ext}" for kind in KINDS.values() for ext in ("png", "pdf", "svg")),
+                "stability_map_timing.csv"]
+    return sorted({path for pattern in patterns for path in root.glob(pattern) if path.as_posix() not in keep})
 
 
 def targets(studies: Mapping[str, Mapping[str, Mapping[str, object]]]) -> list[str]:
