@@ -19,8 +19,8 @@ def test_a_file_the_machine_refuses_fails_the_job_in_one_line_naming_it(tmp_path
     with pytest.raises(SystemExit) as failed:
         publish({"figures/README.md": "drawn.md"}, "publish.log")
     message = str(failed.value.code)
-    assert message.startswith("publish failed: [Errno 20] Not a directory") and "\n" not in message
-    assert "figures/README.md" in message
+    assert message.startswith("publish failed: [Errno 17] File exists") and "\n" not in message
+    assert message.endswith("/figures'")  # the file that stands where the folder should be
     log = Path("publish.log").read_text()
     assert "Traceback" not in log and log.splitlines()[-1].endswith(message.removeprefix("publish failed: "))
 

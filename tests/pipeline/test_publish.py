@@ -1,11 +1,13 @@
 """Publishing the tracked files: copied only where what they show changed, by the one rule CI's check applies.
 
 A figure is compared as an image (matplotlib's ``compare_images``) against an RMS tolerance, its PDF goes with
-its PNG, and a document is compared with its numbers read at their printed digits.
+its PNG, and a document is compared with its numbers read at their printed digits. A file cut short is never kept
+or called the same, and a publish interrupted mid-copy leaves every tracked file whole.
 """
 
 from __future__ import annotations
 
+import re
 import shutil
 from pathlib import Path
 
@@ -13,7 +15,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from escapement.pipeline.publish import PUBLISHED, check, compare, publish
+from escapement.pipeline import publish as module
+from escapement.pipeline.publish import PUBLISHED, check, compare, damage, main, publish
 from escapement.plotting import save_figure
 
 CYCLES = np.arange(1, 201)
@@ -29,6 +32,20 @@ def draw(folder: Path, name: str, scale: float = 1.0, label: str = "DOP853 rtol 
     ax.legend()
     save_figure(fig, folder / f"{name}.png", folder / f"{name}.pdf", folder / f"{name}.svg")
     return folder / f"{name}.png"
+
+
+def pdf(text: str) -> bytes:
+    """The smallest whole PDF by the published rule: its header, a comment, an empty cross-reference table, its
+    offset and the end marker."""
+    head = f"%PDF-1.4\n% {text}\n".encode()
+    return head + f"xref\nstartxref\n{len(head)}\n%%EOF\n".encode()
+
+
+def cut(path: Path, fraction: float = 0.5) -> Path:
+    """``path`` cut to ``fraction`` of its bytes, as a copy killed midway leaves it."""
+    data = path.read_bytes()
+    path.write_bytes(data[:int(len(data) * fraction)])
+    return path
 
 
 @pytest.fixture(scope="module")
@@ -103,9 +120,99 @@ def test_the_article_s_pdf_is_judged_by_its_typst_source(tmp_path):
     PDF whatever its bytes; a source whose text changed updates it."""
     for side in ("tracked", "drawn"):
         (tmp_path / side).mkdir()
-        (tmp_path / side / "article.pdf").write_bytes(f"%PDF {side}".encode())
+        (tmp_path / side / "article.pdf").write_bytes(pdf(side))
         (tmp_path / side / "article.typ").write_text("= Results\nThe period is 6.2957 s.\n")
-    assert compare(tmp_path / "tracked/article.pdf", tmp_path / "drawn/article.pdf") == (True, "text identical")
+    assert compare(tmp_path / "tracked/article.pdf", tmp_path / "drawn/article.pdf") == (True, "bytes identical")
     (tmp_path / "drawn/article.typ").write_text("= Results\nThe period is 6.3 s.\n")
     same, detail = compare(tmp_path / "tracked/article.pdf", tmp_path / "drawn/article.pdf")
     assert not same and "numbers printed differently" in detail
+
+
+@pytest.mark.parametrize("name, data, flaw", [
+    ("whole.pdf", pdf("whole"), None),
+    ("header.pdf", pdf("whole")[1:], "not a whole PDF (no %PDF- at its start)"),
+    ("offset.pdf", pdf("whole").replace(b"startxref\n", b""), "not a whole PDF (no startxref offset before its %%EOF)"),
+    ("elsewhere.pdf", pdf("whole").replace(b"startxref\n17", b"startxref\n3"),
+     "not a whole PDF (its startxref offset 3 points at neither xref nor an object)"),
+    ("notes.md", "période".encode()[:2], "not UTF-8 text ('utf-8' codec can't decode byte 0xc3 in position 1: "
+                                           "unexpected end of data)"),
+])
+def test_a_file_is_judged_whole_by_its_kind(tmp_path, name, data, flaw):
+    (tmp_path / name).write_bytes(data)
+    assert damage(tmp_path / name) == flaw
+
+
+def test_a_png_without_its_iend_chunk_is_not_whole(drawings, tmp_path):
+    (tmp_path / "fig.png").write_bytes(drawings["tracked"].read_bytes()[:-12])  # the 12 bytes of the IEND chunk
+    assert damage(tmp_path / "fig.png") == "not a whole PNG (no IEND chunk at its end)"
+
+
+def test_the_check_fails_on_each_tracked_file_cut_short_in_one_line_naming_it(drawings, tmp_path, monkeypatch,
+                                                                               capsys):
+    monkeypatch.chdir(tmp_path)
+    shutil.copytree(drawings["tracked"].parent, "figures")
+    monkeypatch.setattr(module, "PUBLISHED", {f"figures/fig.{ext}": str(drawings["tracked"].with_suffix(f".{ext}"))
+                                              for ext in ("png", "pdf", "svg")})
+    for ext in ("png", "pdf", "svg"):
+        cut(Path(f"figures/fig.{ext}"))
+    assert main(["--check"]) == 1
+    said = capsys.readouterr()
+    assert said.out == ""
+    patterns = [r"figures/fig\.png: not a whole PNG \(image file is truncated.*\)",
+                r"figures/fig\.pdf: not a whole PDF \(no %%EOF at its end\)",
+                r"figures/fig\.svg: not a whole SVG \((no element found|unclosed token): line \d+, column \d+\)"]
+    lines = said.err.splitlines()
+    assert len(lines) == 3 and all(re.fullmatch(f"{pattern}; run snakemake --cores 2 publish", line)
+                                   for pattern, line in zip(patterns, lines)), lines
+
+
+def test_publish_replaces_a_damaged_tracked_pdf_whose_png_is_unchanged(drawings, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    shutil.copytree(drawings["tracked"].parent, "figures")
+    drawn = drawings["tracked"].with_suffix(".pdf")
+    cut(Path("figures/fig.pdf"), 0.4)
+    publish({"figures/fig.png": str(drawings["tracked"]), "figures/fig.pdf": str(drawn)}, "publish.log")
+    assert Path("figures/fig.pdf").read_bytes() == drawn.read_bytes()
+    log = Path("publish.log").read_text()
+    assert "figures/fig.png: kept (bytes identical)" in log
+    assert (f"figures/fig.pdf: updated from {drawn} (the tracked file was damaged: not a whole PDF (no %%EOF at its "
+            "end))") in log
+
+
+def test_a_publish_interrupted_mid_copy_leaves_every_tracked_file_whole(drawings, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    shutil.copytree(drawings["tracked"].parent, "figures")
+    before = Path("figures/fig.pdf").read_bytes()
+    copyfile = shutil.copyfile
+
+    def interrupted(source, target, **kwargs):  # half the bytes written, then Ctrl-C; other copies as they are
+        if not str(target).endswith(".partial"):
+            return copyfile(source, target, **kwargs)
+        Path(target).write_bytes(Path(source).read_bytes()[:len(Path(source).read_bytes()) // 2])
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(shutil, "copyfile", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        publish({"figures/fig.pdf": str(drawings["per_cent"].with_suffix(".pdf")),
+                 "figures/fig.png": str(drawings["per_cent"])}, "publish.log")
+    assert Path("figures/fig.pdf").read_bytes() == before
+    assert sorted(p.name for p in Path("figures").iterdir()) == ["fig.pdf", "fig.png", "fig.svg"]
+
+
+def test_a_damaged_file_of_the_run_is_refused_in_one_line_and_nothing_is_copied(drawings, tmp_path, monkeypatch,
+                                                                                capsys):
+    monkeypatch.chdir(tmp_path)
+    shutil.copytree(drawings["tracked"].parent, "figures")
+    shutil.copytree(drawings["per_cent"].parent, "results")
+    before = {p: p.read_bytes() for p in Path("figures").iterdir()}
+    cut(Path("results/fig.png"))
+    published = {"figures/fig.pdf": "results/fig.pdf", "figures/fig.png": "results/fig.png"}
+    refusal = (r"results/fig\.png: not a whole PNG \(image file is truncated.*\); draw it again with "
+               r"snakemake --cores 2 --forcerun results/fig\.png")
+    with pytest.raises(SystemExit) as failed:
+        publish(published, "publish.log")
+    assert re.fullmatch(f"publish failed: {refusal}", str(failed.value.code))
+    assert {p: p.read_bytes() for p in Path("figures").iterdir()} == before
+    monkeypatch.setattr(module, "PUBLISHED", published)
+    assert main(["--check"]) == 1
+    assert re.fullmatch(f"{refusal}\n", capsys.readouterr().err)

@@ -9,6 +9,10 @@ difference of its pixels of :data:`FIGURE_RMS_TOLERANCE`; a PDF by its source (r
 which not every machine has); a document where its text is equal outside its numbers and each number equal at its
 printed digits (``1.30e-14`` and ``1.3e-14`` print the same number).
 
+Every file is judged whole before it is compared or kept (:func:`damage`): a damaged file drawn by the run is
+refused before anything is copied, a damaged tracked file is replaced (``--check`` names it). Each tracked file is
+written beside its target and renamed into place, so that a publish killed at any moment leaves it whole.
+
 Measured on the long-run figure when it drew every cycle's error: curves moved by 1e-6 (relative) give an RMS of
 0.002, by 1e-4 0.9, by 1 per cent 4.1; one character of the legend changed gives 1.6. Rounding that differs from
 one CPU or BLAS kernel to another moves a computed value by about 1e-16, which moves no curve by a visible
@@ -25,10 +29,12 @@ import tempfile
 from collections.abc import Mapping, Sequence
 from decimal import Decimal
 from pathlib import Path
+from xml.etree import ElementTree
 
+from ..io.netcdf import replaced
 from .outputs import ARTICLE
 
-__all__ = ["FIGURE_RMS_TOLERANCE", "PUBLISHED", "check", "compare", "main", "publish"]
+__all__ = ["FIGURE_RMS_TOLERANCE", "PUBLISHED", "check", "compare", "damage", "main", "publish"]
 
 #: RMS pixel difference (of 255) within which a figure shows the same thing
 FIGURE_RMS_TOLERANCE = 0.1
@@ -46,14 +52,54 @@ PUBLISHED = {
 }
 #: a printed number: digits, an optional fraction and an optional exponent (a sign before it is text)
 _NUMBER = re.compile(r"\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
+#: how the detail of :func:`compare` begins for a tracked file that is not whole
+DAMAGED = "the tracked file was damaged: "
+#: what a PDF's ``startxref`` offset must point at: its cross-reference table or stream (an object)
+_XREF = re.compile(rb"xref|\d+\s+\d+\s+obj")
+
+
+def _pdf(data: bytes) -> str | None:
+    """What makes ``data`` not a whole PDF, or None; hand-written as no PDF library is among the dependencies,
+    and its header, end marker and cross-reference offset are what a cut-off copy loses."""
+    found = re.search(rb"startxref\s+(\d+)\s+%%EOF\s*\Z", data[-1024:])
+    if not data.startswith(b"%PDF-"):
+        return "no %PDF- at its start"
+    if not data.rstrip().endswith(b"%%EOF"):
+        return "no %%EOF at its end"
+    if not found:
+        return "no startxref offset before its %%EOF"
+    if not _XREF.match(data, int(found[1])):
+        return f"its startxref offset {int(found[1])} points at neither xref nor an object"
+    return None
+
+
+def damage(path: Path) -> str | None:
+    """What makes ``path`` not a whole file of its kind, or None if it is whole: a PNG must decode fully and end
+    with its IEND chunk, a PDF hold its header, end marker and cross-reference offset, an SVG parse as XML, any
+    other file decode as UTF-8 text."""
+    data = path.read_bytes()
+    if path.suffix == ".png":
+        from PIL import Image
+
+        try:
+            with Image.open(path, formats=["PNG"]) as image:
+                image.load()
+        except OSError as error:
+            return f"not a whole PNG ({error})"
+        return None if data.endswith(b"IEND\xaeB`\x82") else "not a whole PNG (no IEND chunk at its end)"
+    if path.suffix == ".pdf":
+        return None if (flaw := _pdf(data)) is None else f"not a whole PDF ({flaw})"
+    try:
+        ElementTree.fromstring(data) if path.suffix == ".svg" else data.decode("utf-8")
+    except (ElementTree.ParseError, UnicodeDecodeError) as error:
+        return f"not {'a whole SVG' if path.suffix == '.svg' else 'UTF-8 text'} ({error})"
+    return None
 
 
 def _figure(old: Path, new: Path) -> tuple[bool, str]:
     from matplotlib.testing.compare import compare_images
     from matplotlib.testing.exceptions import ImageComparisonFailure
 
-    if old.read_bytes() == new.read_bytes():
-        return True, "bytes identical"
     with tempfile.TemporaryDirectory() as folder:  # compare_images writes its difference image beside the files
         expected, actual = shutil.copy(old, Path(folder, "old.png")), shutil.copy(new, Path(folder, "new.png"))
         try:
@@ -79,13 +125,21 @@ def _document(old: str, new: str) -> tuple[bool, str]:
 def compare(tracked: str | Path, drawn: str | Path) -> tuple[bool, str]:
     """Whether the tracked file shows what the newly drawn one shows, and the measured difference in words; a
     PDF is judged by its source: a figure's by its PNG, the article's by its Typst source (its PDF carries the
-    run's date)."""
+    run's date). A tracked file that is not whole differs (its detail begins with :data:`DAMAGED`); a drawn one
+    that is not whole is refused (:class:`OSError`, naming the command that draws it again)."""
     tracked, drawn = Path(tracked), Path(drawn)
+    if (flaw := damage(drawn)) is not None:
+        raise OSError(f"{drawn}: {flaw}; draw it again with snakemake --cores 2 --forcerun {drawn}")
     if not tracked.is_file():
         return False, "no tracked file to compare with"
+    if tracked.read_bytes() == drawn.read_bytes():
+        return True, "bytes identical"
+    if (flaw := damage(tracked)) is not None:
+        return False, DAMAGED + flaw
     if tracked.suffix == ".pdf":
         source = ".typ" if tracked.stem == "article" else ".png"
-        return compare(tracked.with_suffix(source), drawn.with_suffix(source))
+        same, detail = compare(tracked.with_suffix(source), drawn.with_suffix(source))
+        return same, detail.replace(DAMAGED, f"judged by its {source}, which is damaged: ")
     if tracked.suffix == ".png":
         return _figure(tracked, drawn)
     return _document(tracked.read_text(encoding="utf-8"), drawn.read_text(encoding="utf-8"))
@@ -93,7 +147,8 @@ def compare(tracked: str | Path, drawn: str | Path) -> tuple[bool, str]:
 
 def publish(published: Mapping[str, str], log: str) -> None:
     """Copy each drawn file of ``published`` (tracked path: drawn path) over its tracked one where they differ
-    beyond the tolerance; say per file, in the log and on the console, what was compared and the difference."""
+    beyond the tolerance or where the tracked one is damaged; say per file, in the log and on the console, what
+    was compared and the difference."""
     from .logs import logged
 
     with logged(log, "publish") as logger:
@@ -101,7 +156,8 @@ def publish(published: Mapping[str, str], log: str) -> None:
         lines = []
         for (tracked, same, detail), drawn in zip(decided, published.values()):
             if not same:
-                shutil.copyfile(drawn, tracked)
+                with replaced(tracked) as partial:
+                    shutil.copyfile(drawn, partial)
             lines.append(f"{tracked}: kept ({detail})" if same else f"{tracked}: updated from {drawn} ({detail})")
             logger.info("%s", lines[-1])
         updated = sum(not same for _, same, _ in decided)
@@ -122,14 +178,21 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--check", action="store_true", required=True,
                         help="compare each tracked figure and document with the one the last run drew")
     parser.parse_args(argv)
-    results = check()
+    try:
+        results = check(PUBLISHED)
+    except OSError as error:  # a file of the run missing or damaged, or one the machine refuses to read
+        print(error, file=sys.stderr)
+        return 1
     for path, same, detail in results:
-        print(f"{path}: {'same' if same else 'DIFFERS'} ({detail})")
-    differing = [path for path, same, _ in results if not same]
+        if detail.startswith(DAMAGED):
+            print(f"{path}: {detail.removeprefix(DAMAGED)}; run snakemake --cores 2 publish", file=sys.stderr)
+        else:
+            print(f"{path}: {'same' if same else 'DIFFERS'} ({detail})")
+    differing = [path for path, same, detail in results if not same and not detail.startswith(DAMAGED)]
     if differing:
         print(f"{len(differing)} tracked file(s) differ from the run beyond the tolerance: {', '.join(differing)}; "
               "run `snakemake --cores 2 publish` and commit them if the code changed what they show", file=sys.stderr)
-    return 1 if differing else 0
+    return 0 if all(same for _, same, _ in results) else 1
 
 
 if __name__ == "__main__":
