@@ -122,9 +122,23 @@ rule run_stress:
 
 
 # The documents, in two jobs of few inputs each: the Markdown documents with the report's HTML (the landing text,
-# the claims register, REPLICATION.md), and the ReScience C article (escapement.pipeline.docs and .article).
+# the claims register, REPLICATION.md), and the ReScience C article (escapement.pipeline.docs and .article). The texts
+# they read are inputs and, by their contents, params: Snakemake follows an input's modification time only.
+DOC_TEXTS = {
+    "readme": "workflow/templates/README.md",
+    "replication": "workflow/templates/REPLICATION.md",
+    "timings": "workflow/templates/timings.md",
+}
+ARTICLE_TEXTS = {
+    "citation": "CITATION.cff",
+    "template": "workflow/templates/article.typ",
+    "bibliography": "workflow/templates/article.bib",
+}
+
+
 rule render_docs:
     input:
+        **DOC_TEXTS,
         claims="results/replication/claims.csv",
         stress="results/replication/stress.csv",
         readings="results/replication/readings.csv",
@@ -133,9 +147,6 @@ rule render_docs:
         long_run_timing="results/replication/long_run_timing.csv",
         stability="results/replication/stability_map.nc",
         stability_timing="results/replication/stability_map_timing.csv",
-        readme="workflow/templates/README.md",
-        replication="workflow/templates/REPLICATION.md",
-        timings="workflow/templates/timings.md",
     output:
         readme="results/replication/docs/README.md",
         replication="results/replication/docs/REPLICATION.md",
@@ -166,6 +177,8 @@ rule render_docs:
     conda:
         "../../environment/environment.yml"
     params:
+        paper=PAPER,  # the values the documents print: an edit of config/paper.yaml renders them again
+        texts=outputs.file_digest(DOC_TEXTS.values()),
         code=CODE,
     script:
         "../scripts/render_docs.py"
@@ -173,14 +186,12 @@ rule render_docs:
 
 rule render_article:
     input:
+        **ARTICLE_TEXTS,
         claims="results/replication/claims.csv",
         limits="results/replication/panel_limits.csv",
         checks="results/replication/checks.nc",
         readings="results/replication/readings.csv",
         benchmark="results/replication/work_precision.csv",
-        citation="CITATION.cff",
-        template="workflow/templates/article.typ",
-        bibliography="workflow/templates/article.bib",
         figures=[f"results/replication/figures/{name}.svg" for name in ARTICLE_FIGURES],
     output:
         pdf="results/replication/article/article.pdf",
@@ -193,6 +204,8 @@ rule render_article:
     conda:
         "../../environment/environment.yml"
     params:
+        paper=PAPER,
+        texts=outputs.file_digest(ARTICLE_TEXTS.values()),
         code=CODE,
     script:
         "../scripts/render_docs.py"

@@ -5,4 +5,4 @@ from escapement.pipeline.article import write_article
 from escapement.pipeline.docs import render_docs
 
 job = {"render_docs": render_docs, "render_article": write_article}[snakemake.rule]
-job(dict(snakemake.input), dict(snakemake.output), snakemake.log[0])
+job(dict(snakemake.input), dict(snakemake.output), snakemake.log[0], snakemake.params["paper"])

@@ -10,7 +10,6 @@ import re
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-import jinja2
 import yaml
 
 from ..io.netcdf import read_csv, read_variables, replaced, write_text
@@ -18,6 +17,7 @@ from ..paper.printed_axes import panel
 from ..verdict.rule import fmt
 from ..verdict.scores import joint_candidates, panel_candidates, read_scores, summary
 from ..verdict.tally import ORDER, findings
+from .docs import fill
 from .logs import logged
 from .tables import LIMIT_COLUMNS, WORK_PRECISION_COLUMNS, read_claims
 
@@ -106,9 +106,10 @@ def _readings(scores: Sequence[Mapping]) -> str:
     return ",\n".join(cells)
 
 
-def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[str, str], log: str) -> str:
+def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[str, str], log: str,
+                  config: Mapping) -> str:
     """The job of rule ``render_article``: the ``metadata``, ``source``, ``bibliography`` and ``pdf`` of ``outputs``
-    from the rule's ``inputs``. Returns the title."""
+    from the rule's ``inputs`` and the replication's ``config``. Returns the title."""
     import typst
 
     with logged(log, "render_article") as logger:
@@ -135,7 +136,8 @@ def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[st
                  "author_literals": [string(a["name"]) for a in meta["authors"]],
                  "keyword_literals": [string(k) for k in keywords(citation)],
                  "authors": [typ(a["name"]) for a in meta["authors"]], "rule": typ(RULE),
-                 "count": counts, "n_findings": len(found), "n_rows": sum(len(parts) for _, parts in found.values()),
+                 "config": config, "count": counts, "n_findings": len(found),
+                 "n_rows": sum(len(parts) for _, parts in found.values()),
                  # the limit cycles, and the exact solver's error in the benchmark
                  "number": {**number, "exact_error_velocity": typ(fmt(float(exact["error_velocity"]), 2))},
                  "verdict": {r["claim_id"]: typ(r["status"].replace("_", " ")) for r in rows},
@@ -147,8 +149,7 @@ def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[st
                  # the figures as the plotting jobs drew them, by their path from the source
                  "figure": {name: string(os.path.relpath(path, Path(outputs["source"]).parent))
                             for name, path in figures.items()}}
-        source = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True, autoescape=False
-                                    ).from_string(Path(inputs["template"]).read_text(encoding="utf-8")).render(names)
+        source = fill(Path(inputs["template"]).read_text(encoding="utf-8"), inputs["template"], names)
         root = Path(os.path.commonpath([Path(p).resolve() for p in (outputs["source"], *figures.values())]))
         write_text(Path(inputs["bibliography"]).read_text(encoding="utf-8"), outputs["bibliography"])
         write_text(yaml.safe_dump(meta, sort_keys=False, allow_unicode=True, width=100), outputs["metadata"])
