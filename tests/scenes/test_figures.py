@@ -77,8 +77,6 @@ def test_a_motion_that_stops_is_an_outcome_recorded_in_the_dataset_not_an_error(
     (shock_detail, {**FIG4, "acceleration_window": [-1.0, 2.0]}, "acceleration_window"),
     (shock_detail, {**FIG4, "velocity_window": "80-87"}, "velocity_window"),
     (shock_detail, {**FIG4, "samples_per_second": 0}, "samples_per_second"),
-    (shock_detail, {**FIG4, "samples_per_second": 100_000, "velocity_window": [0.0, 1e3]}, "samples_per_second"),
-    (phase_diagram, {**FIG5, "samples_per_period": 100_000, "n_cycles": 10_000}, "samples_per_period"),
     (phase_diagram, {**FIG5, "x0": float("nan")}, "x0"),
 ])
 def test_each_scene_refuses_its_bad_settings_naming_the_key_before_any_run(scene, settings, name):

@@ -76,7 +76,63 @@ rule escapement_error:
         "../scripts/simulate.py"
 
 
+# A map runs in the chunks its planning gave it (escapement.pipeline.plan.chunks: the fewest slices of its rows that
+# keep each job within its memory budget; one for the replication's maps), each chunk a job of its own, and the map's
+# rule joins their files into the map's one dataset.
+
+#: the memory a chunk job asks for (MB): its ensemble within the 2 GB budget it is planned to, and the interpreter's
+MAP_CHUNK_MB = 3000
+
+
+def map_chunk(block):
+    """The checked settings of the chunk of the map ``block`` the job makes (its study and chunk wildcards); one line
+    if the study has no such map or chunk."""
+
+    def params(w):
+        found = STUDIES.get(w.study, {}).get(block, {}).get("")
+        if found is None or int(w.chunk) >= found.chunks:
+            refuse(f"results/{w.study}/{KINDS[block].name}/chunk_{w.chunk}.nc")
+        return found.chunk(int(w.chunk))
+
+    return params
+
+
+def map_chunks(block, pattern):
+    """The files ``pattern`` of every chunk of the map ``block`` in the job's study, in order."""
+
+    def files(w):
+        found = STUDIES.get(w.study, {}).get(block, {}).get("")
+        if found is None:
+            refuse(f"results/{w.study}/{KINDS[block].name}.nc")
+        return [pattern.format(study=w.study, chunk=i) for i in range(found.chunks)]
+
+    return files
+
+
+rule existence_map_chunk:
+    output:
+        nc=temp("results/{study}/existence_map/chunk_{chunk}.nc"),
+    log:
+        "results/logs/{study}/existence_map/chunk_{chunk}.log",
+    wildcard_constraints:
+        chunk=r"\d+",
+    resources:
+        mem_mb=MAP_CHUNK_MB,
+    conda:
+        "../../environment/environment.yml"
+    params:
+        kind="existence_map",
+        settings=planned("existence_map", "results/{study}/existence_map.nc", "settings"),
+        chunks=planned("existence_map", "results/{study}/existence_map.nc", "chunks"),
+        scene=map_chunk("existence_map"),
+        code=CODE,
+    script:
+        "../scripts/simulate.py"
+
+
 rule existence_map:
+    input:
+        parts=map_chunks("existence_map", "results/{study}/existence_map/chunk_{chunk}.nc"),
     output:
         nc="results/{study}/existence_map.nc",
     log:
@@ -85,16 +141,29 @@ rule existence_map:
         "../../environment/environment.yml"
     params:
         kind="existence_map",
-        settings=planned(
-            "existence_map", "results/{study}/existence_map.nc", "settings"
-        ),
-        scene=planned("existence_map", "results/{study}/existence_map.nc", "checked"),
         code=CODE,
     script:
         "../scripts/simulate.py"
 
 
+use rule existence_map_chunk as stability_map_chunk with:
+    output:
+        nc=temp("results/{study}/stability_map/chunk_{chunk}.nc"),
+        timing=temp("results/{study}/stability_map/chunk_{chunk}_timing.csv"),
+    log:
+        "results/logs/{study}/stability_map/chunk_{chunk}.log",
+    params:
+        kind="stability_map",
+        settings=planned("stability_map", "results/{study}/stability_map.nc", "settings"),
+        chunks=planned("stability_map", "results/{study}/stability_map.nc", "chunks"),
+        scene=map_chunk("stability_map"),
+        code=CODE,
+
+
 rule stability_map:
+    input:
+        parts=map_chunks("stability_map", "results/{study}/stability_map/chunk_{chunk}.nc"),
+        timings=map_chunks("stability_map", "results/{study}/stability_map/chunk_{chunk}_timing.csv"),
     output:
         nc="results/{study}/stability_map.nc",
         timing="results/{study}/stability_map_timing.csv",
@@ -104,10 +173,6 @@ rule stability_map:
         "../../environment/environment.yml"
     params:
         kind="stability_map",
-        settings=planned(
-            "stability_map", "results/{study}/stability_map.nc", "settings"
-        ),
-        scene=planned("stability_map", "results/{study}/stability_map.nc", "checked"),
         code=CODE,
     script:
         "../scripts/simulate.py"

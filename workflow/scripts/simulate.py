@@ -1,5 +1,10 @@
-"""Glue: the simulation rules -> escapement.pipeline.simulate.simulate (each scene's settings in, its dataset out)."""
+"""Glue: the simulation rules -> escapement.pipeline.simulate (each scene's settings in, its dataset out; the chunks
+of a map in, its one dataset out)."""
 
-from escapement.pipeline.simulate import simulate
+from escapement.pipeline.simulate import gather, simulate
 
-simulate(snakemake.params.kind, snakemake.params.scene, dict(snakemake.output), snakemake.log[0], snakemake.rule)
+if "parts" in snakemake.input.keys():
+    gather(snakemake.params.kind, snakemake.input.parts, snakemake.input.get("timings", []), dict(snakemake.output),
+           snakemake.log[0], snakemake.rule)
+else:
+    simulate(snakemake.params.kind, snakemake.params.scene, dict(snakemake.output), snakemake.log[0], snakemake.rule)

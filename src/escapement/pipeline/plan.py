@@ -2,24 +2,31 @@
 the user's own from the merged configuration, where a kind of figure's scenes then run something the paper's do
 not (:func:`plan`). A scene's settings are a flat mapping (the model's keys, its block's and its own, later ones
 winning), checked by its settings class (:mod:`escapement.scenes.settings`); a study's changes are the dotted keys
-whose value differs from the paper's (:func:`changes`), and each kind's scenes carry those that reach it.
+whose value differs from the paper's (:func:`changes`), and each kind's scenes carry those that reach it. Every size a
+job holds is answered here: a run that cannot be split is refused beyond its bound, and a map larger than one job's
+memory budget runs in chunks of its rows (:func:`chunks`).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+import numpy as np
+
+from ..model.limits import MEMORY_BUDGET
 from ..model.parameters import ParameterError, Parameters
 from ..model.quantities import INITIAL_STATE, PARAMETERS, SYMMETRIC_DEFAULTS
 from ..paper.corrected import grazing_release
 from ..scenes.settings import (KINDS, REPLICATION, EscapementErrorScene, ExistenceMapScene, LongRunScene, PhaseScene,
-                               PoincareScene, Release, ShockScene, StabilityMapScene)
+                               PoincareScene, Release, ShockScene, SizeError, StabilityMapScene, as_typed)
+from ..solvers.ensemble import ensemble_bytes
 from .config import ConfigError
 
-__all__ = ["BLOCKS", "REPLICATION_ONLY", "Planned", "changes", "check_runs", "leaves", "plan", "replication_scenes",
-           "study_scenes"]
+__all__ = ["BLOCKS", "MAPS", "REPLICATION_ONLY", "Planned", "changes", "check_runs", "chunks", "leaves", "plan",
+           "replication_scenes", "study_scenes"]
 
 #: the blocks a study may change, and the replication's own, which only config/paper.yaml sets
 BLOCKS = ("model", *KINDS)
@@ -29,15 +36,44 @@ SETTINGS = {"fig3": PoincareScene, "fig4": ShockScene, "fig5": PhaseScene, "esca
             "existence_map": ExistenceMapScene, "stability_map": StabilityMapScene}
 #: the keys of a scene's mapping that place it, not settings of its run
 PLACING = ("study", "label", "changes")
+#: each map's rows (the axis its chunks split: each row's trajectories are independent of the others'), and the keys
+#: that size one row of a scene, with their values, and the cycles each of its trajectories runs in the ensemble
+MAPS = {StabilityMapScene: ("b", lambda s: ({"stability_map.F.n": len(s.F_values)}, 2)),  # the return map's two
+        ExistenceMapScene: ("a3", lambda s: ({"existence_map.F.n": len(s.F_values),
+                                              "existence_map.n_cycles": s.n_cycles}, s.n_cycles))}
+
+
+def chunks(scene: object, budget: int = MEMORY_BUDGET) -> int:
+    """The jobs ``scene`` runs in: for a map, the fewest chunks of its rows whose ensemble each fits ``budget``
+    bytes (:func:`~escapement.solvers.ensemble.ensemble_bytes`, which the ensemble checks), else 1; SizeError if
+    one row does not fit."""
+    if type(scene) not in MAPS:
+        return 1
+    axis, size = MAPS[type(scene)]
+    keys, cycles = size(scene)
+    row_bytes = ensemble_bytes(len(scene.F_values), cycles)
+    if row_bytes > budget:
+        raise SizeError(keys, row_bytes, budget, f"bytes of the ensemble of one row of {axis}",
+                        "a row of the map cannot be split")
+    return -(-len(getattr(scene, f"{axis}_values")) // (budget // row_bytes))
 
 
 @dataclass(frozen=True)
 class Planned:
     """A scene as planned: its flat ``settings`` (a rule's param, which Snakemake compares by its text to rerun a
-    job) and the settings object built and checked from them at planning (a rule's param the job runs)."""
+    job), the settings object built and checked from them at planning (a rule's param the job runs), and the jobs
+    it runs in (a map too large for one job's memory budget, in chunks of its rows: :func:`chunks`)."""
 
     settings: dict
     checked: object
+    chunks: int = 1
+
+    def chunk(self, index: int) -> object:
+        """The checked settings of the job ``index`` of a map's :attr:`chunks`: the map over a slice of its rows
+        (their sizes ``np.array_split``'s)."""
+        field = f"{MAPS[type(self.checked)][0]}_values"
+        rows = np.array_split(np.arange(len(getattr(self.checked, field))), self.chunks)[index]
+        return dataclasses.replace(self.checked, **{field: getattr(self.checked, field)[rows[0]:rows[-1] + 1]})
 
 
 def leaves(values: Mapping, prefix: str = "") -> dict:
@@ -51,20 +87,13 @@ def leaves(values: Mapping, prefix: str = "") -> dict:
     return out
 
 
-def _number(value: object) -> str:
-    """A value as a configuration gives it: a float by its shortest form (``2`` for 2.0), a list item by item."""
-    if isinstance(value, list | tuple):
-        return "[" + ", ".join(_number(v) for v in value) + "]"
-    return format(value, "g") if isinstance(value, float) and float(format(value, "g")) == value else str(value)
-
-
 def _worded(key: str, value: object) -> str:
     """``value`` with the units of the quantity ``key`` names (``fig5.K``, ``stability_map.F.start``), if any."""
     parts = key.split(".")
     name = parts[-2] if parts[-1] in ("start", "stop") and len(parts) > 1 else parts[-1]
     quantity = {**PARAMETERS, **INITIAL_STATE}.get(name)
     unit = "m" if "zones" in parts[:-1] else quantity.unit_label if quantity and not quantity.dimensionless else ""
-    return f"{_number(value)} {unit}".rstrip()
+    return f"{as_typed(value)} {unit}".rstrip()
 
 
 def changes(config: Mapping, paper: Mapping) -> dict[str, str]:
@@ -94,8 +123,8 @@ def _per_panel(fig5: Mapping, key: str, index: int, paper: Mapping):
         return value
     if len(value) != len(fig5["K"]):
         typed = "K" if fig5["K"] != paper.get("K") else key
-        raise ConfigError(f"fig5.{typed} = {_number(fig5[typed])} is invalid: fig5.K gives {len(fig5['K'])} panels "
-                          f"and fig5.{key} = {_number(value)} one {key} for each of {len(value)}: give fig5.{key} as "
+        raise ConfigError(f"fig5.{typed} = {as_typed(fig5[typed])} is invalid: fig5.K gives {len(fig5['K'])} panels "
+                          f"and fig5.{key} = {as_typed(value)} one {key} for each of {len(value)}: give fig5.{key} as "
                           f"one number or a list of {len(fig5['K'])}, one per spring constant")
     return value[index]
 
@@ -125,7 +154,10 @@ def study_scenes(study: str, blocks: Mapping, paper: Mapping | None = None) -> d
         try:
             found = _scene_mappings(block, blocks["model"], blocks[block], {"study": study},
                                     (paper or {}).get(block, {}))
-            scenes[block] = {label: Planned(s, SETTINGS[block].from_mapping(s)) for label, s in found.items()}
+            checked = {label: SETTINGS[block].from_mapping(s) for label, s in found.items()}
+            scenes[block] = {label: Planned(found[label], c, chunks(c)) for label, c in checked.items()}
+        except SizeError as err:
+            raise ConfigError(f"{tag}{err}") from None
         except ParameterError as err:
             raise ConfigError(f"{tag}{block}: {err}") from None
         except ConfigError as err:

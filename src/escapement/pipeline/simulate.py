@@ -1,16 +1,16 @@
 """The simulation jobs: a scene's settings in, its netCDF file out (for the scenes that time themselves, the wall
 times apart, in a CSV file): each kind's scene function (:mod:`escapement.scenes`) makes the dataset, this job logs
-its outcome and writes it."""
+its outcome and writes it. A map planned in chunks runs one job a chunk, and :func:`gather` joins their files."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from importlib import import_module
 
-from ..io.netcdf import write_csv, write_netcdf
+from ..io.netcdf import read_csv, read_netcdf, write_csv, write_netcdf
 from .logs import logged
 
-__all__ = ["SCENES", "TIMING_COLUMNS", "simulate"]
+__all__ = ["SCENES", "TIMING_COLUMNS", "gather", "simulate"]
 
 #: the module of each kind's scene function, which has the kind's name (imported by its job alone: the long run
 #: and the checks bring mpmath, the maps the ensemble)
@@ -34,7 +34,25 @@ def simulate(kind: str, scene, outputs: Mapping[str, str], log: str, rule: str =
             logger.info("outcome: %s: %s", ds.attrs["outcome"], ds.attrs["outcome_message"])
         for key, seconds in timings.items():
             logger.info("%s: %.3e", key, seconds)
-        write_netcdf(ds, outputs["nc"], history=f"escapement workflow, rule {rule or kind}: {outputs['nc']}")
-        if "timing" in outputs:
-            write_csv([{"measurement": k, "seconds": repr(float(v))} for k, v in timings.items()], TIMING_COLUMNS,
-                      outputs["timing"])
+        _write(ds, timings, outputs, f"escapement workflow, rule {rule or kind}: {outputs['nc']}")
+
+
+def gather(kind: str, parts: Sequence[str], timings: Sequence[str], outputs: Mapping[str, str], log: str,
+           rule: str = "") -> None:
+    """The map of the kind ``kind`` from the files of its chunks (``parts``, in order, and their ``timings``, if it
+    measures any) to ``outputs`` as :func:`simulate` writes them."""
+    from ..scenes.maps import gather as joined
+
+    with logged(log, kind) as logger:
+        logger.info("%s: %d chunks %s", outputs["nc"], len(parts), ", ".join(parts))
+        measured = [{row["measurement"]: float(row["seconds"]) for row in read_csv(path, TIMING_COLUMNS)}
+                    for path in timings]
+        ds, timing = joined([read_netcdf(path) for path in parts], measured)
+        _write(ds, timing, outputs, f"escapement workflow, rule {rule or kind}: {outputs['nc']}")
+
+
+def _write(ds, timings: Mapping[str, float], outputs: Mapping[str, str], history: str) -> None:
+    write_netcdf(ds, outputs["nc"], history=history)
+    if "timing" in outputs:
+        write_csv([{"measurement": k, "seconds": repr(float(v))} for k, v in timings.items()], TIMING_COLUMNS,
+                  outputs["timing"])

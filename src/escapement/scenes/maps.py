@@ -9,12 +9,16 @@ the wall times it measured, which vary from run to run and never enter a dataset
   mirror image's ``F*``) below which no limit cycle exists.
 * :func:`escapement_error`: the limit cycle's rate against its amplitude for each impulse zone and force, split
   as Airy did into the impacts' and the zones' parts (the corrected Eqs. (24)-(25)).
+
+A map's rows (its first axis) are independent trajectories: a map whose ensemble would exceed one job's memory
+budget runs in chunks, each the map over a slice of its rows (:mod:`escapement.pipeline.plan`), and :func:`gather`
+joins their datasets into the map's one dataset.
 """
 
 from __future__ import annotations
 
 import time
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import xarray as xr
@@ -30,7 +34,26 @@ from ..studies.poincare import ensemble_return_map, return_map, stability_grid
 from .cf import MODEL_INPUT, QUALITY, assemble, global_attributes, parameter_variables, scalar_variable
 from .settings import EscapementErrorScene, ExistenceMapScene, StabilityMapScene
 
-__all__ = ["escapement_error", "existence_map", "mirror_image", "stability_map"]
+__all__ = ["escapement_error", "existence_map", "gather", "mirror_image", "stability_map"]
+
+#: the cells the stability map times the scalar solver on (an even sample)
+SPEED_SAMPLE = 100
+
+
+def gather(parts: Sequence[xr.Dataset], timings: Sequence[Mapping[str, float]] = ()) -> tuple[xr.Dataset, dict]:
+    """A map from the datasets of its chunks in order, joined along its rows; and the stability map's costs per
+    trajectory over them from its chunks' ``timings`` (each chunk's weighted by its trajectories, the scalar solver's
+    by the cells it timed), the speed-up their ratio."""
+    axis = parts[0]["outcome"].dims[0]  # the rows, which the chunks split
+    joined = xr.concat([ds.drop_encoding() for ds in parts], axis, data_vars="minimal", coords="minimal",
+                       compat="equals", join="exact", combine_attrs="override")
+    if not timings:
+        return joined, {}
+    cells = np.array([ds.sizes["b"] * ds.sizes["F"] for ds in parts])
+    ensemble, scalar = (float(np.average([t[key] for t in timings], weights=weights)) for key, weights in (
+        ("ensemble_seconds_per_trajectory", cells), ("scalar_seconds_per_trajectory", np.minimum(cells, SPEED_SAMPLE))))
+    return joined, {"ensemble_seconds_per_trajectory": ensemble, "scalar_seconds_per_trajectory": scalar,
+                    "ensemble_speedup_per_trajectory": scalar / ensemble}
 
 
 def _coords(**axes: np.ndarray) -> dict:
@@ -44,7 +67,7 @@ def _grid(values, coords: dict, units: str | None, long_name: str, **attrs) -> x
     return xr.DataArray(np.asarray(values), dims=tuple(coords), coords=coords, attrs=described)
 
 
-def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = 100) -> tuple[xr.Dataset, dict]:
+def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = SPEED_SAMPLE) -> tuple[xr.Dataset, dict]:
     """The stability map and, apart from it, the cost per trajectory of the ensemble and of the scalar solver
     looped over an even sample of ``speed_sample`` cells, both at the fixed points, and the ensemble's speed-up."""
     scene = settings if isinstance(settings, StabilityMapScene) else StabilityMapScene.from_mapping(settings)

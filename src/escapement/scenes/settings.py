@@ -12,17 +12,19 @@ shows, and the paper's figure it reproduces where it has one.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..model.parameters import ParameterError, Parameters, check_initial_state
+from ..model.printing import texts
 from ..studies.readings import AMPLITUDES as DEFINED_AMPLITUDES
 
 __all__ = ["KINDS", "REPLICATION", "EscapementErrorScene", "ExistenceMapScene", "Kind", "LongRunScene",
-           "PhaseScene", "PoincareScene", "Release", "ShockScene", "StabilityMapScene", "Study", "positive_int",
-           "time_window"]
+           "PhaseScene", "PoincareScene", "Release", "ShockScene", "SizeError", "StabilityMapScene", "Study",
+           "as_typed", "positive_int", "time_window"]
 
 #: the study of the paper's scenes (the others are the user's own, by their name)
 REPLICATION = "replication"
@@ -164,6 +166,30 @@ AMPLITUDES = tuple(DEFINED_AMPLITUDES)
 MAX_SAMPLES = 10_000_000
 
 
+def as_typed(value: object) -> str:
+    """A value as a configuration gives it: a float by its shortest form (``2`` for 2.0), a list item by item."""
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(as_typed(v) for v in value) + "]"
+    return format(value, "g") if isinstance(value, float) and float(format(value, "g")) == value else str(value)
+
+
+class SizeError(ValueError):
+    """A scene larger than one job holds and that is not split: the dotted keys that size it with their values, what
+    they ask for beside the most one job holds, and why it is not split."""
+
+    def __init__(self, keys: Mapping[str, object], asked: float, most: float, what: str, why: str) -> None:
+        first, *rest = (f"{key} = {as_typed(value)}" for key, value in keys.items())
+        said = first + (f" with {' and '.join(rest)}" if rest else "")
+        short = [re.sub(r"e\+0*", "e", text) for text in texts([asked, most], 3)]  # 2e10, 1.2e8
+        super().__init__(f"{said}: {short[0]} {what}, at most {short[1]} ({why})")
+
+
+def _samples(keys: Mapping[str, object], samples: float) -> None:
+    """SizeError if a run's ``samples`` (as ``keys`` ask for them) exceed :data:`MAX_SAMPLES`."""
+    if samples > MAX_SAMPLES:
+        raise SizeError(keys, samples, MAX_SAMPLES, "samples of one trajectory", "one trajectory cannot be split")
+
+
 @dataclass(frozen=True)
 class Release:
     """The state at ``t = 0+`` (after any jump, as the paper's Eq. (2) writes it): displacement and velocity."""
@@ -211,10 +237,8 @@ class ShockScene:
     def from_mapping(cls, values: Mapping) -> ShockScene:
         windows = {name: time_window(name, values[name]) for name in ("velocity_window", "acceleration_window")}
         rate = _count("fig4.samples_per_second", values["samples_per_second"])
-        for name, (lo, hi) in windows.items():
-            if (hi - lo) * rate > MAX_SAMPLES:
-                raise ParameterError("samples_per_second", rate, f"at most {MAX_SAMPLES:_} samples over the "
-                                     f"{name} of {hi - lo:g} s ({(hi - lo) * rate:.3g} asked)")
+        ends = [end for window in windows.values() for end in window]  # sampled over the union of the windows
+        _samples({f"fig4.{k}": values[k] for k in (*windows, "samples_per_second")}, (max(ends) - min(ends)) * rate)
         return cls(Study.from_mapping(values), Parameters.from_mapping(values), Release.from_mapping(values),
                    windows["velocity_window"], windows["acceleration_window"], rate)
 
@@ -233,9 +257,7 @@ class PhaseScene:
     def from_mapping(cls, values: Mapping) -> PhaseScene:
         n_cycles = _count("fig5.n_cycles", values["n_cycles"])
         per_period = _count("fig5.samples_per_period", values["samples_per_period"])
-        if n_cycles * per_period > MAX_SAMPLES:
-            raise ParameterError("samples_per_period", per_period, f"at most {MAX_SAMPLES:_} samples with "
-                                 f"n_cycles = {n_cycles} ({n_cycles * per_period:_} asked)")
+        _samples({"fig5.n_cycles": n_cycles, "fig5.samples_per_period": per_period}, n_cycles * per_period)
         return cls(Study.from_mapping(values), Parameters.from_mapping(values), Release.from_mapping(values),
                    n_cycles, per_period)
 
