@@ -133,12 +133,12 @@ ROWS = [
 def test_csv_round_trip(tmp_path):
     path = tmp_path / "claims.csv"
     write_csv(ROWS, COLUMNS, path)
-    assert path.read_text().splitlines()[0] == ",".join(COLUMNS)
+    assert path.read_text().splitlines()[1] == ",".join(COLUMNS)  # under the line of its row count and digest
     assert read_claims(path) == ROWS
 
 
 def test_csv_with_other_columns_is_rejected(tmp_path):
     path = tmp_path / "bad.csv"
-    path.write_text("a,b\n1,2\n")
+    write_csv([{"a": 1, "b": 2}], ["a", "b"], path)
     with pytest.raises(DatasetError, match="bad.csv: not a table with the columns"):
         read_claims(path)

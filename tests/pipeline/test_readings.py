@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal
@@ -10,6 +9,7 @@ from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal
 import pytest
 import yaml
 
+from escapement.io.netcdf import read_csv
 from escapement.paper.printed_axes import PANELS
 from escapement.verdict.scores import Candidates
 from escapement.pipeline.readings import COLUMNS, limits_match, score_readings, score_table
@@ -201,8 +201,7 @@ def test_the_job_writes_the_table_and_logs_the_best(tmp_path):
     }
     out, log = tmp_path / "readings" / "axis_scores.csv", tmp_path / "score_readings.log"
     score_readings(str(out), str(log), settings)
-    with open(out, newline="") as handle:
-        rows = list(csv.DictReader(handle))
+    rows = read_csv(out, COLUMNS)
     assert rows and list(rows[0]) == COLUMNS
     assert {(r["figure"], r["panel"]) for r in rows} == {(p.figure, p.name) for p in PANELS}
     text = log.read_text()

@@ -2,12 +2,12 @@
 per-cycle rows timed on an injected clock, so that their times and ratios are known by hand (the floors' rows
 are measured for real, and their ratios tested on an injected clock in tests/benchmarks/test_floor.py)."""
 
-import csv
 import math
 from types import SimpleNamespace
 
 from benchmarks.floor import floor_rows
 
+from escapement.io.netcdf import read_csv
 from escapement.pipeline.studies import run_speed
 from escapement.studies import benchmark
 from escapement.pipeline.tables import SPEED_COLUMNS, WORK_PRECISION_COLUMNS
@@ -25,8 +25,7 @@ def _speed(target: float) -> dict:
 def _run(tmp_path, target):
     out, head = tmp_path / "speed.csv", tmp_path / "headline.csv"
     run_speed(SCENE, _speed(target), str(out), str(head), str(tmp_path / "speed.log"), floors=floor_rows)
-    with open(out) as f, open(head) as g:
-        return list(csv.DictReader(f)), list(csv.DictReader(g))
+    return read_csv(out, SPEED_COLUMNS), read_csv(head, WORK_PRECISION_COLUMNS)
 
 
 def _durations(monkeypatch, durations):

@@ -3,12 +3,20 @@ each written to a temporary file beside its target and renamed into place, so th
 file. A symbolic link is written through (the link stays, the file it names gets the data). A Ctrl-C during a
 netCDF write or read is raised as soon as it returns, and an interrupted write leaves no file; the temporary files
 of a killed process are removed by the next write of the same target.
+
+Every table and dataset proves it is whole before it is read. A CSV file's first line is ``# rows: N; sha256: <hex>``,
+the digest of the bytes after it; a netCDF file's global attribute ``sha256`` is the digest of its stored variables
+(name, dimensions, type, shape, raw bytes) and of every attribute but itself (Fletcher-32, on the variables alone,
+does not cover the attributes). A file cut, emptied or changed is refused in one line naming the command that
+rebuilds it.
 """
 
 from __future__ import annotations
 
 import csv
 import errno
+import hashlib
+import io
 import os
 import re
 import signal
@@ -29,10 +37,62 @@ __all__ = ["DatasetError", "interrupt_deferred", "read_csv", "read_netcdf", "rea
 
 #: the suffix of the temporary file a write fills before renaming it to its target
 PARTIAL = ".partial"
+#: the global attribute of a netCDF file that holds its digest (:func:`netcdf_digest`)
+DIGEST = "sha256"
+#: what netCDF4 and HDF5 raise on reading a damaged file (its data, its attributes, its names)
+DAMAGED = (OSError, RuntimeError, AttributeError, KeyError, IndexError, ValueError, TypeError, OverflowError,
+           MemoryError)
 
 
 class DatasetError(RuntimeError):
     """A file is missing, damaged, or lacks what it should hold; the message names it."""
+
+
+def damaged(path: str | os.PathLike, why: str) -> DatasetError:
+    """The one-line refusal of the damaged file ``path``, naming the command that rebuilds it."""
+    return DatasetError(f"{path}: damaged ({' '.join(why.split())}); rebuild it: snakemake --cores 2 --forcerun {path}")
+
+
+def netcdf_digest(nc) -> str:
+    """The sha256 of the open netCDF4 dataset ``nc`` the module's docstring describes, its variables read raw (no
+    masking, scaling or joining of characters), so that no decoding can change it."""
+    import numpy as np
+
+    nc.set_auto_maskandscale(False)
+    nc.set_auto_chartostring(False)
+    digest = hashlib.sha256()
+
+    def add(*parts):
+        for part in parts:
+            part = np.asarray(part)
+            digest.update(repr(part.ravel().tolist()).encode() if part.dtype == object else part.tobytes())
+            digest.update(f"\0{part.dtype.str}{part.shape}\0".encode())
+
+    add(*(x for name in sorted(set(nc.ncattrs()) - {DIGEST}) for x in (name, nc.getncattr(name))))
+    for name, variable in sorted(nc.variables.items()):
+        add(name, str(variable.dtype), *variable.dimensions, variable.shape, variable[...])
+        add(*(x for attr in sorted(variable.ncattrs()) for x in (attr, variable.getncattr(attr))))
+    return digest.hexdigest()
+
+
+@contextmanager
+def checked_netcdf(path: str | os.PathLike):
+    """The netCDF4 dataset of ``path``, open, once its digest is checked; :class:`DatasetError` naming the file and
+    the command that rebuilds it if it is missing, lacks its digest, or is damaged (whatever netCDF4 raises)."""
+    import netCDF4
+
+    try:
+        with interrupt_deferred(), netCDF4.Dataset(path) as nc:
+            stored = nc.getncattr(DIGEST) if DIGEST in nc.ncattrs() else None
+            if stored != netcdf_digest(nc):
+                raise damaged(path, f"its content does not match its digest ({DIGEST} = {stored!r})")
+            yield nc
+    except DatasetError:
+        raise
+    except FileNotFoundError as err:
+        raise DatasetError(f"{path}: no such netCDF file") from err
+    except DAMAGED as err:
+        raise damaged(path, f"{type(err).__name__}: {getattr(err, 'strerror', None) or err}") from err
 
 
 def stale_partials(path: str | os.PathLike) -> list[Path]:
@@ -111,7 +171,9 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, history: str | None = 
     """Write ``ds`` to ``path`` (as :func:`replaced`) with its provenance (``history``: what wrote it, by default
     this process's command line): data variables compressed (zlib level 4), every variable with a Fletcher-32
     checksum, coordinates without ``_FillValue``. A Ctrl-C (:func:`interrupt_deferred`) is raised when the write
-    returns, and no file is left."""
+    returns, and no file is left. Its digest (:func:`netcdf_digest`) is stamped on the written file."""
+    import netCDF4
+
     ds = ds.copy()
     ds.attrs.update(provenance_attributes(history or command_line()))
     encoding = {name: {"zlib": True, "complevel": 4, "fletcher32": True} for name in ds.data_vars}
@@ -120,23 +182,22 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, history: str | None = 
         try:
             with interrupt_deferred():
                 ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)
+                with netCDF4.Dataset(tmp, "a") as nc:
+                    nc.setncattr(DIGEST, netcdf_digest(nc))
         except (OSError, RuntimeError) as err:  # what netCDF4 raises when the library fails
             raise DatasetError(f"{path}: cannot write the netCDF file ({type(err).__name__}: {err})") from err
     return Path(path)
 
 
 def read_netcdf(path: str | os.PathLike, required: Iterable[str] = ()) -> xr.Dataset:
-    """The dataset of ``path``, loaded with its checksums checked; :class:`DatasetError` naming the file if it cannot be
-    read or lacks a ``required`` variable. A Ctrl-C (:func:`interrupt_deferred`) is raised when it returns."""
+    """The dataset of ``path``, loaded once :func:`checked_netcdf` has checked it; :class:`DatasetError` naming the
+    file if not, or if it lacks a ``required`` variable. A Ctrl-C (:func:`interrupt_deferred`) is raised when it
+    returns."""
     import xarray as xr
 
-    try:
-        with interrupt_deferred(), xr.open_dataset(path, engine="netcdf4") as ds:
-            loaded = ds.load()
-    except FileNotFoundError as err:
-        raise DatasetError(f"{path}: no such netCDF file") from err
-    except (OSError, RuntimeError, ValueError) as err:  # netCDF4 and xarray on a damaged file
-        raise DatasetError(f"{path}: not a readable netCDF file ({type(err).__name__}: {err})") from err
+    with checked_netcdf(path) as nc:
+        loaded = xr.open_dataset(xr.backends.NetCDF4DataStore(nc)).load()
+    loaded.set_close(None)  # the file is closed: read from the checked handle, not opened again
     missing = [name for name in required if name not in loaded.variables]
     if missing:
         raise DatasetError(f"{path}: lacks the variable(s) {', '.join(missing)}")
@@ -146,18 +207,12 @@ def read_netcdf(path: str | os.PathLike, required: Iterable[str] = ()) -> xr.Dat
 def read_variables(path: str | os.PathLike, names: Iterable[str]) -> dict:
     """The variables ``names`` of the netCDF file ``path`` as arrays, read without xarray (a job that needs a few
     numbers starts in a fraction of xarray's import); :class:`DatasetError` naming the file as :func:`read_netcdf`."""
-    import netCDF4
-
     names = list(names)
-    try:
-        with interrupt_deferred(), netCDF4.Dataset(path) as nc:
-            nc.set_auto_mask(False)  # a missing value is NaN, as xarray reads it
-            missing = [name for name in names if name not in nc.variables]
-            found = {name: nc[name][...] for name in names if name not in missing}
-    except FileNotFoundError as err:
-        raise DatasetError(f"{path}: no such netCDF file") from err
-    except (OSError, RuntimeError) as err:  # what netCDF4 raises on a damaged file
-        raise DatasetError(f"{path}: not a readable netCDF file ({type(err).__name__}: {err})") from err
+    with checked_netcdf(path) as nc:
+        nc.set_auto_mask(False)  # a missing value is NaN, as xarray reads it
+        nc.set_auto_chartostring(True)
+        missing = [name for name in names if name not in nc.variables]
+        found = {name: nc[name][...] for name in names if name not in missing}
     if missing:
         raise DatasetError(f"{path}: lacks the variable(s) {', '.join(missing)}")
     return found
@@ -169,20 +224,33 @@ def write_text(text: str, path: str | os.PathLike) -> None:
 
 
 def write_csv(rows: Iterable[Mapping], columns: list[str], path: str | os.PathLike) -> None:
-    with replaced(path) as tmp, open(tmp, "w", newline="", encoding="utf-8") as handle:
-        writer = csv.DictWriter(handle, fieldnames=columns, lineterminator="\n")
-        writer.writeheader()
-        writer.writerows(rows)
+    """The table ``rows`` with the header ``columns``, under the first line of its row count and digest."""
+    text, rows = io.StringIO(), list(rows)
+    writer = csv.DictWriter(text, fieldnames=columns, lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    body = text.getvalue().encode("utf-8")
+    with replaced(path) as tmp:
+        tmp.write_bytes(f"# rows: {len(rows)}; sha256: {hashlib.sha256(body).hexdigest()}\n".encode() + body)
 
 
 def read_csv(path: str | os.PathLike, columns: list[str]) -> list[dict[str, str]]:
-    """The rows of ``path``, whose header must be ``columns``; :class:`DatasetError` naming the file if not."""
+    """The rows of ``path``, whose header must be ``columns``, once its row count and digest are checked;
+    :class:`DatasetError` naming the file (and the command that rebuilds it) if not."""
     try:
-        with open(path, newline="", encoding="utf-8") as handle:
-            reader = csv.DictReader(handle)
-            rows = list(reader)
+        head, _, body = Path(path).read_bytes().partition(b"\n")
     except OSError as err:
         raise DatasetError(f"{path}: cannot be read ({err})") from err
+    stamp = re.fullmatch(rb"# rows: (\d+); sha256: ([0-9a-f]{64})", head)
+    if stamp is None:
+        raise damaged(path, f"its first line is {head[:80]!r}, not '# rows: N; sha256: <hex>'")
+    if hashlib.sha256(body).hexdigest() != stamp[2].decode():
+        raise damaged(path, "its content does not match its digest")
+    reader = csv.DictReader(io.StringIO(body.decode("utf-8"), newline=""))
+    rows = list(reader)
+    if len(rows) != int(stamp[1]):
+        raise damaged(path, f"it holds {len(rows)} rows, its first line says {int(stamp[1])}")
     if list(reader.fieldnames or ()) != columns:
-        raise DatasetError(f"{path}: not a table with the columns {', '.join(columns)}")
+        raise DatasetError(f"{path}: not a table with the columns {', '.join(columns)}; rebuild it: "
+                           f"snakemake --cores 2 --forcerun {path}")
     return rows

@@ -1,5 +1,6 @@
 """One log file per job: what it did, how long it took, and why it failed: one line when the machine refused (a
-read-only folder, a full disk: an OSError), the traceback for anything else."""
+read-only folder, a full disk: an OSError) or a file it reads is missing or damaged (a DatasetError), the traceback
+for anything else."""
 
 from __future__ import annotations
 
@@ -8,6 +9,8 @@ import logging
 import time
 from collections.abc import Iterator
 from pathlib import Path
+
+from ..io.netcdf import DatasetError
 
 __all__ = ["logged"]
 
@@ -25,7 +28,7 @@ def logged(log: str | Path, what: str) -> Iterator[logging.Logger]:
     try:
         yield logger
         logger.info("%s done in %.3f s", what, time.perf_counter() - start)
-    except OSError as err:  # not a fault of the code: the job fails with one line naming the file and the cause
+    except (OSError, DatasetError) as err:  # not a fault of the code: one line naming the file and the cause
         logger.error("%s failed: %s", what, err)
         raise SystemExit(f"{what} failed: {err}") from None
     except Exception:

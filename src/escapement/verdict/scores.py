@@ -5,11 +5,11 @@ equivalent. Imports neither the solvers nor matplotlib.
 
 from __future__ import annotations
 
-import csv
 from collections import defaultdict
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
+from ..io.netcdf import read_csv
 from ..paper.printed_axes import PANELS
 
 __all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "DEFAULT_LOCATOR", "PRINTED_STEP", "TICKS", "Candidates",
@@ -57,11 +57,9 @@ class Candidates:
 
 
 def read_scores(path: str) -> list[dict]:
-    """The score table written by :func:`escapement.pipeline.readings.score_readings`, its numbers parsed."""
-    with open(path, newline="") as handle:
-        rows = list(csv.DictReader(handle))
-    if not rows or list(rows[0]) != COLUMNS:
-        raise ValueError(f"{path}: not a score table of the readings (columns {', '.join(COLUMNS)})")
+    """The score table written by :func:`escapement.pipeline.readings.score_readings`, checked whole
+    (:func:`escapement.io.netcdf.read_csv`), its numbers parsed."""
+    rows = read_csv(path, COLUMNS)
     for row in rows:
         row.update({name: float(row[name]) for name in _NUMBERS}, matches=int(row["matches"]))
     return rows
