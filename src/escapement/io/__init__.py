@@ -1,6 +1,7 @@
-"""Input and output: netCDF, CSV and text files written atomically and read with clear errors
-(:mod:`.netcdf`), stamped with their provenance (:mod:`.provenance`). It imports nothing of the package but
-its version: the datasets it writes are made by :mod:`escapement.scenes`."""
+"""Input and output: netCDF, CSV and text files written atomically, each table and dataset with its digest, and
+read only once checked whole, with one-line errors (:mod:`.netcdf`), stamped with their provenance
+(:mod:`.provenance`). It imports nothing of the package but its version: the datasets it writes are made by
+:mod:`escapement.scenes`."""
 
 from .._lazy import lazy_exports
 

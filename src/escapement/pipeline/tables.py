@@ -1,4 +1,4 @@
-"""The workflow's tables, read back with their columns checked."""
+"""The workflow's tables, read back with their digests and columns checked (:func:`escapement.io.netcdf.read_csv`)."""
 
 from __future__ import annotations
 
