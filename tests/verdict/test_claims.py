@@ -43,6 +43,16 @@ def written() -> dict:
     return yaml.load(REGISTER.read_text(), Loader=yaml.CSafeLoader)
 
 
+def quoted() -> list[str]:
+    """The sentences the claims quote, whitespace collapsed."""
+    return [" ".join(c["quote"].split()) for c in written()["claims"] if "quote" in c]
+
+
+def listed() -> list[str]:
+    """The sentences the register lists as stating no result, whitespace collapsed."""
+    return [" ".join(e["sentence"].split()) for e in written()["no_result"]]
+
+
 def claim_of(claim_id: str) -> dict:
     return next(c for c in register() if c["id"] == claim_id)
 
@@ -81,8 +91,53 @@ def test_every_quote_and_cited_sentence_is_the_papers_text_and_every_cited_one_a
     if not path:
         pytest.skip("ESCAPEMENT_PAPER_TEXT does not name the paper's text file")
     text = " ".join(Path(path).read_text().split())
-    for sentence in {*(c["quote"] for c in written()["claims"] if "quote" in c), *cited.values()}:
+    for sentence in {*quoted(), *cited.values()}:
         assert " ".join(sentence.split()) in text, sentence
+
+
+#: the headings of Secs. 3-5 in the paper's text, which open no sentence
+HEADINGS = (r"\d(?:\.\d)?\. (?:The dynamics of the model|Impulsive differential equation|Poincare map|Solution of "
+            r"the system|The stability|Simulation results|Conclusions) ")
+
+
+def sentences_of_secs_3_to_5(text: str) -> list[str]:
+    """The sentences of Secs. 3-5 of the paper's text, whitespace collapsed: from Sec. 3's heading to Appendix A,
+    without the running heads, the page numbers, the headings and the figures' printed text (ticks, axis titles and
+    captions, between Sec. 4's first paragraph and its text on Fig. 4). A sentence ends at '.', '?' or '!', or at an
+    equation's number ('(16)', '(9a)'), before a word that starts with a capital letter: an equation is a part of
+    the sentence that introduces it."""
+    body = text[text.index("3. The dynamics of the model"):text.index("Appendix A:")]
+    body = re.sub(r"^(J\. Mao et al\. / .*|\d+)$", "", body, flags=re.M)
+    body = re.sub(r"(?<=convergence properties\.).*(?=Figure 4 shows)", "", body, flags=re.S)
+    return re.findall(r"\S.*?(?:[.?!]|\(\d\d?[a-e]?\))(?=\s+[A-Z]|$)", re.sub(HEADINGS, "", " ".join(body.split())))
+
+
+def test_every_sentence_of_secs_3_to_5_is_quoted_by_a_claim_or_listed_as_stating_no_result():
+    """Each sentence of Secs. 3-5 (:func:`sentences_of_secs_3_to_5`) holds a claim's quote or a listed sentence, or
+    lies in a quote (the extraction runs a few sentences together around their equations, and a claim may quote
+    only the equation of its sentence); each listed sentence is one of them, whole."""
+    path = os.environ.get("ESCAPEMENT_PAPER_TEXT")
+    if not path:
+        pytest.skip("ESCAPEMENT_PAPER_TEXT does not name the paper's text file")
+    sentences = sentences_of_secs_3_to_5(Path(path).read_text())
+    assert sentences[0].startswith("In order to study the dynamics of the escapement")
+    assert sentences[-1] == "The result indicates that the model can describe the system properly."
+    missed = [s for s in sentences if not any(t in s or s in t for t in (*quoted(), *listed()))]
+    assert not missed, missed
+    assert set(listed()) <= set(sentences), set(listed()) - set(sentences)
+
+
+def test_each_sentence_stating_no_result_says_why_and_none_is_also_quoted(tmp_path):
+    """The sentences listed as stating no result, each with why (the schema refuses one without), none of them
+    quoted by a claim, in whole or in part, and none listed twice."""
+    entries = written()["no_result"]
+    assert entries and all(e["sentence"].strip() and e["why"].strip() for e in entries)
+    assert [s for s in listed() if any(q in s or s in q for q in quoted())] == []
+    assert len(set(listed())) == len(entries)
+    path = tmp_path / "claims.yaml"
+    path.write_text(yaml.dump({**written(), "no_result": [{"sentence": entries[0]["sentence"]}]}, allow_unicode=True))
+    with pytest.raises(ValueError, match=f"^{path}: no_result/0: 'why' is a required property \\(at the entry\\)$"):
+        cl.load_claims(path)
 
 
 def test_reason_and_conclusion_are_parts_never_readings():

@@ -61,7 +61,8 @@ def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, run
         claim = data["claims"][where[1]] if where[:1] == ["claims"] and len(where) > 1 else {}
         name = f"claim '{claim['id']}'" if "id" in claim else "/".join(map(str, where))
         message = f"{error.instance!r} is a value this claim may not have" if error.validator is None else error.message
-        raise ValueError(f"{path}: {name}: {message} (at {'/'.join(map(str, where[2:])) or 'the claim'})")
+        at = "/".join(map(str, where[2:])) or ("the claim" if claim else "the entry")
+        raise ValueError(f"{path}: {name}: {message} (at {at})")
     quoted = Counter(claim.get("quote") for claim in data["claims"])
     paper, seen = [*quoted, *data.get("cited", {}).values()], {"id": set(), "part": set()}
     for claim in data["claims"]:
