@@ -39,9 +39,9 @@ __all__ = ["DatasetError", "interrupt_deferred", "read_csv", "read_netcdf", "rea
 PARTIAL = ".partial"
 #: the global attribute of a netCDF file that holds its digest (:func:`netcdf_digest`)
 DIGEST = "sha256"
-#: what netCDF4 and HDF5 raise on reading a damaged file (its data, its attributes, its names)
-DAMAGED = (OSError, RuntimeError, AttributeError, KeyError, IndexError, ValueError, TypeError, OverflowError,
-           MemoryError)
+#: what netCDF4 and HDF5 raise on reading a damaged file (its header, its data, its attributes, its names: a
+#: UnicodeDecodeError is a ValueError)
+DAMAGED = (OSError, RuntimeError, AttributeError, KeyError, ValueError)
 
 
 class DatasetError(RuntimeError):
