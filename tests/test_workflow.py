@@ -233,7 +233,8 @@ def test_a_value_changed_in_the_claims_table_changes_the_article(run, tmp_path):
 
 
 SIMULATIONS = {"poincare_map", "shock_detail", "phase_diagrams", "escapement_error", "stability_map", "existence_map",
-               "checks", "long_run", "readings", "work_precision", "run_stress"}
+               "stability_map_chunk", "existence_map_chunk", "checks", "long_run", "readings", "work_precision",
+               "run_stress"}
 PLOTS = {"plot_poincare_map", "plot_shock_detail", "plot_phase_diagrams", "plot_escapement_error", "plot_stability_map",
          "plot_existence_map", "plot_long_run", "plot_work_precision"}
 EVERY_JOB = SIMULATIONS | PLOTS | {"check_claims", "render_docs", "render_article"}
@@ -320,7 +321,7 @@ def test_a_deleted_output_is_made_again_by_a_plain_run(run, tmp_path):
 @pytest.mark.parametrize("config, planned, said", [
     # the escapement error sets a3 = -a1, a4 = -a2 from its zones; the existence map's axis is a3
     ("model={a3: 0.12, a4: -0.03}", {"poincare_map": 2, "shock_detail": 1, "phase_diagrams": 3, "stability_map": 1,
-                                     "existence_map": 1},
+                                     "stability_map_chunk": 1, "existence_map": 1, "existence_map_chunk": 1},
      "your study 'own': escapement_error does not run: its zones set a1 and a2"),
     ("model={F: 2.0}", {}, "does not run: nothing you changed (model.F = 2 N (paper: absent)) reaches a scene"),
 ])
