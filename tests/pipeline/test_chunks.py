@@ -13,12 +13,13 @@ import xarray as xr
 import yaml
 from snakemake.utils import update_config
 
-from escapement.model.limits import MEMORY_BUDGET, MemoryBudgetError, check_budget
+from escapement.model.limits import MEMORY_BUDGET, MemoryBudgetError, RunLimits, check_budget
 from escapement.pipeline.config import ConfigError
 from escapement.pipeline.plan import Planned, chunks, plan
 from escapement.scenes.maps import existence_map, gather, stability_map
-from escapement.scenes.settings import ExistenceMapScene, SizeError, StabilityMapScene
+from escapement.scenes.settings import COUNTS, ExistenceMapScene, SizeError, StabilityMapScene
 from escapement.solvers.ensemble import ensemble_bytes
+from escapement.solvers.exact import ARC_BYTES, CYCLE_BYTES, EVENT_BYTES, PASS_BYTES
 
 PAPER = yaml.safe_load((Path(__file__).resolve().parents[2] / "config" / "paper.yaml").read_text())
 
@@ -116,3 +117,14 @@ def test_the_stability_map_s_costs_per_trajectory_are_its_chunks_weighted_by_wha
     _, costs = gather(datasets, timings)
     assert costs == pytest.approx({"ensemble_seconds_per_trajectory": 27 / 15, "scalar_seconds_per_trajectory": 84 / 15,
                                    "ensemble_speedup_per_trajectory": 84 / 27})
+
+
+def test_the_longest_single_runs_the_schema_allows_fit_the_exact_solver_s_budget_so_planning_needs_no_more():
+    """Fig. 3's run at its most cycles (its trajectory kept, for the largest |x| amplitude) and Fig. 4's to the end
+    of its windows (at most 10**7 events) fit the budget the exact solver checks; Fig. 5's runs are shorter."""
+    event = EVENT_BYTES + ARC_BYTES
+    assert COUNTS["fig3.n_cycles"][1] == 1_000_000 and COUNTS["fig5.n_cycles"][1] == 10_000
+    RunLimits(n_cycles=1_000_000).check_memory(event, CYCLE_BYTES, "fig3", "", PASS_BYTES)
+    RunLimits(t_end=1e9).check_memory(event, CYCLE_BYTES, "fig4", "", PASS_BYTES)
+    with pytest.raises(MemoryBudgetError):  # the check binds beyond them
+        RunLimits(n_cycles=4_000_000).check_memory(event, CYCLE_BYTES, "fig3", "", PASS_BYTES)
