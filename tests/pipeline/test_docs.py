@@ -10,8 +10,9 @@ import xarray as xr
 import yaml
 
 from escapement.pipeline.docs import claims_table, collect_facts, markdown_html, number, panels, power, render, \
-    verdict_html
+    run_values, verdict_html, words
 from escapement.pipeline.outputs import file_digest
+from escapement.verdict.scores import CLAIM_AUTOSCALE, TICKS
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -101,6 +102,7 @@ def test_configured_values_print_as_the_documents_write_them():
     assert panels([1.0, 0.5, 0.5], "N", 3) == "1 N in panel (a), 0.5 N in (b) and (c)"
     assert panels([0.5, 1.0, 0.5], "N", 3, " and F = ") == "0.5 N in panel (a) and F = 1 N in (b) and F = 0.5 N in (c)"
     assert panels(-1.0, "m", 3) == panels([-1.0] * 3, "m", 3) == "−1 m"
+    assert (words(2), words(12), words(13)) == ("two", "twelve", "13")
 
 
 def test_the_readme_describes_fig3_as_configured_not_as_typed():
@@ -111,6 +113,26 @@ def test_the_readme_describes_fig3_as_configured_not_as_typed():
     caption = next(line for line in template.splitlines() if "**Fig. 3, Poincaré map.**" in line)
     text = render(caption, "README.md", ROWS, {}, {}, paper)
     assert "(a) F = 1.5 N released from rest at −1 m and (b) F = 0.5 N released from rest at −3 m" in text
+
+
+def fig4_scores(matches: int) -> list[dict]:
+    """Fig. 4's two panels, one scored axis each, under two readings: each matches 1 limit of each axis but the
+    first reading ``matches`` of the velocity axis."""
+    return [{"figure": "4", "panel": panel, "axis": "y", "reading": reading, "autoscale": CLAIM_AUTOSCALE,
+             "ticks": ticks, "matches": matches if (panel, reading) == ("velocity", "r1") else 1,
+             "same_values_as": reading}
+            for panel in ("velocity", "acceleration") for reading in ("r1", "r2") for ticks in TICKS]
+
+
+@pytest.mark.parametrize("matches, shown", [(1, "tie at 2 of the 4 printed limits"),
+                                            (2, "tie at 3 of the 4 printed limits")])
+def test_the_readme_prints_fig4s_best_score_from_the_score_table(matches, shown):
+    """The README's caption of Fig. 4 says the best score over both panels that the score rows give."""
+    paper = yaml.safe_load((ROOT / "config/paper.yaml").read_text(encoding="utf-8"))
+    template = (ROOT / "workflow/templates/README.md").read_text(encoding="utf-8")
+    caption = next(line for line in template.splitlines() if "**Fig. 4, shock detail.**" in line)
+    run = run_values(fig4_scores(matches), {"first_swings_label": [], "first_swings_velocity": []}, {})
+    assert shown in render(caption, "README.md", ROWS, {}, {}, paper, run)
 
 
 def test_an_edit_of_a_template_changes_its_digest_and_its_modification_time_does_not(tmp_path):

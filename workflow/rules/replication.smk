@@ -142,6 +142,10 @@ rule render_docs:
         claims="results/replication/claims.csv",
         stress="results/replication/stress.csv",
         readings="results/replication/readings.csv",
+        checks="results/replication/checks.nc",
+        fig3=outputs.data_files(
+            "replication", "fig3", STUDIES["replication"]["fig3"]
+        ).values(),
         benchmark="results/replication/work_precision.csv",
         long_run="results/replication/long_run.nc",
         long_run_timing="results/replication/long_run_timing.csv",
