@@ -16,7 +16,7 @@ from ..model.quantities import INITIAL_STATE, PARAMETERS as QUANTITIES, quantity
 from ..model.status import Status
 
 __all__ = ["CHANGES_FONTSIZE", "PARAMETERS", "axis_label", "changes_legend", "outcome", "panel_parameters",
-           "quantity_value", "release", "signed", "study_changes", "unit"]
+           "quantity_value", "release", "signed", "study_changes", "thinning", "unit"]
 
 #: the model's parameters in the order a title or panel states them
 PARAMETERS = ("F", "K", "M", "b", "a1", "a2", "a3", "a4")
@@ -99,11 +99,23 @@ def study_changes(datasets: Iterable[xr.Dataset]) -> str | None:
     return "Changed from the paper's scenes: " + re.sub(r"(?<![\w.])-(?=[\d.])", "\u2212", text)
 
 
+def _wrapped(fig, text: str) -> str:
+    """``text`` wrapped to the figure's width at :data:`CHANGES_FONTSIZE`, in characters of about 0.6 em."""
+    return textwrap.fill(text, int(fig.get_figwidth() * 72 / (0.6 * CHANGES_FONTSIZE)), break_on_hyphens=False)
+
+
 def changes_legend(fig, datasets: Iterable[xr.Dataset]) -> dict:
     """The keywords of the legend below the axes that give it :func:`study_changes` as its title, wrapped to the
     figure's width; none for the replication."""
     text = study_changes(datasets)
-    if text is None:
-        return {}
-    width = int(fig.get_figwidth() * 72 / (0.6 * CHANGES_FONTSIZE))  # characters of about 0.6 em
-    return {"title": textwrap.fill(text, width, break_on_hyphens=False), "title_fontsize": CHANGES_FONTSIZE}
+    return {} if text is None else {"title": _wrapped(fig, text), "title_fontsize": CHANGES_FONTSIZE}
+
+
+def thinning(fig, samples: int, kept: int, rastered: int, column_dpi: float, dpi: float) -> str | None:
+    """How a figure's lines were thinned (:mod:`escapement.plotting.thinning`), wrapped to its width: ``Drawn from
+    1 of every 147 samples (1,000,000 as 6,800), each 1/600-inch column's first, last, smallest and largest kept:
+    every extreme`` and ``2,400,000 vertices drawn as a raster of 150 dpi, every one rendered``; None if none was."""
+    said = ([f"Drawn from 1 of every {samples / kept:,.0f} samples ({samples:,} as {kept:,}), each 1/{column_dpi:g}"
+             "-inch column's first, last, smallest and largest kept: every extreme"] if samples else [])
+    said += [f"{rastered:,} vertices drawn as a raster of {dpi:g} dpi, every one rendered"] if rastered else []
+    return _wrapped(fig, "; ".join(said)) if said else None

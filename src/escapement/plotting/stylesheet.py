@@ -16,6 +16,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ..io.netcdf import replaced  # noqa: E402
+from .thinning import bound  # noqa: E402
 
 __all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "SERIES", "legend_below", "save_figure", "style", "suptitle"]
 
@@ -58,8 +59,9 @@ def legend_below(fig, axes, ncols: int, **kwargs):
 def save_figure(fig, png: str | os.PathLike, pdf: str | os.PathLike, svg: str | os.PathLike) -> None:
     """Save as PNG, PDF and SVG (the article's vector figures) with no software stamp or creation date and the
     SVG's ids salted alike, so that the same figure gives the same bytes on every run, each file written beside
-    its target and renamed into place."""
+    its target and renamed into place; first thinned (:mod:`escapement.plotting.thinning`), as its legend then says."""
     with style(), matplotlib.rc_context({"svg.hashsalt": "escapement"}):
+        bound(fig)
         with replaced(png) as tmp:
             fig.savefig(tmp, format="png", metadata={"Software": None})
         with replaced(pdf) as tmp:
