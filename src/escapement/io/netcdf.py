@@ -209,7 +209,8 @@ def read_variables(path: str | os.PathLike, names: Iterable[str]) -> dict:
     numbers starts in a fraction of xarray's import); :class:`DatasetError` naming the file as :func:`read_netcdf`."""
     names = list(names)
     with checked_netcdf(path) as nc:
-        nc.set_auto_mask(False)  # a missing value is NaN, as xarray reads it
+        nc.set_auto_maskandscale(True)  # the digest read the values raw: scaled again,
+        nc.set_auto_mask(False)  # but a missing value is NaN, as xarray reads it
         nc.set_auto_chartostring(True)
         missing = [name for name in names if name not in nc.variables]
         found = {name: nc[name][...] for name in names if name not in missing}
