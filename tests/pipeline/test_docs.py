@@ -119,7 +119,7 @@ def fig4_scores(matches: int) -> list[dict]:
     """Fig. 4's two panels, one scored axis each, under two readings: each matches 1 limit of each axis but the
     first reading ``matches`` of the velocity axis."""
     return [{"figure": "4", "panel": panel, "axis": "y", "reading": reading, "autoscale": CLAIM_AUTOSCALE,
-             "ticks": ticks, "matches": matches if (panel, reading) == ("velocity", "r1") else 1,
+             "ticks": ticks, "high": 1.0, "matches": matches if (panel, reading) == ("velocity", "r1") else 1,
              "same_values_as": reading}
             for panel in ("velocity", "acceleration") for reading in ("r1", "r2") for ticks in TICKS]
 
