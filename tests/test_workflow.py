@@ -225,7 +225,8 @@ def test_a_value_changed_in_the_claims_table_changes_the_article(run, tmp_path):
         outputs = {key: str(tmp_path / name / file) for key, file in (("pdf", "article.pdf"), ("metadata", "m.yaml"),
                    ("source", "article.typ"), ("bibliography", "article.bib"))}
         (tmp_path / name).mkdir()
-        write_article({**article_inputs(run[0]), "claims": str(claims)}, outputs, str(tmp_path / name / "log"))
+        write_article({**article_inputs(run[0]), "claims": str(claims)}, outputs, str(tmp_path / name / "log"),
+                      yaml.safe_load((run[0] / "config/paper.yaml").read_text()))
         written[name] = Path(outputs["source"]).read_text(encoding="utf-8")
     said = "can be evaluated from the graph is"
     assert f"{said}\n{was.replace('_', ' ')}." in written["before"].replace(" \n", "\n")
