@@ -24,8 +24,7 @@ from ..plotting.autoscale import VARIANTS
 from ..studies.readings import FIG4_K, FIG5_FORCES, FIG5_RELEASES
 from ..verdict.evidence import params_of
 from ..verdict.rule import fmt
-from ..verdict.scores import (CLAIM_AUTOSCALE, PRINTED_STEP, best_readings_table, joint_candidates, panel_candidates,
-                              read_scores)
+from ..verdict.scores import CLAIM_AUTOSCALE, best_readings_table, joint_candidates, panel_candidates, read_scores
 from ..verdict.tally import findings_table, headline, vocabulary_table
 from .logs import logged
 from .outputs import REPLICATION, data_files
@@ -202,8 +201,10 @@ def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: x
 def run_values(scores: Sequence[Mapping], checks: Mapping, fig3: Mapping[str, xr.Dataset]) -> dict:
     """The run's values the documents cite beside the claims table: ``score`` per printed panel of the readings
     (``"3 a/velocity"``, ``"4 both panels"``: its best score, out of how many limits, the best with the default
-    locator, the groups of readings tied at it), ``total`` per figure, ``highs`` per scored axis (``"3 a/amplitude
-    y"``: the upper limits its readings reach, the printed step imposed) and the readings' ``margins`` (%);
+    locator, the groups of readings tied at it), ``total`` per figure (and its panels that the default locator
+    leaves ``short`` of their limits or not), ``highs`` per scored axis and tick mode (``"3 a/amplitude y printed
+    step"``: the upper limits its readings reach; ``best_highs``, of those tied at the best score with the printed
+    step) and the readings' ``margins`` (%);
     ``first_velocity`` of the checks' first swings by label; per Fig. 3 case its last velocity's relative distance
     from Eq. (19) (``transient``), its last amplitude, and Eq. (19) with a2 and with −a2; the grids of readings that
     are constants of the code."""
@@ -211,15 +212,25 @@ def run_values(scores: Sequence[Mapping], checks: Mapping, fig3: Mapping[str, xr
     candidates["4 both panels"] = joint_candidates(scores, "4")
     score = {key: {"best": c.tied()[0], "ties": len(c.tied()[1]), "out_of": c.out_of,
                    "default": max(c.default_scores.values())} for key, c in candidates.items()}
-    total = {figure: {k: sum(v[k] for key, v in score.items() if key.startswith(f"{figure} ") and key[2:] !=
-                             "both panels") for k in ("best", "out_of", "default")} for figure in "345"}
-    highs = {}
+    total = {}
+    for key, v in score.items():
+        figure, name = key.split(" ", 1)
+        if name != "both panels":
+            t = total.setdefault(figure, {"best": 0, "out_of": 0, "default": 0, "short": [], "full": []})
+            t.update({k: t[k] + v[k] for k in ("best", "out_of", "default")})
+            t["short" if v["default"] < v["out_of"] else "full"].append(name)
+    tied = {key: {name for group in c.tied()[1] for name in group} for key, c in candidates.items()}
+    highs, best_highs = {}, {}
     for r in scores:
-        if r["autoscale"] == CLAIM_AUTOSCALE and r["ticks"] == PRINTED_STEP:
-            highs.setdefault(f"{r['figure']} {r['panel']} {r['axis']}", set()).add(r["high"])
+        if r["autoscale"] == CLAIM_AUTOSCALE:
+            axis = f"{r['figure']} {r['panel']} {r['axis']} {r['ticks']}"
+            highs.setdefault(axis, set()).add(r["high"])
+            if r["reading"] in tied[f"{r['figure']} {r['panel']}"]:
+                best_highs.setdefault(axis, set()).add(r["high"])
     cases = {label: (params_of(ds), float(ds["velocity_before_impact"][-1]), float(ds["fixed_point_19"]),
                      float(ds[ds.attrs["amplitude_variable"]][-1])) for label, ds in fig3.items()}
     return {"score": score, "total": total, "highs": {key: sorted(ends) for key, ends in highs.items()},
+            "best_highs": {key: sorted(ends) for key, ends in best_highs.items()},
             "margins": [100 * margin for margin in VARIANTS.values() if margin],
             "first_velocity": dict(zip(checks["first_swings_label"], map(float, checks["first_swings_velocity"]))),
             "fig3": {label: {"transient": abs(v - fixed) / fixed, "amplitude": amplitude, "fixed_point": fixed,
