@@ -135,6 +135,25 @@ def test_the_readme_prints_fig4s_best_score_from_the_score_table(matches, shown)
     assert shown in render(caption, "README.md", ROWS, {}, {}, paper, run)
 
 
+def poincare_map(relative_distance: float) -> xr.Dataset:
+    """A Fig. 3 case whose last velocity lies ``relative_distance`` above its fixed point of Eq. (19), 2 m/s."""
+    model = {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "a3": 0.1, "a4": -0.05}
+    return xr.Dataset({"velocity_before_impact": ("cycle", [1.0, 2.0 * (1 + relative_distance)]),
+                       "amplitude_h0": ("cycle", [1.0, 1.5]), "fixed_point_19": ((), 2.0),
+                       **{k: ((), v) for k, v in model.items()}}, attrs={"amplitude_variable": "amplitude_h0"})
+
+
+@pytest.mark.parametrize("distances, shown", [((1e-9, 3e-9), "transient: 3e-09 in case (b))."),
+                                              ((4e-9, 3e-9), "transient: 4e-09 in case (a)).")])
+def test_replication_md_prints_the_largest_transient_of_the_fig3_datasets(distances, shown):
+    """REPLICATION.md's verdict in one line gives the largest distance from Eq. (19) the Fig. 3 cases leave."""
+    template = (ROOT / "workflow/templates/REPLICATION.md").read_text(encoding="utf-8")
+    line = next(line for line in template.splitlines() if line.startswith("transient: "))
+    run = run_values(fig4_scores(1), {"first_swings_label": [], "first_swings_velocity": []},
+                     {label: poincare_map(d) for label, d in zip("ab", distances)})
+    assert render(line, "REPLICATION.md", ROWS, {}, {}, {}, run).split("\n", 1)[1].startswith(shown)
+
+
 def test_an_edit_of_a_template_changes_its_digest_and_its_modification_time_does_not(tmp_path):
     template = tmp_path / "README.md"
     template.write_bytes((ROOT / "workflow/templates/README.md").read_bytes())

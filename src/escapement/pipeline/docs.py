@@ -204,10 +204,9 @@ def run_values(scores: Sequence[Mapping], checks: Mapping, fig3: Mapping[str, xr
     locator, the groups of readings tied at it), ``total`` per figure (and its panels that the default locator
     leaves ``short`` of their limits or not), ``highs`` per scored axis and tick mode (``"3 a/amplitude y printed
     step"``: the upper limits its readings reach; ``best_highs``, of those tied at the best score with the printed
-    step) and the readings' ``margins`` (%);
-    ``first_velocity`` of the checks' first swings by label; per Fig. 3 case its last velocity's relative distance
-    from Eq. (19) (``transient``), its last amplitude, and Eq. (19) with a2 and with −a2; the grids of readings that
-    are constants of the code."""
+    step) and the readings' ``margins`` (%); ``first_velocity`` of the checks' first swings by label; per Fig. 3
+    case its last velocity's relative distance from Eq. (19) (``transient``), its last amplitude, and Eq. (19) with
+    a2 and with −a2; the grids of readings that are constants of the code."""
     candidates = {f"{figure} {name}": c for (figure, name), c in panel_candidates(scores).items()}
     candidates["4 both panels"] = joint_candidates(scores, "4")
     score = {key: {"best": c.tied()[0], "ties": len(c.tied()[1]), "out_of": c.out_of,
