@@ -98,6 +98,31 @@ def publish_inputs(wildcards):
     return list(PUBLISHED.values())
 
 
+def map_chunk(block):
+    """The checked settings of the chunk of the map ``block`` the job makes (its study and chunk wildcards); one line
+    if the study has no such map or chunk."""
+
+    def params(w):
+        found = STUDIES.get(w.study, {}).get(block, {}).get("")
+        if found is None or int(w.chunk) >= found.chunks:
+            refuse(f"results/{w.study}/{KINDS[block].name}/chunk_{w.chunk}.nc")
+        return found.chunk(int(w.chunk))
+
+    return params
+
+
+def map_chunks(block, pattern):
+    """The files ``pattern`` of every chunk of the map ``block`` in the job's study, in order."""
+
+    def files(w):
+        found = STUDIES.get(w.study, {}).get(block, {}).get("")
+        if found is None:
+            refuse(f"results/{w.study}/{KINDS[block].name}.nc")
+        return [pattern.format(study=w.study, chunk=i) for i in range(found.chunks)]
+
+    return files
+
+
 onsuccess:
     # a study folder holds only what its configuration makes: after a run that ended well, the datasets and figures
     # an earlier configuration of the same study made and this one does not (escapement.pipeline.outputs)

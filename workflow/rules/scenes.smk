@@ -85,31 +85,6 @@ rule escapement_error:
 MAP_CHUNK_MB = 2500
 
 
-def map_chunk(block):
-    """The checked settings of the chunk of the map ``block`` the job makes (its study and chunk wildcards); one line
-    if the study has no such map or chunk."""
-
-    def params(w):
-        found = STUDIES.get(w.study, {}).get(block, {}).get("")
-        if found is None or int(w.chunk) >= found.chunks:
-            refuse(f"results/{w.study}/{KINDS[block].name}/chunk_{w.chunk}.nc")
-        return found.chunk(int(w.chunk))
-
-    return params
-
-
-def map_chunks(block, pattern):
-    """The files ``pattern`` of every chunk of the map ``block`` in the job's study, in order."""
-
-    def files(w):
-        found = STUDIES.get(w.study, {}).get(block, {}).get("")
-        if found is None:
-            refuse(f"results/{w.study}/{KINDS[block].name}.nc")
-        return [pattern.format(study=w.study, chunk=i) for i in range(found.chunks)]
-
-    return files
-
-
 rule existence_map_chunk:
     output:
         nc=temp("results/{study}/existence_map/chunk_{chunk}.nc"),
@@ -117,13 +92,15 @@ rule existence_map_chunk:
         "results/logs/{study}/existence_map/chunk_{chunk}.log",
     wildcard_constraints:
         chunk=r"\d+",
-    resources:
-        mem_mb=MAP_CHUNK_MB,
     conda:
         "../../environment/environment.yml"
+    resources:
+        mem_mb=MAP_CHUNK_MB,
     params:
         kind="existence_map",
-        settings=planned("existence_map", "results/{study}/existence_map.nc", "settings"),
+        settings=planned(
+            "existence_map", "results/{study}/existence_map.nc", "settings"
+        ),
         chunks=planned("existence_map", "results/{study}/existence_map.nc", "chunks"),
         scene=map_chunk("existence_map"),
         code=CODE,
@@ -133,7 +110,9 @@ rule existence_map_chunk:
 
 rule existence_map:
     input:
-        parts=map_chunks("existence_map", "results/{study}/existence_map/chunk_{chunk}.nc"),
+        parts=map_chunks(
+            "existence_map", "results/{study}/existence_map/chunk_{chunk}.nc"
+        ),
     output:
         nc="results/{study}/existence_map.nc",
     log:
@@ -155,7 +134,9 @@ use rule existence_map_chunk as stability_map_chunk with:
         "results/logs/{study}/stability_map/chunk_{chunk}.log",
     params:
         kind="stability_map",
-        settings=planned("stability_map", "results/{study}/stability_map.nc", "settings"),
+        settings=planned(
+            "stability_map", "results/{study}/stability_map.nc", "settings"
+        ),
         chunks=planned("stability_map", "results/{study}/stability_map.nc", "chunks"),
         scene=map_chunk("stability_map"),
         code=CODE,
@@ -163,8 +144,12 @@ use rule existence_map_chunk as stability_map_chunk with:
 
 rule stability_map:
     input:
-        parts=map_chunks("stability_map", "results/{study}/stability_map/chunk_{chunk}.nc"),
-        timings=map_chunks("stability_map", "results/{study}/stability_map/chunk_{chunk}_timing.csv"),
+        parts=map_chunks(
+            "stability_map", "results/{study}/stability_map/chunk_{chunk}.nc"
+        ),
+        timings=map_chunks(
+            "stability_map", "results/{study}/stability_map/chunk_{chunk}_timing.csv"
+        ),
     output:
         nc="results/{study}/stability_map.nc",
         timing="results/{study}/stability_map_timing.csv",
