@@ -268,11 +268,12 @@ def test_changing_one_readings_outcome_changes_the_status(monkeypatch):
     assert cl.figures_named("Figs. 3, 4 and 5; Fig. 2 is a sketch") == {"2", "3", "4", "5"}
 
 
-def test_an_agreement_on_fitted_or_constructed_evidence_is_consistent_and_a_disagreement_stays(monkeypatch):
+def test_an_agreement_on_fitted_or_constructed_evidence_is_consistent_and_a_fitted_disagreement_undetermined(
+        monkeypatch):
     """The kind of evidence is the weakest of the row's readings', from what their checks declare they
-    consume; the register names none."""
+    consume; the register names none. A failure under a chosen reading mirrors the agreement: no verdict."""
     for holds, statuses in ((True, ("reproduced", "consistent", "consistent")),
-                            (False, ("not_reproduced", "not_reproduced", "not_reproduced"))):
+                            (False, ("not_reproduced", "undetermined", "not_reproduced"))):
         stubbed(monkeypatch, lambda claim_id, reading, holds=holds: holds)
         rows = cl.evaluate([claim_of(i) for i in ("eq16_map", "fig5a_axes", "eq10_impact_a1")],
                            Evidence({}, None, {}, None))

@@ -15,7 +15,8 @@ From a claim's id to its status:
    scene (:func:`escapement.scenes.runs.checks`) writes each under that name, and the check reads it by that name
    (:func:`.evidence.run`), its settings with it;
 4. :func:`.engine.evaluate` runs the check of each reading and :func:`.rule.row_status` gives the row's evidence and
-   status; its sentence, one finding, takes :func:`.rule.finding_status` of its parts (:mod:`.tally`).
+   status (a reading or threshold the project chose weighs agreement and failure alike: consistent, undetermined);
+   its sentence, one finding, takes :func:`.rule.finding_status` of its parts (:mod:`.tally`).
 
 For example ``eq21_multiplier`` quotes "The eigenvalue can be obtained by substituting the fixed point into Eq. (20)
 μ2 = g (x˙ 1 ∗) = (1 − b)4", read as stated, ``check: sec3_map.multiplier_paper_cases``, ``args: {runs: paper}``,

@@ -4,6 +4,11 @@ the claims table and how a number is written in it (:func:`fmt`).
 A row checks one part of one of the paper's sentences under each reading its words admit; its status and kind of
 evidence follow from its readings' outcomes and what its checks consume (:func:`row_status`), and a sentence, one
 finding, takes its status from its parts' (:func:`finding_status`, the only place a status is partial).
+
+A reading or threshold the project chose weighs both ways alike (:func:`weighed`): an agreement under it is only
+``consistent``, since the paper's words may not mean it, and a failure under it is only ``undetermined``, since the
+paper's words may mean another under which the claim holds; only a failure on evidence that rests on no such choice
+is ``not_reproduced``.
 """
 
 from __future__ import annotations
@@ -23,12 +28,13 @@ STATUSES: dict[str, str] = {
     "reproduced": "holds under every reading of the sentence's words, on evidence computed independently of it",
     "partially_reproduced": ("a finding only: a named part of the sentence is reproduced (holds under every "
                              "reading, on independent evidence), another fails under every reading"),
-    "not_reproduced": "fails under every reading of the sentence's words",
+    "not_reproduced": ("fails under every reading of the sentence's words, on evidence that rests on no reading or "
+                       "threshold chosen by the project"),
     "consistent": ("holds, but by construction (the model is built from it) or under a reading or threshold chosen "
                    "by the project: it confirms nothing"),
     "undetermined": ("holds under some readings of the sentence's words and fails under others, and no printed "
-                     "figure tells the readings apart; or, for a finding, a part holds and another has no verdict: "
-                     "no verdict"),
+                     "figure tells the readings apart; or fails only under a reading or threshold chosen by the "
+                     "project; or, for a finding, a part holds and another has no verdict: no verdict"),
     "untestable": "the paper gives nothing the claim can be computed against",
 }
 REPRODUCED, PARTIAL, NOT, CONSISTENT, UNDETERMINED, UNTESTABLE = STATUSES
@@ -66,9 +72,12 @@ def status_of(outcomes: Iterable[bool | None]) -> str:
 
 
 def weighed(status: str, evidence: str) -> str:
-    """The row's status: an agreement by construction or on fitted evidence is only ``consistent``."""
+    """The row's status: an agreement by construction or on fitted evidence is only ``consistent``, and, its mirror,
+    a failure on fitted evidence (under a reading or threshold the project chose) only ``undetermined``."""
     if status not in STATUSES or evidence not in EVIDENCE:
         raise ValueError(f"status = {status!r}, evidence = {evidence!r}: not words of the vocabulary")
+    if evidence == "fitted" and status == NOT:
+        return UNDETERMINED
     return CONSISTENT if status == REPRODUCED and evidence in ("fitted", "by_construction") else status
 
 
