@@ -14,7 +14,6 @@ Usage: python .ci/check_report.py results/report.html
 """
 
 import base64
-import csv
 import json
 import re
 import shutil
@@ -24,7 +23,8 @@ import tempfile
 from html.parser import HTMLParser
 from pathlib import Path
 
-from escapement.pipeline.tables import read_claims
+from escapement.io.netcdf import read_csv
+from escapement.pipeline.tables import STRESS_COLUMNS, read_claims
 from escapement.verdict.tally import headline
 
 WINDOW = (1280, 800)
@@ -207,8 +207,7 @@ def main(path: str) -> None:
     problems = landing_problems(probe, claims)
     if problems:
         sys.exit("the report's landing page does not show the verdict: " + "; ".join(problems))
-    with open("results/replication/stress.csv", newline="") as handle:
-        stress = [row["regime"] for row in csv.DictReader(handle)]
+    stress = [row["regime"] for row in read_csv("results/replication/stress.csv", STRESS_COLUMNS)]
     register = item(results, ITEMS["verdict"])
     shown_claims = [row[0] for row in register.rows.get("claims", [])]
     shown_stress = [row[0] for row in register.rows.get("stress", [])]
