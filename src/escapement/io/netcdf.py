@@ -81,18 +81,22 @@ def checked_netcdf(path: str | os.PathLike):
     the command that rebuilds it if it is missing, lacks its digest, or is damaged (whatever netCDF4 raises)."""
     import netCDF4
 
-    try:
-        with interrupt_deferred(), netCDF4.Dataset(path) as nc:
+    with interrupt_deferred():
+        nc = None
+        try:
+            nc = netCDF4.Dataset(path)
             stored = nc.getncattr(DIGEST) if DIGEST in nc.ncattrs() else None
-            if stored != netcdf_digest(nc):
+            whole = stored == netcdf_digest(nc)
+        except FileNotFoundError as err:
+            raise DatasetError(f"{path}: no such netCDF file") from err
+        except DAMAGED as err:
+            if nc is not None:
+                nc.close()
+            raise damaged(path, f"{type(err).__name__}: {getattr(err, 'strerror', None) or err}") from err
+        with nc:  # the caller's block reads what the digest vouched for: its errors are its own, not damage
+            if not whole:
                 raise damaged(path, f"its content does not match its digest ({DIGEST} = {stored!r})")
             yield nc
-    except DatasetError:
-        raise
-    except FileNotFoundError as err:
-        raise DatasetError(f"{path}: no such netCDF file") from err
-    except DAMAGED as err:
-        raise damaged(path, f"{type(err).__name__}: {getattr(err, 'strerror', None) or err}") from err
 
 
 def stale_partials(path: str | os.PathLike) -> list[Path]:
