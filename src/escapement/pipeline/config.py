@@ -1,9 +1,6 @@
-"""The workflow's configuration as Snakemake reads it, checked once before any job, every refusal one line.
-
-The Snakefile's ``configfile:`` reads ``config/paper.yaml`` (the replication) and ``config/config.yaml`` (the
-user's), and Snakemake lays ``--configfile`` and ``--config`` over them, key by key at every level; the merged
-configuration is checked against the one schema, ``workflow/schemas/config.schema.yaml``, then its scenes by the
-model's own rules (:mod:`escapement.pipeline.plan`).
+"""The workflow's configuration as Snakemake merges it (``config/paper.yaml``, ``config/config.yaml``, then
+``--configfile`` and ``--config``), checked against ``workflow/schemas/config.schema.yaml`` once before any job,
+every refusal one line; its scenes are checked by :mod:`escapement.pipeline.plan`.
 """
 
 from __future__ import annotations
@@ -38,11 +35,8 @@ def dotted(path: Iterable) -> str:
 
 
 def refuse_aliases(path: str | Path) -> None:
-    """Refuse an anchor, an alias or more than :data:`MAX_DEPTH` levels in the YAML file ``path``, on the parser's
-    events, before Snakemake's ``configfile:`` loads it.
-
-    Hand-written because Snakemake's merge of a configuration walks every path through its aliases: a billion
-    laughs would never end."""
+    """Refuse an anchor, an alias or more than :data:`MAX_DEPTH` levels in the YAML file ``path``, before Snakemake
+    loads it. Hand-written because Snakemake's merge walks every path through its aliases (a billion laughs)."""
     depth = 0
     with open(path, "rb") as handle:
         for event in yaml.parse(handle):
@@ -58,7 +52,6 @@ def refuse_aliases(path: str | Path) -> None:
 
 def typed_config(config: dict, entries: Iterable[str] | None) -> None:
     """Lay each ``--config key=value`` entry over ``config`` again, its value read as a configuration file's is.
-
     Hand-written because Snakemake reads a nested ``--config`` value's scalars as text (``{K: [0.1]}`` gives
     ``['0.1']``), which no schema of numbers admits."""
     from snakemake.utils import update_config
@@ -73,8 +66,8 @@ def typed_config(config: dict, entries: Iterable[str] | None) -> None:
 
 
 def _plain(value: object, path: list) -> None:
-    """Refuse a key that is not a text and a number that is not finite, naming the key (YAML reads ``.inf`` and
-    ``1e400`` as floats, which a schema's ``number`` admits, and a 401-digit integer as one no float holds)."""
+    """Refuse a key that is not a text and a number that is not finite, naming the key (a schema's ``number``
+    admits ``.inf``, ``1e400`` and a 401-digit integer)."""
     if isinstance(value, dict):
         for key, item in value.items():
             if not isinstance(key, str):
@@ -106,9 +99,8 @@ def validated(config: Mapping, schema: str | Path, source: str = "the configurat
 
 
 def refusal(error, source: str) -> str:
-    """One line for a violation of the schema (a jsonschema ``ValidationError``): the key, its value and the rule,
-    the violated node's ``description`` with its keywords filled in (``{maximum}``) or, for an enumeration, its
-    values; an unknown key with the closest key the node names (a flow mapping's missing space said so)."""
+    """One line for a violation of the schema (a jsonschema ``ValidationError``): the key, its value and the rule
+    (the node's ``description``, its keywords filled in, or an enumeration's values); an unknown key, the closest."""
     path = list(error.absolute_path)
     where = dotted(path) or "the top level"
     node = error.schema if isinstance(error.schema, dict) else {}

@@ -1,9 +1,7 @@
 """What a run promises and what makes it: every file the workflow's default target holds, the one line that
-answers a target no configuration makes, and the digest of the code every job runs: the whole package, the
-workflow's scripts, the benchmarks' floors and the versions of the package's declared dependencies. Every rule holds
-it in its params, so any edit of a source file (whichever job loads it, directly, lazily or through a package's
-``__init__``) reruns every job, and no hand-kept list of which job loads what can miss one (tests/test_workflow.py
-traces the files each job's process loads against it).
+answers a target no configuration makes, and the digest of the code every job runs (the package, the workflow's
+scripts, the benchmarks and the versions of the declared dependencies), a param of every rule, so that any edit of a
+source file reruns every job.
 """
 
 from __future__ import annotations
@@ -63,8 +61,7 @@ def study_targets(study: str, scenes: Mapping[str, Mapping[str, object]]) -> lis
 
 def stale_files(study: str, scenes: Mapping[str, Mapping[str, object]]) -> list[Path]:
     """The files in ``results/<study>/`` of a kind's name (a scene's dataset, a figure, the map's timing) that this
-    configuration no longer makes: a scene whose label changed, a kind the study no longer runs. Other files (the
-    benchmark's tables, the documents) are left alone."""
+    configuration no longer makes; other files are left alone."""
     keep, root = set(study_targets(study, scenes)), Path("results", study)
     patterns = [*(FILES.get(block, f"{kind.name}.nc").format("*") for block, kind in KINDS.items()),
                 *(f"figures/{kind.name}.{ext}" for kind in KINDS.values() for ext in ("png", "pdf", "svg")),
@@ -73,8 +70,8 @@ def stale_files(study: str, scenes: Mapping[str, Mapping[str, object]]) -> list[
 
 
 def targets(studies: Mapping[str, Mapping[str, Mapping[str, object]]]) -> list[str]:
-    """The default target: every file of every study (a missing one, whichever it is, is made again: Snakemake
-    reruns a job for a missing target, not for a missing output beside it)."""
+    """The default target: every file of every study (Snakemake reruns a job for a missing target, not for a
+    missing output beside it)."""
     return [path for study, scenes in studies.items() for path in study_targets(study, scenes)]
 
 
@@ -101,8 +98,8 @@ def not_a_target(path: str, studies: Mapping[str, Mapping[str, Mapping[str, obje
 
 
 def code_digest(root: str | Path, package: str | Path | None = None) -> str:
-    """The digest the module's docstring describes, of the package (``package``, by default the one loaded) and the
-    scripts and benchmarks under ``root`` (Snakemake itself follows only a rule's own script)."""
+    """The digest the module's docstring describes, of ``package`` (by default the one loaded) and the scripts and
+    benchmarks under ``root``."""
     digest = hashlib.sha256()
     package = Path(package) if package is not None else Path(__file__).resolve().parents[1]
     for folder, base in ((package, package.parent), (Path(root, "workflow/scripts"), Path(root)),
@@ -119,7 +116,7 @@ def code_digest(root: str | Path, package: str | Path | None = None) -> str:
 
 def file_digest(paths: Iterable[str | Path]) -> str:
     """The digest of the files ``paths`` (their names and contents): a param of the rules that read them as text, so
-    that an edit reruns the job whatever the file's modification time (Snakemake follows only that of an input)."""
+    that an edit reruns the job whatever the file's modification time."""
     digest = hashlib.sha256()
     for path in paths:
         digest.update(Path(path).as_posix().encode() + b"\0" + Path(path).read_bytes() + b"\0")

@@ -1,10 +1,7 @@
-"""The scenes each study runs, built and checked before any job: the replication's from ``config/paper.yaml``, and
-the user's own from the merged configuration, where a kind of figure's scenes then run something the paper's do
-not (:func:`plan`). A scene's settings are a flat mapping (the model's keys, its block's and its own, later ones
-winning), checked by its settings class (:mod:`escapement.scenes.settings`); a study's changes are the dotted keys
-whose value differs from the paper's (:func:`changes`), and each kind's scenes carry those that reach it. Every size a
-job holds is answered here: a run that cannot be split is refused beyond its bound, and a map larger than one job's
-memory budget runs in chunks of its rows (:func:`chunks`).
+"""The scenes each study runs, built and checked before any job (:func:`plan`): the replication's from
+``config/paper.yaml``, and the user's own where a kind's scenes differ from the paper's. A scene's settings are a flat
+mapping (the model's keys, its block's and its own, later ones winning); a map larger than one job's memory budget
+runs in chunks of its rows (:func:`chunks`).
 """
 
 from __future__ import annotations
@@ -45,8 +42,7 @@ MAPS = {StabilityMapScene: ("b", lambda s: ({"stability_map.F.n": len(s.F_values
 
 def chunks(scene: object, budget: int = MEMORY_BUDGET) -> int:
     """The jobs ``scene`` runs in: for a map, the fewest chunks of its rows whose ensemble each fits ``budget``
-    bytes (:func:`~escapement.solvers.ensemble.ensemble_bytes`, which the ensemble checks), else 1; SizeError if
-    one row does not fit."""
+    bytes, else 1; SizeError if one row does not fit."""
     if type(scene) not in MAPS:
         return 1
     axis, size = MAPS[type(scene)]
@@ -60,17 +56,15 @@ def chunks(scene: object, budget: int = MEMORY_BUDGET) -> int:
 
 @dataclass(frozen=True)
 class Planned:
-    """A scene as planned: its flat ``settings`` (a rule's param, which Snakemake compares by its text to rerun a
-    job), the settings object built and checked from them at planning (a rule's param the job runs), and the jobs
-    it runs in (a map too large for one job's memory budget, in chunks of its rows: :func:`chunks`)."""
+    """A scene as planned: its flat ``settings`` (a rule's param, whose text Snakemake compares to rerun a job),
+    the settings object checked from them, and the jobs it runs in (:func:`chunks`)."""
 
     settings: dict
     checked: object
     chunks: int = 1
 
     def chunk(self, index: int) -> object:
-        """The checked settings of the job ``index`` of a map's :attr:`chunks`: the map over a slice of its rows
-        (their sizes ``np.array_split``'s)."""
+        """The checked settings of the job ``index`` of a map's :attr:`chunks`: the map over a slice of its rows."""
         field = f"{MAPS[type(self.checked)][0]}_values"
         rows = np.array_split(np.arange(len(getattr(self.checked, field))), self.chunks)[index]
         return dataclasses.replace(self.checked, **{field: getattr(self.checked, field)[rows[0]:rows[-1] + 1]})
@@ -156,12 +150,10 @@ def study_scenes(study: str, blocks: Mapping, paper: Mapping | None = None) -> d
                                     (paper or {}).get(block, {}))
             checked = {label: SETTINGS[block].from_mapping(s) for label, s in found.items()}
             scenes[block] = {label: Planned(found[label], c, chunks(c)) for label, c in checked.items()}
-        except SizeError as err:
+        except (SizeError, ConfigError) as err:
             raise ConfigError(f"{tag}{err}") from None
         except ParameterError as err:
             raise ConfigError(f"{tag}{block}: {err}") from None
-        except ConfigError as err:
-            raise ConfigError(f"{tag}{err}") from None
     return scenes
 
 
@@ -235,9 +227,8 @@ def replication_scenes(paper: Mapping) -> dict[str, dict]:
 
 
 def check_runs(paper: Mapping) -> dict:
-    """The runs of the ``checks`` block, each checked by the model's rules (:class:`ConfigError` naming a bad one):
-    the table's (``cases``, each of its ``group``, on the block's F and x0 over its ``n_cycles``) and, by name, those
-    of another ``measure`` (``probes``: ``{name: {measure, runs}}``), for :func:`escapement.scenes.runs.checks`."""
+    """The runs of the ``checks`` block, each checked by the model's rules: the table's (``cases``, each of its
+    ``group``) and, by name, those of another ``measure`` (``probes``), for :func:`escapement.scenes.runs.checks`."""
     checks, table, probes = paper["checks"], [], {}
     for name, entry in checks.items():
         if name in ("n_cycles", "x0", "F"):  # the table's defaults
@@ -258,9 +249,8 @@ def check_runs(paper: Mapping) -> dict:
 
 
 def _derived(paper: Mapping, block: str) -> list[dict]:
-    """The runs a checks entry takes ``from`` a block: fig3, its cases; fig5, every K of it at every F of it from the
-    panel's x0; fig4, the grid of Fig. 4's readings (every force and release magnitude of the Fig. 3 cases, either
-    side, at every K of fig5, to the end of the fig4 block's later window)."""
+    """The runs a checks entry takes ``from`` a block: fig3, its cases; fig5, every K at every F from the panel's x0;
+    fig4, every force and release magnitude of the Fig. 3 cases, either side, at every K of fig5."""
     cases, fig5 = paper["fig3"]["cases"].values(), paper["fig5"]
     if block == "fig3":
         return [{"case": case} for case in paper["fig3"]["cases"]]
