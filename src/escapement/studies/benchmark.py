@@ -1,10 +1,8 @@
 """Work-precision benchmark: wall time against error for every method, timed in one run.
 
-Errors are relative, at the last of ``n_cycles`` cycles from release at rest, for the velocity before impact and
-the impact time, against 50 digits (:mod:`escapement.integrators.high_precision`). A setting runs until
-``min_seconds`` of runs are measured (at most ``max_repeats``) and is timed by the median, so that a millisecond
-method is repeated against a shared machine's noise; each method first runs one untimed cycle, so that no row
-times the loading of its modules. ``closed-form cycles`` is :func:`escapement.solvers.cycles.solve_cycles`.
+Errors are relative, at the last of ``n_cycles`` cycles from release at rest, of the velocity before impact and the
+impact time, against 50 digits. Each setting is timed by the median of its runs, repeated against a shared
+machine's noise, after one untimed cycle of its method, so that no row times the loading of its modules.
 """
 
 from __future__ import annotations
@@ -37,12 +35,8 @@ HEADLINE_SETTINGS = {"DOP853": [1e-12, 1e-13], "LSODA": [1e-12, 1e-13], "CVODE-A
 
 
 def closed_form_map(params: Parameters, x0: float, n_cycles: int) -> tuple[float, float]:
-    """Velocity before impact and impact time at cycle ``n_cycles`` from closed forms alone.
-
-    The first impact at a1 from release at rest (energy and arccos forms): from ``x0 < a1 < 0`` the swing
-    reaches a1 at acos(a1/x0)/w; from ``x0 > a3 > 0`` it reaches a3 at acos(a3/x0)/w, runs through the zone
-    to a4 and swings to a1. Then Eq. (16) for the velocities and the corrected Eq. (23) for the periods.
-    """
+    """Velocity before impact and impact time at cycle ``n_cycles`` from closed forms alone: the first impact at a1
+    from release at rest (passing a3 and its zone first from ``x0 > a3``), then Eq. (16) and the corrected (23)."""
     p = params
     w = p.omega
     n_cycles = check_count("n_cycles", n_cycles, MAX_CYCLES)
@@ -86,11 +80,8 @@ def run_method(method: str, setting: float | None, params: Parameters, x0: float
 
 
 def median_wall(fn: Callable[[], object], min_seconds: float, max_repeats: int) -> tuple[float, int, object]:
-    """Run ``fn`` until ``min_seconds`` of runs are measured or ``max_repeats`` runs are done (at least
-    one); return the median wall time, the number of runs and the last result.
-
-    Not :mod:`timeit`: its ``autorange`` has a fixed 0.2 s budget and a mean over loops, and it returns no result,
-    for which a setting of seconds (run once) would have to run again."""
+    """Run ``fn`` until ``min_seconds`` of runs are measured or ``max_repeats`` runs are done (at least one): the
+    median wall time, the number of runs and the last result. Not :mod:`timeit`, which returns no result."""
     if not callable(fn):
         raise TypeError(f"fn = {fn!r} is invalid: fn must be callable with no argument")
     _check_timing(min_seconds, max_repeats)
@@ -117,8 +108,7 @@ def _check_methods(settings) -> None:
 
 
 def _reference(settings: dict[str, list], params: Parameters, x0: float, n_cycles: int) -> tuple[float, float]:
-    """The 50-digit velocity and time at the last cycle, once every method has run one untimed cycle at its first
-    setting, so that its first row does not time the modules it loads (SciPy's integrators: a third of a second)."""
+    """The 50-digit velocity and time at the last cycle, once every method has run one untimed cycle."""
     ref = solve_high_precision(params, x0, n_cycles=n_cycles).cycles
     for method, values in settings.items():
         run_method(method, values[0] if values else None, params, x0, 1)
@@ -145,12 +135,9 @@ def work_precision(params: Parameters, x0: float, n_cycles: int, settings: dict[
     _check_timing(min_seconds, max_repeats)
     _check_methods(settings)
     if closed_form and "exact" in settings and CLOSED_FORM not in settings:
-        ordered = {}
-        for method, values in settings.items():
-            ordered[method] = values
-            if method == "exact":
-                ordered[CLOSED_FORM] = []
-        settings = ordered
+        items = list(settings.items())
+        at = list(settings).index("exact") + 1
+        settings = dict(items[:at] + [(CLOSED_FORM, [])] + items[at:])
     reference = _reference(settings, params, x0, n_cycles)
     return [_row(method, setting, params, x0, n_cycles, reference, min_seconds, max_repeats, log)
             for method, values in settings.items() for setting in values or [None]]
@@ -159,11 +146,9 @@ def work_precision(params: Parameters, x0: float, n_cycles: int, settings: dict[
 def headline_ratios(params: Parameters, x0: float, n_cycles: int = 1000, settings: dict[str, list] | None = None,
                     target: float = 1e-12, errors: tuple[str, ...] = ("error_velocity", "error_time"),
                     min_seconds: float = 0.2, max_repeats: int = 500, log=None) -> dict:
-    """The exact solver, the per-cycle closed form and the fastest integrator setting (``settings``: method to
-    rtols) whose errors named in ``errors`` are all at most ``target``, timed side by side on ``n_cycles`` cycles
-    as in :func:`work_precision`: the rows ``exact``, ``closed_form``, ``ode`` (None if no setting reaches the
-    target) and ``candidates``, and the ratios of wall times ``exact_over_closed_form``, ``ode_over_closed_form``
-    and ``ode_over_exact`` (NaN without an ``ode`` row)."""
+    """The rows ``exact``, ``closed_form``, ``candidates`` and ``ode`` (the fastest integrator setting whose
+    ``errors`` are at most ``target``, or None) timed as in :func:`work_precision`, and the ratios of their wall
+    times (NaN without an ``ode`` row)."""
     _check_timing(min_seconds, max_repeats)
     settings = HEADLINE_SETTINGS if settings is None else settings
     _check_methods(settings)
@@ -189,8 +174,7 @@ def headline_ratios(params: Parameters, x0: float, n_cycles: int = 1000, setting
 
 def per_cycle_times(params: Parameters, x0: float, n_cycles=(50, 1000, 100_000), min_seconds: float = 0.2,
                     max_repeats: int = 500) -> list[dict]:
-    """Wall time per cycle of the per-cycle closed form and of the exact solver, side by side for each number of
-    cycles: rows ``n_cycles``, ``exact_s_per_cycle``, ``closed_form_s_per_cycle`` and ``ratio`` (exact over closed)."""
+    """Wall time per cycle of the exact solver and of the per-cycle closed form, and their ratio, per ``n_cycles``."""
     _check_timing(min_seconds, max_repeats)
     rows = []
     for n in n_cycles:
