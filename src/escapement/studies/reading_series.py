@@ -1,8 +1,6 @@
-"""The series a candidate reading of the paper's figures would plot, read from one exact run
-(:mod:`escapement.studies.readings` builds the grid of readings): :class:`Runs` makes one run per force, spring constant
-and release, long enough for every reading of it; :func:`section_cycles` reads the cycles of a Poincare section;
-:func:`window_series` and :func:`phase_series` a quantity over a time window, or the phase points, as a plot would draw
-them, with the exact extremes of every arc (:func:`critical_times`) and the one-sided values at every event.
+"""The series a candidate reading of the paper's figures would plot, read from one exact run: the cycles of a
+Poincare section, a quantity over a time window or the phase points as a plot would draw them, with the exact
+extremes of every arc and the one-sided values at every event. :class:`Runs` makes each run once.
 """
 
 from __future__ import annotations
@@ -36,10 +34,6 @@ class Runs:
 
     def need(self, F: float, K: float, x0: float, n_cycles: int = 0, t_end: float = 0.0) -> None:
         """Record that a reading reads ``n_cycles`` complete cycles and the motion up to ``t_end``."""
-        if not (isinstance(n_cycles, int) and n_cycles >= 0):
-            raise ValueError(f"n_cycles = {n_cycles!r} must be an integer >= 0")
-        if not (isinstance(t_end, (int, float)) and math.isfinite(t_end) and t_end >= 0):
-            raise ValueError(f"t_end = {t_end!r} must be a finite number >= 0")
         key = (float(F), float(K), float(x0))
         stated = self._needs.get(key, (0, 0.0))
         n, t = max(stated[0], n_cycles), max(stated[1], float(t_end))
@@ -126,11 +120,8 @@ def window_series(run: Solution, lo: float, hi: float, samples_per_second: float
                   ) -> tuple[np.ndarray, np.ndarray]:
     """``(t, values)`` of ``quantity`` ("displacement", "velocity" or "acceleration") over ``[lo, hi]`` as a plot
     would draw it, and at each event in the window its values just before and just after (at the event's time)."""
-    columns = {"displacement": 0, "velocity": 1, "acceleration": 2}
-    if quantity not in columns:
-        raise ValueError(f"quantity = {quantity!r} must be one of {', '.join(columns)}")
     t, index, order = _grid(run, lo, hi, samples_per_second)
-    values = run.sample(t)[columns[quantity]]
+    values = run.sample(t)[("displacement", "velocity", "acceleration").index(quantity)]
     if quantity == "displacement":
         before = after = run.events.x[index]
     elif quantity == "velocity":
@@ -166,8 +157,6 @@ class SectionCycles:
 def section_cycles(run: Solution, section: str) -> SectionCycles:
     """The cycles of ``run`` at the Poincare section ``section`` ("a1" or "a3"); each turning point is the largest
     value at the cycle's impacts and at the critical times of its arcs."""
-    if section not in SECTIONS:
-        raise ValueError(f"section = {section!r} must be one of {', '.join(SECTIONS)}")
     ev = run.events
     i = ev.of_kind(SECTIONS[section])
     t, x, v = (np.asarray(a, dtype=float)[i] for a in (ev.t, ev.x, ev.v_before))

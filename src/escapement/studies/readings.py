@@ -1,18 +1,11 @@
 """Candidate readings of the paper's unstated choices, and the data each figure panel would plot.
 
-The paper leaves open how its Figs. 3-5 were made. A :class:`Reading` is the points one panel would draw under one
-candidate reading, from the exact solver; their extent is what an automatic axis scales to, so that the printed
-axes (:mod:`escapement.paper.printed_axes`) can tell the readings apart, or fail to (the scoring is
-:mod:`escapement.pipeline.readings`). The grid is the full product of the open choices: for **Fig. 3**, per case
-of Sec. 4, the release side (:data:`RELEASES`; from ``-|x0|`` is the paper's Step 1), the Poincare section (the
-impact at a1, the paper's, or its mirror at a3, read with ``|v|``), the quantity (:data:`FIG3_QUANTITIES`; the
-Step-1 amplitude ``h0(k) = sqrt(a**2 + (v_k / omega)**2)`` is that of the free arc ending in impact k, Eqs. (9b),
-(22a)) and the cycles plotted (``k = 1..N`` or ``1..N+1``); for **Fig. 4**, F and |x0| from the cases, the
-release side, K (:data:`FIG4_K`) and which window goes with which quantity (:data:`PAIRINGS`), the velocity drawn
-before and after each impact, the acceleration ``-omega**2 (x - centre)`` on either side of each event; for
-**Fig. 5**, per panel (its K), F (:data:`FIG5_FORCES`) and the release (:data:`FIG5_RELEASES`), the whole
-trajectory to the end of cycle N or the last cycle only. By the symmetry the run from ``+|x0|`` read at a3 mirrors
-the run from ``-|x0|`` read at a1 (the scoring groups such readings). Every run is made once (:class:`Runs`).
+A :class:`Reading` is the points one panel would draw under one candidate reading, from the exact solver; their
+extent is what an automatic axis scales to, so that the printed axes (:mod:`escapement.paper.printed_axes`) can tell
+the readings apart, or fail to. The grid is the full product of the open choices: for Fig. 3 the release side, the
+Poincare section (a1, or its mirror a3 read with ``|v|``), the quantity and the cycles plotted (N or N+1); for
+Fig. 4 F and |x0| from the cases, the release side, K and which window goes with which quantity; for Fig. 5 F, the
+release, and the whole trajectory or the last cycle. Every run is made once (:class:`Runs`).
 """
 
 from __future__ import annotations
@@ -81,10 +74,8 @@ def _fig3_need(runs: Runs, model: Mapping, cases: Mapping[str, Mapping], n_cycle
 
 def fig3_readings(model: Mapping, cases: Mapping[str, Mapping], n_cycles: int, runs: Runs | None = None
                   ) -> list[Reading]:
-    """Fig. 3: per case (a mapping with ``F`` and ``x0``, whose magnitude is taken), release side,
-    section, quantity and number of cycles (N or N + 1), the series against the cycle number."""
-    if not (isinstance(n_cycles, int) and n_cycles >= 1):
-        raise ValueError(f"n_cycles = {n_cycles!r} must be an integer >= 1")
+    """Fig. 3: per case (``F`` and ``|x0|``), release side, section, quantity and number of cycles (N or N + 1),
+    the series against the cycle number."""
     runs = Runs(model) if runs is None else runs
     _fig3_need(runs, model, cases, n_cycles)
     readings = []
@@ -106,8 +97,7 @@ def fig3_readings(model: Mapping, cases: Mapping[str, Mapping], n_cycles: int, r
 
 @dataclass(frozen=True)
 class Amplitude:
-    """One definition of Fig. 3's "amplitude of oscillation": the values per cycle of a run with the cycle numbers
-    they belong to; its name is the variable's (in :data:`escapement.model.quantities.VARIABLES`)."""
+    """One definition of Fig. 3's "amplitude of oscillation": the values per cycle of a run and their cycles."""
 
     values: Callable[[Solution], tuple[np.ndarray, np.ndarray]] = field(repr=False)
 
@@ -120,8 +110,7 @@ def _per_cycle(values: Callable[[Solution], np.ndarray]) -> Callable[[Solution],
 
 
 def step1_amplitudes(run: Solution) -> np.ndarray:
-    """``h0(k)``, k = 1, 2, ...: the amplitude ``sqrt(a1**2 + (v / omega)**2)`` of the free arc that ends in the
-    k-th impact at a1 (``v`` the velocity before it), N + 1 of them in a run of N complete cycles."""
+    """``h0(k) = sqrt(a1**2 + (v_k / omega)**2)``, k = 1..N+1: the amplitude of the free arc ending in impact k."""
     ev = run.events
     i = ev.of_kind(EventKind.IMPACT_A1)
     return np.hypot(ev.x[i], ev.v_before[i] / run.params.omega)
@@ -133,8 +122,7 @@ def largest_abs_per_cycle(run: Solution) -> np.ndarray:
     return np.maximum(c.right, c.left)[: len(run.cycles)]
 
 
-#: The definitions of the amplitude a Fig. 3 scene may plot (the configuration's ``fig3.amplitude``), by the
-#: name of the variable that holds it, all at the section a1.
+#: the amplitudes a Fig. 3 scene may plot (``fig3.amplitude``), by the name of their variable, at the section a1
 AMPLITUDES: dict[str, Amplitude] = {
     "amplitude_h0": Amplitude(_per_cycle(step1_amplitudes)),  # the Step-1 amplitude h0(k), k = 1..N+1
     "amplitude_h4": Amplitude(_per_cycle(lambda run: step1_amplitudes(run)[1:len(run.cycles) + 1])),  # h0(k+1)=h4(k)
@@ -162,12 +150,8 @@ def _fig4_need(runs: Runs, cases: Mapping[str, Mapping], windows: Mapping[str, t
 def fig4_readings(model: Mapping, cases: Mapping[str, Mapping], windows: Mapping[str, tuple[float, float]],
                   samples_per_second: float, K_values: Iterable[float] = FIG4_K, runs: Runs | None = None
                   ) -> list[Reading]:
-    """Fig. 4: per force and release magnitude (every pair of the ``cases``' values), release side,
-    ``K`` and pairing of the windows with the quantities, the velocity (panel ``velocity``) and the
-    acceleration (panel ``acceleration``) against time. ``windows`` maps the two panels' names to
-    their printed windows; swapped, each quantity is drawn over the other's window."""
-    if set(windows) != {"velocity", "acceleration"}:
-        raise ValueError(f"windows has the keys {sorted(windows)}; it must have 'velocity' and 'acceleration'")
+    """Fig. 4: per force and release magnitude of the ``cases``, release side, ``K`` and pairing of the printed
+    ``windows`` with the quantities (swapped: each over the other's window), the velocity and the acceleration."""
     K_values = tuple(float(K) for K in K_values)
     runs = Runs(model) if runs is None else runs
     _fig4_need(runs, cases, windows, K_values)
@@ -200,8 +184,8 @@ def _fig5_need(runs: Runs, panels: Mapping[str, float], n_cycles: int, forces: I
 def fig5_readings(model: Mapping, panels: Mapping[str, float], n_cycles: int, samples_per_period: int,
                   forces: Iterable[float] = FIG5_FORCES, releases: Iterable[float] = FIG5_RELEASES,
                   runs: Runs | None = None) -> list[Reading]:
-    """Fig. 5: per panel (its ``K``), force and release point, the phase points of the whole
-    trajectory (release to the end of cycle ``n_cycles``) and of cycle ``n_cycles`` alone."""
+    """Fig. 5: per panel (its ``K``), force and release, the phase points to the end of cycle ``n_cycles`` and of
+    that cycle alone."""
     forces, releases = tuple(float(F) for F in forces), tuple(float(x) for x in releases)
     runs = Runs(model) if runs is None else runs
     _fig5_need(runs, panels, n_cycles, forces, releases)
@@ -227,13 +211,8 @@ def fig5_readings(model: Mapping, panels: Mapping[str, float], n_cycles: int, sa
 
 
 def all_readings(settings: Mapping, runs: Runs | None = None) -> list[Reading]:
-    """Every reading of Figs. 3-5 for ``settings``, a mapping with the configuration's blocks ``model``, ``fig3``
-    (``n_cycles``, ``cases``), ``fig4`` (``velocity_window``, ``acceleration_window``, ``samples_per_second``) and
-    ``fig5`` (``K``, ``n_cycles``, ``samples_per_period``; its panels lettered a, b, c in the order of ``K``). Every
-    run is stated before the first is made, so that each is made once."""
-    for block in ("model", "fig3", "fig4", "fig5"):
-        if block not in settings:
-            raise ValueError(f"settings has the blocks {sorted(settings)}; it must have '{block}'")
+    """Every reading of Figs. 3-5 for the configuration's blocks ``settings`` (Fig. 5's panels lettered in the
+    order of ``K``); every run is stated before the first is made, so that each is made once."""
     model = settings["model"]
     fig3, fig4, fig5 = settings["fig3"], settings["fig4"], settings["fig5"]
     windows = {"velocity": tuple(fig4["velocity_window"]), "acceleration": tuple(fig4["acceleration_window"])}
