@@ -1,8 +1,6 @@
 """The closed forms of whole cycles, the engine of :mod:`escapement.solvers.cycles`: from the event loop's first
-impact at a1, the return map of ``v**2`` gives each cycle's velocity, one ``crossing`` call on ``(4, m)`` arrays
-the arcs of the distinct cycles (``v_k**2`` is the float ``v***2`` after about ``45 / -log10(mu)`` of them), and
-TwoSum the impact times. It does not apply (a string says why) where an impact reverses the velocity, the first
-cycle does not complete, ``v_k**2`` is not positive, or an arc does not reach its end or grazes it.
+impact at a1, the return map of ``v**2`` gives each cycle's velocity, one ``crossing`` call the arcs of the
+distinct cycles, and TwoSum the impact times; where they do not apply, a string says why.
 """
 
 from __future__ import annotations

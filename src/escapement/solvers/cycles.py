@@ -1,7 +1,7 @@
 """Per-cycle closed forms: :func:`~escapement.solvers.exact.solve_exact`'s cycle table from the return map of
 ``v**2`` (:func:`solve_cycles`, in chunks :func:`iter_closed_form_cycles`), or from the event solver where they do
 not apply. They agree within 1e-14 down to ``b`` of about 0.015 (below, the event solver's rounding grows as
-``eps / b``, damped only by ``mu = (1 - b)**4``)."""
+``eps / b``)."""
 
 from __future__ import annotations
 
@@ -68,11 +68,8 @@ class CycleRun(Ended):
 
 def solve_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int, memory_budget: int | None = None,
                  check: bool = False, rtol: float = CROSS_CHECK_RTOL) -> CycleRun:
-    """:func:`~escapement.solvers.exact.solve_exact`'s cycle table for ``n_cycles`` cycles, from the closed forms.
-
-    The event solver makes the first partial cycle, up to the first impact at a1, and the return map
-    ``v_{k+1}**2 = mu v_k**2 + c`` every later one. Where the closed form does not apply (an impact that reverses
-    the velocity, a run that stops or turns back, a grazing arc) the result holds ``solve_exact``'s run, and
+    """:func:`~escapement.solvers.exact.solve_exact`'s cycle table for ``n_cycles`` cycles, from the closed forms
+    after the event solver's first impact at a1; where they do not apply, ``solve_exact``'s run, and
     :attr:`CycleRun.fallback` says why. With ``check`` the run is compared with ``solve_exact`` within ``rtol``."""
     spec = run_spec(params, x0, v0, n_cycles=n_cycles, memory_budget=memory_budget)
     spec.limits.check_memory(0.0, PEAK_BYTES_PER_CYCLE, "its cycle table and the closed form's work arrays",
@@ -134,9 +131,8 @@ class CycleChunks(ChunkIterator):
 def iter_closed_form_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int,
                             chunk: int = DEFAULT_CHUNK, memory_budget: int | None = None) -> CycleChunks:
     """:func:`solve_cycles`'s cycle table in chunks of at most ``chunk`` cycles, number for number, in memory that
-    does not grow with the run (the transient's distinct cycles once, each row from its own cycle number). Where
-    they would not fit the memory budget beside a chunk, or the closed form does not apply, the event solver
-    streams the run (:func:`~escapement.solvers.stream.iter_cycles`) and :attr:`CycleChunks.fallback` says why."""
+    does not grow with the run; where the transient does not fit the memory budget or the closed form does not
+    apply, :func:`~escapement.solvers.stream.iter_cycles`'s, and :attr:`CycleChunks.fallback` says why."""
     spec = run_spec(params, x0, v0, n_cycles=n_cycles, memory_budget=memory_budget)
     chunk, chunk_bytes = check_chunk(chunk, spec.limits.memory_budget)
     done = closed_form_cycles(spec, most=(spec.limits.memory_budget - chunk_bytes) // PEAK_BYTES_PER_CYCLE)

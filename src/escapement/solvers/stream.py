@@ -1,5 +1,4 @@
-"""The exact solver's cycles in chunks, in constant memory (:func:`iter_cycles`): the event loop's state and the
-events of the cycle under way carry from block to block, so the chunks are ``solve_exact``'s cycles number for
+"""The exact solver's cycles in chunks, in constant memory (:func:`iter_cycles`), ``solve_exact``'s number for
 number."""
 
 from __future__ import annotations
@@ -145,7 +144,8 @@ def iter_cycles(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     >>> bool(np.array_equal(np.concatenate(periods), solve_exact(p, x0=1.0, n_cycles=250).cycles.period))
     True
     """
-    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
+    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget,
+                    choices=True)
     chunk, _ = check_chunk(chunk, spec.limits.memory_budget)
     return CycleStream(EventRun(spec), chunk)
 
