@@ -1,10 +1,9 @@
 """Measuring the Poincare map of the simulated motion: fixed point, period, multiplier.
 
-The multiplier is measured, not taken from Eq. (21): released from rest at the left turning point of the free
-swing that meets a1 with velocity v, the exact solver's first impact is at (a1, v), and one cycle later it returns
-P(v); a central difference of P at the measured fixed point gives mu_2. :func:`floquet_multipliers` measures both
-multipliers from the flow instead. :func:`stability_grid` keeps its own vectorised Newton iteration:
-``scipy.optimize.newton`` on arrays stops on an absolute step only and takes a NaN step (a stop) as converged.
+The multiplier is measured, not taken from Eq. (21): released from rest on the free swing that meets a1 with
+velocity v, the exact solver returns P(v) one cycle later, and a central difference of P gives mu_2.
+:func:`stability_grid` keeps its own vectorised Newton iteration: ``scipy.optimize.newton`` on arrays stops on an
+absolute step only and takes a NaN step (a stop) as converged.
 """
 
 from __future__ import annotations
@@ -61,9 +60,8 @@ class CycleMeasurement:
 
 
 def largest_speed(arcs, t_from: float, t_to: float) -> float:
-    """The largest ``|v|`` of the motion between ``t_from`` and ``t_to``, exactly, from its harmonic arcs: on an
-    arc about ``c`` the state ``(x - c, v/w) = R (sin phi, cos phi)`` turns with ``phi`` growing at ``w``; ``|v|``
-    is ``w R`` where ``phi`` passes a multiple of pi (at ``x = c``), else largest at an end of the arc."""
+    """The largest ``|v|`` of the motion between ``t_from`` and ``t_to``, exactly, from its harmonic arcs: ``w R``
+    where an arc passes its centre, else at an end of the arc."""
     if not t_from < t_to:
         raise ValueError(f"t_from = {t_from!r} must be < t_to = {t_to!r}")
     starts = np.append(arcs.t_start, arcs.t_final)
@@ -83,9 +81,8 @@ def largest_speed(arcs, t_from: float, t_to: float) -> float:
 
 def floquet_multipliers(params: Parameters, x: float, v: float, period: float,
                         relative_step: float = 1e-6) -> tuple[float, float]:
-    """Both Floquet multipliers of the limit cycle through ``(x, v)`` (in free flight, away from every event
-    surface) of period ``period``, larger first: the eigenvalues of the Jacobian of the flow over ``period``, by
-    central differences of the exact solver from ``(x +/- h, v)`` and ``(x, v +/- h w)``, ``h`` the
+    """Both Floquet multipliers of the limit cycle of ``period`` through ``(x, v)`` (in free flight), larger first:
+    the eigenvalues of the flow's Jacobian over ``period`` by central differences of the exact solver, steps
     ``relative_step`` of ``|(x, v/w)|``. NaN where they are complex or a run leaves the regime."""
     if not (period > 0 and math.isfinite(period)):
         raise ValueError(f"period = {period!r} must be a finite number > 0")
@@ -111,6 +108,13 @@ def floquet_multipliers(params: Parameters, x: float, v: float, period: float,
     return trace / 2 + root, trace / 2 - root
 
 
+def _slope(map_at, v):
+    """dP/dv at ``v`` by a central difference of ``map_at(v) = (v_in, P(v_in), ...)``."""
+    lo_in, lo_out = map_at(v * (1 - RELATIVE_STEP))[:2]
+    hi_in, hi_out = map_at(v * (1 + RELATIVE_STEP))[:2]
+    return (hi_out - lo_out) / (hi_in - lo_in)
+
+
 def _free_flight_state(run) -> tuple[float, float]:
     """The state halfway in time between the last a2 and the following impact at a3 (free flight)."""
     kinds, times = run.events.kind, run.events.t
@@ -128,13 +132,11 @@ def measure_cycle(params: Parameters, x0: float, n_cycles: int = 300) -> CycleMe
         return CycleMeasurement(run.status.value, run.message, nan, nan, nan, nan, -1, nan, nan, (nan, nan))
     v = run.cycles.velocity_before_impact
     star = float(v[-1])
-    lo_in, lo_out = return_map(params, star * (1 - RELATIVE_STEP))
-    hi_in, hi_out = return_map(params, star * (1 + RELATIVE_STEP))
     close = abs(v - star) <= 1e-9 * abs(star)
     first = int(close.argmax()) + 1 if close.any() else -1
     start, period = float(run.cycles.impact_time[-1]), float(run.cycles.period[-1])
     return CycleMeasurement(run.status.value, run.message, star, period, float(run.cycles.largest_displacement[-1]),
-                            (hi_out - lo_out) / (hi_in - lo_in), first, float(run.cycles.period[0]),
+                            _slope(lambda u: return_map(params, u), star), first, float(run.cycles.period[0]),
                             largest_speed(run.trajectory, start, start + period),
                             floquet_multipliers(params, *_free_flight_state(run), period))
 
@@ -150,15 +152,12 @@ def ensemble_return_map(model: dict, b, F, v):
 
 def stability_grid(model: dict, b, F, iterations: int = 40):
     """Fixed point and multiplier of the simulated return map at every ``(b, F)``, by Newton's method on ``P(v) - v``
-    with the slope from central differences of the simulated map (``P`` is convex: it converges from any positive
-    start). A dict of arrays: ``fixed_point``, ``multiplier``, ``period``, ``status``, ``newton_converged``."""
+    (``P`` is convex: it converges from any positive start): a dict of arrays."""
     b, F = np.asarray(b, dtype=float), np.asarray(F, dtype=float)
     omega = math.sqrt(model["K"] / model["M"])
 
     def slope_at(i, v):
-        lo_in, lo_out, _, _ = ensemble_return_map(model, b[i], F[i], v * (1 - RELATIVE_STEP))
-        hi_in, hi_out, _, _ = ensemble_return_map(model, b[i], F[i], v * (1 + RELATIVE_STEP))
-        return (hi_out - lo_out) / (hi_in - lo_in)
+        return _slope(lambda u: ensemble_return_map(model, b[i], F[i], u), v)
 
     v = np.full(b.shape, omega * abs(model["a1"])) + np.sqrt(2 * F / model["M"] * (model["a2"] - model["a1"]))
     converged = np.zeros(b.shape, dtype=bool)
