@@ -16,7 +16,7 @@ from escapement.studies.poincare import stability_grid
 from escapement.solvers.ensemble import solve_ensemble
 from escapement.solvers.exact import solve_exact
 from escapement.studies import stress
-from escapement.studies.stress import CASES, StressCase, row, run_all, run_case
+from escapement.studies.stress import CASES, StressCase, row, run_all
 
 
 def paper(**changes) -> Parameters:
@@ -264,7 +264,7 @@ def check_near_origin():
 def test_stress_case_against_its_independent_answer(case):
     chattering = CHATTERING.get(case.name)  # the case's own answer, derived here
     expected_outcome = _check_chattering(*chattering) if chattering else globals()[f"check_{case.name}"]()
-    result = run_case(case)
+    result = case.run()
     assert result.outcome == expected_outcome and result.passed, f"{case.name}: {result.detail}"
     assert row(case, result) == {"case": case.name, "regime": case.regime, "outcome": expected_outcome,
                                  "check": result.check, "passed": "yes", "detail": result.detail}

@@ -23,7 +23,7 @@ from ..integrators.high_precision import solve_high_precision
 from ..integrators.reference import solve_reference
 from ..solvers.stream import iter_cycles
 
-__all__ = ["CASES", "StressCase", "StressResult", "row", "run_all", "run_case"]
+__all__ = ["CASES", "StressCase", "StressResult", "row", "run_all"]
 
 
 @dataclass(frozen=True)
@@ -311,11 +311,6 @@ CASES = [
 ]
 
 
-def run_case(case: StressCase) -> StressResult:
-    """Run one case. An exception is a bug, not a result: it propagates and fails the job."""
-    return case.run()
-
-
 def row(case: StressCase, result: StressResult) -> dict:
     """The case's row of the summary table."""
     return {"case": case.name, "regime": case.regime, "outcome": result.outcome, "check": result.check,
@@ -323,5 +318,5 @@ def row(case: StressCase, result: StressResult) -> dict:
 
 
 def run_all() -> list[dict]:
-    """Every case, a row each, in the order of :data:`CASES`."""
-    return [row(case, run_case(case)) for case in CASES]
+    """Every case, a row each, in the order of :data:`CASES`; an exception is a bug, not a result: it propagates."""
+    return [row(case, case.run()) for case in CASES]
