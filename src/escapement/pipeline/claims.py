@@ -1,6 +1,5 @@
-"""The job of rule ``check_claims``: the claims register evaluated on the replication's outputs, written as
-``results/replication/claims.csv``, and beside it the limits its axis claims judged (``panel_limits.csv``), which
-the documents read as numbers. A check that fails fails the job, naming the claim; it never becomes a row."""
+"""The job of rule ``check_claims``: the claims register evaluated on the replication's outputs (``claims.csv``),
+and the limits its axis claims judged (``panel_limits.csv``). A check that fails fails the job, naming the claim."""
 
 from __future__ import annotations
 

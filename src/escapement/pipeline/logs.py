@@ -1,6 +1,5 @@
-"""One log file per job: what it did, how long it took, and why it failed: one line when the machine refused (a
-read-only folder, a full disk: an OSError) or a file it reads is missing or damaged (a DatasetError), the traceback
-for anything else."""
+"""One log file per job: what it did, how long it took, and why it failed: one line for an OSError or a missing or
+damaged file (a DatasetError), the traceback for anything else."""
 
 from __future__ import annotations
 

@@ -1,6 +1,5 @@
 """The plotting jobs: netCDF files or tables in, a figure out (PNG, PDF and SVG), titled by the study; the
-replication's paper figures with each printed panel's axes as the claims score them
-(:mod:`escapement.plotting.panel_axes`), a study of the user's own with matplotlib's. Imports no solver or scene."""
+replication's paper figures with each printed panel's axes as the claims score them. Imports no solver or scene."""
 
 from __future__ import annotations
 

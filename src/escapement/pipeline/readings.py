@@ -1,9 +1,7 @@
 """The printed axes as data: each candidate reading of the paper's unstated choices scored by the axis limits it
-would give. For every reading (:mod:`escapement.studies.readings`), every scored axis of its panel
-(:mod:`escapement.paper.printed_axes`), every margin (:data:`escapement.plotting.autoscale.VARIANTS`) and both tick
-modes (the printed step imposed, or matplotlib's default locator choosing its own), ``matches`` counts the printed
-limits that matplotlib's limits of the reading's values reproduce exactly (0, 1 or 2); readings of one panel whose
-plotted values are identical to rounding share ``same_values_as`` (:mod:`escapement.verdict.scores` reads it back).
+would give. For every reading, scored axis, margin and tick mode, ``matches`` counts the printed limits that
+matplotlib's limits of the reading's values reproduce exactly (0, 1 or 2); readings of one panel whose plotted values
+are identical to rounding share ``same_values_as``.
 """
 
 from __future__ import annotations
@@ -33,8 +31,8 @@ def _same(a: Reading, b: Reading) -> bool:
 
 
 def equivalence(readings: Iterable[Reading]) -> dict[tuple[str, str, str], str]:
-    """For each reading, keyed ``(figure, panel, name)``, the name of the first reading of its panel
-    that plots the same values (its own name if none before it does)."""
+    """For each reading, keyed ``(figure, panel, name)``, the name of the first reading of its panel that plots the
+    same values (its own name if none before it does)."""
     first: dict[tuple[str, str], list[Reading]] = {}  # the readings that head a group of the same values, by panel
     found: dict[tuple[str, str, str], str] = {}
     for r in readings:
@@ -49,8 +47,7 @@ def equivalence(readings: Iterable[Reading]) -> dict[tuple[str, str, str], str]:
 
 
 def score_table(readings: Iterable[Reading]) -> list[dict]:
-    """One row per reading, scored axis of its panel, margin and tick mode (numbers as floats), in
-    the order of the readings, then the axes (x, y), the margins, the tick modes."""
+    """One row per reading, scored axis of its panel, margin and tick mode (numbers as floats), in that order."""
     printed, readings = {(p.figure, p.name): p for p in PANELS}, list(readings)
     same = equivalence(readings)
     jobs = []  # (reading, axis name, axis, finite values)

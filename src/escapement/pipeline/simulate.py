@@ -1,25 +1,22 @@
-"""The simulation jobs: a scene's settings in, its netCDF file out (for the scenes that time themselves, the wall
-times apart, in a CSV file): each kind's scene function (:mod:`escapement.scenes`) makes the dataset, this job logs
-its outcome and writes it. A map planned in chunks runs one job a chunk, and :func:`gather` joins their files."""
+"""The simulation jobs: a scene's settings in, its netCDF file out (its wall times, if it measures any, in a CSV
+file); a map planned in chunks runs one job a chunk, and :func:`gather` joins their files."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from importlib import import_module
 
-from ..io.netcdf import read_csv, read_netcdf, write_csv, write_netcdf
+from ..io.netcdf import read_netcdf, write_csv, write_netcdf
 from .logs import logged
+from .tables import TIMING_COLUMNS, read_timings
 
-__all__ = ["SCENES", "TIMING_COLUMNS", "gather", "simulate"]
+__all__ = ["SCENES", "gather", "simulate"]
 
 #: the module of each kind's scene function, which has the kind's name (imported by its job alone: the long run
 #: and the checks bring mpmath, the maps the ensemble)
 SCENES = {**dict.fromkeys(("poincare_map", "shock_detail", "phase_diagram"), "figures"),
           **dict.fromkeys(("escapement_error", "existence_map", "stability_map"), "maps"),
           **dict.fromkeys(("long_run", "checks"), "runs")}
-
-#: wall times, kept apart from the datasets (which are deterministic): one row per measurement
-TIMING_COLUMNS = ["measurement", "seconds"]
 
 
 def simulate(kind: str, scene, outputs: Mapping[str, str], log: str, rule: str = "") -> None:
@@ -45,9 +42,7 @@ def gather(kind: str, parts: Sequence[str], timings: Sequence[str], outputs: Map
 
     with logged(log, kind) as logger:
         logger.info("%s: %d chunks %s", outputs["nc"], len(parts), ", ".join(parts))
-        measured = [{row["measurement"]: float(row["seconds"]) for row in read_csv(path, TIMING_COLUMNS)}
-                    for path in timings]
-        ds, timing = joined([read_netcdf(path) for path in parts], measured)
+        ds, timing = joined([read_netcdf(path) for path in parts], [read_timings(path) for path in timings])
         _write(ds, timing, outputs, f"escapement workflow, rule {rule or kind}: {outputs['nc']}")
 
 

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 from ..io.netcdf import read_csv
 from ..verdict.rule import COLUMNS
-from .simulate import TIMING_COLUMNS
 
-__all__ = ["LIMIT_COLUMNS", "SPEED_COLUMNS", "STRESS_COLUMNS", "WORK_PRECISION_COLUMNS", "read_claims", "read_timings"]
+__all__ = ["LIMIT_COLUMNS", "SPEED_COLUMNS", "STRESS_COLUMNS", "TIMING_COLUMNS", "WORK_PRECISION_COLUMNS",
+           "read_claims", "read_timings"]
 
+#: wall times, kept apart from the datasets (which are deterministic): one row per measurement
+TIMING_COLUMNS = ["measurement", "seconds"]
 WORK_PRECISION_COLUMNS = ["method", "setting", "wall_s", "repeats", "error_velocity", "error_time"]
 #: the speed table: a ratio of two wall times (or of two peak memories) measured side by side
 SPEED_COLUMNS = ["name", "n", "ratio", "time_s", "reference_s", "repeats", "bytes", "reference_bytes", "note"]
