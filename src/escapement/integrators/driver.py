@@ -1,6 +1,5 @@
-"""The integrators' loop: drives the automaton from event to event with a pluggable integrator, a stepper, that
-says only which watched surface is reached first, when and at what velocity (:meth:`Stepper.next_event`); the
-rest is the automaton's, and a run ends as the exact solver's does (:mod:`escapement.solvers.outcomes`).
+"""The integrators' loop: drives the automaton from event to event with a stepper that says only which watched
+surface is reached first, when and at what velocity; a run ends as the exact solver's does.
 """
 
 from __future__ import annotations
@@ -29,18 +28,15 @@ __all__ = ["HORIZON", "NO_EVENT", "Step", "Stepper", "drive"]
 #: a :class:`Step`'s kind where no watched surface is ever passed, and where the end time comes first
 NO_EVENT, HORIZON = 0, -1
 _A1 = int(EventKind.IMPACT_A1)
-#: bytes at the peak per event (t, x, v_before, v_after, kind, and the masks that pick the cycles' impacts;
-#: measured 48-58 with the naive stepper) and per cycle (largest x, period, impact time and velocity)
+#: bytes at the peak per event (measured 48-58 with the naive stepper) and per cycle
 _FLOAT_EVENT_BYTES, _FLOAT_CYCLE_BYTES = 64, 40
-#: bytes per mpmath number in a list and the object array it ends in (the mpf, its tuple and integers): measured
-#: 197 at 60 digits (199 bits), 263 at 210 and 518 at 1010 (3357 bits)
+#: bytes per mpmath number in a list and its object array: measured 197 at 60 digits, 263 at 210, 518 at 1010
 _MPF_BYTES_BASE, _MPF_BYTES_PER_BIT = 200, 0.12
 
 
 class Step(NamedTuple):
-    """What a stepper returns (or a plain tuple of these six fields). ``kind`` an :class:`EventKind`: the surface
-    reached after ``dt`` with velocity ``v``, ``x_max`` the largest displacement on the way; :data:`NO_EVENT`:
-    ``x_max`` is the turning point (free flight: the swing's radius) reached ``dt`` after the start."""
+    """What a stepper returns: the surface ``kind`` reached after ``dt`` with velocity ``v``, ``x_max`` the largest
+    displacement on the way; with :data:`NO_EVENT`, ``x_max`` is the turning point (free flight: the radius)."""
 
     kind: int
     dt: float
@@ -51,9 +47,8 @@ class Step(NamedTuple):
 
 
 class Stepper(Protocol):
-    """An integrator for the loop. One that keeps the motion has ``trajectory(t_final)``, a
-    :class:`~escapement.solvers.describe.Trajectory` up to ``t_final`` (or None), and may say the bytes it keeps
-    per event (``trajectory_bytes_per_event``) and whatever the run's length (``fixed_bytes``)."""
+    """An integrator for the loop; one that keeps the motion has ``trajectory(t_final)`` and may say the bytes it
+    keeps per event (``trajectory_bytes_per_event``) and whatever the run's length (``fixed_bytes``)."""
 
     name: str
 
@@ -64,9 +59,8 @@ class Stepper(Protocol):
 
 
 def drive(spec: RunSpec, stepper: Stepper, number: Callable = float) -> Solution:
-    """Run the automaton of ``spec`` from its release at ``t = 0`` until its limits or a regime exit, in the
-    arithmetic of ``number`` (``float``, or ``mpmath.mpf`` at the working precision); a result over the memory
-    budget is refused before any work."""
+    """Run the automaton of ``spec`` until its limits or a regime exit in the arithmetic of ``number`` (``float``
+    or ``mpmath.mpf``); a result over the memory budget is refused before any work."""
     params, limits, floats = spec.params, spec.limits, number is float
     stored = _MPF_BYTES_BASE + _MPF_BYTES_PER_BIT * mpmath.mp.prec  # bytes an mpmath number takes
     event_bytes = (_FLOAT_EVENT_BYTES if floats else 4 * stored + 1) + getattr(stepper, "trajectory_bytes_per_event", 0)

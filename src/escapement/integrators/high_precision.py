@@ -1,8 +1,6 @@
 """A high-precision reference in mpmath (50 significant digits by default), hand-written because no library
-integrates an impulsive system with events in arbitrary precision.
-
-Each arc is computed its own way, independently of :func:`escapement.model.kinematics.crossing`: the time from
-the phase angles ``atan2(w, u)`` of the start and the end taken separately, not from the angle between them.
+integrates an impulsive system with events in arbitrary precision. Each arc's time comes from the phase angles of
+its start and end taken separately, independently of the exact solver's kinematics.
 """
 
 from __future__ import annotations
@@ -85,8 +83,8 @@ def solve_high_precision(params: Parameters, x0: float, v0: float = 0.0, *, n_cy
     Returns
     -------
     Solution
-        The run, without a trajectory; its event log and cycles hold mpmath numbers (object arrays: ``float``
-        gives their nearest doubles), times in s, positions in m, velocities in m/s.
+        The run, without a trajectory; its event log and cycles hold mpmath numbers (times in s, positions in m,
+        velocities in m/s).
 
     Examples
     --------

@@ -60,8 +60,8 @@ class NaiveStepper:
 
 
 def solve_naive(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int, step: float) -> Solution:
-    """Run ``n_cycles`` cycles with fixed RK4 steps of ``step`` seconds, for comparison with the exact solver only:
-    an event is applied at the end of the step that passes it, not located, an error of the order of ``step``.
+    """Run ``n_cycles`` cycles with fixed RK4 steps of ``step`` seconds, each event applied at the end of the step
+    that passes it (an error of the order of ``step``), for comparison with the exact solver only.
 
     Parameters
     ----------

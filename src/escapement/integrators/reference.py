@@ -1,12 +1,9 @@
 """Reference solver: numerical integration by SciPy's ``solve_ivp`` (or SUNDIALS CVODE) with terminal events,
-sharing the automaton (through :mod:`escapement.integrators.driver`) but none of the closed forms.
+sharing the automaton but none of the closed forms.
 
-The motion is integrated segment by segment, each ending at an event or a turning point, so that ``x`` is
-monotone inside it. An integrator finds an event only where the event function changes sign over a step, so a
-step that spans the crossing of a zone's end and the turning point just beyond it shows none: at the end of each
-segment a watched surface between its start and its end was crossed, and is located on that monotone stretch.
-Steps are kept below half a period, so no turning point is missed; an escapement that stops is declared so only
-at a turning point with no watched surface ahead.
+The motion is integrated segment by segment, each ending at an event or a turning point, so that ``x`` is monotone
+inside it: a step that spans the crossing of a zone's end and the turning point just beyond shows no sign change,
+so a watched surface between a segment's start and end is located on that monotone stretch afterwards.
 """
 
 from __future__ import annotations
@@ -27,8 +24,7 @@ from .segments import CvodeIntegrator, DenseSegments, Hit, SciPyIntegrator, Segm
 
 __all__ = ["METHODS", "DenseSegments", "IvpStepper", "solve_reference"]
 
-#: free half-swings in a row without an event after which the escapement has stopped (three turning points
-#: cover more than one whole revolution from any start)
+#: free half-swings in a row without an event after which the escapement has stopped (more than one revolution)
 HALF_SWINGS_TO_STOP = 3
 #: the integrators a reference run may use: SciPy's solve_ivp methods and SUNDIALS CVODE's two
 METHODS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA", "CVODE-Adams", "CVODE-BDF")
@@ -49,8 +45,7 @@ class IvpStepper:
         self.name, self.integrator, self.record = integrator.name, integrator, record_trajectory
         self.surfaces = {kind: Watch(automaton.position(kind, params), s.direction)
                          for kind, s in automaton.SURFACES.items()}
-        #: bytes besides the loop's: each segment's dense output per event where kept (measured about 6_400),
-        #: and SciPy's work arrays whatever the run's length (about 190 kB)
+        #: bytes besides the loop's: each segment's dense output per event (measured 6_400), SciPy's work arrays
         self.trajectory_bytes_per_event, self.fixed_bytes = (7_000 if record_trajectory else 0), 256_000
         self.seg_t, self.seg_sol, self.seg_c = [], [], []  # each segment's start, dense output and centre
 
@@ -58,8 +53,7 @@ class IvpStepper:
                    watched: tuple[EventKind, ...], t_stop: float) -> Step:
         """As :meth:`Stepper.next_event <escapement.integrators.driver.Stepper.next_event>`."""
         t_start, largest = t, x
-        # each pass ends in a return or a turning point; a free run stops after HALF_SWINGS_TO_STOP of
-        # them, or one more if a watched surface lies ahead of the last (see _ahead)
+        # each pass ends in a return or a turning point; a free run stops after HALF_SWINGS_TO_STOP of them
         for rests in range(1, HALF_SWINGS_TO_STOP + 2):
             heading = _heading(centre, x, v)
             # x is monotone inside a segment: only the surfaces ahead can be crossed, and not one it starts on
@@ -96,8 +90,7 @@ class IvpStepper:
         return Step(NO_EVENT, math.inf, 0.0, abs(x))  # HALF_SWINGS_TO_STOP without an event: it has stopped
 
     def _first_crossing(self, seg: Segment, hit: Hit, dense, heading: int) -> Hit:
-        """The segment's first event: ``hit``, or the crossing the integrator missed of a watched surface that
-        lies between the start and ``hit`` (see the module's docstring)."""
+        """``hit``, or the crossing the integrator missed of a watched surface between the start and ``hit``."""
         x0, x1 = seg.y0[0], hit.y[0]
         passed = [i for i, w in enumerate(seg.watches)
                   if i != hit.index and w.position is not None
@@ -106,8 +99,7 @@ class IvpStepper:
         return hit if nearest is None else self.integrator.crossing(seg, dense, hit, nearest)
 
     def _ahead(self, watched, centre: float, x: float) -> bool:
-        """True if, from a turning point at ``x``, a watched surface lies ahead in the direction of the motion
-        that follows (between the turning point and the free centre: the next segment crosses it)."""
+        """True if, from a turning point at ``x``, a watched surface lies ahead in the motion that follows."""
         heading = _heading(centre, x, 0.0)
         return any(self.surfaces[k].direction == heading and (self.surfaces[k].position - x) * heading > 0.0
                    for k in watched)
@@ -121,8 +113,7 @@ class IvpStepper:
 def solve_reference(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = None,
                     t_end: float | None = None, max_events: int | None = None, method: str = "DOP853",
                     rtol: float = 1e-12, atol: float | None = None, record_trajectory: bool = True) -> Solution:
-    """Integrate the escapement model numerically, segment by segment; the limits and outcomes are those of
-    :func:`escapement.solvers.exact.solve_exact`.
+    """Integrate the escapement model numerically; the limits and outcomes are those of ``solve_exact``.
 
     Parameters
     ----------
@@ -137,15 +128,13 @@ def solve_reference(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles:
     t_end : float, optional
         End time, s.
     max_events : int, optional
-        Bound on the number of events (default as ``solve_exact``'s, but :data:`DENSE_MAX_EVENTS` for a run to
-        ``t_end`` alone that keeps its dense output).
+        Bound on the number of events (:data:`DENSE_MAX_EVENTS` for a run to ``t_end`` that keeps its dense output).
     method : str, default "DOP853"
         A ``solve_ivp`` method or "CVODE-Adams" / "CVODE-BDF" (SUNDIALS, no dense output): :data:`METHODS`.
     rtol : float, default 1e-12
         Relative tolerance, dimensionless, in ``(0, 1)``.
     atol : float, optional
-        Absolute tolerance on ``x``, m (``omega`` times it on ``v``, m/s); default ``rtol`` times the largest of
-        ``|x0|``, ``|a_i|``, ``F/K`` and ``|v0|/omega``.
+        Absolute tolerance on ``x``, m (``omega`` times it on ``v``); default ``rtol`` times the run's length scale.
     record_trajectory : bool, default True
         Keep the dense output, for :meth:`Solution.sample <escapement.Solution.sample>` (not with CVODE).
 

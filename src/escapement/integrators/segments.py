@@ -1,7 +1,6 @@
 """The reference solver's backends: one segment of the motion, ending at the first surface it watches, by SciPy's
 ``solve_ivp`` or SUNDIALS CVODE, and the crossing of a surface inside it (hand-written: neither library reports a
-crossing that a step passes together with the turning point just beyond it).
-"""
+crossing that a step passes together with the turning point just beyond it)."""
 
 from __future__ import annotations
 
@@ -28,8 +27,7 @@ ROOT_TOLERANCE = 4.0 * np.finfo(float).eps
 
 @dataclass(frozen=True)
 class Watch:
-    """An event a segment watches: ``x`` reaching ``position`` while moving in ``direction``
-    (``position`` None: the velocity vanishing while moving in ``direction``)."""
+    """An event a segment watches: ``x`` reaching ``position`` (None: ``v`` vanishing) moving in ``direction``."""
 
     position: float | None
     direction: int
@@ -83,8 +81,7 @@ class SciPyIntegrator:
         self.name = f"solve_ivp {method} rtol={rtol:g}"
 
     def segment(self, seg: Segment, dense: bool | None = None) -> tuple[Hit | None, Dense | None]:
-        """The first event of the segment (None: none before ``t1``) and, if kept (``dense``, by default as the
-        integrator was made), the dense output."""
+        """The first event of the segment (None: none before ``t1``) and, if kept, the dense output."""
         omega2, centre, dense = seg.omega2, seg.centre, self.dense if dense is None else dense
         functions = [lambda _t, y, w=w: w.value(y) for w in seg.watches]
         for event, w in zip(functions, seg.watches):
@@ -100,8 +97,8 @@ class SciPyIntegrator:
         return min(hits, key=lambda hit: hit.t, default=None), (sol.sol if dense else None)
 
     def crossing(self, seg: Segment, dense: Dense | None, end: Hit, index: int) -> Hit:
-        """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, on the segment's dense output
-        (integrated again if it was not kept: the same steps, so the same ``end``)."""
+        """Where ``x`` reaches ``seg.watches[index]`` before ``end``, on the segment's dense output (integrated again,
+        the same steps, if it was not kept)."""
         if dense is None:
             again, dense = self.segment(seg, True)
             if again != end:
@@ -151,8 +148,7 @@ class CvodeIntegrator:
         return self._solve(seg, seg.watches, [w.crossing for w in seg.watches], seg.t0, seg.y0, seg.t1), None
 
     def crossing(self, seg: Segment, dense: Dense | None, end: Hit, index: int) -> Hit:
-        """Where ``x`` reaches the position of ``seg.watches[index]`` before ``end``, integrating back from ``end``
-        (``x`` is monotone on that stretch, which holds one crossing)."""
+        """Where ``x`` reaches ``seg.watches[index]`` before ``end``, integrating back from ``end`` (one crossing)."""
         watch = seg.watches[index]
         back = self._solve(seg, (watch,), [0], end.t, end.y, seg.t0)
         if back is None:
