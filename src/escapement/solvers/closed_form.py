@@ -102,10 +102,8 @@ def _prefix_sums(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _window(values: np.ndarray, start: int, stop: int) -> np.ndarray:
-    """Entries ``start .. stop - 1`` of ``values`` extended for ever by repeating its last."""
-    if len(values) >= stop:
-        return values[start:stop]
-    return np.concatenate((values[start:], np.full(stop - max(start, len(values)), values[-1])))
+    """Entries ``start .. stop - 1`` of ``values`` extended for ever by repeating its last, as a new array."""
+    return values[np.minimum(np.arange(start, stop), len(values) - 1)]
 
 
 def _arcs(params: Parameters, col: dict[str, np.ndarray], v: np.ndarray):

@@ -119,8 +119,6 @@ class CycleChunks(ChunkIterator):
         stop = min(self._done + self._chunk, self._n)
         with np.errstate(all="ignore"):
             table, t_end = table_rows(self._cycles, self._done, stop)
-        # a chunk owns its arrays, as the event solver's do: a window inside the transient is a view of it
-        table = CycleTable(**{name: getattr(table, name).copy() for name in CYCLE_COLUMNS})
         self._done = stop
         if stop == self._n:  # a cycle is the events of the automaton's cycle plan
             self._summary = StreamSummary(Status.COMPLETED, f"completed {self._n} cycles", Exit(), t_end, self._n,
