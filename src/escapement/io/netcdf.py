@@ -1,14 +1,11 @@
 """Writing and reading the files: netCDF (compressed, checksummed, stamped with their provenance), CSV and text,
-each written to a temporary file beside its target and renamed into place, so that a reader never sees a partial
-file. A symbolic link is written through (the link stays, the file it names gets the data). A Ctrl-C during a
-netCDF write or read is raised as soon as it returns, and an interrupted write leaves no file; the temporary files
-of a killed process are removed by the next write of the same target.
+each written to a temporary file beside its target (through a symbolic link) and renamed into place, so that a
+reader never sees a partial file. A Ctrl-C during a netCDF write or read is raised as soon as it returns.
 
-Every table and dataset proves it is whole before it is read. A CSV file's first line is ``# rows: N; sha256: <hex>``,
-the digest of the bytes after it; a netCDF file's global attribute ``sha256`` is the digest of its stored variables
-(name, dimensions, type, shape, raw bytes) and of every attribute but itself (Fletcher-32, on the variables alone,
-does not cover the attributes). A file cut, emptied or changed is refused in one line naming the command that
-rebuilds it.
+Every file proves it is whole before it is read: a CSV file's first line is ``# rows: N; sha256: <hex>``, the digest
+of the bytes after it; a netCDF file's global attribute ``sha256`` digests its raw variables and every other
+attribute (Fletcher-32 does not cover the attributes). A file cut, emptied or changed is refused in one line naming
+the command that rebuilds it.
 """
 
 from __future__ import annotations
@@ -54,8 +51,7 @@ def damaged(path: str | os.PathLike, why: str) -> DatasetError:
 
 
 def netcdf_digest(nc) -> str:
-    """The sha256 of the open netCDF4 dataset ``nc`` the module's docstring describes, its variables read raw (no
-    masking, scaling or joining of characters), so that no decoding can change it."""
+    """The sha256 of the open netCDF4 dataset ``nc``, its variables read raw, so that no decoding can change it."""
     import numpy as np
 
     nc.set_auto_maskandscale(False)
@@ -77,8 +73,7 @@ def netcdf_digest(nc) -> str:
 
 @contextmanager
 def checked_netcdf(path: str | os.PathLike):
-    """The netCDF4 dataset of ``path``, open, once its digest is checked; :class:`DatasetError` naming the file and
-    the command that rebuilds it if it is missing, lacks its digest, or is damaged (whatever netCDF4 raises)."""
+    """The netCDF4 dataset of ``path``, open, once its digest is checked; else :class:`DatasetError`."""
     import netCDF4
 
     with interrupt_deferred():
@@ -100,17 +95,15 @@ def checked_netcdf(path: str | os.PathLike):
 
 
 def stale_partials(path: str | os.PathLike) -> list[Path]:
-    """The temporary files of earlier (killed) writes of ``path``: ``.<name>.<random>.partial`` beside it, the
-    random part without a dot, so that no other target's temporary files match."""
+    """The temporary files of earlier (killed) writes of ``path``: ``.<name>.<random without a dot>.partial``."""
     path = Path(path)
     pattern = re.compile(rf"\.{re.escape(path.name)}\.[^./]+{re.escape(PARTIAL)}")
     return sorted(p for p in path.parent.glob(f".*{PARTIAL}") if pattern.fullmatch(p.name))
 
 
 def target_of(path: str | os.PathLike) -> Path:
-    """The file a write of ``path`` replaces: ``path`` with its symbolic links resolved. :class:`OSError` for a
-    loop of links, :class:`IsADirectoryError` for a directory, :class:`FileExistsError` for anything else that
-    exists and is not a regular file (a device, a pipe), which the rename would replace."""
+    """The file a write of ``path`` replaces, its symbolic links resolved; :class:`OSError` for a loop of links, a
+    directory, or anything else that is not a regular file (which the rename would replace)."""
     target = Path(os.path.realpath(path))
     if target.is_symlink():  # realpath stops where the links loop
         raise OSError(errno.ELOOP, os.strerror(errno.ELOOP), str(path))
@@ -122,9 +115,8 @@ def target_of(path: str | os.PathLike) -> Path:
 
 
 def writable_target(path: str | os.PathLike) -> Path:
-    """:func:`target_of` ``path``, once a temporary file named as a write's has been made beside it and removed;
-    else the file system's :class:`OSError` (a missing folder, a name too long, a folder that takes no new file:
-    tried, as permission bits do not tell access lists, network file systems or read-only mounts)."""
+    """:func:`target_of` ``path``, once a temporary file has been made beside it and removed (permission bits do
+    not tell access lists, network file systems or read-only mounts); else the file system's :class:`OSError`."""
     target = target_of(path)
     with tempfile.NamedTemporaryFile(dir=target.parent, prefix=f".{target.name}.", suffix=PARTIAL):
         pass
@@ -133,9 +125,8 @@ def writable_target(path: str | os.PathLike) -> Path:
 
 @contextmanager
 def replaced(path: str | os.PathLike):
-    """A temporary path beside :func:`target_of` ``path`` (its folder made if missing), renamed to it when the
-    block ends without an error (removed if it raises); :func:`stale_partials` are removed first (two writes of
-    one target at once are not supported: the later removes the earlier's temporary file)."""
+    """A temporary path beside :func:`target_of` ``path``, renamed to it when the block ends without an error
+    (removed if it raises); :func:`stale_partials` are removed first."""
     path = target_of(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     for stale in stale_partials(path):
@@ -154,10 +145,9 @@ def replaced(path: str | os.PathLike):
 
 @contextmanager
 def interrupt_deferred():
-    """Run the block with a SIGINT recorded instead of raised, delivered to the handler it had once the block has
-    ended (outside the main thread, which alone receives signals, the block runs as it is). Hand-written because
-    xarray's writer, interrupted inside, can keep a lock it then waits for (a hang until a second Ctrl-C), and
-    netCDF4 loses an interrupt that comes while it reads."""
+    """Run the block with a SIGINT recorded instead of raised, delivered once the block has ended. Hand-written
+    because xarray's writer, interrupted inside, can keep a lock it then waits for, and netCDF4 loses an interrupt
+    that comes while it reads."""
     if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is None:
         yield  # a handler installed from outside Python cannot be put back: leave it alone
         return
@@ -172,10 +162,8 @@ def interrupt_deferred():
 
 
 def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, history: str | None = None) -> Path:
-    """Write ``ds`` to ``path`` (as :func:`replaced`) with its provenance (``history``: what wrote it, by default
-    this process's command line): data variables compressed (zlib level 4), every variable with a Fletcher-32
-    checksum, coordinates without ``_FillValue``. A Ctrl-C (:func:`interrupt_deferred`) is raised when the write
-    returns, and no file is left. Its digest (:func:`netcdf_digest`) is stamped on the written file."""
+    """Write ``ds`` to ``path`` with its provenance (``history``: what wrote it, by default this process's command
+    line), compressed, checksummed and stamped with its digest; an interrupted write leaves no file."""
     import netCDF4
 
     ds = ds.copy()
@@ -194,33 +182,31 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, history: str | None = 
 
 
 def read_netcdf(path: str | os.PathLike, required: Iterable[str] = ()) -> xr.Dataset:
-    """The dataset of ``path``, loaded once :func:`checked_netcdf` has checked it; :class:`DatasetError` naming the
-    file if not, or if it lacks a ``required`` variable. A Ctrl-C (:func:`interrupt_deferred`) is raised when it
-    returns."""
+    """The dataset of ``path``, loaded once :func:`checked_netcdf` has checked it and found the ``required``
+    variables; else :class:`DatasetError` naming the file."""
     import xarray as xr
 
     with checked_netcdf(path) as nc:
+        _require(path, required, nc.variables)
         loaded = xr.open_dataset(xr.backends.NetCDF4DataStore(nc)).load()
     loaded.set_close(None)  # the file is closed: read from the checked handle, not opened again
-    missing = [name for name in required if name not in loaded.variables]
-    if missing:
-        raise DatasetError(f"{path}: lacks the variable(s) {', '.join(missing)}")
     return loaded
 
 
 def read_variables(path: str | os.PathLike, names: Iterable[str]) -> dict:
-    """The variables ``names`` of the netCDF file ``path`` as arrays, read without xarray (a job that needs a few
-    numbers starts in a fraction of xarray's import); :class:`DatasetError` naming the file as :func:`read_netcdf`."""
-    names = list(names)
+    """The variables ``names`` of the netCDF file ``path`` as arrays, read without xarray (a fraction of its import
+    time); :class:`DatasetError` naming the file as :func:`read_netcdf`."""
     with checked_netcdf(path) as nc:
+        _require(path, names := list(names), nc.variables)
         nc.set_auto_maskandscale(True)  # the digest read the values raw: scaled again,
         nc.set_auto_mask(False)  # but a missing value is NaN, as xarray reads it
         nc.set_auto_chartostring(True)
-        missing = [name for name in names if name not in nc.variables]
-        found = {name: nc[name][...] for name in names if name not in missing}
-    if missing:
+        return {name: nc[name][...] for name in names}
+
+
+def _require(path, names: Iterable[str], present) -> None:
+    if missing := [name for name in names if name not in present]:
         raise DatasetError(f"{path}: lacks the variable(s) {', '.join(missing)}")
-    return found
 
 
 def write_text(text: str, path: str | os.PathLike) -> None:
@@ -240,8 +226,7 @@ def write_csv(rows: Iterable[Mapping], columns: list[str], path: str | os.PathLi
 
 
 def read_csv(path: str | os.PathLike, columns: list[str]) -> list[dict[str, str]]:
-    """The rows of ``path``, whose header must be ``columns``, once its row count and digest are checked;
-    :class:`DatasetError` naming the file (and the command that rebuilds it) if not."""
+    """The rows of ``path``, whose header must be ``columns``, once its row count and digest are checked."""
     try:
         head, _, body = Path(path).read_bytes().partition(b"\n")
     except OSError as err:
