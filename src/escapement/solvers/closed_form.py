@@ -94,10 +94,9 @@ def _prefix_sums(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     ``r_j = hi_j + d_j - hi_{j+1}``, each exact (TwoSum's error)."""
     hi = np.zeros(len(d) + 1)
     np.cumsum(d, out=hi[1:])
-    before, after = hi[:-1], hi[1:]
-    s, e = two_sum(before, d)
+    s, e = two_sum(hi[:-1], d)
     lo = np.zeros_like(hi)
-    np.cumsum((s - after) + e, out=lo[1:])
+    np.cumsum((s - hi[1:]) + e, out=lo[1:])
     return hi, lo
 
 

@@ -1,5 +1,5 @@
 """The tables a run is made of (cycles, harmonic arcs, a regime exit's numbers), their columns' names, units and
-long names (:mod:`escapement.model.quantities`), and summaries that print every number true as printed."""
+long names, and their summaries."""
 
 from __future__ import annotations
 
@@ -85,8 +85,7 @@ class ArcTable:
         return f"<ArcTable> {arcs} from t = {start} s to t_final = {end} s, omega = {omega}"
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Displacement, velocity and smooth acceleration at times ``t`` (NaN outside [0, t_final]); ``t`` is
-        checked as :meth:`escapement.Solution.sample` says."""
+        """Displacement, velocity and smooth acceleration at times ``t`` (NaN outside [0, t_final])."""
         t = sample_times("t", t)
         if len(self.t_start) == 0:
             nan = np.full(np.shape(t), np.nan)

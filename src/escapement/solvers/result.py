@@ -24,7 +24,6 @@ __all__ = ["ArcTable", "CycleTable", "EnsembleSolution", "Ended", "Exit", "Solut
 
 
 def _line(label: str, text: str, column: int = 12) -> str:
-    """One line of a summary: the label in a column ``column`` wide, ``text`` beside it."""
     return f"{label + ':':<{column}}{text}"
 
 
@@ -100,7 +99,6 @@ class Solution(Ended):
     def __repr__(self) -> str:
         ev, cycles = self.events, self.cycles
         impacts = int(np.count_nonzero(np.isin(ev.kind, [k for k in EventKind if k.is_impact])))
-        # the times side by side, each printed so that it compares with the others as it does
         zero, t_final, t_acc, *event_times = texts([0.0, self.t_final, self.exit.t_accumulation,
                                                     *(ev.t[[0, -1]] if len(ev) else ())])
         events = f"{len(ev)} ({impacts} impact{'' if impacts == 1 else 's'})"
