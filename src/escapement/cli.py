@@ -1,10 +1,7 @@
-"""The command line: ``escapement solve`` (or ``python -m escapement solve``) runs the exact solver for one set of
-parameters (the paper's symbols, SI units; defaults :data:`DEFAULTS`, Fig. 3 (a) as the workflow runs it), prints
-how the run ended and its per-cycle table, and writes the run as CF netCDF (``--netcdf``) or its cycles as CSV
-(``--csv``); ``escapement --version`` prints the installed version. Everything is checked before any work (the
-parameters, the cycles, each output a regular file in a directory that takes a new file, the two outputs two
-files); a refusal is one line on standard error naming the option as typed, its value and what it must be. The
-exit statuses are :data:`EXIT_STATUSES`; a Ctrl-C ends the process by the signal, leaving no partial file.
+"""The command line: ``escapement solve`` runs the exact solver for one set of parameters (the paper's symbols, SI
+units), prints how the run ended and its per-cycle table, and writes the run as CF netCDF or its cycles as CSV.
+Everything is checked before any work; a refusal is one line on standard error naming the option as typed, its
+value and what it must be, and the exit status says which (:data:`EXIT_STATUSES`).
 """
 
 from __future__ import annotations
@@ -110,8 +107,8 @@ def _parser(prog: str) -> argparse.ArgumentParser:
 
 
 def _check_output(option: str, text: str) -> Path:
-    """The file ``text`` names (its symbolic links resolved), or a refusal of a path that names no file (empty, a
-    directory, a device) or where none can be written (a missing folder, one that takes no new file, read-only)."""
+    """The file ``text`` names (its symbolic links resolved), or a refusal of a path that names no file or where none
+    can be written."""
     from .io.netcdf import writable_target
 
     if not text or "\0" in text:
@@ -184,8 +181,7 @@ def _run(args: argparse.Namespace, command: str) -> tuple[int, str]:
 
 
 def main(argv: Sequence[str] | None = None, prog: str | None = None) -> int:
-    """Run the command line on ``argv`` (the process's arguments by default) as program ``prog`` (the name it was
-    started by by default); return the exit status."""
+    """Run the command line on ``argv`` (by default the process's arguments) as program ``prog``: the exit status."""
     prog = _invoked_as() if prog is None else prog
     argv = sys.argv[1:] if argv is None else list(argv)
     if sys.stdout is None:  # started with standard output closed (``>&-``): refused before any work
