@@ -1,8 +1,7 @@
-"""Closed forms derived for this replication, the corrected counterparts of the paper's equations, each from the
-energy balance and the phase-plane geometry: about a centre ``c`` the state ``(x - c, v/w)`` turns clockwise at
-rate ``w``, and the speed at a position follows from energy. The sine phase ``phi = atan2(x, v/w)`` of the free
-motion (centre 0) advances at exactly ``w`` in free flight, so over one cycle ``T = 2 pi / w + (phase jumps at the
-two impacts) + (zone time - phase advance) over the two zones``, the decomposition Eqs. (24)-(25) aim at.
+"""Closed forms derived for this replication, the corrected counterparts of the paper's equations, from the energy
+balance and the phase plane, where about a centre ``c`` the state ``(x - c, v/w)`` turns clockwise at rate ``w``.
+The sine phase ``atan2(x, v/w)`` advances at exactly ``w`` in free flight, so a cycle lasts ``2 pi / w`` plus the
+phase jumps at the two impacts plus the zone times less their phase advance: the decomposition of Eqs. (24)-(25).
 """
 
 from __future__ import annotations
@@ -22,9 +21,8 @@ def _sqrt(value: float) -> float:
 
 
 def cycle_velocities(v1: float, p: Parameters) -> dict[str, float]:
-    """Velocities of one cycle from ``v1`` (before the impact at a1), by energy: the paper's (10)-(15) but (14),
-    where the force ``-f`` on the leftward motion from a3 to a4 does positive work ``f (a3 - a4)``, so
-    ``v5 = -sqrt(v4p**2 + (a3**2 - a4**2) w**2 + 2 (a3 - a4) f)``."""
+    """Velocities of one cycle from ``v1`` (before the impact at a1), by energy: the paper's (10)-(15) but (14), where
+    the force ``-f`` on the leftward motion from a3 to a4 does positive work ``f (a3 - a4)``."""
     w2, f, b = p.omega2, p.f, p.b
     v1p = (1 - b) * v1
     v2 = _sqrt(v1p**2 + w2 * (p.a1 - p.a2) * (p.a1 + p.a2) + 2 * (p.a2 - p.a1) * f)
@@ -36,8 +34,7 @@ def cycle_velocities(v1: float, p: Parameters) -> dict[str, float]:
 
 
 def map_constant(p: Parameters) -> float:
-    """``C`` in the map ``v1(k+1)**2 = (1 - b)**4 v1(k)**2 + C`` (Eq. (16) is right): the model's cycle map,
-    :func:`escapement.model.cycle_map.cycle_map`."""
+    """``C`` in the map ``v1(k+1)**2 = (1 - b)**4 v1(k)**2 + C`` (Eq. (16) is right)."""
     return cycle_map(p).c
 
 
@@ -53,9 +50,8 @@ def _zone_time(centre: float, x_from: float, x_to: float, v_from: float, w: floa
 
 
 def period(v1: float, p: Parameters) -> float:
-    """Corrected Eq. (23): the period of the cycle that starts with ``v1`` at a1, the paper's eight arccos terms
-    with the last two read ``acos(-a4/h5) + acos(-a1/h5)``: from a4 the mass swings through the left turning point
-    ``-h5`` and back to a1, a phase of ``2 pi - acos(a4/h5) - acos(a1/h5)``."""
+    """Corrected Eq. (23): the period of the cycle from ``v1`` at a1, the last two of the eight arccos terms read
+    ``acos(-a4/h5) + acos(-a1/h5)``, as from a4 the mass swings through the left turning point ``-h5`` to a1."""
     w, c = p.omega, p.zone_offset
     vel = cycle_velocities(v1, p)
     h2 = math.hypot(p.a2, vel["v2"] / w)
@@ -82,9 +78,8 @@ def zone_period_change(v1: float, p: Parameters) -> float:
 
 
 def period_from_perturbations(v1: float, p: Parameters) -> float:
-    """``2 pi / w`` plus the four perturbations of one cycle (both impacts, both zones) plus the sine-phase
-    difference of the cycle's end and start at a1 over ``w`` (zero on the limit cycle, the paper's case). The left
-    half is the mirror image of a right half (``x -> -x``: a3 to -a3, a4 to -a4, the speed at a3 rightward)."""
+    """``2 pi / w`` plus the perturbations of both impacts and both zones (the left half the mirror image of a right
+    half) plus the drift of the sine phase at a1 over the cycle (zero on the limit cycle)."""
     w = p.omega
     vel = cycle_velocities(v1, p)
     mirror = Parameters(M=p.M, K=p.K, F=p.F, b=p.b, a1=-p.a3, a2=-p.a4, a3=-p.a1, a4=-p.a2)
@@ -95,10 +90,9 @@ def period_from_perturbations(v1: float, p: Parameters) -> float:
 
 
 def velocity_recovery(v1: float, p: Parameters) -> tuple[float, float]:
-    """``(x, t)``: where in the zone (a1, a2) the velocity regains its value before the impact at a1, and the time
-    after the impact; ``(nan, nan)`` if not in the zone (after a2 the free motion, away from 0, only slows down).
-    In the zone ``v(x)**2 = v1p**2 + w**2 (a1**2 - x**2) + 2 f (x - a1)``, which is ``v1**2`` where
-    ``w**2 x**2 - 2 f x + q = 0``, ``q = (2b - b**2) v1**2 - w**2 a1**2 + 2 f a1``."""
+    """``(x, t)``: where in the zone (a1, a2) the velocity regains its value before the impact at a1, and when;
+    ``(nan, nan)`` if not in the zone. By energy, where ``w**2 x**2 - 2 f x + q = 0``,
+    ``q = (2b - b**2) v1**2 - w**2 a1**2 + 2 f a1``."""
     w2, f, b = p.omega2, p.f, p.b
     v1p = (1 - b) * v1
     q = (2 * b - b * b) * v1 * v1 - w2 * p.a1**2 + 2 * f * p.a1
@@ -139,21 +133,18 @@ SECONDS_PER_DAY = 86_400.0
 
 
 def daily_rate(period: float, natural_period: float) -> float:
-    """Seconds gained per day (negative: lost) by a clock that counts ``natural_period`` per swing
-    of an oscillator whose period is ``period``: ``86400 (T0 / T - 1)``."""
+    """Seconds gained per day by a clock counting ``natural_period`` per swing of period ``period``."""
     return SECONDS_PER_DAY * (natural_period / period - 1.0)
 
 
 def first_order_zone_change(start: float, end: float, amplitude: float, omega: float, f: float) -> float:
     """The first-order time cost of a zone from ``start`` (a) to ``end`` (c), force per unit mass ``f`` along the
-    motion, on an arc of amplitude ``amplitude`` (A): inside it the sine phase advances at ``w - f x / (w A**2)``, so
-    ``dT2 = f (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) / (w**3 A**2) + O(f**2)``: zero for a zone symmetric about 0
-    (Airy), negative for one before the equilibrium, positive for one after."""
+    motion, on an arc of amplitude ``amplitude`` (A): ``f (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) / (w**3 A**2)``,
+    zero for a zone symmetric about 0 (Airy), negative before the equilibrium, positive after."""
     a2 = amplitude * amplitude
     return f * (math.sqrt(a2 - start * start) - math.sqrt(a2 - end * end)) / (omega**3 * a2)
 
 
 def zone_amplitude(p: Parameters, release: float) -> float:
-    """Amplitude of the arc that enters the zone (a1, a2) after the impact at a1, for a release from
-    rest at ``-release``: ``sqrt(a1**2 + (1 - b)**2 (release**2 - a1**2))`` (closed form)."""
+    """Amplitude of the arc entering the zone (a1, a2) after the impact at a1, released from rest at ``-release``."""
     return math.sqrt(p.a1**2 + (1 - p.b) ** 2 * (release**2 - p.a1**2))
