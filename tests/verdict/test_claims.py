@@ -159,8 +159,8 @@ def test_reason_and_conclusion_are_parts_never_readings():
 
 
 #: the claims of the register the refusals below mutate, in the register's order (a register of its own)
-SMALL = ("eq4_jump_set", "eq16_map", "eq19_fixed_point_case_a", "eq19_fixed_point_case_b", "eq20_map_derivative",
-         "fig5_recovery_small_K_faster", "airy_symmetric_impulse")
+SMALL = ("eq4_jump_set", "eq16_map", "eq16_derivation", "eq19_fixed_point_case_a", "eq19_fixed_point_case_b",
+         "eq20_map_derivative", "eq20_derivation", "fig5_recovery_small_K_faster", "airy_symmetric_impulse")
 RECOVERY = "fig5_recovery_small_K_faster"
 #: each refusal of the loader: a mutation of the small register, and the message, which names the claim
 REFUSALS = [
@@ -187,8 +187,8 @@ REFUSALS = [
      "claim 'eq19_fixed_point_case_b': a second claim with this part"),
     (lambda by: by["eq19_fixed_point_case_b"].update(quote=by["eq19_fixed_point_case_b"]["quote"] + "."),
      "claim 'eq19_fixed_point_case_a': 1 claim\\(s\\) quote its sentence and it names a part: "),
-    (lambda by: by["eq16_map"].update(quote=by["eq19_fixed_point_case_a"]["quote"]),
-     "claim 'eq16_map': 3 claim\\(s\\) quote its sentence and it names no part: "),
+    (lambda by: by["eq4_jump_set"].update(quote=by["eq19_fixed_point_case_a"]["quote"]),
+     "claim 'eq4_jump_set': 3 claim\\(s\\) quote its sentence and it names no part: "),
     (lambda by: by["eq16_map"].update(check="nonsense"),
      "claim 'eq16_map': check = 'nonsense' must name a check of escapement.verdict as module.function$"),
     (lambda by: by["eq16_map"].update(check="engine.evaluate"), "claim 'eq16_map': check = 'engine.evaluate' must"),
@@ -437,6 +437,7 @@ PARTS = (
     ("sec5_conclusions", r"^(Sec\. 5|Abstract)"),
     ("figure_axes", r"^Fig\. [345]\b"),
     ("beyond", r"beyond the paper"),
+    ("derivations", r": the derivation$"),
 )
 
 

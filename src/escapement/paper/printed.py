@@ -105,26 +105,29 @@ def _acos(value: float) -> float:
     return math.acos(value) if -1.0 <= value <= 1.0 else math.nan
 
 
-def step_velocities(v1: float, p: Parameters) -> dict[str, float]:
-    """Eqs. (10)-(15) as printed: the velocities of one cycle from ``v1`` (Eq. (14): :func:`v5_14`)."""
-    w2, f, b = p.omega2, p.f, p.b
+def step_velocities(v1: float, p: Parameters, first: Symbols | None = None, second: Symbols | None = None
+                    ) -> dict[str, float]:
+    """Eqs. (10)-(15) as printed: the velocities of one cycle from ``v1`` (Eq. (14): :func:`v5_14`), the symbols of
+    the first half period's equations ``first``, of the second's ``second`` (unless given, :func:`symbols_of`)."""
+    s1, s2, b = first or symbols_of(p), second or symbols_of(p), p.b
+    w2 = s1.w**2
     v1p = (1 - b) * v1  # (10)
-    v2 = _sqrt(v1p**2 + (p.a1**2 - p.a2**2) * w2 - 2 * (p.a1 - p.a2) * f)  # (11)
-    v4 = -_sqrt(v2**2 + (p.a2**2 - p.a3**2) * w2)  # (12)
+    v2 = _sqrt(v1p**2 + (s1.a1**2 - s1.a2**2) * w2 - 2 * (s1.a1 - s1.a2) * s1.f)  # (11)
+    v4 = -_sqrt(v2**2 + (s1.a2**2 - s2.a3**2) * w2)  # (12)
     v4p = (1 - b) * v4  # (13)
-    v5 = v5_14(v4p, symbols_of(p))  # (14) as printed
-    v1_next = _sqrt(v5**2 + (p.a4**2 - p.a1**2) * w2)  # (15)
+    v5 = v5_14(v4p, s2)  # (14) as printed
+    v1_next = _sqrt(v5**2 + (s2.a4**2 - s2.a1**2) * w2)  # (15)
     return {"v1p": v1p, "v2": v2, "v4": v4, "v4p": v4p, "v5": v5, "v1_next": v1_next}
 
 
-def poincare_map_16(v1: float, p: Parameters) -> float:
-    """Eq. (16): the Poincare map for a general geometry."""
-    b, f = p.b, p.f
+def poincare_map_16(v1: float, p: Parameters, s: Symbols | None = None) -> float:
+    """Eq. (16): the Poincare map for a general geometry, the symbols ``s`` (unless given, :func:`symbols_of`)."""
+    b, s = p.b, s or symbols_of(p)
     return _sqrt(
         (1 - b) ** 4 * v1**2
-        + (b**2 - 2 * b) * p.omega2 * (p.a1**2 - p.a3**2)
-        - 2 * (1 - b) ** 2 * (p.a1 - p.a2) * f
-        + 2 * (p.a3 - p.a4) * f
+        + (b**2 - 2 * b) * s.w**2 * (s.a1**2 - s.a3**2)
+        - 2 * (1 - b) ** 2 * (s.a1 - s.a2) * s.f
+        + 2 * (s.a3 - s.a4) * s.f
     )
 
 
