@@ -1,9 +1,6 @@
-"""Where a file came from: the package's version, the commit of the source it was made from, and what wrote it.
-
-The commit: in a clone, that of the repository holding this package (git asked about it alone: a copy inside
-another repository's work tree is not that repository's), ``+dirty`` when a source file differs from it; in an
-archive (``git archive``, as a DOI archive holds it), the one git stamped into :data:`ARCHIVE_COMMIT`
-(``export-subst`` in ``.gitattributes``); else ``unknown``.
+"""Where a file came from: the package's version, the commit of the source it was made from (``+dirty`` when a
+source file differs from it; in an archive, the one ``git archive`` stamped into :data:`ARCHIVE_COMMIT`), and what
+wrote it.
 """
 
 from __future__ import annotations

@@ -1,12 +1,7 @@
-"""The escapement error: the limit cycle's rate against its amplitude, decomposed as Airy did.
-
-Watchmakers judge an escapement by its rate (seconds gained or lost per day) against the balance's amplitude.
-Airy (1830): an impulse delivered symmetrically about the equilibrium leaves the period unchanged to first order
-in the impulse; one delivered before the equilibrium shortens it (the clock gains), one after lengthens it. In
-the model the period of a cycle is ``T = 2 pi / w + dT1 + dT2``: ``dT1`` the phase jumps of the two impacts
-(Eq. (24)) and ``dT2`` the time through the two impulse zones less the phase they advance (Eq. (25)), both
-corrected (:mod:`escapement.paper.corrected`, whose :func:`~escapement.paper.corrected.first_order_zone_change`
-is Airy's first order); on the limit cycle the sum is the period the exact solver measures.
+"""The escapement error: the limit cycle's rate (seconds gained per day) against its amplitude, decomposed as Airy
+(1830) did: an impulse symmetric about the equilibrium leaves the period unchanged to first order, one before it
+shortens it, one after lengthens it. The period is ``T = 2 pi / w + dT1 + dT2``, the impacts' phase jumps and the
+zones' time less their phase advance (the corrected Eqs. (24)-(25)).
 """
 
 from __future__ import annotations
@@ -45,10 +40,8 @@ class LimitCycleRate:
 
 
 def limit_cycle_rate(p: Parameters) -> LimitCycleRate:
-    """The limit cycle of ``p`` (the fixed point of the map (16)), measured with the exact solver over one cycle
-    from the fixed point, and decomposed by the corrected Eqs. (24)-(25). Without a limit cycle its fields are NaN
-    and ``status`` says how the motion ends: STOPPED where the map (16) has no fixed point, else the status of the
-    cycle from the fixed point that leaves the regime, with ``message``."""
+    """The limit cycle of ``p``, measured with the exact solver over one cycle from the fixed point of the map (16)
+    and decomposed; without one its fields are NaN and ``status`` says how the motion ends."""
     v = corrected.fixed_point(p)
     if not math.isfinite(v):
         return _no_limit_cycle(p, Status.STOPPED, f"F = {p.F!r} N with a1..a4 = {p.a1}, {p.a2}, {p.a3}, {p.a4}: "

@@ -23,8 +23,8 @@ SECTIONS: dict[str, EventKind] = {"a1": EventKind.IMPACT_A1, "a3": EventKind.IMP
 
 
 class Runs:
-    """One exact run from rest per ``(F, K, x0)`` of ``model`` (a mapping of the other parameters): :meth:`need`
-    states what a reading reads before any run is made, :meth:`get` solves once for the most that was stated."""
+    """One exact run from rest per ``(F, K, x0)`` of ``model``: :meth:`need` states what a reading reads before any
+    run is made, :meth:`get` solves once for the most that was stated."""
 
     def __init__(self, model: Mapping) -> None:
         self.model = dict(model)
@@ -71,8 +71,8 @@ class Runs:
 
 
 def critical_times(run: Solution, lo: float, hi: float) -> np.ndarray:
-    """The times in ``[lo, hi]`` at which an arc of ``run`` has a phase that is a multiple of pi/2: the turning
-    points (extremes of ``x`` and of the acceleration) and the passages through its centre (extremes of ``v``)."""
+    """The times in ``[lo, hi]`` at which an arc of ``run`` has a phase that is a multiple of pi/2: the extremes of
+    ``x``, ``v`` and the acceleration."""
     arcs = run.trajectory
     if arcs is None:
         raise ValueError("the run kept no trajectory; solve with record_trajectory=True")
@@ -144,8 +144,7 @@ def phase_series(run: Solution, lo: float, hi: float, samples_per_second: float)
 
 @dataclass(frozen=True)
 class SectionCycles:
-    """Per cycle ``k = 1, 2, ...`` of a section (from its impact k to impact k + 1): ``speed`` and ``h0`` one per
-    impact of the run at the section, the others one per complete cycle."""
+    """Per cycle ``k`` of a section (from its impact k to impact k + 1); ``speed`` and ``h0`` one per impact."""
 
     speed: np.ndarray  #: |v| just before impact k at the section, m/s
     h0: np.ndarray  #: the amplitude sqrt(a**2 + (v / omega)**2) of the free arc ending in impact k, m
@@ -155,8 +154,7 @@ class SectionCycles:
 
 
 def section_cycles(run: Solution, section: str) -> SectionCycles:
-    """The cycles of ``run`` at the Poincare section ``section`` ("a1" or "a3"); each turning point is the largest
-    value at the cycle's impacts and at the critical times of its arcs."""
+    """The cycles of ``run`` at the Poincare section ``section`` ("a1" or "a3"), the turning points exact."""
     ev = run.events
     i = ev.of_kind(SECTIONS[section])
     t, x, v = (np.asarray(a, dtype=float)[i] for a in (ev.t, ev.x, ev.v_before))
