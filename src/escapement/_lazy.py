@@ -11,8 +11,7 @@ from typing import Any
 def lazy_exports(package: str, exports: Mapping[str, str], namespace: dict[str, Any]
                  ) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
     """``__getattr__`` and ``__dir__`` for ``package``, whose public names ``exports`` maps to the submodule that
-    defines each; a name is imported on first use and kept in ``namespace`` (the package's globals). ``dir`` lists
-    the exported names, the rest of ``__all__`` and the dunder attributes, not private names or submodules."""
+    defines each, imported on first use and kept in ``namespace``; ``dir`` lists them, ``__all__`` and the dunders."""
 
     def __getattr__(name: str) -> Any:
         if name not in exports:

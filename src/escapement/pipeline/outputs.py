@@ -60,8 +60,7 @@ def study_targets(study: str, scenes: Mapping[str, Mapping[str, object]]) -> lis
 
 
 def stale_files(study: str, scenes: Mapping[str, Mapping[str, object]]) -> list[Path]:
-    """The files in ``results/<study>/`` of a kind's name (a scene's dataset, a figure, the map's timing) that this
-    configuration no longer makes; other files are left alone."""
+    """The files of a kind's name in ``results/<study>/`` (data, figures, timing) this configuration no longer makes."""
     keep, root = set(study_targets(study, scenes)), Path("results", study)
     patterns = [*(FILES.get(block, f"{kind.name}.nc").format("*") for block, kind in KINDS.items()),
                 *(f"figures/{kind.name}.{ext}" for kind in KINDS.values() for ext in ("png", "pdf", "svg")),
@@ -98,8 +97,7 @@ def not_a_target(path: str, studies: Mapping[str, Mapping[str, Mapping[str, obje
 
 
 def code_digest(root: str | Path, package: str | Path | None = None) -> str:
-    """The digest the module's docstring describes, of ``package`` (by default the one loaded) and the scripts and
-    benchmarks under ``root``."""
+    """The digest the module's docstring describes, of ``package`` (by default the one loaded) and of ``root``'s."""
     digest = hashlib.sha256()
     package = Path(package) if package is not None else Path(__file__).resolve().parents[1]
     for folder, base in ((package, package.parent), (Path(root, "workflow/scripts"), Path(root)),

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.automaton import CHOICES
 from ..model.limits import MEMORY_BUDGET
 from ..model.parameters import ParameterError, Parameters
 from ..model.quantities import INITIAL_STATE, PARAMETERS, SYMMETRIC_DEFAULTS
@@ -105,8 +106,7 @@ def _symmetric(model: Mapping) -> dict:
 
 
 def _flat(*parts: Mapping) -> dict:
-    """The parts merged (later ones win), nested mappings left out, sorted by key: a scene's flat mapping, which
-    reordering a file does not change."""
+    """The parts merged (later ones win), nested mappings left out, sorted by key (reordering a file changes none)."""
     return dict(sorted({k: v for part in parts for k, v in part.items() if not isinstance(v, dict)}.items()))
 
 
@@ -166,8 +166,7 @@ def _compared(block: str, model: Mapping, b: Mapping, paper: Mapping) -> list[di
 
 def plan(config: Mapping, paper: Mapping) -> tuple[dict[str, dict], list[str]]:
     """The studies (``replication``, and the user's own by its ``name`` where a kind's scenes differ from the
-    paper's), each by kind and label, every scene checked; and the lines the planning prints about the user's study:
-    what changed, each kind the changes touch that does not run and why, in one line each."""
+    paper's), each by kind and label, every scene checked; and the lines saying what changed and what does not run."""
     name = str(config.get("name", "own"))
     given = [b for b in REPLICATION_ONLY if config[b] != paper[b]]
     if given:
@@ -208,8 +207,7 @@ def plan(config: Mapping, paper: Mapping) -> tuple[dict[str, dict], list[str]]:
 
 
 def replication_scenes(paper: Mapping) -> dict[str, dict]:
-    """The replication's own runs, checked: ``checks`` (:func:`check_runs`), ``benchmark`` and ``long_run`` (each
-    on the Fig. 3 case it names, as Fig. 3 runs it)."""
+    """The replication's own runs, checked: ``checks``, ``benchmark`` and ``long_run`` (on the Fig. 3 case it names)."""
     found = {"checks": check_runs(paper)}
     for block in ("benchmark", "long_run"):
         case = paper[block]["case"]
@@ -283,7 +281,7 @@ def _runs(paper: Mapping, entry: Mapping, base: Mapping) -> list[dict]:
                 run.update(zip(("a1", "a2", "a3", "a4"), value if len(value) == 4 else [*value, -value[0], -value[1]]))
                 run.update({"zone": name} if name else {})
             elif key not in ("measure", "from", "runs"):
-                run[key] = paper[value][key] if isinstance(value, str) and key != "case" else value
+                run[key] = paper[value][key] if isinstance(value, str) and key not in ("case", *CHOICES) else value
         if "side" in run:
             run["x0"] = run["side"] * abs(run["x0"])
         if "offset" in run:

@@ -31,10 +31,9 @@ def run_work_precision(scene: Mapping, settings: Mapping[str, list], output: str
 
 def run_speed(scene: Mapping, speed: Mapping, output: str, headline_output: str, log: str,
               floors: Callable[[Mapping, Parameters, float], list[dict]]) -> None:
-    """The speed table (``output``): the fastest integrator setting whose impact time reaches the headline's
-    ``target`` against the exact solver and the closed forms, the exact solver against the closed forms per cycle,
-    and the rows ``floors(speed["floor"], params, x0)`` measures (``benchmarks.floor.floor_rows``); and the
-    headline's work-precision rows (``headline_output``)."""
+    """The speed table (``output``): the fastest integrator setting reaching the headline's ``target`` against the
+    exact solver and the closed forms, those two per cycle, and ``floors``' rows; to ``headline_output``, the
+    headline's rows."""
     with logged(log, "run_speed") as logger:
         params, x0 = Parameters.from_mapping(scene), check_initial_state(scene["x0"], scene.get("v0", 0.0))[0]
         head = speed["headline"]
