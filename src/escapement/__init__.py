@@ -15,25 +15,13 @@ try:
 except _metadata.PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-#: the public names, each re-exported from the layer that defines it, imported on first use (PEP 562): a job
-#: imports only the layers it uses
-_EXPORTS = {
-    "EventKind": "model",
-    "EventLog": "model",
-    "ParameterError": "model",
-    "Parameters": "model",
-    "Status": "model",
-    "EnsembleSolution": "solvers",
-    "Exit": "solvers",
-    "Solution": "solvers",
-    "iter_cycles": "solvers",
-    "solve_ensemble": "solvers",
-    "solve_exact": "solvers",
-    "solve_high_precision": "integrators",
-    "solve_naive": "integrators",
-    "solve_reference": "integrators",
-    "run_dataset": "scenes",  # a run of any solver as a CF dataset (the solvers' layer holds no xarray)
-}
+#: the public names of each layer, re-exported and imported on first use (PEP 562): a job imports only the layers
+#: it uses; run_dataset is a run of any solver as a CF dataset (the solvers' layer holds no xarray)
+_LAYERS = {"model": ("EventKind", "EventLog", "ParameterError", "Parameters", "Status"),
+           "solvers": ("EnsembleSolution", "Exit", "Solution", "iter_cycles", "solve_ensemble", "solve_exact"),
+           "integrators": ("solve_high_precision", "solve_naive", "solve_reference"),
+           "scenes": ("run_dataset",)}
+_EXPORTS = {name: layer for layer, names in _LAYERS.items() for name in names}
 
 __all__ = ["__version__", *sorted(_EXPORTS)]
 
