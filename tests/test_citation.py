@@ -34,7 +34,9 @@ def test_authors_keywords_and_licences_agree():
     assert [a["name"] for a in PROJECT["authors"]] == names
     assert ZENODO["keywords"] == CFF["keywords"] == CODEMETA["keywords"]
     assert CFF["license"] == ["MIT", "CC-BY-4.0"]
-    assert ZENODO["license"] == PROJECT["license"] == "MIT"
+    # the deposit takes one licence, the software's; the text's and the figures' CC BY 4.0 is named in its notes
+    assert ZENODO["license"] == PROJECT["license"] == CFF["license"][0] == "MIT"
+    assert all(f"{name} for the" in ZENODO["notes"] for name in CFF["license"])
     assert CODEMETA["license"] == [f"https://spdx.org/licenses/{name}" for name in CFF["license"]]
     assert (ROOT / "LICENSE").exists() and "creativecommons.org/licenses/by/4.0" in (
         ROOT / "LICENSE-CC-BY-4.0.md"
@@ -44,8 +46,9 @@ def test_authors_keywords_and_licences_agree():
 def test_each_cites_the_replicated_paper():
     (paper,) = CFF["references"]
     assert paper["doi"] == PAPER_DOI
-    assert {"identifier": PAPER_DOI, "relation": "isSupplementTo", "scheme": "doi",
-            "resource_type": "publication-article"} in ZENODO["related_identifiers"]
+    # a replication is derived from the original (its model, equations and figures), not a supplement to it
+    assert ZENODO["related_identifiers"] == [{"identifier": PAPER_DOI, "relation": "isDerivedFrom", "scheme": "doi",
+                                              "resource_type": "publication-article"}]
     reference = CODEMETA["referencePublication"]
     assert reference["identifier"] == f"https://doi.org/{PAPER_DOI}"
     assert reference["name"] == paper["title"]
