@@ -107,7 +107,6 @@ class CycleChunks(ChunkIterator):
         return f"chunks of {self._chunk} cycles by the closed forms, {self._done} of {self._n} handed over"
 
     def __next__(self) -> CycleTable:
-        """The next chunk of the per-cycle table; :class:`StopIteration` once the run has ended."""
         if self._fallback is not None:
             try:
                 return next(self._fallback)

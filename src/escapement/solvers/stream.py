@@ -44,9 +44,6 @@ class ChunkIterator(Iterator[CycleTable]):
 
     _summary: StreamSummary | None = None
 
-    def __iter__(self) -> ChunkIterator:
-        return self
-
     def __repr__(self) -> str:
         ended = "" if self._summary is None else f"; ended {self._summary.status.value}"
         return f"<{type(self).__name__}> {self._progress()}{ended}"
@@ -72,7 +69,6 @@ class CycleStream(ChunkIterator):
         return f"chunks of {self._chunk} cycles, {self._cycles} handed over"
 
     def __next__(self) -> CycleTable:
-        """The next chunk of the per-cycle table; :class:`StopIteration` once the run has ended."""
         run = self._run
         while sum(len(part[0]) for part in self._ready) < self._chunk and run.outcome is None:
             run.advance(BLOCK_EVENTS)
