@@ -131,8 +131,7 @@ def distinct_cycles(params: Parameters, col: dict[str, np.ndarray], t1: float, v
         same[0] = False  # the first is the event solver's v1
         if count == n or same[-1]:
             break
-    differ = np.flatnonzero(~same)
-    m = int(differ[-1]) + 1  # cycles 1 .. m differ from the fixed point; m + 1 .. n are it
+    m = int(np.flatnonzero(~same)[-1]) + 1  # cycles 1 .. m differ from the fixed point; m + 1 .. n are it
     fixed = m < n  # the last distinct cycle stands for cycles m + 1 .. n, at the fixed point
     if fixed:
         m += 1
