@@ -76,3 +76,13 @@ def test_an_unknown_equation_is_refused_in_one_line():
     with pytest.raises(cl.ClaimError, match="^claim 'eq11_derivation': check 'derivations.appendix_step' failed: "
                        "ValueError: equation = '13' must be one of 11, 12, 14, 15$"):
         cl.verdict(claim, reading, Evidence({}, None, {}, None))
+
+
+def test_the_intervals_of_eq22_end_where_their_steps_end_and_a_wrong_one_does_not(monkeypatch):
+    """(22a) from rest at -h0, h0 = |(a1, x1/w)| = sqrt(1.01), under x'' = -x reaches a1 = -0.1 at
+    acos(0.1 / sqrt(1.01)); an interval (22b) 1e-3 s long from a1 at x1+ = 0.9 m/s misses a2 by about 9e-4 m."""
+    assert pe.step_times_22(1.0, PAPER, math.sqrt(1.01))["22a"] == pytest.approx(math.acos(0.1 / math.sqrt(1.01)))
+    assert max(dv.interval_errors(PAPER, 1.0).values()) < 1e-13 and judged("eq22_derivation") is True
+    printed = pe.step_times_22
+    monkeypatch.setattr(pe, "step_times_22", lambda *a: {**printed(*a), "22b": printed(*a)["22b"] + 1e-3})
+    assert judged("eq22_derivation") is False

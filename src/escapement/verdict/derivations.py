@@ -1,14 +1,16 @@
 """The paper's derivations, each checked on the printed formulas alone, without the simulation: an equation a
 sentence says it obtained from others ((11)-(15) by solving Appendix A's (A-1), (A-3), (A-5); (16) by substituting
 (10)-(14) into (15); (17) from (16) with a1 = -a3, a2 = -a4; (19) as the fixed point of (17); (20) as its derivative;
-(21) as (20) at (19)) is recomputed from the printed equations it names and compared with the printed result, on
-the paper's Fig. 3 models and :data:`OTHERS`, at :data:`VELOCITIES`. Where the outcome depends on the convention
-the printed equations are read in (:data:`escapement.paper.conventions.AXES`), it is one outcome per convention:
-positions, force and half period (Eq. (14) takes (13)'s x4+ by name, so the velocity axis does not arise).
+(21) as (20) at (19); (22a)-(22d) by solving the equations of steps 1, 3, 4, 5) is recomputed from the printed
+equations it names and compared with the printed result, on the paper's Fig. 3 models and :data:`OTHERS`, at
+:data:`VELOCITIES`. Where the outcome depends on the convention the printed equations are read in (positions, force
+and half period of :data:`escapement.paper.conventions.AXES`; (14) takes (13)'s x4+ by name, so the velocity axis
+does not arise), it is one outcome per convention.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 from scipy import optimize
@@ -23,7 +25,6 @@ OTHERS = (Parameters(M=1.0, K=10.0, F=0.5, b=0.1, a1=-0.1, a2=0.05),
           Parameters(M=0.7, K=3.0, F=0.4, b=0.3, a1=-0.12, a2=0.02, a3=0.09, a4=-0.04))
 #: the velocities before the impact at a1 (m/s) each derivation is compared at
 VELOCITIES = (1.0, 2.0, 5.0)
-AXES = ("positions", "force", "half")
 #: each step equation: the Appendix A equation the sentence cites, its sign of f (x'' + w^2 x = sign f), the
 #: velocities of :func:`escapement.paper.printed.step_velocities` and positions at the step's start and end, a note
 STEPS = {"11": ("A-3", 1, ("v1p", "a1"), ("v2", "a2"), ""), "12": ("A-1", 0, ("v2", "a2"), ("v4", "a3"), ""),
@@ -32,12 +33,15 @@ STEPS = {"11": ("A-3", 1, ("v1p", "a1"), ("v2", "a2"), ""), "12": ("A-1", 0, ("v
                 "the equation of step 8 from a4 to a1 (Appendix A), not of the (A-5) the sentence cites")}
 
 
-def models(ev: Evidence) -> list[Parameters]:
-    return [params_of(ds) for ds in ev.fig3.values()] + list(OTHERS)
+def largest(ev: Evidence, difference) -> float:
+    """The largest ``difference(p, v)`` over the models and :data:`VELOCITIES`."""
+    return max(difference(p, v) for p in [*(params_of(ds) for ds in ev.fig3.values()), *OTHERS] for v in VELOCITIES)
 
 
-def grid_verdict(worst: dict[str, float], tolerance: float, what: str, note: str = "") -> Verdict:
-    """One outcome per convention: the largest relative difference under it at most ``tolerance``."""
+def by_convention(ev: Evidence, difference, tolerance: float, what: str, note: str = "") -> Verdict:
+    """One outcome per convention: the largest relative ``difference(p, v, reading)`` at most ``tolerance``."""
+    worst = {departure(r): largest(ev, lambda p, v, r=r: difference(p, v, r))
+             for r in readings(("positions", "force", "half"))}
     holds = {name: w <= tolerance for name, w in worst.items()}
     return Verdict(f"largest relative difference of {what}: " + "; ".join(
         f"{name} {fmt(w, 2)}" for name, w in worst.items()), holds, paper_value="the printed forms agree",
@@ -61,10 +65,9 @@ def appendix_step(claim, ev: Evidence) -> Verdict:
     equation = str(claim["args"]["equation"])
     if equation not in STEPS:
         raise ValueError(f"equation = {equation!r} must be one of {', '.join(STEPS)}")
-    worst = {departure(r): max(step_energy_change(equation, p, v, r) for p in models(ev) for v in VELOCITIES)
-             for r in readings(AXES)}
     cited, *_, note = STEPS[equation]
-    return grid_verdict(worst, claim["tolerance"], f"the energy integral of ({cited}) over ({equation})", note)
+    return by_convention(ev, lambda p, v, r: step_energy_change(equation, p, v, r), claim["tolerance"],
+                         f"the energy integral of ({cited}) over ({equation})", note)
 
 
 def substitution_difference(p: Parameters, v1: float, reading) -> float:
@@ -77,9 +80,7 @@ def substitution_difference(p: Parameters, v1: float, reading) -> float:
 @check(scenes=fig3_scenes)
 def map_substitution(claim, ev: Evidence) -> Verdict:
     """(16) is (10)-(14) substituted into (15), under each convention."""
-    worst = {departure(r): max(substitution_difference(p, v, r) for p in models(ev) for v in VELOCITIES)
-             for r in readings(AXES)}
-    return grid_verdict(worst, claim["tolerance"], "(10)-(15) composed from (16)")
+    return by_convention(ev, substitution_difference, claim["tolerance"], "(10)-(15) composed from (16)")
 
 
 def fixed_point_17(p: Parameters, v: float) -> float:
@@ -111,7 +112,36 @@ def symmetric_map(claim, ev: Evidence) -> Verdict:
     equation = str(claim["args"]["equation"])
     if equation not in SYMMETRIC:
         raise ValueError(f"equation = {equation!r} must be one of {', '.join(SYMMETRIC)}")
-    worst = max(symmetric_difference(equation, p, v) for p in models(ev) for v in VELOCITIES)
-    return Verdict(f"largest relative difference of ({equation}) from its derivation {fmt(worst, 2)} over "
-                   f"{len(models(ev))} models at v1 = {', '.join(fmt(v) for v in VELOCITIES)} m/s",
+    worst = largest(ev, lambda p, v: symmetric_difference(equation, p, v))
+    return Verdict(f"largest relative difference of ({equation}) from its derivation {fmt(worst, 2)} at v1 = "
+                   f"{', '.join(fmt(v) for v in VELOCITIES)} m/s",
                    bool(worst <= claim["tolerance"]), paper_value=f"Eq. ({equation})")
+
+
+def _state(x0: float, v0: float, t: float, w: float, force: float) -> tuple[float, float]:
+    """``(x, v)`` at ``t`` of ``x'' + w^2 x = force`` from ``(x0, v0)``: the solution of a step's equation."""
+    c, phase = force / w**2, w * t
+    return (c + (x0 - c) * math.cos(phase) + v0 / w * math.sin(phase),
+            v0 * math.cos(phase) - (x0 - c) * w * math.sin(phase))
+
+
+def interval_errors(p: Parameters, v1: float) -> dict[str, float]:
+    """Each printed interval run from its step's start under the step's equation, against the step's end, relative:
+    (22a) from rest at -h0 (h0 = |(a1, v1/w)|) under (A-1) to a1; (22b) from a1 at x1+ under (A-3) to a2; (22c) from
+    a2 at x2 under (A-1) to rest; (22d) from rest at h2 = |(a2, x2/w)| under (A-1) to a3."""
+    w, v = p.omega, pe.step_velocities(v1, p)
+    h0, h2 = math.hypot(p.a1, v1 / w), math.hypot(p.a2, v["v2"] / w)
+    t = pe.step_times_22(v1, p, h0)
+    x_a, x_b = _state(-h0, 0.0, t["22a"], w, 0.0)[0], _state(p.a1, v["v1p"], t["22b"], w, p.f)[0]
+    v_c, x_d = _state(p.a2, v["v2"], t["22c"], w, 0.0)[1], _state(h2, 0.0, t["22d"], w, 0.0)[0]
+    return {"22a": abs(x_a - p.a1) / abs(p.a1), "22b": abs(x_b - p.a2) / abs(p.a2), "22c": abs(v_c / v["v2"]),
+            "22d": abs(x_d - p.a3) / abs(p.a3)}
+
+
+@check(scenes=fig3_scenes)
+def step_intervals(claim, ev: Evidence) -> Verdict:
+    """(22a)-(22d) end where their steps end, under the equations of steps 1, 3, 4 and 5."""
+    worst = {k: largest(ev, lambda p, v, k=k: interval_errors(p, v)[k]) for k in ("22a", "22b", "22c", "22d")}
+    return Verdict("largest relative distance from the step's end: " + "; ".join(
+        f"({k}) {fmt(e, 2)}" for k, e in worst.items()), bool(max(worst.values()) <= claim["tolerance"]),
+        paper_value="Eqs. (22a)-(22d)", note="the positions signed, as (22a)'s -a1 reads them")
