@@ -39,8 +39,6 @@ EXIT_STATUSES = {
 #: a4 default to -a1, -a2
 DEFAULTS = {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "x0": -1.0, "v0": 0.0}
 DEFAULT_CYCLES = 50
-#: the options whose name differs from the solver's argument it sets
-OPTIONS = {"n_cycles": "--cycles"}
 
 
 class Refusal(Exception):
@@ -139,11 +137,10 @@ def _run(args: argparse.Namespace, command: str) -> tuple[int, str]:
         params = Parameters(**{k: v for k in PARAMETERS if (v := getattr(args, k)) is not None})
         check_initial_state(args.x0, args.v0)
         RunLimits(n_cycles=args.cycles)
-    except ParameterError as err:
-        requirement = err.requirement
-        for name, option in OPTIONS.items():
-            requirement = re.sub(rf"\b{name}\b", option, requirement)
-        raise Refusal(EXIT_INVALID_INPUT, OPTIONS.get(err.name, f"--{err.name}"), err.value, requirement) from err
+    except ParameterError as err:  # the solver's n_cycles is the option --cycles
+        option = "--cycles" if err.name == "n_cycles" else f"--{err.name}"
+        requirement = re.sub(r"\bn_cycles\b", "--cycles", err.requirement)
+        raise Refusal(EXIT_INVALID_INPUT, option, err.value, requirement) from err
     seen: dict[Path, str] = {}  # each output checked, and no two of them the same file
     for option in ("--netcdf", "--csv"):
         if (text := getattr(args, option.removeprefix("--"))) is not None:
