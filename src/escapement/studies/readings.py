@@ -97,16 +97,14 @@ def fig3_readings(model: Mapping, cases: Mapping[str, Mapping], n_cycles: int, r
 
 @dataclass(frozen=True)
 class Amplitude:
-    """One definition of Fig. 3's "amplitude of oscillation": the values per cycle of a run and their cycles."""
+    """One definition of Fig. 3's "amplitude of oscillation": its value in each cycle of a run."""
 
-    values: Callable[[Solution], tuple[np.ndarray, np.ndarray]] = field(repr=False)
+    per_cycle: Callable[[Solution], np.ndarray] = field(repr=False)
 
-
-def _per_cycle(values: Callable[[Solution], np.ndarray]) -> Callable[[Solution], tuple[np.ndarray, np.ndarray]]:
-    def of(run: Solution) -> tuple[np.ndarray, np.ndarray]:
-        y = np.asarray(values(run), dtype=float)
+    def values(self, run: Solution) -> tuple[np.ndarray, np.ndarray]:
+        """The cycle numbers and the values of ``run``."""
+        y = np.asarray(self.per_cycle(run), dtype=float)
         return np.arange(1, len(y) + 1, dtype=np.int32), y
-    return of
 
 
 def step1_amplitudes(run: Solution) -> np.ndarray:
@@ -124,10 +122,10 @@ def largest_abs_per_cycle(run: Solution) -> np.ndarray:
 
 #: the amplitudes a Fig. 3 scene may plot (``fig3.amplitude``), by the name of their variable, at the section a1
 AMPLITUDES: dict[str, Amplitude] = {
-    "amplitude_h0": Amplitude(_per_cycle(step1_amplitudes)),  # the Step-1 amplitude h0(k), k = 1..N+1
-    "amplitude_h4": Amplitude(_per_cycle(lambda run: step1_amplitudes(run)[1:len(run.cycles) + 1])),  # h0(k+1)=h4(k)
-    "largest_displacement": Amplitude(_per_cycle(lambda run: run.cycles.largest_displacement)),
-    "largest_abs_displacement": Amplitude(_per_cycle(largest_abs_per_cycle)),
+    "amplitude_h0": Amplitude(step1_amplitudes),  # the Step-1 amplitude h0(k), k = 1..N+1
+    "amplitude_h4": Amplitude(lambda run: step1_amplitudes(run)[1:len(run.cycles) + 1]),  # h0(k+1) = h4(k)
+    "largest_displacement": Amplitude(lambda run: run.cycles.largest_displacement),
+    "largest_abs_displacement": Amplitude(largest_abs_per_cycle),
 }
 
 
