@@ -158,8 +158,7 @@ def _refusal(check: str, run: Callable[[], object], name: str, words: str, row: 
 
 
 def memory_budget() -> StressResult:
-    # 1e9 cycles would store some 1.8e11 bytes (about 176 per cycle): over the 2 GB budget; the same run
-    # streams in chunks whose concatenation is the stored run, bit for bit
+    # 1e9 cycles would store some 1.8e11 bytes, over the 2 GB budget; streamed, a run is the stored one bit for bit
     try:
         solve_exact(_paper(), 1.0, n_cycles=10**9, record_trajectory=False)
         refused, message = False, "accepted"
@@ -222,9 +221,8 @@ def graze_zone_end() -> StressResult:
 
 
 def reference_grazes_zone_end() -> StressResult:
-    # From rest at x0 > a3 the free arc meets a3 with v^2 = w^2 (x0^2 - a3^2); after the impact the zone arc
-    # about c = -F/K has radius R, R^2 = (a3 - c)^2 + (1 - b)^2 (x0^2 - a3^2). x0 (in 50 digits) makes the arc
-    # turn 1e-9 m beyond a4: the mass crosses a4 slowly, and one solve_ivp step can span crossing and turn.
+    # after the impact at a3 the zone arc about c = -F/K has R^2 = (a3 - c)^2 + (1 - b)^2 (x0^2 - a3^2); x0 (50
+    # digits) makes it turn 1e-9 m beyond a4, so that one solve_ivp step can span the crossing and the turn
     p = Parameters(M=1.0, K=1.0, F=0.01, b=0.1, a1=-0.02, a2=0.05, a3=0.02, a4=-0.05)
     with mpmath.workdps(50):
         c, a3, a4 = -mpmath.mpf(p.F) / mpmath.mpf(p.K), mpmath.mpf(p.a3), mpmath.mpf(p.a4)
