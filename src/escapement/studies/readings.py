@@ -65,11 +65,14 @@ FIG3_QUANTITIES: tuple[tuple[str, str, Callable[[SectionCycles, Parameters, int]
 )
 
 
-def _fig3_need(runs: Runs, model: Mapping, cases: Mapping[str, Mapping], n_cycles: int) -> None:
-    # cycles k = 1..N+1 of either section, and h0(N+2): N+2 cycles at a1 hold N+2 impacts at a3
-    for case in cases.values():
-        for side in RELEASES:
-            runs.need(float(case["F"]), float(model["K"]), side * abs(float(case["x0"])), n_cycles=n_cycles + 2)
+def _fig3_runs(runs: Runs, model: Mapping, cases: Mapping[str, Mapping], n_cycles: int) -> list[tuple]:
+    """``(label, side, F, K, x0)`` per case and release side, each run's need stated: cycles k = 1..N+1 of either
+    section, and h0(N+2) (N+2 cycles at a1 hold N+2 impacts at a3)."""
+    keys = [(label, side, float(case["F"]), float(model["K"]), side * abs(float(case["x0"])))
+            for label, case in cases.items() for side in RELEASES]
+    for *_, F, K, x0 in keys:
+        runs.need(F, K, x0, n_cycles=n_cycles + 2)
+    return keys
 
 
 def fig3_readings(model: Mapping, cases: Mapping[str, Mapping], n_cycles: int, runs: Runs | None = None
@@ -77,21 +80,17 @@ def fig3_readings(model: Mapping, cases: Mapping[str, Mapping], n_cycles: int, r
     """Fig. 3: per case (``F`` and ``|x0|``), release side, section, quantity and number of cycles (N or N + 1),
     the series against the cycle number."""
     runs = Runs(model) if runs is None else runs
-    _fig3_need(runs, model, cases, n_cycles)
     readings = []
-    for label, case in cases.items():
-        F, K = float(case["F"]), float(model["K"])
-        for side in RELEASES:
-            x0 = side * abs(float(case["x0"]))
-            run, outcome = runs.get(F, K, x0), runs.outcome(F, K, x0, n_cycles=n_cycles + 2)
-            for section in SECTIONS:
-                cycles = section_cycles(run, section)
-                for count, n in (("k = 1..N", n_cycles), ("k = 1..N+1", n_cycles + 1)):
-                    for quantity, name, values in FIG3_QUANTITIES:
-                        y = np.asarray(values(cycles, run.params, n), dtype=float)
-                        readings.append(Reading("3", f"{label}/{quantity}", f"from {'+' if side > 0 else '-'}x0, "
-                                                f"section {section}; {name}; {count}",
-                                                np.arange(1, len(y) + 1, dtype=float), y, outcome))
+    for label, side, F, K, x0 in _fig3_runs(runs, model, cases, n_cycles):
+        run, outcome = runs.get(F, K, x0), runs.outcome(F, K, x0, n_cycles=n_cycles + 2)
+        for section in SECTIONS:
+            cycles = section_cycles(run, section)
+            for count, n in (("k = 1..N", n_cycles), ("k = 1..N+1", n_cycles + 1)):
+                for quantity, name, values in FIG3_QUANTITIES:
+                    y = np.asarray(values(cycles, run.params, n), dtype=float)
+                    readings.append(Reading("3", f"{label}/{quantity}", f"from {'+' if side > 0 else '-'}x0, "
+                                            f"section {section}; {name}; {count}",
+                                            np.arange(1, len(y) + 1, dtype=float), y, outcome))
     return readings
 
 
@@ -129,20 +128,15 @@ AMPLITUDES: dict[str, Amplitude] = {
 }
 
 
-def _pairs(cases: Mapping[str, Mapping]) -> list[tuple[float, float]]:
-    """Every force of the cases with every release magnitude of the cases, in the order met."""
-    forces = list(dict.fromkeys(float(c["F"]) for c in cases.values()))
-    magnitudes = list(dict.fromkeys(abs(float(c["x0"])) for c in cases.values()))
-    return [(F, m) for F in forces for m in magnitudes]
-
-
-def _fig4_need(runs: Runs, cases: Mapping[str, Mapping], windows: Mapping[str, tuple[float, float]],
-               K_values: Iterable[float]) -> None:
-    t_end = max(hi for _, hi in windows.values())
-    for F, m in _pairs(cases):
-        for K in K_values:
-            for side in RELEASES:
-                runs.need(F, float(K), side * m, t_end=t_end)
+def _fig4_runs(runs: Runs, cases: Mapping[str, Mapping], t_end: float, K_values: Iterable[float]) -> list[tuple]:
+    """``(F, K, x0)`` for every force of the cases with every release magnitude (in the order met), ``K`` and release
+    side, each run's need stated."""
+    forces = dict.fromkeys(float(c["F"]) for c in cases.values())
+    magnitudes = dict.fromkeys(abs(float(c["x0"])) for c in cases.values())
+    keys = [(F, float(K), side * m) for F in forces for m in magnitudes for K in K_values for side in RELEASES]
+    for key in keys:
+        runs.need(*key, t_end=t_end)
+    return keys
 
 
 def fig4_readings(model: Mapping, cases: Mapping[str, Mapping], windows: Mapping[str, tuple[float, float]],
@@ -150,33 +144,30 @@ def fig4_readings(model: Mapping, cases: Mapping[str, Mapping], windows: Mapping
                   ) -> list[Reading]:
     """Fig. 4: per force and release magnitude of the ``cases``, release side, ``K`` and pairing of the printed
     ``windows`` with the quantities (swapped: each over the other's window), the velocity and the acceleration."""
-    K_values = tuple(float(K) for K in K_values)
     runs = Runs(model) if runs is None else runs
-    _fig4_need(runs, cases, windows, K_values)
     t_end = max(hi for _, hi in windows.values())
     readings = []
-    for F, m in _pairs(cases):
-        for K in K_values:
-            for side in RELEASES:
-                run = runs.get(F, K, side * m)
-                outcome = runs.outcome(F, K, side * m, t_end=t_end)
-                for pairing in PAIRINGS:
-                    drawn = dict(windows) if pairing == "as named" else {
-                        "velocity": windows["acceleration"], "acceleration": windows["velocity"]}
-                    spans = ", ".join(f"{q} {lo:g}-{hi:g} s" for q, (lo, hi) in drawn.items())
-                    name = f"F = {F:g} N, x0 = {side * m:+g} m, K = {K:g} N/m; {spans}"
-                    for quantity, (lo, hi) in drawn.items():
-                        t, y = window_series(run, lo, hi, samples_per_second, quantity)
-                        readings.append(Reading("4", quantity, name, t, y, outcome))
+    for F, K, x0 in _fig4_runs(runs, cases, t_end, tuple(K_values)):
+        run, outcome = runs.get(F, K, x0), runs.outcome(F, K, x0, t_end=t_end)
+        for pairing in PAIRINGS:
+            drawn = dict(windows) if pairing == "as named" else {
+                "velocity": windows["acceleration"], "acceleration": windows["velocity"]}
+            spans = ", ".join(f"{q} {lo:g}-{hi:g} s" for q, (lo, hi) in drawn.items())
+            name = f"F = {F:g} N, x0 = {x0:+g} m, K = {K:g} N/m; {spans}"
+            for quantity, (lo, hi) in drawn.items():
+                t, y = window_series(run, lo, hi, samples_per_second, quantity)
+                readings.append(Reading("4", quantity, name, t, y, outcome))
     return readings
 
 
-def _fig5_need(runs: Runs, panels: Mapping[str, float], n_cycles: int, forces: Iterable[float],
-               releases: Iterable[float]) -> None:
-    for K in panels.values():
-        for F in forces:
-            for x0 in releases:
-                runs.need(F, float(K), x0, n_cycles=n_cycles)
+def _fig5_runs(runs: Runs, panels: Mapping[str, float], n_cycles: int, forces: Iterable[float],
+               releases: Iterable[float]) -> list[tuple]:
+    """``(panel, F, K, x0)`` per panel (its ``K``), force and release, each run's need stated."""
+    forces, releases = tuple(map(float, forces)), tuple(map(float, releases))
+    keys = [(panel, F, float(K), x0) for panel, K in panels.items() for F in forces for x0 in releases]
+    for _, F, K, x0 in keys:
+        runs.need(F, K, x0, n_cycles=n_cycles)
+    return keys
 
 
 def fig5_readings(model: Mapping, panels: Mapping[str, float], n_cycles: int, samples_per_period: int,
@@ -184,27 +175,22 @@ def fig5_readings(model: Mapping, panels: Mapping[str, float], n_cycles: int, sa
                   runs: Runs | None = None) -> list[Reading]:
     """Fig. 5: per panel (its ``K``), force and release, the phase points to the end of cycle ``n_cycles`` and of
     that cycle alone."""
-    forces, releases = tuple(float(F) for F in forces), tuple(float(x) for x in releases)
     runs = Runs(model) if runs is None else runs
-    _fig5_need(runs, panels, n_cycles, forces, releases)
     readings = []
-    for panel, K in panels.items():
-        for F in forces:
-            for x0 in releases:
-                run = runs.get(F, float(K), x0)
-                outcome = runs.outcome(F, float(K), x0, n_cycles=n_cycles)
-                rate = samples_per_period / run.params.natural_period
-                head = f"F = {F:g} N, x0 = {x0:+g} m"
-                c = run.cycles
-                n = min(len(c), n_cycles)
-                if n:
-                    end = float(c.impact_time[n - 1] + c.period[n - 1])
-                else:
-                    end = run.t_final if math.isfinite(run.t_final) else (n_cycles + 1) * run.params.natural_period
-                x, v = phase_series(run, 0.0, end, rate)
-                readings.append(Reading("5", panel, f"{head}; whole trajectory, {n_cycles} cycles", x, v, outcome))
-                x, v = phase_series(run, float(c.impact_time[n - 1]), end, rate) if n else (np.full(1, np.nan),) * 2
-                readings.append(Reading("5", panel, f"{head}; last cycle", x, v, outcome))
+    for panel, F, K, x0 in _fig5_runs(runs, panels, n_cycles, forces, releases):
+        run, outcome = runs.get(F, K, x0), runs.outcome(F, K, x0, n_cycles=n_cycles)
+        rate = samples_per_period / run.params.natural_period
+        head = f"F = {F:g} N, x0 = {x0:+g} m"
+        c = run.cycles
+        n = min(len(c), n_cycles)
+        if n:
+            end = float(c.impact_time[n - 1] + c.period[n - 1])
+        else:
+            end = run.t_final if math.isfinite(run.t_final) else (n_cycles + 1) * run.params.natural_period
+        x, v = phase_series(run, 0.0, end, rate)
+        readings.append(Reading("5", panel, f"{head}; whole trajectory, {n_cycles} cycles", x, v, outcome))
+        x, v = phase_series(run, float(c.impact_time[n - 1]), end, rate) if n else (np.full(1, np.nan),) * 2
+        readings.append(Reading("5", panel, f"{head}; last cycle", x, v, outcome))
     return readings
 
 
@@ -216,9 +202,9 @@ def all_readings(settings: Mapping, runs: Runs | None = None) -> list[Reading]:
     windows = {"velocity": tuple(fig4["velocity_window"]), "acceleration": tuple(fig4["acceleration_window"])}
     panels = dict(zip("abcdefghij", (float(K) for K in fig5["K"])))
     runs = Runs(model) if runs is None else runs
-    _fig3_need(runs, model, fig3["cases"], int(fig3["n_cycles"]))
-    _fig4_need(runs, fig3["cases"], windows, FIG4_K)
-    _fig5_need(runs, panels, int(fig5["n_cycles"]), FIG5_FORCES, FIG5_RELEASES)
+    _fig3_runs(runs, model, fig3["cases"], int(fig3["n_cycles"]))
+    _fig4_runs(runs, fig3["cases"], max(hi for _, hi in windows.values()), FIG4_K)
+    _fig5_runs(runs, panels, int(fig5["n_cycles"]), FIG5_FORCES, FIG5_RELEASES)
     return [*fig3_readings(model, fig3["cases"], int(fig3["n_cycles"]), runs),
             *fig4_readings(model, fig3["cases"], windows, float(fig4["samples_per_second"]), runs=runs),
             *fig5_readings(model, panels, int(fig5["n_cycles"]), int(fig5["samples_per_period"]), runs=runs)]
