@@ -1,7 +1,6 @@
-"""General-purpose integrators that check the exact solvers along an independent path, each a stepper of one loop
-(:mod:`.driver`): SciPy's ``solve_ivp`` and SUNDIALS CVODE (:mod:`.reference`), 50-digit arithmetic
-(:mod:`.high_precision`) and fixed-step Runge-Kutta (:mod:`.naive`). The names are imported on first use
-(PEP 562): a job that runs only the exact solver loads neither SciPy's integrators nor mpmath.
+"""General-purpose integrators that check the exact solvers along an independent path: ``solve_ivp`` and CVODE,
+50-digit arithmetic and fixed-step Runge-Kutta, each a stepper of one loop. The names are imported on first use, so
+that a job that runs only the exact solver loads neither SciPy's integrators nor mpmath.
 """
 
 from .._lazy import lazy_exports

@@ -1,7 +1,5 @@
-"""Input and output: netCDF, CSV and text files written atomically, each table and dataset with its digest, and
-read only once checked whole, with one-line errors (:mod:`.netcdf`), stamped with their provenance
-(:mod:`.provenance`). It imports nothing of the package but its version: the datasets it writes are made by
-:mod:`escapement.scenes`."""
+"""Input and output: netCDF, CSV and text files written atomically with their digest and provenance, and read only
+once checked whole. It imports nothing of the package but its version."""
 
 from .._lazy import lazy_exports
 
