@@ -102,8 +102,8 @@ def stale_partials(path: str | os.PathLike) -> list[Path]:
 
 
 def target_of(path: str | os.PathLike) -> Path:
-    """The file a write of ``path`` replaces, its symbolic links resolved; :class:`OSError` for a loop of links, a
-    directory, or anything else that is not a regular file (which the rename would replace)."""
+    """The file a write of ``path`` replaces, its symbolic links resolved; :class:`OSError` for a loop of links,
+    :class:`IsADirectoryError` for a directory, :class:`FileExistsError` for anything else not a regular file."""
     target = Path(os.path.realpath(path))
     if target.is_symlink():  # realpath stops where the links loop
         raise OSError(errno.ELOOP, os.strerror(errno.ELOOP), str(path))
