@@ -68,7 +68,7 @@ def test_each_quantity_is_found_by_its_name_and_its_printed_units_mean_its_uduni
 
 
 def test_the_model_keys_are_the_fields_of_parameters_in_order_and_no_other_name_is_a_quantity():
-    assert tuple(f.name for f in dataclasses.fields(Parameters)) == MODEL_KEYS
+    assert tuple(f.name for f in dataclasses.fields(Parameters)) == (*MODEL_KEYS, "release_force", "past_accumulation")
     with pytest.raises(KeyError):
         quantity("omega")
 

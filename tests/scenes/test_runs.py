@@ -35,6 +35,18 @@ def test_one_row_per_case_with_the_limit_cycle_measured_by_value():
     assert ds["cycles_to_converge"].dtype == np.int32 and ds["first_period"].attrs["units"] == "s"
 
 
+def test_a_run_continued_past_an_accumulation_of_impacts_says_when_it_first_did():
+    """b = 1.5 from rest at -1 m: the first impact at a1 at acos(0.1) s reverses the velocity to 0.5 sqrt(0.99) m/s;
+    the flights from a1 and back last 2 atan(u / 0.1) s, u halved at each rebound. Stopped there, the run chatters."""
+    cases = [{"group": "b", "label": label, **MODEL, "b": 1.5, "F": 1.0, "x0": -1.0, "past_accumulation": label}
+             for label in ("stop", "continue")]
+    ds = checks(cases, 2)
+    t_acc = math.acos(0.1) + sum(2 * math.atan(0.5**n * 0.5 * math.sqrt(0.99) / 0.1) for n in range(200))
+    assert ds["outcome"].values.tolist() == ["chattering", "completed"]
+    assert ds["past_accumulation"].values.tolist() == ["stop", "continue"] and ds["continued_at"].attrs["units"] == "s"
+    assert np.isnan(ds["continued_at"][0]) and float(ds["continued_at"][1]) == pytest.approx(t_acc, rel=1e-12)
+
+
 def test_a_bad_case_or_count_is_refused_before_any_run():
     with pytest.raises(ParameterError, match="^n_cycles = "):
         checks([], 0)
@@ -99,7 +111,8 @@ def test_the_checks_block_states_every_run_and_each_derivation_once_by_value():
     paper = yaml.safe_load((Path(__file__).parents[2] / "config/paper.yaml").read_text())
     planned = check_runs(paper)
     assert dict.fromkeys(c["group"] for c in planned["cases"]) == dict.fromkeys(
-        ["paper", "initial_conditions", "b", "symmetric", "asymmetric", "common_force", "releases", "forces"])
+        ["paper", "initial_conditions", "b", "b_continued", "symmetric", "asymmetric", "common_force", "releases",
+         "forces"])
     assert [(c["label"], c["F"], c["x0"]) for c in planned["cases"] if c["group"] == "paper"] == [
         ("fig3a", 1.0, -1.0), ("fig3b", 0.5, -3.0)]
     assert [(c["F"], c["K"], c["x0"]) for c in planned["cases"] if c["group"] == "common_force"] == [

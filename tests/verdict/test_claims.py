@@ -196,7 +196,7 @@ REFUSALS = [
      "claim 'eq19_fixed_point_case_a': the check 'sec3_map.fixed_point' needs the args case$"),
     (lambda by: by["eq20_map_derivative"]["args"].update(runs="existance"),
      "claim 'eq20_map_derivative': runs 'existance' must name a run of the configuration's checks block, one of "
-     "airy, asymmetric, b, common_force, existence, "),
+     "airy, asymmetric, b, b_continued, common_force, existence, "),
     (lambda by: by[RECOVERY]["readings"][0].update(words="the speed of recovery"),
      f"claim '{RECOVERY}': the words 'the speed of recovery' of the reading 'in seconds' are in no quote and no "
      "sentence the register cites$"),
@@ -337,13 +337,14 @@ def checks_dataset(star: float = 1.25) -> xr.Dataset:
     the other runs of the configuration as the checks scene makes them."""
     rows = [{"group": "paper", "label": "fig3a"}, {"group": "paper", "label": "fig3b", "F": 0.5},
             {"group": "initial_conditions", "x0": 3.0}, {"group": "asymmetric", "a3": 0.2, "a4": -0.02}]
-    rows += [{"group": "b", "b": b, "multiplier_eq21": (1 - b) ** 4, "multiplier": (1 - b) ** 4} for b in (0.1, 0.5)]
+    rows += [{"group": g, "b": b, "multiplier_eq21": (1 - b) ** 4, "multiplier": (1 - b) ** 4} for b in (0.1, 0.5)
+             for g in ("b", "b_continued")]
     rows += [{"group": g, "F": F} for g in ("symmetric", "forces") for F in (0.5, 1.0)]
     rows += [{"group": "releases", "x0": x0, "first_period": 6.3 + x0} for x0 in (-1.0, 1.0)]
     rows += [{"group": "common_force", "K": K, "F": F, "x0": -1.0, "velocity": 1.2}
              for F in (0.5, 1.0) for K in (0.1, 1.0, 10.0)]
-    made_here = ("existence", "release_boundary", "grazing", "airy", "windows", "section_crossings", "springs",
-                 "short_releases")
+    made_here = ("existence", "release_boundary", "release_inside_eq5", "grazing", "airy", "windows",
+                 "section_crossings", "springs", "short_releases")
     return xr.merge([runs(*rows), first_swings(), return_map(), phase_shift(star), *(made(n) for n in made_here)])
 
 

@@ -1,6 +1,7 @@
 """The escapement as a hybrid automaton, written once as data that every solver drives: the state is the kind of
 the last event (:data:`RELEASE` before the first), its row of :data:`ARCS` the arc that follows and the surfaces
-that can end it; the event reached is the next state.
+that can end it; the event reached is the next state. Where the paper is silent the model makes a choice
+(:data:`CHOICES`), run as a setting of the same automaton.
 """
 
 from __future__ import annotations
@@ -16,9 +17,9 @@ from .status import Status
 if TYPE_CHECKING:
     from .parameters import Parameters
 
-__all__ = ["ARCS", "CENTRE_SIGN", "EXIT_WITHOUT_EVENT", "RELEASE", "SURFACES", "ZONE_OF", "Arc", "Mode", "Surface",
-           "centre", "cycle_plan", "is_impact", "position", "rebound_distance", "reverses", "impact_factor",
-           "velocity_after"]
+__all__ = ["ARCS", "CENTRE_SIGN", "CHOICES", "EXIT_WITHOUT_EVENT", "RELEASE", "SURFACES", "ZONE_OF", "Arc", "Mode",
+           "Surface", "centre", "cycle_plan", "is_impact", "opening", "position", "rebound_distance", "reverses",
+           "impact_factor", "velocity_after"]
 
 
 class Mode(IntEnum):
@@ -67,6 +68,13 @@ ARCS: dict[int, Arc] = {
     EventKind.ZONE_END_A4: Arc(Mode.FREE, (EventKind.IMPACT_A1,)),
 }
 
+#: the model's choices where the paper is silent, the default first. ``release_force``: where the force acts before
+#: the first impact, ``after_impact`` (a zone is entered only through its impact, Appendix A's steps 1-3) or ``eq5``
+#: (on S2 of Eq. (5) as printed, from the release on: :func:`opening`); ``past_accumulation``: at an accumulation of
+#: impacts (b > 1, a Zeno point) the run ``stop``s, or ``continue``s from rest at the impact position in the zone
+#: mode that follows the impact
+CHOICES = {"release_force": ("after_impact", "eq5"), "past_accumulation": ("stop", "continue")}
+
 #: how a run ends where no watched surface is ever passed in a mode
 EXIT_WITHOUT_EVENT = {Mode.FREE: Status.STOPPED, Mode.ZONE_RIGHT: Status.TURNED_BACK_IN_ZONE,
                       Mode.ZONE_LEFT: Status.TURNED_BACK_IN_ZONE}
@@ -84,6 +92,18 @@ def cycle_plan() -> tuple[EventKind, ...]:
         if state == EventKind.IMPACT_A1:
             return tuple(plan)
     raise RuntimeError("the automaton's rows do not return to the impact at a1")
+
+
+def opening(params: Parameters, x0: float, v0: float) -> int:
+    """The state a run starts in: :data:`RELEASE`, or under ``release_force: eq5`` with the release in S2 of Eq. (5)
+    the impact that opens its zone (its arc is the zone's). At rest the spring's pull (towards 0) gives the sign of
+    the velocity the release starts with."""
+    moving = v0 if v0 != 0.0 else -x0
+    for kind in (EventKind.IMPACT_A1, EventKind.IMPACT_A3) if params.release_force == "eq5" else ():
+        ends = sorted((position(kind, params), position(ZONE_OF[ARCS[kind].mode][1], params)))
+        if ends[0] < x0 < ends[1] and moving * SURFACES[kind].direction > 0:
+            return kind
+    return RELEASE
 
 
 def centre(mode: int, zone_offset: Numeric) -> Numeric:

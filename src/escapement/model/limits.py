@@ -89,18 +89,23 @@ class RunSpec:
 
 def run_spec(params: Parameters | Mapping[str, object], x0: object, v0: object = 0.0, *,
              n_cycles: int | None = None, t_end: float | None = None, max_events: int | None = None,
-             memory_budget: int | None = None, rows: Callable[[int, int], float] | None = None) -> RunSpec:
+             memory_budget: int | None = None, rows: Callable[[int, int], float] | None = None,
+             choices: bool = False) -> RunSpec:
     """The checked run, or the first invalid argument refused, named: ``params``, the release, then the limits.
 
     With ``rows`` (the ensemble's bytes for a number of trajectories and of cycles), ``params`` maps the model
     keys to numbers or arrays and ``x0``, ``v0`` may be arrays, all broadcast to one shape: the counts are
     checked first, then the memory from the inputs' shapes alone (before any array is made at their size),
-    then every row by the rules of :class:`Parameters`.
+    then every row by the rules of :class:`Parameters`. A model's choice made otherwise than by default is refused
+    unless the solver runs it (``choices``).
     """
     if rows is None:
         if not isinstance(params, Parameters):
             raise ParameterTypeError("params", params,
                                      "an escapement.Parameters (make one with Parameters(M=..., ...))")
+        for name, value in params.chosen.items() if not choices else ():
+            raise ParameterError(name, value, f"{Parameters.__dataclass_fields__[name].default!r} for this solver: only "
+                                 "the event solvers (solve_exact, iter_cycles) run the model's other choices")
         x, v = check_initial_state(x0, v0)
         return RunSpec(params, x, v, RunLimits(n_cycles, t_end, max_events, memory_budget))
     limits = RunLimits(n_cycles, t_end, max_events, memory_budget)

@@ -15,7 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .arguments import ParameterError, real_array, real_number
+from .arguments import ParameterError, check_choice, real_array, real_number
+from .automaton import CHOICES
 from .quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS, REQUIRED_KEYS, SYMMETRIC_DEFAULTS, quantity
 
 __all__ = ["B_SMALLEST", "LARGEST", "SIGNS", "SMALLEST", "ParameterArrays", "ParameterError", "Parameters",
@@ -128,7 +129,8 @@ class Parameters:
     """Physical parameters of the escapement model, each checked when made (:func:`rules`) and stored as a float.
 
     ``a3`` and ``a4`` default to the symmetric geometry ``a3 = -a1``, ``a4 = -a2``; give them to study the
-    paper's asymmetric map, Eq. (16).
+    paper's asymmetric map, Eq. (16). ``release_force`` and ``past_accumulation`` are the model's choices where the
+    paper is silent (:data:`~escapement.model.automaton.CHOICES`), run by the event solvers only.
 
     Parameters
     ----------
@@ -157,11 +159,15 @@ class Parameters:
     a2: float
     a3: float | None = None
     a4: float | None = None
+    release_force: str = CHOICES["release_force"][0]
+    past_accumulation: str = CHOICES["past_accumulation"][0]
 
     def __post_init__(self) -> None:
         checked = validate_arrays({name: getattr(self, name) for name in MODEL_KEYS}, single=True)
         for name, value in checked.items():
             object.__setattr__(self, name, float(value))
+        for name, allowed in CHOICES.items():
+            check_choice(name, getattr(self, name), allowed)
 
     @classmethod
     def from_mapping(cls, values: Mapping[str, object]) -> Parameters:
@@ -169,7 +175,7 @@ class Parameters:
         for key in REQUIRED_KEYS:
             if key not in values:
                 raise ParameterError(key, None, "given (it is missing)")
-        return cls(**{k: values[k] for k in MODEL_KEYS if values.get(k) is not None})
+        return cls(**{k: values[k] for k in (*MODEL_KEYS, *CHOICES) if values.get(k) is not None})
 
     @property
     def omega(self) -> float:
@@ -207,6 +213,11 @@ class Parameters:
         """True for the paper's symmetric geometry a3 = -a1, a4 = -a2."""
         return self.a3 == -self.a1 and self.a4 == -self.a2
 
+    @property
+    def chosen(self) -> dict[str, str]:
+        """The model's choices made otherwise than by default."""
+        return {name: getattr(self, name) for name, allowed in CHOICES.items() if getattr(self, name) != allowed[0]}
+
     def as_dict(self) -> dict[str, float]:
         """Every parameter by the paper's symbol."""
         return {n: getattr(self, n) for n in MODEL_KEYS}
@@ -214,8 +225,8 @@ class Parameters:
     def __repr__(self) -> str:
         """The call that makes these parameters, each value as typed back (zero without a sign: ``a4`` of
         ``a2 = 0`` is stored as ``-0.0``)."""
-        values = ", ".join(f"{name}={getattr(self, name) + 0.0!r}" for name in MODEL_KEYS)
-        return f"{type(self).__name__}({values})"
+        values = [f"{name}={getattr(self, name) + 0.0!r}" for name in MODEL_KEYS]
+        return f"{type(self).__name__}({', '.join(values + [f'{k}={v!r}' for k, v in self.chosen.items()])})"
 
 
 def _parameters_section() -> str:

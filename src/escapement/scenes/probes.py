@@ -37,6 +37,9 @@ SETTINGS = {
     "perturbation": ("1", "relative perturbation of the speed at the section, from the converged speed"),
     "section_cycles": ("1", "cycles run from the section"),
     "samples_per_period": ("1", "samples of the trajectory per natural period"),
+    "release_force": (None, "where the force acts before the first impact: after_impact, or eq5 (on S2 of Eq. (5))"),
+    "past_accumulation": (None, "what follows an accumulation of impacts: stop, or continue from rest at the impact "
+                          "position"),
 }
 #: the kind and the units of each column of an event table
 EVENTS = (("time", "s", "time of the event"),

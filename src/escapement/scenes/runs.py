@@ -10,9 +10,11 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
+from ..model.automaton import CHOICES
 from ..model.parameters import Parameters
 from ..model.quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS
 from ..paper.corrected import fixed_point
+from ..solvers.exact import solve_exact
 from ..studies.poincare import measure_cycle
 from ..paper.printed import multiplier_21
 from .probes import named_runs
@@ -40,6 +42,12 @@ CHECKS_COLUMNS = {
     "largest_speed": ("m s-1", "largest |v| on the last cycle, exact from the harmonic arcs"),
     "floquet_major": ("1", "larger Floquet multiplier of the flow over the last period, measured"),
     "floquet_minor": ("1", "smaller Floquet multiplier of the flow over the last period, measured"),
+    "continued_at": ("s", "time of the first accumulation of impacts (a Zeno point) the run went on past, from rest at "
+                     "the impact position (past_accumulation: continue); NaN if none"),
+    "release_force": (None, "where the force acts before the first impact: after_impact, or eq5 (on S2 of Eq. (5))",
+                      MODEL_INPUT),
+    "past_accumulation": (None, "what follows an accumulation of impacts: stop, or continue from rest at the impact "
+                          "position", MODEL_INPUT),
     **{key: (PARAMETERS[key].units, PARAMETERS[key].long_name, MODEL_INPUT) for key in MODEL_KEYS},
 }
 
@@ -65,6 +73,10 @@ def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = Non
         "fixed_point_eq16": [fixed_point(p) for _, p, _ in runs],
         "cycles_to_converge": np.array([m.cycles_to_converge for m in measured], dtype=np.int32),
         **{name: [m.floquet[i] for m in measured] for i, name in enumerate(("floquet_major", "floquet_minor"))},
+        "continued_at": [solve_exact(p, x0, n_cycles=n_cycles, record_trajectory=False).exit.t_accumulation
+                         if p.past_accumulation == "continue" and m.outcome == "completed" else np.nan
+                         for (_, p, x0), m in zip(runs, measured)],
+        **{key: [getattr(p, key) for _, p, _ in runs] for key in CHOICES},
         **{key: [getattr(p, key) for _, p, _ in runs] for key in MODEL_KEYS},
     }
     table = {name: (columns[name], *description) for name, description in CHECKS_COLUMNS.items()}
@@ -74,7 +86,9 @@ def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = Non
         "starts from rest at x0 and lasts n_cycles cycles; its fixed point, period, largest displacement and "
         "multiplier are measured at the last cycle, beside the fixed point of Eq. (16) and the multiplier of "
         "Eq. (21); with the first cycle's period, the largest speed on the last cycle and both Floquet multipliers "
-        "of the flow over the last period (central differences of the exact flow). Beside the table, the runs of "
+        "of the flow over the last period (central differences of the exact flow), the model's choices it ran "
+        "(release_force, past_accumulation) and the first accumulation of impacts it went on past (continued_at). "
+        "Beside the table, the runs of "
         "another measure (runs from rest and how they end, event tables, the slope of a return map, runs from the "
         "section, passages through impulse zones, crossings of the section per cycle), each with its settings and "
         "what it measures as variables <name>_<variable> on the dimension <name>_run.")

@@ -74,7 +74,8 @@ def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     >>> round(float(x[1]), 6)
     -0.540302
     """
-    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget)
+    spec = run_spec(params, x0, v0, n_cycles=n_cycles, t_end=t_end, max_events=max_events, memory_budget=memory_budget,
+                    choices=True)
     record_trajectory = check_flag("record_trajectory", record_trajectory)
     contents = "its event log, cycle table and arcs" if record_trajectory else "its event log and cycle table"
     remedy = ("pass record_trajectory=False, " if record_trajectory else "") + \
@@ -88,6 +89,11 @@ def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     trajectory = None
     if record_trajectory:  # an arc ends at each event, and one more if the run ended inside it
         n = len(block.t) + run.open_arc
-        trajectory = ArcTable(np.concatenate(([0.0], block.t))[:n], block.arc_centre[:n], block.arc_x[:n],
-                              block.arc_v[:n], spec.params.omega, float(run.outcome.t_final))
+        arcs = [np.concatenate(([0.0], block.t))[:n], block.arc_centre[:n], block.arc_x[:n], block.arc_v[:n]]
+        at = np.array(run.wait_at, dtype=np.intp) + 1
+        at = at[at < n]  # the arcs from rest after the rebounds the run went on past: rest at the impact position
+        rest = (arcs[0][at], arcs[2][at], arcs[2][at], np.zeros(len(at)))  # until the rebounds accumulate
+        arcs[0][at] += np.array(run.wait)[:len(at)]
+        trajectory = ArcTable(*(np.insert(a, at, r) for a, r in zip(arcs, rest)), spec.params.omega,
+                              float(run.outcome.t_final))
     return finish(spec, "exact", run.outcome, log, CycleTable(*block.cycles), trajectory)

@@ -3,6 +3,8 @@ the velocity alone (by energy each arc arrives with ``v**2 = v0**2 + k``, the im
 no surface is passed or an impact reverses it; then, on the block's arrays, ``crossing`` gives each arc's angle and
 duration, the compensated (TwoSum) running sum the events' times, and the end time cuts the block where it falls:
 an event-by-event loop's numbers, bit for bit. Kinds, positions, arcs and cycles follow (:func:`event_block`).
+The model's choices (:data:`~escapement.model.automaton.CHOICES`) are the state the run starts in and what follows a
+rebound (:meth:`EventRun.past`).
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ from ..model.limits import RunSpec
 from ..model.parameters import ParameterArrays, Parameters
 from ..model.status import Status
 from .describe import Exit
-from .outcomes import (Outcome, chattering_outcome, completed_outcome, event_limit_message, horizon_outcome,
+from .outcomes import (Outcome, accumulation, chattering_outcome, completed_outcome, event_limit_message, horizon_outcome,
                        no_event_outcome)
 
 __all__ = ["A1", "BLOCK_EVENTS", "PLAN", "Block", "EventRun", "Row", "event_block", "kinds_from", "row", "rows"]
@@ -88,6 +90,9 @@ class EventRun:
         params, x, v, limits = spec.params, spec.x0, spec.v0, spec.limits
         self.params, self.limits, self.omega, self.b = params, limits, params.omega, params.b
         self.release = (RELEASE, x, v)  # the state before the first event
+        self.opening = automaton.opening(params, x, v)  # the row of the automaton the release's arc follows
+        # the rebounds the run went on past: the event, the time until they accumulated (s), the first's end (s)
+        self.wait_at, self.wait, self.t_acc = array("q"), array("d"), math.nan
         self.t_stop = math.inf if limits.t_end is None else limits.t_end
         self.state, self.v = RELEASE, v  # the last event's kind, and the velocity after it
         self.t_sum = self.t_err = self.time = 0.0
@@ -104,7 +109,7 @@ class EventRun:
         kinds, factor = range(1, len(self.rows)), automaton.impact_factor(self.b)
         self.position = np.array([math.nan, *(automaton.position(kind, params) for kind in kinds)])
         self.jump = np.array([1.0, *(factor if automaton.is_impact(kind) else 1.0 for kind in kinds)])
-        self.centre = np.array([automaton.centre(automaton.ARCS[state].mode, params.zone_offset)
+        self.centre = np.array([automaton.centre(automaton.ARCS[state or self.opening].mode, params.zone_offset)
                                 for state in range(len(self.rows))])
         # by state, the arc after it: for the loop (k, direction, the jump at its end, the next state), and its
         # terms as arrays (NaN where none follows)
@@ -114,10 +119,10 @@ class EventRun:
                       for name in ("u0", "q", "k", "direction")}
 
     def release_row(self) -> Row | None:
-        """The release's arc to the impact reached first (None: neither); sets :attr:`first`, :attr:`last`."""
-        best = None
-        for kind in automaton.ARCS[RELEASE].watched:
-            arc = row(self.params, self.release[1], automaton.ARCS[RELEASE].mode, kind)
+        """The release's arc to the surface reached first (None: none); sets :attr:`first`, :attr:`last`."""
+        best, opening = None, automaton.ARCS[self.opening]
+        for kind in opening.watched:
+            arc = row(self.params, self.release[1], opening.mode, kind)
             reached, dt, _, _ = crossing(arc.u0, arc.q, arc.k, self.v, self.omega, arc.direction)
             if reached and (best is None or dt < best[0]):
                 best = (dt, arc)
@@ -182,13 +187,29 @@ class EventRun:
         self._end(ending, float(v_before[-1]) if ending == REBOUND else math.nan)
         return kept
 
+    def past(self, v1: float) -> str | None:
+        """After a rebound (``v1`` the velocity before it): under ``past_accumulation: continue``, where the rebounds
+        accumulate, the run goes on from rest at the impact position from then, in the zone mode that follows the
+        impact (None); else :data:`REBOUND` ends it."""
+        wait = accumulation(self.params, EventKind(self.state), v1, self.v)
+        if self.params.past_accumulation == "stop" or math.isnan(wait):
+            return REBOUND
+        self.wait_at.append(self.events - 1)
+        self.wait.append(wait)
+        self.t_acc, self.v = self.time + wait if math.isnan(self.t_acc) else self.t_acc, 0.0
+        self.t_sum, error = two_sum(self.t_sum, wait)
+        self.t_err += error
+        return None
+
     def _end(self, ending: str | None, v1: float) -> None:
         """The outcome of a block that ended with ``ending``, or at the run's last event."""
+        last_cycle = self.limits.n_cycles is not None and self.impacts_a1() == self.limits.n_cycles + 1
+        ending = self.past(v1) if ending == REBOUND and not last_cycle else ending
         if ending in (NO_EVENT, HORIZON):
             self.open_arc = True
             self.outcome = self._no_event() if ending == NO_EVENT else horizon_outcome(self.t_stop, self.impacts_a1())
-        elif self.limits.n_cycles is not None and self.impacts_a1() == self.limits.n_cycles + 1:  # the last cycle
-            self.outcome = completed_outcome(self.limits.n_cycles, self.time)
+        elif last_cycle:
+            self.outcome = completed_outcome(self.limits.n_cycles, self.time, self.t_acc)
         elif ending == REBOUND:
             self.outcome = chattering_outcome(self.params, EventKind(self.state), self.time, v1, self.v)
         elif self.events >= self.last:
@@ -198,13 +219,14 @@ class EventRun:
     def _no_event(self) -> Outcome:
         """No watched surface is passed from the last state: the turning point of its arc."""
         x = self.release[1] if self.state == RELEASE else automaton.position(self.state, self.params)
-        mode = automaton.ARCS[self.state].mode
+        state = self.state or self.opening
+        mode = automaton.ARCS[state].mode
         centre = automaton.centre(mode, self.params.zone_offset)
         if mode == Mode.FREE:  # the swing's radius, for ever
             dt, turning = math.inf, math.hypot(x - centre, self.v / self.omega)
         else:
             dt, turning = time_to_rest(centre, x, self.v, self.omega)
-        return no_event_outcome(self.params, self.state, centre, self.time, dt, turning, self.t_stop, self.impacts_a1())
+        return no_event_outcome(self.params, state, centre, self.time, dt, turning, self.t_stop, self.impacts_a1())
 
     def impacts_a1(self) -> int:
         """The impacts at a1 so far: one in each :data:`PLAN` of events from the first."""
@@ -242,10 +264,15 @@ def event_block(run: EventRun, start: int, t: np.ndarray, v_before: np.ndarray, 
     x, v_after = run.position[kind], run.jump[kind] * v_before
     arc_centre = np.concatenate(([run.centre[before[0]]], run.centre[kind]))
     arc_x, arc_v = np.concatenate(([before[1]], x)), np.concatenate(([before[2]], v_after))
+    waited = np.zeros(n + 1)  # by arc, the time its start waited for the rebounds before it to accumulate
+    if len(run.wait_at):  # the arcs after the rebounds the run went on past start from rest
+        at = np.frombuffer(run.wait_at, np.int64)
+        lo, hi = np.searchsorted(at, [start - 1, start + n])
+        arc_v[at[lo:hi] - start + 1], waited[at[lo:hi] - start + 1] = 0.0, np.frombuffer(run.wait)[lo:hi]
     at_a1, width = np.flatnonzero(kind == A1), len(PLAN)
     m = max(len(at_a1) - 1, 0)
     arcs = slice(at_a1[0] + 1, at_a1[0] + 1 + m * width) if m else slice(0, 0)  # the arcs of the complete cycles
-    dt = (angle[arcs] / run.omega).reshape(m, width)
+    dt = (angle[arcs] / run.omega + waited[arcs]).reshape(m, width)
     arc_max = arc_maximum(arc_centre[arcs], arc_x[arcs], arc_v[arcs], run.omega, angle[arcs], x[arcs], v_before[arcs])
     arc_max = arc_max.reshape(m, width)
     period, amplitude = dt[:, 0].copy(), np.maximum(x[at_a1[:m]], arc_max[:, 0])

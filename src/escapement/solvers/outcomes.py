@@ -19,7 +19,7 @@ from ..model.printing import compared, exact, texts
 from .describe import CYCLE_COLUMNS, EVENT_COLUMNS, ArcTable, CycleTable, Exit, Trajectory
 from .result import Solution
 
-__all__ = ["Outcome", "chattering_outcome", "completed_outcome", "event_limit_message", "finish", "horizon_outcome",
+__all__ = ["Outcome", "accumulation", "chattering_outcome", "completed_outcome", "event_limit_message", "finish", "horizon_outcome",
            "no_event_outcome"]
 
 
@@ -86,19 +86,24 @@ def horizon_outcome(t_stop: float, impacts_a1: int) -> Outcome:
     return Outcome(Status.COMPLETED, f"reached t_end = {exact(t_stop)} s after {impacts} at a1", Exit(), t_stop)
 
 
-def completed_outcome(n_cycles: int, t: Numeric) -> Outcome:
-    """The run's last cycle ended at ``t``."""
-    return Outcome(Status.COMPLETED, f"completed {n_cycles} cycles", Exit(), t)
+def completed_outcome(n_cycles: int, t: Numeric, t_acc: float = math.nan) -> Outcome:
+    """The run's last cycle ended at ``t`` (``t_acc``: the first accumulation of impacts it went on past)."""
+    return Outcome(Status.COMPLETED, f"completed {n_cycles} cycles", Exit(t_accumulation=t_acc), t)
+
+
+def accumulation(params: Parameters, kind: EventKind, v_before: Numeric, v_after: Numeric) -> float:
+    """After the impact ``kind`` reversed the velocity, the time until the rebounds accumulate (a Zeno point), s;
+    NaN where the spring does not drive the mass back to the impact position."""
+    distance = automaton.rebound_distance(kind, automaton.position(kind, params))
+    ratio = abs(float(v_after / v_before))  # the impact law's |v+/v-|
+    return rebound_accumulation_time(params.omega, distance, abs(float(v_after)), ratio) if distance > 0 else math.nan
 
 
 def chattering_outcome(params: Parameters, kind: EventKind, t: Numeric, v_before: Numeric, v_after: Numeric
                        ) -> Outcome:
     """The impact ``kind`` at ``t`` reversed the velocity: do the rebounds accumulate (a Zeno point)?"""
-    distance = automaton.rebound_distance(kind, automaton.position(kind, params))
     ratio = float(v_after / v_before)  # the impact law's v+/v-, negative: a rebound
-    t_acc = math.nan
-    if distance > 0.0:
-        t_acc = float(t) + rebound_accumulation_time(params.omega, distance, abs(float(v_after)), abs(ratio))
+    t_acc = float(t) + accumulation(params, kind, v_before, v_after)
     position = automaton.SURFACES[EventKind(kind)].position
     t_text, t_acc_text = texts([float(t), t_acc], _DIGITS)
     message = (f"the impact at {position} at t = {t_text} s reversed the velocity (b = {exact(params.b)} > 1, "
