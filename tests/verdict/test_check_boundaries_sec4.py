@@ -24,10 +24,25 @@ from verdict.test_check_boundaries import (DONE, PAPER, SIDES, around, bounded, 
 # --- Fig. 3: convergence, rates, periods ---------------------------------------------------------
 
 
-def test_both_motions_converge_to_the_tolerance_of_the_last_change():
-    """The last velocity before impact 1.7 (1 +/- t (1 +/- 1e-6)) against the one before, 1.7."""
-    bounded(register_row("fig3_both_converge", 1e-8),
-            lambda off: evidence({"a": fig3([2.0, 2.0]), "b": fig3([1.7, 1.7 * (1 + off)])}))
+def test_both_motions_converge_while_every_change_of_x1_squared_is_smaller_than_the_one_before():
+    """x1^2 = 1 + r^k (k = 0 .. 7) changes by r^k (1 - r): the ratio r every cycle, the smallest change r^6 (1 - r)
+    of the largest x1^2, 2 (0.014 at r = 0.6561, 0.0047 at r = 0.99). r = 0.6561 and r = 0.99 contract however large
+    the last change: no threshold. x1^2 = 2, 1.5, 1.25, 1.75, 1.7 changes by 0.5, 0.25, 0.5, 0.05 (ratios 0.5, 2,
+    0.1): the change into cycle 4 is not below the one before."""
+    row = register_row("fig3_both_converge", None)
+    said = "ratio of successive changes of x1^2"
+
+    def judge(b_case):
+        return cl.verdict(row, row, evidence({"a": fig3(energy_curve(0.6561)), "b": fig3(b_case)}))
+
+    slow = judge(energy_curve(0.99))
+    assert slow.holds is True and slow.replicated_value == (
+        f"case a: {said} 0.6561 to 0.6561 over 8 cycles ((1 - b)^4 = 0.6561), the smallest change 0.014 of x1^2; "
+        f"case b: {said} 0.99 to 0.99 over 8 cycles ((1 - b)^4 = 0.6561), the smallest change 0.0047 of x1^2")
+    grows = judge(np.sqrt([2, 1.5, 1.25, 1.75, 1.7]))
+    assert grows.holds is False and f"case b: {said} 0.1 to 2 over 5 cycles" in grows.replicated_value
+    with pytest.raises(cl.ClaimError, match="Fig. 3 case b has 2 cycles: a contraction needs 3 or more"):
+        judge([1.0, 1.1])
 
 
 def energy_curve(rate: float, n: int = 8) -> np.ndarray:

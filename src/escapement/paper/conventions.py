@@ -3,11 +3,10 @@
 The paper mixes conventions: Sec. 4 gives the positions as magnitudes ("a1 = 0.1 m"), Eqs. (9)-(22a) as signed
 positions (``-a1`` in (22a)); Eq. (2) writes the force as ``sigma f``, ``sigma = -1`` in the second half period;
 the second half period mirrors the first (``x -> -x``, ``a1 <-> a3``, ``a2 <-> a4``); a formula may take the
-velocity before or after an impact. Before a printed formula is called wrong, it is evaluated under every
-combination of these readings (:data:`AXES`): by the rule of REPLICATION.md, Sec. 7, it holds when one of the
-paper's conventions reproduces the simulated value (the note says whether the adopted one, :data:`AS_READ`, does,
-or only another), and fails when none does. The checks that use them are in :mod:`escapement.verdict.sec3_steps`
-(Eq. (14)) and :mod:`escapement.verdict.sec3_period` ((22e)-(25)).
+velocity before or after an impact. Each combination (:data:`AXES`) is a reading of a printed formula like any
+other: a check evaluates the formula under every reading its symbols vary under (:func:`try_readings`) and the rule
+(:mod:`escapement.verdict.rule`) decides, reproduced under all, undetermined when they disagree, not reproduced under
+none. The checks: :mod:`escapement.verdict.sec3_steps` (Eq. (14)), :mod:`escapement.verdict.sec3_period` ((22e)-(25)).
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """The checks of the period formulas, Eqs. (22)-(25), against the simulated step durations and periods of Fig. 3;
-(22e)-(25) hold when one convention of the paper (:mod:`escapement.paper.conventions`) reproduces them, one equation
+(22e)-(25) under each convention of the paper (:mod:`escapement.paper.conventions`), a grid of readings, one equation
 read in one convention for all its forms.
 """
 
@@ -10,7 +10,7 @@ import math
 from ..paper import corrected as derived
 from ..paper import printed as pe
 from ..paper.conventions import Reading, departure, second_half_trials, symbols, try_readings
-from .sec3_steps import conventions_verdict, describe
+from .sec3_steps import NO_FIGURE, conventions_verdict, describe
 from .evidence import Evidence, Verdict, check, cycle_durations, fig3_scenes, fmt, params_of, rel, within
 
 
@@ -44,9 +44,8 @@ def eq22e(claim, ev: Evidence) -> Verdict:
     velocity, simulated = derived.cycle_velocities(v1, p), float(cycle_durations(ds)["zone_left"][-1])
     trials = second_half_trials(p, velocity, simulated, claim["tolerance"], pe.zone_left_time_22e)
     holds, note = conventions_verdict(trials, f"the simulated impulse time {fmt(simulated)} s", "Eq. (22e)")
-    if not holds:
-        note += "; (22e) needs + acos((a4 + f/w^2)/h3) instead of -, the mirror image of (22b)"
-    return Verdict(f"{fmt(simulated)} s (simulated, last cycle of case {claim['args']['case']})", holds, note=note,
+    return Verdict(f"{fmt(simulated)} s (simulated, last cycle of case {claim['args']['case']})", holds,
+                   note=f"{note}; as read, (22e) needs + acos((a4 + f/w^2)/h3) instead of -, the mirror image of (22b)",
                    paper_value=f"{fmt(trials[0].value)} s as read")
 
 
@@ -62,13 +61,11 @@ PERIOD_23_PARTS = {
 
 def _terms_23(p, velocity, reading: Reading) -> dict[str, float]:
     """The terms of (23) under ``reading``: each step's terms with the symbols of its half period."""
-    out = {}
-    for part, (second, _) in PERIOD_23_PARTS.items():
-        s, sign = symbols(p, reading, second_half=second)
-        v = {"v1p": velocity["v1p"], "v2": velocity["v2"], "v5": sign * velocity["v5"],
-             "v4p": sign * velocity["v4p" if reading.velocity == "after" else "v4"]}
-        out[part] = pe.period_terms_23(v, s)[part]
-    return out
+    (first, _), (second, sign) = (symbols(p, reading, second_half=half) for half in (False, True))
+    v = {"v1p": velocity["v1p"], "v2": velocity["v2"], "v5": sign * velocity["v5"],
+         "v4p": sign * velocity["v4p" if reading.velocity == "after" else "v4"]}  # the second half's, with its sign
+    terms = {half: pe.period_terms_23(v, s) for half, s in ((False, first), (True, second))}
+    return {part: terms[half][part] for part, (half, _) in PERIOD_23_PARTS.items()}
 
 
 @check(scenes=fig3_scenes, args=("case",))
@@ -80,11 +77,10 @@ def eq23(claim, ev: Evidence) -> Verdict:
                          ("positions", "force", "half", "velocity"))
     holds, note = conventions_verdict(whole, f"the simulated period {fmt(simulated)} s", "Eq. (23)")
     durations = {k: float(v[-1]) for k, v in cycle_durations(ds).items()}
-    working = {part: [t.reading for t in try_readings(lambda r, part=part: _terms_23(p, velocity, r)[part],
-                                                      durations[part], tolerance, part_axes) if t.reproduces]
-               for part, (_, part_axes) in PERIOD_23_PARTS.items()}
-    described = "; ".join(f"{part}: " + (" or ".join(departure(r) for r in found) if found else "no reading")
-                          for part, found in working.items())
+    working = {part: " or ".join(departure(t.reading) for t in try_readings(
+        lambda r, part=part: _terms_23(p, velocity, r)[part], durations[part], tolerance, part_axes) if t.reproduces)
+        for part, (_, part_axes) in PERIOD_23_PARTS.items()}
+    described = "; ".join(f"{part}: {found or 'no reading'}" for part, found in working.items())
     return Verdict(f"{fmt(simulated)} s (simulated)", holds,
                    note=f"each step's terms are reproduced by: {described}; " + note,
                    paper_value=f"{fmt(whole[0].value)} s as read (signed a1 .. a4)")
@@ -94,8 +90,8 @@ def eq23(claim, ev: Evidence) -> Verdict:
 def eq24(claim, ev: Evidence) -> Verdict:
     """Eq. (24) at the last cycle, in one convention for the whole equation (x1+ the velocity after the impact, as
     Eq. (10) defines it; the positions signed or Sec. 4's magnitudes, alike in both forms), against the jump of the
-    sine phase across the simulated impact (:func:`escapement.paper.corrected.impact_phase_jump`). ``form: first``
-    holds when a convention reproduces the first form, ``form: second`` when one reproduces both."""
+    sine phase across the simulated impact (:func:`escapement.paper.corrected.impact_phase_jump`): under each
+    convention of the positions, ``form: first`` holds where the first form reproduces it, ``second`` where both do."""
     form = claim["args"]["form"]
     if form not in ("first", "second"):
         raise ValueError(f"form = {form!r} must be first or second")
@@ -111,24 +107,21 @@ def eq24(claim, ev: Evidence) -> Verdict:
     first, second = (try_readings(lambda r, i=i: forms(r, v1p, v1)[i], measured, tolerance, axes) for i in (0, 1))
     both = [a.reading for a, b in zip(first, second) if a.reproduces and b.reproduces]
     swapped = forms(first[0].reading, v1, v1p)
-    holds = any(t.reproduces for t in first) if form == "first" else bool(both)
-    lead = ("both forms read with x1+ the velocity after the impact, as the paper defines it, 'the velocity after "
-            "impact is x1+(k) = (1 - b) x1(k)' (Eq. (10)), x1 the one before, and one convention of the positions for "
-            "both")
+    holds = {str(a.reading): a.reproduces and (form == "first" or b.reproduces) for a, b in zip(first, second)}
+    lead = ("both forms read with x1+ the velocity after the impact as Eq. (10) defines it, x1+(k) = (1 - b) x1(k), "
+            "x1 the one before, and one convention of the positions for both")
     if form == "second":
         lead += ("; " + (f"both forms reproduce the phase delay with {' or '.join(map(departure, both))}" if both else
-                         "the second form differs from the first in every convention: it is named a misprint, x1+ "
-                         "printed where atan(A) - atan(B) = atan((A - B)/(1 + A B)) gives x1, the velocity before the "
-                         "impact; since the paper's own definition of x1+ fixes the equation's one convention, in "
-                         "which the first form, the definition of dT1, holds, the equation is judged form by form "
-                         "(this part, a misprint) rather than not reproduced as a whole"))
+                         "the second form differs from the first in every convention: a misprint, x1+ printed where "
+                         "atan(A) - atan(B) = atan((A - B)/(1 + A B)) gives x1, the velocity before the impact; Eq. "
+                         "(10) fixes the equation's velocity, so it is judged form by form (this part, the misprint)"))
     return Verdict(
         f"phase delay of the impact {fmt(measured)} s; with x1+ after the impact: first form {fmt(first[0].value)} s, "
         f"second form {fmt(second[0].value)} s", holds,
-        note=(f"{lead}; the first form under each convention of the positions: {describe(first)}; the second: "
-              f"{describe(second)}; with x1+ read as the velocity before the impact (x1 the one after), which Eq. (10) "
-              f"excludes, the first form gives {fmt(swapped[0])} s and the second {fmt(swapped[1])} s: no one reading "
-              "of x1+ gives both forms"),
+        note=(f"{lead}; {NO_FIGURE}; the first form under each convention of the positions: {describe(first)}; the "
+              f"second: {describe(second)}; with x1+ read as the velocity before the impact (x1 the one after), which "
+              f"Eq. (10) excludes, the first form gives {fmt(swapped[0])} s and the second {fmt(swapped[1])} s: no one "
+              "reading of x1+ gives both forms"),
         paper_value="dT1, first form" if form == "first" else "dT1, second form, equal to the first")
 
 
