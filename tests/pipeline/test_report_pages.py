@@ -1,4 +1,4 @@
-"""The HTML of the report: the landing text short and headed by the verdict's headline, the claims register and
+"""The HTML of the report: the landing text short and headed by the verdict's counts, the claims register and
 REPLICATION.md documents of their own."""
 
 from escapement.pipeline.docs import html_document, landing_html, markdown_html, verdict_html
@@ -11,8 +11,8 @@ STRESS = [{"case": "c1", "regime": "r", "outcome": "completed", "check": "k", "p
 
 def test_the_landing_text_is_the_headline_and_the_stress_count_without_the_tables():
     text = landing_html(ROWS, STRESS)
-    assert text.startswith('<p id="headline"><strong>The verdict.</strong> ')
-    assert "Of the 80 findings, 80 are reproduced" in text and "1 stress cases</strong>" in text
+    assert text.startswith('<p id="headline"><strong>The verdict.</strong> Full replication: 80 of 80 findings ')
+    assert "1 stress cases</strong>" in text
     assert "<table" not in text and len(text) < 2000
 
 

@@ -143,12 +143,12 @@ def test_each_sentence_is_one_finding_with_the_status_of_its_parts():
     assert [r["claim_id"] for r in found["period"][1]] == ["p1", "p2"]
 
 
-def test_the_headline_says_its_rule_and_the_counts():
-    text = headline(ROWS)
-    assert "quotes 9 sentences of the paper, checked in 14 rows. Each sentence is one finding" in text
-    assert "partially reproduced when a part is reproduced and another fails under every reading" in text
-    assert ("Of the 9 findings, 1 are reproduced, 2 consistent, 0 partially reproduced, 3 not reproduced, 2 "
-            "undetermined and 1 untestable. Beyond the paper, and not counted: 2 rows.") in text
+def test_the_headline_counts_the_findings_and_names_the_replication_by_them():
+    assert headline(ROWS) == ("Partial replication: 1 of 9 findings reproduced, 2 consistent, 0 partially reproduced, "
+                              "3 not reproduced, 2 undetermined, 1 untestable (2 rows beyond the paper, not counted).")
+    assert headline(ROWS[2:4]).startswith("Full replication: 1 of 1 findings reproduced, 0 consistent")
+    assert headline(ROWS[:2] + ROWS[-1:]).startswith("Failed replication: 0 of 1 findings reproduced")
+    assert headline(ROWS[:2] + ROWS[-1:]).endswith("(1 row beyond the paper, not counted).")
 
 
 def test_the_findings_table_lists_each_finding_once_with_its_parts():

@@ -23,7 +23,7 @@ from ..paper.printed import fixed_point_19
 from ..plotting.autoscale import VARIANTS
 from ..studies.readings import FIG4_K, FIG5_FORCES, FIG5_RELEASES
 from ..verdict.evidence import params_of
-from ..verdict.rule import fmt
+from ..verdict.rule import STATUSES, fmt
 from ..verdict.scores import CLAIM_AUTOSCALE, best_readings_table, joint_candidates, panel_candidates, read_scores
 from ..verdict.tally import findings_table, headline, vocabulary_table
 from .logs import logged
@@ -127,16 +127,17 @@ def _stress_sentence(stress: Sequence[Mapping]) -> str:
 
 
 def landing_html(claims: Sequence[Mapping], stress: Sequence[Mapping]) -> str:
-    """The landing text, short enough for a window 800 px high: the headline (paragraph id ``headline``), the stress."""
+    """The landing text, short enough for a window 800 px high: the counts (paragraph id ``headline``), the stress."""
     return (f'<p id="headline"><strong>The verdict.</strong> {html.escape(headline(claims), quote=False)}</p>\n'
             + _stress_sentence(stress) + "\n")
 
 
 def verdict_html(claims: Sequence[Mapping], stress: Sequence[Mapping]) -> str:
-    """The verdict in a few lines, the claims register and the stress table."""
+    """The verdict in a few lines (its counts, then what each status means), the claims register and the stress."""
     return "\n".join([
         f"<p>{html.escape(headline(claims), quote=False)} The reasons are in the table's note column and in "
-        "REPLICATION.md.</p>", _stress_sentence(stress),
+        "REPLICATION.md.</p>", "<dl>" + "".join(f"<dt>{w.replace('_', ' ')}</dt><dd>{html.escape(m)}</dd>"
+                                                for w, m in STATUSES.items()) + "</dl>", _stress_sentence(stress),
         _html_table([{**r, "status": r["status"].replace("_", " ")} for r in claims],
                     ["claim_id", "source", "origin", "finding", "evidence", "paper_value", "replicated_value",
                      "status", "note"], "The claims register (results/replication/claims.csv)", "claims"),
@@ -242,12 +243,12 @@ def run_values(scores: Sequence[Mapping], checks: Mapping, fig3: Mapping[str, xr
 def render(template: str, template_name: str, rows: Sequence[Mapping], facts: Mapping[str, str],
            tables: Mapping[str, str], config: Mapping, run: Mapping | None = None) -> str:
     """``template`` rendered, after the comment that says the file is generated from ``template_name``. Its
-    names: ``claims_table`` and ``headline`` (of the rows), ``claim.<claim_id>.<column>`` (a cell of the claims
-    table), ``verdict.<claim_id>`` (a status in words), ``fact.<name>`` (:func:`collect_facts`), ``table.<name>``,
-    ``config`` (the replication's configuration, printed by the filters of :func:`fill`) and ``run``
-    (:func:`run_values`)."""
+    names: ``claims_table`` and ``headline`` (of the rows), ``statuses`` (each status with its meaning),
+    ``claim.<claim_id>.<column>`` (a cell of the claims table), ``verdict.<claim_id>`` (a status in words),
+    ``fact.<name>`` (:func:`collect_facts`), ``table.<name>``, ``config`` (the replication's configuration, printed
+    by the filters of :func:`fill`) and ``run`` (:func:`run_values`)."""
     names = {"claims_table": claims_table(rows), "headline": headline(rows), "fact": dict(facts), "table": dict(tables),
-             "config": config, "run": dict(run or {}),
+             "config": config, "run": dict(run or {}), "statuses": STATUSES,
              "verdict": {r["claim_id"]: r["status"].replace("_", " ") for r in rows},
              "claim": {r["claim_id"]: {column: _cell(value) for column, value in r.items()} for r in rows}}
     return GENERATED.format(template=template_name) + fill(template, template_name, names)

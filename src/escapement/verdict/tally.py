@@ -30,26 +30,17 @@ def findings(rows: Iterable[Mapping[str, str]]) -> dict[str, tuple[str, list[Map
 
 
 def headline(rows: Iterable[Mapping[str, str]]) -> str:
-    """The verdict's count in one paragraph, with the rule it counts by, from the rows of the claims table."""
+    """The verdict's first line, from the rows of the claims table: the findings counted by status, and the rows
+    beyond the paper. Full replication when every finding is reproduced, failed when none is, even partially."""
     rows = list(rows)
     found = findings(rows)
     counts = {s: sum(status == s for status, _ in found.values()) for s in ORDER}
-    paper = sum(len(parts) for _, parts in found.values())
-    beyond = len(rows) - paper
-    return (
-        f"The register quotes {len(found)} sentences of the paper, checked in {paper} rows. Each sentence is one "
-        "finding, however many rows check its parts: it is reproduced when every part holds under every reading of "
-        "its words; consistent when every part holds but some only by construction or under a reading or threshold "
-        "the project chose; partially reproduced when a part is reproduced and another fails under every reading; "
-        "not reproduced when a part fails under every reading and no part is reproduced (a consistent part confirms "
-        "nothing, and a part that fails only under a reading or threshold the project chose fails under no reading "
-        "of the paper's own); undetermined when no part fails under every reading but some holds only under some "
-        "readings, fails only under a reading the project chose, or cannot be tested (an untestable part never "
-        "counts as holding). "
-        f"Of the {len(found)} findings, {counts['reproduced']} are reproduced, {counts['consistent']} consistent, "
-        f"{counts['partially_reproduced']} partially reproduced, {counts['not_reproduced']} not reproduced, "
-        f"{counts['undetermined']} undetermined and {counts['untestable']} untestable. Beyond the paper, and not "
-        f"counted: {beyond} row{'' if beyond == 1 else 's'}.")
+    beyond = len(rows) - sum(len(parts) for _, parts in found.values())
+    word = ("Failed" if not counts["reproduced"] + counts["partially_reproduced"]
+            else "Full" if counts["reproduced"] == len(found) else "Partial")
+    return (f"{word} replication: {counts['reproduced']} of {len(found)} findings reproduced, "
+            + ", ".join(f"{counts[s]} {s.replace('_', ' ')}" for s in ORDER[1:])
+            + f" ({beyond} row{'' if beyond == 1 else 's'} beyond the paper, not counted).")
 
 
 def findings_table(rows: Iterable[Mapping[str, str]]) -> list[dict[str, str]]:
