@@ -111,6 +111,8 @@ def test_every_tracked_file_is_published_from_the_replication_s_results():
     figures = ("fig3", "fig4", "fig5", "long_run", "stability_map", "escapement_error", "existence_map")
     expected = {"README.md", "REPLICATION.md"} | {f"figures/{f}.{e}" for f in figures for e in ("png", "pdf")}
     article = {f"article/{name}" for name in ("article.pdf", "metadata.yaml", "article.typ", "article.bib")}
+    article |= {f"article/figures/{name}.svg" for name in ("poincare_map", "shock_detail", "phase_diagrams",
+                                                           "escapement_error", "work_precision", "long_run")}
     assert set(PUBLISHED) == expected | article
     assert all(path.startswith("results/replication/") for path in PUBLISHED.values())
 

@@ -196,12 +196,20 @@ rule render_article:
         checks="results/replication/checks.nc",
         readings="results/replication/readings.csv",
         benchmark="results/replication/work_precision.csv",
+        fig3=outputs.data_files(
+            "replication", "fig3", STUDIES["replication"]["fig3"]
+        ).values(),
         figures=[f"results/replication/figures/{name}.svg" for name in ARTICLE_FIGURES],
     output:
         pdf="results/replication/article/article.pdf",
         metadata="results/replication/article/metadata.yaml",
         source="results/replication/article/article.typ",
         bibliography="results/replication/article/article.bib",
+        # the figures the source includes, beside it: the folder compiles on its own
+        figures=[
+            f"results/replication/article/figures/{name}.svg"
+            for name in ARTICLE_FIGURES
+        ],
     log:
         "results/logs/replication/render_article.log",
     localrule: True

@@ -5,16 +5,21 @@ Its numbers are read from datasets and typed columns and formatted once here; th
 
 from __future__ import annotations
 
-import os
+import itertools
+import math
 import re
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+import numpy as np
 import yaml
 
 from ..io.netcdf import read_csv, read_variables, replaced, write_text
-from ..paper.printed_axes import panel
-from ..verdict.rule import fmt
+from ..model.parameters import Parameters
+from ..model.quantities import MODEL_KEYS
+from ..paper import corrected
+from ..paper.printed_axes import limits_match, panel
+from ..verdict.rule import EVIDENCE, STATUSES, fmt
 from ..verdict.scores import joint_candidates, panel_candidates, read_scores, summary
 from ..verdict.tally import ORDER, findings
 from .docs import fill
@@ -23,9 +28,11 @@ from .tables import LIMIT_COLUMNS, WORK_PRECISION_COLUMNS, read_claims
 
 __all__ = ["RULE", "keywords", "metadata", "prefix", "string", "typ", "write_article"]
 
-#: the rule that names the article a replication or a failed one, from the findings' statuses
-RULE = ("the title reads [Re] when the paper's findings that hold (reproduced or consistent) outnumber those that "
-        "fail in part or in whole (not reproduced or partially reproduced), and [¬Re] otherwise")
+#: the rule that names the article a replication or a failed one, from the findings' statuses: a consistent finding
+#: confirms nothing, and an undetermined or untestable one has no verdict, so none of them counts
+RULE = ("the title reads [Re] when the paper's findings that are reproduced outnumber those that fail in part or in "
+        "whole (not reproduced or partially reproduced), and [¬Re] otherwise; consistent, undetermined and untestable "
+        "findings count on neither side")
 #: Typst's markup characters, each escaped by a backslash in text from the run
 _MARKUP = re.compile(r"([\\#*_$@<>\[\]`~=+/\-\"'])")
 
@@ -42,9 +49,8 @@ def string(text: object) -> str:
 
 def prefix(counts: Mapping[str, int]) -> str:
     """``[Re]`` or ``[¬Re]`` by :data:`RULE`, from the number of findings of each status."""
-    held = counts["reproduced"] + counts["consistent"]
     failed = counts["not_reproduced"] + counts["partially_reproduced"]
-    return "[Re]" if held > failed else "[¬Re]"
+    return "[Re]" if counts["reproduced"] > failed else "[¬Re]"
 
 
 def keywords(citation: Mapping) -> list[str]:
@@ -78,84 +84,136 @@ def metadata(citation: Mapping, title: str, abstract: str) -> dict:
     }
 
 
+def _first(text: str) -> float:
+    """The first number of a value cell of the claims table, which holds text (``-1.72383644 s as read``)."""
+    return float(re.match(r"-?[\d.]+(?:e[-+]?\d+)?", text)[0])
+
+
+def _value(paper: float, run: float, status: str = "—") -> dict:
+    """One row of the table of values: the paper's and the run's, their relative difference, the status."""
+    return {"paper": typ(fmt(paper, 12)), "run": typ(fmt(run, 12)), "diff": typ(fmt(abs(run - paper) / abs(paper), 2)),
+            "status": typ(status.replace("_", " "))}
+
+
+def _equations(rows: Mapping[str, Mapping], path: str) -> dict[str, dict]:
+    """Eqs. (22e), (23) and (25) as printed (the claims table's reading) and corrected, evaluated on the last cycle
+    of ``path`` (a Fig. 3 case) against that cycle's simulated times; (22e) is written out here as the article prints
+    it, since the model's closed forms give that time only inside the whole period."""
+    v = read_variables(path, ("event_time", "event_kind", "velocity_before_impact", "period", *MODEL_KEYS))
+    p, v1, period = Parameters(**{k: float(v[k]) for k in MODEL_KEYS}), *(float(v[k][-1]) for k in (
+        "velocity_before_impact", "period"))
+    start = np.flatnonzero(v["event_kind"] == 1)[-2]  # the last complete cycle's impact at a1, then a2, a3, a4
+    c, w = p.zone_offset, p.omega
+    h3 = math.hypot(p.a3 + c, corrected.cycle_velocities(v1, p)["v4p"] / w)
+    fixed = {"eq22e_step_time": (float(v["event_time"][start + 3] - v["event_time"][start + 2]),
+                                 (math.acos((p.a4 + c) / h3) - math.acos((p.a3 + c) / h3)) / w),
+             "eq23_period": (period, corrected.period(v1, p)),
+             "eq25_force_perturbation": (period, corrected.period_from_perturbations(v1, p))}
+    return {claim: {"printed": _value(_first(rows[claim]["paper_value"]), run, rows[claim]["status"]),
+                    "corrected": _value(right, run)} for claim, (run, right) in fixed.items()}
+
+
 def _axes(rows: Sequence[Mapping], limits: Sequence[Mapping]) -> str:
-    """Each axis claim as Typst cells: the printed limits and the run's it judged (each scored axis), its status."""
+    """Each axis claim as Typst cells: the printed limits and the run's it judged (each scored axis), how many of
+    them agree, its status."""
     claim, judged = {r["claim_id"]: r for r in rows}, {}
     for row in limits:
         axis = panel(row["figure"], row["panel"]).axes[row["axis"]]
+        shown = judged.setdefault(row["claim_id"], {"printed": [], "run": [], "agree": 0, "of": 0})
+        shown["agree"] += limits_match(float(row["low"]), float(row["high"]), axis.low, axis.high, axis.step)
+        shown["of"] += 2
         for kind, low, high in (("printed", axis.low, axis.high), ("run", float(row["low"]), float(row["high"]))):
-            judged.setdefault(row["claim_id"], {}).setdefault(kind, []).append(
-                f"{axis.label}: [{fmt(low, 6)}, {fmt(high, 6)}]")
+            shown[kind].append(f"{axis.label}: [{fmt(low, 6)}, {fmt(high, 6)}]")
     return ",\n".join(f"[{typ(claim[c]['source'])}], [{typ('; '.join(shown['printed']))}], "
-                      f"[{typ('; '.join(shown['run']))}], [{typ(claim[c]['status'].replace('_', ' '))}]"
-                      for c, shown in judged.items())
+                      f"[{typ('; '.join(shown['run']))}], [{shown['agree']} of {shown['of']} limits], "
+                      f"[{typ(claim[c]['status'].replace('_', ' '))}]" for c, shown in judged.items())
 
 
-def _readings(scores: Sequence[Mapping]) -> str:
-    """Per printed panel (and Fig. 4's two together) as Typst cells: the best score, the readings tied at it."""
+def _readings(scores: Sequence[Mapping]) -> tuple[str, dict[str, str]]:
+    """Per printed panel (and Fig. 4's two together) as Typst cells: the best score, how many readings tie at it
+    and, where they plot different values, only the words in which they differ; and the tie in words by panel."""
     candidates = panel_candidates(scores)
     if any(figure == "4" for figure, _ in candidates):
         candidates[("4", "both panels")] = joint_candidates(scores, "4")
-    cells = []
+    cells, ties = [], {}
     for (figure, name), c in sorted(candidates.items(), key=lambda item: item[0][0]):
         _, groups = c.tied()
-        lead = (f"undetermined: {len(groups)} readings tie, plotting different values" if len(groups) > 1 else
-                "one reading" if len(groups[0]) == 1 else f"{len(groups[0])} equivalent readings (identical values)")
-        cells.append(f"[{typ(figure)} {typ(name)}], [{typ(summary(c)[0])}], [{typ(lead)} of {len(c.scores)}:"
-                     + "".join(f" #linebreak() {typ(' = '.join(group))}" for group in groups) + "]")
+        words = [re.split(r"; |, ", group[0]) for group in groups]  # a reading's words, field by field
+        words = words if len({len(w) for w in words}) == 1 else [group[0].split("; ") for group in groups]
+        differ = [" | ".join(dict.fromkeys(f)) for f in zip(*words) if len(set(f)) > 1] or groups[0][:1]
+        ties[f"{figure} {name}"] = (f"{len(groups)} of {len(c.scores)} readings tie (undetermined)" if len(groups) > 1
+                                    else f"one of {len(c.scores)} readings leads" if len(groups[0]) == 1
+                                    else f"{len(groups[0])} identical of {len(c.scores)} readings lead")
+        cells.append(f"[{typ(figure)} {typ(name)}], [{typ(summary(c)[0])}], [{len(groups)} of {len(c.scores)}], "
+                     f"[{typ('; '.join(differ))}]")
+    return ",\n".join(cells), ties
+
+
+def _register(rows: Sequence[Mapping]) -> str:
+    """Every row of the claims table as Typst cells, the paper's words verbatim once for the rows that quote them."""
+    cells = []
+    for _, group in itertools.groupby(rows, key=lambda r: r["quote"] or id(r)):  # a row without words stands alone
+        group = list(group)
+        for i, r in enumerate(group):
+            words = f"table.cell(rowspan: {len(group)})[{typ(r['quote'])}], " if i == 0 else ""
+            source = r["source"] + (" (beyond the paper)" if r["origin"] == "beyond" else "")
+            cells.append(f"[{typ(source)}], {words}[{typ(r['part'])}], [{typ(r['evidence'].replace('_', ' '))}], "
+                         f"[{typ(r['status'].replace('_', ' '))}]")
     return ",\n".join(cells)
 
 
 def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[str, str], log: str,
                   config: Mapping) -> str:
-    """The job of rule ``render_article``: the ``metadata``, ``source``, ``bibliography`` and ``pdf`` of ``outputs``
-    from the rule's ``inputs`` and the replication's ``config``. Returns the title."""
+    """The job of rule ``render_article``: the ``metadata``, ``source``, ``bibliography`` and ``pdf`` of ``outputs``,
+    and under ``figures/`` beside the source the figures it includes, from the rule's ``inputs`` and the
+    replication's ``config``. Returns the title."""
     import typst
 
     with logged(log, "render_article") as logger:
-        rows, figures = read_claims(inputs["claims"]), {Path(path).stem: path for path in inputs["figures"]}
-        found = findings(rows)
+        rows, folder = read_claims(inputs["claims"]), Path(outputs["source"]).parent
+        by_id, found = {r["claim_id"]: r for r in rows}, findings(rows)
         counts = {s: sum(status == s for status, _ in found.values()) for s in ORDER}
         citation = yaml.safe_load(Path(inputs["citation"]).read_text(encoding="utf-8"))
         original = next(r for r in citation["references"] if r.get("doi"))
-        title = f"{prefix(counts)} {original['title']}"
-        meta = metadata(citation, title, (
-            f"We replicate J. Mao, Y. Fu and P. Li, \"{original['title']}\" ({original['journal']}, "
-            f"{original['year']}), with an exact event-driven solver of its piecewise-linear model and a register of "
-            f"the paper's claims, each checked under every reading its words admit. Of the {len(found)} sentences "
-            f"the register quotes, {counts['reproduced']} are reproduced, {counts['consistent']} consistent, "
-            f"{counts['partially_reproduced']} partially reproduced, {counts['not_reproduced']} not reproduced, "
-            f"{counts['undetermined']} undetermined and {counts['untestable']} untestable."))
-        checks = read_variables(inputs["checks"], ("group", "label", "period", "velocity", "multiplier"))
-        paper = [i for i, group in enumerate(checks["group"]) if group == "paper"]  # the paper's two cases, by label
+        checks = read_variables(inputs["checks"], ("group", "label", "period", "velocity", "multiplier",
+                                                   "fixed_point_eq16"))
+        paper = {checks["label"][i][-1]: i for i, group in enumerate(checks["group"]) if group == "paper"}
         exact = next(row for row in read_csv(inputs["benchmark"], WORK_PRECISION_COLUMNS) if row["method"] == "exact")
-        number = {name: {checks["label"][i]: typ(fmt(float(checks[name][i]), digits)) for i in paper}
+        number = {name: {case: typ(fmt(float(checks[name][i]), digits)) for case, i in paper.items()}
                   for name, digits in (("period", 12), ("velocity", 12), ("multiplier", 10))}
-        names = {"meta": {k: typ(v) if isinstance(v, str) else v for k, v in meta.items()},
-                 "literal": {k: string(v) for k, v in meta.items() if isinstance(v, str)},
-                 "author_literals": [string(a["name"]) for a in meta["authors"]],
+        values = {case: {"period": _value(_first(by_id[f"fig3_period_{case}"]["paper_value"]), checks["period"][i],
+                                          by_id[f"fig3_period_{case}"]["status"]),
+                         "velocity": _value(checks["fixed_point_eq16"][i], checks["velocity"][i],
+                                            by_id[f"eq19_fixed_point_case_{case}"]["status"]),
+                         "multiplier": _value(_first(by_id["eq21_multiplier"]["paper_value"]), checks["multiplier"][i],
+                                              by_id["eq21_multiplier"]["status"])} for case, i in paper.items()}
+        readings, ties = _readings(read_scores(inputs["readings"]))
+        names = {"authors": [typ(a["name"]) for a in citation["authors"]], "rule": typ(RULE),
+                 "author_literals": [string(a["name"]) for a in citation["authors"]],
                  "keyword_literals": [string(k) for k in keywords(citation)],
-                 "authors": [typ(a["name"]) for a in meta["authors"]], "rule": typ(RULE),
-                 "config": config, "count": counts, "n_findings": len(found),
-                 "n_rows": sum(len(parts) for _, parts in found.values()),
-                 # the limit cycles, and the exact solver's error in the benchmark
+                 "statuses": {k.replace("_", " "): typ(v) for k, v in STATUSES.items()},
+                 "evidence": {k.replace("_", " "): typ(v) for k, v in EVIDENCE.items()},
+                 "config": config, "count": counts, "n_findings": len(found), "n_rows": len(rows), "ties": ties,
                  "number": {**number, "exact_error_velocity": typ(fmt(float(exact["error_velocity"]), 2))},
                  "verdict": {r["claim_id"]: typ(r["status"].replace("_", " ")) for r in rows},
-                 "table": {"axes": _axes(rows, read_csv(inputs["limits"], LIMIT_COLUMNS)),
-                           "readings": _readings(read_scores(inputs["readings"])),
-                           "findings": ",\n".join(f"[{typ(parts[0]['source'])}], [{typ(parts[0]['statement'])}], "
-                                                  f"[{typ(status.replace('_', ' '))}]" for status, parts in
-                                                  found.values())},
-                 # the figures as the plotting jobs drew them, by their path from the source
-                 "figure": {name: string(os.path.relpath(path, Path(outputs["source"]).parent))
-                            for name, path in figures.items()}}
-        source = fill(Path(inputs["template"]).read_text(encoding="utf-8"), inputs["template"], names)
-        root = Path(os.path.commonpath([Path(p).resolve() for p in (outputs["source"], *figures.values())]))
+                 "finding": {name: typ(status.replace("_", " ")) for name, (status, _) in found.items()},
+                 "values": values, "equations": _equations(by_id, inputs["fig3"][0]),
+                 "table": {"axes": _axes(rows, read_csv(inputs["limits"], LIMIT_COLUMNS)), "readings": readings,
+                           "register": _register(rows)},
+                 "figure": {Path(path).stem: f"figures/{Path(path).name}" for path in inputs["figures"]}}
+        template = Path(inputs["template"]).read_text(encoding="utf-8")
+        abstract = " ".join(fill(template.split("{#- abstract -#}")[1], inputs["template"], names).split())
+        meta = metadata(citation, f"{prefix(counts)} {original['title']}", abstract.replace("\\", ""))
+        names.update(meta={k: typ(v) if isinstance(v, str) else v for k, v in meta.items()},
+                     literal={k: string(v) for k, v in meta.items() if isinstance(v, str)})
+        source = fill(template, inputs["template"], names)
+        for path in inputs["figures"]:
+            write_text(Path(path).read_text(encoding="utf-8"), folder / "figures" / Path(path).name)
         write_text(Path(inputs["bibliography"]).read_text(encoding="utf-8"), outputs["bibliography"])
         write_text(yaml.safe_dump(meta, sort_keys=False, allow_unicode=True, width=100), outputs["metadata"])
         write_text(source, outputs["source"])
         with replaced(outputs["pdf"]) as tmp:
-            typst.compile(str(outputs["source"]), output=str(tmp), root=str(root), pdf_standards="a-2b",
+            typst.compile(str(outputs["source"]), output=str(tmp), root=str(folder), pdf_standards="a-2b",
                           ignore_system_fonts=True)  # its date the run's: publish compares the sources
-        logger.info("the article: %s", title)
-    return title
+        logger.info("the article: %s", meta["title"])
+    return meta["title"]

@@ -32,7 +32,7 @@ from pathlib import Path
 from xml.etree import ElementTree
 
 from ..io.netcdf import replaced
-from .outputs import ARTICLE
+from .outputs import ARTICLE, ARTICLE_FIGURES
 
 __all__ = ["FIGURE_RMS_TOLERANCE", "PUBLISHED", "check", "compare", "damage", "main", "publish"]
 
@@ -49,6 +49,9 @@ PUBLISHED = {
     "README.md": "results/replication/docs/README.md",
     "REPLICATION.md": "results/replication/docs/REPLICATION.md",
     **{f"article/{name}": f"results/replication/article/{name}" for name in ARTICLE},
+    # the figures the article includes, so that article/ compiles on its own
+    **{f"article/figures/{name}.svg": f"results/replication/article/figures/{name}.svg"
+       for name in ARTICLE_FIGURES},
 }
 #: a printed number: digits, an optional fraction and an optional exponent (a sign before it is text)
 _NUMBER = re.compile(r"\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
