@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .arguments import ParameterError, ParameterTypeError, check_count, check_flag, real_number
+from .automaton import CHOICES
 from .parameters import ParameterArrays, Parameters, check_initial_state, validate_arrays
 from .printing import texts
 from .quantities import MODEL_KEYS
@@ -104,8 +105,8 @@ def run_spec(params: Parameters | Mapping[str, object], x0: object, v0: object =
             raise ParameterTypeError("params", params,
                                      "an escapement.Parameters (make one with Parameters(M=..., ...))")
         for name, value in params.chosen.items() if not choices else ():
-            raise ParameterError(name, value, f"{Parameters.__dataclass_fields__[name].default!r} for this solver: only "
-                                 "the event solvers (solve_exact, iter_cycles) run the model's other choices")
+            raise ParameterError(name, value, f"{CHOICES[name][0]!r} for this solver: only the event solvers "
+                                 "(solve_exact, iter_cycles) run the model's other choices")
         x, v = check_initial_state(x0, v0)
         return RunSpec(params, x, v, RunLimits(n_cycles, t_end, max_events, memory_budget))
     limits = RunLimits(n_cycles, t_end, max_events, memory_budget)

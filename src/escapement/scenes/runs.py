@@ -73,7 +73,8 @@ def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = Non
         "fixed_point_eq16": [fixed_point(p) for _, p, _ in runs],
         "cycles_to_converge": np.array([m.cycles_to_converge for m in measured], dtype=np.int32),
         **{name: [m.floquet[i] for m in measured] for i, name in enumerate(("floquet_major", "floquet_minor"))},
-        "continued_at": [solve_exact(p, x0, n_cycles=n_cycles, record_trajectory=False).exit.t_accumulation
+        # b > 1 reverses the velocity at every impact: the first accumulation comes in the first cycle
+        "continued_at": [solve_exact(p, x0, n_cycles=1, record_trajectory=False).exit.t_accumulation
                          if p.past_accumulation == "continue" and m.outcome == "completed" else np.nan
                          for (_, p, x0), m in zip(runs, measured)],
         **{key: [getattr(p, key) for _, p, _ in runs] for key in CHOICES},

@@ -106,7 +106,8 @@ class Exit:
         How far short of the awaited position the motion turns, m (0 when it grazes): the awaited impact position
         of a ``stopped`` run, the zone's end of a ``turned_back_in_zone`` run.
     t_accumulation : float
-        Time at which the rebounds of a ``chattering`` run accumulate (a Zeno point), s; NaN if they do not.
+        Time at which the rebounds of a ``chattering`` run accumulate (a Zeno point), or the first accumulation a
+        ``completed`` run went on past (``past_accumulation: continue``), s; NaN if none.
 
     Examples
     --------

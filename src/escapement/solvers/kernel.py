@@ -25,8 +25,8 @@ from ..model.limits import RunSpec
 from ..model.parameters import ParameterArrays, Parameters
 from ..model.status import Status
 from .describe import Exit
-from .outcomes import (Outcome, accumulation, chattering_outcome, completed_outcome, event_limit_message, horizon_outcome,
-                       no_event_outcome)
+from .outcomes import (Outcome, accumulation, chattering_outcome, completed_outcome, event_limit_message,
+                       horizon_outcome, no_event_outcome)
 
 __all__ = ["A1", "BLOCK_EVENTS", "PLAN", "Block", "EventRun", "Row", "event_block", "kinds_from", "row", "rows"]
 

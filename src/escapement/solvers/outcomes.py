@@ -19,8 +19,8 @@ from ..model.printing import compared, exact, texts
 from .describe import CYCLE_COLUMNS, EVENT_COLUMNS, ArcTable, CycleTable, Exit, Trajectory
 from .result import Solution
 
-__all__ = ["Outcome", "accumulation", "chattering_outcome", "completed_outcome", "event_limit_message", "finish", "horizon_outcome",
-           "no_event_outcome"]
+__all__ = ["Outcome", "accumulation", "chattering_outcome", "completed_outcome", "event_limit_message", "finish",
+           "horizon_outcome", "no_event_outcome"]
 
 
 
