@@ -37,8 +37,9 @@ def test_both_motions_converge_while_every_change_of_x1_squared_is_smaller_than_
 
     slow = judge(energy_curve(0.99))
     assert slow.holds is True and slow.replicated_value == (
-        f"case a: {said} 0.6561 to 0.6561 over 8 cycles ((1 - b)^4 = 0.6561), the smallest change 0.014 of x1^2; "
-        f"case b: {said} 0.99 to 0.99 over 8 cycles ((1 - b)^4 = 0.6561), the smallest change 0.0047 of x1^2")
+        f"case a: {said} 0.6561 to 0.6561 over 8 cycles ((1 - b)^4 = 0.6561), the smallest change 0.014 of the "
+        f"largest x1^2; case b: {said} 0.99 to 0.99 over 8 cycles ((1 - b)^4 = 0.6561), the smallest change 0.0047 "
+        "of the largest x1^2")
     grows = judge(np.sqrt([2, 1.5, 1.25, 1.75, 1.7]))
     assert grows.holds is False and f"case b: {said} 0.1 to 2 over 5 cycles" in grows.replicated_value
     with pytest.raises(cl.ClaimError, match="Fig. 3 case b has 2 cycles: a contraction needs 3 or more"):

@@ -30,7 +30,7 @@ def both_converge(claim, ev: Evidence) -> Verdict:
         ratio = np.divide(d[1:], d[:-1], out=np.full(len(d) - 1, np.inf), where=d[:-1] > 0)
         parts.append((bool(ratio.max() < 1), f"case {k}: ratio of successive changes of x1^2 {fmt(ratio.min(), 7)} to "
                       f"{fmt(ratio.max(), 7)} over {len(u)} cycles ((1 - b)^4 = {fmt((1 - params_of(ds).b) ** 4, 7)}), "
-                      f"the smallest change {fmt(d.min() / u.max(), 2)} of x1^2"))
+                      f"the smallest change {fmt(d.min() / u.max(), 2)} of the largest x1^2"))
     return Verdict("; ".join(text for _, text in parts), all(h for h, _ in parts), note=(
         "converging read as contracting, |d(k+1)/d(k)| < 1 at every cycle: no threshold of the project's; the map "
         "(16) is linear in x1^2, so the ratio is (1 - b)^4 (Eq. (21)) at every cycle; a double rounds at 1e-16"))
