@@ -86,7 +86,7 @@ def long_run(drift_ivp, error_velocity_ivp) -> xr.Dataset:
          "error_velocity_closed_form": ("cycle", np.full(CYCLES.size, 2e-16)),
          "error_velocity_ivp": ("cycle", error_velocity_ivp),
          "fixed_point_period": 6.295673629674346, "fixed_point_velocity": 1.2566, **_parameters()},
-        coords={"cycle": CYCLES}, attrs={"ivp_label": "solve_ivp DOP853 rtol=1e-12"})
+        coords={"cycle": CYCLES}, attrs={"ivp_label": "solve_ivp DOP853 rtol=1e-12", "ivp_cycles": 300})
 
 
 def stability(b=(0.5, 0.9, 1.1, 1.5), F=(0.5, 1.0, 2.0)) -> xr.Dataset:

@@ -1,16 +1,19 @@
 """Every figure: no text over another or outside the figure, none inside an axes (where it could cover data), a title
-of at most two lines; and the same figure saves to the same bytes."""
+of at most two lines, none under 7 pt where the article prints it; and the same figure saves to the same bytes."""
 
 from __future__ import annotations
 
 import hashlib
 import itertools
+import re
+from pathlib import Path as FilePath
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 from matplotlib.patches import PathPatch
 from matplotlib.path import Path
+from matplotlib.text import Text
 
 from escapement.plotting import (escapement_error, existence_map, long_run, phase_diagrams, poincare_map, save_figure,
                                  shock_detail, stability_map, work_precision)
@@ -46,6 +49,13 @@ FIGURES = {
 }
 
 
+#: the figures the article includes, the Poincaré map with the paper's two cases
+ARTICLE = {**{name: FIGURES[name] for name in ("shock_detail", "phase_diagrams", "escapement_error", "work_precision",
+                                               "long_run")},
+           "poincare_map": lambda d: poincare_map({"a": d.poincare(), "b": d.poincare(F=0.5, x0=-3.0)}, TITLE)}
+TEMPLATE = FilePath(__file__).parents[2] / "workflow" / "templates" / "article.typ"
+
+
 def collisions(fig) -> list[str]:
     """Texts and legends over each other or outside the figure, and texts inside an axes."""
     fig.canvas.draw()
@@ -72,6 +82,19 @@ def test_no_text_covers_another_or_data_and_the_title_has_at_most_two_lines(data
     found = collisions(fig)
     assert fig.get_suptitle().count("\n") <= 1
     assert not found, "\n".join(found)
+
+
+@pytest.mark.parametrize("name", list(ARTICLE))
+def test_no_text_of_a_figure_the_article_includes_prints_under_7_pt(datasets, name):
+    """The article prints each figure as wide as its text column: A4's 21 cm less the margins of its page setup.
+    Every text counts, tick labels too, though they get their words only when drawn (each copies the first's size)."""
+    setup = re.search(r'paper: "a4", margin: \(left: ([\d.]+)cm, right: ([\d.]+)cm', TEMPLATE.read_text())
+    left, right = setup.groups()
+    fig = ARTICLE[name](datasets)
+    sizes = [t.get_fontsize() for t in fig.findobj(Text) if t.get_visible()]
+    sizes += [0.7 * axis.get_major_ticks()[0].label1.get_fontsize() for ax in fig.axes for axis in (ax.xaxis, ax.yaxis)
+              if axis.get_scale() == "log"]  # the exponent of 10^n, which mathtext shrinks by 0.7
+    assert min(sizes) * (21.0 - float(left) - float(right)) / 2.54 / fig.get_figwidth() >= 7.0
 
 
 def test_a_figure_saves_to_the_same_bytes_every_time(tmp_path):

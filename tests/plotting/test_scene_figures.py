@@ -61,6 +61,18 @@ def test_given_axes_are_drawn_exactly_the_others_autoscaled_and_the_natural_peri
     assert low < 2 * math.pi + 0.0125 < high < 2 * math.pi + 0.03  # around the data, not the given axes
 
 
+def test_the_paper_s_period_is_drawn_on_its_period_axes_widened_to_it_with_minor_ticks_apart(datasets):
+    """The period Sec. 4 prints, 6.2832 s, below the run's periods: the printed step's axis reaches down to it,
+    labelled every few steps with at most 5 minor ticks to a label (not one at each of ~100 steps)."""
+    fig = poincare_map({"a": datasets.poincare(50)}, "t", {"a/period": {"y": (6.2956, 6.3044, 0.0002)}})
+    period = fig.axes[1]
+    (line,) = [line for line in period.lines if line.get_label().endswith("6.2832 s")]
+    assert line.get_ydata()[0] == 6.2832
+    low, high = period.get_ylim()
+    assert 6.281 < low < 6.2822 and high == 6.3044  # the line clear of the axis
+    assert len(period.yaxis.get_minorticklocs()) <= 5 * len(period.yaxis.get_majorticklocs())
+
+
 def test_a_run_that_did_not_complete_says_so_in_its_panel_title(datasets):
     fig = phase_diagrams({"ran": datasets.phase(), "stopped": datasets.phase(outcome="stopped", x0=0.05)}, "t")
     assert "stopped after 0 of 6 cycles" in fig.axes[1].get_title()
@@ -72,7 +84,7 @@ def test_phase_diagrams_state_each_panels_parameters_and_only_what_differs_besid
     panels = {f"{K:g}": datasets.phase(K=K, M=M) for K, M in ((0.1, 1.0), (1.0, 2.0), (10.0, 1.0))}
     fig = phase_diagrams(panels, "Phase diagrams")
     titles = [_plain(ax.get_title()) for ax in fig.axes]
-    assert titles[1].startswith("(b) F = 1 N, K = 1 N/m, M = 2 kg\nreleased from rest at x(0) = -1 m")
+    assert titles[1].startswith("(b) F = 1 N, K = 1 N/m, M = 2 kg\nfrom rest at x(0) = -1 m")
     assert all("b = " not in title for title in titles)  # b is the same in every panel
 
 
@@ -98,7 +110,7 @@ def test_a_study_s_figure_names_what_its_datasets_say_it_changed_and_the_replica
         ds.attrs["study_changes"] = said
     shock = datasets.shock()
     shock.attrs["study_changes"] = "b = 0.3 (paper: 0.1)"
-    figures = [poincare_map(cases, "Poincare map, study 'asym'"), shock_detail(shock, "Shock detail, study 'b'"),
+    figures = [poincare_map(cases, "Poincaré map, study 'asym'"), shock_detail(shock, "Shock detail, study 'b'"),
                phase_diagrams({"0.1": datasets.phase(K=0.1)}, "Phase diagrams")]
     first, second, replication = (" ".join(_plain(legend.get_title().get_text()) for legend in fig.legends).strip()
                                   .replace("\n", " ") for fig in figures)
@@ -115,7 +127,7 @@ def test_values_releases_and_outcomes_in_words(datasets):
     assert quantity_value("a1", -0.1) == f"{a1.symbol}\u00a0=\u00a0\u22120.1\u00a0{a1.unit_label}"
     assert quantity_value("b", 0.1).endswith("0.1")
     # the initial velocity only when it is not zero
-    assert release(xr.Dataset({"x0": 3.0})) == "released from rest at x(0)\u00a0=\u00a03\u00a0m"
+    assert release(xr.Dataset({"x0": 3.0})) == "from rest at x(0)\u00a0=\u00a03\u00a0m"
     assert release(xr.Dataset({"x0": 3.0, "v0": -0.5})).endswith("with v(0)\u00a0=\u00a0\u22120.5\u00a0m/s")
     # only a run that did not complete has an outcome
     assert outcome(datasets.poincare()) is None and outcome(xr.Dataset()) is None

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from matplotlib.collections import QuadMesh
 
-from escapement.plotting import escapement_error, existence_map, long_run, stability_map
+from escapement.plotting import escapement_error, existence_map, long_run, stability_map, work_precision
 
 DRIFT = [3e-13, 1.7e-14, 1e-12, 1.1e-11, 1.2e-11, 6e-11, 2e-10, 1.3e-10, 3e-10]
 VELOCITY = [1e-13, 2e-12, 3e-12, 4.02e-12, 3.6e-12, 3.1e-12, 3.3e-12, 1.7e-12, 3.88e-12]
@@ -15,7 +15,8 @@ VELOCITY = [1e-13, 2e-12, 3e-12, 4.02e-12, 3.6e-12, 3.1e-12, 3.3e-12, 1.7e-12, 3
 #: times a power of ten
 DRIFT_STEPS = [2e-11, 2e-11, 2e-10, 2e-10, 5e-10, 5e-10]  # 1.1e-11; 2e-10 (printed so: a level); 3e-10
 VELOCITY_STEPS = [5e-12] * 6  # 4.02e-12, 3.6e-12, 3.88e-12
-IVP = "solve_ivp DOP853 rtol=1e-12: largest error per decade, rounded up to 1, 2 or 5 \u00d7 10\u207f"
+IVP = ("solve_ivp DOP853 rtol=1e-12, run over 300 cycles only:\nlargest error per decade, rounded up to 1, 2 or 5 "
+       "\u00d7 10\u207f")
 
 
 def _lines(fig, label, axis="y"):
@@ -55,6 +56,19 @@ def test_a_decade_the_integrator_did_not_run_has_no_step(datasets):
         np.testing.assert_array_equal(y, steps[:4])
 
 
+def test_the_exact_solver_s_star_shows_inside_the_closed_forms_ring_and_a_method_of_one_setting_says_so(datasets):
+    rows = datasets.work_precision() + [
+        {"method": "closed-form cycles", "setting": "", "wall_s": 1e-3, "repeats": 1, "error_velocity": 1e-16,
+         "error_time": 0.0},
+        {"method": "Radau", "setting": "0.001", "wall_s": 2.7, "repeats": 1, "error_velocity": 1e-3,
+         "error_time": 2e-5}]
+    lines = {line.get_label(): line for line in work_precision(rows).axes[0].lines}
+    star, ring = lines["exact solver"], lines["per-cycle closed forms"]
+    assert ring.get_markerfacecolor() == "none" and ring.get_markersize() > star.get_markersize()
+    assert star.get_zorder() > ring.get_zorder()
+    assert "Radau, one setting (0.001)" in lines
+
+
 def test_the_stability_map_marks_no_cycle_apart_from_the_colour_scale(datasets):
     ds = datasets.stability()
     fig = stability_map(ds)
@@ -78,5 +92,5 @@ def test_a_map_of_a_study_names_what_its_dataset_says_it_changed(datasets, name)
     ds.attrs["study_changes"] = "K = 2 N/m (paper: 1 N/m)"
     study = draw(ds, "A map of the escapement model, study 'k'")
     titles = [legend.get_title().get_text().replace("\u00a0", " ") for legend in study.legends]
-    assert "Changed from the paper's scenes: K = 2 N/m (paper: 1 N/m)" in titles
-    assert not any(legend.get_title().get_text() for legend in plain.legends)
+    assert any(title.endswith("\nChanged from the paper's scenes: K = 2 N/m (paper: 1 N/m)") for title in titles)
+    assert not any("Changed" in legend.get_title().get_text() for legend in plain.legends)

@@ -23,7 +23,8 @@ import math
 from dataclasses import dataclass
 from decimal import Decimal
 
-__all__ = ["CYCLES", "FIG5_PANEL_K", "TICK_LINES", "Axis", "Panel", "PANELS", "limits_match", "panel", "panels_of"]
+__all__ = ["CYCLES", "FIG3_PERIOD", "FIG5_PANEL_K", "TICK_LINES", "Axis", "Panel", "PANELS", "limits_match", "panel",
+           "panels_of"]
 
 #: the lines of the paper's text that carry the figures' tick labels, by line number (1-based), verbatim
 TICK_LINES: dict[int, str] = {
@@ -155,6 +156,8 @@ PANELS: tuple[Panel, ...] = (
 )
 
 
+#: the period Sec. 4 prints for both Fig. 3 cases, s: "the period for both motions are identical as 6.2832 s"
+FIG3_PERIOD = 6.2832
 #: the spring constant of each Fig. 5 panel, from the paper's panel captions "(a) K=0.1" etc., N/m
 FIG5_PANEL_K: dict[str, float] = {"a": 0.1, "b": 1.0, "c": 10.0}
 

@@ -45,10 +45,10 @@ def quantity_value(name: str, value: float) -> str:
 
 
 def release(ds: xr.Dataset) -> str:
-    """``released from rest at x(0) = 3 m``, or ``released at x(0) = 3 m with v(0) = 0.5 m/s``."""
+    """How a run was released: ``from rest at x(0) = 3 m``, or ``at x(0) = 3 m with v(0) = 0.5 m/s``."""
     x0 = quantity_value("x0", float(ds["x0"]))
     v0 = float(ds["v0"]) if "v0" in ds else 0.0
-    return f"released from rest at {x0}" if v0 == 0 else f"released at {x0} with {quantity_value('v0', v0)}"
+    return f"from rest at {x0}" if v0 == 0 else f"at {x0} with {quantity_value('v0', v0)}"
 
 
 def panel_parameters(ds: xr.Dataset, datasets: Iterable[xr.Dataset], always: tuple[str, ...] = ("F", "K")) -> str:
@@ -71,7 +71,7 @@ def outcome(ds: xr.Dataset, count: str = "cycle") -> str | None:
 
 
 #: the font size of the line that names a study's changes (the title of the legend below the axes)
-CHANGES_FONTSIZE = 8.0
+CHANGES_FONTSIZE = 7.0
 #: a value with its units in a dataset's ``study_changes``: ``a3 = 0.12 m``, ``zones.wide = [-0.3, 0.2] m``
 _VALUE = re.compile(r"(?P<key>[\w.]+) = (?P<value>\[[^\]]*\]|\S+?)(?P<units> (?:%s))?(?=[,;)]|$| \()" % "|".join(
     sorted({re.escape(q.unit_label) for q in (*QUANTITIES.values(), *INITIAL_STATE.values()) if q.units != "1"},
@@ -104,11 +104,11 @@ def _wrapped(fig, text: str) -> str:
     return textwrap.fill(text, int(fig.get_figwidth() * 72 / (0.6 * CHANGES_FONTSIZE)), break_on_hyphens=False)
 
 
-def changes_legend(fig, datasets: Iterable[xr.Dataset]) -> dict:
-    """The keywords of the legend below the axes that give it :func:`study_changes` as its title, wrapped to the
-    figure's width; none for the replication."""
-    text = study_changes(datasets)
-    return {} if text is None else {"title": _wrapped(fig, text), "title_fontsize": CHANGES_FONTSIZE}
+def changes_legend(fig, datasets: Iterable[xr.Dataset], note: str | None = None) -> dict:
+    """The keywords of the legend below the axes that give it ``note`` (the figure's parameters, say) and
+    :func:`study_changes` as its title, each wrapped to the figure's width; none if neither is."""
+    said = [_wrapped(fig, text) for text in (note, study_changes(datasets)) if text]
+    return {"title": "\n".join(said), "title_fontsize": CHANGES_FONTSIZE} if said else {}
 
 
 def thinning(fig, samples: int, kept: int, rastered: int, column_dpi: float, dpi: float) -> str | None:

@@ -14,7 +14,7 @@ from collections.abc import Mapping
 
 import numpy as np
 import xarray as xr
-from matplotlib.ticker import MultipleLocator
+from matplotlib.ticker import AutoMinorLocator, MultipleLocator
 
 from ..paper.printed_axes import FIG5_PANEL_K, panel, panels_of
 from .autoscale import autoscaled_limits
@@ -91,11 +91,12 @@ def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Ma
 
 def apply_axes(ax, axes: Mapping[str, tuple[float, float, float]]) -> None:
     """Draw ``axes`` (``{"x": (low, high, step), "y": ...}``) on ``ax``: those limits, ticks every step; an axis
-    far wider than its step keeps minor ticks at the step and labels every few (at most :data:`MAX_LABELS`)."""
+    far wider than its step labels every few steps (at most :data:`MAX_LABELS`) with minor ticks at the step where
+    that is every 2 or 5 steps, else one midway, so that they never merge into a bar."""
     for axis_name, (low, high, step) in axes.items():
         axis = {"x": ax.xaxis, "y": ax.yaxis}[axis_name]
         every = next(m for m in _EVERY if (high - low) / (step * m) <= MAX_LABELS + 1e-9)
         axis.set_major_locator(MultipleLocator(step * every))
         if every > 1:
-            axis.set_minor_locator(MultipleLocator(step))
+            axis.set_minor_locator(AutoMinorLocator(every if every in (2, 5) else 2))
         (ax.set_xlim if axis_name == "x" else ax.set_ylim)(low, high)

@@ -6,7 +6,8 @@ title, lettered by its case (Fig. 3's kind) or its place; a study of the user's 
 datasets' ``study_changes``) above the legend. Given ``axes`` (:mod:`escapement.plotting.panel_axes`, keyed as
 the figure names its panels), a panel is drawn with exactly those limits and tick step (the paper's printed axes,
 as its claims score them); a panel not given is autoscaled. Guides (a fixed point, the natural period) are drawn
-only inside the axes, so that the legend lists only what a panel shows; text stays outside the axes.
+only inside the axes, so that the legend lists only what a panel shows; a period panel given its printed axes is
+widened to the period the paper prints, which it draws. Text stays outside the axes.
 """
 
 from __future__ import annotations
@@ -21,9 +22,10 @@ import xarray as xr
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from ..paper.printed_axes import FIG3_PERIOD
 from .captions import axis_label, changes_legend, outcome, panel_parameters, release, signed, unit
 from .panel_axes import DrawnAxes, apply_axes
-from .stylesheet import ACCENT, GUIDE, INK, MUTED, legend_below, style, suptitle
+from .stylesheet import ACCENT, GUIDE, INK, MUTED, SERIES, WIDTH, legend_below, style, suptitle
 
 __all__ = ["MAX_IMPACTS_LISTED", "broken", "phase_diagrams", "poincare_map", "shock_detail"]
 
@@ -40,7 +42,7 @@ def broken(t: np.ndarray, y: np.ndarray, breaks: np.ndarray) -> tuple[np.ndarray
 
 
 def _panel_title(name: str, ds: xr.Dataset, datasets) -> str:
-    """``(a) F = 1 N, K = 1 N/m`` / ``released from rest at x(0) = -1 m`` / how the run ended, if it did not
+    """``(a) F = 1 N, K = 1 N/m`` / ``from rest at x(0) = -1 m`` / how the run ended, if it did not
     complete; ``name`` is the panel's case or letter, given a figure of one panel too."""
     lines = [f"({name}) " + panel_parameters(ds, datasets), release(ds), outcome(ds)]
     return "\n".join(line for line in lines if line)
@@ -71,11 +73,12 @@ def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | 
     """The velocity before impact, the period and the amplitude against the cycle number, one column per case,
     titled (a), (b), ... by its key in ``cases``: each case's dataset (``velocity_before_impact``, ``period``, the
     variable its attribute ``amplitude_variable`` names, the parameters, ``x0``; ``fixed_point_19`` drawn if
-    present). ``axes`` keys: ``"<case>/velocity"``, ``".../period"``, ``".../amplitude"``."""
+    present). ``axes`` keys: ``"<case>/velocity"``, ``".../period"``, ``".../amplitude"``; a case's printed period
+    axes add the paper's period, in place of the natural period 2 pi sqrt(M/K) it rounds to."""
     datasets = list(cases.values())
     _check(axes, [f"{label}/{key}" for label in cases for key, _ in _ROWS])
     with style():
-        fig, grid = plt.subplots(3, len(cases), figsize=(max(3.4 * len(cases), 6.0), 8.4), squeeze=False,
+        fig, grid = plt.subplots(3, len(cases), figsize=(max(WIDTH, 2.2 * len(cases)), 7.4), squeeze=False,
                                  layout="constrained")
         for col, (label, ds) in enumerate(cases.items()):
             for row, (key, name) in enumerate(_ROWS):
@@ -83,17 +86,26 @@ def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | 
                 if values.size:
                     ax.plot(values[values.dims[0]], values, marker="o", markersize=2.5, lw=1.0, color=INK,
                             label="exact solution, per cycle")
+                if values.size > ds.sizes["cycle"]:  # why its axis may run a tick further than the cycles'
+                    ax.plot([], [], ls="none", label=f"amplitude: {values.size} values for {ds.sizes['cycle']} "
+                            "cycles, one per impact at a\u2081, so its axis may run to the next tick")
                 ax.set(xlabel="Number of cycles", ylabel=axis_label(values.name))
                 _axes(ax, axes, f"{label}/{key}")
                 if key == "velocity" and "fixed_point_19" in ds:
                     _guide(ax, float(ds["fixed_point_19"]), ls=(0, (5, 3)), lw=1.1, color=ACCENT,
                            label="fixed point of Eq. (19) as printed")
-                if key == "period":
+                if key == "period" and axes and f"{label}/period" in axes:  # the paper's scene, widened to its period
+                    low, high, step = axes[f"{label}/period"]["y"]
+                    below = step * (round(FIG3_PERIOD / step) - math.ceil(0.06 * (high - FIG3_PERIOD) / step))
+                    apply_axes(ax, {"y": (min(low, below), high, step)})
+                    ax.axhline(FIG3_PERIOD, ls="-.", lw=1.2, color=SERIES[2], zorder=3,
+                               label=f"the period the paper prints for both cases, {FIG3_PERIOD:g} s")
+                elif key == "period":
                     _guide(ax, 2 * math.pi * math.sqrt(float(ds["M"]) / float(ds["K"])), ls=":", lw=1.2,
                            color=GUIDE, label="natural period 2\u03c0/\u03c9")
             grid[0, col].set_title(_panel_title(label, ds, datasets))
         suptitle(fig, title)
-        legend_below(fig, grid, ncols=3, **changes_legend(fig, datasets))
+        legend_below(fig, grid, ncols=1, **changes_legend(fig, datasets))
     return fig
 
 
@@ -107,7 +119,7 @@ def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> F
     t, impacts = ds["t"].values, ds["impact_time"].values
     impulse, energy = ds["impulse"].values, ds["energy_dissipated"].values
     with style():
-        fig, (ax_v, ax_a) = plt.subplots(1, 2, figsize=(7.6, 4.4), layout="constrained")
+        fig, (ax_v, ax_a) = plt.subplots(1, 2, figsize=(WIDTH, 3.6), layout="constrained")
         for ax, name, jumps, label in ((ax_v, "velocity", impacts, "velocity"),
                                        (ax_a, "acceleration", ds["event_time"].values, "acceleration between events")):
             lo, hi = ds[f"{name}_window"].values
@@ -133,18 +145,16 @@ def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> F
                           arrowprops={"arrowstyle": "-|>", "color": ACCENT, "lw": 1.4})
         if arrows:
             ax_a.plot([], [], color=ACCENT, lw=1.4, label="impulse M\u0394v at an impact (Dirac, not to scale)")
-        # the legend: a column per panel, the impacts of the velocity window listed under the acceleration panel
-        left, right = ([(label, h) for h, label in zip(*ax.get_legend_handles_labels())] for ax in (ax_v, ax_a))
+        # the legend: what each panel draws, then the impacts of the velocity window
+        entries = [(label, h) for ax in (ax_v, ax_a) for h, label in zip(*ax.get_legend_handles_labels())]
         listed = np.flatnonzero(shown)
-        right += [(f"impact at t\u00a0=\u00a0{signed(impacts[i], '.5g')}\u00a0s: impulse {signed(impulse[i], '.3g')}"
+        entries += [(f"impact at t\u00a0=\u00a0{signed(impacts[i], '.5g')}\u00a0s: impulse {signed(impulse[i], '.3g')}"
                    f"\u00a0{unit('impulse')}, {signed(energy[i], '.3g')}\u00a0{unit('energy_dissipated')} dissipated",
                    None) for i in listed[:MAX_IMPACTS_LISTED]]
         if len(listed) > MAX_IMPACTS_LISTED:
-            right.append((f"and {len(listed) - MAX_IMPACTS_LISTED} more impacts in the velocity window", None))
-        rows = max(len(left), len(right))
-        entries = [*left, *[("", None)] * (rows - len(left)), *right, *[("", None)] * (rows - len(right))]
+            entries.append((f"and {len(listed) - MAX_IMPACTS_LISTED} more impacts in the velocity window", None))
         fig.legend([h or Line2D([], [], ls="none") for _, h in entries], [label for label, _ in entries],
-                   loc="outside lower center", ncols=2, **changes_legend(fig, [ds]))
+                   loc="outside lower center", ncols=1, **changes_legend(fig, [ds]))
         suptitle(fig, title)
     return fig
 
@@ -157,7 +167,7 @@ def phase_diagrams(panels: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes
     datasets = list(panels.values())
     _check(axes, panels)
     with style():
-        fig, grid = plt.subplots(1, len(panels), figsize=(max(3.2 * len(panels), 6.0), 4.3), squeeze=False,
+        fig, grid = plt.subplots(1, len(panels), figsize=(max(WIDTH, 1.8 * len(panels)), 3.4), squeeze=False,
                                  layout="constrained")
         for col, (ax, (label, ds)) in enumerate(zip(grid[0], panels.items())):
             impacts = ds["impact_time"].values
@@ -170,7 +180,7 @@ def phase_diagrams(panels: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes
             if impacts.size:
                 ax.vlines(ds["impact_position"], ds["velocity_after"], ds["velocity_before"], color=ACCENT, lw=0.8,
                           label="impacts (velocity jumps)")
-            ax.set(xlabel=axis_label("displacement"), ylabel=axis_label("velocity"))
+            ax.set(xlabel=axis_label("displacement"), ylabel=axis_label("velocity") if col == 0 else "")
             _axes(ax, axes, label)
             ax.set_title(_panel_title(string.ascii_lowercase[col] if col < 26 else str(col + 1), ds, datasets))
         suptitle(fig, title)

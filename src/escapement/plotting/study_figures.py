@@ -1,7 +1,7 @@
 """The project's own figures: the solvers' work-precision and long-run errors, the stability map over (b, F), the
 existence map over (a3, F), and the escapement error against amplitude, from the studies' tables and datasets.
-Each composes a title of at most two lines from its dataset unless its caller gives one; a map or the escapement
-error of a study of the user's own names what it changed (its dataset's ``study_changes``) above the legend.
+Each has a one-line title unless its caller gives one, and states its parameters above the legend; a map or the
+escapement error of a study of the user's own names what it changed (its dataset's ``study_changes``) there too.
 
 The long run shows rounding for what it is: the float64 spacing is a shaded band, and the exact solver's and the
 closed forms' errors are drawn at every sampled cycle (correctly rounded arithmetic and Python's scalar ``math``:
@@ -25,7 +25,7 @@ from matplotlib.path import Path
 
 from ..model.status import Status
 from .captions import axis_label, changes_legend, quantity_value, release, unit
-from .stylesheet import ACCENT, GUIDE, INK, NO_CYCLE, SERIES, legend_below, style, suptitle
+from .stylesheet import ACCENT, GUIDE, INK, NO_CYCLE, SERIES, WIDTH, legend_below, power_ticks, style, suptitle
 
 __all__ = ["ERROR_FLOOR", "escapement_error", "existence_map", "long_run", "stability_map", "work_precision"]
 
@@ -36,8 +36,10 @@ STEPS = (Decimal(1), Decimal(2), Decimal(5), Decimal(10))
 #: the long-run figure's legend for the rounding band and for the integrator's staircase
 BAND = "rounding band: 1 ulp (the float64 spacing) of the impact time; of the velocity, relative"
 STAIRCASE = "largest error per decade, rounded up to 1, 2 or 5 \u00d7 10\u207f"
-MARKERS = {"exact": "*", "closed-form cycles": "X", "map16": "P", "naive-RK4": "x", "RK45": "o", "DOP853": "s",
+MARKERS = {"exact": "*", "closed-form cycles": "o", "map16": "P", "naive-RK4": "x", "RK45": "p", "DOP853": "s",
            "LSODA": "^", "Radau": "v", "CVODE-Adams": "D", "CVODE-BDF": "d"}
+#: where the exact solver and the closed forms take the same time to the same error: a star inside an open ring
+LOOKS = {"exact": {"ms": 7, "zorder": 4}, "closed-form cycles": {"ms": 11, "mfc": "none", "mew": 1.2, "zorder": 3}}
 #: the benchmark's methods in words, where their names are not words
 METHOD_LABELS = {"exact": "exact solver", "closed-form cycles": "per-cycle closed forms",
                  "map16": "map (16) + corrected period (23)", "naive-RK4": "naive RK4, fixed step"}
@@ -48,22 +50,24 @@ def work_precision(rows: list[dict], title: str | None = None) -> Figure:
     the velocity before impact and the impact time; an exact zero is drawn at :data:`ERROR_FLOOR`."""
     methods = list(dict.fromkeys(r["method"] for r in rows))
     with style():
-        fig, axes = plt.subplots(1, 2, figsize=(8.4, 4.1), sharex=True, layout="constrained")
+        fig, axes = plt.subplots(1, 2, figsize=(WIDTH, 4.1), sharex=True, layout="constrained")
         colours = plt.get_cmap("tab10")
         for i, method in enumerate(methods):
             mine = [r for r in rows if r["method"] == method]
             wall = [float(r["wall_s"]) for r in mine]
             for ax, key in zip(axes, ("error_velocity", "error_time")):
                 err = [max(float(r[key]), ERROR_FLOOR) for r in mine]
-                ax.loglog(wall, err, marker=MARKERS.get(method, "o"), color=colours(i % 10), lw=1.0, ms=5,
-                          label=METHOD_LABELS.get(method, method))
+                ax.loglog(wall, err, marker=MARKERS.get(method, "o"), color=colours(i % 10), lw=1.0,
+                          **{"ms": 5, **LOOKS.get(method, {})}, label=METHOD_LABELS.get(method, method)
+                          + (f", one setting ({mine[0]['setting']})" if len(mine) == 1 and mine[0]["setting"] else ""))
         for ax, name in zip(axes, ("velocity before impact", "impact time")):
-            ax.set(xlabel="Wall time per run (s), median of repeats", ylabel="Relative error", title=name)
+            ax.set(xlabel="Wall time per run (s)", ylabel="Relative error", title=name)
             ax.axhline(ERROR_FLOOR, color=GUIDE, lw=0.6, ls=":")
-        suptitle(fig, title or "Work-precision of the solvers: relative error against a 50-digit reference\n"
-                 "each line a method from its loosest setting to its tightest; an exact zero drawn at "
-                 f"{ERROR_FLOOR:.0e}")
-        legend_below(fig, axes, ncols=5, fontsize=7)
+        power_ticks(fig)
+        suptitle(fig, title or "Work-precision of the solvers: relative error against a 50-digit reference")
+        legend_below(fig, axes, ncols=3, **changes_legend(fig, [], "Each line a method from its loosest setting to "
+                                                           f"its tightest; each time the median of repeated runs; an "
+                                                           f"exact zero drawn at {ERROR_FLOOR:.0e}."))
     return fig
 
 
@@ -95,7 +99,8 @@ def _decade_maxima(cycle: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, n
 def long_run(ds: xr.Dataset, title: str | None = None) -> Figure:
     """The phase error (impact time minus the 50-digit reference, s) and the relative error of the velocity before
     impact against the number of cycles, over the band of float64 spacing (reads ``drift_*``, ``error_velocity_*``,
-    ``fixed_point_period``, ``fixed_point_velocity``, ``F``, ``x0``, the attribute ``ivp_label``)."""
+    ``fixed_point_period``, ``fixed_point_velocity``, ``F``, ``x0``, the attributes ``ivp_label`` and ``ivp_cycles``,
+    the cycles the integrator ran, which its legend states: beyond them it has no error to draw)."""
     cycle = ds["cycle"].values
     v_star = float(ds["fixed_point_velocity"])
     # the band on a fine grid of cycles, so that its steps (where the impact time passes a power of two) are steps
@@ -104,7 +109,7 @@ def long_run(ds: xr.Dataset, title: str | None = None) -> Figure:
              "error_velocity": np.full(fine.shape, np.spacing(v_star) / v_star)}
     bottom = ERROR_FLOOR / 2
     with style():
-        fig, (ax_t, ax_v) = plt.subplots(1, 2, figsize=(8.4, 4.4), sharex=True, layout="constrained")
+        fig, (ax_t, ax_v) = plt.subplots(1, 2, figsize=(WIDTH, 4.4), sharex=True, layout="constrained")
         for ax, key in ((ax_t, "drift"), (ax_v, "error_velocity")):
             ax.fill_between(fine, bottom, bands[key], color=NO_CYCLE, lw=0, label=BAND)
             if f"{key}_closed_form" in ds:
@@ -114,14 +119,16 @@ def long_run(ds: xr.Dataset, title: str | None = None) -> Figure:
                       label="exact solver, each sampled cycle")
             xs, ys = _decade_maxima(cycle, ds[f"{key}_ivp"].values)
             if xs.size:
-                ax.loglog(xs, ys, color=ACCENT, lw=1.6, label=f"{ds.attrs['ivp_label']}: {STAIRCASE}")
+                ax.loglog(xs, ys, color=ACCENT, lw=1.6, label=f"{ds.attrs['ivp_label']}, run over "
+                          f"{int(ds.attrs['ivp_cycles']):,} cycles only:\n{STAIRCASE}")
             ax.set(ylim=(bottom, None), xlabel="Number of cycles")
         ax_t.set(ylabel=f"|impact time \u2212 reference| ({unit('impact_time')})",
                  title="phase error of the impact at a\u2081")
         ax_v.set(ylabel="Relative error", title="velocity before impact")
-        suptitle(fig, title or f"Long run: errors against a 50-digit reference, {quantity_value('F', float(ds['F']))}, "
-                 f"{release(ds)}")
-        legend_below(fig, (ax_t, ax_v), ncols=1)
+        power_ticks(fig)
+        suptitle(fig, title or "Long run: errors against a 50-digit reference")
+        legend_below(fig, (ax_t, ax_v), ncols=1, **changes_legend(
+            fig, [], f"{quantity_value('F', float(ds['F']))}, released {release(ds)}."))
     return fig
 
 
@@ -166,7 +173,7 @@ def stability_map(ds: xr.Dataset, title: str | None = None) -> Figure:
     completed = meanings.index(Status.COMPLETED.value)
     no_cycle = (outcome != completed) | ~np.isfinite(mu)
     with style():
-        fig, axes = plt.subplots(1, 2, figsize=(8.4, 4.0), sharey=True, layout="constrained")
+        fig, axes = plt.subplots(1, 2, figsize=(WIDTH, 4.0), sharey=True, layout="constrained")
         mesh = axes[0].pcolormesh(b, F, np.where(no_cycle, np.nan, mu), shading="nearest", cmap="viridis",
                                   vmin=0, vmax=1, rasterized=True)
         fig.colorbar(mesh, ax=axes[0], label="measured multiplier \u03bc\u2082")
@@ -186,26 +193,22 @@ def stability_map(ds: xr.Dataset, title: str | None = None) -> Figure:
                 ax.add_patch(PathPatch(cells, **look, label=label))
             ax.set_xlabel(axis_label("b"))
             ax.grid(False)  # grid lines over a map read as cell borders
-        axes[0].set(ylabel=axis_label("F"), title="multiplier measured from the simulated return map")
+        axes[0].set(ylabel=axis_label("F"), title="measured on the return map")
         axes[1].set_title("distance from Eq. (21)")
-        suptitle(fig, title or "Stability of the limit cycle over (b, F): measured multiplier and Eq. (21)\n"
-                 + _constants(ds, ("M", "K", "a1", "a2", "a3", "a4")))
-        legend = changes_legend(fig, [ds])
-        if cells is not None or legend:
-            fig.legend(handles=[Patch(**look, label=label)] if cells is not None else [], loc="outside lower center",
-                       **legend)
+        power_ticks(fig)
+        suptitle(fig, title or "Stability of the limit cycle over (b, F): its multiplier and Eq. (21)")
+        fig.legend(handles=[Patch(**look, label=label)] if cells is not None else [], loc="outside lower center",
+                   **changes_legend(fig, [ds], _constants(ds, ("M", "K", "a1", "a2", "a3", "a4")) + "."))
     return fig
 
 
 def escapement_error(ds: xr.Dataset, title: str | None = None) -> Figure:
     """The limit cycle's rate against its amplitude for each impulse zone, and its two parts: the
     impacts' phase jumps dT1 and the impulse zones' dT2 (Airy's escapement error)."""
-    sign = "\n> 0: gains (runs fast), < 0: loses"
-    panels = (("rate", f"Rate (s/day){sign}", "rate: impacts and impulse"),
-              ("rate_impacts", f"Rate from the impacts, dT1 (s/day){sign}", "impacts' phase jumps, Eq. (24)"),
-              ("rate_zones", f"Rate from the impulse, dT2 (s/day){sign}", "impulse zones, Eq. (25)"))
+    panels = (("rate", "the rate, both parts"), ("rate_impacts", "impacts, dT1, Eq. (24)"),
+              ("rate_zones", "impulse, dT2, Eq. (25)"))
     with style():
-        fig, axes = plt.subplots(1, 3, figsize=(10.2, 3.9), sharex=True, layout="constrained")
+        fig, axes = plt.subplots(1, 3, figsize=(WIDTH, 3.6), sharex=True, sharey=True, layout="constrained")
         for i, name in enumerate(str(n) for n in ds["zone_name"].values):
             a1, a2 = float(ds["zone_a1"][i]), float(ds["zone_a2"][i])
             label = f"{name}: impact at {quantity_value('a1', a1)}, impulse to {quantity_value('a2', a2)}"
@@ -213,16 +216,18 @@ def escapement_error(ds: xr.Dataset, title: str | None = None) -> Figure:
                 ends = sorted({Status.from_code(int(c)).value.replace("_", " ") for c in ds["outcome"].values[i]})
                 axes[0].plot([], [], ls="none", label=f"{label}: no limit cycle ({', '.join(ends)})")
                 continue
-            for ax, (variable, _, _) in zip(axes, panels):
+            for ax, (variable, _) in zip(axes, panels):
                 ax.plot(ds["largest_displacement"][i], ds[variable][i], marker="o", ms=2.5, lw=1.1, color=SERIES[i % 4],
                         label=label)
-        for ax, (_, ylabel, name) in zip(axes, panels):
+        for ax, (_, name) in zip(axes, panels):
             ax.axhline(0.0, color=GUIDE, lw=0.6, ls=":")
-            ax.set(xlabel=f"Amplitude of the limit cycle ({unit('largest_displacement')})", ylabel=ylabel, title=name)
+            ax.set_title(name)
+        axes[0].set_ylabel("Rate (s/day)\n> 0: gains (runs fast), < 0: loses")
+        axes[1].set_xlabel(f"Amplitude of the limit cycle ({unit('largest_displacement')})")
         forces = f"F from {float(ds['F'][0]):g} to {float(ds['F'][-1]):g} {unit('F')}"
-        suptitle(fig, title or "Escapement error: the rate of a clock counting 2\u03c0/\u03c9 per swing, against "
-                 f"amplitude\n{_constants(ds, ('M', 'K', 'b'))}, {forces}; the second half cycle mirrors the first")
-        legend_below(fig, axes, ncols=2, fontsize=7.5, **changes_legend(fig, [ds]))
+        suptitle(fig, title or "Escapement error: the rate of a clock counting 2\u03c0/\u03c9 per swing")
+        legend_below(fig, axes, ncols=1, **changes_legend(fig, [ds], f"{_constants(ds, ('M', 'K', 'b'))}, {forces}; "
+                                                          "the second half cycle mirrors the first."))
     return fig
 
 
@@ -250,7 +255,7 @@ def existence_map(ds: xr.Dataset, title: str | None = None) -> Figure:
          "neither: another outcome, or not settled within the cycles run"),
     )
     with style():
-        fig, ax = plt.subplots(figsize=(7.6, 5.6), layout="constrained")
+        fig, ax = plt.subplots(figsize=(WIDTH, 4.8), layout="constrained")
         handles = []
         for mask, look, label in regions:
             cells = _cells_path(mask, x_edges, y_edges)
@@ -270,7 +275,7 @@ def existence_map(ds: xr.Dataset, title: str | None = None) -> Figure:
         ax.set(xlim=(x_edges[0], x_edges[-1]), ylim=(y_edges[0], y_edges[-1]), xlabel=axis_label("a3"),
                ylabel=axis_label("F").replace(f"({unit('F')})", f"(m{unit('F')})"))
         ax.grid(False)  # grid lines over a map read as cell borders
-        suptitle(fig, title or f"Existence of the limit cycle over ({A3}, F) with {A1} \u2260 \u2212{A3}, each run "
-                 f"{release(ds)}\n{_constants(ds, ('M', 'K', 'b', 'a1', 'a2', 'a4'))}")
-        fig.legend(handles=handles, loc="outside lower center", ncols=1, fontsize=7.5, **changes_legend(fig, [ds]))
+        suptitle(fig, title or f"Existence of the limit cycle over ({A3}, F) with {A1} \u2260 \u2212{A3}")
+        fig.legend(handles=handles, loc="outside lower center", ncols=1, **changes_legend(
+            fig, [ds], f"Each run released {release(ds)}; {_constants(ds, ('M', 'K', 'b', 'a1', 'a2', 'a4'))}."))
     return fig

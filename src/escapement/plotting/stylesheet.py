@@ -18,7 +18,14 @@ import numpy as np  # noqa: E402
 from ..io.netcdf import replaced  # noqa: E402
 from .thinning import bound  # noqa: E402
 
-__all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "SERIES", "legend_below", "save_figure", "style", "suptitle"]
+__all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "POWER_LABELSIZE", "SERIES", "WIDTH", "legend_below",
+           "power_ticks", "save_figure", "style", "suptitle"]
+
+#: the width every figure is drawn at (in): the article's text column, A4's 21 cm less its margins of 5.4 and
+#: 1.8 cm, so that the article prints each figure's text at the style sheet's sizes, none under 7 pt
+WIDTH = (21.0 - 5.4 - 1.8) / 2.54
+#: the size of a log axis' tick labels (pt): matplotlib's mathtext sets the exponent of 10\u207f at 0.7 of it, 7 pt
+POWER_LABELSIZE = 10
 
 #: colours of the figures, named by role
 INK = "#1f4e79"
@@ -43,7 +50,13 @@ def suptitle(fig, title: str) -> None:
     """The figure's title: ``title``, one or two lines saying what the figure shows."""
     if not title.strip() or title.count("\n") > 1:
         raise ValueError(f"title = {title!r} must be one or two lines of text")
-    fig.suptitle(title, fontsize=9.5)
+    fig.suptitle(title, fontsize=8.5)
+
+
+def power_ticks(fig) -> None:
+    """The tick labels of every log axis of ``fig`` at :data:`POWER_LABELSIZE`: no exponent prints under 7 pt."""
+    for axis in (axis for ax in fig.axes for axis in (ax.xaxis, ax.yaxis) if axis.get_scale() == "log"):
+        axis.set_tick_params(labelsize=POWER_LABELSIZE)
 
 
 def legend_below(fig, axes, ncols: int, **kwargs):

@@ -56,7 +56,7 @@ class Kind:
 #: positions of the first half cycle and mirror them in the second; whether a release settles on a limit cycle is
 #: the same for every mass: x(t) depends on M only through omega t)
 KINDS = {k.block: k for k in (
-    Kind("fig3", "poincare_map", "Poincare map", "Fig. 3", "case {}"),
+    Kind("fig3", "poincare_map", "Poincaré map", "Fig. 3", "case {}"),
     Kind("fig4", "shock_detail", "shock detail", "Fig. 4"),
     Kind("fig5", "phase_diagrams", "phase diagram", "Fig. 5", "K = {} N/m"),
     Kind("escapement_error", "escapement_error", "escapement error: rate against amplitude",
