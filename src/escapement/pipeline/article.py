@@ -21,7 +21,7 @@ from ..paper import corrected
 from ..paper.printed_axes import limits_match, panel
 from ..verdict.rule import EVIDENCE, STATUSES, fmt
 from ..verdict.scores import joint_candidates, panel_candidates, read_scores, summary
-from ..verdict.tally import ORDER, findings
+from ..verdict.tally import ORDER, findings, headline
 from .docs import fill
 from .logs import logged
 from .tables import LIMIT_COLUMNS, WORK_PRECISION_COLUMNS, read_claims
@@ -194,6 +194,7 @@ def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[st
                  "statuses": {k.replace("_", " "): typ(v) for k, v in STATUSES.items()},
                  "evidence": {k.replace("_", " "): typ(v) for k, v in EVIDENCE.items()},
                  "config": config, "count": counts, "n_findings": len(found), "n_rows": len(rows), "ties": ties,
+                 "replication": headline(rows).split(":")[0].lower(),  # full, partial or failed, by the tally
                  "number": {**number, "exact_error_velocity": typ(fmt(float(exact["error_velocity"]), 2))},
                  "verdict": {r["claim_id"]: typ(r["status"].replace("_", " ")) for r in rows},
                  "finding": {name: typ(status.replace("_", " ")) for name, (status, _) in found.items()},
