@@ -25,7 +25,6 @@ REPLICATION_DATA = ("checks.nc", "long_run.nc", "long_run_timing.csv", "readings
                     "claims.csv", "panel_limits.csv", "stress.csv")
 #: the documents the replication renders (docs/): the pages, the measured times, the report's landing text and items
 DOCUMENTS = ("README.md", "REPLICATION.md", "timings.md", "landing.html", "verdict.html", "replication.html")
-#: the replication's figures beyond its scenes'
 EXTRA_FIGURES = ("long_run", "work_precision")
 #: the article's files (article/) and the figures it shows, in the order it shows them
 ARTICLE = ("article.pdf", "metadata.yaml", "article.typ", "article.bib")

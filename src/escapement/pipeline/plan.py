@@ -29,7 +29,6 @@ __all__ = ["BLOCKS", "MAPS", "REPLICATION_ONLY", "Planned", "changes", "check_ru
 #: the blocks a study may change, and the replication's own, which only config/paper.yaml sets
 BLOCKS = ("model", *KINDS)
 REPLICATION_ONLY = ("checks", "benchmark", "speed", "long_run")
-#: each kind's settings, by its block
 SETTINGS = {"fig3": PoincareScene, "fig4": ShockScene, "fig5": PhaseScene, "escapement_error": EscapementErrorScene,
             "existence_map": ExistenceMapScene, "stability_map": StabilityMapScene}
 #: the keys of a scene's mapping that place it, not settings of its run

@@ -26,7 +26,6 @@ from .stream import iter_cycles
 __all__ = ["CHUNK_BYTES_PER_CYCLE", "CLOSED_FORM", "CROSS_CHECK_RTOL", "PEAK_BYTES_PER_CYCLE", "CrossCheckError",
            "CycleChunks", "CycleRun", "compare_tables", "cross_check", "iter_closed_form_cycles", "solve_cycles"]
 
-#: the method's name (in :attr:`CycleRun.method` and the benchmark's rows)
 CLOSED_FORM = "closed-form cycles"
 #: the relative difference :func:`cross_check` accepts on every quantity
 CROSS_CHECK_RTOL = 1e-14

@@ -18,9 +18,7 @@ from .result import Ended
 __all__ = ["CHUNK_BYTES_PER_CYCLE", "DEFAULT_CHUNK", "MAX_CHUNK", "ChunkIterator", "CycleStream", "StreamSummary",
            "check_chunk", "iter_cycles"]
 
-#: cycles per chunk unless the caller says otherwise
 DEFAULT_CHUNK = 100_000
-#: the most cycles a chunk may hold
 MAX_CHUNK = 10_000_000
 #: bytes a cycle of a chunk takes: its four floats, and the parts gathered before they are joined (the closed
 #: forms' chunks take as much: their rows and the impact times' work arrays)
