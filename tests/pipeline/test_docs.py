@@ -143,15 +143,26 @@ def poincare_map(relative_distance: float) -> xr.Dataset:
                        **{k: ((), v) for k, v in model.items()}}, attrs={"amplitude_variable": "amplitude_h0"})
 
 
-@pytest.mark.parametrize("distances, shown", [((1e-9, 3e-9), "transient: 3e-09 in case (b))."),
-                                              ((4e-9, 3e-9), "transient: 4e-09 in case (a)).")])
+@pytest.mark.parametrize("distances, shown", [((1e-9, 3e-9), "transient: 3e-09 in case (b). "),
+                                              ((4e-9, 3e-9), "transient: 4e-09 in case (a). ")])
 def test_replication_md_prints_the_largest_transient_of_the_fig3_datasets(distances, shown):
-    """REPLICATION.md's verdict in one line gives the largest distance from Eq. (19) the Fig. 3 cases leave."""
+    """REPLICATION.md's Fig. 3 section gives the largest distance from Eq. (19) the Fig. 3 cases leave."""
     template = (ROOT / "workflow/templates/REPLICATION.md").read_text(encoding="utf-8")
     line = next(line for line in template.splitlines() if line.startswith("transient: "))
     run = run_values(fig4_scores(1), {"first_swings_label": [], "first_swings_velocity": []},
                      {label: poincare_map(d) for label, d in zip("ab", distances)})
     assert render(line, "REPLICATION.md", ROWS, {}, {}, {}, run).split("\n", 1)[1].startswith(shown)
+
+
+def test_replication_md_opens_on_the_count_of_the_findings():
+    """REPLICATION.md's first line after its title: finding f fails (x), g has a reproduced part (y) and a failing
+    one, so it is partially reproduced; one row is beyond the paper. Counted here by hand."""
+    template = (ROOT / "workflow/templates/REPLICATION.md").read_text(encoding="utf-8")
+    rows = [*ROWS, dict(ROWS[0], claim_id="z", finding="g"), dict(ROWS[1], claim_id="w", origin="beyond")]
+    lines = render("\n\n".join(template.split("\n\n")[:2]), "REPLICATION.md", rows, {}, {}, {}).splitlines()
+    assert lines[1:4] == ["# Replication report", "", "Partial replication: 0 of 2 findings reproduced, 0 consistent, "
+                          "1 partially reproduced, 1 not reproduced, 0 undetermined, 0 untestable (1 row beyond the "
+                          "paper, not counted)."]
 
 
 def test_an_edit_of_a_template_changes_its_digest_and_its_modification_time_does_not(tmp_path):
