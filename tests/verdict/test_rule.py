@@ -155,7 +155,7 @@ def test_the_findings_table_lists_each_finding_once_with_its_parts():
     table = findings_table(ROWS)
     assert [r["finding"] for r in table] == ["map", "axes", "law", "period", "sets", "stable", "linear", "release",
                                              "accuracy"]
-    assert table[4] == {"finding": "sets", "sentence": "The sentence of sets.", "verdict": "not reproduced",
+    assert table[4] == {"finding": "sets", "quote": "The sentence of sets.", "verdict": "not reproduced",
                         "rows": "`s1` (S2: consistent), `s2` (S-bar: not reproduced)"}
     assert table[1]["rows"] == "`ax`"
 

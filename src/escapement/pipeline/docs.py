@@ -270,7 +270,7 @@ def render_docs(inputs: Mapping[str, str], outputs: Mapping[str, str], log: str,
                          {label: read_netcdf(path) for label, path in
                           data_files(REPLICATION, "fig3", config["fig3"]["cases"]).items()})
         tables = {"stress": markdown_table(stress, STRESS),
-                  "findings": markdown_table(findings_table(rows), ["finding", "sentence", "verdict", "rows"]),
+                  "findings": markdown_table(findings_table(rows), ["finding", "quote", "verdict", "rows"]),
                   "vocabulary": markdown_table(vocabulary_table(), ["word", "meaning"]),
                   "readings": markdown_table(best_readings_table(scores), [
                       "figure", "panel", "printed limits", "limits reproduced", "best-supported readings"])}

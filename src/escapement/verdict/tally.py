@@ -1,7 +1,8 @@
-"""The headline of the verdict: the paper's sentences counted as findings, read from the claims table alone.
+"""The headline of the verdict: the paper's quoted words counted as findings, read from the claims table alone.
 
-Each sentence the register quotes is one finding, however many rows (its parts, which share its ``finding``) check
-it, with the status :func:`escapement.verdict.rule.finding_status` gives; rows beyond the paper are not findings.
+Each quote of the paper in the register (a sentence, an equation with the words that introduce it, or a figure's axis
+title or caption) is one finding, however many rows (its parts, which share its ``finding``) check it, with the
+status :func:`escapement.verdict.rule.finding_status` gives; rows beyond the paper are not findings.
 """
 
 from __future__ import annotations
@@ -44,8 +45,8 @@ def headline(rows: Iterable[Mapping[str, str]]) -> str:
 
 
 def findings_table(rows: Iterable[Mapping[str, str]]) -> list[dict[str, str]]:
-    """One row per finding: its name, the sentence it quotes, its status, and its rows each with its part and status."""
-    return [{"finding": name, "sentence": parts[0]["quote"], "verdict": status.replace("_", " "),
+    """One row per finding: its name, its quote, its status, and its rows each with its part and status."""
+    return [{"finding": name, "quote": parts[0]["quote"], "verdict": status.replace("_", " "),
              "rows": ", ".join(f"`{r['claim_id']}`" + (f" ({r['part']}: {r['status'].replace('_', ' ')})"
                                                        if len(parts) > 1 else "") for r in parts)}
             for name, (status, parts) in sorted(findings(rows).items(), key=lambda kv: (ORDER.index(kv[1][0]), kv[0]))]
