@@ -65,7 +65,7 @@ def test_the_readings_table_says_only_what_the_tied_readings_differ_in(same, sai
                "ticks": ticks, "matches": 2, "same_values_as": name(same if section == "a3" else "a1")}
               for axis in ("x", "y") for section in ("a1", "a3") for ticks in TICKS]
     cells, ties = _readings(scores)
-    assert cells == f"[5 b], [4 of 4 (4 with the default locator)], {said}"
+    assert cells == f"[5 b], [4 of 4 (4)], {said}"
     assert ties == {"5 b": tie}
 
 

@@ -144,8 +144,8 @@ def _readings(scores: Sequence[Mapping]) -> tuple[str, dict[str, str]]:
         ties[f"{figure} {name}"] = (f"{len(groups)} of {len(c.scores)} readings tie (undetermined)" if len(groups) > 1
                                     else f"one of {len(c.scores)} readings leads" if len(groups[0]) == 1
                                     else f"{len(groups[0])} identical of {len(c.scores)} readings lead")
-        cells.append(f"[{typ(figure)} {typ(name)}], [{typ(summary(c)[0])}], [{len(groups)} of {len(c.scores)}], "
-                     f"[{typ('; '.join(differ))}]")
+        cells.append(f"[{typ(figure)} {typ(name)}], [{typ(summary(c)[0].replace(' with the default locator', ''))}], "
+                     f"[{len(groups)} of {len(c.scores)}], [{typ('; '.join(differ))}]")
     return ",\n".join(cells), ties
 
 
