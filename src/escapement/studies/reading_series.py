@@ -121,7 +121,7 @@ def window_series(run: Solution, lo: float, hi: float, samples_per_second: float
     """``(t, values)`` of ``quantity`` ("displacement", "velocity" or "acceleration") over ``[lo, hi]`` as a plot
     would draw it, and at each event in the window its values just before and just after (at the event's time)."""
     t, index, order = _grid(run, lo, hi, samples_per_second)
-    values = run.sample(t)[("displacement", "velocity", "acceleration").index(quantity)]
+    values = run.sample(t)[{"displacement": 0, "velocity": 1, "acceleration": 2}[quantity]]  # KeyError names it
     if quantity == "displacement":
         before = after = run.events.x[index]
     elif quantity == "velocity":
