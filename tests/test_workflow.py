@@ -106,7 +106,7 @@ DIMENSIONS = {
                      "event_position", "impact_position", "zone_a1", "zone_a2"], "m"),
     **dict.fromkeys(["t", "t_final", "period", "first_period", "period_formula", "fixed_point_period", "impact_time",
                      "event_time", "drift_exact", "drift_ivp", "drift_closed_form", "velocity_window",
-                     "acceleration_window"], "s"),
+                     "acceleration_window", "continued_at"], "s"),
     **dict.fromkeys(["v0", "velocity", "velocity_before", "velocity_after", "velocity_before_impact",
                      "event_velocity_before", "event_velocity_after", "largest_speed", "fixed_point",
                      "fixed_point_19", "fixed_point_eq16", "fixed_point_velocity"], "m/s"),
