@@ -20,7 +20,7 @@ from ..model import automaton
 from ..model.arguments import Numeric
 from ..model.automaton import RELEASE, Mode
 from ..model.events import EventKind
-from ..model.kinematics import arc_maximum, arc_terms, crossing, time_to_rest, two_sum
+from ..model.kinematics import arc_maximum, arc_terms, compensated_add, crossing, time_to_rest, two_sum
 from ..model.limits import RunSpec
 from ..model.parameters import ParameterArrays, Parameters
 from ..model.status import Status
@@ -197,8 +197,7 @@ class EventRun:
         self.wait_at.append(self.events - 1)
         self.wait.append(wait)
         self.t_acc, self.v = self.time + wait if math.isnan(self.t_acc) else self.t_acc, 0.0
-        self.t_sum, error = two_sum(self.t_sum, wait)
-        self.t_err += error
+        self.t_sum, self.t_err = compensated_add(self.t_sum, self.t_err, wait)
         return None
 
     def _end(self, ending: str | None, v1: float) -> None:
