@@ -214,3 +214,15 @@ def test_critical_times_are_turning_points_or_passages_through_the_centre(case_b
     # per cycle the two turning points only: the free arcs' centre 0 lies inside the impulse zones,
     # and the zones' centres +-F/K = +-0.5 m lie beyond them; the release adds one
     assert len(t) == 2 * 5 + 1
+
+
+@pytest.mark.parametrize(("call", "message"), [
+    (lambda: fig3_readings({}, {}, 0), "n_cycles = 0 is invalid: n_cycles must be a positive integer"),
+    (lambda: all_readings({"model": {}}), r"it must have \['fig3', 'fig4', 'fig5'\]"),
+    (lambda: fig4_readings({}, {}, {"v": (0, 1)}, 1.0), "it must have 'velocity' and 'acceleration'"),
+    (lambda: Runs({}).need(1, 1, 1, t_end=float("nan")), "t_end = nan is invalid: t_end must be finite"),
+    (lambda: Runs({}).need(1, 1, 1, n_cycles=1.5), "n_cycles = 1.5 is invalid"),
+])
+def test_the_readings_refuse_bad_arguments_before_any_run(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()

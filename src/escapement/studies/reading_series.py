@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.arguments import check_choice, check_count, real_number
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..solvers.exact import solve_exact
@@ -34,6 +35,8 @@ class Runs:
 
     def need(self, F: float, K: float, x0: float, n_cycles: int = 0, t_end: float = 0.0) -> None:
         """Record that a reading reads ``n_cycles`` complete cycles and the motion up to ``t_end``."""
+        check_count("n_cycles", n_cycles, 10**9, minimum=0)
+        real_number("t_end", t_end, lambda t: t >= 0, ">= 0")
         key = (float(F), float(K), float(x0))
         stated = self._needs.get(key, (0, 0.0))
         n, t = max(stated[0], n_cycles), max(stated[1], float(t_end))
@@ -120,8 +123,10 @@ def window_series(run: Solution, lo: float, hi: float, samples_per_second: float
                   ) -> tuple[np.ndarray, np.ndarray]:
     """``(t, values)`` of ``quantity`` ("displacement", "velocity" or "acceleration") over ``[lo, hi]`` as a plot
     would draw it, and at each event in the window its values just before and just after (at the event's time)."""
+    quantities = ("displacement", "velocity", "acceleration")
+    check_choice("quantity", quantity, quantities)
     t, index, order = _grid(run, lo, hi, samples_per_second)
-    values = run.sample(t)[{"displacement": 0, "velocity": 1, "acceleration": 2}[quantity]]  # KeyError names it
+    values = run.sample(t)[quantities.index(quantity)]
     if quantity == "displacement":
         before = after = run.events.x[index]
     elif quantity == "velocity":
@@ -155,6 +160,7 @@ class SectionCycles:
 
 def section_cycles(run: Solution, section: str) -> SectionCycles:
     """The cycles of ``run`` at the Poincare section ``section`` ("a1" or "a3"), the turning points exact."""
+    check_choice("section", section, SECTIONS)
     ev = run.events
     i = ev.of_kind(SECTIONS[section])
     t, x, v = (np.asarray(a, dtype=float)[i] for a in (ev.t, ev.x, ev.v_before))

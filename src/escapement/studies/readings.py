@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..model.arguments import check_count
 from ..model.events import EventKind
 from ..model.parameters import Parameters
 from ..paper.printed import period_23
@@ -79,6 +80,7 @@ def fig3_readings(model: Mapping, cases: Mapping[str, Mapping], n_cycles: int, r
                   ) -> list[Reading]:
     """Fig. 3: per case (``F`` and ``|x0|``), release side, section, quantity and number of cycles (N or N + 1),
     the series against the cycle number."""
+    check_count("n_cycles", n_cycles, 10**9)
     runs = Runs(model) if runs is None else runs
     readings = []
     for label, side, F, K, x0 in _fig3_runs(runs, model, cases, n_cycles):
@@ -144,6 +146,8 @@ def fig4_readings(model: Mapping, cases: Mapping[str, Mapping], windows: Mapping
                   ) -> list[Reading]:
     """Fig. 4: per force and release magnitude of the ``cases``, release side, ``K`` and pairing of the printed
     ``windows`` with the quantities (swapped: each over the other's window), the velocity and the acceleration."""
+    if set(windows) != {"velocity", "acceleration"}:
+        raise ValueError(f"windows has the keys {sorted(windows)}; it must have 'velocity' and 'acceleration'")
     runs = Runs(model) if runs is None else runs
     t_end = max(hi for _, hi in windows.values())
     readings = []
@@ -197,6 +201,8 @@ def fig5_readings(model: Mapping, panels: Mapping[str, float], n_cycles: int, sa
 def all_readings(settings: Mapping, runs: Runs | None = None) -> list[Reading]:
     """Every reading of Figs. 3-5 for the configuration's blocks ``settings`` (Fig. 5's panels lettered in the
     order of ``K``); every run is stated before the first is made, so that each is made once."""
+    if missing := {"model", "fig3", "fig4", "fig5"} - set(settings):
+        raise ValueError(f"settings has the blocks {sorted(settings)}; it must have {sorted(missing)}")
     model = settings["model"]
     fig3, fig4, fig5 = settings["fig3"], settings["fig4"], settings["fig5"]
     windows = {"velocity": tuple(fig4["velocity_window"]), "acceleration": tuple(fig4["acceleration_window"])}
