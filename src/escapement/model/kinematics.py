@@ -9,6 +9,7 @@ import math
 from fractions import Fraction
 from types import ModuleType
 
+import mpmath
 import numpy as np
 
 from .arguments import Numeric
@@ -20,24 +21,17 @@ TWO_PI = 2.0 * math.pi
 
 
 def arc_terms(centre: Numeric, x0: Numeric, omega: Numeric, target: Numeric) -> tuple[Numeric, Numeric, Numeric]:
-    """The terms of :func:`crossing` that depend on the arc's positions only (once per parameter set for an arc
-    between surfaces): ``x0 - c``, ``target - c`` and ``k = omega**2 (x0 - target)(x0 + target - 2 c)``, by
-    energy the arrival's ``v**2 - v0**2``."""
+    """The terms of :func:`crossing` that depend on positions only: ``x0 - c``, ``target - c`` and
+    ``k = omega**2 (x0 - target)(x0 + target - 2 c)``, by energy the arrival's ``v**2 - v0**2``."""
     return x0 - centre, target - centre, (omega * omega) * ((x0 - target) * (x0 + target - 2.0 * centre))
 
 
 def crossing(u0: Numeric, q: Numeric, k: Numeric, v0: Numeric, omega: Numeric, direction: Numeric,
              xp: ModuleType = math) -> tuple[Numeric, Numeric, Numeric, Numeric]:
-    """First arrival at the target moving in ``direction`` (+1 right, -1 left), for an arc about a centre ``c`` from
-    ``x0 = c + u0`` at velocity ``v0`` to ``target = c + q``, with ``k`` from :func:`arc_terms`: in the phase plane
-    ``(x - c, v / omega)`` the state turns clockwise at the rate ``omega``; the speed follows from energy, the angle
-    swept from ``atan2`` of the cross and dot products of start and end (``arccos`` loses accuracy near a turn).
-
-    Returns ``(reached, tau, v, angle)``: whether the arc passes the target strictly (not where its turning
-    point lies short of it or on it: grazing; the other values are then meaningless), the time after the
-    start, the velocity on arrival and the phase angle swept. ``xp`` is :mod:`math` for floats, :mod:`numpy`
-    for arrays.
-    """
+    """First arrival at ``target = c + q`` moving in ``direction`` (+1 right, -1 left) of an arc from ``x0 = c + u0``
+    at ``v0`` (``k`` from :func:`arc_terms`): ``(reached, tau, v, angle)``, whether it passes the target strictly
+    (else it grazes or turns short, and the rest is meaningless), the time, the arrival velocity and the phase angle
+    swept, from ``atan2`` (``arccos`` loses accuracy near a turn). ``xp`` is :mod:`math` or :mod:`numpy`."""
     v_sq = v0 * v0 + k
     v1 = direction * xp.sqrt(abs(v_sq))
     w0, w1 = v0 / omega, v1 / omega
@@ -49,12 +43,9 @@ def crossing(u0: Numeric, q: Numeric, k: Numeric, v0: Numeric, omega: Numeric, d
 
 def arc_maximum(centre: Numeric, x0: Numeric, v0: Numeric, omega: Numeric, angle: Numeric, x1: Numeric,
                 v1: Numeric) -> Numeric:
-    """Largest ``x`` on the arc that starts at ``(x0, v0)``, sweeps ``angle`` (rad) and ends at ``(x1, v1)``:
-    the top of its circle, ``centre + R``, if the arc passes it, else the larger end.
-
-    An arc of less than a turn that starts moving right (or at rest at the bottom) passes the top if it
-    arrives moving left or turns more than half a circle; one that starts moving left, if it does both.
-    """
+    """Largest ``x`` on the arc from ``(x0, v0)`` sweeping ``angle`` (rad) to ``(x1, v1)``: the top of its circle
+    if it passes it (starting right or at rest at the bottom: it ends moving left or turns more than half a circle;
+    starting left: both), else the larger end."""
     u0 = x0 - centre
     right = (v0 > 0.0) | ((v0 == 0.0) & (u0 < 0.0))
     left_at_end = v1 < 0.0
@@ -88,14 +79,6 @@ def time_to_rest(centre: Numeric, x0: Numeric, v0: Numeric, omega: Numeric,
     return angle / omega, (centre + radius) * right + (centre - radius) * left + x0 * rest
 
 
-def _bernoulli_numbers(n_max: int) -> list[Fraction]:
-    """Bernoulli numbers ``B_0 .. B_n_max`` exactly, by ``sum_{k=0}^{m} C(m+1, k) B_k = 0``."""
-    numbers = [Fraction(1)]
-    for m in range(1, n_max + 1):
-        numbers.append(-sum(math.comb(m + 1, k) * numbers[k] for k in range(m)) / (m + 1))
-    return numbers
-
-
 def _sech_even_derivatives(max_order: int) -> list[list[int]]:
     """Integer coefficients ``a[i][j]``, ``sech^(2i)(u) = sum_j a[i][j] sech(u)**(2j+1)``, for ``2i <= max_order``:
     with ``s = sech u``, ``t = tanh u``, ``(s**n)' = -n s**n t`` and ``(t s**n)' = (n+1) s**(n+2) - n s**n``."""
@@ -115,7 +98,7 @@ _SERIES_ARGUMENT_MAX = 0.25  #: arguments at or below this are summed by the pow
 _SERIES_TERMS = 16  # x**(2k) <= 16**-k < 1e-18 for k = 15
 _TI2_DENOMINATORS = tuple((2 * k + 1) * (2 * k + 1) for k in range(25))  # 4**-k / (2k+1)**2 < 2e-18 for k = 24
 _CLAUSEN_TERMS = 20
-_BERNOULLI = _bernoulli_numbers(2 * _CLAUSEN_TERMS)
+_BERNOULLI = [Fraction(*mpmath.bernfrac(n)) for n in range(2 * _CLAUSEN_TERMS + 1)]  # exact
 #: ``|B_2n| / (2n (2n+1)!)``, n = 1 .. _CLAUSEN_TERMS: the series of the Clausen function
 _CLAUSEN_COEFFICIENTS = tuple(float(abs(_BERNOULLI[2 * n]) / (2 * n * math.factorial(2 * n + 1)))
                               for n in range(1, _CLAUSEN_TERMS + 1))
@@ -205,16 +188,10 @@ def _atan_euler_maclaurin_sum(x: float, lam: float) -> float:
 def _atan_geometric_sum(x: float, ratio: float) -> float:
     """``S(x, r) = sum_{n>=0} atan(x r**n)`` for ``x >= 0`` and ``0 <= r < 1``, in a bounded number of operations.
 
-    Branches (``lam = -ln r``, as ``-log1p(r - 1)``, exact in ``r - 1`` for ``r >= 1/2``): ``x <= 1/4``, the power
-    series (:func:`_alternating_series`); ``lam <= 0.1`` (``r >= 0.905``), Euler-Maclaurin
-    (:func:`_atan_euler_maclaurin_sum`); ``lam > 0.1`` and ``x <= 1``, at most 15 direct terms, then the power
-    series; ``lam > 0.1`` and ``x > 1``: with ``N = ceil(ln(x)/lam)`` (the terms above 1 are ``n < N``),
-    ``atan(y) = pi/2 - atan(1/y)`` turns them into ``N pi/2 - S(z, r) + S(z r**N, r)`` with ``z = 1/(x r**(N-1))``
-    in ``[r, 1]``, and the rest is ``S(x r**N, r)``, ``x r**N`` in ``(r, 1]``: three sums of the previous kind.
-
-    So at most 64 evaluations of ``atan``, ``expm1`` and ``log`` and a few hundred arithmetic operations, whatever
-    ``x`` and however close ``r`` is to 1. The truncation errors are below 1e-18 relative; rounding leaves a few
-    units of 2**-53 (measured: below 4e-16 against 30-digit sums); ``S`` is well conditioned in ``x`` and ``lam``.
+    For ``x > 1`` at ``lam = -ln r > 0.1`` the ``N = ceil(ln(x)/lam)`` terms above 1 become, by
+    ``atan(y) = pi/2 - atan(1/y)``, ``N pi/2 - S(z, r) + S(z r**N, r)`` with ``z = 1/(x r**(N-1))`` in ``[r, 1]``,
+    and the rest is ``S(x r**N, r)``. At most 64 evaluations of ``atan``, ``expm1`` and ``log``, whatever ``x`` and
+    ``r``; truncation below 1e-18 relative, rounding a few units of 2**-53 (below 4e-16 against 30-digit sums).
     """
     if x == 0.0:
         return 0.0
@@ -238,13 +215,9 @@ def _atan_geometric_sum(x: float, ratio: float) -> float:
 
 
 def rebound_accumulation_time(omega: float, distance: float, speed: float, ratio: float) -> float:
-    """Total time of an infinite sequence of rebounds that shrink geometrically (a Zeno point).
-
-    After an impact reverses the velocity, the spring brings the mass back to the impact position, ``distance > 0``
-    from the centre on the side the spring pushes towards, where it rebounds with ``ratio = |1 - b| < 1`` times
-    its speed: the ``n``-th flight lasts ``(2/omega) atan(ratio**n x)``, ``x = speed / (omega * distance)``, and
-    the flights sum to ``(2/omega) S(x, ratio)`` (:func:`_atan_geometric_sum`), finite for every ``ratio < 1``.
-    """
+    """Total time of the rebounds, shrinking geometrically, after an impact that reverses the velocity (a Zeno point):
+    at the impact position ``distance > 0`` from the centre, rebounding with ``ratio = |1 - b| < 1`` times its speed,
+    the ``n``-th flight lasts ``(2/omega) atan(ratio**n x)``, ``x = speed / (omega * distance)``."""
     for name, value, holds, requirement in (
         ("omega", omega, math.isfinite(omega) and omega > 0.0, "finite and > 0 (rad/s)"),
         ("distance", distance, math.isfinite(distance) and distance > 0.0, "finite and > 0 (m)"),
