@@ -1,13 +1,8 @@
 """CF-1.11 and ACDD-1.3 datasets from runs: per-cycle table, samples, impacts, the model's parameters, and
 attributes; :func:`run_dataset` holds one run, the scenes' datasets are built of the same parts.
 
-Every file describes itself: the model's parameters and initial state are 0-d variables with their
-units and long names (from :mod:`escapement.model.quantities`), never global attributes; counts
-(``n_cycles``, ``samples_per_period``, ...) and text (``solver``, ``outcome``) stay global
-attributes, as do a scene's ``study`` and, for a study of the user's own, ``study_changes``: what its kind
-changed from the paper's scenes, in one line of text (:meth:`escapement.scenes.settings.Study.attributes`).
-The global ``summary`` states the model once (:data:`MODEL_SUMMARY`), then what the file holds. No CF
-standard name exists for the quantities of this model, so none is given.
+The parameters and initial state are 0-d variables with units, never global attributes; counts and text (``solver``,
+``outcome``, a scene's ``study``) are global attributes. No CF standard name exists for this model's quantities.
 """
 
 from __future__ import annotations
@@ -22,9 +17,9 @@ from ..model.quantities import quantity
 from ..solvers.describe import CYCLE_COLUMNS, EVENT_COLUMNS
 from ..solvers.result import Solution
 
-__all__ = ["MODEL_SUMMARY", "assemble", "cycle_variables", "dataset", "event_variables", "global_attributes",
-           "impact_variables", "parameter_variables", "run_dataset", "sample_variables", "scalar_variable",
-           "table_dataset"]
+__all__ = ["MODEL_SUMMARY", "assemble", "cycle_variables", "dataset", "described", "event_variables",
+           "global_attributes", "impact_variables", "parameter_variables", "quantity_attrs", "run_dataset",
+           "sample_variables", "scalar_variable", "table_dataset"]
 
 #: The model and its impact law, in the ``summary`` of every file (each file adds what it holds).
 MODEL_SUMMARY = (
@@ -46,26 +41,31 @@ CLASSIFICATION = "thematicClassification"
 QUALITY = "qualityInformation"
 
 
-def cycle_variables(solution: Solution) -> dict[str, xr.DataArray]:
-    """The Poincare map per cycle, on the coordinate ``cycle`` = 1 .. N, each column with the units
-    and long name of :data:`escapement.solvers.describe.CYCLE_COLUMNS`."""
-    cycles = solution.cycles
-    coords = {"cycle": ("cycle", cycles.cycle.astype(np.int32), {"long_name": "cycle number", "units": "1"})}
-    return {name: xr.DataArray(getattr(cycles, name), dims="cycle", coords=coords, attrs={"units": u, "long_name": ln})
-            for name, (u, ln) in CYCLE_COLUMNS.items()}
+def described(units: str | None, long_name: str, **attrs) -> dict:
+    """A variable's ``units`` (none for text or flags: ``units`` None), ``long_name`` and further attributes."""
+    return ({} if units is None else {"units": units}) | {"long_name": long_name, **attrs}
 
 
-def _attrs(name: str) -> dict:
+def quantity_attrs(name: str) -> dict:
+    """The units and long name of the quantity ``name`` (:mod:`escapement.model.quantities`)."""
     q = quantity(name)
-    return {"units": q.units, "long_name": q.long_name}
+    return described(q.units, q.long_name)
+
+
+def cycle_variables(solution: Solution) -> dict[str, xr.DataArray]:
+    """The Poincare map per cycle on the coordinate ``cycle`` = 1 .. N, as in :data:`~.describe.CYCLE_COLUMNS`."""
+    cycles = solution.cycles
+    coords = {"cycle": ("cycle", cycles.cycle.astype(np.int32), described("1", "cycle number"))}
+    return {name: xr.DataArray(getattr(cycles, name), dims="cycle", coords=coords, attrs=described(u, ln))
+            for name, (u, ln) in CYCLE_COLUMNS.items()}
 
 
 def sample_variables(solution: Solution, t: np.ndarray, acceleration: bool = False) -> dict[str, xr.DataArray]:
     """Displacement, velocity (and the smooth part of the acceleration) at times ``t`` (the experiment
     chooses them: :func:`escapement.scenes.figures.sample_times`)."""
-    coords = {"t": ("t", np.asarray(t, dtype=float), _attrs("t"))}
+    coords = {"t": ("t", np.asarray(t, dtype=float), quantity_attrs("t"))}
     names = ("displacement", "velocity", "acceleration")[:2 + acceleration]
-    out = {name: xr.DataArray(values, dims="t", coords=coords, attrs=_attrs(name))
+    out = {name: xr.DataArray(values, dims="t", coords=coords, attrs=quantity_attrs(name))
            for name, values in zip(names, solution.sample(t))}
     if acceleration:
         out["acceleration"].attrs["comment"] = "the impulsive part at each impact is the variable impulse divided by M"
@@ -84,16 +84,15 @@ def impact_variables(solution: Solution, window: tuple[float, float] | None = No
         "impact_position": (ev.x[keep], "m", "position of the impact (a1 or a3)"),
         "velocity_before": (vb, "m s-1", "velocity just before the impact"),
         "velocity_after": (va, "m s-1", "velocity just after the impact"),
-        "impulse": (m * (va - vb), *_attrs("impulse").values()),
-        "energy_dissipated": (0.5 * m * (vb**2 - va**2), *_attrs("energy_dissipated").values()),
+        "impulse": (m * (va - vb), *quantity_attrs("impulse").values()),
+        "energy_dissipated": (0.5 * m * (vb**2 - va**2), *quantity_attrs("energy_dissipated").values()),
     }
-    return {name: xr.DataArray(values, dims="impact", attrs={"units": u, "long_name": ln})
+    return {name: xr.DataArray(values, dims="impact", attrs=described(u, ln))
             for name, (values, u, ln) in table.items()}
 
 
 def event_variables(solution: Solution, window: tuple[float, float] | None = None) -> dict[str, xr.DataArray]:
-    """Every event (impacts and ends of the impulse), optionally inside ``window``, each column with the units and long
-    name of :data:`escapement.solvers.describe.EVENT_COLUMNS`; the kind as CF flags."""
+    """Every event, optionally inside ``window``, as in :data:`~.describe.EVENT_COLUMNS`; the kind as CF flags."""
     ev = solution.events
     keep = np.ones(len(ev), dtype=bool) if window is None else (ev.t >= window[0]) & (ev.t <= window[1])
     flags = {"flag_values": np.array([int(k) for k in EventKind], dtype=np.int8),
@@ -101,21 +100,20 @@ def event_variables(solution: Solution, window: tuple[float, float] | None = Non
     out = {}
     for name, (field, units, long_name) in EVENT_COLUMNS.items():
         values = getattr(ev, field)[keep]
-        attrs = {"long_name": long_name, **flags} if units is None else {"units": units, "long_name": long_name}
-        out[name] = xr.DataArray(values.astype(np.int8) if units is None else values, dims="event", attrs=attrs)
+        out[name] = xr.DataArray(values.astype(np.int8) if units is None else values, dims="event",
+                                 attrs=described(units, long_name, **(flags if units is None else {})))
     return out
 
 
 def scalar_variable(value, units: str, long_name: str, content: str = MODEL_RESULT, **attrs) -> xr.DataArray:
     """A 0-d variable with its units, long name and ACDD coverage content type."""
-    return xr.DataArray(value, attrs={"units": units, "long_name": long_name, "coverage_content_type": content,
-                                      **attrs})
+    return xr.DataArray(value, attrs=described(units, long_name, coverage_content_type=content, **attrs))
 
 
 def parameter_variables(values: Mapping[str, float]) -> dict[str, xr.DataArray]:
-    """One 0-d variable per model parameter or initial-state component in ``values`` (by the
-    paper's symbol), with the units and long name of :mod:`escapement.model.quantities`."""
-    return {name: scalar_variable(float(value), *_attrs(name).values(), MODEL_INPUT) for name, value in values.items()}
+    """One 0-d variable per model parameter or initial-state component in ``values``, by the paper's symbol."""
+    return {name: scalar_variable(float(value), *quantity_attrs(name).values(), MODEL_INPUT)
+            for name, value in values.items()}
 
 
 def global_attributes(title: str, scene: str, summary: str, **extra) -> dict:
@@ -161,9 +159,7 @@ def dataset(solution: Solution, variables: dict[str, xr.DataArray], title: str, 
 
 def run_dataset(solution: Solution) -> xr.Dataset:
     """One run of any solver as a CF-1.11 / ACDD-1.3 dataset: the per-cycle table on ``cycle``, every event, the
-    end time ``t_final`` and the numbers behind a regime exit (NaN where they do not apply); the parameters and
-    initial state as 0-d variables, the outcome and the solver as global attributes. Mpmath numbers become their
-    nearest doubles. :func:`escapement.io.write_netcdf` writes it, adding where and when it was written.
+    end time ``t_final`` and the numbers behind a regime exit (NaN where they do not apply), in doubles.
 
     Parameters
     ----------
@@ -213,10 +209,8 @@ def table_dataset(columns: dict[str, tuple], title: str, scene: str, summary: st
     n = len(next(iter(columns.values()))[0])
     variables = {}
     for name, (values, units, long_name, *content) in columns.items():
-        attrs = {"long_name": long_name} if units is None else {"units": units, "long_name": long_name}
-        if content:
-            attrs["coverage_content_type"] = content[0]
-        dtype = object if units is None else None
-        variables[name] = xr.DataArray(np.array(values, dtype=dtype), dims="case", attrs=attrs)
-    coords = {"case": ("case", np.arange(n, dtype=np.int32), {"long_name": "case number", "units": "1"})}
+        attrs = described(units, long_name, **({"coverage_content_type": content[0]} if content else {}))
+        variables[name] = xr.DataArray(np.array(values, dtype=object if units is None else None), dims="case",
+                                       attrs=attrs)
+    coords = {"case": ("case", np.arange(n, dtype=np.int32), described("1", "case number"))}
     return assemble(variables, global_attributes(title, scene, summary, **extra), coords)

@@ -1,13 +1,5 @@
-"""The scenes of the paper's kinds of figure, each from its settings to its dataset in one function.
-
-* :func:`poincare_map` (Fig. 3's kind): events only (per cycle, and the event log), the amplitude by the
-  definition the settings name, and Eq. (19)'s fixed point as printed; no trajectory is sampled.
-* :func:`shock_detail` (Fig. 4's kind): one run up to the end of its windows, sampled only inside them.
-* :func:`phase_diagram` (a panel of Fig. 5's kind): one run of ``n_cycles``, sampled uniformly.
-
-A sampled run is sampled, besides its uniform grid, on each side of every jump it shows
-(:func:`sample_times`), so that the values just before and just after each impact are kept.
-"""
+"""The scenes of the paper's kinds of figure (the Poincare map of Fig. 3, the shock detail of Fig. 4, a phase
+diagram of Fig. 5), each from its settings to its dataset in one function."""
 
 from __future__ import annotations
 
@@ -17,11 +9,10 @@ import numpy as np
 import xarray as xr
 
 from ..model.events import EventKind
-from ..model.quantities import quantity
 from ..paper.printed import fixed_point_19
 from ..solvers.exact import solve_exact
-from .cf import MODEL_INPUT, cycle_variables, dataset, event_variables, impact_variables, sample_variables, \
-    scalar_variable
+from .cf import MODEL_INPUT, cycle_variables, dataset, event_variables, impact_variables, quantity_attrs, \
+    sample_variables, scalar_variable
 from .settings import PhaseScene, PoincareScene, ShockScene
 
 __all__ = ["phase_diagram", "poincare_map", "sample_times", "shock_detail"]
@@ -48,9 +39,8 @@ def poincare_map(settings: Mapping | PoincareScene) -> xr.Dataset:
     cycle, values = AMPLITUDES[scene.amplitude].values(run)
     if scene.amplitude not in variables:
         axis = ("amplitude_cycle", cycle, {"long_name": "cycle number of the amplitude", "units": "1"})
-        q = quantity(scene.amplitude)
         variables[scene.amplitude] = xr.DataArray(values, dims="amplitude_cycle", coords={"amplitude_cycle": axis},
-                                                  attrs={"units": q.units, "long_name": q.long_name})
+                                                  attrs=quantity_attrs(scene.amplitude))
     variables["fixed_point_19"] = scalar_variable(fixed_point_19(scene.params), "m s-1", "fixed point of the map (17) "
                                                   "by Eq. (19) as printed (velocity before impact)")
     return dataset(

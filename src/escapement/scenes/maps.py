@@ -1,18 +1,7 @@
-"""The scenes over grids of parameters, each from its settings to its dataset (and, apart from the numbers,
-the wall times it measured, which vary from run to run and never enter a dataset).
-
-* :func:`stability_map`: over ``(b, F)``, the fixed point of the simulated return map (Newton on the
-  vectorised ensemble), the period there, the measured multiplier beside Eq. (21)'s and how the cycle from the
-  fixed point ended; with the cost per trajectory of the ensemble against the scalar solver in a loop.
-* :func:`existence_map`: over ``(a3, F)`` of an asymmetric escapement (Sec. 5), whether a release settles on a
-  limit cycle, beside the closed-form forces ``F*`` (the map (16) read at a1) and ``F*'`` (read at a3: the
-  mirror image's ``F*``) below which no limit cycle exists.
-* :func:`escapement_error`: the limit cycle's rate against its amplitude for each impulse zone and force, split
-  as Airy did into the impacts' and the zones' parts (the corrected Eqs. (24)-(25)).
-
-A map's rows (its first axis) are independent trajectories: a map whose ensemble would exceed one job's memory
-budget runs in chunks, each the map over a slice of its rows (:mod:`escapement.pipeline.plan`), and :func:`gather`
-joins their datasets into the map's one dataset.
+"""The scenes over grids of parameters, each from its settings to its dataset (the wall times measured, which vary
+from run to run, apart): the stability map over ``(b, F)``, the existence map over ``(a3, F)`` (Sec. 5) and the
+escapement error over impulse zones and forces. A map's rows are independent trajectories: a map too large for one
+job runs in chunks over slices of its rows (:mod:`escapement.pipeline.plan`), which :func:`gather` joins.
 """
 
 from __future__ import annotations
@@ -24,14 +13,15 @@ import numpy as np
 import xarray as xr
 
 from ..model.parameters import Parameters, validate_arrays
-from ..model.quantities import MODEL_KEYS, PARAMETERS
+from ..model.quantities import MODEL_KEYS
 from ..model.status import Status, flag_attributes
 from ..paper.corrected import existence_threshold
 from ..paper.printed import multiplier_21_of
 from ..solvers.ensemble import solve_ensemble
 from ..studies.escapement_error import SECONDS_PER_DAY, rate_against_amplitude
 from ..studies.poincare import ensemble_return_map, return_map, stability_grid
-from .cf import MODEL_INPUT, QUALITY, assemble, global_attributes, parameter_variables, scalar_variable
+from .cf import MODEL_INPUT, QUALITY, assemble, described, global_attributes, parameter_variables, quantity_attrs, \
+    scalar_variable
 from .settings import EscapementErrorScene, ExistenceMapScene, StabilityMapScene
 
 __all__ = ["escapement_error", "existence_map", "gather", "mirror_image", "stability_map"]
@@ -52,19 +42,21 @@ def gather(parts: Sequence[xr.Dataset], timings: Sequence[Mapping[str, float]] =
     cells = np.array([ds.sizes["b"] * ds.sizes["F"] for ds in parts])
     ensemble, scalar = (float(np.average([t[key] for t in timings], weights=weights)) for key, weights in (
         ("ensemble_seconds_per_trajectory", cells), ("scalar_seconds_per_trajectory", np.minimum(cells, SPEED_SAMPLE))))
-    return joined, {"ensemble_seconds_per_trajectory": ensemble, "scalar_seconds_per_trajectory": scalar,
-                    "ensemble_speedup_per_trajectory": scalar / ensemble}
+    return joined, _costs(ensemble, scalar)
+
+
+def _costs(ensemble: float, scalar: float) -> dict:
+    return {"ensemble_seconds_per_trajectory": ensemble, "scalar_seconds_per_trajectory": scalar,
+            "ensemble_speedup_per_trajectory": scalar / ensemble}
 
 
 def _coords(**axes: np.ndarray) -> dict:
-    return {name: (name, np.asarray(values, dtype=float),
-                   {"long_name": PARAMETERS[name].long_name, "units": PARAMETERS[name].units})
-            for name, values in axes.items()}
+    return {name: (name, np.asarray(values, dtype=float), quantity_attrs(name)) for name, values in axes.items()}
 
 
 def _grid(values, coords: dict, units: str | None, long_name: str, **attrs) -> xr.DataArray:
-    described = ({} if units is None else {"units": units}) | {"long_name": long_name, **attrs}
-    return xr.DataArray(np.asarray(values), dims=tuple(coords), coords=coords, attrs=described)
+    attrs = described(units, long_name, **attrs)
+    return xr.DataArray(np.asarray(values), dims=tuple(coords), coords=coords, attrs=attrs)
 
 
 def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = SPEED_SAMPLE) -> tuple[xr.Dataset, dict]:
@@ -104,9 +96,7 @@ def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = SPE
         "at a1, found by Newton's method, the period of the cycle there, the multiplier mu_2 measured by central "
         "differences of the map beside (1 - b)**4 of Eq. (21), and how the cycle from the fixed point ended.",
         solver="exact, vectorised ensemble", **scene.study.attributes())
-    return assemble(variables, attrs), {"ensemble_seconds_per_trajectory": ensemble,
-                                        "scalar_seconds_per_trajectory": scalar,
-                                        "ensemble_speedup_per_trajectory": scalar / ensemble}
+    return assemble(variables, attrs), _costs(ensemble, scalar)
 
 
 def mirror_image(p: Parameters) -> Parameters:
