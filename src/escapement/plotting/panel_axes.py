@@ -1,10 +1,6 @@
-"""The axes of the paper's printed panels, as the claims score them and as the figures draw them.
-
-A printed panel's scored axis (:mod:`escapement.paper.printed_axes`) gets the limits matplotlib gives the values
-the figure draws there, autoscaled with the printed tick step imposed after a margin
-(:mod:`escapement.plotting.autoscale`): :func:`scene_axes` gives the claims those limits by printed panel, and
-:func:`poincare_axes`, :func:`shock_axes` and :func:`phase_axes` the same with their tick step, keyed as the figure
-functions name their panels, so that a figure of the paper's scenes shows exactly what its claims score.
+"""The axes of the paper's printed panels, as the claims score them and as the figures draw them: the values a
+panel draws autoscaled with the printed tick step (:mod:`escapement.plotting.autoscale`), by printed panel for the
+claims (:func:`scene_axes`) and keyed as the figure functions name their panels, so that both show the same limits.
 """
 
 from __future__ import annotations
@@ -18,6 +14,7 @@ from matplotlib.ticker import AutoMinorLocator, MultipleLocator
 
 from ..paper.printed_axes import FIG5_PANEL_K, panel, panels_of
 from .autoscale import autoscaled_limits
+from .captions import outcome
 
 __all__ = ["MAX_LABELS", "DrawnAxes", "PanelAxes", "apply_axes", "phase_axes", "poincare_axes", "scene_axes",
            "shock_axes"]
@@ -32,10 +29,6 @@ PanelAxes = dict[tuple[str, str], dict[str, tuple[float, float]]]
 DrawnAxes = dict[str, dict[str, tuple[float, float, float]]]
 
 
-def _completed(ds: xr.Dataset) -> bool:
-    return ds.attrs.get("outcome", "completed") == "completed"
-
-
 def _drawn(figure: str, name: str, x: np.ndarray, y: np.ndarray, margin: float) -> dict[str, tuple[float, ...]]:
     printed = panel(figure, name)
     return {axis_name: (*autoscaled_limits(values, axis.step, margin), axis.step)
@@ -48,7 +41,7 @@ def poincare_axes(cases: Mapping[str, xr.Dataset], margin: float) -> DrawnAxes:
     found: DrawnAxes = {}
     for p in panels_of("3"):
         case, quantity = p.name.split("/")
-        if case not in cases or not _completed(cases[case]):
+        if case not in cases or outcome(cases[case]):
             continue
         ds = cases[case]
         names = {"velocity": "velocity_before_impact", "amplitude": ds.attrs["amplitude_variable"]}
@@ -58,9 +51,8 @@ def poincare_axes(cases: Mapping[str, xr.Dataset], margin: float) -> DrawnAxes:
 
 
 def shock_axes(ds: xr.Dataset, margin: float) -> DrawnAxes:
-    """The printed axes of the two Fig. 4 panels, keyed ``"velocity"`` and ``"acceleration"``: each
-    quantity over its window."""
-    if not _completed(ds):
+    """The printed axes of the two Fig. 4 panels, keyed ``"velocity"`` and ``"acceleration"``."""
+    if outcome(ds):
         return {}
     windows = {p.name: ds[p.name].sel(t=slice(*ds[f"{p.name}_window"].values)) for p in panels_of("4")}
     return {name: _drawn("4", name, w["t"].values, w.values, margin) for name, w in windows.items()}
@@ -74,14 +66,13 @@ def phase_axes(panels: Mapping[str, xr.Dataset], margin: float) -> DrawnAxes:
     """The printed axes of the Fig. 5 panel of each dataset's spring constant, keyed by the dataset's label
     in ``panels`` (a dataset of no printed spring constant, or whose run did not complete, is left out)."""
     return {label: _drawn("5", name, ds["displacement"].values, ds["velocity"].values, margin)
-            for label, ds in panels.items() if (name := _fig5_panel(ds)) is not None and _completed(ds)}
+            for label, ds in panels.items() if (name := _fig5_panel(ds)) is not None and not outcome(ds)}
 
 
 def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Mapping[str, xr.Dataset],
                margin: float) -> PanelAxes:
-    """The limits of each printed panel's scored axes, ``{(figure, panel): {"x": (low, high), ...}}``, from the
-    pipeline's outputs (Fig. 3 by case label, Fig. 4, Fig. 5 by any label), as :func:`poincare_axes`, :func:`shock_axes`
-    and :func:`phase_axes` give them (a panel no output holds, or whose run did not complete, is left out)."""
+    """The limits of each printed panel's scored axes, :data:`PanelAxes`, from the outputs of Figs. 3 (by case), 4
+    and 5, as the functions above give them."""
     drawn = {("3", name): axes for name, axes in poincare_axes(fig3, margin).items()}
     if fig4 is not None:
         drawn |= {("4", name): axes for name, axes in shock_axes(fig4, margin).items()}
@@ -90,9 +81,8 @@ def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Ma
 
 
 def apply_axes(ax, axes: Mapping[str, tuple[float, float, float]]) -> None:
-    """Draw ``axes`` (``{"x": (low, high, step), "y": ...}``) on ``ax``: those limits, ticks every step; an axis
-    far wider than its step labels every few steps (at most :data:`MAX_LABELS`) with minor ticks at the step where
-    that is every 2 or 5 steps, else one midway, so that they never merge into a bar."""
+    """Draw ``axes`` (``{"x": (low, high, step), "y": ...}``) on ``ax``; an axis far wider than its step labels
+    every few steps (at most :data:`MAX_LABELS`), minor ticks at the step if that is every 2 or 5, else midway."""
     for axis_name, (low, high, step) in axes.items():
         axis = {"x": ax.xaxis, "y": ax.yaxis}[axis_name]
         every = next(m for m in _EVERY if (high - low) / (step * m) <= MAX_LABELS + 1e-9)
