@@ -1,11 +1,9 @@
-"""Automatic axis limits as a plotting program would choose them, computed by matplotlib itself: each array alone
-(its extent) on an Agg canvas with ``axes.autolimit_mode: round_numbers``, the limits read back (the data range
-widened by the margin, rounded outward to the ticks: no rounding of our own) with the tick step, imposed (the
-printed step) or matplotlib's own (``step=None``, on a default figure). The margins (:data:`VARIANTS`):
+"""Automatic axis limits as matplotlib chooses them: each array alone on an Agg axes with
+``axes.autolimit_mode: round_numbers``, the limits read back with the tick step, imposed or matplotlib's own
+(``step=None``). The margins (:data:`VARIANTS`):
 
-* ``round, margin 0``: the data range itself rounded out to the ticks, the assumption for the paper's figures:
-  MATLAB, the likely software of the paper (2012), chose limits that enclose the data and end on ticks, with no
-  padding (its ``'padded'`` method came in 2021), as did matplotlib's classic style (before 2.0);
+* ``round, margin 0``: the data range rounded out to the ticks, the assumption for the paper's figures: MATLAB,
+  its likely software (2012), padded no limits before 2021, nor did matplotlib's classic style;
 * ``round, margin 0.05``: matplotlib's default margins (since 2.0) added before rounding to the ticks.
 """
 

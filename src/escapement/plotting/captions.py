@@ -1,7 +1,5 @@
-"""The words on the figures: axis labels, quantities with their values and units, how a run was released, which
-parameters a panel states, how a run that did not complete ended, and what a study of the user's own changed
-(the line above its legend). Names, symbols and units come from :mod:`escapement.model.quantities`, values and
-outcomes from the datasets; titles and captions are the callers'.
+"""The words on the figures: axis labels, values with their units, releases, outcomes, a panel's parameters and what
+a study of the user's own changed; names, symbols and units from :mod:`escapement.model.quantities`.
 """
 
 from __future__ import annotations
@@ -52,16 +50,15 @@ def release(ds: xr.Dataset) -> str:
 
 
 def panel_parameters(ds: xr.Dataset, datasets: Iterable[xr.Dataset], always: tuple[str, ...] = ("F", "K")) -> str:
-    """The parameters a panel states: those of ``always`` and those that differ between ``datasets`` (the
-    figure's panels), with their values in ``ds``, e.g. ``F = 1 N, K = 0.1 N/m``."""
+    """The parameters of ``always`` and those that differ between ``datasets`` (the figure's panels), valued as in
+    ``ds``: ``F = 1 N, K = 0.1 N/m``."""
     datasets = list(datasets)
     differing = {k for k in PARAMETERS if len({float(d[k]) for d in datasets if k in d}) > 1}
     return ", ".join(quantity_value(k, float(ds[k])) for k in PARAMETERS if k in ds and (k in always or k in differing))
 
 
 def outcome(ds: xr.Dataset, count: str = "cycle") -> str | None:
-    """How a run that did not complete ended, in a few words (``stopped after 2 of 50 cycles``); None if
-    it completed. The dataset's ``outcome_message`` says more, for the caption."""
+    """How a run that did not complete ended (``stopped after 2 of 50 cycles``); None if it completed."""
     status = Status(ds.attrs.get("outcome", Status.COMPLETED.value))
     if status.success:
         return None
@@ -87,10 +84,8 @@ def _unbroken(match: re.Match) -> str:
 
 
 def study_changes(datasets: Iterable[xr.Dataset]) -> str | None:
-    """What a study of the user's own changed from the paper's scenes, as its datasets say it (their global
-    attribute ``study_changes``, each differing text once): ``Changed from the paper's scenes: b = 0.3 (paper:
-    0.1)``, each parameter by its symbol with the minus of the ticks, no value broken across lines; None where no
-    dataset has the attribute (the replication)."""
+    """What a study of the user's own changed, as its datasets' ``study_changes`` say it (each text once), each
+    parameter by its symbol, no value broken across lines; None where no dataset has it (the replication)."""
     said = dict.fromkeys(str(ds.attrs["study_changes"]) for ds in datasets if ds.attrs.get("study_changes"))
     if not said:
         return None
@@ -105,16 +100,14 @@ def _wrapped(fig, text: str) -> str:
 
 
 def changes_legend(fig, datasets: Iterable[xr.Dataset], note: str | None = None) -> dict:
-    """The keywords of the legend below the axes that give it ``note`` (the figure's parameters, say) and
-    :func:`study_changes` as its title, each wrapped to the figure's width; none if neither is."""
+    """The legend's keywords that title it ``note`` and :func:`study_changes`, wrapped; none if neither is."""
     said = [_wrapped(fig, text) for text in (note, study_changes(datasets)) if text]
     return {"title": "\n".join(said), "title_fontsize": CHANGES_FONTSIZE} if said else {}
 
 
 def thinning(fig, samples: int, kept: int, rastered: int, column_dpi: float, dpi: float) -> str | None:
-    """How a figure's lines were thinned (:mod:`escapement.plotting.thinning`), wrapped to its width: ``Drawn from
-    1 of every 147 samples (1,000,000 as 6,800), each 1/600-inch column's first, last, smallest and largest kept:
-    every extreme`` and ``2,400,000 vertices drawn as a raster of 150 dpi, every one rendered``; None if none was."""
+    """How a figure's lines were thinned and rastered (:mod:`escapement.plotting.thinning`), wrapped to its width;
+    None if none was."""
     said = ([f"Drawn from 1 of every {samples / kept:,.0f} samples ({samples:,} as {kept:,}), each 1/{column_dpi:g}"
              "-inch column's first, last, smallest and largest kept: every extreme"] if samples else [])
     said += [f"{rastered:,} vertices drawn as a raster of {dpi:g} dpi, every one rendered"] if rastered else []

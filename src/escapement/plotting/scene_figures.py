@@ -1,13 +1,7 @@
-"""The three figures of a scene, for the paper's parameters or a user's: the Poincaré map per cycle, the shock
-detail around the impacts, and phase diagrams, drawn from the netCDF datasets (never from the solver).
-
-Each takes its title (one or two lines) from the caller and states each panel's own parameters in its panel
-title, lettered by its case (Fig. 3's kind) or its place; a study of the user's own names what it changed (the
-datasets' ``study_changes``) above the legend. Given ``axes`` (:mod:`escapement.plotting.panel_axes`, keyed as
-the figure names its panels), a panel is drawn with exactly those limits and tick step (the paper's printed axes,
-as its claims score them); a panel not given is autoscaled. Guides (a fixed point, the natural period) are drawn
-only inside the axes, so that the legend lists only what a panel shows; a period panel given its printed axes is
-widened to the period the paper prints, which it draws. Text stays outside the axes.
+"""The three figures of a scene: the Poincaré map per cycle, the shock detail around the impacts, and phase
+diagrams, drawn from the netCDF datasets. Given ``axes`` (:mod:`escapement.plotting.panel_axes`), a panel is drawn
+with exactly those limits and tick step, else autoscaled; guides (a fixed point, the natural period) are drawn only
+inside the axes, so that the legend lists only what a panel shows.
 """
 
 from __future__ import annotations
@@ -42,14 +36,12 @@ def broken(t: np.ndarray, y: np.ndarray, breaks: np.ndarray) -> tuple[np.ndarray
 
 
 def _panel_title(name: str, ds: xr.Dataset, datasets) -> str:
-    """``(a) F = 1 N, K = 1 N/m`` / ``from rest at x(0) = -1 m`` / how the run ended, if it did not
-    complete; ``name`` is the panel's case or letter, given a figure of one panel too."""
+    """``(a) F = 1 N, K = 1 N/m`` / ``from rest at x(0) = -1 m`` / how the run ended, if it did not complete."""
     lines = [f"({name}) " + panel_parameters(ds, datasets), release(ds), outcome(ds)]
     return "\n".join(line for line in lines if line)
 
 
 def _check(axes: DrawnAxes | None, keys) -> None:
-    """Refuse axes for panels the figure does not have (a key mistyped, or keyed as the claims key them)."""
     unknown = set(axes or ()) - set(keys)
     if unknown:
         raise ValueError(f"axes names no panel of this figure: {', '.join(sorted(map(repr, unknown)))}; its panels are "
@@ -70,11 +62,9 @@ def _guide(ax, y: float, **look) -> None:
 
 
 def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | None = None) -> Figure:
-    """The velocity before impact, the period and the amplitude against the cycle number, one column per case,
-    titled (a), (b), ... by its key in ``cases``: each case's dataset (``velocity_before_impact``, ``period``, the
-    variable its attribute ``amplitude_variable`` names, the parameters, ``x0``; ``fixed_point_19`` drawn if
-    present). ``axes`` keys: ``"<case>/velocity"``, ``".../period"``, ``".../amplitude"``; a case's printed period
-    axes add the paper's period, in place of the natural period 2 pi sqrt(M/K) it rounds to."""
+    """The velocity before impact, the period and the amplitude against the cycle number, one column per case of
+    ``cases``. ``axes`` keys: ``"<case>/velocity"``, ``".../period"``, ``".../amplitude"``; a case's printed period
+    axes are widened to the paper's period and draw it, in place of the natural period it rounds to."""
     datasets = list(cases.values())
     _check(axes, [f"{label}/{key}" for label in cases for key, _ in _ROWS])
     with style():
@@ -110,11 +100,9 @@ def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | 
 
 
 def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> Figure:
-    """The velocity and the acceleration around the impacts, each over its window; jumps drawn as jumps, an
-    impact's impulse as an arrow, and each impact of the velocity window listed in the legend with its impulse and
-    the energy it dissipates. ``ds``: ``t``, ``velocity``, ``acceleration``, ``velocity_window``,
-    ``acceleration_window``, ``impact_time``, ``velocity_before``, ``velocity_after``, ``impulse``,
-    ``energy_dissipated``, ``event_time``; ``axes`` keys: ``"velocity"``, ``"acceleration"``."""
+    """The velocity and the acceleration around the impacts, each over its window; an impact's impulse drawn as an
+    arrow, and each impact of the velocity window listed in the legend with its impulse and the energy it dissipates.
+    ``axes`` keys: ``"velocity"``, ``"acceleration"``."""
     _check(axes, ("velocity", "acceleration"))
     t, impacts = ds["t"].values, ds["impact_time"].values
     impulse, energy = ds["impulse"].values, ds["energy_dissipated"].values
@@ -160,10 +148,8 @@ def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> F
 
 
 def phase_diagrams(panels: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | None = None) -> Figure:
-    """Phase diagrams, one panel per dataset (``t``, ``displacement``, ``velocity``, ``impact_time``,
-    ``impact_position``, ``velocity_before``, ``velocity_after``, ``period``, the parameters, ``x0``), lettered
-    (a), (b), ...: the trajectory from release in light colour, the last cycle in dark, the impacts as vertical
-    jumps. ``axes`` keys: the panels' keys in ``panels``."""
+    """Phase diagrams, one panel per dataset, lettered (a), (b), ...: the trajectory from release in light colour, the
+    last cycle in dark, the impacts as vertical jumps. ``axes`` keys: the panels' keys in ``panels``."""
     datasets = list(panels.values())
     _check(axes, panels)
     with style():

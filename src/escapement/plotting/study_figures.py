@@ -1,13 +1,9 @@
 """The project's own figures: the solvers' work-precision and long-run errors, the stability map over (b, F), the
 existence map over (a3, F), and the escapement error against amplitude, from the studies' tables and datasets.
-Each has a one-line title unless its caller gives one, and states its parameters above the legend; a map or the
-escapement error of a study of the user's own names what it changed (its dataset's ``study_changes``) there too.
 
-The long run shows rounding for what it is: the float64 spacing is a shaded band, and the exact solver's and the
-closed forms' errors are drawn at every sampled cycle (correctly rounded arithmetic and Python's scalar ``math``:
-bit-identical under the SIMD and BLAS kernels CI varies). An adaptive integrator's steps amplify the rounding of
-the BLAS kernels, moving its error at a cycle by a few per cent; it is drawn as its largest error per decade of
-cycles rounded up to 1, 2 or 5 times a power of ten, which moves only if a decade's largest lies that near a level.
+In the long run, the exact solver's and the closed forms' errors are bit-identical under every BLAS kernel and are
+drawn at each sampled cycle; an adaptive integrator's move by a few per cent from one kernel to another, so it is
+drawn as its largest error per decade rounded up to 1, 2 or 5 times a power of ten, which such rounding rarely moves.
 """
 
 from __future__ import annotations
@@ -72,17 +68,15 @@ def work_precision(rows: list[dict], title: str | None = None) -> Figure:
 
 
 def _round_up(value: float) -> float:
-    """``value`` (> 0) rounded up to 1, 2 or 5 times a power of ten, from its shortest decimal form (Python's
-    ``repr``, so that 2e-12 stays 2e-12 whichever side of it its binary value lies): 2.01e-12 -> 5e-12."""
+    """``value`` (> 0) rounded up to 1, 2 or 5 times a power of ten from its ``repr``, so that 2e-12 stays 2e-12."""
     printed = Decimal(repr(value))
     power = Decimal(1).scaleb(printed.adjusted())
     return float(next(step for step in STEPS if step >= printed / power) * power)
 
 
 def _decade_maxima(cycle: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """A staircase over the decades of cycles [1, 10], (10, 100], ... that hold a finite value: on each, the
-    largest of ``|values|`` (at least :data:`ERROR_FLOOR`) rounded up, from cycle 10**(k - 1) to 10**k clipped to
-    the cycles given, so that the steps join."""
+    """A staircase over the decades of cycles [1, 10], (10, 100], ... that hold a finite value: on each, the largest
+    of ``|values|`` (at least :data:`ERROR_FLOOR`) rounded up, over the decade clipped to the cycles given."""
     level = np.maximum(np.abs(values), ERROR_FLOOR)
     kept = np.isfinite(level)
     cycle, level = np.asarray(cycle)[kept].astype(np.int64), level[kept]
@@ -98,9 +92,7 @@ def _decade_maxima(cycle: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, n
 
 def long_run(ds: xr.Dataset, title: str | None = None) -> Figure:
     """The phase error (impact time minus the 50-digit reference, s) and the relative error of the velocity before
-    impact against the number of cycles, over the band of float64 spacing (reads ``drift_*``, ``error_velocity_*``,
-    ``fixed_point_period``, ``fixed_point_velocity``, ``F``, ``x0``, the attributes ``ivp_label`` and ``ivp_cycles``,
-    the cycles the integrator ran, which its legend states: beyond them it has no error to draw)."""
+    impact against the number of cycles, over the band of float64 spacing."""
     cycle = ds["cycle"].values
     v_star = float(ds["fixed_point_velocity"])
     # the band on a fine grid of cycles, so that its steps (where the impact time passes a power of two) are steps
@@ -142,8 +134,7 @@ def _cell_edges(centres: np.ndarray) -> np.ndarray:
 
 
 def _cells_path(mask: np.ndarray, x_edges: np.ndarray, y_edges: np.ndarray) -> Path | None:
-    """One path over the cells where ``mask`` (rows along y) holds: the runs of each row as rectangles,
-    consecutive rows with the same runs merged, so that a block of cells is one rectangle."""
+    """One path over the cells where ``mask`` (rows along y) holds, each block of cells one rectangle."""
     runs_of_rows = []
     for row in mask:
         change = np.flatnonzero(np.diff(np.concatenate([[False], row, [False]]).astype(np.int8)))
@@ -203,8 +194,7 @@ def stability_map(ds: xr.Dataset, title: str | None = None) -> Figure:
 
 
 def escapement_error(ds: xr.Dataset, title: str | None = None) -> Figure:
-    """The limit cycle's rate against its amplitude for each impulse zone, and its two parts: the
-    impacts' phase jumps dT1 and the impulse zones' dT2 (Airy's escapement error)."""
+    """The limit cycle's rate against its amplitude for each impulse zone, and its two parts, dT1 and dT2."""
     panels = (("rate", "the rate, both parts"), ("rate_impacts", "impacts, dT1, Eq. (24)"),
               ("rate_zones", "impulse, dT2, Eq. (25)"))
     with style():
@@ -238,8 +228,7 @@ A1, A2, A3, A4 = "a\u2081", "a\u2082", "a\u2083", "a\u2084"
 
 
 def existence_map(ds: xr.Dataset, title: str | None = None) -> Figure:
-    """Where the limit cycle of an asymmetric escapement exists over (a3, F), from simulation, with the
-    closed-form forces F* and F*' below which the map (16), read at a1 or at a3, has no fixed point."""
+    """Where the limit cycle of an asymmetric escapement exists over (a3, F), with the closed-form thresholds."""
     a3, F = ds["a3"].values, ds["F"].values
     outcome = ds["outcome"].values.T
     cycle = ds["converged"].values.T.astype(bool)

@@ -21,8 +21,7 @@ from .thinning import bound  # noqa: E402
 __all__ = ["ACCENT", "GUIDE", "INK", "MUTED", "NO_CYCLE", "POWER_LABELSIZE", "SERIES", "WIDTH", "legend_below",
            "power_ticks", "save_figure", "style", "suptitle"]
 
-#: the width every figure is drawn at (in): the article's text column, A4's 21 cm less its margins of 5.4 and
-#: 1.8 cm, so that the article prints each figure's text at the style sheet's sizes, none under 7 pt
+#: the width every figure is drawn at (in): the article's text column, A4's 21 cm less margins of 5.4 and 1.8 cm
 WIDTH = (21.0 - 5.4 - 1.8) / 2.54
 #: the size of a log axis' tick labels (pt): matplotlib's mathtext sets the exponent of 10\u207f at 0.7 of it, 7 pt
 POWER_LABELSIZE = 10
@@ -32,8 +31,7 @@ INK = "#1f4e79"
 ACCENT = "#c0392b"
 MUTED = "#b8b8b8"
 GUIDE = "#666666"
-#: fill of the cells of a map where no cycle exists, and of the rounding band: a light grey, in neither
-#: viridis nor magma
+#: fill of a map's cells where no cycle exists, and of the rounding band: a grey in neither viridis nor magma
 NO_CYCLE = "#dcdcdc"
 #: colours of up to four series of equal standing
 SERIES = (INK, ACCENT, "#d68910", GUIDE)
@@ -60,8 +58,7 @@ def power_ticks(fig) -> None:
 
 
 def legend_below(fig, axes, ncols: int, **kwargs):
-    """One legend for the whole figure, below its axes: every labelled artist of ``axes``, each label
-    once, in the order drawn; ``kwargs`` go to :meth:`matplotlib.figure.Figure.legend`."""
+    """One legend below the axes: every labelled artist of ``axes``, each label once, in the order drawn."""
     entries: dict[str, object] = {}
     for ax in np.ravel(axes):
         for handle, label in zip(*ax.get_legend_handles_labels()):
@@ -70,9 +67,8 @@ def legend_below(fig, axes, ncols: int, **kwargs):
 
 
 def save_figure(fig, png: str | os.PathLike, pdf: str | os.PathLike, svg: str | os.PathLike) -> None:
-    """Save as PNG, PDF and SVG (the article's vector figures) with no software stamp or creation date and the
-    SVG's ids salted alike, so that the same figure gives the same bytes on every run, each file written beside
-    its target and renamed into place; first thinned (:mod:`escapement.plotting.thinning`), as its legend then says."""
+    """Save as PNG, PDF and SVG, thinned first (:mod:`escapement.plotting.thinning`), with no software stamp or date
+    and the SVG's ids salted alike, so that the same figure gives the same bytes on every run."""
     with style(), matplotlib.rc_context({"svg.hashsalt": "escapement"}):
         bound(fig)
         with replaced(png) as tmp:

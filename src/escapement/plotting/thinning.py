@@ -1,20 +1,14 @@
-"""The one rule that bounds what a figure draws, whatever the length of the run, applied to the laid-out figure
-just before it is saved (:func:`escapement.plotting.save_figure`), which then says on the figure what was done:
+"""The rule that bounds what a figure draws, whatever the length of the run, applied just before it is saved
+(:func:`escapement.plotting.save_figure`), which then says on the figure what was done:
 
-* a line against increasing x (time, cycle number) of more than 4 samples per column of 1/:data:`COLUMN_DPI` inch
-  (print's resolution: 4 columns to each pixel of the 150-dpi PNG) is thinned by min/max decimation: of the
-  samples in each column the first, the last, the smallest and the largest are kept, in order, so that every
-  extreme is drawn and at most 4 samples a column remain;
-* any other artist of more than :data:`VECTOR_LIMIT` vertices (a phase-plane curve that retraces itself cycle
-  after cycle, a scatter of impacts, a map's cells) is drawn as a raster at the saved figure's dpi from every
-  vertex. Chosen over drawing the first and the last cycles whole and thinning the rest: the raster renders every
-  sample, so no cycle that strays is hidden, and it bounds the vector files by the axes' pixels, not by the run.
-  Measured on Fig. 5's kind over 5,000 cycles (6.1 million samples in three panels): SVG 283 kB and PDF 117 kB,
-  against 153 MB and 62 MB drawn as vectors; the PNG the same to the eye; the cost is Agg's, which renders each
-  sample in each of the three files (about 20 s of CPU) and holds about 130 bytes a vertex while it does.
+* a line against increasing x of more than 4 samples per column of 1/:data:`COLUMN_DPI` inch is thinned by min/max
+  decimation: each column keeps its first, last, smallest and largest samples, so that every extreme is drawn;
+* any other artist of more than :data:`VECTOR_LIMIT` vertices is drawn as a raster from every vertex, so that no
+  cycle that strays is hidden. Measured on Fig. 5's kind over 5,000 cycles (6.1 million samples): SVG 283 kB and
+  PDF 117 kB, against 153 MB and 62 MB as vectors, for about 20 s of CPU.
 
-Hand-written because matplotlib's path simplification merges only nearly collinear segments and never markers, so
-it bounds no noisy curve.
+Hand-written because matplotlib's path simplification merges only nearly collinear segments, so it bounds no noisy
+curve.
 """
 
 from __future__ import annotations
@@ -52,9 +46,8 @@ def decimate(column: np.ndarray, y: np.ndarray) -> np.ndarray:
 
 
 def _vertices(artist) -> tuple[int, int]:
-    """The vertices ``artist`` draws, and its weight against :data:`VECTOR_LIMIT`: a path of a collection, an
-    element of its own in the SVG (150 bytes a segment of ``vlines``, measured, 22 a vertex of a line), weighs 6
-    vertices more."""
+    """The vertices ``artist`` draws, and its weight against :data:`VECTOR_LIMIT`: a path of a collection, an SVG
+    element of its own (150 bytes a segment of ``vlines``, measured, against 22 a vertex of a line), weighs 6 more."""
     if isinstance(artist, Line2D):
         return len(artist.get_xdata()), len(artist.get_xdata())
     if isinstance(artist, Collection):
@@ -86,10 +79,8 @@ def _thin(ax, line: Line2D) -> int:
 
 
 def bound(fig: Figure) -> str | None:
-    """Thin and rasterize the artists of ``fig`` by the module's rule and say so (:func:`~.captions.thinning`) in
-    the title of the legend below its axes (one of no entries, if it had none); the words, None if nothing was. A
-    figure with no artist that could be is not laid out here, so that it is saved exactly as it was drawn. Call
-    within the style (:func:`~.stylesheet.style`): a raster is drawn at its ``savefig.dpi``."""
+    """Thin and rasterize the artists of ``fig`` by the module's rule and say so in the title of the legend below its
+    axes; the words, None if nothing was. Call within the style: a raster is drawn at its ``savefig.dpi``."""
     widest = PER_COLUMN * COLUMN_DPI * fig.get_figwidth()  # a line of fewer samples has at most 4 a column
     many = []
     for ax in fig.axes:
