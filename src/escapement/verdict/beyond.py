@@ -2,11 +2,8 @@
 as a daily rate.
 
 Airy (1830): an impulse symmetric about the equilibrium leaves the period unchanged to first order; one before the
-equilibrium shortens it, one after lengthens it. Here the impulse is the force ``f`` over a zone (a, c); its effect
-on the period, ``dT2``, is the zone's time less the sine phase ``atan2(x, v/w)`` it advances over ``w`` (the
-corrected Eq. (25)), and to first order (derived on paper) ``f (sqrt(A^2 - a^2) - sqrt(A^2 - c^2)) / (w^3 A^2)`` on
-an arc of amplitude ``A`` (:func:`escapement.paper.corrected.first_order_zone_change`). The checks scene measures
-``dT2`` on one passage at a fixed amplitude (the runs of measure ``zone_shift`` of the checks dataset).
+equilibrium shortens it, one after lengthens it. Here ``dT2`` is the zone's time less the sine phase it advances
+(the corrected Eq. (25)), measured on one passage at a fixed amplitude (the runs of measure ``zone_shift``).
 """
 
 from __future__ import annotations

@@ -1,11 +1,7 @@
 """The paper's derivations, each checked on the printed formulas alone, without the simulation: an equation a
-sentence says it obtained from others ((11)-(15) by solving Appendix A's (A-1), (A-3), (A-5); (16) by substituting
-(10)-(14) into (15); (17) from (16) with a1 = -a3, a2 = -a4; (19) as the fixed point of (17); (20) as its derivative;
-(21) as (20) at (19); (22a)-(22d) by solving the equations of steps 1, 3, 4, 5) is recomputed from the printed
-equations it names and compared with the printed result, on the paper's Fig. 3 models and :data:`OTHERS`, at
-:data:`VELOCITIES`. Where the outcome depends on the convention the printed equations are read in (positions, force
-and half period of :data:`escapement.paper.conventions.AXES`; (14) takes (13)'s x4+ by name, so the velocity axis
-does not arise), it is one outcome per convention.
+sentence says it obtained from others ((11)-(15) from Appendix A, (16) from (10)-(15), (17)-(21) from the symmetric
+map, (22a)-(22d) from the steps' equations) is recomputed from them and compared with the printed result, on the
+Fig. 3 models and :data:`OTHERS` at :data:`VELOCITIES`; one outcome per convention where the outcome depends on it.
 """
 
 from __future__ import annotations

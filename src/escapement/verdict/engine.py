@@ -1,9 +1,5 @@
-"""The claims register evaluated: each of the paper's claims checked under every reading of its words.
-
-:func:`load_claims` reads the register; :func:`evaluate` runs each reading's check (:func:`resolved` from its name,
-``module.function``) and gives one row per claim. A scene or a run that left the escapement regime fails the
-reading with its outcome's message (:func:`left_regime`); a check that raises is a defect, never a verdict
-(:class:`ClaimError`, naming the claim).
+"""The claims register evaluated: each of the paper's claims checked under every reading of its words, one row
+per claim. A check that raises is a defect, never a verdict (:class:`ClaimError`, naming the claim).
 """
 
 from __future__ import annotations

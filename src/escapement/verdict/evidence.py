@@ -1,6 +1,5 @@
 """What every check reads and answers: the datasets (:class:`Evidence`), the verdict under one reading
-(:class:`Verdict`), a check's declaration (:func:`check`) with the scenes and runs it may declare, and the one way a
-check reads a run of the checks dataset, by its name in the configuration's checks block (:func:`run`).
+(:class:`Verdict`), a check's declaration (:func:`check`), and a run of the checks dataset by its name (:func:`run`).
 """
 
 from __future__ import annotations
@@ -58,11 +57,9 @@ def no_scene(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
 
 @dataclass(frozen=True)
 class Check:
-    """A check of the register (named ``module.function``) and what it declares: the ``scenes`` it reads, the args
-    that name the ``runs`` of the checks dataset it reads (each a run's name in the checks block, or a list of them),
-    the other ``args`` it needs, the model's ``law`` it restates, what it reads that was ``fitted`` to the printed
-    axes, the ``threshold`` on the claim's words (these give its kind of evidence, :func:`.rule.evidence_of`), and
-    the outcomes of its runs besides ``completed`` that are its ``answers``, not exits from the regime."""
+    """A check of the register and what it declares: the ``scenes`` it reads, the args that name its ``runs``, the
+    other ``args`` it needs, the ``law``, ``fitted`` input or ``threshold`` that give its kind of evidence
+    (:func:`.rule.evidence_of`), and the outcomes besides ``completed`` that are its ``answers``, not exits."""
 
     function: Callable[[Mapping, Evidence], Verdict]
     scenes: Scenes = no_scene
@@ -140,9 +137,8 @@ def names(claim: Mapping, arg: str) -> list[str]:
 
 
 def run(ev: Evidence, name: str) -> xr.Dataset:
-    """The runs the configuration's checks block names ``name``, on the dimension ``run``: a group of the table (its
-    rows), or runs of another measure (their variables without the prefix ``name_``, each run's model and settings
-    among them, as :func:`escapement.scenes.probes.named_runs` writes them)."""
+    """The runs the configuration's checks block names ``name``, on the dimension ``run``: a group of the table's
+    rows, or runs of another measure (their variables without the prefix ``name_``)."""
     checks, dim = ev.checks, f"{name}_run"
     if dim in checks.dims:
         found = checks[[key for key, variable in checks.data_vars.variables.items() if dim in variable.dims]]

@@ -1,11 +1,6 @@
-"""The axis claims: each printed panel of Figs. 3-5 against the pipeline's own outputs.
-
-With limits rounded out to the ticks, a printed axis's outermost tick labels are the rounded extent of the data, so
-an axis matches only when the values, autoscaled so with the printed tick step imposed, give exactly the printed
-limits. The readings the paper leaves open were fitted to these axes, so a match is only consistent; a claim holds
-when the best candidate reading of the grid (``Evidence.readings``) gives every printed limit, and the row names the
-readings tied at the best (those that plot the same values grouped) beside the adopted output's limits
-(``Evidence.axes``) and the printed ones (:mod:`escapement.paper.printed_axes`).
+"""The axis claims: each printed panel of Figs. 3-5 against the pipeline's own outputs. An axis matches when the
+values, autoscaled with the printed tick step imposed and limits rounded out to the ticks, give exactly the printed
+limits; the readings the paper leaves open were fitted to these axes, so a match is only consistent.
 """
 
 from __future__ import annotations

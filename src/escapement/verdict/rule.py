@@ -1,14 +1,8 @@
 """The words of the verdict and the one rule that gives them: statuses, kinds of evidence, origins, the columns of
 the claims table and how a number is written in it (:func:`fmt`).
 
-A row checks one part of one of the paper's sentences under each reading its words admit; its status and kind of
-evidence follow from its readings' outcomes and what its checks consume (:func:`row_status`), and a sentence, one
-finding, takes its status from its parts' (:func:`finding_status`, the only place a status is partial).
-
-A reading or threshold the project chose weighs both ways alike (:func:`weighed`): an agreement under it is only
-``consistent``, since the paper's words may not mean it, and a failure under it is only ``undetermined``, since the
-paper's words may mean another under which the claim holds; only a failure on evidence that rests on no such choice
-is ``not_reproduced``.
+A row's status follows from its readings' outcomes, weighed by what its checks consume (:func:`row_status`); a
+sentence, one finding, takes its status from its parts' (:func:`finding_status`, the only place a status is partial).
 """
 
 from __future__ import annotations

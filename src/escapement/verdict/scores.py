@@ -1,6 +1,5 @@
 """The score table of the readings of the printed axes (written by :mod:`escapement.pipeline.readings`), read back
-and summarised per panel: every reading tied at the best score, readings that plot the same values grouped as
-equivalent. Imports neither the solvers nor matplotlib.
+and summarised per panel: the readings tied at the best score, those that plot the same values grouped.
 """
 
 from __future__ import annotations
@@ -15,9 +14,7 @@ from ..paper.printed_axes import PANELS
 __all__ = ["CLAIM_AUTOSCALE", "COLUMNS", "DEFAULT_LOCATOR", "PRINTED_STEP", "TICKS", "Candidates",
            "best_readings_table", "joint_candidates", "panel_candidates", "read_scores", "summary"]
 
-#: the score table's columns: ``ticks`` says whether the printed tick step was imposed or the plotting
-#: program chose its own (``tick_step`` is the step the axis ended with); ``same_values_as`` names the
-#: first reading of the panel whose plotted values are identical (to rounding) to this one's
+#: the score table's columns (``same_values_as``: the panel's first reading that plots the same values)
 COLUMNS = ["figure", "panel", "axis", "reading", "outcome", "autoscale", "ticks", "data_min", "data_max", "low",
            "high", "tick_step", "printed_low", "printed_high", "step", "matches", "same_values_as"]
 _NUMBERS = ("data_min", "data_max", "low", "high", "tick_step", "printed_low", "printed_high", "step")
@@ -28,16 +25,14 @@ PRINTED_STEP = "printed step"
 DEFAULT_LOCATOR = "default locator"
 TICKS = (PRINTED_STEP, DEFAULT_LOCATOR)
 
-#: the autoscaling the axis claims use: limits rounded out to the printed ticks, no margin (the
-#: behaviour of MATLAB's automatic limits, in which the paper's figures appear to be drawn)
+#: the autoscaling the axis claims use: limits rounded out to the ticks, no margin (MATLAB's automatic limits)
 CLAIM_AUTOSCALE = "round, margin 0"
 
 
 @dataclass(frozen=True)
 class Candidates:
-    """Every candidate reading of one printed panel: per reading, the printed limits its values reproduce when
-    autoscaled with the printed tick step imposed (``scores``) or the plotting program's own (``default_scores``);
-    ``equivalent`` groups readings that plot the same values, which no axis can tell apart."""
+    """Every candidate reading of one printed panel: per reading, the printed limits it reproduces with the printed
+    tick step imposed (``scores``) or the default one (``default_scores``); ``equivalent`` plot the same values."""
 
     out_of: int
     scores: Mapping[str, int]
@@ -45,8 +40,7 @@ class Candidates:
     equivalent: tuple[tuple[str, ...], ...] = ()
 
     def tied(self) -> tuple[int, list[tuple[str, ...]]]:
-        """The best score (the printed tick step imposed) and the readings tied at it, in groups of equivalent
-        readings, in the order of the scores: more than one group, and the axes cannot tell the readings apart."""
+        """The best score and the readings tied at it, in groups of equivalent readings, in the order of the scores."""
         if not self.scores:
             raise ValueError("the grid of candidate readings holds no score")
         best = max(self.scores.values())
@@ -57,8 +51,7 @@ class Candidates:
 
 
 def read_scores(path: str) -> list[dict]:
-    """The score table written by :func:`escapement.pipeline.readings.score_readings`, checked whole
-    (:func:`escapement.io.netcdf.read_csv`), its numbers parsed."""
+    """The score table of :func:`escapement.pipeline.readings.score_readings`, checked whole, its numbers parsed."""
     rows = read_csv(path, COLUMNS)
     for row in rows:
         row.update({name: float(row[name]) for name in _NUMBERS}, matches=int(row["matches"]))
@@ -67,8 +60,6 @@ def read_scores(path: str) -> list[dict]:
 
 def _panel_scores(rows: Iterable[Mapping], autoscale: str) -> dict[tuple[str, str], dict]:
     """Per panel (in the order met): the scored axes, and per tick mode the limits each reading matches."""
-    if not isinstance(autoscale, str):
-        raise ValueError(f"autoscale = {autoscale!r} must be the name of an autoscaling variant")
     found: dict[tuple[str, str], dict] = {}
     for row in rows:
         if row["autoscale"] != autoscale:

@@ -1,8 +1,6 @@
 """The headline of the verdict: the paper's quoted words counted as findings, read from the claims table alone.
-
-Each quote of the paper in the register (a sentence, an equation with the words that introduce it, or a figure's axis
-title or caption) is one finding, however many rows (its parts, which share its ``finding``) check it, with the
-status :func:`escapement.verdict.rule.finding_status` gives; rows beyond the paper are not findings.
+Each quote (a sentence, an equation with its words, an axis title or caption) is one finding however many rows
+(its parts) check it; rows beyond the paper are not findings.
 """
 
 from __future__ import annotations
