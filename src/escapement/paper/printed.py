@@ -1,10 +1,9 @@
 """The paper's closed forms, as printed (Mao, Fu & Li 2013, Sec. 3.3-3.4).
 
 Each function reproduces one equation as it reads in the paper, ``a1 .. a4`` taken as signed positions
-(``a1 < 0 < a3``); where the text is garbled, the docstring states the reading. Whether each holds is decided
-against the exact solver and recorded in REPLICATION.md; the corrected forms are :mod:`escapement.paper.corrected`.
-Notation: ``v1`` the velocity just before the impact at a1 (``xdot_1(k)``), ``v1p = (1 - b) v1`` just after it;
-``v2`` the velocity at a2; ``v4`` before the impact at a3, ``v4p`` after it; ``v5`` the velocity at a4.
+(``a1 < 0 < a3``); where the text is garbled, the docstring states the reading. Notation: ``v1`` the velocity
+just before the impact at a1 (``xdot_1(k)``), ``v1p = (1 - b) v1`` just after it; ``v2`` the velocity at a2; ``v4``
+before the impact at a3, ``v4p`` after it; ``v5`` the velocity at a4.
 """
 
 from __future__ import annotations
@@ -23,9 +22,8 @@ __all__ = ["Symbols", "symbols_of", "v5_14", "zone_left_time_22e", "period_terms
 
 @dataclass(frozen=True)
 class Symbols:
-    """The numbers put in for a printed formula's symbols: the positions ``a1`` .. ``a4`` (m), the force per unit
-    mass ``f`` (m s-2) and ``w`` (rad/s); unchecked, as a convention of the paper may put in magnitudes, a mirrored
-    position or ``-f`` (:mod:`escapement.paper.conventions`)."""
+    """The numbers put in for a printed formula's symbols: ``a1`` .. ``a4`` (m), ``f`` (m s-2) and ``w`` (rad/s);
+    unchecked, as a convention of the paper may put in magnitudes or ``-f`` (:mod:`escapement.paper.conventions`)."""
 
     a1: float
     a2: float
@@ -61,11 +59,8 @@ def zone_left_time_22e(v4p: float, s: Symbols) -> float:
 
 
 def period_terms_23(velocities: dict[str, float], s: Symbols) -> dict[str, float]:
-    """The terms of Eq. (23) as printed, over ``w`` and grouped by the step whose time they give:
-    ``zone_right``: ``acos((c - a2)/R1) - acos((c - a1)/R1)``; ``a2_to_a3``: ``acos(a2/h2) + acos(a3/h2)``;
-    ``zone_left``: ``acos((c + a4)/R3) - acos((c + a3)/R3)``; ``a4_to_a1``: ``acos(a4/h5) + acos(a1/h5)``;
-    ``R1 = |(a1 - c, v1p/w)|``, ``h2 = |(a2, v2/w)|``, ``R3 = |(a3 + c, v4p/w)|``, ``h5 = |(a4, v5/w)|``.
-    ``velocities`` holds ``v1p``, ``v2``, ``v4p`` and ``v5`` (m/s)."""
+    """The terms of Eq. (23) as printed, over ``w``, grouped by the step whose time they give, from ``velocities``
+    ``v1p``, ``v2``, ``v4p`` and ``v5`` (m/s)."""
     w, c = s.w, s.c
     r1 = math.hypot(s.a1 - c, velocities["v1p"] / w)
     h2 = math.hypot(s.a2, velocities["v2"] / w)
@@ -91,9 +86,7 @@ def phase_jump_24_closed(v: float, b: float, s: Symbols) -> float:
 
 
 def zone_change_25(v1p: float, s: Symbols) -> float:
-    """Eq. (25) as printed, with ``v1p`` the velocity entering the zone (the paper's ``x1+``):
-    ``(1/w)[acos((c - a2)/R1) - acos((c - a1)/R1)]
-    - (1/w)[atan(sqrt((v1p/w)^2 + a1^2 - a2^2 - 2 (a1 - a2) f / w^2) / a2) - atan(v1p / (a1 w))]``."""
+    """Eq. (25) as printed, with ``v1p`` the velocity entering the zone (the paper's ``x1+``)."""
     w, c = s.w, s.c
     r1 = math.hypot(s.a1 - c, v1p / w)
     zone_time = (_acos((c - s.a2) / r1) - _acos((c - s.a1) / r1)) / w
@@ -171,13 +164,11 @@ def step_times_22(v1: float, p: Parameters, left_amplitude: float) -> dict[str, 
     * (22b) ``t2 - t1 = [atan(v1p / (w (a1 - f/w^2))) + acos((f/w^2 - a2) / R1)] / w``
     * (22c) ``t3 - t2 = atan(v2 / (w a2)) / w``
     * (22d) ``t4 - t3 = acos(a3 / sqrt(a2^2 + (v2/w)^2)) / w``
-    * (22e) ``t5 - t4 = [atan(v4p / (w (a3 + f/w^2))) - acos((a4 + f/w^2) / h3)] / w``
+    * (22e) :func:`zone_left_time_22e`
 
-    with ``R1 = sqrt((v1p/w)^2 + (a1 - f/w^2)^2)``, ``h3 = sqrt((a3 + f/w^2)^2 + (v4p/w)^2)``.
+    with ``R1 = sqrt((v1p/w)^2 + (a1 - f/w^2)^2)``.
     """
-    w = p.omega
-    c = p.zone_offset
-    vel = cycle_velocities(v1, p)
+    w, c, vel = p.omega, p.zone_offset, cycle_velocities(v1, p)
     v1p, v2, v4p = vel["v1p"], vel["v2"], vel["v4p"]
     r1 = math.hypot(v1p / w, p.a1 - c)
     return {
@@ -190,7 +181,6 @@ def step_times_22(v1: float, p: Parameters, left_amplitude: float) -> dict[str, 
 
 
 def period_23(v1: float, p: Parameters) -> float:
-    """Eq. (23) as printed: the period of the cycle that starts with ``v1`` at a1, the sum of
-    :func:`period_terms_23` with signed ``a1`` .. ``a4`` and the velocities from the energy balance."""
+    """Eq. (23) as printed: the period of the cycle from ``v1`` at a1, the velocities from the energy balance."""
     return math.fsum(period_terms_23(cycle_velocities(v1, p), symbols_of(p)).values())
 
