@@ -1,12 +1,8 @@
 """The paper's printed formulas under each convention the paper itself uses, against the simulation.
 
-The paper mixes conventions: Sec. 4 gives the positions as magnitudes ("a1 = 0.1 m"), Eqs. (9)-(22a) as signed
-positions (``-a1`` in (22a)); Eq. (2) writes the force as ``sigma f``, ``sigma = -1`` in the second half period;
-the second half period mirrors the first (``x -> -x``, ``a1 <-> a3``, ``a2 <-> a4``); a formula may take the
-velocity before or after an impact. Each combination (:data:`AXES`) is a reading of a printed formula like any
-other: a check evaluates the formula under every reading its symbols vary under (:func:`try_readings`) and the rule
-(:mod:`escapement.verdict.rule`) decides, reproduced under all, undetermined when they disagree, not reproduced under
-none. The checks: :mod:`escapement.verdict.sec3_steps` (Eq. (14)), :mod:`escapement.verdict.sec3_period` ((22e)-(25)).
+The paper mixes conventions (:data:`AXES`): positions as magnitudes (Sec. 4) or signed (Eqs. (9)-(22a)), the force
+``f`` or ``sigma f`` (Eq. (2)), the second half period as written or as the mirror of the first, and the velocity
+after or before an impact. Each combination is a reading of a printed formula, evaluated by :func:`try_readings`.
 """
 
 from __future__ import annotations
@@ -63,10 +59,8 @@ def readings(axes: tuple[str, ...]) -> list[Reading]:
 
 
 def symbols(p: Parameters, reading: Reading, second_half: bool) -> tuple[pe.Symbols, float]:
-    """The numbers for a printed formula's symbols under ``reading``, and the sign its velocities take. On a
-    formula of the second half period (``second_half``), ``sigma f`` puts in ``-f`` and ``mirrored`` the mirror
-    image ``x -> -x`` (every position and velocity changes sign; the force, which pushes the leftward motion, pushes
-    the mirrored one rightward: ``+f``); ``magnitudes`` then puts in ``|a1|`` .. ``|a4|``."""
+    """The numbers for a printed formula's symbols under ``reading``, and the sign its velocities take. In the
+    ``second_half``, ``mirrored`` is the image ``x -> -x`` (positions and velocities change sign, not the force)."""
     if not isinstance(second_half, bool):
         raise ValueError(f"second_half = {second_half!r} must be True or False")
     positions = [p.a1, p.a2, p.a3, p.a4]

@@ -1,10 +1,8 @@
 """The axes of the paper's Figs. 3-5 as printed: their tick labels, limits and tick steps.
 
-The figures survive in the paper's text only as their tick labels, one or a few to a line, in the order the text
-extraction met them (:data:`TICK_LINES`, keyed by the line number of the paper's plain text, 1-based); each axis
-lists its tick labels as printed, low to high, and the lines that show them. The limits are the outermost labels:
-automatic limits rounded out to ticks (MATLAB's default, matplotlib's ``round_numbers``) end on a labelled tick.
-Where the text leaves a choice:
+The figures survive in the paper's text only as their tick labels (:data:`TICK_LINES`, by line of its plain text);
+each axis lists its labels low to high and the lines that show them. The limits are the outermost labels: automatic
+limits rounded out to ticks (MATLAB's default) end on a labelled tick. Where the text leaves a choice:
 
 * Fig. 3: the eighteen period labels (lines 297-319 and 347-367) split into two evenly spaced axes in one way only:
   the odd ten-thousandths (6.2833, 6.2831, 6.2829, 6.2827) need a step of 0.0001, whose axis then holds 6.2828,
@@ -14,7 +12,6 @@ Where the text leaves a choice:
 * Fig. 4: which time axis (80-87 s, 81-85 s) goes with which value axis the text shows only by the order of the
   axis titles: the velocity window is taken as 80-87 s. The time axes are the windows themselves, so their limits
   test no reading (``scored=False``).
-* Fig. 5: line 515 (``1009``) is the page number.
 """
 
 from __future__ import annotations
@@ -52,8 +49,7 @@ TICK_LINES: dict[int, str] = {
 
 
 def limits_match(low: float, high: float, printed_low: float, printed_high: float, step: float) -> int:
-    """How many of the two limits equal the printed ones (to a billionth of the tick step, the rounding of a
-    multiple of the step in floating point)."""
+    """How many of the two limits equal the printed ones (to a billionth of the tick step)."""
     pairs = ((low, printed_low), (high, printed_high))
     return sum(math.isclose(a, b, rel_tol=0.0, abs_tol=1e-9 * step) for a, b in pairs)
 

@@ -14,9 +14,7 @@ from .evidence import Evidence, Verdict, check, events_of, fig3_scenes, fmt, par
 
 def phase_shares(ds: xr.Dataset) -> dict[str, float]:
     """The last cycle's period split by the sine phase ``atan2(x, v/w)`` of its simulated events, which free flight
-    advances at ``w``: ``T = 2 pi/w + impacts + impulses + drift``, the phase the two impacts step back, each zone's
-    time less its phase advance, and the phase the cycle's end lacks from its start (each over ``w``); ``residual``
-    is the simulated period less that sum."""
+    advances at ``w``: ``T = 2 pi/w + impacts + impulses + drift``; ``residual`` is the simulated period less that."""
     p, w = params_of(ds), params_of(ds).omega
     t, x, before, after = (ds[f"event_{k}"].values for k in ("time", "position", "velocity_before", "velocity_after"))
     start = events_of(ds, EventKind.IMPACT_A1)[-2]

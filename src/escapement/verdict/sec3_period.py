@@ -1,6 +1,5 @@
 """The checks of the period formulas, Eqs. (22)-(25), against the simulated step durations and periods of Fig. 3;
-(22e)-(25) under each convention of the paper (:mod:`escapement.paper.conventions`), a grid of readings, one equation
-read in one convention for all its forms.
+(22e)-(25) under each convention of the paper, one equation read in one convention for all its forms.
 """
 
 from __future__ import annotations
@@ -88,10 +87,9 @@ def eq23(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes, args=("case", "form"))
 def eq24(claim, ev: Evidence) -> Verdict:
-    """Eq. (24) at the last cycle, in one convention for the whole equation (x1+ the velocity after the impact, as
-    Eq. (10) defines it; the positions signed or Sec. 4's magnitudes, alike in both forms), against the jump of the
-    sine phase across the simulated impact (:func:`escapement.paper.corrected.impact_phase_jump`): under each
-    convention of the positions, ``form: first`` holds where the first form reproduces it, ``second`` where both do."""
+    """Eq. (24) at the last cycle, x1+ the velocity after the impact (Eq. (10)), against the jump of the sine phase
+    across the simulated impact: per convention of the positions, ``form: first`` holds where the first form
+    reproduces it, ``second`` where both do."""
     form = claim["args"]["form"]
     if form not in ("first", "second"):
         raise ValueError(f"form = {form!r} must be first or second")

@@ -1,6 +1,5 @@
-"""The checks of the step equations (10)-(15) as printed, each fed the simulated state before its step (the
-squares the text garbles into "2 2 2 2" read so that each step is an energy balance), and of Eq. (14) under each
-convention of the paper, a grid of readings (:func:`conventions_verdict`, also used by :mod:`.sec3_period`).
+"""The checks of the step equations (10)-(15) as printed, each fed the simulated state before its step, and of
+Eq. (14) under each convention of the paper, a grid of readings (:func:`conventions_verdict`).
 """
 
 from __future__ import annotations

@@ -1,6 +1,5 @@
-"""The checks of Sec. 4 on Fig. 5, the spring-constant sweep: the amplitude, velocity, recovery and size of the
-limit cycles compared between spring constants at one common force (the panels, at different forces, are not
-compared with each other), and the impact shown in each panel.
+"""The checks of Sec. 4 on Fig. 5, the spring-constant sweep: the limit cycles compared between spring constants at
+one common force (the panels, at different forces, are not compared), and the impact shown in each panel.
 """
 
 from __future__ import annotations
