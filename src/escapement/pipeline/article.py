@@ -1,6 +1,5 @@
 """The replication as a ReScience C article, written by the run: ``metadata.yaml`` in the journal's fields, and
-``article.typ`` from ``workflow/templates/article.typ``, typeset by Typst (no TeX) to ``article.pdf``, PDF/A-2b.
-Its numbers are read from datasets and typed columns and formatted once here; the claims table gives the statuses.
+``article.typ`` from ``workflow/templates/article.typ``, typeset by Typst to ``article.pdf``, PDF/A-2b.
 """
 
 from __future__ import annotations
@@ -58,8 +57,7 @@ def keywords(citation: Mapping) -> list[str]:
 
 
 def metadata(citation: Mapping, title: str, abstract: str) -> dict:
-    """The article's ``metadata.yaml`` in ReScience C's field names: the authors as ``CITATION.cff`` names them
-    (placeholders stay placeholders), its code url and doi, and the original's citation."""
+    """The article's ``metadata.yaml`` in ReScience C's field names, from ``CITATION.cff`` (placeholders stay so)."""
     original = next(r for r in citation["references"] if r.get("doi"))
     names = ", ".join(f"{a['given-names'][0]}. {a['family-names']}" for a in original["authors"])
     cite = (f"{names}, \"{original['title']}\", {original['journal']} {original['volume']} ({original['year']}) "
@@ -96,9 +94,8 @@ def _value(paper: float, run: float, status: str = "—") -> dict:
 
 
 def _equations(rows: Mapping[str, Mapping], path: str) -> dict[str, dict]:
-    """Eqs. (22e), (23) and (25) as printed (the claims table's reading) and corrected, evaluated on the last cycle
-    of ``path`` (a Fig. 3 case) against that cycle's simulated times; (22e) is written out here as the article prints
-    it, since the model's closed forms give that time only inside the whole period."""
+    """Eqs. (22e), (23) and (25) as printed and corrected, on the last cycle of ``path`` (a Fig. 3 case) against its
+    simulated times; (22e) written out here, since the model's closed forms give that time only inside the period."""
     v = read_variables(path, ("event_time", "event_kind", "velocity_before_impact", "period", *MODEL_KEYS))
     p, v1, period = Parameters(**{k: float(v[k]) for k in MODEL_KEYS}), *(float(v[k][-1]) for k in (
         "velocity_before_impact", "period"))
@@ -114,8 +111,7 @@ def _equations(rows: Mapping[str, Mapping], path: str) -> dict[str, dict]:
 
 
 def _axes(rows: Sequence[Mapping], limits: Sequence[Mapping]) -> str:
-    """Each axis claim as Typst cells: the printed limits and the run's it judged (each scored axis), how many of
-    them agree, its status."""
+    """Each axis claim as Typst cells: the printed limits and the run's, how many of them agree, its status."""
     claim, judged = {r["claim_id"]: r for r in rows}, {}
     for row in limits:
         axis = panel(row["figure"], row["panel"]).axes[row["axis"]]
@@ -130,8 +126,8 @@ def _axes(rows: Sequence[Mapping], limits: Sequence[Mapping]) -> str:
 
 
 def _readings(scores: Sequence[Mapping]) -> tuple[str, dict[str, str]]:
-    """Per printed panel (and Fig. 4's two together) as Typst cells: the best score, how many readings tie at it
-    and, where they plot different values, only the words in which they differ; and the tie in words by panel."""
+    """Per printed panel (and Fig. 4's two together) as Typst cells: the best score, how many readings tie at it and
+    only the words in which they differ; and the tie in words by panel."""
     candidates = panel_candidates(scores)
     if any(figure == "4" for figure, _ in candidates):
         candidates[("4", "both panels")] = joint_candidates(scores, "4")
@@ -164,9 +160,8 @@ def _register(rows: Sequence[Mapping]) -> str:
 
 def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[str, str], log: str,
                   config: Mapping) -> str:
-    """The job of rule ``render_article``: the ``metadata``, ``source``, ``bibliography`` and ``pdf`` of ``outputs``,
-    and under ``figures/`` beside the source the figures it includes, from the rule's ``inputs`` and the
-    replication's ``config``. Returns the title."""
+    """The job of rule ``render_article``: the ``metadata``, ``source``, ``bibliography`` and ``pdf`` of ``outputs``
+    and the figures it includes; the title."""
     import typst
 
     with logged(log, "render_article") as logger:

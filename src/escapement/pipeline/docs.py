@@ -1,7 +1,6 @@
 """The documents' job (:func:`render_docs`): README.md, REPLICATION.md and timings.md from their templates, and the
-report's HTML (a landing text short enough for the box of the window's height Snakemake centres it in, the claims
-register and REPLICATION.md). The Markdown tables are written here rather than by pandas: ``to_markdown`` pads every
-cell to its column's width, so one cell that grows would rewrite every line of a tracked table."""
+report's HTML. The Markdown tables are written here rather than by pandas: ``to_markdown`` pads every cell to its
+column's width, so one cell that grows would rewrite every line of a tracked table."""
 
 from __future__ import annotations
 
@@ -67,8 +66,7 @@ def words(count: int) -> str:
 
 
 def panels(values: float | Sequence[float], unit: str, count: int, joiner: str = ", ") -> str:
-    """A setting of Fig. 5 (one number for every panel, or a list of one per panel) in words, panels of one value
-    together: ``1 N in panel (a), 0.5 N in (b) and (c)``, or ``1 N`` for all."""
+    """A setting of Fig. 5 (one number, or one per panel) in words: ``1 N in panel (a), 0.5 N in (b) and (c)``."""
     values = list(values) if isinstance(values, Sequence) else [values] * count
     groups = [(value, [f"({chr(97 + i)})" for i, _ in run])
               for value, run in itertools.groupby(enumerate(values), key=lambda item: item[1])]
@@ -79,9 +77,8 @@ def panels(values: float | Sequence[float], unit: str, count: int, joiner: str =
 
 
 def fill(template: str, template_name: str, names: Mapping) -> str:
-    """``template`` filled with ``names`` and the filters that print the configuration's values (``num``, ``power``,
-    ``series``, ``panels``; hand-written: Python's formats print neither − nor 10⁶), a count in words (``words``) and
-    the run's values (``fmt``); an unknown name or a malformed placeholder is an error naming the template."""
+    """``template`` filled with ``names`` and the filters above (hand-written: Python's formats print neither − nor
+    10⁶) and ``fmt``; an unknown name or a malformed placeholder is an error naming the template."""
     environment = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=True, autoescape=False)
     environment.filters.update(num=number, power=power, series=series, panels=panels, words=words, fmt=fmt)
     try:
@@ -127,7 +124,7 @@ def _stress_sentence(stress: Sequence[Mapping]) -> str:
 
 
 def landing_html(claims: Sequence[Mapping], stress: Sequence[Mapping]) -> str:
-    """The landing text, short enough for a window 800 px high: the counts (paragraph id ``headline``), the stress."""
+    """The landing text, short enough for a window 800 px high: the counts, then the stress cases."""
     return (f'<p id="headline"><strong>The verdict.</strong> {html.escape(headline(claims), quote=False)}</p>\n'
             + _stress_sentence(stress) + "\n")
 
@@ -166,9 +163,8 @@ def html_document(title: str, body: str) -> str:
 def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: xr.Dataset,
                   long_run_timings: dict[str, float], stability_timings: dict[str, float]
                   ) -> tuple[dict[str, str], dict[str, str]]:
-    """The numbers the documents cite, by their name in the templates: deterministic facts (an error against 50
-    digits, a multiplier), which the tracked documents may show, and measured ones (wall times and their ratios, which
-    vary from run to run and machine to machine), read from the timing tables only and shown only in timings.md."""
+    """The numbers the documents cite, by their name in the templates: deterministic facts, which the tracked
+    documents may show, and measured ones (wall times and their ratios), shown only in timings.md."""
     facts, measured = {}, {}
     exact = next(float(row["wall_s"]) for row in benchmark_rows if row["method"] == "exact")
     for row in benchmark_rows:
@@ -200,14 +196,10 @@ def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: x
 
 
 def run_values(scores: Sequence[Mapping], checks: Mapping, fig3: Mapping[str, xr.Dataset]) -> dict:
-    """The run's values the documents cite beside the claims table: ``score`` per printed panel of the readings
-    (``"3 a/velocity"``, ``"4 both panels"``: its best score, out of how many limits, the best with the default
-    locator, the groups of readings tied at it), ``total`` per figure (and its panels that the default locator
-    leaves ``short`` of their limits or not), ``highs`` per scored axis and tick mode (``"3 a/amplitude y printed
-    step"``: the upper limits its readings reach; ``best_highs``, of those tied at the best score with the printed
-    step) and the readings' ``margins`` (%); ``first_velocity`` of the checks' first swings by label; per Fig. 3
-    case its last velocity's relative distance from Eq. (19) (``transient``), its last amplitude, and Eq. (19) with
-    a2 and with −a2; the grids of readings that are constants of the code."""
+    """The run's values the documents cite beside the claims table: per printed panel of the readings its ``score``
+    (``"3 a/velocity"``, ``"4 both panels"``), per figure its ``total``, per scored axis and tick mode the upper
+    limits the readings reach (``highs``; ``best_highs`` of those tied at the best), the checks' first swings, per
+    Fig. 3 case its transient, amplitude and Eq. (19) with a2 and with −a2, and the grids of readings."""
     candidates = {f"{figure} {name}": c for (figure, name), c in panel_candidates(scores).items()}
     candidates["4 both panels"] = joint_candidates(scores, "4")
     score = {key: {"best": c.tied()[0], "ties": len(c.tied()[1]), "out_of": c.out_of,
@@ -242,11 +234,9 @@ def run_values(scores: Sequence[Mapping], checks: Mapping, fig3: Mapping[str, xr
 
 def render(template: str, template_name: str, rows: Sequence[Mapping], facts: Mapping[str, str],
            tables: Mapping[str, str], config: Mapping, run: Mapping | None = None) -> str:
-    """``template`` rendered, after the comment that says the file is generated from ``template_name``. Its
-    names: ``claims_table`` and ``headline`` (of the rows), ``statuses`` (each status with its meaning),
+    """``template`` rendered after the comment that says it is generated from ``template_name``; its names include
     ``claim.<claim_id>.<column>`` (a cell of the claims table), ``verdict.<claim_id>`` (a status in words),
-    ``fact.<name>`` (:func:`collect_facts`), ``table.<name>``, ``config`` (the replication's configuration, printed
-    by the filters of :func:`fill`) and ``run`` (:func:`run_values`)."""
+    ``fact.<name>`` (:func:`collect_facts`) and ``run`` (:func:`run_values`)."""
     names = {"claims_table": claims_table(rows), "headline": headline(rows), "fact": dict(facts), "table": dict(tables),
              "config": config, "run": dict(run or {}), "statuses": STATUSES,
              "verdict": {r["claim_id"]: r["status"].replace("_", " ") for r in rows},
@@ -256,9 +246,7 @@ def render(template: str, template_name: str, rows: Sequence[Mapping], facts: Ma
 
 def render_docs(inputs: Mapping[str, str], outputs: Mapping[str, str], log: str, config: Mapping) -> None:
     """The job of rule ``render_docs``: the templates ``readme``, ``replication`` (deterministic facts only: publish
-    compares them with the tracked documents) and ``timings`` rendered, with the replication's ``config``, to the
-    outputs of those names, and the report's ``landing`` text, the claims register (``verdict``) and REPLICATION.md
-    (``replication_html``) as HTML."""
+    compares them) and ``timings`` rendered to the outputs of those names, and the report's pages as HTML."""
     with logged(log, "render_docs"):
         rows, stress = read_claims(inputs["claims"]), read_csv(inputs["stress"], STRESS_COLUMNS)
         facts, measured = collect_facts(

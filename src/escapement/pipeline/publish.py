@@ -1,22 +1,11 @@
-"""The tracked figures and documents, and the one step that updates them: copied from ``results/replication/``
-where what they show changed, compared by a stated tolerance.
+"""The tracked figures and documents, and the one step that updates them (``snakemake --cores 2 publish``): copied
+from ``results/replication/`` where what they show changed; ``python -m escapement.pipeline.publish --check`` says
+whether every tracked file shows what the run shows. Both compare by :func:`compare`: a PNG with matplotlib's
+``compare_images`` within an RMS of :data:`FIGURE_RMS_TOLERANCE`, a PDF by its source (rasterising one needs
+Ghostscript), a document by its text and its numbers at their printed digits (``1.30e-14`` is ``1.3e-14``).
 
-The workflow's default run writes only under ``results/``; ``snakemake --cores 2 publish`` runs :func:`publish`,
-and ``python -m escapement.pipeline.publish --check`` (CI, after a run on another CPU's kernels) says whether
-every tracked file shows what the run shows (:func:`check`). Both compare by one rule (:func:`compare`): a PNG
-figure as an image, with matplotlib's own comparison (``compare_images``, the one pytest-mpl uses), within an RMS
-difference of its pixels of :data:`FIGURE_RMS_TOLERANCE`; a PDF by its source (rasterising a PDF needs Ghostscript,
-which not every machine has); a document where its text is equal outside its numbers and each number equal at its
-printed digits (``1.30e-14`` and ``1.3e-14`` print the same number).
-
-Every file is judged whole before it is compared or kept (:func:`damage`): a damaged file drawn by the run is
-refused before anything is copied, a damaged tracked file is replaced (``--check`` names it). Each tracked file is
-written beside its target and renamed into place, so that a publish killed at any moment leaves it whole.
-
-Measured on the long-run figure when it drew every cycle's error: curves moved by 1e-6 (relative) give an RMS of
-0.002, by 1e-4 0.9, by 1 per cent 4.1; one character of the legend changed gives 1.6. Rounding that differs from
-one CPU or BLAS kernel to another moves a computed value by about 1e-16, which moves no curve by a visible
-fraction of a pixel and changes no printed digit.
+Measured on the long-run figure: curves moved by 1e-6 (relative) give an RMS of 0.002, by 1e-4 0.9; one character
+of the legend changed gives 1.6. Rounding that differs between CPUs moves a value by about 1e-16: no pixel, no digit.
 """
 
 from __future__ import annotations
@@ -38,8 +27,7 @@ __all__ = ["FIGURE_RMS_TOLERANCE", "PUBLISHED", "check", "compare", "damage", "m
 
 #: RMS pixel difference (of 255) within which a figure shows the same thing
 FIGURE_RMS_TOLERANCE = 0.1
-#: the tracked files, each with the file of results/ it is copied from (the work-precision figure is not among
-#: them: it is drawn from wall times, which vary from run to run)
+#: the tracked files, each with the file of results/ it is copied from (not the work-precision figure: wall times)
 PUBLISHED = {
     **{f"figures/{tracked}.{ext}": f"results/replication/figures/{drawn}.{ext}"
        for tracked, drawn in (("fig3", "poincare_map"), ("fig4", "shock_detail"), ("fig5", "phase_diagrams"),
@@ -77,9 +65,8 @@ def _pdf(data: bytes) -> str | None:
 
 
 def damage(path: Path) -> str | None:
-    """What makes ``path`` not a whole file of its kind, or None if it is whole: a PNG must decode fully and end
-    with its IEND chunk, a PDF hold its header, end marker and cross-reference offset, an SVG parse as XML, any
-    other file decode as UTF-8 text."""
+    """What makes ``path`` not a whole file of its kind, or None: a PNG must decode and end with IEND, a PDF pass
+    :func:`_pdf`, an SVG parse as XML, any other file decode as UTF-8."""
     data = path.read_bytes()
     if path.suffix == ".png":
         from PIL import Image
@@ -126,10 +113,9 @@ def _document(old: str, new: str) -> tuple[bool, str]:
 
 
 def compare(tracked: str | Path, drawn: str | Path) -> tuple[bool, str]:
-    """Whether the tracked file shows what the newly drawn one shows, and the measured difference in words; a
-    PDF is judged by its source: a figure's by its PNG, the article's by its Typst source (its PDF carries the
-    run's date). A tracked file that is not whole differs (its detail begins with :data:`DAMAGED`); a drawn one
-    that is not whole is refused (:class:`OSError`, naming the command that draws it again)."""
+    """Whether the tracked file shows what the drawn one shows, and the difference in words; a PDF is judged by its
+    PNG, the article's by its Typst source. A damaged tracked file differs (:data:`DAMAGED`), a damaged drawn one is
+    refused."""
     tracked, drawn = Path(tracked), Path(drawn)
     if (flaw := damage(drawn)) is not None:
         raise OSError(f"{drawn}: {flaw}; draw it again with snakemake --cores 2 --forcerun {drawn}")
@@ -149,9 +135,8 @@ def compare(tracked: str | Path, drawn: str | Path) -> tuple[bool, str]:
 
 
 def publish(published: Mapping[str, str], log: str) -> None:
-    """Copy each drawn file of ``published`` (tracked path: drawn path) over its tracked one where they differ
-    beyond the tolerance or where the tracked one is damaged; say per file, in the log and on the console, what
-    was compared and the difference."""
+    """Copy each drawn file of ``published`` (tracked path: drawn path) over its tracked one where they differ or the
+    tracked one is damaged, saying per file what was compared and the difference."""
     from .logs import logged
 
     with logged(log, "publish") as logger:
