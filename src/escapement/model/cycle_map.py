@@ -17,8 +17,7 @@ __all__ = ["CycleMap", "cycle_map"]
 
 @dataclass(frozen=True)
 class CycleMap:
-    """The return map of the velocity before the impact at a1, linear in its square:
-    ``v_{k+1}**2 = mu v_k**2 + c`` (:func:`cycle_map` derives it)."""
+    """The return map ``v_{k+1}**2 = mu v_k**2 + c`` of the velocity before the impact at a1 (:func:`cycle_map`)."""
 
     mu: float  #: ``r**4``, the multiplier of ``v**2`` (``r = 1 - b``, the impact law's factor)
     c: float  #: the constant, m**2/s**2
@@ -37,11 +36,8 @@ class CycleMap:
         return math.sqrt(sq) if sq > 0.0 else math.nan
 
     def velocity_sq(self, v1: float, k: ArrayLike) -> np.ndarray:
-        """``v_k**2 = v***2 + (v1**2 - v***2) mu**(k-1)`` for the cycle numbers ``k`` (1 for the first).
-
-        ``mu**(k-1)`` as ``exp((k-1) ln mu)``, ``ln mu = 4 log1p(r - 1)``: the power of the rounded ``mu`` would
-        carry its rounding ``k - 1`` times (a relative ``4 (k-1) eps``, up to ``eps / (e b)`` of ``v**2`` on the
-        transient as ``b -> 0``), the exponential only that of ``(k-1) ln mu``."""
+        """``v_k**2 = v***2 + (v1**2 - v***2) mu**(k-1)`` for the cycle numbers ``k`` (1 for the first), the power as
+        ``exp((k-1) ln mu)``: a power of the rounded ``mu`` would carry its rounding ``k - 1`` times."""
         star = self.fixed_point_sq
         steps = np.asarray(k, dtype=float) - 1.0
         decay = np.exp(steps * self.log_mu) if math.isfinite(self.log_mu) else np.power(self.mu, steps)
@@ -51,11 +47,9 @@ class CycleMap:
 def cycle_map(params: Parameters) -> CycleMap:
     """The constants of the return map ``v_{k+1}**2 = mu v_k**2 + c`` for any geometry (``c`` in m**2/s**2).
 
-    A cycle runs from an impact at a1 through four harmonic arcs: a1 to a2 in the zone (a1, a2) (centre
-    ``+F/K``), a2 to a3 free, a3 to a4 in the zone (a4, a3) (centre ``-F/K``), a4 to a1 free. On an arc from
-    ``x`` to ``y`` about ``c`` energy gives ``v_y**2 = v_x**2 + w**2 (x - y)(x + y - 2 c)``, and each impact
-    multiplies ``v`` by the impact law's factor ``r = 1 - b`` (:func:`~escapement.model.automaton.impact_factor`).
-    With ``f = F/M`` and ``beta = r**2``:
+    Over the four arcs of a cycle (a1 to a2 about ``+F/K``, a2 to a3 free, a3 to a4 about ``-F/K``, a4 to a1 free)
+    energy gives ``v_y**2 = v_x**2 + w**2 (x - y)(x + y - 2 c)``, and each impact multiplies ``v`` by
+    ``r = 1 - b``. With ``f = F/M`` and ``beta = r**2``:
 
     * ``mu = beta**2``, ``1 - mu = (1 - r)(1 + r)(1 + r**2)`` (``1 - r`` is exact for ``r >= 1/2``: no
       cancellation as ``b -> 0``);

@@ -64,8 +64,7 @@ class EventLog:
     v_before : numpy.ndarray of float, shape (n,)
         Velocity just before each event, m/s.
     v_after : numpy.ndarray of float, shape (n,)
-        Velocity just after each event, m/s (the impact law ``v+ = (1 - b) v-`` at the impacts, the
-        velocity before at the ends of the impulse zones).
+        Velocity just after each event, m/s (``v+ = (1 - b) v-`` at an impact, ``v-`` at a zone's end).
 
     Examples
     --------
@@ -105,7 +104,6 @@ class EventLog:
         return np.flatnonzero(self.kind == int(kind))
 
 
-#: the event log's columns in tables and datasets, by the field of :class:`EventLog` each holds; their units and
-#: long names are those of :data:`escapement.model.quantities.VARIABLES`
+#: the event log's columns in tables and datasets by the field each holds (units and long names: ``VARIABLES``)
 EVENT_COLUMNS = {"t": "event_time", "kind": "event_kind", "x": "event_position", "v_before": "event_velocity_before",
                  "v_after": "event_velocity_after"}

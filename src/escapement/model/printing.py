@@ -28,8 +28,7 @@ def with_unit(text: str, unit: str) -> str:
 
 
 def exact(value: Numeric, unit: str = "") -> str:
-    """An input as it can be typed back: the shortest text that reads as the same double (Python's
-    ``repr``), without a trailing ``.0``, zero without a sign; with its unit."""
+    """An input as it can be typed back (Python's ``repr``, without a trailing ``.0``), with its unit."""
     text = repr(_unsigned_zero(value))
     return with_unit(text[:-2] if text.endswith(".0") else text, unit)
 
@@ -40,9 +39,8 @@ def _order(x: float, y: float) -> int:
 
 
 def texts(values: ArrayLike, digits: int = 6) -> list[str]:
-    """``values`` to ``digits`` significant digits, or to more where fewer would misstate how two of
-    them compare (two that differ printed alike, or in the wrong order); as typed back
-    (:func:`exact`) when 16 digits are not enough; zero without a sign."""
+    """``values`` to ``digits`` significant digits, or to more where fewer would misstate how two of them compare
+    (alike, or in the wrong order); as typed back (:func:`exact`) when 16 digits are not enough."""
     floats = [_unsigned_zero(v) for v in values]
     pairs = list(combinations(range(len(floats)), 2))
     for width in range(digits, _ALL_DIGITS):
@@ -54,9 +52,8 @@ def texts(values: ArrayLike, digits: int = 6) -> list[str]:
 
 
 def compared(value: Numeric, bounds: ArrayLike, digits: int = 12) -> str:
-    """A computed ``value`` beside the inputs ``bounds`` it is compared with (printed by :func:`exact`):
-    to ``digits`` significant digits, or to more where fewer would misstate how it compares with one
-    of them (printed as equal to a bound it is not, or on the wrong side of it)."""
+    """A computed ``value`` to ``digits`` significant digits, or to more where fewer would misstate how it compares
+    with one of the inputs ``bounds`` (printed by :func:`exact`)."""
     value, bounds = _unsigned_zero(value), [_unsigned_zero(b) for b in bounds]
     for width in range(digits, _ALL_DIGITS):
         text = f"{value:.{width}g}"
@@ -66,14 +63,12 @@ def compared(value: Numeric, bounds: ArrayLike, digits: int = 12) -> str:
 
 
 def number(value: Numeric, unit: str = "", digits: int = 6) -> str:
-    """A computed ``value`` to ``digits`` significant digits (an mpmath number as its nearest double),
-    zero without a sign, with its unit."""
+    """A computed ``value`` to ``digits`` significant digits, with its unit."""
     return with_unit(texts([value], digits)[0], unit)
 
 
 def span(values: ArrayLike, unit: str) -> str:
-    """The range of ``values`` (NaN ignored): ``lo .. hi unit``, one number if they agree; the two
-    with the digits that tell them apart."""
+    """The range of ``values`` (NaN ignored): ``lo .. hi unit`` with the digits that tell them apart, or one."""
     finite = np.asarray(values, dtype=float)
     finite = finite[~np.isnan(finite)]
     if not finite.size:

@@ -1,6 +1,5 @@
 """How a run ended, as a typed outcome instead of an exception, with the integer code written to files (fixed in
-:data:`CODES`, not taken from the members' order; CF ``flag_values`` and ``flag_meanings``: :func:`flag_attributes`).
-"""
+:data:`CODES`, not taken from the members' order) and its CF flags (:func:`flag_attributes`)."""
 
 from __future__ import annotations
 
@@ -18,8 +17,7 @@ class Status(str, Enum):
     Parameters
     ----------
     value : str
-        The name written in text (``"completed"``, ``"stopped"``, ...): ``Status("stopped")`` is
-        :attr:`STOPPED`; :meth:`from_code` looks a member up by its stored integer instead.
+        The name written in text: ``Status("stopped")`` is :attr:`STOPPED` (:meth:`from_code` takes the code).
 
     Attributes
     ----------
@@ -30,8 +28,7 @@ class Status(str, Enum):
     TURNED_BACK_IN_ZONE : str
         Code 2: the velocity vanished inside an impulse zone before its end, outside the model.
     CHATTERING : str
-        Code 3: an impact reversed the velocity (``b > 1``); where the spring drives the mass back, the
-        impacts accumulate in finite time (a Zeno point), past which the impulsive model has no solution.
+        Code 3: an impact reversed the velocity (``b > 1``); the impacts accumulate in finite time, a Zeno point.
     EVENT_LIMIT : str
         Code 4: the bound on the number of events was reached first.
 
