@@ -100,16 +100,13 @@ def real_array(name: str, value: object) -> np.ndarray:
     if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
         with np.errstate(over="ignore"):  # a long double beyond float64 becomes inf: refused as not finite
             array = value.astype(np.float64)
-    elif isinstance(value, Real):
-        array = np.asarray(_element(name, value, None))
     else:
         try:
             items = np.asarray(value, dtype=object)
         except (TypeError, ValueError) as err:
             raise ParameterError(name, value, "a real number or an array of them") from err
-        if items.ndim == 0:
-            return real_array(name, _element(name, items.item(), None))
-        flat = [_element(name, item, row) for row, item in enumerate(items.ravel())]  # one per element
+        rows = range(items.size) if items.ndim else [None]
+        flat = [_element(name, item, row) for row, item in zip(rows, items.ravel())]  # one per element
         array = np.asarray(flat, dtype=np.float64).reshape(items.shape)
     bad = ~np.isfinite(array)
     if bad.any():

@@ -12,8 +12,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from ..model.parameters import Parameters, validate_arrays
-from ..model.quantities import MODEL_KEYS
+from ..model.parameters import Parameters
 from ..model.status import Status, flag_attributes
 from ..paper.corrected import existence_threshold
 from ..paper.printed import multiplier_21_of
@@ -77,18 +76,16 @@ def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = SPE
         return_map(Parameters(**{**model, "F": ff.ravel()[i], "b": bb.ravel()[i]}), v[i], strict=False)
     scalar = (time.perf_counter() - start) / len(pick)
     coords = _coords(b=scene.b_values, F=scene.F_values)
-    values, index = np.unique(bb, return_inverse=True)  # Eq. (21) once per b: the same float on every machine
+    eq21 = np.array([[multiplier_21_of(float(b))] * len(scene.F_values) for b in scene.b_values])  # once per b
     variables = {
         "multiplier": _grid(cells["multiplier"], coords, "1", "multiplier mu_2 measured from the simulated return map"),
-        "multiplier_eq21": _grid(np.array([multiplier_21_of(float(b)) for b in values])[index].reshape(bb.shape),
-                                 coords, "1", "multiplier (1 - b)**4 of Eq. (21)"),
+        "multiplier_eq21": _grid(eq21, coords, "1", "multiplier (1 - b)**4 of Eq. (21)"),
         "fixed_point": _grid(cells["fixed_point"], coords, "m s-1", "fixed point of the simulated return map"),
         "period": _grid(cells["period"], coords, "s", "period of the cycle at the fixed point"),
         "outcome": _grid(cells["status"].astype(np.int8), coords, None, "how the cycle from the fixed point ended",
                          **flag_attributes()),
     }
-    resolved = validate_arrays({**model, "b": bb.ravel(), "F": ff.ravel()})
-    variables.update(parameter_variables({k: np.ravel(resolved[k])[0] for k in MODEL_KEYS if k not in ("b", "F")}))
+    variables.update(parameter_variables(model))  # the ensemble checked every cell
     attrs = global_attributes(
         scene.study.title("stability_map"), "stability_map",
         "This file holds, over a grid of the impact coefficient b and the force F (its coordinates; the other "
