@@ -69,9 +69,8 @@ def number(value: Numeric, unit: str = "", digits: int = 6) -> str:
 
 def span(values: ArrayLike, unit: str) -> str:
     """The range of ``values`` (NaN ignored): ``lo .. hi unit`` with the digits that tell them apart, or one."""
-    finite = np.asarray(values, dtype=float)
-    finite = finite[~np.isnan(finite)]
-    if not finite.size:
+    values = np.asarray(values, dtype=float)
+    if np.isnan(values).all():
         return "none"
-    lo, hi = texts([finite.min(), finite.max()])
+    lo, hi = texts([np.nanmin(values), np.nanmax(values)])
     return with_unit(lo, unit) if lo == hi else f"{lo} .. {with_unit(hi, unit)}"

@@ -53,7 +53,7 @@ def quantity_attrs(name: str) -> dict:
 
 
 def cycle_variables(solution: Solution) -> dict[str, xr.DataArray]:
-    """The Poincare map per cycle on the coordinate ``cycle`` = 1 .. N, as in :data:`~.describe.CYCLE_COLUMNS`."""
+    """The Poincare map per cycle on the coordinate ``cycle`` = 1 .. N, each column as the solvers describe it."""
     cycles = solution.cycles
     coords = {"cycle": ("cycle", cycles.cycle.astype(np.int32), described("1", "cycle number"))}
     return {name: xr.DataArray(getattr(cycles, name), dims="cycle", coords=coords, attrs=described(u, ln))
@@ -61,8 +61,7 @@ def cycle_variables(solution: Solution) -> dict[str, xr.DataArray]:
 
 
 def sample_variables(solution: Solution, t: np.ndarray, acceleration: bool = False) -> dict[str, xr.DataArray]:
-    """Displacement, velocity (and the smooth part of the acceleration) at times ``t`` (the experiment
-    chooses them: :func:`escapement.scenes.figures.sample_times`)."""
+    """Displacement, velocity (and the smooth part of the acceleration) at times ``t``."""
     coords = {"t": ("t", np.asarray(t, dtype=float), quantity_attrs("t"))}
     names = ("displacement", "velocity", "acceleration")[:2 + acceleration]
     out = {name: xr.DataArray(values, dims="t", coords=coords, attrs=quantity_attrs(name))
@@ -92,7 +91,7 @@ def impact_variables(solution: Solution, window: tuple[float, float] | None = No
 
 
 def event_variables(solution: Solution, window: tuple[float, float] | None = None) -> dict[str, xr.DataArray]:
-    """Every event, optionally inside ``window``, as in :data:`~.describe.EVENT_COLUMNS`; the kind as CF flags."""
+    """Every event, optionally inside ``window``, each column as the solvers describe it; the kind as CF flags."""
     ev = solution.events
     keep = np.ones(len(ev), dtype=bool) if window is None else (ev.t >= window[0]) & (ev.t <= window[1])
     flags = {"flag_values": np.array([int(k) for k in EventKind], dtype=np.int8),
@@ -117,8 +116,7 @@ def parameter_variables(values: Mapping[str, float]) -> dict[str, xr.DataArray]:
 
 
 def global_attributes(title: str, scene: str, summary: str, **extra) -> dict:
-    """CF-1.11 and ACDD-1.3 global attributes. ``summary`` says what the file holds (after
-    :data:`MODEL_SUMMARY`); ``extra`` adds counts or text (never a quantity with units: those are variables)."""
+    """CF-1.11 and ACDD-1.3 global attributes; ``summary`` says what the file holds, ``extra`` adds counts or text."""
     return {
         "Conventions": "CF-1.11, ACDD-1.3",
         "title": title,
@@ -149,8 +147,7 @@ def assemble(variables: Mapping[str, xr.DataArray], attrs: dict, coords: Mapping
 
 def dataset(solution: Solution, variables: dict[str, xr.DataArray], title: str, scene: str, summary: str,
             **extra) -> xr.Dataset:
-    """Assemble a dataset with the run's parameters and initial state as 0-d variables, its outcome
-    as global attributes (its provenance is added when it is written)."""
+    """The dataset of a run's ``variables``, its parameters and initial state, and its outcome as attributes."""
     attrs = global_attributes(title, scene, summary, solver=solution.method, outcome=solution.status.value,
                               outcome_message=solution.message, **extra)
     state = {"x0": solution.x0, "v0": solution.v0}

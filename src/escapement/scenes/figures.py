@@ -11,8 +11,8 @@ import xarray as xr
 from ..model.events import EventKind
 from ..paper.printed import fixed_point_19
 from ..solvers.exact import solve_exact
-from .cf import MODEL_INPUT, cycle_variables, dataset, event_variables, impact_variables, quantity_attrs, \
-    sample_variables, scalar_variable
+from .cf import MODEL_INPUT, cycle_variables, dataset, described, event_variables, impact_variables, \
+    quantity_attrs, sample_variables, scalar_variable
 from .settings import PhaseScene, PoincareScene, ShockScene
 
 __all__ = ["phase_diagram", "poincare_map", "sample_times", "shock_detail"]
@@ -38,7 +38,7 @@ def poincare_map(settings: Mapping | PoincareScene) -> xr.Dataset:
     variables = {**cycle_variables(run), **event_variables(run)}
     cycle, values = AMPLITUDES[scene.amplitude].values(run)
     if scene.amplitude not in variables:
-        axis = ("amplitude_cycle", cycle, {"long_name": "cycle number of the amplitude", "units": "1"})
+        axis = ("amplitude_cycle", cycle, described("1", "cycle number of the amplitude"))
         variables[scene.amplitude] = xr.DataArray(values, dims="amplitude_cycle", coords={"amplitude_cycle": axis},
                                                   attrs=quantity_attrs(scene.amplitude))
     variables["fixed_point_19"] = scalar_variable(fixed_point_19(scene.params), "m s-1", "fixed point of the map (17) "
@@ -64,9 +64,8 @@ def shock_detail(settings: Mapping | ShockScene) -> xr.Dataset:
     variables = sample_variables(run, sample_times(grid, run.events.t), acceleration=True)
     variables.update({**impact_variables(run, window=(lo, hi)), **event_variables(run, window=(lo, hi))})
     for name, window in (("velocity", scene.velocity_window), ("acceleration", scene.acceleration_window)):
-        variables[f"{name}_window"] = xr.DataArray(np.array(window), dims="window_edge", attrs={
-            "units": "s", "long_name": f"time window [start, end] of the {name} panel",
-            "coverage_content_type": MODEL_INPUT})
+        variables[f"{name}_window"] = xr.DataArray(np.array(window), dims="window_edge", attrs=described(
+            "s", f"time window [start, end] of the {name} panel", coverage_content_type=MODEL_INPUT))
     variables["samples_per_second"] = scalar_variable(
         float(scene.samples_per_second), "s-1", "sampling rate of the uniform time grid", MODEL_INPUT)
     return dataset(
