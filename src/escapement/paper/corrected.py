@@ -61,16 +61,14 @@ def period(v1: float, p: Parameters) -> float:
 
 
 def impact_phase_jump(position: float, v_before: float, p: Parameters) -> float:
-    """Delay caused by an impact at ``position``: the jump of the sine phase over ``w`` (at a1, the paper's (24),
-    first form)."""
+    """Delay caused by an impact at ``position``: the jump of the sine phase over ``w`` (at a1, Eq. (24))."""
     w = p.omega
     v_after = (1 - p.b) * v_before
     return (math.atan2(position, v_before / w) - math.atan2(position, v_after / w)) / w * (1 if v_before > 0 else -1)
 
 
 def zone_period_change(v1: float, p: Parameters) -> float:
-    """Corrected (25): time through the zone (a1, a2) less the sine-phase advance over ``w``:
-    ``dT2 = t_zone - (1/w)[atan(a2 / (v2/w)) - atan(a1 / (v1p/w))]``."""
+    """Corrected (25): time through the zone (a1, a2) less the sine-phase advance over ``w``."""
     w = p.omega
     vel = cycle_velocities(v1, p)
     zone = _zone_time(p.zone_offset, p.a1, p.a2, vel["v1p"], w)
@@ -91,8 +89,7 @@ def period_from_perturbations(v1: float, p: Parameters) -> float:
 
 def velocity_recovery(v1: float, p: Parameters) -> tuple[float, float]:
     """``(x, t)``: where in the zone (a1, a2) the velocity regains its value before the impact at a1, and when;
-    ``(nan, nan)`` if not in the zone. By energy, where ``w**2 x**2 - 2 f x + q = 0``,
-    ``q = (2b - b**2) v1**2 - w**2 a1**2 + 2 f a1``."""
+    ``(nan, nan)`` if not in the zone. By energy, where ``w**2 x**2 - 2 f x + q = 0``."""
     w2, f, b = p.omega2, p.f, p.b
     v1p = (1 - b) * v1
     q = (2 * b - b * b) * v1 * v1 - w2 * p.a1**2 + 2 * f * p.a1
@@ -101,8 +98,7 @@ def velocity_recovery(v1: float, p: Parameters) -> tuple[float, float]:
         return math.nan, math.nan
     root = math.sqrt(disc)
     # The two roots, computed without cancellation: x = (f -/+ root) / w2 = q / (f +/- root).
-    candidates = sorted(x for x in ((f + root) / w2, q / (f + root) if f + root != 0 else math.inf))
-    for x in candidates:
+    for x in sorted(((f + root) / w2, q / (f + root) if f + root != 0 else math.inf)):
         if p.a1 < x <= p.a2:
             return x, _zone_time(p.zone_offset, p.a1, x, v1p, p.omega)
     return math.nan, math.nan
@@ -116,8 +112,7 @@ def existence_threshold(p: Parameters) -> float:
 
 def grazing_release(p: Parameters) -> float:
     """``A``: released from rest at ``-A`` the swing after the first impulse turns exactly at a3."""
-    w2 = p.omega2
-    a_sq = p.a1**2 + (p.a3**2 - p.a1**2 - 2 * p.f * (p.a2 - p.a1) / w2) / (1 - p.b) ** 2
+    a_sq = p.a1**2 + (p.a3**2 - p.a1**2 - 2 * p.f * (p.a2 - p.a1) / p.omega2) / (1 - p.b) ** 2
     if a_sq <= p.a1**2:
         raise ValueError(f"a1..a4 = {p.a1}, {p.a2}, {p.a3}, {p.a4}, F = {p.F}: no release grazes a3 "
                          "(the first impulse alone carries the swing past it)")
@@ -138,9 +133,8 @@ def daily_rate(period: float, natural_period: float) -> float:
 
 
 def first_order_zone_change(start: float, end: float, amplitude: float, omega: float, f: float) -> float:
-    """The first-order time cost of a zone from ``start`` (a) to ``end`` (c), force per unit mass ``f`` along the
-    motion, on an arc of amplitude ``amplitude`` (A): ``f (sqrt(A**2 - a**2) - sqrt(A**2 - c**2)) / (w**3 A**2)``,
-    zero for a zone symmetric about 0 (Airy), negative before the equilibrium, positive after."""
+    """The first-order time cost of a zone from ``start`` to ``end``, force per unit mass ``f`` along the motion, on
+    an arc of amplitude ``amplitude``: zero for a zone symmetric about 0 (Airy), negative before it, positive after."""
     a2 = amplitude * amplitude
     return f * (math.sqrt(a2 - start * start) - math.sqrt(a2 - end * end)) / (omega**3 * a2)
 

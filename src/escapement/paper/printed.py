@@ -80,8 +80,7 @@ def phase_jump_24(v_before: float, v_after: float, s: Symbols) -> float:
 
 
 def phase_jump_24_closed(v: float, b: float, s: Symbols) -> float:
-    """Eq. (24), second form: ``-(1/w) atan(a1 w b v / (a1^2 w^2 + (1 - b) v^2))``, ``v = x1+`` as printed (the
-    velocity after the impact)."""
+    """Eq. (24), second form, with ``v = x1+`` as printed (the velocity after the impact)."""
     return -math.atan(s.a1 * s.w * b * v / (s.a1**2 * s.w**2 + (1 - b) * v**2)) / s.w
 
 
@@ -145,9 +144,8 @@ def multiplier_21(p: Parameters) -> float:
 
 
 def multiplier_21_of(b: float) -> float:
-    """Eq. (21) at the impact coefficient ``b``: ``(1 - b)**4``, correctly rounded from the exact rational fourth
-    power of the float ``1 - b``, the same float on every machine (a ``pow`` rounds its last bit as the platform's
-    library or CPU does, and the stability map shows this value's distance from the measured one down to 1e-16).
+    """Eq. (21) at ``b``: ``(1 - b)**4`` correctly rounded from the exact rational power, the same float on every
+    machine (a ``pow`` rounds its last bit as the platform does; the stability map shows differences to 1e-16).
 
     >>> multiplier_21_of(0.1)
     0.6561

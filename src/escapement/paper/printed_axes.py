@@ -83,8 +83,7 @@ class Axis:
 
 @dataclass(frozen=True)
 class Panel:
-    """One panel of a figure: ``figure`` ("3", "4", "5"), ``name`` (``a/velocity``, ``velocity``, ``a``), what it
-    shows, and its two axes."""
+    """One panel of a figure (``figure`` "3", "4" or "5"): its ``name``, what it shows, and its two axes."""
 
     figure: str
     name: str

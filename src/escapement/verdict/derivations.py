@@ -122,9 +122,7 @@ def _state(x0: float, v0: float, t: float, w: float, force: float) -> tuple[floa
 
 
 def interval_errors(p: Parameters, v1: float) -> dict[str, float]:
-    """Each printed interval run from its step's start under the step's equation, against the step's end, relative:
-    (22a) from rest at -h0 (h0 = |(a1, v1/w)|) under (A-1) to a1; (22b) from a1 at x1+ under (A-3) to a2; (22c) from
-    a2 at x2 under (A-1) to rest; (22d) from rest at h2 = |(a2, x2/w)| under (A-1) to a3."""
+    """Each printed interval run from its step's start under the step's equation, against the step's end, relative."""
     w, v = p.omega, pe.step_velocities(v1, p)
     h0, h2 = math.hypot(p.a1, v1 / w), math.hypot(p.a2, v["v2"] / w)
     t = pe.step_times_22(v1, p, h0)

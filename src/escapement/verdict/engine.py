@@ -47,8 +47,7 @@ def resolved(name: str) -> Check:
 def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, runs: Collection[str] | None = None
                 ) -> list[dict]:
     """The claims of the register at ``path``, each with its ``readings`` (one, ``as stated``, for a claim checked
-    under one reading); ValueError naming the claim against ``schema`` and what it cannot say (ids, parts, words,
-    figures tried, checks and their args, runs not among ``runs``, the names of the configuration's checks block)."""
+    under one reading); ValueError naming the claim and what it cannot say (against ``schema``, or ``runs``)."""
     data, schema = (yaml.load(Path(p).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
                     for p in (path, schema))
     error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(schema).iter_errors(data))
@@ -98,8 +97,7 @@ def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, run
 
 
 def left_regime(name: str, ds, answers: tuple[str, ...]) -> Verdict | None:
-    """The verdict when the scene ``name``, or a run of the runs ``name`` that measure how they ended, left the
-    escapement regime (an outcome neither completed nor one of the check's ``answers``), else None."""
+    """The verdict when the scene or a run ``name`` left the escapement regime (neither completed nor an answer)."""
     if "run" not in ds.dims:
         outcome = ds.attrs["outcome"]
         return None if outcome == COMPLETED else Verdict(

@@ -48,9 +48,6 @@ class Verdict:
     paper_value: str | None = None
 
 
-Scenes = Callable[[Mapping, Evidence], dict[str, xr.Dataset]]
-
-
 def no_scene(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
     return {}
 
@@ -62,7 +59,7 @@ class Check:
     (:func:`.rule.evidence_of`), and the outcomes besides ``completed`` that are its ``answers``, not exits."""
 
     function: Callable[[Mapping, Evidence], Verdict]
-    scenes: Scenes = no_scene
+    scenes: Callable[[Mapping, Evidence], dict[str, xr.Dataset]] = no_scene
     runs: tuple[str, ...] = ()
     args: tuple[str, ...] = ()
     law: str | None = None
@@ -137,8 +134,7 @@ def names(claim: Mapping, arg: str) -> list[str]:
 
 
 def run(ev: Evidence, name: str) -> xr.Dataset:
-    """The runs the configuration's checks block names ``name``, on the dimension ``run``: a group of the table's
-    rows, or runs of another measure (their variables without the prefix ``name_``)."""
+    """The runs the checks block names ``name``, on the dimension ``run``: a group of the table, or a measure's runs."""
     checks, dim = ev.checks, f"{name}_run"
     if dim in checks.dims:
         found = checks[[key for key, variable in checks.data_vars.variables.items() if dim in variable.dims]]

@@ -119,8 +119,7 @@ def summary(candidates: Candidates) -> tuple[str, str]:
 
 
 def best_readings_table(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) -> list[dict[str, str]]:
-    """One row per printed panel for the documents (and one for Fig. 4's two panels together): its printed limits
-    and :func:`summary` of its readings."""
+    """One row per printed panel (and one for Fig. 4's panels together): its printed limits and :func:`summary`."""
     rows, table = list(rows), []
     for (figure, name), c in panel_candidates(rows, autoscale).items():
         printed = next(p for p in PANELS if (p.figure, p.name) == (figure, name))

@@ -4,7 +4,6 @@ Eq. (14) under each convention of the paper, a grid of readings (:func:`conventi
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 
 import numpy as np
@@ -14,11 +13,8 @@ from ..model.parameters import Parameters
 from ..paper import corrected as derived
 from ..paper import printed as pe
 from ..paper.conventions import Trial, departure, second_half_trials
+from ..paper.corrected import _sqrt
 from .evidence import Evidence, Verdict, check, events_of, fig3_scenes, fmt, params_of, within
-
-
-def _sqrt(value: float) -> float:
-    return math.sqrt(value) if value >= 0.0 else math.nan
 
 
 _IMPACT_LAW = "the impact law (A-2) the model is built on"
@@ -81,8 +77,7 @@ def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple
 
 @check(scenes=fig3_scenes, args=("case",))
 def eq14_conventions(claim, ev: Evidence) -> Verdict:
-    """Eq. (14) at the last cycle under each convention: the velocity at a4 from the one after the impact at a3 (the
-    energy balance from the simulated velocity at a1, Eqs. (10)-(13))."""
+    """Eq. (14) at the last cycle under each convention, from the energy balance's velocity at a3."""
     case, ds = claim["args"]["case"], ev.fig3[claim["args"]["case"]]
     p, i = params_of(ds), events_of(ds, EventKind.IMPACT_A1)[-2]
     v1, v5 = float(ds["event_velocity_before"].values[i]), float(ds["event_velocity_before"].values[i + 3])
