@@ -94,8 +94,7 @@ class EventLog:
         if not n:
             return head
         codes, counts = np.unique(np.asarray(self.kind, dtype=int), return_counts=True)
-        names = {int(k): k.name for k in EventKind}
-        kinds = ", ".join(f"{names.get(int(code), code)} {count}" for code, count in zip(codes, counts))
+        kinds = ", ".join(f"{EventKind(code).name} {count}" for code, count in zip(codes, counts))
         first, last = texts([self.t[0], self.t[-1]])
         return f"{head} {f'at t = {first} s' if n == 1 else f'from t = {first} s to {last} s'}: {kinds}"
 

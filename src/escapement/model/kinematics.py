@@ -119,14 +119,10 @@ def _clausen2(theta: float) -> float:
 
 
 def _inverse_tangent_integral(y: float) -> float:
-    """``Ti2(y) = int_0^y atan(u) / u du`` for ``y >= 0``, to a few units of 2**-53 relative.
-
-    * ``y <= 1/2``: ``sum_k (-1)**k y**(2k+1) / (2k+1)**2`` (25 terms; the rest is below 2e-18 relative);
-    * ``1/2 < y <= 1``: with ``theta = atan(y)``,
-      ``Ti2(tan theta) = theta ln(tan theta) + (Cl2(2 theta) + Cl2(pi - 2 theta)) / 2``
-      (Lewin, *Polylogarithms and associated functions*, 1981, ch. 2), both arguments in ``(0, 2.22]``;
-    * ``y > 1``: ``Ti2(y) = Ti2(1/y) + (pi/2) ln(y)``.
-    """
+    """``Ti2(y) = int_0^y atan(u) / u du`` for ``y >= 0``, to a few units of 2**-53 relative: its power series for
+    ``y <= 1/2``, ``Ti2(1/y) + (pi/2) ln(y)`` for ``y > 1``, and between, with ``theta = atan(y)``,
+    ``theta ln(tan theta) + (Cl2(2 theta) + Cl2(pi - 2 theta)) / 2`` (Lewin, *Polylogarithms and associated
+    functions*, 1981, ch. 2)."""
     if y > 1.0:
         return _inverse_tangent_integral(1.0 / y) + 0.5 * math.pi * math.log(y)
     if y > 0.5:
@@ -167,12 +163,9 @@ def _atan_euler_maclaurin_sum(x: float, lam: float) -> float:
 
     With ``f(t) = g(lam t)``, ``g(s) = atan(x exp(-s))`` and ``L = ln x``: ``g'(s) = -sech(s - L) / 2``,
     ``int_0^inf f = Ti2(x) / lam`` and ``f^(2k-1)(0) = -lam**(2k-1) sech^(2k-2)(L) / 2``, so
-
-    ``S = Ti2(x)/lam + atan(x)/2 + (1/2) sum_{k=1}^{8} B_2k/(2k)! lam**(2k-1) sech^(2k-2)(L) + R``,
-
-    with (DLMF 2.10.1) ``|R| <= |B_16|/16! lam**15 C``, ``C = (1/2) int_R |sech^(15)| = 6.26410e8`` (the total
-    variation of ``sech^(14)`` on ``[0, inf)``); since ``S >= Ti2(x)/lam > 0.2465/lam``,
-    ``|R| / S <= |B_16|/16! C lam**16 / 0.2465 <= 8.7e-20`` at ``lam <= 0.1``.
+    ``S = Ti2(x)/lam + atan(x)/2 + (1/2) sum_{k=1}^{8} B_2k/(2k)! lam**(2k-1) sech^(2k-2)(L) + R``, with
+    (DLMF 2.10.1) ``|R| <= |B_16|/16! lam**15 C``, ``C = (1/2) int_R |sech^(15)| = 6.26410e8`` (the total variation
+    of ``sech^(14)`` on ``[0, inf)``); as ``S > 0.2465/lam``, ``|R| / S <= 8.7e-20`` at ``lam <= 0.1``.
     """
     s = 2.0 / (x + 1.0 / x)  # sech(ln x)
     s_sq, correction, lam_power = s * s, 0.0, lam
