@@ -27,9 +27,8 @@ def sample_times(grid: np.ndarray, jumps: np.ndarray) -> np.ndarray:
 
 
 def poincare_map(settings: Mapping | PoincareScene) -> xr.Dataset:
-    """The Poincare map of one release: velocity before impact, period and largest displacement per cycle,
-    the amplitude its settings name (on a coordinate ``amplitude_cycle`` of its own: the Step-1 amplitude has
-    one more value than there are cycles), every event, and the fixed point of Eq. (19) as printed."""
+    """The Poincare map of one release per cycle, the amplitude its settings name (on ``amplitude_cycle``: the Step-1
+    amplitude has one more value than there are cycles), every event, and Eq. (19)'s fixed point as printed."""
     from ..studies.readings import AMPLITUDES  # the definitions of the amplitude, with the readings
 
     scene = settings if isinstance(settings, PoincareScene) else PoincareScene.from_mapping(settings)
@@ -53,9 +52,8 @@ def poincare_map(settings: Mapping | PoincareScene) -> xr.Dataset:
 
 
 def shock_detail(settings: Mapping | ShockScene) -> xr.Dataset:
-    """The motion sampled over the union of the velocity and acceleration windows (a sample on each side of
-    every event: the velocity jumps at the impacts, the acceleration at every event), the impacts and events
-    inside it, and the windows."""
+    """The motion sampled over the union of the velocity and acceleration windows (a sample on each side of every
+    event, where the acceleration jumps), the impacts and events inside it, and the windows."""
     scene = settings if isinstance(settings, ShockScene) else ShockScene.from_mapping(settings)
     (v_lo, v_hi), (a_lo, a_hi) = scene.velocity_window, scene.acceleration_window
     lo, hi = min(v_lo, a_lo), max(v_hi, a_hi)

@@ -30,9 +30,8 @@ SPEED_SAMPLE = 100
 
 
 def gather(parts: Sequence[xr.Dataset], timings: Sequence[Mapping[str, float]] = ()) -> tuple[xr.Dataset, dict]:
-    """A map from the datasets of its chunks in order, joined along its rows; and the stability map's costs per
-    trajectory over them from its chunks' ``timings`` (each chunk's weighted by its trajectories, the scalar solver's
-    by the cells it timed), the speed-up their ratio."""
+    """A map from its chunks' datasets, joined along its rows; and the stability map's costs per trajectory from the
+    chunks' ``timings``, each weighted by the cells it timed (all for the ensemble, a sample for the scalar solver)."""
     axis = parts[0]["outcome"].dims[0]  # the rows, which the chunks split
     joined = xr.concat([ds.drop_encoding() for ds in parts], axis, data_vars="minimal", coords="minimal",
                        compat="equals", join="exact", combine_attrs="override")
