@@ -1,4 +1,4 @@
-"""Automatic axis limits as matplotlib chooses them: each array alone on an Agg axes with
+"""Automatic axis limits as matplotlib chooses them: each array alone on one axes with
 ``axes.autolimit_mode: round_numbers``, the limits read back with the tick step, imposed or matplotlib's own
 (``step=None``). The margins (:data:`VARIANTS`):
 
@@ -14,7 +14,6 @@ from collections.abc import Iterable
 
 import matplotlib
 import numpy as np
-from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.ticker import MultipleLocator
 
@@ -49,9 +48,7 @@ def autoscaled_axes(series: Iterable, step: float | None, margin: float = 0.0, a
     rc = {"axes.autolimit_mode": "round_numbers", "axes.xmargin": margin, "axes.ymargin": margin}
     found: dict[tuple[float, float], tuple[float, float, float]] = {}
     with matplotlib.rc_context(rc):
-        figure = Figure()
-        FigureCanvasAgg(figure)
-        ax = figure.add_subplot()
+        ax = Figure().add_subplot()
         scaled = ax.xaxis if axis == "x" else ax.yaxis
         if step is not None:
             scaled.set_major_locator(MultipleLocator(step))
