@@ -57,12 +57,12 @@ def panel_parameters(ds: xr.Dataset, datasets: Iterable[xr.Dataset], always: tup
     return ", ".join(quantity_value(k, float(ds[k])) for k in PARAMETERS if k in ds and (k in always or k in differing))
 
 
-def outcome(ds: xr.Dataset, count: str = "cycle") -> str | None:
+def outcome(ds: xr.Dataset) -> str | None:
     """How a run that did not complete ended (``stopped after 2 of 50 cycles``); None if it completed."""
     status = Status(ds.attrs.get("outcome", Status.COMPLETED.value))
     if status.success:
         return None
-    done = ds.sizes.get(count, 0)
+    done = ds.sizes.get("cycle", 0)
     asked = ds.attrs.get("n_cycles")
     return f"{status.value.replace('_', ' ')} after {done}" + (f" of {asked}" if asked else "") + " cycles"
 
