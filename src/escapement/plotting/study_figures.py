@@ -19,7 +19,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch, PathPatch
 from matplotlib.path import Path
 
-from ..model.status import Status
+from ..model.status import Status, succeeded
 from .captions import axis_label, changes_legend, quantity_value, release, unit
 from .stylesheet import ACCENT, GUIDE, INK, NO_CYCLE, SERIES, WIDTH, legend_below, power_ticks, style, suptitle
 
@@ -160,9 +160,7 @@ def stability_map(ds: xr.Dataset, title: str | None = None) -> Figure:
     mu = ds["multiplier"].values.T
     deviation = np.abs(ds["multiplier"].values - ds["multiplier_eq21"].values).T
     outcome = ds["outcome"].values.T
-    meanings = ds["outcome"].attrs["flag_meanings"].split()
-    completed = meanings.index(Status.COMPLETED.value)
-    no_cycle = (outcome != completed) | ~np.isfinite(mu)
+    no_cycle = ~succeeded(outcome) | ~np.isfinite(mu)
     with style():
         fig, axes = plt.subplots(1, 2, figsize=(WIDTH, 4.0), sharey=True, layout="constrained")
         mesh = axes[0].pcolormesh(b, F, np.where(no_cycle, np.nan, mu), shading="nearest", cmap="viridis",
@@ -174,7 +172,7 @@ def stability_map(ds: xr.Dataset, title: str | None = None) -> Figure:
                                   rasterized=True)
         fig.colorbar(mesh, ax=axes[1], extend="min", label="|\u03bc\u2082 measured \u2212 (1 \u2212 b)\u2074|")
         cells = _cells_path(no_cycle, _cell_edges(b), _cell_edges(F))
-        names = sorted({meanings[c] for c in np.unique(outcome[no_cycle & (outcome != completed)])})
+        names = sorted({Status.from_code(c).value for c in np.unique(outcome[~succeeded(outcome)])})
         label = "no cycle" + (": " if names else "") + ", ".join(name.replace("_", " ") for name in names)
         if Status.CHATTERING.value in names:
             label += " (the impacts accumulate in finite time)"
@@ -232,7 +230,7 @@ def existence_map(ds: xr.Dataset, title: str | None = None) -> Figure:
     a3, F = ds["a3"].values, ds["F"].values
     outcome = ds["outcome"].values.T
     cycle = ds["converged"].values.T.astype(bool)
-    stopped = outcome == ds["outcome"].attrs["flag_meanings"].split().index(Status.STOPPED.value)
+    stopped = outcome == Status.STOPPED.code
     x_edges, y_edges = _cell_edges(a3), _cell_edges(F) * 1e3
     regions = (
         (cycle, {"facecolor": LIMIT_CYCLE, "edgecolor": "none"},
