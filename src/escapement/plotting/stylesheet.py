@@ -1,6 +1,5 @@
-"""How every figure looks and is saved: the style sheet, the colours by role, the title (at most two lines), one
-legend below the axes, and files that are byte-identical from run to run. Nothing is placed by searching for free
-space: text sits where matplotlib's constrained layout puts titles, labels and legends, outside the axes.
+"""How every figure looks and is saved: the style sheet, the colours by role, the title, one legend below the axes
+(text where the constrained layout puts it, outside the axes), and files byte-identical from run to run.
 """
 
 from __future__ import annotations
@@ -71,10 +70,8 @@ def save_figure(fig, png: str | os.PathLike, pdf: str | os.PathLike, svg: str | 
     and the SVG's ids salted alike, so that the same figure gives the same bytes on every run."""
     with style(), matplotlib.rc_context({"svg.hashsalt": "escapement"}):
         bound(fig)
-        with replaced(png) as tmp:
-            fig.savefig(tmp, format="png", metadata={"Software": None})
-        with replaced(pdf) as tmp:
-            fig.savefig(tmp, format="pdf", metadata={"Creator": None, "Producer": None, "CreationDate": None})
-        with replaced(svg) as tmp:
-            fig.savefig(tmp, format="svg", metadata={"Creator": None, "Date": None})
+        for path, kind, stamps in ((png, "png", ("Software",)), (pdf, "pdf", ("Creator", "Producer", "CreationDate")),
+                                   (svg, "svg", ("Creator", "Date"))):
+            with replaced(path) as tmp:
+                fig.savefig(tmp, format=kind, metadata=dict.fromkeys(stamps))
     plt.close(fig)
