@@ -65,8 +65,6 @@ class Axis:
 
     def __post_init__(self) -> None:
         values = [Decimal(t) for t in self.ticks]
-        if len(values) < 2:
-            raise ValueError(f"axis {self.label!r}: at least two tick labels are needed")
         steps = {b - a for a, b in zip(values, values[1:])}
         if len(steps) != 1 or steps.pop() <= 0:
             raise ValueError(f"axis {self.label!r}: tick labels {self.ticks} are not evenly spaced upwards")
@@ -83,11 +81,10 @@ class Axis:
 
 @dataclass(frozen=True)
 class Panel:
-    """One panel of a figure (``figure`` "3", "4" or "5"): its ``name``, what it shows, and its two axes."""
+    """One panel of a figure (``figure`` "3", "4" or "5"): its ``name`` and its two axes."""
 
     figure: str
     name: str
-    shows: str
     x: Axis
     y: Axis
 
@@ -107,46 +104,37 @@ _UNIT_HALVES = ("-1", "-0.5", "0", "0.5", "1")
 
 PANELS: tuple[Panel, ...] = (
     # Fig. 3 (a), captioned "F=1, x(0)=1" in the paper
-    Panel("3", "a/velocity", "velocity before the impact at a1 against the cycle, case (a)",
-          Axis(CYCLES, _CYCLES_50, (271, 273, 275, 277, 279, 291)),
+    Panel("3", "a/velocity", Axis(CYCLES, _CYCLES_50, (271, 273, 275, 277, 279, 291)),
           Axis("Velocity before impact (m/s)", ("0.95", "1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3"), (269,))),
-    Panel("3", "a/period", "period against the cycle, case (a)",
-          Axis(CYCLES, _CYCLES_50, (323, 325, 327, 329, 331, 339)),
+    Panel("3", "a/period", Axis(CYCLES, _CYCLES_50, (323, 325, 327, 329, 331, 339)),
           Axis("Period (s)", ("6.283", "6.2832", "6.2834", "6.2836", "6.2838", "6.284", "6.2842", "6.2844", "6.2846"),
                (297, 301, 305, 309, 347, 357, 365, 367))),
-    Panel("3", "a/amplitude", "amplitude of oscillation against the cycle, case (a)",
-          Axis(CYCLES, _CYCLES_60, (379, 381, 383, 385, 387, 389, 401)),
+    Panel("3", "a/amplitude", Axis(CYCLES, _CYCLES_60, (379, 381, 383, 385, 387, 389, 401)),
           Axis("Amplitude of oscillation (m)",
                ("1", "1.05", "1.1", "1.15", "1.2", "1.25", "1.3", "1.35", "1.4"), (343,))),
     # Fig. 3 (b), captioned "F=0.5, x(0)=3" in the paper
-    Panel("3", "b/velocity", "velocity before the impact at a1 against the cycle, case (b)",
-          Axis(CYCLES, _CYCLES_50, (293, 295, 311, 313, 315, 317)),
+    Panel("3", "b/velocity", Axis(CYCLES, _CYCLES_50, (293, 295, 311, 313, 315, 317)),
           Axis("Velocity before impact (m/s)", _HALVES_3, (263, 281, 283, 285, 287, 289))),
-    Panel("3", "b/period", "period against the cycle, case (b)",
-          Axis(CYCLES, _CYCLES_50, (345, 351, 353, 359, 361, 369)),
+    Panel("3", "b/period", Axis(CYCLES, _CYCLES_50, (345, 351, 353, 359, 361, 369)),
           Axis("Period (s)", ("6.2826", "6.2827", "6.2828", "6.2829", "6.283", "6.2831", "6.2832", "6.2833", "6.2834"),
                (299, 303, 307, 311, 319, 347, 349, 355, 357, 363, 365, 367))),
-    Panel("3", "b/amplitude", "amplitude of oscillation against the cycle, case (b)",
-          Axis(CYCLES, _CYCLES_60, (403, 405, 407, 409, 411, 413, 415)),
+    Panel("3", "b/amplitude", Axis(CYCLES, _CYCLES_60, (403, 405, 407, 409, 411, 413, 415)),
           Axis("Amplitude of oscillation (m)", _HALVES_3, (333, 391, 393, 395, 397, 399))),
     # Fig. 4: the case is not named
-    Panel("4", "velocity", "velocity against time over 80-87 s",
+    Panel("4", "velocity",
           Axis("Time (s)", ("80", "81", "82", "83", "84", "85", "86", "87"),
                (447, 449, 451, 453, 455, 457, 459, 461, 463), scored=False),
           Axis("Velocity (m/s)", _SHOCK, _SHOCK_LINES)),
-    Panel("4", "acceleration", "acceleration against time over 81-85 s",
+    Panel("4", "acceleration",
           Axis("Time (s)", ("81", "82", "83", "84", "85"), (447, 463, 465, 467, 475, 477), scored=False),
           Axis("Acceleration (m/s2)", _SHOCK, _SHOCK_LINES)),
     # Fig. 5: neither F nor x0 is given
-    Panel("5", "a", "phase diagram, K = 0.1 N/m",
-          Axis("Displacement (m)", ("-5", "0", "5"), (505, 507, 513)),
+    Panel("5", "a", Axis("Displacement (m)", ("-5", "0", "5"), (505, 507, 513)),
           Axis("Velocity (m/s)", ("-1.5", "-1", "-0.5", "0", "0.5", "1", "1.5"), (479, 483, 489, 499, 503, 513))),
-    Panel("5", "b", "phase diagram, K = 1 N/m",
-          Axis("Displacement (m)", _UNIT_HALVES, (509, 517, 519, 521, 523)),
+    Panel("5", "b", Axis("Displacement (m)", _UNIT_HALVES, (509, 517, 519, 521, 523)),
           Axis("Velocity (m/s)", ("-1", "-0.8", "-0.6", "-0.4", "-0.2", "0", "0.2", "0.4", "0.6", "0.8", "1"),
                (483, 487, 491, 499, 501, 509, 513))),
-    Panel("5", "c", "phase diagram, K = 10 N/m",
-          Axis("Displacement (m)", _UNIT_HALVES, (525, 527, 529, 543, 545)),
+    Panel("5", "c", Axis("Displacement (m)", _UNIT_HALVES, (525, 527, 529, 543, 545)),
           Axis("Velocity (m/s)", ("-3", "-2", "-1", "0", "1", "2", "3", "4"), (481, 485, 511, 525))),
 )
 

@@ -1,9 +1,6 @@
-"""Airy's theorem on the escapement error, checked on the exact solver's runs (beyond the paper), and the period
-as a daily rate.
-
-Airy (1830): an impulse symmetric about the equilibrium leaves the period unchanged to first order; one before the
-equilibrium shortens it, one after lengthens it. Here ``dT2`` is the zone's time less the sine phase it advances
-(the corrected Eq. (25)), measured on one passage at a fixed amplitude (the runs of measure ``zone_shift``).
+"""Airy's theorem on the escapement error (1830: an impulse symmetric about the equilibrium leaves the period
+unchanged to first order, one before it shortens it, one after lengthens it), checked on the exact solver's runs
+beyond the paper, and the period as a daily rate.
 """
 
 from __future__ import annotations

@@ -30,8 +30,7 @@ class Evidence:
     fig4: xr.Dataset
     fig5: Mapping[str, xr.Dataset]
     checks: xr.Dataset
-    #: the limits each printed panel's axes get when the outputs are autoscaled with the printed
-    #: tick step, ``{(figure, panel): {"x": (low, high), "y": (low, high)}}`` (scored axes only)
+    #: the autoscaled limits of each printed panel's scored axes, ``{(figure, panel): {"x": (low, high), ...}}``
     axes: Mapping[tuple[str, str], Mapping[str, tuple[float, float]]] = field(default_factory=dict)
     #: every candidate reading of each printed panel with its score, ``{(figure, panel): Candidates}``
     readings: Mapping[tuple[str, str], Candidates] = field(default_factory=dict)

@@ -55,8 +55,7 @@ def evidence_of(law: str | None, fitted: str | None, threshold: str | None, hold
 
 
 def status_of(outcomes: Iterable[bool | None]) -> str:
-    """The one rule: the status of a claim from whether it holds under each reading of its words; ValueError if
-    there is no outcome, or if some readings computed nothing and others did."""
+    """The one rule: the status of a claim from whether it holds under each reading of its words."""
     outcomes = list(outcomes)
     if not outcomes or (None in outcomes and any(o is not None for o in outcomes)):
         raise ValueError(f"outcomes = {outcomes!r}: every reading computes an outcome, or none does")
@@ -85,9 +84,7 @@ def row_status(readings: Iterable[tuple]) -> tuple[str, str]:
 
 
 def finding_status(statuses: Iterable[str]) -> str:
-    """A sentence's status from its parts': every part holds, reproduced (consistent if one holds only so); none fails
-    under every reading, undetermined; one does, partially reproduced if another is reproduced, else not reproduced (a
-    consistent part confirms nothing, an untestable one never counts as holding); untestable when every part is."""
+    """A sentence's status from its parts' (a consistent part confirms nothing, an untestable one never holds)."""
     statuses = list(statuses)
     if all(s == UNTESTABLE for s in statuses):
         return UNTESTABLE

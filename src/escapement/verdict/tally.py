@@ -16,8 +16,7 @@ ORDER = ("reproduced", "consistent", "partially_reproduced", "not_reproduced", "
 
 
 def findings(rows: Iterable[Mapping[str, str]]) -> dict[str, tuple[str, list[Mapping[str, str]]]]:
-    """Each finding (a sentence of the paper) with its status and its rows, in the table's order; ValueError if a
-    row has a status outside the vocabulary."""
+    """Each finding (a sentence of the paper) with its status and its rows, in the table's order."""
     grouped: dict[str, list[Mapping[str, str]]] = {}
     for row in rows:
         if row["status"] not in STATUSES:
@@ -29,8 +28,7 @@ def findings(rows: Iterable[Mapping[str, str]]) -> dict[str, tuple[str, list[Map
 
 
 def headline(rows: Iterable[Mapping[str, str]]) -> str:
-    """The verdict's first line, from the rows of the claims table: the findings counted by status, and the rows
-    beyond the paper. Full replication when every finding is reproduced, failed when none is, even partially."""
+    """The verdict's first line: the findings counted by status (failed when none is even partially reproduced)."""
     rows = list(rows)
     found = findings(rows)
     counts = {s: sum(status == s for status, _ in found.values()) for s in ORDER}
