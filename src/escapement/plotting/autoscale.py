@@ -1,10 +1,7 @@
-"""Automatic axis limits as matplotlib chooses them: each array alone on one axes with
-``axes.autolimit_mode: round_numbers``, the limits read back with the tick step, imposed or matplotlib's own
-(``step=None``). The margins (:data:`VARIANTS`):
-
-* ``round, margin 0``: the data range rounded out to the ticks, the assumption for the paper's figures: MATLAB,
-  its likely software (2012), padded no limits before 2021, nor did matplotlib's classic style;
-* ``round, margin 0.05``: matplotlib's default margins (since 2.0) added before rounding to the ticks.
+"""Automatic axis limits as matplotlib chooses them: each array alone on one axes with ``axes.autolimit_mode:
+round_numbers``, the limits read back with the tick step, imposed or matplotlib's own (``step=None``). The margins
+(:data:`VARIANTS`): 0, the assumption for the paper's figures (MATLAB, its likely software in 2012, padded no limits
+before 2021, nor did matplotlib's classic style), and 0.05, matplotlib's default since 2.0, added before rounding.
 """
 
 from __future__ import annotations
@@ -17,12 +14,10 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import MultipleLocator
 
-__all__ = ["AXES", "VARIANTS", "autoscaled_axes", "autoscaled_limits"]
+__all__ = ["VARIANTS", "autoscaled_axes", "autoscaled_limits"]
 
 #: the autoscaling variants by name: the margin added on each side before rounding, as a fraction of the range
 VARIANTS: dict[str, float] = {"round, margin 0": 0.0, "round, margin 0.05": 0.05}
-#: the axes a value may be printed on
-AXES = ("x", "y")
 
 
 def _extent(values) -> np.ndarray:
@@ -35,16 +30,15 @@ def _extent(values) -> np.ndarray:
 
 def autoscaled_axes(series: Iterable, step: float | None, margin: float = 0.0, axis: str = "y"
                     ) -> list[tuple[float, float, float]]:
-    """``(low, high, tick step)`` of each array of ``series`` (NaN ignored) alone on the ``axis`` ("x" or "y") of
-    one matplotlib axes, rounded to the ticks after a margin of ``margin`` times the data range on each side; ticks
-    every ``step``, or (``step=None``) where matplotlib's default locator puts them."""
+    """``(low, high, tick step)`` of each array of ``series`` (NaN ignored) alone on the ``axis`` of one axes, rounded
+    to the ticks after a margin of ``margin`` times its range on each side; ticks every ``step``, or matplotlib's."""
     extents = [_extent(values) for values in series]
     if step is not None and not (isinstance(step, (int, float)) and math.isfinite(step) and step > 0):
         raise ValueError(f"step = {step!r} must be a positive finite number, or None for the default locator")
     if not (isinstance(margin, (int, float)) and math.isfinite(margin) and margin >= 0):
         raise ValueError(f"margin = {margin!r} must be a non-negative finite number")
-    if axis not in AXES:
-        raise ValueError(f"axis = {axis!r} must be one of {', '.join(AXES)}")
+    if axis not in ("x", "y"):
+        raise ValueError(f"axis = {axis!r} must be one of x, y")
     rc = {"axes.autolimit_mode": "round_numbers", "axes.xmargin": margin, "axes.ymargin": margin}
     found: dict[tuple[float, float], tuple[float, float, float]] = {}
     with matplotlib.rc_context(rc):
