@@ -1,14 +1,9 @@
 """The rule that bounds what a figure draws, whatever the length of the run, applied just before it is saved
-(:func:`escapement.plotting.save_figure`), which then says on the figure what was done:
-
-* a line against increasing x of more than 4 samples per column of 1/:data:`COLUMN_DPI` inch is thinned by min/max
-  decimation: each column keeps its first, last, smallest and largest samples, so that every extreme is drawn;
-* any other artist of more than :data:`VECTOR_LIMIT` vertices is drawn as a raster from every vertex, so that no
-  cycle that strays is hidden. Measured on Fig. 5's kind over 5,000 cycles (6.1 million samples): SVG 283 kB and
-  PDF 117 kB, against 153 MB and 62 MB as vectors, for about 20 s of CPU.
-
-Hand-written because matplotlib's path simplification merges only nearly collinear segments, so it bounds no noisy
-curve.
+(:func:`escapement.plotting.save_figure`), which then says so on the figure: a line against increasing x of more
+than 4 samples per column of 1/:data:`COLUMN_DPI` inch keeps each column's first, last, smallest and largest samples
+(every extreme drawn); any other artist of more than :data:`VECTOR_LIMIT` vertices is drawn as a raster from every
+vertex (Fig. 5's kind over 5,000 cycles: SVG 283 kB and PDF 117 kB, against 153 MB and 62 MB as vectors).
+Hand-written because matplotlib's path simplification merges only nearly collinear segments: no noisy curve.
 """
 
 from __future__ import annotations
@@ -48,12 +43,11 @@ def decimate(column: np.ndarray, y: np.ndarray) -> np.ndarray:
 def _vertices(artist) -> tuple[int, int]:
     """The vertices ``artist`` draws, and its weight against :data:`VECTOR_LIMIT`: a path of a collection, an SVG
     element of its own (150 bytes a segment of ``vlines``, measured, against 22 a vertex of a line), weighs 6 more."""
-    if isinstance(artist, Line2D):
-        return len(artist.get_xdata()), len(artist.get_xdata())
     if isinstance(artist, Collection):
         n = sum(len(p.vertices) for p in artist.get_paths())
         return n, n + 6 * len(artist.get_paths())
-    return len(artist.get_path().vertices), len(artist.get_path().vertices)
+    n = len(artist.get_xdata()) if isinstance(artist, Line2D) else len(artist.get_path().vertices)
+    return n, n
 
 
 def _increasing(artist) -> bool:
