@@ -234,9 +234,8 @@ def run_values(scores: Sequence[Mapping], checks: Mapping, fig3: Mapping[str, xr
 
 def render(template: str, template_name: str, rows: Sequence[Mapping], facts: Mapping[str, str],
            tables: Mapping[str, str], config: Mapping, run: Mapping | None = None) -> str:
-    """``template`` rendered after the comment that says it is generated from ``template_name``; its names include
-    ``claim.<claim_id>.<column>`` (a cell of the claims table), ``verdict.<claim_id>`` (a status in words),
-    ``fact.<name>`` (:func:`collect_facts`) and ``run`` (:func:`run_values`)."""
+    """``template`` rendered after the comment that says it is generated; its names include ``claim.<id>.<column>``,
+    ``verdict.<id>``, ``fact.<name>`` (:func:`collect_facts`) and ``run`` (:func:`run_values`)."""
     names = {"claims_table": claims_table(rows), "headline": headline(rows), "fact": dict(facts), "table": dict(tables),
              "config": config, "run": dict(run or {}), "statuses": STATUSES,
              "verdict": {r["claim_id"]: r["status"].replace("_", " ") for r in rows},

@@ -1,11 +1,9 @@
 """The tracked figures and documents, and the one step that updates them (``snakemake --cores 2 publish``): copied
 from ``results/replication/`` where what they show changed; ``python -m escapement.pipeline.publish --check`` says
 whether every tracked file shows what the run shows. Both compare by :func:`compare`: a PNG with matplotlib's
-``compare_images`` within an RMS of :data:`FIGURE_RMS_TOLERANCE`, a PDF by its source (rasterising one needs
+``compare_images`` within an RMS of :data:`FIGURE_RMS_TOLERANCE` (curves moved by 1e-6 give 0.002, by 1e-4 0.9, one
+character of a legend 1.6; CPUs' rounding, about 1e-16, moves no pixel), a PDF by its source (rasterising one needs
 Ghostscript), a document by its text and its numbers at their printed digits (``1.30e-14`` is ``1.3e-14``).
-
-Measured on the long-run figure: curves moved by 1e-6 (relative) give an RMS of 0.002, by 1e-4 0.9; one character
-of the legend changed gives 1.6. Rounding that differs between CPUs moves a value by about 1e-16: no pixel, no digit.
 """
 
 from __future__ import annotations
@@ -114,8 +112,7 @@ def _document(old: str, new: str) -> tuple[bool, str]:
 
 def compare(tracked: str | Path, drawn: str | Path) -> tuple[bool, str]:
     """Whether the tracked file shows what the drawn one shows, and the difference in words; a PDF is judged by its
-    PNG, the article's by its Typst source. A damaged tracked file differs (:data:`DAMAGED`), a damaged drawn one is
-    refused."""
+    PNG (the article's by its Typst source); a damaged tracked file differs, a damaged drawn one is refused."""
     tracked, drawn = Path(tracked), Path(drawn)
     if (flaw := damage(drawn)) is not None:
         raise OSError(f"{drawn}: {flaw}; draw it again with snakemake --cores 2 --forcerun {drawn}")
