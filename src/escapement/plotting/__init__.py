@@ -1,8 +1,5 @@
-"""Figures of the escapement model: the three kinds of scene figure (Poincaré map, shock detail, phase diagrams)
-for the paper's parameters or a user's, and the project's own studies; one style sheet, deterministic files.
-
-The names are imported on first use (PEP 562), so that a job needing only :mod:`escapement.plotting.autoscale`
-(the axis claims) does not load the figures' code.
+"""Figures of the escapement model: the scene figures and the project's own studies, in one style, deterministic
+files. The names are imported on first use (PEP 562): a job that needs only :mod:`.autoscale` loads no figure.
 """
 
 from .._lazy import lazy_exports
