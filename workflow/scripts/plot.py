@@ -1,5 +1,4 @@
-"""Glue: the plotting rules -> escapement.pipeline.plot.plot (the figure named by params.figure, else by the
-output's file name)."""
+"""Glue: the plotting rules -> escapement.pipeline.plot.plot."""
 
 from pathlib import Path
 

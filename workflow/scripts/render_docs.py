@@ -1,5 +1,4 @@
-"""Glue: rule render_docs -> escapement.pipeline.docs.render_docs, rule render_article ->
-escapement.pipeline.article.write_article."""
+"""Glue: rules render_docs and render_article -> escapement.pipeline.docs and escapement.pipeline.article."""
 
 from escapement.pipeline.article import write_article
 from escapement.pipeline.docs import render_docs

@@ -1,5 +1,4 @@
-"""Glue: the simulation rules -> escapement.pipeline.simulate (each scene's settings in, its dataset out; the chunks
-of a map in, its one dataset out)."""
+"""Glue: the simulation rules -> escapement.pipeline.simulate (a scene's settings, or a map's chunks, to a dataset)."""
 
 from escapement.pipeline.simulate import gather, simulate
 
