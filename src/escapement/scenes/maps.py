@@ -6,7 +6,7 @@ job runs in chunks over slices of its rows (:mod:`escapement.pipeline.plan`), wh
 
 from __future__ import annotations
 
-import time
+import timeit
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -63,17 +63,14 @@ def stability_map(settings: Mapping | StabilityMapScene, speed_sample: int = SPE
     scene = settings if isinstance(settings, StabilityMapScene) else StabilityMapScene.from_mapping(settings)
     model = {k: v for k, v in scene.params.as_dict().items() if k not in ("b", "F")}
     bb, ff = np.meshgrid(np.array(scene.b_values), np.array(scene.F_values), indexing="ij")
-    grid = stability_grid(model, bb.ravel(), ff.ravel())
+    b_cells, F_cells = bb.ravel(), ff.ravel()
+    grid = stability_grid(model, b_cells, F_cells)
     cells = {key: np.asarray(found).reshape(bb.shape) for key, found in grid.items()}
     v = np.where(np.isfinite(grid["fixed_point"]), grid["fixed_point"], 1.0)
-    start = time.perf_counter()
-    ensemble_return_map(model, bb.ravel(), ff.ravel(), v)
-    ensemble = (time.perf_counter() - start) / bb.size
+    ensemble = timeit.timeit(lambda: ensemble_return_map(model, b_cells, F_cells, v), number=1) / bb.size
     pick = np.linspace(0, bb.size - 1, min(speed_sample, bb.size)).astype(int)
-    start = time.perf_counter()
-    for i in pick:
-        return_map(Parameters(**{**model, "F": ff.ravel()[i], "b": bb.ravel()[i]}), v[i], strict=False)
-    scalar = (time.perf_counter() - start) / len(pick)
+    scalar = timeit.timeit(lambda: [return_map(Parameters(**{**model, "F": F_cells[i], "b": b_cells[i]}), v[i],
+                                               strict=False) for i in pick], number=1) / len(pick)
     coords = _coords(b=scene.b_values, F=scene.F_values)
     eq21 = np.array([[multiplier_21_of(float(b))] * len(scene.F_values) for b in scene.b_values])  # once per b
     variables = {
