@@ -29,8 +29,7 @@ def with_unit(text: str, unit: str) -> str:
 
 def exact(value: Numeric, unit: str = "") -> str:
     """An input as it can be typed back (Python's ``repr``, without a trailing ``.0``), with its unit."""
-    text = repr(_unsigned_zero(value))
-    return with_unit(text[:-2] if text.endswith(".0") else text, unit)
+    return with_unit(repr(_unsigned_zero(value)).removesuffix(".0"), unit)
 
 
 def _order(x: float, y: float) -> int:
