@@ -108,8 +108,7 @@ def departure(reading: Reading) -> str:
 
 def second_half_trials(p: Parameters, velocity: Mapping[str, float], simulated: float, tolerance: float,
                        formula: Callable[[float, pe.Symbols], float]) -> list[Trial]:
-    """A formula of the second half period, ``formula(v_at_a3, symbols)``, under every reading, with the
-    velocity after (or before) the impact at a3 from ``velocity`` (``v4p``, ``v4``)."""
+    """A formula of the second half period, ``formula(v_at_a3, symbols)``, under every reading."""
     def evaluate(reading: Reading) -> float:
         s, sign = symbols(p, reading, second_half=True)
         return formula(sign * velocity["v4p" if reading.velocity == "after" else "v4"], s)

@@ -18,7 +18,6 @@ from .rule import fmt as fmt  # the checks write their numbers by it (a document
 from .scores import Candidates
 
 COMPLETED = Status.COMPLETED.value
-#: every outcome of a run
 OUTCOMES = tuple(s.value for s in Status)
 
 

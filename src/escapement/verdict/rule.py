@@ -13,7 +13,6 @@ from collections.abc import Iterable, Mapping
 __all__ = ["COLUMNS", "CONSISTENT", "EVIDENCE", "NOT", "ORIGINS", "PARTIAL", "REPRODUCED", "STATUSES", "UNDETERMINED",
     "UNTESTABLE", "evidence_of", "finding_status", "fmt", "row_status", "status_of", "weighed"]
 
-#: the columns of the claims table, one row per claim
 COLUMNS = ["claim_id", "source", "origin", "quote", "part", "finding", "evidence", "statement", "readings",
            "paper_value", "replicated_value", "tolerance", "status", "note"]
 
@@ -42,7 +41,6 @@ EVIDENCE: dict[str, str] = {
     "none": "the paper gives no number, formula or figure the claim can be computed against",
 }
 
-#: where a claim comes from
 ORIGINS: dict[str, str] = {
     "paper": "a sentence of the paper, quoted",
     "beyond": "a result the paper does not state, added by the replication (not counted among the findings)",

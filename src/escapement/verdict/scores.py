@@ -106,8 +106,7 @@ def joint_candidates(rows: Iterable[Mapping], figure: str, autoscale: str = CLAI
 
 
 def summary(candidates: Candidates) -> tuple[str, str]:
-    """The best score in words (with the printed tick step imposed, and with the default locator), and every
-    reading tied at it, equivalent ones joined by ``=``."""
+    """The best score in words, and every reading tied at it, equivalent ones joined by ``=``."""
     best, groups = candidates.tied()
     default = max(candidates.default_scores.values()) if candidates.default_scores else None
     score = f"{best} of {candidates.out_of}" + ("" if default is None else f" ({default} with the default locator)")

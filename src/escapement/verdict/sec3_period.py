@@ -48,8 +48,7 @@ def eq22e(claim, ev: Evidence) -> Verdict:
                    paper_value=f"{fmt(trials[0].value)} s as read")
 
 
-#: the steps whose times the terms of Eq. (23) give: whether each is of the second half period, and the
-#: axes of the conventions that enter its terms
+#: the steps whose times the terms of Eq. (23) give: whether of the second half, and the conventions in its terms
 PERIOD_23_PARTS = {
     "zone_right": (False, ("positions",)),
     "a2_to_a3": (False, ("positions",)),

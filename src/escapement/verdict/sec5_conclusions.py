@@ -4,13 +4,12 @@ and the positions when the geometry is asymmetric, where whether a limit cycle e
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 
 from ..model.status import Status
-from ..paper.corrected import existence_threshold, map_constant
+from ..paper.corrected import existence_threshold, fixed_point, map_constant
 from ..model.parameters import Parameters
 from .evidence import OUTCOMES, Evidence, Verdict, check, each, fmt, mu2_off, params_of, run, within
 
@@ -50,7 +49,6 @@ def existence_sign_change(claim, ev: Evidence) -> Verdict:
     rows = []
     for r in each(run(ev, claim["args"]["runs"])):
         p = params_of(r)
-        c = map_constant(p)
-        rows.append({"F": p.F, "C": c, "fixed_point": math.sqrt(c / (1 - (1 - p.b) ** 4)) if c > 0 else math.nan,
+        rows.append({"F": p.F, "C": map_constant(p), "fixed_point": fixed_point(p),
                      "outcome": str(r["outcome"].values), "cycles": int(r["cycles"]), "velocity": float(r["velocity"])})
     return existence_verdict(rows, existence_threshold(Parameters(**{**p.as_dict(), "F": 0.0})), claim["tolerance"])

@@ -11,7 +11,6 @@ from .rule import EVIDENCE, ORIGINS, STATUSES, finding_status
 
 __all__ = ["findings", "findings_table", "headline", "vocabulary_table"]
 
-#: the headline's order of the findings' statuses
 ORDER = ("reproduced", "consistent", "partially_reproduced", "not_reproduced", "undetermined", "untestable")
 
 
