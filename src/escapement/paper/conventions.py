@@ -51,8 +51,7 @@ AS_READ = Reading(*(choices[0] for choices in AXES.values()))
 
 def readings(axes: tuple[str, ...]) -> list[Reading]:
     """Every reading that varies the named ``axes`` (the others as read), the adopted one first."""
-    unknown = [a for a in axes if a not in AXES]
-    if unknown:
+    if any(a not in AXES for a in axes):
         raise ValueError(f"axes = {axes!r} must name axes among {', '.join(AXES)}")
     choices = [AXES[a] if a in axes else (AXES[a][0],) for a in AXES]
     return [Reading(*combination) for combination in itertools.product(*choices)]

@@ -91,7 +91,6 @@ def velocity_recovery(v1: float, p: Parameters) -> tuple[float, float]:
     """``(x, t)``: where in the zone (a1, a2) the velocity regains its value before the impact at a1, and when;
     ``(nan, nan)`` if not in the zone. By energy, where ``w**2 x**2 - 2 f x + q = 0``."""
     w2, f, b = p.omega2, p.f, p.b
-    v1p = (1 - b) * v1
     q = (2 * b - b * b) * v1 * v1 - w2 * p.a1**2 + 2 * f * p.a1
     disc = f * f - w2 * q
     if disc < 0:
@@ -100,7 +99,7 @@ def velocity_recovery(v1: float, p: Parameters) -> tuple[float, float]:
     # The two roots, computed without cancellation: x = (f -/+ root) / w2 = q / (f +/- root).
     for x in sorted(((f + root) / w2, q / (f + root) if f + root != 0 else math.inf)):
         if p.a1 < x <= p.a2:
-            return x, _zone_time(p.zone_offset, p.a1, x, v1p, p.omega)
+            return x, _zone_time(p.zone_offset, p.a1, x, (1 - b) * v1, p.omega)
     return math.nan, math.nan
 
 
