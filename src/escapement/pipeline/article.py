@@ -27,8 +27,7 @@ from .tables import LIMIT_COLUMNS, WORK_PRECISION_COLUMNS, read_claims
 
 __all__ = ["RULE", "keywords", "metadata", "prefix", "string", "typ", "write_article"]
 
-#: the rule that names the article a replication or a failed one, from the findings' statuses: a consistent finding
-#: confirms nothing, and an undetermined or untestable one has no verdict, so none of them counts
+#: the rule that names the article a replication or a failed one, from the findings' statuses
 RULE = ("the title reads [Re] when the paper's findings that are reproduced outnumber those that fail in part or in "
         "whole (not reproduced or partially reproduced), and [¬Re] otherwise; consistent, undetermined and untestable "
         "findings count on neither side")

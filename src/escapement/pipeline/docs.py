@@ -196,10 +196,9 @@ def collect_facts(benchmark_rows: list[dict], long_run: xr.Dataset, stability: x
 
 
 def run_values(scores: Sequence[Mapping], checks: Mapping, fig3: Mapping[str, xr.Dataset]) -> dict:
-    """The run's values the documents cite beside the claims table: per printed panel of the readings its ``score``
-    (``"3 a/velocity"``, ``"4 both panels"``), per figure its ``total``, per scored axis and tick mode the upper
-    limits the readings reach (``highs``; ``best_highs`` of those tied at the best), the checks' first swings, per
-    Fig. 3 case its transient, amplitude and Eq. (19) with a2 and with −a2, and the grids of readings."""
+    """The run's values the documents cite beside the claims table: the readings' ``score`` per printed panel
+    (``"3 a/velocity"``, ``"4 both panels"``) and ``total`` per figure, the upper limits they reach per scored axis
+    (``highs``, ``best_highs``), and per Fig. 3 case its transient, amplitude and Eq. (19) with a2 and with −a2."""
     candidates = {f"{figure} {name}": c for (figure, name), c in panel_candidates(scores).items()}
     candidates["4 both panels"] = joint_candidates(scores, "4")
     score = {key: {"best": c.tied()[0], "ties": len(c.tied()[1]), "out_of": c.out_of,
