@@ -1,8 +1,6 @@
-"""The paper's printed formulas under each convention the paper itself uses, against the simulation.
-
-The paper mixes conventions (:data:`AXES`): positions as magnitudes (Sec. 4) or signed (Eqs. (9)-(22a)), the force
-``f`` or ``sigma f`` (Eq. (2)), the second half period as written or as the mirror of the first, and the velocity
-after or before an impact. Each combination is a reading of a printed formula, evaluated by :func:`try_readings`.
+"""The paper's printed formulas under each convention the paper itself uses (:data:`AXES`): positions as magnitudes
+(Sec. 4) or signed (Eqs. (9)-(22a)), the force ``f`` or ``sigma f`` (Eq. (2)), the second half period as written or
+mirrored, and the velocity after or before an impact; each combination is a reading, tried by :func:`try_readings`.
 """
 
 from __future__ import annotations

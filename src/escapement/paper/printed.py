@@ -22,8 +22,7 @@ __all__ = ["Symbols", "symbols_of", "v5_14", "zone_left_time_22e", "period_terms
 
 @dataclass(frozen=True)
 class Symbols:
-    """The numbers put in for a printed formula's symbols: ``a1`` .. ``a4`` (m), ``f`` (m s-2) and ``w`` (rad/s);
-    unchecked, as a convention of the paper may put in magnitudes or ``-f`` (:mod:`escapement.paper.conventions`)."""
+    """The numbers put in for a printed formula's symbols, unchecked: ``a1`` .. ``a4`` (m), ``f`` (m s-2), ``w``."""
 
     a1: float
     a2: float
@@ -57,8 +56,7 @@ def zone_left_time_22e(v4p: float, s: Symbols) -> float:
 
 
 def period_terms_23(velocities: dict[str, float], s: Symbols) -> dict[str, float]:
-    """The terms of Eq. (23) as printed, over ``w``, grouped by the step whose time they give, from ``velocities``
-    ``v1p``, ``v2``, ``v4p`` and ``v5`` (m/s)."""
+    """The terms of Eq. (23) as printed, over ``w``, grouped by the step whose time they give."""
     w, c = s.w, s.c
     r1 = math.hypot(s.a1 - c, velocities["v1p"] / w)
     h2 = math.hypot(s.a2, velocities["v2"] / w)
@@ -157,12 +155,10 @@ def step_times_22(v1: float, p: Parameters, left_amplitude: float) -> dict[str, 
     correct (10)-(15)), so that only the time expressions are under test. Reading of the garbled text:
 
     * (22a) ``t1 - t0 = acos(-a1 / h0) / w``
-    * (22b) ``t2 - t1 = [atan(v1p / (w (a1 - f/w^2))) + acos((f/w^2 - a2) / R1)] / w``
+    * (22b) ``t2 - t1 = [atan(v1p / (w (a1 - f/w^2))) + acos((f/w^2 - a2) / R1)] / w``, ``R1 = |(v1p/w, a1 - f/w^2)|``
     * (22c) ``t3 - t2 = atan(v2 / (w a2)) / w``
     * (22d) ``t4 - t3 = acos(a3 / sqrt(a2^2 + (v2/w)^2)) / w``
     * (22e) :func:`zone_left_time_22e`
-
-    with ``R1 = sqrt((v1p/w)^2 + (a1 - f/w^2)^2)``.
     """
     w, c, vel = p.omega, p.zone_offset, cycle_velocities(v1, p)
     v1p, v2, v4p = vel["v1p"], vel["v2"], vel["v4p"]

@@ -1,7 +1,5 @@
-"""The paper's derivations, each checked on the printed formulas alone, without the simulation: an equation a
-sentence says it obtained from others ((11)-(15) from Appendix A, (16) from (10)-(15), (17)-(21) from the symmetric
-map, (22a)-(22d) from the steps' equations) is recomputed from them and compared with the printed result, on the
-Fig. 3 models and :data:`OTHERS` at :data:`VELOCITIES`; one outcome per convention where the outcome depends on it.
+"""The paper's derivations checked on the printed formulas alone: an equation a sentence says it obtained from
+others is recomputed from them and compared with the printed result, one outcome per convention where it matters.
 """
 
 from __future__ import annotations

@@ -1,8 +1,6 @@
 """The words of the verdict and the one rule that gives them: statuses, kinds of evidence, origins, the columns of
-the claims table and how a number is written in it (:func:`fmt`).
-
-A row's status follows from its readings' outcomes, weighed by what its checks consume (:func:`row_status`); a
-sentence, one finding, takes its status from its parts' (:func:`finding_status`, the only place a status is partial).
+the claims table and how a number is written in it (:func:`fmt`). Only a finding, a sentence, takes a partial
+status, from its parts' (:func:`finding_status`).
 """
 
 from __future__ import annotations
@@ -63,8 +61,8 @@ def status_of(outcomes: Iterable[bool | None]) -> str:
 
 
 def weighed(status: str, evidence: str) -> str:
-    """The row's status: an agreement by construction or on fitted evidence is only ``consistent``, and, its mirror,
-    a failure on fitted evidence (under a reading or threshold the project chose) only ``undetermined``."""
+    """The row's status: agreement by construction or on fitted evidence is only consistent, failure on the latter
+    only undetermined (the readings and thresholds it rests on are the project's)."""
     if status not in STATUSES or evidence not in EVIDENCE:
         raise ValueError(f"status = {status!r}, evidence = {evidence!r}: not words of the vocabulary")
     if evidence == "fitted" and status == NOT:
@@ -73,8 +71,7 @@ def weighed(status: str, evidence: str) -> str:
 
 
 def row_status(readings: Iterable[tuple]) -> tuple[str, str]:
-    """A row's kind of evidence, the weakest of its readings' (:func:`evidence_of` of each ``(law, fitted,
-    threshold, holds)``), and its status: :func:`status_of` over every outcome (each of a grid's), weighed by it."""
+    """A row's kind of evidence, the weakest of its readings', and its status over every outcome, weighed by it."""
     readings = list(readings)
     kind = max((evidence_of(*reading) for reading in readings), key=list(EVIDENCE).index)
     outcomes = [o for *_, holds in readings for o in (holds.values() if isinstance(holds, Mapping) else [holds])]

@@ -19,9 +19,8 @@ COLUMNS = ["figure", "panel", "axis", "reading", "outcome", "autoscale", "ticks"
            "high", "tick_step", "printed_low", "printed_high", "step", "matches", "same_values_as"]
 _NUMBERS = ("data_min", "data_max", "low", "high", "tick_step", "printed_low", "printed_high", "step")
 
-#: the printed tick step imposed (a fixed locator at the step of the printed labels)
+#: the tick modes: the printed step imposed (a fixed locator), or the plotting program's own (matplotlib's default)
 PRINTED_STEP = "printed step"
-#: the plotting program's own tick step (matplotlib's default locator)
 DEFAULT_LOCATOR = "default locator"
 TICKS = (PRINTED_STEP, DEFAULT_LOCATOR)
 

@@ -123,8 +123,7 @@ def eq24(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes, args=("case",))
 def eq25(claim, ev: Evidence) -> Verdict:
-    """2 pi/w + 2 (dT1 + dT2) of Eqs. (24)-(25) at the last cycle under each reading (the positions; the velocity
-    entering the zone after the impact, as printed, or before it) against the simulated period."""
+    """2 pi/w + 2 (dT1 + dT2) of Eqs. (24)-(25) at the last cycle under each reading, against the simulated period."""
     ds, p, v1 = _last_cycle(claim, ev)
     v1p, simulated = (1 - p.b) * v1, float(ds["period"].values[-1])
 

@@ -66,8 +66,7 @@ NO_FIGURE = "no figure tells the conventions apart: each changes how a formula r
 
 
 def conventions_verdict(trials: list[Trial], simulated: str, what: str) -> tuple[dict[str, bool], str]:
-    """Whether the formula holds under each of the paper's conventions (its ``trials``, :func:`try_readings`): the
-    grid of readings the rule decides from, and a note naming those it holds under."""
+    """Whether the formula holds under each convention (its ``trials``), and a note naming those it holds under."""
     held = [departure(t.reading) for t in trials if t.reproduces]
     return {str(t.reading): t.reproduces for t in trials}, (
         f"{what} gives {simulated} under {len(held)} of the {len(trials)} conventions of the paper"

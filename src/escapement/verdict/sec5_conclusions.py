@@ -26,8 +26,7 @@ def asymmetric_dependence(claim, ev: Evidence) -> Verdict:
 
 
 def existence_verdict(rows: Sequence[Mapping], threshold: float, tolerance: float) -> Verdict:
-    """Holds when every run (``rows``: ``F``, closed-form ``C`` and ``fixed_point``, ``outcome``, ``cycles``, last
-    ``velocity``) agrees with the sign of C (> 0: converges to the fixed point; < 0: stops); the forces straddle F*."""
+    """Holds when every run agrees with the sign of C (> 0: converges to the fixed point; < 0: stops) across F*."""
     agree = [r["outcome"] == Status.COMPLETED.value and abs(r["velocity"] - r["fixed_point"]) <= (
         tolerance * r["fixed_point"]) if r["C"] > 0 else r["outcome"] == Status.STOPPED.value for r in rows]
     parts = [f"F = {fmt(r['F'], 4)} N (C = {fmt(r['C'], 4)} m^2/s^2): " + (
