@@ -76,8 +76,7 @@ def zone_period_change(v1: float, p: Parameters) -> float:
 
 
 def period_from_perturbations(v1: float, p: Parameters) -> float:
-    """``2 pi / w`` plus the perturbations of both impacts and both zones (the left half the mirror image of a right
-    half) plus the drift of the sine phase at a1 over the cycle (zero on the limit cycle)."""
+    """``2 pi / w`` plus both impacts' and both zones' perturbations (the left half mirrored) and the phase's drift."""
     w = p.omega
     vel = cycle_velocities(v1, p)
     mirror = Parameters(M=p.M, K=p.K, F=p.F, b=p.b, a1=-p.a3, a2=-p.a4, a3=-p.a1, a4=-p.a2)
@@ -88,8 +87,8 @@ def period_from_perturbations(v1: float, p: Parameters) -> float:
 
 
 def velocity_recovery(v1: float, p: Parameters) -> tuple[float, float]:
-    """``(x, t)``: where in the zone (a1, a2) the velocity regains its value before the impact at a1, and when;
-    ``(nan, nan)`` if not in the zone. By energy, where ``w**2 x**2 - 2 f x + q = 0``."""
+    """``(x, t)``: where in the zone (a1, a2) the velocity regains its value before the impact at a1, and when (NaN if
+    not in the zone), by energy: where ``w**2 x**2 - 2 f x + q = 0``."""
     w2, f, b = p.omega2, p.f, p.b
     q = (2 * b - b * b) * v1 * v1 - w2 * p.a1**2 + 2 * f * p.a1
     disc = f * f - w2 * q

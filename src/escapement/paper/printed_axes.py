@@ -4,14 +4,11 @@ The figures survive in the paper's text only as their tick labels (:data:`TICK_L
 each axis lists its labels low to high and the lines that show them. The limits are the outermost labels: automatic
 limits rounded out to ticks (MATLAB's default) end on a labelled tick. Where the text leaves a choice:
 
-* Fig. 3: the eighteen period labels (lines 297-319 and 347-367) split into two evenly spaced axes in one way only:
-  the odd ten-thousandths (6.2833, 6.2831, 6.2829, 6.2827) need a step of 0.0001, whose axis then holds 6.2828,
-  printed once; so the step-0.0002 axis stops at 6.283 and holds 6.2846, 6.2844, 6.2842: (a) 6.283 to 6.2846 by
-  0.0002 (its labels met first, left column), (b) 6.2826 to 6.2834 by 0.0001. The six ``0`` labels are the cycle
-  axes'; the ``3`` ending the page header (line 263) is the top of (b)'s velocity axis.
-* Fig. 4: which time axis (80-87 s, 81-85 s) goes with which value axis the text shows only by the order of the
-  axis titles: the velocity window is taken as 80-87 s. The time axes are the windows themselves, so their limits
-  test no reading (``scored=False``).
+* Fig. 3: the eighteen period labels (lines 297-319, 347-367) split into two evenly spaced axes in one way only:
+  the odd ten-thousandths and 6.2828, printed once, need a step of 0.0001: (a) 6.283 to 6.2846 by 0.0002 (its labels
+  met first), (b) 6.2826 to 6.2834 by 0.0001. The ``3`` ending the page header (line 263) tops (b)'s velocity axis.
+* Fig. 4: the velocity window is taken as 80-87 s, by the order of the axis titles; the time axes are the windows
+  themselves, so their limits test no reading (``scored=False``).
 """
 
 from __future__ import annotations
@@ -73,10 +70,6 @@ class Axis:
     high = property(lambda self: float(self.ticks[-1]), doc="The highest tick label, the axis' upper limit.")
     step = property(lambda self: float(Decimal(self.ticks[1]) - Decimal(self.ticks[0])),
                     doc="The spacing of the tick labels.")
-
-    def matches(self, low: float, high: float) -> int:
-        """:func:`limits_match` of ``low``, ``high`` against the printed limits."""
-        return limits_match(low, high, self.low, self.high, self.step)
 
 
 @dataclass(frozen=True)

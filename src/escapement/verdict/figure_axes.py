@@ -10,7 +10,7 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from ..paper.printed_axes import FIG5_PANEL_K, panel
+from ..paper.printed_axes import FIG5_PANEL_K, limits_match, panel
 from .evidence import Evidence, Verdict, check, fig3_scenes, fig4_scene, fmt
 
 
@@ -48,7 +48,7 @@ def printed_axes(claim, ev: Evidence) -> Verdict:
     if candidates.out_of != out_of:
         raise ValueError(f"the candidate readings of Fig. {figure} panel {name!r} are scored out of "
                          f"{candidates.out_of} limits; the panel has {out_of}")
-    matched = sum(axis.matches(*limits[axis_name]) for axis_name, axis in scored.items())
+    matched = sum(limits_match(*limits[key], axis.low, axis.high, axis.step) for key, axis in scored.items())
     best, groups = candidates.tied()
     named = ", ".join("[" + " = ".join(group) + "]" for group in groups)  # names may hold "; "
     ties = (f"by one reading {named}" if len(groups) == 1 else f"a tie of {len(groups)} readings that plot different "
