@@ -1,7 +1,6 @@
 """Closed forms derived for this replication, the corrected counterparts of the paper's equations, from the energy
-balance and the phase plane, where about a centre ``c`` the state ``(x - c, v/w)`` turns clockwise at rate ``w``.
-The sine phase ``atan2(x, v/w)`` advances at exactly ``w`` in free flight, so a cycle lasts ``2 pi / w`` plus the
-phase jumps at the two impacts plus the zone times less their phase advance: the decomposition of Eqs. (24)-(25).
+balance and the phase plane. The sine phase ``atan2(x, v/w)`` advances at exactly ``w`` in free flight, so a cycle
+lasts ``2 pi / w`` plus the phase jumps of the impacts plus the zone times less their phase advance (Eqs. (24)-(25)).
 """
 
 from __future__ import annotations
@@ -131,8 +130,7 @@ def daily_rate(period: float, natural_period: float) -> float:
 
 
 def first_order_zone_change(start: float, end: float, amplitude: float, omega: float, f: float) -> float:
-    """The first-order time cost of a zone from ``start`` to ``end``, force per unit mass ``f`` along the motion, on
-    an arc of amplitude ``amplitude``: zero for a zone symmetric about 0 (Airy), negative before it, positive after."""
+    """The first-order time cost of a zone, force per unit mass ``f`` along the motion, on an arc of ``amplitude``."""
     a2 = amplitude * amplitude
     return f * (math.sqrt(a2 - start * start) - math.sqrt(a2 - end * end)) / (omega**3 * a2)
 

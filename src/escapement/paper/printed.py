@@ -150,9 +150,8 @@ def multiplier_21_of(b: float) -> float:
 
 
 def step_times_22(v1: float, p: Parameters, left_amplitude: float) -> dict[str, float]:
-    """Eqs. (22a)-(22e) as printed: the durations of steps 1-7 of one cycle. ``left_amplitude`` is ``h0``, the
-    left turning point's distance from 0 (step 1 starts there); the velocities come from the energy balance (the
-    correct (10)-(15)), so that only the time expressions are under test. Reading of the garbled text:
+    """Eqs. (22a)-(22e) as printed: the durations of steps 1-7 of one cycle from the left turning point at
+    ``-left_amplitude``, the velocities from the energy balance (only the times under test). The garbled text read:
 
     * (22a) ``t1 - t0 = acos(-a1 / h0) / w``
     * (22b) ``t2 - t1 = [atan(v1p / (w (a1 - f/w^2))) + acos((f/w^2 - a2) / R1)] / w``, ``R1 = |(v1p/w, a1 - f/w^2)|``

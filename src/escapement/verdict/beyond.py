@@ -1,6 +1,5 @@
-"""Airy's theorem on the escapement error (1830: an impulse symmetric about the equilibrium leaves the period
-unchanged to first order, one before it shortens it, one after lengthens it), checked on the exact solver's runs
-beyond the paper, and the period as a daily rate.
+"""Beyond the paper: Airy's theorem on the escapement error (1830: an impulse symmetric about the equilibrium leaves
+the period unchanged to first order), checked on the exact solver's runs, and the period as a daily rate.
 """
 
 from __future__ import annotations

@@ -101,8 +101,7 @@ def symmetric_difference(equation: str, p: Parameters, v: float) -> float:
 
 @check(scenes=fig3_scenes, args=("equation",))
 def symmetric_map(claim, ev: Evidence) -> Verdict:
-    """(17), (19), (20) or (21) against what its sentence derives it from, with a3 = -a1, a4 = -a2 (the assumption
-    of (17), which reads the positions signed): an identity in a1, a2, b, f and w, so one outcome."""
+    """(17), (19), (20) or (21) against what its sentence derives it from, with a3 = -a1, a4 = -a2: one outcome."""
     equation = str(claim["args"]["equation"])
     if equation not in SYMMETRIC:
         raise ValueError(f"equation = {equation!r} must be one of {', '.join(SYMMETRIC)}")

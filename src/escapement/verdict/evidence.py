@@ -37,8 +37,7 @@ class Evidence:
 
 @dataclass(frozen=True)
 class Verdict:
-    """What a check finds under one reading: the replicated value, whether the claim ``holds`` (a bool; per reading of
-    a grid it walks; None, nothing to compute), a note, and the paper's value where it gives a formula."""
+    """What a check finds under one reading; ``holds`` is a bool, one per reading of a grid, or None (nothing to do)."""
 
     replicated_value: str
     holds: bool | None | Mapping[str, bool]
@@ -52,9 +51,8 @@ def no_scene(claim: Mapping, ev: Evidence) -> dict[str, xr.Dataset]:
 
 @dataclass(frozen=True)
 class Check:
-    """A check of the register and what it declares: the ``scenes`` it reads, the args that name its ``runs``, the
-    other ``args`` it needs, the ``law``, ``fitted`` input or ``threshold`` that give its kind of evidence
-    (:func:`.rule.evidence_of`), and the outcomes besides ``completed`` that are its ``answers``, not exits."""
+    """A check of the register and what it declares: ``law``, ``fitted`` and ``threshold`` give its kind of evidence
+    (:func:`.rule.evidence_of`); ``answers`` are the outcomes besides ``completed`` that are not exits."""
 
     function: Callable[[Mapping, Evidence], Verdict]
     scenes: Callable[[Mapping, Evidence], dict[str, xr.Dataset]] = no_scene

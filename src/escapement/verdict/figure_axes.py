@@ -1,6 +1,5 @@
-"""The axis claims: each printed panel of Figs. 3-5 against the pipeline's own outputs. An axis matches when the
-values, autoscaled with the printed tick step imposed and limits rounded out to the ticks, give exactly the printed
-limits; the readings the paper leaves open were fitted to these axes, so a match is only consistent.
+"""The axis claims: each printed panel of Figs. 3-5 against the outputs autoscaled with the printed tick step; the
+readings the paper leaves open were fitted to these axes, so a match is only consistent.
 """
 
 from __future__ import annotations

@@ -90,8 +90,7 @@ def panel_candidates(rows: Iterable[Mapping], autoscale: str = CLAIM_AUTOSCALE) 
 
 
 def joint_candidates(rows: Iterable[Mapping], figure: str, autoscale: str = CLAIM_AUTOSCALE) -> Candidates:
-    """The readings every panel of Fig. ``figure`` scores under one name (a Fig. 4 reading names both panels'
-    scene), scored over all its panels; equivalent when they are in every panel."""
+    """The readings every panel of Fig. ``figure`` scores under one name, scored over all its panels."""
     panels = [p for (fig, _), p in _panel_scores(rows, autoscale).items() if fig == str(figure)]
     if not panels:
         raise ValueError(f"figure = {figure!r}: the score rows hold no panel of that figure")

@@ -86,8 +86,7 @@ def eq23(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes, args=("case", "form"))
 def eq24(claim, ev: Evidence) -> Verdict:
-    """Eq. (24) at the last cycle against the jump of the sine phase across the simulated impact: per convention of
-    the positions, ``form: first`` holds where the first form reproduces it, ``second`` where both do."""
+    """Eq. (24) at the last cycle against the simulated impact's phase jump; ``form: second`` holds where both do."""
     form = claim["args"]["form"]
     if form not in ("first", "second"):
         raise ValueError(f"form = {form!r} must be first or second")

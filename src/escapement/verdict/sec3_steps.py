@@ -4,12 +4,9 @@ Eq. (14) under each convention of the paper, a grid of readings (:func:`conventi
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import numpy as np
 
 from ..model.events import EventKind
-from ..model.parameters import Parameters
 from ..paper import corrected as derived
 from ..paper import printed as pe
 from ..paper.conventions import Trial, departure, second_half_trials
@@ -20,7 +17,7 @@ from .evidence import Evidence, Verdict, check, events_of, fig3_scenes, fmt, par
 _IMPACT_LAW = "the impact law (A-2) the model is built on"
 #: each step: the printed formula (velocity out from velocity in), where its input and output are among a cycle's
 #: events (offset from the impact at a1, 4 the next a1; before or after the event), and the printed text as read
-PRINTED_STEPS: dict[str, tuple[Callable[[float, Parameters], float], tuple[int, str], tuple[int, str], str]] = {
+PRINTED_STEPS = {
     "10": (lambda v, p: (1 - p.b) * v, (0, "before"), (0, "after"), f"x1+ = (1 - b) x1, {_IMPACT_LAW}"),
     "11": (lambda v, p: _sqrt(v * v + (p.a1**2 - p.a2**2) * p.omega2 - 2 * (p.a1 - p.a2) * p.f),
            (0, "after"), (1, "before"), "x2 = sqrt(x1+^2 + (a1^2 - a2^2) w^2 - 2 (a1 - a2) f)"),

@@ -61,8 +61,7 @@ def fig5_velocity_common_force(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",), args=("measure",))
 def fig5_recovery_common_force(claim, ev: Evidence) -> Verdict:
-    """The velocity before the impact at a1 recovers (:func:`escapement.paper.corrected.velocity_recovery`) faster
-    for smaller K at each common force, in ``seconds``, or of the ``period`` 2 pi/w or the limit cycle's ``width``."""
+    """The velocity before the impact at a1 recovers faster for smaller K at each common force, by the ``measure``."""
     measure = claim["args"]["measure"]
 
     def recovery(r) -> float:

@@ -1,6 +1,5 @@
-"""The headline of the verdict: the paper's quoted words counted as findings, read from the claims table alone.
-Each quote (a sentence, an equation with its words, an axis title or caption) is one finding however many rows
-(its parts) check it; rows beyond the paper are not findings.
+"""The headline of the verdict: the paper's quoted words counted as findings, read from the claims table alone;
+each quote is one finding however many rows (its parts) check it, and rows beyond the paper are none.
 """
 
 from __future__ import annotations
