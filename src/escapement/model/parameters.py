@@ -1,10 +1,8 @@
 """The model's parameters, validated when they are made: :class:`Parameters` for one run, :class:`ParameterArrays`
 for the ensemble's many, both by the one rule set of :func:`rules` and :func:`state_rules`.
 
-A mass ``M`` on a spring ``K`` (Mao, Fu & Li 2013, Sec. 2-3, Appendix A) meets the impact at ``a1`` moving right
-and the one at ``a3`` moving left, and the force ``F`` acts from ``a1`` to ``a2`` and from ``a3`` to ``a4``: so
-``a1 < a2`` and ``a4 < a3``. The paper has ``a1 < 0 < a3`` (its jump set ``x * xdot < 0``); the model reads the
-jump set by the direction of motion for any other placement too (:attr:`Parameters.paper_signs`).
+The impacts are at ``a1`` (moving right) and ``a3`` (moving left), the force acts from ``a1`` to ``a2`` and from
+``a3`` to ``a4`` (Mao, Fu & Li 2013, Sec. 2-3, Appendix A): so ``a1 < a2`` and ``a4 < a3``.
 """
 
 from __future__ import annotations
@@ -30,8 +28,6 @@ SIGNS = {"M": "> 0", "K": "> 0", "F": ">= 0", "b": "in the open interval (0, 2)"
 
 _WHY = ("so that the squares and products the solvers form (omega**2 = K/M, F/K, v/omega, squared speeds, "
         "energies) stay normal float64 numbers")
-
-
 #: each parameter's and initial-state component's unit, as printed
 _UNIT = {name: q.unit_label for name, q in {**PARAMETERS, **INITIAL_STATE}.items()}
 #: the positions along the line of motion: the parameters measured as the displacement is
@@ -47,19 +43,13 @@ def _magnitude(name: str, values: np.ndarray, zero: bool) -> tuple[str, np.ndarr
 
 
 def rules(v: Mapping[str, np.ndarray]) -> Iterator[tuple[str, np.ndarray, str]]:
-    """Each rule as ``(name, holds, requirement)``, in the order they are checked.
+    """Each rule on the model keys' arrays ``v`` as ``(name, holds, requirement)``, in the order they are checked;
+    ``requirement`` may name other parameters as ``{a1}`` (filled with the offending row's values).
 
-    ``v`` maps every model key to a float64 array (all of one shape); ``holds`` is a boolean array of that
-    shape; ``requirement`` may name other parameters as ``{a1}`` (filled with the offending row's values).
-
-    The solvers form ``omega**2 = K/M``, ``F/K``, ``F/M``, ``v/omega``, squared speeds, products of two
-    phase-plane lengths, the work ``f (a2 - a1)``, energies and sums of times. With every dimensional input 0
-    (where zero means something: not ``M`` or ``K``) or of magnitude in ``[1e-50, 1e50]`` (SI units), ``omega``,
-    ``F/K``, ``F/M`` and ``v0/omega`` lie in ``[1e-100, 1e100]``; an impact only takes energy away and each zone
-    adds at most ``4e150`` to ``v**2``, so over :data:`~escapement.model.limits.MAX_EVENTS` events every square
-    stays below about ``1e260`` and every non-zero product above ``1e-200``: normal float64 numbers with a margin
-    of 1e40 (the paper's values lie some 48 orders of magnitude inside). ``b`` is at least :data:`B_SMALLEST`,
-    so that ``1 - b`` keeps it to 4 digits.
+    With every dimensional input 0 (not ``M`` or ``K``) or of magnitude in ``[1e-50, 1e50]``, ``omega``, ``F/K``,
+    ``F/M`` and ``v0/omega`` lie in ``[1e-100, 1e100]``; each zone adds at most ``4e150`` to ``v**2``, so over
+    :data:`~escapement.model.limits.MAX_EVENTS` events every square stays below about ``1e260`` and every non-zero
+    product above ``1e-200``: normal float64 numbers with a margin of 1e40.
     """
     with np.errstate(all="ignore"):
         for name, holds in (("M", v["M"] > 0), ("K", v["K"] > 0), ("F", v["F"] >= 0)):
@@ -105,8 +95,7 @@ def _check(checks: Iterable, shaped: Mapping[str, np.ndarray]) -> None:
 
 def validate_arrays(values: Mapping[str, object], single: bool = False, state: bool = False) -> dict[str, np.ndarray]:
     """Every model key (``a3``, ``a4`` None: the symmetric default) and, with ``state``, ``x0`` and ``v0``, checked
-    and broadcast to one shape of float64 arrays, for a single model (``single``: every value a number) or an
-    ensemble (a row per element); the first violation is refused, naming the row for arrays."""
+    and broadcast to one shape of float64 arrays (``single``: every value a number); the first violation refused."""
     for key in REQUIRED_KEYS + (tuple(INITIAL_STATE) if state else ()):
         if values.get(key) is None:
             raise ParameterError(key, None, "given")
@@ -209,8 +198,7 @@ class Parameters:
 
     @property
     def paper_signs(self) -> bool:
-        """True for the paper's signs ``a1 < 0 < a3``: each impact met moving towards the equilibrium, on the
-        paper's jump set ``x * xdot < 0``; False where an impact is met at or after the equilibrium."""
+        """True for the paper's signs ``a1 < 0 < a3``: each impact on its jump set ``x * xdot < 0``."""
         return self.a1 < 0.0 < self.a3
 
     @property
@@ -228,8 +216,7 @@ class Parameters:
         return {n: getattr(self, n) for n in MODEL_KEYS}
 
     def __repr__(self) -> str:
-        """The call that makes these parameters, each value as typed back (zero without a sign: ``a4`` of
-        ``a2 = 0`` is stored as ``-0.0``)."""
+        """The call that makes these parameters (zero without a sign: ``a4`` of ``a2 = 0`` is stored as -0.0)."""
         values = [f"{name}={getattr(self, name) + 0.0!r}" for name in MODEL_KEYS]
         return f"{type(self).__name__}({', '.join(values + [f'{k}={v!r}' for k, v in self.chosen.items()])})"
 
@@ -253,8 +240,7 @@ if Parameters.__doc__:  # None when docstrings are stripped (python -OO)
 
 @dataclass(frozen=True)
 class ParameterArrays:
-    """The parameters of the ensemble's runs, a row per element of each flat float64 array, checked row by row
-    by the rules of :class:`Parameters` (:func:`validate_arrays`)."""
+    """The parameters of the ensemble's runs, a row per element of each flat float64 array (:func:`validate_arrays`)."""
 
     M: np.ndarray
     K: np.ndarray
