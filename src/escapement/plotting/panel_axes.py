@@ -71,8 +71,7 @@ def phase_axes(panels: Mapping[str, xr.Dataset], margin: float) -> DrawnAxes:
 
 def scene_axes(fig3: Mapping[str, xr.Dataset], fig4: xr.Dataset | None, fig5: Mapping[str, xr.Dataset],
                margin: float) -> PanelAxes:
-    """The limits of each printed panel's scored axes, :data:`PanelAxes`, from the outputs of Figs. 3 (by case), 4
-    and 5, as the functions above give them."""
+    """The limits of each printed panel's scored axes (:data:`PanelAxes`) from the outputs of Figs. 3, 4 and 5."""
     drawn = {("3", name): axes for name, axes in poincare_axes(fig3, margin).items()}
     if fig4 is not None:
         drawn |= {("4", name): axes for name, axes in shock_axes(fig4, margin).items()}

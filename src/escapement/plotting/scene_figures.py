@@ -62,9 +62,8 @@ def _guide(ax, y: float, **look) -> None:
 
 
 def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | None = None) -> Figure:
-    """The velocity before impact, the period and the amplitude against the cycle number, one column per case of
-    ``cases``. ``axes`` keys: ``"<case>/velocity"``, ``".../period"``, ``".../amplitude"``; a case's printed period
-    axes are widened to the paper's period and draw it, in place of the natural period it rounds to."""
+    """The velocity before impact, the period and the amplitude against the cycle number, one column per case.
+    ``axes`` keys: ``"<case>/velocity"``, ``".../period"`` (widened to the paper's period), ``".../amplitude"``."""
     datasets = list(cases.values())
     _check(axes, [f"{label}/{key}" for label in cases for key, _ in _ROWS])
     with style():
@@ -100,9 +99,8 @@ def poincare_map(cases: Mapping[str, xr.Dataset], title: str, axes: DrawnAxes | 
 
 
 def shock_detail(ds: xr.Dataset, title: str, axes: DrawnAxes | None = None) -> Figure:
-    """The velocity and the acceleration around the impacts, each over its window; an impact's impulse drawn as an
-    arrow, and each impact of the velocity window listed in the legend with its impulse and the energy it dissipates.
-    ``axes`` keys: ``"velocity"``, ``"acceleration"``."""
+    """The velocity and the acceleration around the impacts, an impulse as an arrow, each impact of the velocity window
+    listed with its impulse and the energy it dissipates. ``axes`` keys: ``"velocity"``, ``"acceleration"``."""
     _check(axes, ("velocity", "acceleration"))
     t, impacts = ds["t"].values, ds["impact_time"].values
     impulse, energy = ds["impulse"].values, ds["energy_dissipated"].values
