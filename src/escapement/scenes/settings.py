@@ -1,17 +1,14 @@
 """The settings of each scene, checked once: frozen dataclasses made from a flat mapping of the configuration.
 
-A scene is one run (or one grid of runs) and the dataset it makes. Its settings come to it as a flat mapping
-(the model's keys merged with the scene's own, as the workflow's configuration builds it and Snakemake passes
-it as the rule's params), and :meth:`from_mapping` checks them all before any work: the model by
-:class:`~escapement.model.parameters.Parameters`, the release by ``check_initial_state``, counts, windows and
-axes here, each refusal a :class:`~escapement.model.parameters.ParameterError` naming the key and its value.
-
-:data:`KINDS` names each kind of scene once: the configuration's block, the files' and figures' name, what it
-shows, and the paper's figure it reproduces where it has one.
+A scene's settings (the model's keys merged with the scene's own, as Snakemake passes the rule's params) are all
+checked by :meth:`from_mapping` before any work, each refusal a
+:class:`~escapement.model.parameters.ParameterError` naming the key and its value. :data:`KINDS` names each kind
+of scene once.
 """
 
 from __future__ import annotations
 
+import itertools
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -33,8 +30,7 @@ REPLICATION = "replication"
 @dataclass(frozen=True)
 class Kind:
     """A kind of scene: its configuration block, its name in files, what it shows and the paper's figure; and the
-    model's keys its data do not depend on, each with the reason (an axis, the zones: the scenes never take them
-    from the model block)."""
+    model's keys its data do not depend on, each with the reason."""
 
     block: str
     name: str
@@ -72,9 +68,8 @@ KINDS = {k.block: k for k in (
 
 @dataclass(frozen=True)
 class Study:
-    """Where a scene belongs: the study (``replication``, or the user's own by its name), the scene's label within its
-    kind (a Fig. 3 case, a spring constant), which name its files and title its dataset, and, for a study of the user's
-    own, what in its kind differs from the paper's scenes (one line, written by the workflow's configuration)."""
+    """Where a scene belongs: the study, the scene's label within its kind (a Fig. 3 case, a spring constant), and,
+    for a study of the user's own, what in its kind differs from the paper's scenes (one line)."""
 
     name: str
     label: str = ""
@@ -121,9 +116,8 @@ def time_window(name: str, window: object) -> tuple[float, float]:
     return lo, hi
 
 
-#: The bounds [least, most] of each count a scene takes, by its configuration block and key (an axis's number of
-#: points as ``<axis>.n``): what fits a laptop's memory and runs in minutes. The configuration's schema states them
-#: too, for the refusals before any scene is built (tests/pipeline/test_config.py holds the two to the same bounds).
+#: The bounds [least, most] of each count a scene takes, by ``block.key`` (an axis's points as ``<axis>.n``): what
+#: fits a laptop's memory and runs in minutes (the configuration's schema states the same bounds).
 COUNTS = {
     "fig3.n_cycles": (1, 1_000_000),
     "fig4.samples_per_second": (1, 100_000),
@@ -147,8 +141,7 @@ def _count(key: str, value: object) -> int:
 
 
 def _axis(block: str, name: str, axis: object) -> tuple[float, float, int]:
-    """``(start, stop, n)`` of the axis ``name`` of ``block``, with finite ``start < stop`` (or one point) and ``n``
-    within :data:`COUNTS`."""
+    """``(start, stop, n)`` of the axis ``name`` of ``block``: finite ``start < stop`` (or one point), ``n`` counted."""
     if not isinstance(axis, Mapping) or set(axis) != {"start", "stop", "n"} or not _real(axis["start"]) \
             or not _real(axis["stop"]):
         raise ParameterError(name, axis, "an axis {start, stop, n}: two numbers and a count")
@@ -158,8 +151,7 @@ def _axis(block: str, name: str, axis: object) -> tuple[float, float, int]:
     return start, stop, n
 
 
-#: the definitions of Fig. 3's amplitude, by the name of the variable that holds it (defined, with the readings
-#: of the printed axes, by escapement.studies.readings.AMPLITUDES)
+#: the definitions of Fig. 3's amplitude, by the name of the variable that holds it
 AMPLITUDES = tuple(DEFINED_AMPLITUDES)
 
 #: the most samples a sampled time series may hold (three float64 arrays: 240 MB)
@@ -174,8 +166,7 @@ def as_typed(value: object) -> str:
 
 
 class SizeError(ValueError):
-    """A scene larger than one job holds and that is not split: the dotted keys that size it with their values, what
-    they ask for beside the most one job holds, and why it is not split."""
+    """A scene larger than one job holds and that is not split: the keys that size it, what they ask beside the most."""
 
     def __init__(self, keys: Mapping[str, object], asked: float, most: float, what: str, why: str) -> None:
         first, *rest = (f"{key} = {as_typed(value)}" for key, value in keys.items())
@@ -290,6 +281,13 @@ def _model(values: Mapping) -> dict:
     return {k: values[k] for k in ("M", "K", "b", "a1", "a2", "a3", "a4") if values.get(k) is not None}
 
 
+def _corners(values: Mapping, **axes: tuple[float, ...]) -> Parameters:
+    """The model at the first corner of the ``axes``, every corner checked: every cell's is valid if theirs are."""
+    for corner in itertools.product(*((v[0], v[-1]) for v in axes.values())):
+        Parameters(**{**_model(values), **dict(zip(axes, corner))})
+    return Parameters.from_mapping({**values, **{name: v[0] for name, v in axes.items()}})
+
+
 def cell_centres(start: float, stop: float, n: int) -> tuple[float, ...]:
     """The ``n`` cell centres of ``(start, stop)``."""
     step = (stop - start) / n
@@ -311,11 +309,7 @@ class StabilityMapScene:
         b_values = cell_centres(*_axis("stability_map", "b", values["b"]))
         start, stop, n = _axis("stability_map", "F", values["F"])
         F_values = tuple(start + (stop - start) * j / max(n - 1, 1) for j in range(n))
-        for b in (b_values[0], b_values[-1]):  # every cell's model is valid if the corners' are
-            for force in (F_values[0], F_values[-1]):
-                Parameters(**{**_model(values), "b": b, "F": force})
-        params = Parameters.from_mapping({**values, "F": F_values[0], "b": b_values[0]})
-        return cls(Study.from_mapping(values), params, b_values, F_values)
+        return cls(Study.from_mapping(values), _corners(values, b=b_values, F=F_values), b_values, F_values)
 
 
 @dataclass(frozen=True)
@@ -335,14 +329,11 @@ class ExistenceMapScene:
     def from_mapping(cls, values: Mapping) -> ExistenceMapScene:
         a3_values = cell_centres(*_axis("existence_map", "a3", values["a3"]))
         F_values = cell_centres(*_axis("existence_map", "F", values["F"]))
-        for a3 in (a3_values[0], a3_values[-1]):
-            for force in (F_values[0], F_values[-1]):
-                Parameters(**{**_model(values), "a3": a3, "F": force})
+        params = _corners(values, a3=a3_values, F=F_values)
         tolerance = float(values["tolerance"]) if _real(values["tolerance"]) else np.nan
         if not 0 < tolerance < 1:
             raise ParameterError("tolerance", values["tolerance"], "a relative tolerance in (0, 1)")
         n_cycles = _count("existence_map.n_cycles", values["n_cycles"])
-        params = Parameters.from_mapping({**values, "a3": a3_values[0], "F": F_values[0]})
         return cls(Study.from_mapping(values), params, Release.from_mapping(values), a3_values, F_values,
                    n_cycles, tolerance)
 
