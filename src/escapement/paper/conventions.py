@@ -43,7 +43,6 @@ class Reading:
         return ", ".join(f"{axis} {getattr(self, axis)}" for axis in AXES)
 
 
-#: the reading the register adopts for every printed formula
 AS_READ = Reading(*(choices[0] for choices in AXES.values()))
 
 
@@ -56,8 +55,7 @@ def readings(axes: tuple[str, ...]) -> list[Reading]:
 
 
 def symbols(p: Parameters, reading: Reading, second_half: bool) -> tuple[pe.Symbols, float]:
-    """The numbers for a printed formula's symbols under ``reading``, and the sign its velocities take. In the
-    ``second_half``, ``mirrored`` is the image ``x -> -x`` (positions and velocities change sign, not the force)."""
+    """The numbers for a printed formula's symbols under ``reading``, and the sign of its velocities (-1: mirrored)."""
     if not isinstance(second_half, bool):
         raise ValueError(f"second_half = {second_half!r} must be True or False")
     positions = [p.a1, p.a2, p.a3, p.a4]
@@ -83,8 +81,7 @@ class Trial:
 
 def try_readings(formula: Callable[[Reading], float], simulated: float, tolerance: float,
                  axes: tuple[str, ...]) -> list[Trial]:
-    """``formula(reading)`` under every reading of ``axes`` (:func:`readings`), against ``simulated``: a reading
-    reproduces it when the relative difference is at most ``tolerance`` (NaN, undefined, reproduces nothing)."""
+    """``formula(reading)`` under each reading of ``axes``, and whether it is within ``tolerance`` of ``simulated``."""
     if not (isinstance(tolerance, (int, float)) and tolerance >= 0):
         raise ValueError(f"tolerance = {tolerance!r} must be a number >= 0")
     if not (isinstance(simulated, float) and math.isfinite(simulated) and simulated != 0.0):

@@ -20,8 +20,7 @@ def _sqrt(value: float) -> float:
 
 
 def cycle_velocities(v1: float, p: Parameters) -> dict[str, float]:
-    """Velocities of one cycle from ``v1`` (before the impact at a1), by energy: the paper's (10)-(15) but (14), where
-    the force ``-f`` on the leftward motion from a3 to a4 does positive work ``f (a3 - a4)``."""
+    """Velocities of one cycle from ``v1`` by energy: the paper's (10)-(15), but (14) with the work ``+f (a3 - a4)``."""
     w2, f, b = p.omega2, p.f, p.b
     v1p = (1 - b) * v1
     v2 = _sqrt(v1p**2 + w2 * (p.a1 - p.a2) * (p.a1 + p.a2) + 2 * (p.a2 - p.a1) * f)
@@ -86,8 +85,7 @@ def period_from_perturbations(v1: float, p: Parameters) -> float:
 
 
 def velocity_recovery(v1: float, p: Parameters) -> tuple[float, float]:
-    """``(x, t)``: where in the zone (a1, a2) the velocity regains its value before the impact at a1, and when (NaN if
-    not in the zone), by energy: where ``w**2 x**2 - 2 f x + q = 0``."""
+    """Where (``x``) and when (``t``) in the zone (a1, a2) the velocity regains its value before the impact at a1."""
     w2, f, b = p.omega2, p.f, p.b
     q = (2 * b - b * b) * v1 * v1 - w2 * p.a1**2 + 2 * f * p.a1
     disc = f * f - w2 * q

@@ -1,9 +1,6 @@
-"""The paper's closed forms, as printed (Mao, Fu & Li 2013, Sec. 3.3-3.4).
-
-Each function reproduces one equation as it reads in the paper, ``a1 .. a4`` taken as signed positions
-(``a1 < 0 < a3``); where the text is garbled, the docstring states the reading. Notation: ``v1`` the velocity
-just before the impact at a1 (``xdot_1(k)``), ``v1p = (1 - b) v1`` just after it; ``v2`` the velocity at a2; ``v4``
-before the impact at a3, ``v4p`` after it; ``v5`` the velocity at a4.
+"""The paper's closed forms, as printed (Mao, Fu & Li 2013, Sec. 3.3-3.4), ``a1 .. a4`` signed (``a1 < 0 < a3``);
+where the text is garbled, the docstring states the reading. ``v1`` is the velocity just before the impact at a1,
+``v1p = (1 - b) v1`` just after it, ``v2`` at a2, ``v4`` and ``v4p`` before and after the impact at a3, ``v5`` at a4.
 """
 
 from __future__ import annotations
@@ -95,8 +92,7 @@ def _acos(value: float) -> float:
 
 def step_velocities(v1: float, p: Parameters, first: Symbols | None = None, second: Symbols | None = None
                     ) -> dict[str, float]:
-    """Eqs. (10)-(15) as printed: the velocities of one cycle from ``v1`` (Eq. (14): :func:`v5_14`), the symbols of
-    the first half period's equations ``first``, of the second's ``second`` (unless given, :func:`symbols_of`)."""
+    """Eqs. (10)-(15) as printed from ``v1``, the symbols of each half period ``first``, ``second`` (or the model's)."""
     s1, s2, b = first or symbols_of(p), second or symbols_of(p), p.b
     w2 = s1.w**2
     v1p = (1 - b) * v1  # (10)

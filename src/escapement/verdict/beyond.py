@@ -12,8 +12,7 @@ from .evidence import Evidence, Verdict, check, each, fig3_scenes, fmt, params_o
 
 
 def airy_verdict(zones: Mapping[str, Mapping], tolerance: float) -> Verdict:
-    """Holds when every zone (``zone``, first-order ``kappa``, 0 if symmetric, measured ``shift`` at each ``f``) has
-    the order 2 in ``f`` if symmetric, else 1 with ``dT2 / f`` within ``tolerance`` of ``kappa`` (at the least f)."""
+    """Holds when each zone's ``shift`` has order 2 in ``f`` if symmetric, else 1 with ``dT2 / f`` near ``kappa``."""
     agree, parts = [], []
     for name, z in zones.items():
         (f_min, s_min), (f2, s2) = sorted(zip(z["f"], z["shift"]))[:2]

@@ -43,8 +43,7 @@ def by_convention(ev: Evidence, difference, tolerance: float, what: str, note: s
 
 
 def step_energy_change(equation: str, p: Parameters, v1: float, reading) -> float:
-    """The change of ``v^2 + w^2 x^2 - 2 F x``, the integral of the cited ``x'' + w^2 x = F``, over the printed
-    step, relative to the end's ``v^2``: ``F = sign f`` in the frame of the reading (mirrored: ``-F``)."""
+    """The relative change over the step of ``v^2 + w^2 x^2 - 2 F x``, the integral of the cited ``x'' + w^2 x = F``."""
     _, sign, start, end, _ = STEPS[equation]
     (first, _), (second, frame) = symbols(p, reading, False), symbols(p, reading, True)
     v = pe.step_velocities(v1, p, first, second)

@@ -22,7 +22,6 @@ from .rule import UNDETERMINED, fmt, row_status
 
 __all__ = ["SCHEMA", "ClaimError", "evaluate", "load_claims", "resolved"]
 
-#: the register and its JSON Schema, package data beside this module
 REGISTER, SCHEMA = (Path(__file__).with_name(name) for name in ("claims.yaml", "claims.schema.yaml"))
 #: the reading of a claim checked under one reading only
 AS_STATED = "as stated"
@@ -46,8 +45,7 @@ def resolved(name: str) -> Check:
 
 def load_claims(path: str | os.PathLike, schema: str | os.PathLike = SCHEMA, runs: Collection[str] | None = None
                 ) -> list[dict]:
-    """The claims of the register at ``path``, each with its ``readings`` (one, ``as stated``, for a claim checked
-    under one reading); ValueError naming the claim and what it cannot say (against ``schema``, or ``runs``)."""
+    """The claims of the register at ``path``, each with its ``readings``; ValueError naming the claim and its fault."""
     data, schema = (yaml.load(Path(p).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
                     for p in (path, schema))
     error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(schema).iter_errors(data))

@@ -30,8 +30,7 @@ CLAIM_AUTOSCALE = "round, margin 0"
 
 @dataclass(frozen=True)
 class Candidates:
-    """Every candidate reading of one printed panel: per reading, the printed limits it reproduces with the printed
-    tick step imposed (``scores``) or the default one (``default_scores``); ``equivalent`` plot the same values."""
+    """The printed limits each candidate reading of a panel reproduces; ``equivalent`` readings plot the same values."""
 
     out_of: int
     scores: Mapping[str, int]

@@ -49,7 +49,6 @@ def printed_step(claim, ev: Evidence) -> Verdict:
                    paper_value=f"Eq. ({equation})")
 
 
-#: the step equations that restate the impact law
 impact_step = check(scenes=fig3_scenes, args=("equation",), law="the impact law v+ = (1 - b) v- (Eq. (A-2))")(
     printed_step.function)
 
@@ -58,7 +57,6 @@ def describe(trials: list[Trial]) -> str:
     return "; ".join(f"{departure(t.reading)}: {fmt(t.value)} ({fmt(t.relative_difference, 2)})" for t in trials)
 
 
-#: why no printed figure decides between the conventions of a formula
 NO_FIGURE = "no figure tells the conventions apart: each changes how a formula reads, not the motion Figs. 3-5 print"
 
 
