@@ -1,9 +1,6 @@
 """The runs of the checks block measured otherwise than the table of :func:`escapement.scenes.runs.checks`, each written
-under its name in the block (:func:`named_runs`): its settings beside what its ``measure`` gives (:data:`MEASURES`):
-runs from rest, how they ended and their velocities before the impacts at a1; the event tables of runs from rest; the
-slope of the simulated return map; runs from the section at the converged speed and beside it; the time one passage
-through an impulse zone adds to the free swing (Airy's theorem, Sec. 5); the crossings of the Poincare section per
-cycle. A check reads a run by its name (:func:`escapement.verdict.evidence.run`) and never runs one.
+under its name in the block (:func:`named_runs`): its settings beside what its ``measure`` gives (:data:`MEASURES`).
+A check reads a run by its name (:func:`escapement.verdict.evidence.run`) and never runs one.
 """
 
 from __future__ import annotations
@@ -65,8 +62,7 @@ def _padded(rows: Sequence, dims: tuple[str, str], units: str, long_name: str, *
 
 
 def _release(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str, xr.DataArray]:
-    """Each run from rest at ``x0`` over ``n_cycles``: how it ended, its complete cycles, its last velocity before
-    the impact at a1 and the one before its second impact at a1."""
+    """Each run from rest at ``x0`` over ``n_cycles``: its outcome, cycles and last and second velocities at a1."""
     found = []
     for r, p in zip(runs, params):
         sol = solve_exact(p, float(r["x0"]), n_cycles=positive_int("n_cycles", r["n_cycles"], 100_000),
@@ -95,8 +91,7 @@ def _events(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str, 
 
 
 def _return_map(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str, xr.DataArray]:
-    """The slope of the return map at each run's ``velocity``: central differences of one simulated cycle from the
-    section."""
+    """The slope of the return map at each run's ``velocity``: central differences of one simulated cycle."""
     slopes = []
     for r, p in zip(runs, params):
         (lo_in, lo_out), (hi_in, hi_out) = (return_map(p, float(r["velocity"]) * (1 + side * RELATIVE_STEP))
@@ -148,8 +143,7 @@ def _zone_shift(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[s
 
 def _crossings(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str, xr.DataArray]:
     """Each run from rest at ``x0`` over ``n_cycles``, sampled ``samples_per_period`` times per natural period: the
-    crossings of the section x = a1 with xdot > 0 in each cycle
-    (:func:`escapement.studies.poincare.section_crossing_counts`)."""
+    crossings of the section x = a1 with xdot > 0 in each cycle."""
     counts = []
     for r, p in zip(runs, params):
         run = solve_exact(p, float(r["x0"]), n_cycles=positive_int("n_cycles", r["n_cycles"], 100_000))
@@ -172,10 +166,9 @@ MEASURES: dict[str, tuple[Callable[..., dict[str, xr.DataArray]], tuple[str, ...
 
 
 def named_runs(probes: Mapping[str, Mapping]) -> dict[str, xr.DataArray]:
-    """The variables of each run of ``probes`` (``{name: {measure, runs}}``, each run a flat mapping of its model's
-    keys, its settings and its ``label``) under its name: its label, model and settings (:data:`SETTINGS`) and what
-    its measure gives, each ``<name>_<variable>`` on ``<name>_run`` (and ``<name>_<dimension>``); every run is
-    checked before any is made."""
+    """The variables of each run of ``probes`` (``{name: {measure, runs}}``, each run a flat mapping with a ``label``):
+    its label, model, settings and what its measure gives, each ``<name>_<variable>`` on ``<name>_run``; every run
+    is checked before any is made."""
     checked = {}
     for name, spec in probes.items():
         measure, runs = spec["measure"], list(spec["runs"])

@@ -17,7 +17,7 @@ from ..paper.corrected import fixed_point
 from ..solvers.exact import solve_exact
 from ..studies.poincare import measure_cycle
 from ..paper.printed import multiplier_21
-from .probes import named_runs
+from .probes import SETTINGS, named_runs
 from .cf import CLASSIFICATION, MODEL_INPUT, QUALITY, assemble, global_attributes, parameter_variables, \
     scalar_variable, table_dataset
 from .settings import LongRunScene, Release, positive_int
@@ -44,20 +44,15 @@ CHECKS_COLUMNS = {
     "floquet_minor": ("1", "smaller Floquet multiplier of the flow over the last period, measured"),
     "continued_at": ("s", "time of the first accumulation of impacts (a Zeno point) the run went on past, from rest at "
                      "the impact position (past_accumulation: continue); NaN if none"),
-    "release_force": (None, "where the force acts before the first impact: after_impact, or eq5 (on S2 of Eq. (5))",
-                      MODEL_INPUT),
-    "past_accumulation": (None, "what follows an accumulation of impacts: stop, or continue from rest at the impact "
-                          "position", MODEL_INPUT),
+    **{key: (*SETTINGS[key], MODEL_INPUT) for key in CHOICES},
     **{key: (PARAMETERS[key].units, PARAMETERS[key].long_name, MODEL_INPUT) for key in MODEL_KEYS},
 }
 
 
 def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = None) -> xr.Dataset:
-    """The runs of the claims register: the table, one row per case (each a mapping with ``group``, ``label``, the
-    model's keys and ``x0``), released from rest, run ``n_cycles`` cycles, the Poincare map measured at the last
-    cycle (:func:`escapement.studies.poincare.measure_cycle`) beside the fixed point of Eq. (16) and the multiplier
-    of Eq. (21); beside it, the runs of another measure that ``probes`` names, each under its name
-    (:func:`escapement.scenes.probes.named_runs`). Every case and run is checked before any is made."""
+    """The runs of the claims register: the table, one row per case (``group``, ``label``, the model's keys, ``x0``),
+    released from rest and run ``n_cycles`` cycles, the Poincare map measured at the last cycle beside Eqs. (16) and
+    (21); beside it, the runs ``probes`` names (:func:`~escapement.scenes.probes.named_runs`)."""
     n_cycles = positive_int("n_cycles", n_cycles, 100_000)
     runs = [(case, p, Release.from_mapping(case).x0) for case in cases for p in [Parameters.from_mapping(case)]]
     named = named_runs(probes or {})
