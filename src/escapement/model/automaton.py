@@ -58,8 +58,7 @@ class Arc:
 
 
 RELEASE = 0  #: the state before the first event
-#: the arc after each state. The impulse follows an impact only (the escapement unlocks at the impact);
-#: from the release the escapement awaits whichever impact comes first.
+#: the arc after each state: the impulse follows an impact only; from the release, whichever impact comes first
 ARCS: dict[int, Arc] = {
     RELEASE: Arc(Mode.FREE, (EventKind.IMPACT_A1, EventKind.IMPACT_A3)),
     EventKind.IMPACT_A1: Arc(Mode.ZONE_RIGHT, (EventKind.ZONE_END_A2,)),
@@ -68,11 +67,8 @@ ARCS: dict[int, Arc] = {
     EventKind.ZONE_END_A4: Arc(Mode.FREE, (EventKind.IMPACT_A1,)),
 }
 
-#: the model's choices where the paper is silent, the default first. ``release_force``: where the force acts before
-#: the first impact, ``after_impact`` (a zone is entered only through its impact, Appendix A's steps 1-3) or ``eq5``
-#: (on S2 of Eq. (5) as printed, from the release on: :func:`opening`); ``past_accumulation``: at an accumulation of
-#: impacts (b > 1, a Zeno point) the run ``stop``s, or ``continue``s from rest at the impact position in the zone
-#: mode that follows the impact
+#: the model's choices where the paper is silent, the default first (:class:`~escapement.model.parameters.Parameters`
+#: says what each means)
 CHOICES = {"release_force": ("after_impact", "eq5"), "past_accumulation": ("stop", "continue")}
 
 #: how a run ends where no watched surface is ever passed in a mode
@@ -96,8 +92,7 @@ def cycle_plan() -> tuple[EventKind, ...]:
 
 def opening(params: Parameters, x0: float, v0: float) -> int:
     """The state a run starts in: :data:`RELEASE`, or under ``release_force: eq5`` with the release in S2 of Eq. (5)
-    the impact that opens its zone (its arc is the zone's). At rest the spring's pull (towards 0) gives the sign of
-    the velocity the release starts with."""
+    the impact that opens its zone. At rest the spring's pull gives the sign of the velocity."""
     moving = v0 if v0 != 0.0 else -x0
     for kind in (EventKind.IMPACT_A1, EventKind.IMPACT_A3) if params.release_force == "eq5" else ():
         ends = sorted((position(kind, params), position(ZONE_OF[ARCS[kind].mode][1], params)))

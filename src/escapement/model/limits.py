@@ -43,9 +43,8 @@ def events_for(n_cycles: int) -> int:
 
 @dataclass(frozen=True)
 class RunLimits:
-    """A run ends at the first of: ``n_cycles`` complete cycles (``n_cycles + 1`` impacts at a1), the time
-    ``t_end`` (s), or ``max_events`` events (default :func:`events_for` ``n_cycles``, or 10**7 for a run to
-    ``t_end`` alone). ``memory_budget`` is in bytes."""
+    """A run ends at the first of ``n_cycles`` complete cycles, the time ``t_end`` (s), or ``max_events`` events
+    (default :func:`events_for` ``n_cycles``, or 10**7 for a run to ``t_end`` alone); ``memory_budget`` in bytes."""
 
     n_cycles: int | None = None
     t_end: float | None = None
@@ -79,8 +78,7 @@ class RunLimits:
 
 @dataclass(frozen=True)
 class RunSpec:
-    """A run as asked, every part checked (:func:`run_spec`): for an ensemble the parameters are
-    :class:`ParameterArrays` and the release arrays, a row per trajectory."""
+    """A run as asked, every part checked (:func:`run_spec`); an ensemble's a row per trajectory."""
 
     params: Parameters | ParameterArrays
     x0: float | np.ndarray  #: m
@@ -94,11 +92,9 @@ def run_spec(params: Parameters | Mapping[str, object], x0: object, v0: object =
              choices: bool = False) -> RunSpec:
     """The checked run, or the first invalid argument refused, named: ``params``, the release, then the limits.
 
-    With ``rows`` (the ensemble's bytes for a number of trajectories and of cycles), ``params`` maps the model
-    keys to numbers or arrays and ``x0``, ``v0`` may be arrays, all broadcast to one shape: the counts are
-    checked first, then the memory from the inputs' shapes alone (before any array is made at their size),
-    then every row by the rules of :class:`Parameters`. A model's choice made otherwise than by default is refused
-    unless the solver runs it (``choices``).
+    With ``rows`` (the ensemble's bytes for a number of trajectories and of cycles), ``params`` maps the model keys
+    to numbers or arrays: the counts are checked first, then the memory from the inputs' shapes alone, then every
+    row. A model's choice other than the default is refused unless the solver runs it (``choices``).
     """
     if rows is None:
         if not isinstance(params, Parameters):
@@ -125,10 +121,9 @@ def run_spec(params: Parameters | Mapping[str, object], x0: object, v0: object =
 
 def check_budget(budget: int, stores: str, counts: Sequence[tuple[str, int, Callable[[int], float]]],
                  remedy: str = "") -> int:
-    """The bytes of a run, ``size(value)`` of the first of ``counts`` (each ``(name, value, size)``: a count of
-    the run and its bytes as a function of that count, the others as asked), if within ``budget``. Otherwise a
-    :class:`MemoryBudgetError` names the first count that fits at 1 with the most that fits, or else the budget
-    with the least that the last count needs; ``stores`` says what the run stores, ``remedy`` what to do."""
+    """The bytes of a run, ``size(value)`` of the first of ``counts`` (each ``(name, value, size)``), if within
+    ``budget``; else a :class:`MemoryBudgetError` naming the first count that fits at 1 with the most that fits, or
+    the budget with the least the last count needs."""
     estimate = int(math.ceil(counts[0][2](counts[0][1])))
     if estimate <= budget:
         return estimate

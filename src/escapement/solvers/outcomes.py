@@ -23,7 +23,6 @@ __all__ = ["Outcome", "accumulation", "chattering_outcome", "completed_outcome",
            "horizon_outcome", "no_event_outcome"]
 
 
-
 class Outcome(NamedTuple):
     """How a run ended: its status and message, the numbers behind a regime exit, the end of its trajectory."""
 
