@@ -25,12 +25,8 @@ from .result import EnsembleSolution
 
 __all__ = ["CELL_BYTES", "ROW_BYTES", "ensemble_bytes", "solve_ensemble"]
 
-#: bytes per trajectory and cycle: the four tables of 8-byte floats, a fifth while each is put back in the order
-#: of the inputs, and a margin (measured 40)
-CELL_BYTES = 48
-#: bytes per trajectory whatever its cycles: its rows (four states, five numbers each), its state and the work
-#: arrays of a pass (measured about 700)
-ROW_BYTES = 1000
+CELL_BYTES = 48  #: bytes per trajectory and cycle: four tables of floats, a fifth while reordered (measured 40)
+ROW_BYTES = 1000  #: bytes per trajectory whatever its cycles: rows, state and a pass's arrays (measured about 700)
 _RUNNING = -1
 
 
@@ -59,9 +55,8 @@ def solve_ensemble(M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: A
                    memory_budget: int | None = None) -> EnsembleSolution:
     """Integrate every trajectory for ``n_cycles`` complete cycles (or until it leaves the regime).
 
-    The inputs are numbers or arrays broadcast to one shape, an element a trajectory (a row of the result). Before
-    any work they are checked row by row as :class:`escapement.Parameters` (naming the first invalid row), the
-    counts as the scalar solvers check them, and the run's size (:func:`ensemble_bytes`) against its budget.
+    The inputs are numbers or arrays broadcast to one shape, an element a trajectory (a row of the result), each
+    row checked as :class:`escapement.Parameters` and the run's size (:func:`ensemble_bytes`) against its budget.
 
     Parameters
     ----------
@@ -124,17 +119,15 @@ class _Ensemble:
         self.order = np.argsort(first, kind="stable")
         p = ParameterArrays(**{k: getattr(spec.params, k)[self.order] for k in MODEL_KEYS})
         n, cells = len(first), (self.n_cycles, len(first))
-        # a row per trajectory in the order of the first events: the release x, after the last event v and the
-        # time t + t_err (compensated), since the last impact at a1 the time elapsed and the largest x, how the
-        # run ended (Status codes, _RUNNING while running) and the exit's numbers; the cycle tables, a row a cycle
+        # a row per trajectory in the order of the first events: its state after the last event, its cycle so far,
+        # how it ended (_RUNNING while running) and the exit's numbers; the cycle tables, a row a cycle
         self.s = SimpleNamespace(
             omega=p.omega, factor=automaton.impact_factor(p.b), x=spec.x0[self.order], v=spec.v0[self.order],
             t=np.zeros(n), t_err=np.zeros(n), elapsed=np.zeros(n), cycle_max=np.zeros(n),
             status=np.full(n, _RUNNING, dtype=np.int8), t_final=np.full(n, np.nan), turning=np.full(n, np.nan),
             margin=np.full(n, np.nan), t_acc=np.full(n, np.nan), **{c: np.full(cells, np.nan) for c in CYCLE_COLUMNS})
         self.rebounds = bool(automaton.reverses(1.0, self.s.factor).any())  # some impacts reverse the velocity
-        # the rows of the arcs after each state (after the release, by the impact reached first), where each arc
-        # starts and the centre it turns about; each event kind's position
+        # the rows of the arcs after each state, where each arc starts and its centre; each event kind's position
         self.rows = rows(p)
         release = automaton.ARCS[RELEASE]
         self.release_rows = {kind: row(p, self.s.x, release.mode, kind) for kind in release.watched}

@@ -14,15 +14,11 @@ from .result import Solution
 
 __all__ = ["ARC_BYTES", "CYCLE_BYTES", "EVENT_BYTES", "PASS_BYTES", "solve_exact"]
 
-#: bytes per event at the peak (tracemalloc measured 109, the cycle table's share included): the loop's three
-#: growing buffers (the arrays are views of them) and the arrays derived from them, with their temporaries
+#: bytes per event at the peak (tracemalloc measured 109): the loop's buffers and the arrays derived from them
 EVENT_BYTES = 130
-#: bytes per event of the arcs when the trajectory is kept: their start times (the rest are derived columns)
-ARC_BYTES = 8
-#: bytes per cycle: impact time, velocity, period and largest displacement, and their temporaries
-CYCLE_BYTES = 64
-#: bytes whatever the run's length
-PASS_BYTES = 1 << 16
+ARC_BYTES = 8  #: bytes per event of the arcs when the trajectory is kept: their start times
+CYCLE_BYTES = 64  #: bytes per cycle: the cycle table's four columns and their temporaries
+PASS_BYTES = 1 << 16  #: bytes whatever the run's length
 
 
 def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int | None = None,

@@ -1,10 +1,7 @@
-"""The exact solver's event loop, in blocks of events: the loop walks the automaton's rows (:func:`rows`) following
-the velocity alone (by energy each arc arrives with ``v**2 = v0**2 + k``, the impact law jumps it at impacts) until
-no surface is passed or an impact reverses it; then, on the block's arrays, ``crossing`` gives each arc's angle and
-duration, the compensated (TwoSum) running sum the events' times, and the end time cuts the block where it falls:
-an event-by-event loop's numbers, bit for bit. Kinds, positions, arcs and cycles follow (:func:`event_block`).
-The model's choices (:data:`~escapement.model.automaton.CHOICES`) are the state the run starts in and what follows a
-rebound (:meth:`EventRun.past`).
+"""The exact solver's event loop, in blocks of events: a loop follows the velocity alone through the automaton's rows
+(:func:`rows`; by energy each arc arrives with ``v**2 = v0**2 + k``), then ``crossing`` gives each arc's angle and
+duration on the block's arrays and a compensated running sum the events' times: an event-by-event loop's numbers,
+bit for bit. Kinds, positions, arcs and cycles follow (:func:`event_block`).
 """
 
 from __future__ import annotations
@@ -83,8 +80,7 @@ def kinds_from(first: int, start: int, n: int) -> np.ndarray:
 
 
 class EventRun:
-    """One run of the exact solver, resumable: :meth:`advance` runs at most a given number of events, which
-    :meth:`take` hands over; :attr:`outcome` is set when the run ends."""
+    """One run of the exact solver, resumable: :meth:`advance` runs events, :meth:`take` hands them over."""
 
     def __init__(self, spec: RunSpec) -> None:
         params, x, v, limits = spec.params, spec.x0, spec.v0, spec.limits
@@ -104,15 +100,13 @@ class EventRun:
         self.open_arc = False  # the run ended inside an arc (no surface reached, or the end time)
         self.rows = rows(params)
         self.rows[RELEASE] = self.release_row()
-        # by event kind (the release at 0): position, the jump of the velocity (the impact law's factor at impacts,
-        # 1 at the ends of the zones) and the centre of the arc after it
+        # by event kind (the release at 0): position, the jump of the velocity and the centre of the arc after it
         kinds, factor = range(1, len(self.rows)), automaton.impact_factor(self.b)
         self.position = np.array([math.nan, *(automaton.position(kind, params) for kind in kinds)])
         self.jump = np.array([1.0, *(factor if automaton.is_impact(kind) else 1.0 for kind in kinds)])
         self.centre = np.array([automaton.centre(automaton.ARCS[state or self.opening].mode, params.zone_offset)
                                 for state in range(len(self.rows))])
-        # by state, the arc after it: for the loop (k, direction, the jump at its end, the next state), and its
-        # terms as arrays (NaN where none follows)
+        # by state, the arc after it: for the loop (k, direction, jump, next state), and as arrays (NaN: none)
         self.loop = [None if r is None else (r.k, r.direction, float(self.jump[r.following]), r.following)
                      for r in self.rows]
         self.terms = {name: np.array([math.nan if r is None else getattr(r, name) for r in self.rows])
@@ -143,8 +137,8 @@ class EventRun:
             n -= self._block(min(n, BLOCK_EVENTS, self.last - self.events))
 
     def _arrivals(self, limit: int):
-        """The loop: the velocity before each of at most ``limit`` events, by energy and the impact law; it leaves
-        the state after the last in :attr:`walked` and how it stopped short in :attr:`ending`."""
+        """The velocity before each of at most ``limit`` events; the state after the last in :attr:`walked`, how it
+        stopped short in :attr:`ending`."""
         loop, state, v, sqrt = self.loop, self.state, self.v, math.sqrt
         self.ending = NO_EVENT if loop[state] is None else None  # from the release, neither impact is reached
         for _ in range(limit if self.ending is None else 0):
@@ -188,9 +182,8 @@ class EventRun:
         return kept
 
     def past(self, v1: float) -> str | None:
-        """After a rebound (``v1`` the velocity before it): under ``past_accumulation: continue``, where the rebounds
-        accumulate, the run goes on from rest at the impact position from then, in the zone mode that follows the
-        impact (None); else :data:`REBOUND` ends it."""
+        """After a rebound (``v1`` the velocity before it): under ``past_accumulation: continue`` the run goes on
+        from rest once the rebounds accumulate (None); else :data:`REBOUND` ends it."""
         wait = accumulation(self.params, EventKind(self.state), v1, self.v)
         if self.params.past_accumulation == "stop" or math.isnan(wait):
             return REBOUND
@@ -257,7 +250,7 @@ class Block(NamedTuple):
 def event_block(run: EventRun, start: int, t: np.ndarray, v_before: np.ndarray, angle: np.ndarray,
                 before: tuple[int, float, float]) -> Block:
     """The events ``start ..`` of ``run`` on arrays (``before`` is the state before the first) and their complete
-    cycles, from an impact at a1 to the next: the arcs' durations summed in order, the largest x from the impact."""
+    cycles, each arc's duration summed in order."""
     n = len(t)
     kind = kinds_from(run.first, start, n) if n else np.zeros(0, dtype=np.intp)
     x, v_after = run.position[kind], run.jump[kind] * v_before
