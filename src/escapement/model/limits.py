@@ -3,6 +3,7 @@ point: its parameters, release and limits, and the memory its result may take (:
 
 from __future__ import annotations
 
+import bisect
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -135,10 +136,7 @@ def check_budget(budget: int, stores: str, counts: Sequence[tuple[str, int, Call
     over = f"it would store {stores}, an estimated {sizes}"
     for name, value, size in counts:
         if size(1) <= budget:
-            fits, too_many = 1, value
-            while too_many - fits > 1:  # bisection: size grows with the count
-                middle = (fits + too_many) // 2
-                fits, too_many = (middle, too_many) if size(middle) <= budget else (fits, middle)
+            fits = bisect.bisect_right(range(1, value), budget, key=size)  # size grows with the count
             remedy = f"; {remedy}" if remedy else ""
             raise MemoryBudgetError(name, value, f"at most {fits:_} for the run to fit its memory budget: "
                                     f"{over}{remedy}", estimate, budget)
