@@ -67,8 +67,7 @@ ARCS: dict[int, Arc] = {
     EventKind.ZONE_END_A4: Arc(Mode.FREE, (EventKind.IMPACT_A1,)),
 }
 
-#: the model's choices where the paper is silent, the default first (:class:`~escapement.model.parameters.Parameters`
-#: says what each means)
+#: the model's choices where the paper is silent, the default first (Parameters says what each means)
 CHOICES = {"release_force": ("after_impact", "eq5"), "past_accumulation": ("stop", "continue")}
 
 #: how a run ends where no watched surface is ever passed in a mode
@@ -91,8 +90,7 @@ def cycle_plan() -> tuple[EventKind, ...]:
 
 
 def opening(params: Parameters, x0: float, v0: float) -> int:
-    """The state a run starts in: :data:`RELEASE`, or under ``release_force: eq5`` with the release in S2 of Eq. (5)
-    the impact that opens its zone. At rest the spring's pull gives the sign of the velocity."""
+    """The state a run starts in: :data:`RELEASE`, or under ``release_force: eq5`` the impact that opens its zone."""
     moving = v0 if v0 != 0.0 else -x0
     for kind in (EventKind.IMPACT_A1, EventKind.IMPACT_A3) if params.release_force == "eq5" else ():
         ends = sorted((position(kind, params), position(ZONE_OF[ARCS[kind].mode][1], params)))

@@ -67,8 +67,7 @@ class RunLimits:
 
     def check_memory(self, event_bytes: float, cycle_bytes: float, stores: str, remedy: str,
                      fixed_bytes: int = 0) -> int:
-        """The bytes a run stores at most (``event_bytes`` an event, ``cycle_bytes`` a cycle, ``fixed_bytes`` besides),
-        if within the budget (:func:`check_budget` on ``n_cycles``, or on ``max_events`` where it binds)."""
+        """The bytes a run stores at most, if within the budget (:func:`check_budget`, on the count that binds)."""
         if self.n_cycles is not None and events_for(self.n_cycles) <= self.max_events:
             count = ("n_cycles", self.n_cycles, lambda n: fixed_bytes + events_for(n) * event_bytes + n * cycle_bytes)
         else:

@@ -79,8 +79,7 @@ def _release(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str,
 
 
 def _events(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str, xr.DataArray]:
-    """Each run from rest at ``x0`` over ``n_cycles`` or to ``t_end``, whichever it has or ends first: its events,
-    NaN after the last."""
+    """Each run from rest at ``x0`` over ``n_cycles`` or to ``t_end``: its events, NaN after the last."""
     solved = [solve_exact(p, float(r["x0"]), t_end=r.get("t_end"), record_trajectory=False, n_cycles=positive_int(
         "n_cycles", r["n_cycles"], 1000) if "n_cycles" in r else None).events for r, p in zip(runs, params)]
     table = np.full((len(EVENTS), len(runs), max(len(e) for e in solved)), np.nan)
@@ -142,8 +141,7 @@ def _zone_shift(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[s
 
 
 def _crossings(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str, xr.DataArray]:
-    """Each run from rest at ``x0`` over ``n_cycles``, sampled ``samples_per_period`` times per natural period: the
-    crossings of the section x = a1 with xdot > 0 in each cycle."""
+    """Each run from rest at ``x0``, sampled: the crossings of the section x = a1 with xdot > 0 in each cycle."""
     counts = []
     for r, p in zip(runs, params):
         run = solve_exact(p, float(r["x0"]), n_cycles=positive_int("n_cycles", r["n_cycles"], 100_000))

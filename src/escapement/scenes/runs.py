@@ -93,8 +93,7 @@ def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = Non
 
 
 def long_run(settings: Mapping | LongRunScene) -> tuple[xr.Dataset, dict[str, float]]:
-    """Each method's errors against 50 digits at the sampled cycles (:func:`escapement.studies.long_run.long_run`)
-    and, apart from them, each method's wall time."""
+    """Each method's errors against 50 digits at the sampled cycles and, apart from them, its wall time."""
     from ..studies.long_run import long_run as errors_of
 
     scene = settings if isinstance(settings, LongRunScene) else LongRunScene.from_mapping(settings)

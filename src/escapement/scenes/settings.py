@@ -29,8 +29,7 @@ REPLICATION = "replication"
 
 @dataclass(frozen=True)
 class Kind:
-    """A kind of scene: its configuration block, its name in files, what it shows and the paper's figure; and the
-    model's keys its data do not depend on, each with the reason."""
+    """A kind of scene: its block, its name in files, what it shows, the paper's figure, the keys it ignores."""
 
     block: str
     name: str
@@ -48,9 +47,7 @@ class Kind:
         return "; ".join(dict.fromkeys(reason for key, reason in self.ignores if key in keys))
 
 
-#: every kind of scene a study may hold, by its configuration block (the escapement error's zones set the impact
-#: positions of the first half cycle and mirror them in the second; whether a release settles on a limit cycle is
-#: the same for every mass: x(t) depends on M only through omega t)
+#: every kind of scene a study may hold, by its configuration block
 KINDS = {k.block: k for k in (
     Kind("fig3", "poincare_map", "Poincaré map", "Fig. 3", "case {}"),
     Kind("fig4", "shock_detail", "shock detail", "Fig. 4"),
@@ -93,8 +90,7 @@ class Study:
 
 
 def positive_int(name: str, value: object, most: int | None = None, least: int = 1) -> int:
-    """``value`` as an int if it is an integer in ``[least, most]`` (no upper bound without ``most``), not a bool;
-    else ParameterError."""
+    """``value`` as an int if it is an integer (not a bool) in ``[least, most]``; else ParameterError."""
     if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < least or (most and value > most):
         raise ParameterError(name, value, f"an integer in [{least:_}, {most:_}]" if most else
                              "a positive integer" if least == 1 else f"an integer >= {least:_}")
@@ -296,8 +292,7 @@ def cell_centres(start: float, stop: float, n: int) -> tuple[float, ...]:
 
 @dataclass(frozen=True)
 class StabilityMapScene:
-    """The stability map over ``(b, F)``: b at the cell centres of its axis, F from start to stop (ends included);
-    ``params`` gives the rest of the model."""
+    """The stability map over ``(b, F)``: b at the cell centres of its axis, F from start to stop (ends included)."""
 
     study: Study
     params: Parameters
@@ -340,8 +335,7 @@ class ExistenceMapScene:
 
 @dataclass(frozen=True)
 class LongRunScene:
-    """The long run: the exact solver and the closed forms over ``n_cycles``, ``solve_ivp`` over
-    ``ivp_cycles``, each against 50 digits."""
+    """The long run: the exact solver and closed forms over ``n_cycles``, ``solve_ivp`` over ``ivp_cycles``."""
 
     params: Parameters
     release: Release

@@ -249,8 +249,7 @@ class Block(NamedTuple):
 
 def event_block(run: EventRun, start: int, t: np.ndarray, v_before: np.ndarray, angle: np.ndarray,
                 before: tuple[int, float, float]) -> Block:
-    """The events ``start ..`` of ``run`` on arrays (``before`` is the state before the first) and their complete
-    cycles, each arc's duration summed in order."""
+    """The events ``start ..`` of ``run`` on arrays (``before``: the state before the first) and their cycles."""
     n = len(t)
     kind = kinds_from(run.first, start, n) if n else np.zeros(0, dtype=np.intp)
     x, v_after = run.position[kind], run.jump[kind] * v_before

@@ -21,8 +21,7 @@ A1, A2, A3, A4 = map(int, EventKind)  # the kinds of event, in the order of a cy
 
 
 def arc_invariant_error(p: Parameters, kind, x, v_after, v_before, stiffness: float, free_only: bool) -> float:
-    """The largest relative change over the arcs between events (``free_only``: the free ones) of ``v**2 + k (x -
-    c)**2``, the invariant of ``x'' = -k (x - c)``, ``k`` the ``stiffness`` and ``c`` the arc's centre."""
+    """The largest relative change of ``v**2 + k (x - c)**2`` (``k`` the ``stiffness``) over the arcs between events."""
     sigma, worst = {A1: 1.0, A3: -1.0, A2: 0.0, A4: 0.0}, 0.0
     for i in range(len(kind) - 1):
         s = sigma[int(kind[i])]

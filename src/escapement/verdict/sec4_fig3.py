@@ -174,8 +174,7 @@ def _families(runs: xr.Dataset, varying: str) -> dict[tuple, list[int]]:
 
 
 def amplitude_of(run, definition: str) -> float:
-    """A run's converged amplitude: the largest displacement of its last cycle (``largest x``), or the Step-1
-    amplitude ``h0 = sqrt(a1**2 + (v/w)**2)`` of the free arc that ends in the impact at a1 (``h0``)."""
+    """A run's converged amplitude: its last cycle's ``largest x``, or ``h0 = sqrt(a1**2 + (v/w)**2)`` (Step 1)."""
     if definition == "largest x":
         return float(run["largest_displacement"])
     if definition == "h0":
