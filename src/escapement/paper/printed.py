@@ -36,6 +36,8 @@ class Symbols:
 
 def symbols_of(p: Parameters) -> Symbols:
     """The model's signed positions, ``f`` and ``w``: the reading under which :mod:`.corrected` derives."""
+    if not isinstance(p, Parameters):
+        raise TypeError(f"p = {p!r} must be a Parameters")
     return Symbols(p.a1, p.a2, p.a3, p.a4, p.f, p.omega)
 
 

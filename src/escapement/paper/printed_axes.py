@@ -64,7 +64,7 @@ class Axis:
         values = [Decimal(t) for t in self.ticks]
         steps = {b - a for a, b in zip(values, values[1:])}
         if len(steps) != 1 or steps.pop() <= 0:
-            raise ValueError(f"axis {self.label!r}: tick labels {self.ticks} are not evenly spaced upwards")
+            raise ValueError(f"axis {self.label!r}: tick labels {self.ticks} must be two or more, evenly spaced up")
 
     low = property(lambda self: float(self.ticks[0]), doc="The lowest tick label, the axis' lower limit.")
     high = property(lambda self: float(self.ticks[-1]), doc="The highest tick label, the axis' upper limit.")
