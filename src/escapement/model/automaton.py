@@ -1,7 +1,6 @@
 """The escapement as a hybrid automaton, written once as data that every solver drives: the state is the kind of
 the last event (:data:`RELEASE` before the first), its row of :data:`ARCS` the arc that follows and the surfaces
-that can end it; the event reached is the next state. Where the paper is silent the model makes a choice
-(:data:`CHOICES`), run as a setting of the same automaton.
+that can end it; the event reached is the next state.
 """
 
 from __future__ import annotations

@@ -1,6 +1,5 @@
 """The replication's own runs, each from its settings to its dataset: the runs of the claims register
-(:func:`checks`) and the long run against 50 digits (:func:`long_run`, with its wall times kept apart from the
-numbers, which are deterministic).
+(:func:`checks`) and the long run against 50 digits (:func:`long_run`).
 """
 
 from __future__ import annotations
@@ -18,7 +17,7 @@ from ..solvers.exact import solve_exact
 from ..studies.poincare import measure_cycle
 from ..paper.printed import multiplier_21
 from .probes import SETTINGS, named_runs
-from .cf import CLASSIFICATION, MODEL_INPUT, QUALITY, assemble, global_attributes, parameter_variables, \
+from .cf import CLASSIFICATION, MODEL_INPUT, MODEL_RESULT, QUALITY, assemble, global_attributes, parameter_variables, \
     scalar_variable, table_dataset
 from .settings import LongRunScene, Release, positive_int
 
@@ -108,21 +107,21 @@ def long_run(settings: Mapping | LongRunScene) -> tuple[xr.Dataset, dict[str, fl
         for (name, (units, long_name)), values in zip(names.items(), r[solver]):
             variables[f"{name}_{solver}"] = xr.DataArray(values, dims="cycle", coords=coords, attrs={
                 "units": units, "long_name": f"{long_name}, {label}", "coverage_content_type": QUALITY})
-    quality = (  # variable, key of the study's result, long name
-        ("max_velocity_deviation", "max_velocity_deviation", "largest relative deviation of the velocity before "
-         "impact from the fixed point once converged, exact solver"),
-        ("max_period_deviation", "max_period_deviation", "largest relative deviation of the period from the limit "
-         "cycle's once converged, exact solver"),
-        ("closed_form_difference", "check_max_relative_difference", "largest relative difference between the "
+    scalars = (  # variable, key of the study's result, units, long name, content type
+        ("max_velocity_deviation", "max_velocity_deviation", "1", "largest relative deviation of the velocity before "
+         "impact from the fixed point once converged, exact solver", QUALITY),
+        ("max_period_deviation", "max_period_deviation", "1", "largest relative deviation of the period from the limit "
+         "cycle's once converged, exact solver", QUALITY),
+        ("closed_form_difference", "check_max_relative_difference", "1", "largest relative difference between the "
          "per-cycle closed forms and the exact solver, over the impact time, velocity before impact, period and "
-         "largest displacement of every cycle both ran"),
+         "largest displacement of every cycle both ran", QUALITY),
+        ("fixed_point_velocity", "fixed_point_velocity", "m s-1", "velocity before impact at a1 on the limit cycle, "
+         "50-digit reference", MODEL_RESULT),
+        ("fixed_point_period", "fixed_point_period", "s", "period of the limit cycle, 50-digit reference",
+         MODEL_RESULT),
     )
-    for name, key, long_name in quality:
-        variables[name] = scalar_variable(r[key], "1", long_name, QUALITY)
-    variables["fixed_point_velocity"] = scalar_variable(
-        r["fixed_point_velocity"], "m s-1", "velocity before impact at a1 on the limit cycle, 50-digit reference")
-    variables["fixed_point_period"] = scalar_variable(r["fixed_point_period"], "s",
-                                                      "period of the limit cycle, 50-digit reference")
+    for name, key, units, long_name, content in scalars:
+        variables[name] = scalar_variable(r[key], units, long_name, content)
     variables.update(parameter_variables({**scene.params.as_dict(), "x0": scene.release.x0}))
     attrs = global_attributes(
         "Long run of the escapement model: error against the number of cycles", "long_run",

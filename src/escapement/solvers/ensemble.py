@@ -1,6 +1,6 @@
 """The exact solver for many trajectories at once, in lock-step: each pass moves every running trajectory by one
-event, with the automaton's rows on arrays and the scalar closed forms. The trajectories whose first event is the
-same share their state at every pass: sorted by it, each such group moves as one slice of the arrays.
+event. The trajectories whose first event is the same share their state at every pass: sorted by it, each such group
+moves as one slice of the arrays.
 """
 
 from __future__ import annotations

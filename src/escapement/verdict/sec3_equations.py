@@ -1,6 +1,5 @@
-"""The checks of Eqs. (2)-(5) and of the words of Sec. 3.3: the model's definitions (the impact matrix, the jump
-set, the impulse set and the modes restate the law the model is built on), the state matrix, the complement of the
-jump set and g against the exact motion, the system called linear, and the existence and uniqueness of its solution.
+"""The checks of Eqs. (2)-(5) and of the words of Sec. 3.3 (the system called linear, the existence and uniqueness
+of its solution), against the exact motion; the impact matrix, jump set, impulse set and modes restate the model's law.
 """
 
 from __future__ import annotations

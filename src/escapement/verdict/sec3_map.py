@@ -1,7 +1,5 @@
 """The checks of the Poincare map and its stability, Eqs. (7), (8), (16)-(21) and Sec. 3.4, against the simulated
-cycles and the runs of the checks dataset: the maps, the fixed point, the derivative and the multipliers, the
-stability over b, one crossing of the section per cycle, and the asymptotic stability the theorem gives.
-"""
+cycles and the runs of the checks dataset."""
 
 from __future__ import annotations
 

@@ -1,7 +1,5 @@
-"""The checks of Sec. 4 on Fig. 3 and of its sentences that name no figure: both cases converge, their
-rates, periods, stable velocities and amplitudes compared, the period against the spring and the release, and the
-convergence from every release; each read off the Fig. 3 datasets and the runs of the checks dataset.
-"""
+"""The checks of Sec. 4 on Fig. 3 and of its sentences that name no figure, read off the Fig. 3 datasets and the
+runs of the checks dataset."""
 
 from __future__ import annotations
 
