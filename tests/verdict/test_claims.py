@@ -263,7 +263,7 @@ def test_changing_one_readings_outcome_changes_the_status(monkeypatch):
         assert row["readings"] == "; ".join(f'{r} (the paper: "{w}"): {"holds" if r in holding else "fails"}'
                                             for r, w in zip(readings, (r["words"] for r in claim["readings"])))
         decides = "no figure decides between the readings" if status == "undetermined" else "the figures"
-        assert row["note"].endswith(f"; {decides}: {claim['figures_tried']}")
+        assert row["note"].endswith(f"{decides}: {claim['figures_tried']}")
     assert cl.figures_named("Fig. 3 (a), Figs. 4 and 5") == {"3", "4", "5"} == set(cl.FIGURES)
     assert cl.figures_named("Figs. 3, 4 and 5; Fig. 2 is a sketch") == {"2", "3", "4", "5"}
 

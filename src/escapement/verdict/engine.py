@@ -157,8 +157,8 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
         paper = (next((r.paper_value for _, r in results if r.paper_value), "") if paper is None
                  else "[" + ", ".join(fmt(x) for x in paper) + "]" if isinstance(paper, list) else fmt(paper))
         named = [reading["reading"] for reading, _ in results]
-        figures = ("" if len(named) == 1 else f"; no figure decides between the readings: {claim['figures_tried']}"
-                   if status == UNDETERMINED else f"; the figures: {claim['figures_tried']}")
+        figures = ("" if len(named) == 1 else f"no figure decides between the readings: {claim['figures_tried']}"
+                   if status == UNDETERMINED else f"the figures: {claim['figures_tried']}")
         rows.append({
             "claim_id": claim["id"],
             "source": claim["source"],
@@ -175,6 +175,6 @@ def evaluate(claims: list[dict], evidence: Evidence) -> list[dict[str, str]]:
             "tolerance": _joined([(n, "" if r["tolerance"] is None else fmt(r["tolerance"]))
                                   for n, (r, _) in zip(named, results)]),
             "status": status,
-            "note": _joined([(n, r.note) for n, (_, r) in zip(named, results)]) + figures,
+            "note": "; ".join(filter(None, (_joined([(n, r.note) for n, (_, r) in zip(named, results)]), figures))),
         })
     return rows
