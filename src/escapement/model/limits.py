@@ -44,8 +44,7 @@ def events_for(n_cycles: int) -> int:
 
 @dataclass(frozen=True)
 class RunLimits:
-    """A run ends at the first of ``n_cycles`` complete cycles, the time ``t_end`` (s), or ``max_events`` events
-    (default :func:`events_for` ``n_cycles``, or 10**7 for a run to ``t_end`` alone); ``memory_budget`` in bytes."""
+    """A run ends at the first of ``n_cycles`` complete cycles, the time ``t_end`` (s), or ``max_events`` events."""
 
     n_cycles: int | None = None
     t_end: float | None = None

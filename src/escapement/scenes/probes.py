@@ -123,8 +123,7 @@ def _from_section(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict
 
 
 def zone_shift(p: Parameters, release: float) -> float:
-    """``dT2`` of the first passage through the zone (a1, a2), from the exact solver's events, for a release
-    from rest at ``-release`` (s): the time in the zone less the free swing's over the same phase."""
+    """``dT2`` of the first passage through the zone (a1, a2) from rest at ``-release``, less a free swing's."""
     run = solve_exact(p, -release, n_cycles=1, record_trajectory=False)
     ev = run.events
     first = ev.of_kind(EventKind.IMPACT_A1)

@@ -65,8 +65,7 @@ KINDS = {k.block: k for k in (
 
 @dataclass(frozen=True)
 class Study:
-    """Where a scene belongs: the study, the scene's label within its kind (a Fig. 3 case, a spring constant), and,
-    for a study of the user's own, what in its kind differs from the paper's scenes (one line)."""
+    """Where a scene belongs: the study, the scene's label within its kind, and what a user's own study changes."""
 
     name: str
     label: str = ""
@@ -309,8 +308,7 @@ class StabilityMapScene:
 
 @dataclass(frozen=True)
 class ExistenceMapScene:
-    """The existence map over ``(a3, F)`` (cell centres of each axis), each cell released at ``release`` and
-    run ``n_cycles``; converged where the last two velocities agree within ``tolerance`` (relative)."""
+    """The existence map over ``(a3, F)`` (cell centres), converged where the last two velocities agree."""
 
     study: Study
     params: Parameters

@@ -137,8 +137,7 @@ class EventRun:
             n -= self._block(min(n, BLOCK_EVENTS, self.last - self.events))
 
     def _arrivals(self, limit: int):
-        """The velocity before each of at most ``limit`` events; the state after the last in :attr:`walked`, how it
-        stopped short in :attr:`ending`."""
+        """The velocity before each of at most ``limit`` events; then :attr:`walked` and :attr:`ending` are set."""
         loop, state, v, sqrt = self.loop, self.state, self.v, math.sqrt
         self.ending = NO_EVENT if loop[state] is None else None  # from the release, neither impact is reached
         for _ in range(limit if self.ending is None else 0):

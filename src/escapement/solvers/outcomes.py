@@ -91,8 +91,7 @@ def completed_outcome(n_cycles: int, t: Numeric, t_acc: float = math.nan) -> Out
 
 
 def accumulation(params: Parameters, kind: EventKind, v_before: Numeric, v_after: Numeric) -> float:
-    """After the impact ``kind`` reversed the velocity, the time until the rebounds accumulate (a Zeno point), s;
-    NaN where the spring does not drive the mass back to the impact position."""
+    """After the impact ``kind`` reversed the velocity, the time until the rebounds accumulate, s (NaN: never)."""
     distance = automaton.rebound_distance(kind, automaton.position(kind, params))
     ratio = abs(float(v_after / v_before))  # the impact law's |v+/v-|
     return rebound_accumulation_time(params.omega, distance, abs(float(v_after)), ratio) if distance > 0 else math.nan

@@ -34,8 +34,7 @@ def arc_invariant_error(p: Parameters, kind, x, v_after, v_before, stiffness: fl
 
 
 def g_eq3b(p: Parameters, x, v) -> np.ndarray:
-    """The second entry of g of Eq. (3b) at the states (x, v): sigma f on S2 of Eq. (5) read as regions of the state
-    space (x in (a1, a2) moving right, sigma = +1; x in (a4, a3) moving left, sigma = -1), 0 elsewhere."""
+    """The second entry of g of Eq. (3b) at the states (x, v): sigma f on S2 of Eq. (5) read as regions, else 0."""
     x, v = np.asarray(x, dtype=float), np.asarray(v, dtype=float)
     mode = np.select([(v > 0) & (x > p.a1) & (x < p.a2), (v < 0) & (x > p.a4) & (x < p.a3)],
                      [int(Mode.ZONE_RIGHT), int(Mode.ZONE_LEFT)], int(Mode.FREE))
@@ -138,8 +137,7 @@ def impulse_sets(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes)
 def complement_sets(claim, ev: Evidence) -> Verdict:
-    """Every state of the motion lies in S (4) or in S1 u S2 (5), its supplementary set: the events' states are
-    classified (the turning points, xdot = 0, lie in neither, since every set asks xdot > 0 or xdot < 0)."""
+    """Every state of the motion (the events' and the turning points) lies in S (4) or in S1 u S2 (5)."""
     missed = n = 0
     for ds in ev.fig3.values():
         p, (kind, x, _, v) = params_of(ds), _events(ds)
@@ -204,8 +202,7 @@ def lipschitz_near(claim, ev: Evidence) -> Verdict:
 
 @check(scenes=fig3_scenes, args=("claim",))
 def piecewise_linear(claim, ev: Evidence) -> Verdict:
-    """The system is linear only if its return map is affine in v (one ratio of successive differences): ``claim:
-    linear`` holds when the ratios' spread on the Fig. 3 transients is within the tolerance, ``nonlinear`` if not."""
+    """``claim: linear`` holds when the return map is affine in v on the Fig. 3 transients, ``nonlinear`` if not."""
     parts, spread = [], 0.0
     for label, ds in ev.fig3.items():
         in_v, in_v2 = (successive_ratios(ds["velocity_before_impact"].values ** k) for k in (1, 2))

@@ -60,8 +60,7 @@ def multiplier_paper_cases(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",), answers=("chattering",))
 def stability_over_b(claim, ev: Evidence) -> Verdict:
-    """Every b of the runs converges with mu2 = (1 - b)^4: the motion's own return map, for 0 < b < 2. A run that went
-    on past an accumulation of impacts (``continued_at``) is said apart: it reaches another orbit."""
+    """Every b of the runs converges with mu2 = (1 - b)^4; a run continued past an accumulation is said apart."""
     group = run(ev, claim["args"]["runs"])
     b, stable = group["b"].values, group["outcome"].values == COMPLETED
     ran_on = stable & np.isfinite(group["continued_at"].values if "continued_at" in group else np.nan)
@@ -93,8 +92,7 @@ def multiplier_group(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",), answers=("chattering",))
 def multiplier_only_b(claim, ev: Evidence) -> Verdict:
-    """Sec. 3.4, the stability determined only by b: mu2 = (1 - b)^4 in every run that converges, whatever its force,
-    spring, positions or release, and every other run chatters at b > 1, where the impact reverses the velocity."""
+    """Sec. 3.4: mu2 = (1 - b)^4 in every run that converges, whatever else differs; every other chatters at b > 1."""
     runs = xr.concat([run(ev, name) for name in names(claim, "runs")], dim="run")
     b, done = runs["b"].values, runs["outcome"].values == COMPLETED
     worst = mu2_off(runs.isel(run=done)) if done.any() else math.inf  # no run converges: nothing follows b
@@ -159,8 +157,8 @@ def map8_eigenvalues(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",), args=("sense",))
 def phase_shift(claim, ev: Evidence) -> Verdict:
-    """The runs from the section at the converged speed v* (the first) and at (1 + perturbation) v*: ``sense: orbital``
-    holds when their speeds at a1 agree at the end, ``sense: lyapunov`` when their impact times do too."""
+    """The runs from the section at v* and (1 + perturbation) v* agree at the end in speed (``sense: orbital``) or in
+    impact time too (``sense: lyapunov``)."""
     runs = run(ev, claim["args"]["runs"])
     times = [t[np.isfinite(t)] for t in runs["impact_time"].values[:2]]
     speeds, perturbation = runs["speed"].values[:2], float(runs["perturbation"].values[1])

@@ -35,8 +35,7 @@ def both_converge(claim, ev: Evidence) -> Verdict:
 
 
 def converged_amplitudes(ds: xr.Dataset) -> dict[str, float]:
-    """The last cycle's amplitude under each definition, from its events: the Step-1 amplitude ``h0`` (the free arc
-    into the impact at a1) and the right and left turning points (the free arcs after a2 and a4)."""
+    """The last cycle's amplitude from its events: the Step-1 ``h0`` and the right and left turning points."""
     p, before = params_of(ds), ds["event_velocity_before"].values
     v2, v5 = (before[events_of(ds, kind)[-1]] for kind in (EventKind.ZONE_END_A2, EventKind.ZONE_END_A4))
     return {"h0": float(np.hypot(p.a1, ds["velocity_before_impact"].values[-1] / p.omega)),
@@ -46,8 +45,7 @@ def converged_amplitudes(ds: xr.Dataset) -> dict[str, float]:
 
 @check(scenes=fig3_scenes, args=("cases", "quantity"))
 def compare_cases(claim, ev: Evidence) -> Verdict:
-    """The first case of ``cases`` converges to a greater ``quantity`` than the second: a variable of the Fig. 3
-    datasets, or ``amplitude`` under the definition ``args: {definition}`` (:func:`converged_amplitudes`)."""
+    """The first case of ``cases`` converges to a greater ``quantity`` (or ``amplitude``) than the second."""
     first, second = (str(c) for c in claim["args"]["cases"])
     quantity = claim["args"]["quantity"]
     a, b = (converged_amplitudes(ds)[claim["args"]["definition"]] if quantity == "amplitude"
@@ -124,8 +122,7 @@ def natural_period(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",), args=("cases", "side"))
 def initial_order(claim, ev: Evidence) -> Verdict:
-    """The first case of ``cases`` has the smaller first velocity before the impact at a1, both released from rest at
-    ``side`` (-1 or +1) times their amplitude |x0| (the paper gives no side), in the runs of one cycle."""
+    """The first case of ``cases`` has the smaller first velocity at a1, both released at ``side`` (-1 or +1) |x0|."""
     (a, xa, va), (b, xb, vb) = ((c, float(r["x0"]), float(r["velocity"])) for c in claim["args"]["cases"]
                                 for r in each(run(ev, claim["args"]["runs"]))
                                 if r["case"] == c and r["side"] == claim["args"]["side"])
@@ -200,8 +197,7 @@ def force_amplitude(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("by_force", "by_release"), args=("definition",))
 def amplitude_by_force(claim, ev: Evidence) -> Verdict:
-    """Runs that differ only in F (groups ``by_force``) converge to amplitudes apart by more than the tolerance
-    (relative), runs that differ only in the release (groups ``by_release``, together) to amplitudes within it."""
+    """Runs that differ only in F converge to amplitudes apart by more than the tolerance, in x0 to ones within it."""
     definition, parts, holds, tolerance = claim["args"]["definition"], [], [], claim["tolerance"]
     for key, groups in (("F", claim["args"]["by_force"]), ("x0", claim["args"]["by_release"])):
         runs = xr.concat([run(ev, g) for g in groups], dim="run")
