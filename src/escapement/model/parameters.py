@@ -117,18 +117,16 @@ def validate_arrays(values: Mapping[str, object], single: bool = False, state: b
 class Parameters:
     """Physical parameters of the escapement model, each checked when made (:func:`rules`) and stored as a float.
 
-    ``a3`` and ``a4`` default to the symmetric geometry ``a3 = -a1``, ``a4 = -a2``; give them to study the
-    paper's asymmetric map, Eq. (16).
+    ``a3`` and ``a4`` default to the symmetric geometry; give them to study the paper's asymmetric map, Eq. (16).
 
     Parameters
     ----------
     {parameters}
     release_force : {'after_impact', 'eq5'}, default 'after_impact'
-        Where the force acts before the first impact, where the paper is silent: in a zone entered through its
-        impact only, or on S2 of Eq. (5) as printed from the release on (run by the event solvers only).
+        Where the force acts before the first impact (the paper is silent): in a zone entered through its impact
+        only, or on S2 of Eq. (5) as printed from the release on (run by the event solvers only).
     past_accumulation : {'stop', 'continue'}, default 'stop'
-        What follows an accumulation of impacts (b > 1), where the paper is silent: the run stops there, or goes on
-        from rest at the impact position (run by the event solvers only).
+        What follows an accumulation of impacts (b > 1): the run stops, or goes on from rest at the impact position.
 
     Raises
     ------

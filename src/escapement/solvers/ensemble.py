@@ -92,8 +92,7 @@ def solve_ensemble(M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: A
     Returns
     -------
     EnsembleSolution
-        One row per trajectory: outcomes, end times (s), the per-cycle table (impact time in s, velocity before
-        impact in m/s, period in s, largest displacement in m) of shape ``(N, n_cycles)``.
+        One row per trajectory: outcomes, end times (s), the cycle table of shape ``(N, n_cycles)``.
 
     Examples
     --------

@@ -26,11 +26,9 @@ def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
                 memory_budget: int | None = None) -> Solution:
     """Integrate the escapement model exactly from ``(x0, v0)`` at ``t = 0+``.
 
-    The run ends at the first of ``n_cycles`` cycles (at the ``(n_cycles + 1)``-th impact at a1), the end time
-    ``t_end`` (an event, or a turn back in a zone, exactly at it belongs to the run), ``max_events`` events (with
-    ``event_limit`` unless the last ends the last cycle, even where the next would come after ``t_end``) and the
-    motion leaving the escapement regime; ``status`` and ``message`` say which. A run whose result would exceed
-    ``memory_budget`` bytes is refused before any work (:func:`~escapement.solvers.stream.iter_cycles` streams).
+    The run ends at the first of ``n_cycles`` cycles, the end time ``t_end`` (an event exactly at it belongs to the
+    run), ``max_events`` events and the motion leaving the escapement regime; ``status`` and ``message`` say which.
+    An invalid input, or a result over ``memory_budget`` bytes, is refused before any work (ParameterError).
 
     Parameters
     ----------
@@ -54,8 +52,7 @@ def solve_exact(params: Parameters, x0: float, v0: float = 0.0, *, n_cycles: int
     Returns
     -------
     Solution
-        How the run ended (leaving the regime is an outcome, not an error), its events, cycles and trajectory;
-        an invalid input raises a :class:`~escapement.ParameterError` naming it.
+        How the run ended (leaving the regime is an outcome, not an error), its events, cycles and trajectory.
 
     Examples
     --------
