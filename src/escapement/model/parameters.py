@@ -164,9 +164,8 @@ class Parameters:
     @classmethod
     def from_mapping(cls, values: Mapping[str, object]) -> Parameters:
         """From a mapping with the model keys (others are ignored); a missing key is named."""
-        for key in REQUIRED_KEYS:
-            if key not in values:
-                raise ParameterError(key, None, "given (it is missing)")
+        if missing := [key for key in REQUIRED_KEYS if key not in values]:
+            raise ParameterError(missing[0], None, "given (it is missing)")
         return cls(**{k: values[k] for k in (*MODEL_KEYS, *CHOICES) if values.get(k) is not None})
 
     @property

@@ -19,7 +19,7 @@ from ..studies.poincare import RELATIVE_STEP, return_map, section_crossing_count
 from .cf import CLASSIFICATION, MODEL_INPUT, MODEL_RESULT
 from .settings import positive_int
 
-__all__ = ["MEASURES", "SETTINGS", "named_runs", "zone_shift"]
+__all__ = ["MEASURES", "SETTINGS", "named_runs"]
 
 #: the settings a run may have beside the model's keys: units (None for a text) and long name
 SETTINGS = {
@@ -122,21 +122,20 @@ def _from_section(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict
                                "section")}
 
 
-def zone_shift(p: Parameters, release: float) -> float:
-    """``dT2`` of the first passage through the zone (a1, a2) from rest at ``-release``, less a free swing's."""
-    run = solve_exact(p, -release, n_cycles=1, record_trajectory=False)
-    ev = run.events
-    first = ev.of_kind(EventKind.IMPACT_A1)
-    if not len(first) or first[0] + 1 >= len(ev) or ev.kind[first[0] + 1] != EventKind.ZONE_END_A2:
-        raise ValueError(f"F = {p.F!r} N, zone ({p.a1}, {p.a2}): no passage through the zone ({run.message})")
-    i, w = first[0], p.omega
-    advance = math.atan2(ev.x[i + 1], ev.v_before[i + 1] / w) - math.atan2(ev.x[i], ev.v_after[i] / w)
-    return float(ev.t[i + 1] - ev.t[i]) - advance / w
-
-
 def _zone_shift(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str, xr.DataArray]:
-    return {"zone_shift": _variable([zone_shift(p, -float(r["x0"])) for r, p in zip(runs, params)], "run", "s",
-                                    "time one passage through the zone [a1, a2] adds to the free swing")}
+    """``dT2`` of each run's first passage through the zone (a1, a2) from rest at ``x0``, less a free swing's (s)."""
+    shifts = []
+    for r, p in zip(runs, params):
+        run = solve_exact(p, float(r["x0"]), n_cycles=1, record_trajectory=False)
+        ev = run.events
+        first = ev.of_kind(EventKind.IMPACT_A1)
+        if not len(first) or first[0] + 1 >= len(ev) or ev.kind[first[0] + 1] != EventKind.ZONE_END_A2:
+            raise ValueError(f"F = {p.F!r} N, zone ({p.a1}, {p.a2}): no passage through the zone ({run.message})")
+        i, w = first[0], p.omega
+        advance = math.atan2(ev.x[i + 1], ev.v_before[i + 1] / w) - math.atan2(ev.x[i], ev.v_after[i] / w)
+        shifts.append(float(ev.t[i + 1] - ev.t[i]) - advance / w)
+    return {"zone_shift": _variable(shifts, "run", "s", "time one passage through the zone [a1, a2] adds to the free "
+                                    "swing")}
 
 
 def _crossings(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str, xr.DataArray]:

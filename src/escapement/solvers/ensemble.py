@@ -160,8 +160,7 @@ class _Ensemble:
                 raise FloatingPointError(f"row {int(self.order[np.flatnonzero(bad)[0]])}: a completed run holds a "
                                          f"non-finite {name}; the input validation (escapement.model.parameters) "
                                          "must refuse the inputs that lead to it")
-        back = np.empty_like(self.order)
-        back[self.order] = np.arange(len(back))
+        back = np.argsort(self.order)  # the inverse permutation
         tables = {}
         for name in CYCLE_COLUMNS:  # one at a time: at most one table more than the four at once
             tables[name] = getattr(s, name).T[back]

@@ -130,8 +130,7 @@ def finish(spec: RunSpec, method: str, outcome: Outcome, events: EventLog, cycle
         columns["t_final"] = t_final
         for name, values in columns.items():
             doubles = np.atleast_1d(np.asarray(values, dtype=float))  # mpmath numbers as their nearest doubles
-            if not np.isfinite(doubles).all():
-                bad = np.flatnonzero(~np.isfinite(doubles))
+            if len(bad := np.flatnonzero(~np.isfinite(doubles))):
                 raise FloatingPointError(
                     f"{method}: a completed run holds a non-finite {name}[{bad[0]}] = {float(doubles[bad[0]])!r}; "
                     "the input validation (escapement.model.parameters) must refuse the inputs that lead to it")
