@@ -121,8 +121,7 @@ def run_spec(params: Parameters | Mapping[str, object], x0: object, v0: object =
 def check_budget(budget: int, stores: str, counts: Sequence[tuple[str, int, Callable[[int], float]]],
                  remedy: str = "") -> int:
     """The bytes of a run, ``size(value)`` of the first of ``counts`` (each ``(name, value, size)``), if within
-    ``budget``; else a :class:`MemoryBudgetError` naming the first count that fits at 1 with the most that fits, or
-    the budget with the least the last count needs."""
+    ``budget``; else a :class:`MemoryBudgetError` naming the first count that fits at 1 with the most that fits."""
     estimate = int(math.ceil(counts[0][2](counts[0][1])))
     if estimate <= budget:
         return estimate

@@ -101,9 +101,8 @@ def _return_map(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[s
 
 
 def _from_section(runs: Sequence[Mapping], params: Sequence[Parameters]) -> dict[str, xr.DataArray]:
-    """Each run from rest at ``x0`` over ``n_cycles``, then from the section at ``1 + perturbation`` times its last
-    speed before the impact at a1 over ``section_cycles``: that converged speed, the times of the impacts at a1 from
-    the section and the last speed before one."""
+    """Each run from rest at ``x0``, then from the section at ``1 + perturbation`` times its converged speed: that
+    speed, the times of the impacts at a1 from the section and the last speed before one."""
     found = []
     for r, p in zip(runs, params):
         release = solve_exact(p, float(r["x0"]), n_cycles=positive_int("n_cycles", r["n_cycles"], 1_000_000),
@@ -162,9 +161,8 @@ MEASURES: dict[str, tuple[Callable[..., dict[str, xr.DataArray]], tuple[str, ...
 
 
 def named_runs(probes: Mapping[str, Mapping]) -> dict[str, xr.DataArray]:
-    """The variables of each run of ``probes`` (``{name: {measure, runs}}``, each run a flat mapping with a ``label``):
-    its label, model, settings and what its measure gives, each ``<name>_<variable>`` on ``<name>_run``; every run
-    is checked before any is made."""
+    """The variables of each run of ``probes`` (``{name: {measure, runs}}``), each ``<name>_<variable>`` on
+    ``<name>_run``; every run is checked before any is made."""
     checked = {}
     for name, spec in probes.items():
         measure, runs = spec["measure"], list(spec["runs"])

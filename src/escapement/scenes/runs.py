@@ -49,9 +49,8 @@ CHECKS_COLUMNS = {
 
 
 def checks(cases: Sequence[Mapping], n_cycles: int, probes: Mapping | None = None) -> xr.Dataset:
-    """The runs of the claims register: the table, one row per case (``group``, ``label``, the model's keys, ``x0``),
-    released from rest and run ``n_cycles`` cycles, the Poincare map measured at the last cycle beside Eqs. (16) and
-    (21); beside it, the runs ``probes`` names (:func:`~escapement.scenes.probes.named_runs`)."""
+    """The runs of the claims register: the table, one row per case run from rest ``n_cycles`` cycles, the Poincare
+    map measured at the last; beside it, the runs ``probes`` names (:func:`~escapement.scenes.probes.named_runs`)."""
     n_cycles = positive_int("n_cycles", n_cycles, 100_000)
     runs = [(case, p, Release.from_mapping(case).x0) for case in cases for p in [Parameters.from_mapping(case)]]
     named = named_runs(probes or {})

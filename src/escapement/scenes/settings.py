@@ -250,8 +250,7 @@ class PhaseScene:
 
 @dataclass(frozen=True)
 class EscapementErrorScene:
-    """The limit cycle's rate for ``forces`` (spaced geometrically) in each impulse zone ``[a1, a2]`` (the
-    second half cycle mirrored: ``a3 = -a1``, ``a4 = -a2``); ``params`` gives M, K and b."""
+    """The limit cycle's rate for ``forces`` (spaced geometrically) in each impulse zone ``[a1, a2]``, mirrored."""
 
     study: Study
     params: Parameters

@@ -63,8 +63,7 @@ def event_limit_message(t: float, max_events: int) -> str:
 
 def no_event_outcome(params: Parameters, state: int, centre: Numeric, t: Numeric, dt: Numeric, turning: Numeric,
                      t_stop: float = math.inf, impacts_a1: int = 0) -> Outcome:
-    """No surface watched in ``state`` is ever passed from ``t``: in free flight the escapement stopped (``turning``
-    the swing's radius), in a zone the mass turns back at ``turning`` ``dt`` later, unless the end time comes first."""
+    """No surface watched in ``state`` is passed from ``t``: the escapement stopped, or the mass turns in a zone."""
     arc = automaton.ARCS[state]
     status = automaton.EXIT_WITHOUT_EVENT[arc.mode]
     if status is Status.TURNED_BACK_IN_ZONE and t + dt > t_stop:

@@ -42,9 +42,8 @@ def g_eq3b(p: Parameters, x, v) -> np.ndarray:
 
 
 def lipschitz_quotients(p: Parameters, x0: float, v0: float, radius: float, n: int = 21) -> tuple[float, float]:
-    """Over an ``n`` x ``n`` grid of the square of half-width ``radius`` about (x0, v0): the largest ``|g(y1) - g(y2)|``
-    and the largest ``|h(y1) - h(y2)| / |y1 - y2|``, ``h(y) = A y + g(y)`` with A = ``[[0, 1], [-omega_n^2, 0]]`` and
-    g of :func:`g_eq3b`, the differences taken from the offsets, free of cancellation."""
+    """Over an ``n`` x ``n`` grid of half-width ``radius`` about (x0, v0): the largest ``|g(y1) - g(y2)|`` and the
+    largest ``|h(y1) - h(y2)| / |y1 - y2|``, ``h(y) = A y + g(y)``, the differences taken from the offsets."""
     offset = np.linspace(-radius, radius, n)
     dx, dv = (a.ravel() for a in np.meshgrid(offset, offset))
     ddx, ddv, ddg = (a[:, None] - a[None, :] for a in (dx, dv, g_eq3b(p, x0 + dx, v0 + dv)))
@@ -171,9 +170,8 @@ def autonomous(claim, ev: Evidence) -> Verdict:
 @check(scenes=fig3_scenes, args=("at",),
        law="A of Eq. (3a) with omega_n^2 and g of Eq. (3b) on the sets of Eq. (5), which the model's modes restate")
 def lipschitz_near(claim, ev: Evidence) -> Verdict:
-    """A y + g is Lipschitz near y0 in each Fig. 3 case: g constant and the largest quotient ||A|| = max(1, omega_n^2)
-    (within the tolerance, relative), y0 the release (``at: release``, over a square reaching just short of the
-    impulse zones) or the end of the zone (a1, a2) on the last cycle (``at: zone_end``, half-widths ``radii``)."""
+    """A y + g is Lipschitz near y0 in each Fig. 3 case (g constant, the largest quotient ||A||), y0 the release
+    (``at: release``) or the end of the zone (a1, a2) on the last cycle (``at: zone_end``, half-widths ``radii``)."""
     at, parts, holds = claim["args"]["at"], [], True
     if at not in ("release", "zone_end"):
         raise ValueError(f"at = {at!r} must be release or zone_end")
@@ -219,8 +217,7 @@ def piecewise_linear(claim, ev: Evidence) -> Verdict:
 
 
 def grazing_verdict(rows: Sequence[Mapping], limit: float, tolerance: float) -> Verdict:
-    """Holds when, of the runs released ``delta`` above and below the grazing release (``rows``: each ``outcome`` and
-    ``v_next`` before the second impact at a1), the one above at the smallest ``delta`` continues to ``limit``."""
+    """Holds when the run released ``delta`` above the grazing release, at the smallest ``delta``, goes to ``limit``."""
     error = abs(min(rows, key=lambda r: r["delta"])["above"]["v_next"] - limit) / limit  # at the smallest delta
     text = "; ".join(
         f"delta = {fmt(r['delta'], 2)}: from -A(1 + delta) {r['above']['outcome']}"

@@ -157,8 +157,7 @@ def map8_eigenvalues(claim, ev: Evidence) -> Verdict:
 
 @check(runs=("runs",), args=("sense",))
 def phase_shift(claim, ev: Evidence) -> Verdict:
-    """The runs from the section at v* and (1 + perturbation) v* agree at the end in speed (``sense: orbital``) or in
-    impact time too (``sense: lyapunov``)."""
+    """Runs from v* and (1 + perturbation) v* end alike in speed (``orbital``) or in impact time (``lyapunov``)."""
     runs = run(ev, claim["args"]["runs"])
     times = [t[np.isfinite(t)] for t in runs["impact_time"].values[:2]]
     speeds, perturbation = runs["speed"].values[:2], float(runs["perturbation"].values[1])
