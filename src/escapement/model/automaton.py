@@ -29,8 +29,7 @@ class Mode(IntEnum):
     ZONE_LEFT = 2  #: the impulse zone (a4, a3) after the impact at a3 (step 7), centre -F/K
 
 
-#: the centre of oscillation of each mode, in units of F/K
-CENTRE_SIGN = (0.0, 1.0, -1.0)
+CENTRE_SIGN = (0.0, 1.0, -1.0)  #: the centre of oscillation of each mode, in units of F/K
 
 
 @dataclass(frozen=True)

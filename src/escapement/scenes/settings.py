@@ -23,8 +23,7 @@ __all__ = ["KINDS", "REPLICATION", "EscapementErrorScene", "ExistenceMapScene", 
            "PhaseScene", "PoincareScene", "Release", "ShockScene", "SizeError", "StabilityMapScene", "Study",
            "as_typed", "positive_int", "time_window"]
 
-#: the study of the paper's scenes (the others are the user's own, by their name)
-REPLICATION = "replication"
+REPLICATION = "replication"  #: the study of the paper's scenes (the others are the user's own, by their name)
 
 
 @dataclass(frozen=True)
@@ -88,11 +87,10 @@ class Study:
         return cls(str(values.get("study", REPLICATION)), str(values.get("label", "")), str(values.get("changes", "")))
 
 
-def positive_int(name: str, value: object, most: int | None = None, least: int = 1) -> int:
+def positive_int(name: str, value: object, most: int, least: int = 1) -> int:
     """``value`` as an int if it is an integer (not a bool) in ``[least, most]``; else ParameterError."""
-    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < least or (most and value > most):
-        raise ParameterError(name, value, f"an integer in [{least:_}, {most:_}]" if most else
-                             "a positive integer" if least == 1 else f"an integer >= {least:_}")
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or not least <= value <= most:
+        raise ParameterError(name, value, f"an integer in [{least:_}, {most:_}]")
     return int(value)
 
 
@@ -146,11 +144,8 @@ def _axis(block: str, name: str, axis: object) -> tuple[float, float, int]:
     return start, stop, n
 
 
-#: the definitions of Fig. 3's amplitude, by the name of the variable that holds it
-AMPLITUDES = tuple(DEFINED_AMPLITUDES)
-
-#: the most samples a sampled time series may hold (three float64 arrays: 240 MB)
-MAX_SAMPLES = 10_000_000
+AMPLITUDES = tuple(DEFINED_AMPLITUDES)  #: the definitions of Fig. 3's amplitude, by the variable that holds it
+MAX_SAMPLES = 10_000_000  #: the most samples a sampled time series may hold (three float64 arrays: 240 MB)
 
 
 def as_typed(value: object) -> str:

@@ -34,8 +34,7 @@ class Outcome(NamedTuple):
 
 #: the direction in which the free swing would pass each impact position, from the automaton's surfaces
 _DIRECTION = {s.position: "moving right" if s.direction > 0 else "moving left" for s in automaton.SURFACES.values()}
-#: the significant digits of the computed times and positions in the messages (more where needed)
-_DIGITS = 12
+_DIGITS = 12  #: the significant digits of the computed times and positions in the messages (more where needed)
 
 
 def stopped_message(t: float, radius: float, missed: dict[str, float]) -> str:
