@@ -18,7 +18,7 @@ from .automaton import CHOICES
 from .quantities import INITIAL_STATE, MODEL_KEYS, PARAMETERS, REQUIRED_KEYS, SYMMETRIC_DEFAULTS, quantity
 
 __all__ = ["B_SMALLEST", "LARGEST", "SIGNS", "SMALLEST", "ParameterArrays", "ParameterError", "Parameters",
-           "check_initial_state", "rules", "state_rules", "validate_arrays"]
+           "check_initial_state", "parameters_section", "rules", "state_rules", "validate_arrays"]
 
 SMALLEST, LARGEST = 1e-50, 1e50  #: the magnitudes of a non-zero dimensional input, SI units (see :func:`rules`)
 B_SMALLEST = 1e-12  #: the smallest impact coefficient: 1 - b keeps b to 4 significant digits
@@ -218,21 +218,21 @@ class Parameters:
         return f"{type(self).__name__}({', '.join(values + [f'{k}={v!r}' for k, v in self.chosen.items()])})"
 
 
-def _parameters_section() -> str:
-    """The entries of :class:`Parameters`' docstring, from the table: long name, units, rule and default."""
+def parameters_section(kind: str = "float") -> str:
+    """The numpydoc entries of the parameters, of type ``kind``, from the table: long name, units, rule, default."""
     lines = []
     for name, q in PARAMETERS.items():
         mirror = SYMMETRIC_DEFAULTS.get(name)
         units = "dimensionless" if q.dimensionless else q.unit_label
         rule = f" ({SIGNS[name]})" if name in SIGNS else ""
         default = f"; default -{mirror}" if mirror else ""
-        lines += [f"{name} : float{', optional' if mirror else ''}",
+        lines += [f"{name} : {kind}{', optional' if mirror else ''}",
                   f"    {q.long_name[:1].upper()}{q.long_name[1:]}, {units}{rule}{default}."]
     return "\n    ".join(lines)
 
 
 if Parameters.__doc__:  # None when docstrings are stripped (python -OO)
-    Parameters.__doc__ = Parameters.__doc__.replace("{parameters}", _parameters_section())
+    Parameters.__doc__ = Parameters.__doc__.replace("{parameters}", parameters_section())
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ from ..model.automaton import RELEASE
 from ..model.events import EventKind
 from ..model.kinematics import arc_maximum, compensated_add, crossing, rebound_accumulation_time, time_to_rest
 from ..model.limits import RunSpec, check_flag, run_spec
-from ..model.parameters import ParameterArrays
+from ..model.parameters import ParameterArrays, parameters_section
 from ..model.quantities import MODEL_KEYS
 from ..model.status import Status
 from .describe import CYCLE_COLUMNS, CycleTable
@@ -60,22 +60,7 @@ def solve_ensemble(M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: A
 
     Parameters
     ----------
-    M : float or array_like
-        Mass, kg.
-    K : float or array_like
-        Spring constant, N/m.
-    F : float or array_like
-        Force of the escapement over an impulse zone, N.
-    b : float or array_like
-        Impact coefficient, dimensionless, in ``(0, 2)``.
-    a1 : float or array_like
-        Impact position of the first half cycle (moving right), m.
-    a2 : float or array_like
-        End of the first impulse zone, m.
-    a3 : float or array_like, optional
-        Impact position of the second half cycle (moving left), m; default ``-a1``.
-    a4 : float or array_like, optional
-        End of the second impulse zone, m; default ``-a2``.
+    {parameters}
     x0 : float or array_like, default 1
         Initial displacement at ``t = 0+``, m.
     v0 : float or array_like, default 0
@@ -107,6 +92,10 @@ def solve_ensemble(M: ArrayLike, K: ArrayLike, F: ArrayLike, b: ArrayLike, a1: A
     largest_displacement = check_flag("largest_displacement", largest_displacement)
     with np.errstate(invalid="ignore", divide="ignore"):
         return _Ensemble(spec, largest_displacement).run()
+
+
+if solve_ensemble.__doc__:  # None when docstrings are stripped (python -OO)
+    solve_ensemble.__doc__ = solve_ensemble.__doc__.replace("{parameters}", parameters_section("float or array_like"))
 
 
 class _Ensemble:
