@@ -128,6 +128,5 @@ def reverses(v_before: Numeric, v_after: Numeric) -> Numeric:
 
 
 def rebound_distance(kind: int, where: Numeric) -> Numeric:
-    """After a rebound at the impact ``kind`` at ``where``, its distance from the free centre (0) on the side
-    the spring pushes towards (> 0 when the spring drives the mass back to it)."""
+    """After a rebound at the impact ``kind`` at ``where``, its distance from 0 (> 0: the spring drives it back)."""
     return -SURFACES[kind].direction * where

@@ -21,8 +21,7 @@ __all__ = ["EVENTS_PER_CYCLE", "MAX_CYCLES", "MAX_DIGITS", "MAX_EVENTS", "MAX_ME
            "events_for", "run_spec"]
 
 EVENTS_PER_CYCLE, DEFAULT_MAX_EVENTS_FOR_TIME = 4, 10_000_000
-#: the most cycles a run may ask for (the workflow's longest run is 10**6 cycles, its schema allows 10**8)
-MAX_CYCLES = 1_000_000_000
+MAX_CYCLES = 1_000_000_000  #: the most cycles a run may ask for (the workflow's schema allows 10**8)
 MAX_EVENTS = 5_000_000_000  #: the most events a run may take: room for the default of :data:`MAX_CYCLES` cycles
 MIN_DIGITS, MAX_DIGITS = 17, 1000  #: the high-precision solver's digits: more than float64's 16, at most 1000
 MEMORY_BUDGET = 2_000_000_000  #: the bytes a result may hold by default: 2 GB, a quarter of a laptop's 8 GB

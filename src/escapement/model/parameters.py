@@ -94,8 +94,7 @@ def _check(checks: Iterable, shaped: Mapping[str, np.ndarray]) -> None:
 
 
 def validate_arrays(values: Mapping[str, object], single: bool = False, state: bool = False) -> dict[str, np.ndarray]:
-    """Every model key (``a3``, ``a4`` None: the symmetric default) and, with ``state``, ``x0`` and ``v0``, checked
-    and broadcast to one shape of float64 arrays (``single``: every value a number); the first violation refused."""
+    """Every model key and, with ``state``, ``x0`` and ``v0``, checked and broadcast to one shape of float64 arrays."""
     for key in REQUIRED_KEYS + (tuple(INITIAL_STATE) if state else ()):
         if values.get(key) is None:
             raise ParameterError(key, None, "given")

@@ -109,8 +109,7 @@ def time_window(name: str, window: object) -> tuple[float, float]:
     return lo, hi
 
 
-#: The bounds [least, most] of each count a scene takes, by ``block.key`` (an axis's points as ``<axis>.n``): what
-#: fits a laptop's memory and runs in minutes (the configuration's schema states the same bounds).
+#: the bounds [least, most] of each count a scene takes, by ``block.key``, as the configuration's schema states them
 COUNTS = {
     "fig3.n_cycles": (1, 1_000_000),
     "fig4.samples_per_second": (1, 100_000),

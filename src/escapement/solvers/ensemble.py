@@ -107,8 +107,7 @@ class _Ensemble:
         self.order = np.argsort(first, kind="stable")
         p = ParameterArrays(**{k: getattr(spec.params, k)[self.order] for k in MODEL_KEYS})
         n, cells = len(first), (self.n_cycles, len(first))
-        # a row per trajectory in the order of the first events: its state after the last event, its cycle so far,
-        # how it ended (_RUNNING while running) and the exit's numbers; the cycle tables, a row a cycle
+        # a row per trajectory (first events' order): its state, its cycle so far, how it ended; the cycle tables
         self.s = SimpleNamespace(
             omega=p.omega, factor=automaton.impact_factor(p.b), x=spec.x0[self.order], v=spec.v0[self.order],
             t=np.zeros(n), t_err=np.zeros(n), elapsed=np.zeros(n), cycle_max=np.zeros(n),

@@ -14,8 +14,7 @@ from .result import Solution
 
 __all__ = ["ARC_BYTES", "CYCLE_BYTES", "EVENT_BYTES", "PASS_BYTES", "solve_exact"]
 
-#: bytes per event at the peak (tracemalloc measured 109): the loop's buffers and the arrays derived from them
-EVENT_BYTES = 130
+EVENT_BYTES = 130  #: bytes per event at the peak (tracemalloc measured 109): the loop's buffers and derived arrays
 ARC_BYTES = 8  #: bytes per event of the arcs when the trajectory is kept: their start times
 CYCLE_BYTES = 64  #: bytes per cycle: the cycle table's four columns and their temporaries
 PASS_BYTES = 1 << 16  #: bytes whatever the run's length

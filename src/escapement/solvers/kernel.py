@@ -28,12 +28,9 @@ from .outcomes import (Outcome, accumulation, chattering_outcome, completed_outc
 __all__ = ["A1", "BLOCK_EVENTS", "PLAN", "Block", "EventRun", "Row", "event_block", "kinds_from", "row", "rows"]
 
 A1 = int(EventKind.IMPACT_A1)
-#: the events of a cycle after the impact at a1, the last that impact
-PLAN = tuple(int(kind) for kind in automaton.cycle_plan())
-#: the most events of a block: its arrays stay small, and a run to an end time computes at most this many past it
-BLOCK_EVENTS = 1 << 12
-#: how a block can end before its last event: no watched surface is passed, the end time, a rebound
-NO_EVENT, HORIZON, REBOUND = "no event", "end time", "rebound"
+PLAN = tuple(int(kind) for kind in automaton.cycle_plan())  #: a cycle's events after an impact at a1, up to the next
+BLOCK_EVENTS = 1 << 12  #: the most events of a block: a run to an end time computes at most this many past it
+NO_EVENT, HORIZON, REBOUND = "no event", "end time", "rebound"  #: how a block can end before its last event
 
 
 def _atan2(y: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -181,8 +178,7 @@ class EventRun:
         return kept
 
     def past(self, v1: float) -> str | None:
-        """After a rebound (``v1`` the velocity before it): under ``past_accumulation: continue`` the run goes on
-        from rest once the rebounds accumulate (None); else :data:`REBOUND` ends it."""
+        """After a rebound (``v1`` the velocity before it): None if the run goes on past it, else :data:`REBOUND`."""
         wait = accumulation(self.params, EventKind(self.state), v1, self.v)
         if self.params.past_accumulation == "stop" or math.isnan(wait):
             return REBOUND
