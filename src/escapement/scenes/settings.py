@@ -1,9 +1,6 @@
 """The settings of each scene, checked once: frozen dataclasses made from a flat mapping of the configuration.
 
-A scene's settings (the model's keys merged with the scene's own, as Snakemake passes the rule's params) are all
-checked by :meth:`from_mapping` before any work, each refusal a
-:class:`~escapement.model.parameters.ParameterError` naming the key and its value. :data:`KINDS` names each kind
-of scene once.
+Each ``from_mapping`` checks every key before any work, refusing with a ParameterError naming the key and its value.
 """
 
 from __future__ import annotations

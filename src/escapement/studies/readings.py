@@ -2,10 +2,8 @@
 
 A :class:`Reading` is the points one panel would draw under one candidate reading, from the exact solver; their
 extent is what an automatic axis scales to, so that the printed axes (:mod:`escapement.paper.printed_axes`) can tell
-the readings apart, or fail to. The grid is the full product of the open choices: for Fig. 3 the release side, the
-Poincare section (a1, or its mirror a3 read with ``|v|``), the quantity and the cycles plotted (N or N+1); for
-Fig. 4 F and |x0| from the cases, the release side, K and which window goes with which quantity; for Fig. 5 F, the
-release, and the whole trajectory or the last cycle. Every run is made once (:class:`Runs`).
+the readings apart, or fail to. The grid is the full product of the open choices (the tables below and each
+figure's ``*_readings``); every run is made once (:class:`Runs`).
 """
 
 from __future__ import annotations
