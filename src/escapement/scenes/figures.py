@@ -52,8 +52,7 @@ def poincare_map(settings: Mapping | PoincareScene) -> xr.Dataset:
 
 
 def shock_detail(settings: Mapping | ShockScene) -> xr.Dataset:
-    """The motion sampled over the union of the velocity and acceleration windows (a sample on each side of every
-    event, where the acceleration jumps), the impacts and events inside it, and the windows."""
+    """The motion, impacts and events over the union of the velocity and acceleration windows, and the windows."""
     scene = settings if isinstance(settings, ShockScene) else ShockScene.from_mapping(settings)
     (v_lo, v_hi), (a_lo, a_hi) = scene.velocity_window, scene.acceleration_window
     lo, hi = min(v_lo, a_lo), max(v_hi, a_hi)
@@ -77,8 +76,7 @@ def shock_detail(settings: Mapping | ShockScene) -> xr.Dataset:
 
 
 def phase_diagram(settings: Mapping | PhaseScene) -> xr.Dataset:
-    """The phase trajectory from release to the end of cycle ``n_cycles``, sampled ``samples_per_period`` times
-    per natural period (and on each side of every impact), the per-cycle map and every impact."""
+    """The phase trajectory from release to the end of cycle ``n_cycles``, the per-cycle map and every impact."""
     scene = settings if isinstance(settings, PhaseScene) else PhaseScene.from_mapping(settings)
     run = solve_exact(scene.params, scene.release.x0, scene.release.v0, n_cycles=scene.n_cycles)
     period = scene.params.natural_period

@@ -98,8 +98,7 @@ def mirror_image(p: Parameters) -> Parameters:
 
 
 def existence_map(settings: Mapping | ExistenceMapScene) -> xr.Dataset:
-    """Every ``(a3, F)`` run from the release for ``n_cycles`` cycles (the vectorised ensemble), how it ended
-    and whether it reached a limit cycle, beside the thresholds ``F*`` and ``F*'`` at each a3."""
+    """How every ``(a3, F)`` run from the release ended and whether it reached a limit cycle, beside F* and F*'."""
     scene = settings if isinstance(settings, ExistenceMapScene) else ExistenceMapScene.from_mapping(settings)
     p = scene.params
     aa, ff = np.meshgrid(np.array(scene.a3_values), np.array(scene.F_values), indexing="ij")
