@@ -107,6 +107,17 @@ def test_the_check_says_which_tracked_file_differs_from_the_run(drawings, tmp_pa
         check({"figures/fig.png": "results/none.png"})
 
 
+def test_a_figure_drawn_from_wall_times_is_kept_while_whole_and_replaced_when_damaged(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tracked := Path("article/figures/work_precision.svg")).parent.mkdir(parents=True)
+    tracked.write_text('<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 1"/></svg>')
+    drawn = tmp_path / "drawn.svg"
+    drawn.write_text('<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 2"/></svg>')
+    assert [r[1] for r in check({str(tracked): str(drawn)})] == [True]
+    tracked.write_text("<svg")
+    assert [r[1] for r in check({str(tracked): str(drawn)})] == [False]
+
+
 def test_every_tracked_file_is_published_from_the_replication_s_results():
     figures = ("fig3", "fig4", "fig5", "long_run", "stability_map", "escapement_error", "existence_map")
     expected = {"README.md", "REPLICATION.md"} | {f"figures/{f}.{e}" for f in figures for e in ("png", "pdf")}
