@@ -35,8 +35,7 @@ EXIT_STATUSES = {
     EXIT_CANNOT_WRITE: "an output that cannot be written (refused before any work where the file system shows it "
                        "beforehand), or standard output closed",
 }
-#: Fig. 3 (a) as the workflow runs it (config/paper.yaml: the model block, fig3.cases.a, fig3.n_cycles); a3 and
-#: a4 default to -a1, -a2
+#: Fig. 3 (a) as the workflow runs it (config/paper.yaml); a3 and a4 default to -a1, -a2
 DEFAULTS = {"M": 1.0, "K": 1.0, "F": 1.0, "b": 0.1, "a1": -0.1, "a2": 0.05, "x0": -1.0, "v0": 0.0}
 DEFAULT_CYCLES = 50
 

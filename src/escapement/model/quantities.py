@@ -51,8 +51,7 @@ INITIAL_STATE = {q.name: q for q in (
     Quantity("v0", "v(0)", "m s-1", "m/s", "initial velocity"),
 )}
 
-#: the computed variables of a run, by their names in the datasets: the trajectory, the impacts and
-#: the Poincare map per cycle (cycle k starts at the k-th impact at a1)
+#: the computed variables of a run, by their names in the datasets (cycle k starts at the k-th impact at a1)
 VARIABLES = {q.name: q for q in (
     Quantity("t", "t", "s", "s", "time since release", "time"),
     Quantity("displacement", "x", "m", "m", "displacement x", "displacement"),

@@ -149,14 +149,7 @@ def multiplier_21_of(b: float) -> float:
 
 def step_times_22(v1: float, p: Parameters, left_amplitude: float) -> dict[str, float]:
     """Eqs. (22a)-(22e) as printed: the durations of steps 1-7 of one cycle from the left turning point at
-    ``-left_amplitude``, the velocities from the energy balance (only the times under test). The garbled text read:
-
-    * (22a) ``t1 - t0 = acos(-a1 / h0) / w``
-    * (22b) ``t2 - t1 = [atan(v1p / (w (a1 - f/w^2))) + acos((f/w^2 - a2) / R1)] / w``, ``R1 = |(v1p/w, a1 - f/w^2)|``
-    * (22c) ``t3 - t2 = atan(v2 / (w a2)) / w``
-    * (22d) ``t4 - t3 = acos(a3 / sqrt(a2^2 + (v2/w)^2)) / w``
-    * (22e) :func:`zone_left_time_22e`
-    """
+    ``-left_amplitude``, the velocities from the energy balance (only the times under test); the text read as below."""
     w, c, vel = p.omega, p.zone_offset, cycle_velocities(v1, p)
     v1p, v2, v4p = vel["v1p"], vel["v2"], vel["v4p"]
     r1 = math.hypot(v1p / w, p.a1 - c)

@@ -1,7 +1,5 @@
-"""The scenes over grids of parameters, each from its settings to its dataset (the wall times measured, which vary
-from run to run, apart): the stability map over ``(b, F)``, the existence map over ``(a3, F)`` (Sec. 5) and the
-escapement error over impulse zones and forces. A map's rows are independent trajectories: a map too large for one
-job runs in chunks over slices of its rows (:mod:`escapement.pipeline.plan`), which :func:`gather` joins.
+"""The scenes over grids of parameters, each from its settings to its dataset. A map's rows are independent
+trajectories: a map too large for one job runs in chunks over slices of its rows, which :func:`gather` joins.
 """
 
 from __future__ import annotations

@@ -50,8 +50,7 @@ class Reading:
     outcome: str = "completed"  #: how the run ended (a reading of a run that left the regime says so)
 
 
-#: The quantities a Fig. 3 panel may plot, per cycle k of a section: panel, name, and the values for k = 1..n
-#: from the section's cycles and the run's parameters.
+#: the quantities a Fig. 3 panel may plot: panel, name, and the values for cycles k = 1..n of a section
 FIG3_QUANTITIES: tuple[tuple[str, str, Callable[[SectionCycles, Parameters, int], np.ndarray]], ...] = (
     ("velocity", "speed before the impact", lambda c, p, n: c.speed[:n]),
     ("period", "period, impact to impact", lambda c, p, n: c.period[:n]),
