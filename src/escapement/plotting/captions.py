@@ -106,8 +106,7 @@ def changes_legend(fig, datasets: Iterable[xr.Dataset], note: str | None = None)
 
 
 def thinning(fig, samples: int, kept: int, rastered: int, column_dpi: float, dpi: float) -> str | None:
-    """How a figure's lines were thinned and rastered (:mod:`escapement.plotting.thinning`), wrapped to its width;
-    None if none was."""
+    """How a figure's lines were thinned and rastered, wrapped to its width; None if none was."""
     said = ([f"Drawn from 1 of every {samples / kept:,.0f} samples ({samples:,} as {kept:,}), each 1/{column_dpi:g}"
              "-inch column's first, last, smallest and largest kept: every extreme"] if samples else [])
     said += [f"{rastered:,} vertices drawn as a raster of {dpi:g} dpi, every one rendered"] if rastered else []

@@ -1,7 +1,6 @@
-"""The three figures of a scene: the Poincaré map per cycle, the shock detail around the impacts, and phase
-diagrams, drawn from the netCDF datasets. Given ``axes`` (:mod:`escapement.plotting.panel_axes`), a panel is drawn
-with exactly those limits and tick step, else autoscaled; guides (a fixed point, the natural period) are drawn only
-inside the axes, so that the legend lists only what a panel shows.
+"""The three figures of a scene, drawn from its netCDF datasets. Given ``axes`` (:mod:`escapement.plotting.panel_axes`),
+a panel is drawn with exactly those limits and tick step, else autoscaled; guides (a fixed point, the natural period)
+are drawn only inside the axes, so that the legend lists only what a panel shows.
 """
 
 from __future__ import annotations

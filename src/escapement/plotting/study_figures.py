@@ -1,7 +1,6 @@
-"""The project's own figures: the solvers' work-precision and long-run errors, the stability map over (b, F), the
-existence map over (a3, F), and the escapement error against amplitude. In the long run an adaptive integrator's
-errors move by a few per cent from one BLAS kernel to another, so they are drawn as their largest per decade rounded
-up to 1, 2 or 5 times a power of ten; the exact solver's and the closed forms', bit-identical, at each sampled cycle.
+"""The project's own figures. In the long run an adaptive integrator's errors move by a few per cent from one BLAS
+kernel to another, so they are drawn as their largest per decade rounded up to 1, 2 or 5 times a power of ten; the exact
+solver's and the closed forms', bit-identical, at each sampled cycle.
 """
 
 from __future__ import annotations
