@@ -1,7 +1,6 @@
-"""The printed axes as data: each candidate reading of the paper's unstated choices scored by the axis limits it
-would give. For every reading, scored axis, margin and tick mode, ``matches`` counts the printed limits that
-matplotlib's limits of the reading's values reproduce exactly (0, 1 or 2); readings of one panel whose plotted values
-are identical to rounding share ``same_values_as``.
+"""The printed axes as data: each candidate reading of the paper's unstated choices scored by the axis limits it would
+give. For every reading, scored axis, margin and tick mode, ``matches`` counts the printed limits that matplotlib's
+limits of the reading's values reproduce exactly (0, 1 or 2).
 """
 
 from __future__ import annotations

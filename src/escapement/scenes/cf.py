@@ -1,5 +1,4 @@
-"""CF-1.11 and ACDD-1.3 datasets from runs: per-cycle table, samples, impacts, the model's parameters, and
-attributes; :func:`run_dataset` holds one run, the scenes' datasets are built of the same parts.
+"""CF-1.11 and ACDD-1.3 datasets from runs: :func:`run_dataset` holds one run, the scenes' are built of its parts.
 
 The parameters and initial state are 0-d variables with units, never global attributes; counts and text (``solver``,
 ``outcome``, a scene's ``study``) are global attributes. No CF standard name exists for this model's quantities.

@@ -1,7 +1,6 @@
-"""Per-cycle closed forms: :func:`~escapement.solvers.exact.solve_exact`'s cycle table from the return map of
-``v**2`` (:func:`solve_cycles`, in chunks :func:`iter_closed_form_cycles`), or from the event solver where they do
-not apply. They agree within 1e-14 down to ``b`` of about 0.015 (below, the event solver's rounding grows as
-``eps / b``)."""
+"""Per-cycle closed forms: :func:`~escapement.solvers.exact.solve_exact`'s cycle table from the return map of ``v**2``,
+or from the event solver where they do not apply. They agree within 1e-14 down to ``b`` of about 0.015 (below, the event
+solver's rounding grows as ``eps / b``)."""
 
 from __future__ import annotations
 
