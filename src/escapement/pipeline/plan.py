@@ -1,7 +1,6 @@
 """The scenes each study runs, built and checked before any job (:func:`plan`): the replication's from
 ``config/paper.yaml``, and the user's own where a kind's scenes differ from the paper's. A scene's settings are a flat
-mapping (the model's keys, its block's and its own, later ones winning); a map larger than one job's memory budget
-runs in chunks of its rows (:func:`chunks`).
+mapping (the model's keys, its block's and its own, later ones winning).
 """
 
 from __future__ import annotations

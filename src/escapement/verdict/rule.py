@@ -1,6 +1,5 @@
-"""The words of the verdict and the one rule that gives them: statuses, kinds of evidence, origins, the columns of
-the claims table and how a number is written in it (:func:`fmt`). Only a finding, a sentence, takes a partial
-status, from its parts' (:func:`finding_status`).
+"""The words of the verdict, the columns of the claims table, and the one rule that gives a row its status. Only a
+finding, a sentence, takes a partial status, from its parts' (:func:`finding_status`).
 """
 
 from __future__ import annotations
