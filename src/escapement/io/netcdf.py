@@ -1,6 +1,5 @@
-"""Writing and reading the files: netCDF (compressed, checksummed, stamped with their provenance), CSV and text,
-each written to a temporary file beside its target (through a symbolic link) and renamed into place, so that a
-reader never sees a partial file. A Ctrl-C during a netCDF write or read is raised as soon as it returns.
+"""Writing and reading the files: netCDF (compressed, checksummed, stamped with their provenance), CSV and text, each
+replaced whole (:func:`replaced`), so that a reader never sees a partial file.
 
 Every file proves it is whole before it is read: a CSV file's first line is ``# rows: N; sha256: <hex>``, the digest
 of the bytes after it; a netCDF file's global attribute ``sha256`` digests its raw variables and every other

@@ -1,9 +1,8 @@
 """Measuring the Poincare map of the simulated motion: fixed point, period, multiplier.
 
-The multiplier is measured, not taken from Eq. (21): released from rest on the free swing that meets a1 with
-velocity v, the exact solver returns P(v) one cycle later, and a central difference of P gives mu_2.
-:func:`stability_grid` keeps its own vectorised Newton iteration: ``scipy.optimize.newton`` on arrays stops on an
-absolute step only and takes a NaN step (a stop) as converged.
+The multiplier mu_2 is measured (a central difference of P), not taken from Eq. (21). :func:`stability_grid` keeps its
+own vectorised Newton iteration: ``scipy.optimize.newton`` on arrays stops on an absolute step only and takes a NaN step
+(a stop) as converged.
 """
 
 from __future__ import annotations
