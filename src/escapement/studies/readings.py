@@ -196,8 +196,7 @@ def fig5_readings(model: Mapping, panels: Mapping[str, float], n_cycles: int, sa
 
 
 def all_readings(settings: Mapping, runs: Runs | None = None) -> list[Reading]:
-    """Every reading of Figs. 3-5 for the configuration's blocks ``settings`` (Fig. 5's panels lettered in the
-    order of ``K``); every run is stated before the first is made, so that each is made once."""
+    """Every reading of Figs. 3-5 for the configuration's blocks ``settings`` (Fig. 5's panels lettered by ``K``)."""
     if missing := {"model", "fig3", "fig4", "fig5"} - set(settings):
         raise ValueError(f"settings has the blocks {sorted(settings)}; it must have {sorted(missing)}")
     model = settings["model"]
