@@ -16,8 +16,8 @@ import yaml
 from ..io.netcdf import read_csv, read_variables, replaced, write_text
 from ..model.parameters import Parameters
 from ..model.quantities import MODEL_KEYS
-from ..paper import corrected
-from ..paper.printed_axes import limits_match, panel
+from ..paper import corrected, printed as pe
+from ..paper.printed_axes import FIG3_PERIOD, limits_match, panel
 from ..verdict.rule import EVIDENCE, STATUSES, fmt
 from ..verdict.scores import joint_candidates, panel_candidates, read_scores, summary
 from ..verdict.tally import ORDER, findings, headline
@@ -81,11 +81,6 @@ def metadata(citation: Mapping, title: str, abstract: str) -> dict:
     }
 
 
-def _first(text: str) -> float:
-    """The first number of a value cell of the claims table, which holds text (``-1.72383644 s as read``)."""
-    return float(re.match(r"-?[\d.]+(?:e[-+]?\d+)?", text)[0])
-
-
 def _value(paper: float, run: float, status: str = "—") -> dict:
     """One row of the table of values: the paper's and the run's, their relative difference, the status."""
     return {"paper": typ(fmt(paper, 12)), "run": typ(fmt(run, 12)), "diff": typ(fmt(abs(run - paper) / abs(paper), 2)),
@@ -101,12 +96,16 @@ def _equations(rows: Mapping[str, Mapping], path: str) -> dict[str, dict]:
     start = np.flatnonzero(v["event_kind"] == 1)[-2]  # the last complete cycle's impact at a1, then a2, a3, a4
     c, w = p.zone_offset, p.omega
     h3 = math.hypot(p.a3 + c, corrected.cycle_velocities(v1, p)["v4p"] / w)
+    s, v1p = pe.symbols_of(p), (1 - p.b) * v1  # as read: signed positions, f, the velocity after the impact
     fixed = {"eq22e_step_time": (float(v["event_time"][start + 3] - v["event_time"][start + 2]),
+                                 pe.zone_left_time_22e(corrected.cycle_velocities(v1, p)["v4p"], s),
                                  (math.acos((p.a4 + c) / h3) - math.acos((p.a3 + c) / h3)) / w),
-             "eq23_period": (period, corrected.period(v1, p)),
-             "eq25_force_perturbation": (period, corrected.period_from_perturbations(v1, p))}
-    return {claim: {"printed": _value(_first(rows[claim]["paper_value"]), run, rows[claim]["status"]),
-                    "corrected": _value(right, run)} for claim, (run, right) in fixed.items()}
+             "eq23_period": (period, pe.period_23(v1, p), corrected.period(v1, p)),
+             "eq25_force_perturbation": (period, p.natural_period + 2 * (pe.phase_jump_24(v1, v1p, s)
+                                                                         + pe.zone_change_25(v1p, s)),
+                                         corrected.period_from_perturbations(v1, p))}
+    return {claim: {"printed": _value(printed, run, rows[claim]["status"]), "corrected": _value(right, run)}
+            for claim, (run, printed, right) in fixed.items()}
 
 
 def _axes(rows: Sequence[Mapping], limits: Sequence[Mapping]) -> str:
@@ -175,11 +174,11 @@ def write_article(inputs: Mapping[str, str | Sequence[str]], outputs: Mapping[st
         exact = next(row for row in read_csv(inputs["benchmark"], WORK_PRECISION_COLUMNS) if row["method"] == "exact")
         number = {name: {case: typ(fmt(float(checks[name][i]), digits)) for case, i in paper.items()}
                   for name, digits in (("period", 12), ("velocity", 12), ("multiplier", 10))}
-        values = {case: {"period": _value(_first(by_id[f"fig3_period_{case}"]["paper_value"]), checks["period"][i],
+        values = {case: {"period": _value(FIG3_PERIOD, checks["period"][i],
                                           by_id[f"fig3_period_{case}"]["status"]),
                          "velocity": _value(checks["fixed_point_eq16"][i], checks["velocity"][i],
                                             by_id[f"eq19_fixed_point_case_{case}"]["status"]),
-                         "multiplier": _value(_first(by_id["eq21_multiplier"]["paper_value"]), checks["multiplier"][i],
+                         "multiplier": _value(pe.multiplier_21_of(config["model"]["b"]), checks["multiplier"][i],
                                               by_id["eq21_multiplier"]["status"])} for case, i in paper.items()}
         readings, ties = _readings(read_scores(inputs["readings"]))
         names = {"authors": [typ(a["name"]) for a in citation["authors"]], "rule": typ(RULE),
